@@ -1,0 +1,128 @@
+"""The freestanding rectangular rigid block (paper Section 2.1, Figure 1)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from opsrock._checks import in_open_interval, positive_finite
+from opsrock.constants import DEFAULT_RESTITUTION_FACTOR, G
+
+
+@dataclass(frozen=True)
+class Block:
+    """A homogeneous rectangular block of full width ``2b`` and full height ``2h``.
+
+    Parameters
+    ----------
+    width : float
+        Full base width ``2b`` (m).
+    height : float
+        Full height ``2h`` (m).
+    mass : float, optional
+        Mass ``m`` (kg). Rocking of a rigid block does not depend on it; it scales the
+        moments and forces reported by the OpenSees model. Default 1 kg.
+    restitution_factor : float, optional
+        ``e / e_R``, the ratio of the restitution coefficient used to Housner's rigid-body
+        value (dimensionless, in (0, 1]). Default 0.95, the paper's choice.
+    name : str, optional
+        Label used in tables and figures.
+
+    Notes
+    -----
+    Derived quantities follow DESIGN.md section 2: ``R = sqrt(b² + h²)``,
+    ``alpha = atan(b / h)``, ``p = sqrt(3 g / 4 R)``, ``I_O = 4/3 m R²``,
+    ``e_R = 1 - 1.5 sin²(alpha)`` (Eq. 9), ``e = restitution_factor · e_R``.
+    """
+
+    width: float
+    height: float
+    mass: float = 1.0
+    restitution_factor: float = DEFAULT_RESTITUTION_FACTOR
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "width", positive_finite("width", self.width))
+        object.__setattr__(self, "height", positive_finite("height", self.height))
+        object.__setattr__(self, "mass", positive_finite("mass", self.mass))
+        f = in_open_interval("restitution_factor", self.restitution_factor, 0.0, 1.0 + 1e-12)
+        object.__setattr__(self, "restitution_factor", f)
+        if not isinstance(self.name, str):
+            raise TypeError(f"name must be a string, got {self.name!r}")
+        if self.e_R <= 0.0:
+            raise ValueError(
+                f"width/height = {self.width:g}/{self.height:g} gives alpha = {self.alpha:.4f} rad and "
+                f"e_R = 1 - 1.5 sin²(alpha) = {self.e_R:.4f} <= 0: the block is too stocky for "
+                "Housner's rocking model (needs alpha < 0.9553 rad, width/height < 1.414)"
+            )
+
+    # --- geometry -----------------------------------------------------------------------
+    @property
+    def b(self) -> float:
+        """Half-width ``b`` (m)."""
+        return 0.5 * self.width
+
+    @property
+    def h(self) -> float:
+        """Half-height ``h`` (m)."""
+        return 0.5 * self.height
+
+    @property
+    def R(self) -> float:  # noqa: N802  (the paper's symbol)
+        """Size parameter ``R = sqrt(b² + h²)`` (m): pivot to centre of mass."""
+        return math.hypot(self.b, self.h)
+
+    @property
+    def alpha(self) -> float:
+        """Slenderness ``alpha = atan(b / h)`` (rad)."""
+        return math.atan2(self.b, self.h)
+
+    @property
+    def tan_alpha(self) -> float:
+        """``tan(alpha) = b / h`` (dimensionless)."""
+        return self.b / self.h
+
+    # --- dynamics -----------------------------------------------------------------------
+    @property
+    def p(self) -> float:
+        """Frequency parameter ``p = sqrt(3 g / 4 R)`` (rad/s)."""
+        return math.sqrt(3.0 * G / (4.0 * self.R))
+
+    @property
+    def I_O(self) -> float:  # noqa: N802
+        """Moment of inertia about a pivot corner, ``4/3 m R²`` (kg m²)."""
+        return 4.0 / 3.0 * self.mass * self.R**2
+
+    @property
+    def e_R(self) -> float:  # noqa: N802
+        """Housner's rigid-body restitution coefficient ``1 - 1.5 sin²(alpha)`` (Eq. 9)."""
+        return 1.0 - 1.5 * math.sin(self.alpha) ** 2
+
+    @property
+    def e(self) -> float:
+        """Restitution coefficient used, ``restitution_factor · e_R`` (dimensionless)."""
+        return self.restitution_factor * self.e_R
+
+    @property
+    def uplift_acceleration(self) -> float:
+        """Floor acceleration needed to uplift the block from rest, ``g tan(alpha)`` (m/s², Eq. 4)."""
+        return G * self.tan_alpha
+
+    @property
+    def overturning_rotation_moment(self) -> float:
+        """Peak restoring moment ``m g R sin(alpha)`` (N m), at ``theta = 0±``."""
+        return self.mass * G * self.R * math.sin(self.alpha)
+
+    def describe(self) -> dict[str, float | str]:
+        """Return the block's inputs and derived quantities as a flat dict (SI units)."""
+        return {
+            "name": self.name,
+            "width": self.width,
+            "height": self.height,
+            "mass": self.mass,
+            "alpha": self.alpha,
+            "R": self.R,
+            "p": self.p,
+            "e_R": self.e_R,
+            "e": self.e,
+        }

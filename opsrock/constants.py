@@ -1,0 +1,17 @@
+"""Named physical and model constants (SI units).
+
+Every number the physics needs lives here with its source, so a reader never meets a bare
+literal in the solvers.
+"""
+
+from __future__ import annotations
+
+#: Gravitational acceleration (m/s²), the value DESIGN.md section 2 fixes for the project.
+G: float = 9.81
+
+#: Ratio of the restitution coefficient used to the rigid-body one, ``e = 0.95 e_R``
+#: (paper, Section 2.1, below Eq. 9).
+DEFAULT_RESTITUTION_FACTOR: float = 0.95
+
+#: Overturning limit state on ``|theta|`` (rad), paper Eq. 11.
+OVERTURNING_ANGLE: float = 1.5707963267948966  # pi / 2

@@ -1,0 +1,203 @@
+"""Floor-acceleration excitations: the one-sine pulse and arbitrary records.
+
+Sign convention (DESIGN.md section 2): a positive floor acceleration tips the block towards
+negative ``theta``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
+
+import numpy as np
+
+from opsrock._checks import one_of, positive_finite
+from opsrock.constants import G
+
+if TYPE_CHECKING:
+    from opsrock.block import Block
+
+#: Peak-floor-velocity conventions for IM3 and IM8 (DESIGN.md section 2).
+#: ``"amplitude"``: the harmonic velocity amplitude ``PFA / omega_p``, which the paper's
+#: Table 3 medians fit; ``"peak"``: the true peak of the floor velocity from rest,
+#: ``2 PFA / omega_p``, reached at ``t = T_p / 2``.
+PFV_CONVENTIONS: tuple[str, ...] = ("amplitude", "peak")
+
+
+@runtime_checkable
+class Excitation(Protocol):
+    """What every solver needs from a floor motion."""
+
+    @property
+    def duration(self) -> float:
+        """Time after which the acceleration is zero (s)."""
+
+    @property
+    def pfa(self) -> float:
+        """Peak absolute floor acceleration (m/s²)."""
+
+    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """Floor acceleration at times ``t`` (m/s²); zero before 0 and after ``duration``."""
+
+    def breakpoints(self) -> np.ndarray:
+        """Times where the acceleration is not smooth (s), for event-driven solvers."""
+
+
+@dataclass(frozen=True)
+class OneSinePulse:
+    """One full sine cycle of floor acceleration, ``a(t) = PFA sin(omega_p t)`` on ``[0, T_p]``.
+
+    Parameters
+    ----------
+    pfa : float
+        Peak floor acceleration ``PFA`` (m/s²), > 0.
+    omega_p : float
+        Circular frequency of the pulse ``omega_p`` (rad/s), > 0.
+    """
+
+    pfa: float
+    omega_p: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "pfa", positive_finite("pfa", self.pfa))
+        object.__setattr__(self, "omega_p", positive_finite("omega_p", self.omega_p))
+
+    @classmethod
+    def from_ratios(cls, block: "Block", pfa_ratio: float, freq_ratio: float) -> "OneSinePulse":
+        """Build a pulse from the dimensionless pair of the overturning spectrum.
+
+        Parameters
+        ----------
+        block : Block
+            The block that sets the scales ``g tan(alpha)`` and ``p``.
+        pfa_ratio : float
+            ``PFA / (g tan alpha)`` (dimensionless, IM2), > 0.
+        freq_ratio : float
+            ``omega_p / p`` (dimensionless, IM1), > 0.
+        """
+        pfa_ratio = positive_finite("pfa_ratio", pfa_ratio)
+        freq_ratio = positive_finite("freq_ratio", freq_ratio)
+        return cls(pfa=pfa_ratio * block.uplift_acceleration, omega_p=freq_ratio * block.p)
+
+    @classmethod
+    def from_hz(cls, pfa_g: float, frequency_hz: float) -> "OneSinePulse":
+        """Build a pulse from ``PFA`` in g and the pulse frequency in Hz."""
+        pfa_g = positive_finite("pfa_g", pfa_g)
+        frequency_hz = positive_finite("frequency_hz", frequency_hz)
+        return cls(pfa=pfa_g * G, omega_p=2.0 * math.pi * frequency_hz)
+
+    @property
+    def T_p(self) -> float:  # noqa: N802  (the paper's symbol)
+        """Pulse period ``T_p = 2 pi / omega_p`` (s)."""
+        return 2.0 * math.pi / self.omega_p
+
+    @property
+    def duration(self) -> float:
+        """Pulse duration, equal to ``T_p`` (s)."""
+        return self.T_p
+
+    @property
+    def frequency_hz(self) -> float:
+        """Pulse frequency ``omega_p / 2 pi`` (Hz)."""
+        return self.omega_p / (2.0 * math.pi)
+
+    def pfv(self, convention: str = "amplitude") -> float:
+        """Peak floor velocity (m/s) under the named convention (see :data:`PFV_CONVENTIONS`)."""
+        one_of("convention", convention, PFV_CONVENTIONS)
+        amplitude = self.pfa / self.omega_p
+        return amplitude if convention == "amplitude" else 2.0 * amplitude
+
+    @property
+    def PFV(self) -> float:  # noqa: N802
+        """Peak floor velocity in the paper's convention, ``PFA / omega_p`` (m/s)."""
+        return self.pfv("amplitude")
+
+    def pfa_ratio(self, block: "Block") -> float:
+        """``PFA / (g tan alpha)`` for ``block`` (dimensionless)."""
+        return self.pfa / block.uplift_acceleration
+
+    def freq_ratio(self, block: "Block") -> float:
+        """``omega_p / p`` for ``block`` (dimensionless)."""
+        return self.omega_p / block.p
+
+    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """Floor acceleration (m/s²) at times ``t`` (s); zero outside ``[0, T_p]``."""
+        t = np.asarray(t, dtype=float)
+        inside = (t >= 0.0) & (t <= self.T_p)
+        return np.where(inside, self.pfa * np.sin(self.omega_p * t), 0.0)
+
+    def breakpoints(self) -> np.ndarray:
+        """Start and end of the pulse (s): the acceleration's slope jumps there."""
+        return np.array([0.0, self.T_p])
+
+
+@dataclass(frozen=True)
+class Record:
+    """A floor-acceleration history sampled at a constant time step.
+
+    Parameters
+    ----------
+    dt : float
+        Sampling interval (s), > 0.
+    values : array_like
+        Floor acceleration samples (m/s²), finite, at ``t = 0, dt, 2 dt, ...``. Linear
+        interpolation between samples; zero after the last one.
+    name : str, optional
+        Label of the record (file name, station, ...).
+    """
+
+    dt: float
+    values: np.ndarray = field(repr=False)
+    name: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "dt", positive_finite("dt", self.dt))
+        arr = np.array(self.values, dtype=float, copy=True).ravel()
+        if arr.size < 2:
+            raise ValueError(f"values must hold at least 2 samples, got {arr.size}")
+        if not np.all(np.isfinite(arr)):
+            bad = int(np.flatnonzero(~np.isfinite(arr))[0])
+            raise ValueError(f"values must be finite; sample {bad} is {arr[bad]!r}")
+        arr.setflags(write=False)
+        object.__setattr__(self, "values", arr)
+
+    @classmethod
+    def from_file(cls, path: str, dt: float, *, scale: float = 1.0, name: str = "") -> "Record":
+        """Read a one-column (or whitespace/comma separated) acceleration file.
+
+        Parameters
+        ----------
+        path : str
+            Text file of acceleration samples, read row by row.
+        dt : float
+            Sampling interval (s).
+        scale : float, optional
+            Factor to SI units (m/s²), e.g. ``9.81`` for a file in g.
+        """
+        data = np.loadtxt(path, delimiter=None if not str(path).endswith(".csv") else ",", ndmin=1)
+        return cls(dt=dt, values=np.ravel(data) * float(scale), name=name or str(path))
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times (s)."""
+        return np.arange(self.values.size) * self.dt
+
+    @property
+    def duration(self) -> float:
+        """Time of the last sample (s)."""
+        return (self.values.size - 1) * self.dt
+
+    @property
+    def pfa(self) -> float:
+        """Peak absolute floor acceleration (m/s²)."""
+        return float(np.max(np.abs(self.values)))
+
+    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """Floor acceleration (m/s²) at times ``t`` (s), linearly interpolated; zero outside."""
+        t = np.asarray(t, dtype=float)
+        return np.interp(t, self.time, self.values, left=0.0, right=0.0)
+
+    def breakpoints(self) -> np.ndarray:
+        """Every sample time (s): the interpolated acceleration has a kink at each."""
+        return self.time

@@ -1,0 +1,165 @@
+"""The one result type every solver returns."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy as np
+
+from opsrock.constants import OVERTURNING_ANGLE
+
+#: Result status values. ``"failed"`` carries a reason and is never a safe or overturned verdict.
+STATUSES: tuple[str, ...] = ("ok", "failed")
+
+#: Verdicts a result can carry (see :attr:`RockingResult.verdict`).
+VERDICTS: tuple[str, ...] = ("no_uplift", "safe", "overturned", "failed")
+
+
+@dataclass(frozen=True)
+class RockingResult:
+    """Response of one block to one excitation, whatever solver produced it.
+
+    Parameters
+    ----------
+    solver : str
+        Solver name (``"opensees"``, ``"sdof"``, ``"housner"``, ...).
+    settings : Mapping
+        Every setting the solver ran with (model and numerics), JSON-serialisable.
+    alpha : float
+        Block slenderness (rad), for the normalised peak.
+    time : ndarray
+        Output times (s).
+    theta : ndarray
+        Rotation (rad) at ``time``.
+    theta_dot : ndarray
+        Angular velocity (rad/s) at ``time``.
+    theta_max : float
+        Peak absolute rotation ``|theta|_max`` (rad); for an overturned block, the value at
+        which the run stopped (>= pi/2).
+    overturned : bool
+        True if ``|theta|`` reached ``pi/2`` (Eq. 11).
+    rocked : bool
+        True if the block uplifted at all. A pulse below ``g tan(alpha)`` does not rock: the
+        fragility layer leaves such cases out (Eq. 13 counts rocking simulations).
+    status : str
+        ``"ok"`` or ``"failed"`` (see :data:`STATUSES`).
+    reason : str
+        Why a run failed (empty when ``status == "ok"``).
+    n_steps : int
+        Steps taken (time steps, or accepted integrator steps).
+    wall_time_s : float
+        Wall-clock time of the solve (s).
+    spring_moment : ndarray or None
+        Spring moment (N m) at ``time`` (SDOF models only).
+    damper_force : ndarray or None
+        Damper moment ``f_d`` (N m) at ``time`` (SDOF models only).
+    n_impacts : int or None
+        Number of impacts / band crossings, where the solver counts them.
+    """
+
+    solver: str
+    settings: Mapping[str, Any]
+    alpha: float
+    time: np.ndarray = field(repr=False)
+    theta: np.ndarray = field(repr=False)
+    theta_dot: np.ndarray = field(repr=False)
+    theta_max: float
+    overturned: bool
+    rocked: bool
+    status: str = "ok"
+    reason: str = ""
+    n_steps: int = 0
+    wall_time_s: float = 0.0
+    spring_moment: np.ndarray | None = field(default=None, repr=False)
+    damper_force: np.ndarray | None = field(default=None, repr=False)
+    n_impacts: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.status not in STATUSES:
+            raise ValueError(f"status must be one of {STATUSES}, got {self.status!r}")
+        if self.status == "failed" and not self.reason:
+            raise ValueError("a failed result must carry a reason")
+        if self.status == "failed" and self.overturned:
+            raise ValueError("a failed result cannot carry an overturned verdict")
+        if self.status == "ok" and not math.isfinite(self.theta_max):
+            raise ValueError(f"an ok result must have a finite theta_max, got {self.theta_max!r}")
+        if self.status == "ok" and self.overturned != (self.theta_max >= OVERTURNING_ANGLE):
+            raise ValueError(
+                f"overturned={self.overturned} contradicts theta_max={self.theta_max!r} "
+                f"against the limit state pi/2"
+            )
+
+    @property
+    def theta_max_over_alpha(self) -> float:
+        """Normalised peak rotation ``|theta|_max / alpha`` (dimensionless)."""
+        return self.theta_max / self.alpha
+
+    @property
+    def ok(self) -> bool:
+        """True if the solver finished without failure."""
+        return self.status == "ok"
+
+    @property
+    def verdict(self) -> str:
+        """One of :data:`VERDICTS`: failed runs never read as safe or overturned."""
+        if self.status != "ok":
+            return "failed"
+        if self.overturned:
+            return "overturned"
+        return "safe" if self.rocked else "no_uplift"
+
+    def summary(self) -> dict[str, Any]:
+        """Scalar fields as a JSON-serialisable dict (no time histories)."""
+        return {
+            "solver": self.solver,
+            "status": self.status,
+            "reason": self.reason,
+            "verdict": self.verdict,
+            "theta_max": float(self.theta_max),
+            "theta_max_over_alpha": float(self.theta_max_over_alpha),
+            "overturned": bool(self.overturned),
+            "rocked": bool(self.rocked),
+            "n_steps": int(self.n_steps),
+            "n_impacts": None if self.n_impacts is None else int(self.n_impacts),
+            "wall_time_s": float(self.wall_time_s),
+            "settings": dict(self.settings),
+        }
+
+
+def failed_result(
+    solver: str,
+    settings: Mapping[str, Any],
+    alpha: float,
+    reason: str,
+    *,
+    time: np.ndarray | None = None,
+    theta: np.ndarray | None = None,
+    theta_dot: np.ndarray | None = None,
+    n_steps: int = 0,
+    wall_time_s: float = 0.0,
+) -> RockingResult:
+    """Build a ``status="failed"`` result that keeps whatever history was computed.
+
+    ``theta_max`` is the largest finite ``|theta|`` reached before the failure (NaN if none);
+    ``overturned`` and ``rocked`` are False: a failed case carries no verdict.
+    """
+    empty = np.zeros(0)
+    th = empty if theta is None else np.asarray(theta, dtype=float)
+    finite = np.abs(th[np.isfinite(th)])
+    return RockingResult(
+        solver=solver,
+        settings=settings,
+        alpha=alpha,
+        time=empty if time is None else np.asarray(time, dtype=float),
+        theta=th,
+        theta_dot=empty if theta_dot is None else np.asarray(theta_dot, dtype=float),
+        theta_max=float(finite.max()) if finite.size else math.nan,
+        overturned=False,
+        rocked=False,
+        status="failed",
+        reason=reason,
+        n_steps=n_steps,
+        wall_time_s=wall_time_s,
+    )

@@ -6,7 +6,8 @@ function and a frozen settings dataclass:
 * ``opensees``: the paper's equivalent SDOF model built literally in OpenSeesPy (the only
   module that touches OpenSees state);
 * ``sdof``: the same SDOF equations integrated by scipy, sharing no numerics with OpenSees;
-* ``housner``: the exact rigid-body equation with instantaneous impacts, event-driven.
+* ``housner``: the exact rigid-body equation with instantaneous impacts, event-driven;
+* ``housner_fast``: the same rigid-body equation, compiled, for dense spectra.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from opsrock.excitation import Excitation
 from opsrock.result import RockingResult
 
 #: Solver names accepted by :func:`simulate` and the command line.
-SOLVERS: tuple[str, ...] = ("opensees", "sdof", "housner")
+SOLVERS: tuple[str, ...] = ("opensees", "sdof", "housner", "housner_fast")
 
 
 def get_solver(name: str):

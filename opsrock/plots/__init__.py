@@ -1,0 +1,1 @@
+"""Figures: each function writes a PNG to an explicit path and returns it."""

@@ -1,0 +1,416 @@
+"""The paper's equivalent SDOF model (Eq. 5-8) integrated by scipy, region by region.
+
+    I_O theta'' + f_d(theta, theta') + M_s(theta) = -Lambda a(t)
+
+solved with the same model as the OpenSees solver (:class:`opsrock.model.SDOFModel`: the
+*tabulated* spring ``spring_table``, stiff branch and all; the damper ``c_D`` of
+``damping_coefficient``; the lever ``lever_arm``) but none of its numerics:
+
+* the rotation axis is cut at every kink of the spring table and at the damper band edges
+  ``±delta alpha``; inside one region the equation is linear with constant coefficients and
+  :func:`scipy.integrate.solve_ivp` integrates it with tight tolerances, stopping on a
+  terminal event at the region's edges, at ``|theta| = pi/2`` (overturning, Eq. 11) and at
+  every excitation breakpoint (pulse start and end, record samples);
+* the damper is switched on when the band is entered, with ``c_D`` from the velocity at
+  entry (Eq. 8), and off when it is left. Before the first entry ``c_D = 0``;
+* the stiff branch ``|theta| <= theta_e`` (slope ``k_e = M_s(theta_e) / theta_e``, natural
+  frequency ``omega_e = sqrt(k_e / I_O)``, about ``p sqrt(1 / theta_e_ratio)``: 1000 p by
+  default) is integrated with an implicit method (``stiff_method``). A block that sits in it
+  is handled as **seated**: the exact solution there is the quasi-static deflection
+  ``theta_qs = -Lambda a(t) / k_e`` plus a free oscillation of amplitude ``A`` at
+  ``omega_e``; once ``|theta_qs| + A < theta_e`` the solver drops the oscillation and follows
+  ``theta_qs`` until ``Lambda |a(t)| > M_s(theta_e)``, where the block leaves the branch
+  (for ``lever="housner"`` this is ``|a| > g tan(alpha - theta_e) / tan(alpha) · g tan(alpha)``,
+  i.e. Eq. 4 to within ``theta_e``). The error of this treatment is below ``theta_e`` in
+  rotation (1e-6 alpha by default) and ``k_e theta_e² / 2`` in energy; a block starting from
+  rest is seated from the start.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from opsrock._checks import int_at_least, one_of
+from opsrock.block import Block
+from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel
+from opsrock.result import RockingResult, failed_result
+from opsrock.solvers.housner import METHODS, TAILS, _check_common, first_exceedance, make_settings
+
+
+@dataclass(frozen=True)
+class SDOFSettings:
+    """Model and numerical settings of the scipy SDOF solver.
+
+    Parameters
+    ----------
+    delta : float
+        Damper band half-width as a fraction of alpha (dimensionless). Default
+        :data:`opsrock.model.DEFAULT_DELTA`.
+    theta_e_ratio : float
+        Stiff-branch half-width ``theta_e / alpha`` (dimensionless). Default
+        :data:`opsrock.model.DEFAULT_THETA_E_RATIO`.
+    table_points : int
+        Spring-table points per side (see :meth:`SDOFModel.spring_table`).
+    lever : str
+        Excitation lever, ``"housner"`` (``m R cos alpha``) or ``"printed"`` (see
+        :data:`opsrock.model.LEVERS`).
+    method : str
+        :func:`scipy.integrate.solve_ivp` method outside the stiff branch. Default ``"DOP853"``:
+        there the equation is linear, non-stiff (rates ``p`` and ``c_D / I_O``) and smooth.
+    stiff_method : str
+        Method inside the stiff branch ``|theta| < theta_e``. Default ``"Radau"`` (implicit,
+        L-stable: the branch's ``omega_e`` is ~1000 p).
+    rtol : float
+        Relative tolerance (dimensionless). Default 1e-10.
+    atol : float
+        Absolute tolerance on ``theta`` (rad); ``atol · p`` on ``theta'``. Default 1e-13 rad,
+        ten times below the default ``theta_e`` of a slender block (~2e-7 rad) squared-off by
+        the 1e-6 ratio, so the stiff branch is resolved.
+    end_time : float or None
+        Time to stop (s). None: the excitation's duration plus the free-rocking ``tail``.
+    tail : str
+        ``"rest"``: after the excitation, integrate until the block is trapped in the damper
+        band (its energy ``1/2 I_O theta'² + U(theta)`` below ``U(delta alpha)``, where ``U``
+        is the table spring's potential, so it can never rock out again) or seated;
+        ``"peak"``: stop at the first turning point after the excitation with
+        ``|theta| < alpha`` (energy only falls afterwards, so ``theta_max`` and the verdict
+        are final).
+    max_free_time : float
+        Cap on the free-rocking tail (s). Default 60 s.
+    max_step : float
+        Largest step (s). Default ``inf``.
+    theta0, theta_dot0 : float
+        Initial rotation (rad) and angular velocity (rad/s). Default 0, 0 (seated).
+    record : bool
+        Keep the time histories (every accepted step). Default True.
+    max_impacts : int
+        Largest number of damper-band entries before the run is reported as failed.
+        Default 10 000.
+    max_segments : int
+        Largest number of region/breakpoint segments before the run is reported as failed.
+        Default 200 000 (a record of 10 000 samples needs about that many).
+    scan_step : float or None
+        Grid spacing (s) of the seated-phase uplift scan (see
+        :func:`opsrock.solvers.housner.first_exceedance`). None: ``duration / 2000``.
+    """
+
+    delta: float = DEFAULT_DELTA
+    theta_e_ratio: float = DEFAULT_THETA_E_RATIO
+    table_points: int = DEFAULT_TABLE_POINTS
+    lever: str = "housner"
+    method: str = "DOP853"
+    stiff_method: str = "Radau"
+    rtol: float = 1e-10
+    atol: float = 1e-13
+    end_time: float | None = None
+    tail: str = "rest"
+    max_free_time: float = 60.0
+    max_step: float = math.inf
+    theta0: float = 0.0
+    theta_dot0: float = 0.0
+    record: bool = True
+    max_impacts: int = 10_000
+    max_segments: int = 200_000
+    scan_step: float | None = None
+
+    def __post_init__(self) -> None:
+        self.model  # noqa: B018  (validates delta, theta_e_ratio, table_points, lever)
+        one_of("method", self.method, METHODS)
+        one_of("stiff_method", self.stiff_method, METHODS)
+        one_of("tail", self.tail, TAILS)
+        _check_common(self)
+        int_at_least("max_segments", self.max_segments, 1)
+
+    @property
+    def model(self) -> SDOFModel:
+        """The SDOF model these settings describe."""
+        return SDOFModel(
+            delta=self.delta, theta_e_ratio=self.theta_e_ratio, table_points=self.table_points, lever=self.lever
+        )
+
+
+def table_potential(theta_tab: np.ndarray, moment_tab: np.ndarray):
+    """Potential ``U(theta) = integral_0^theta M_s`` (J) of a piecewise-linear spring table.
+
+    Returns a vectorised function; exact for the linear interpolation of the table.
+    """
+    th = np.asarray(theta_tab, dtype=float)
+    m = np.asarray(moment_tab, dtype=float)
+    i0 = int(np.searchsorted(th, 0.0))
+    m0 = float(np.interp(0.0, th, m))
+    nodes = np.concatenate([th[:i0], [0.0], th[i0:]])
+    vals = np.concatenate([m[:i0], [m0], m[i0:]])
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (vals[1:] + vals[:-1]) * np.diff(nodes))])
+    cum -= cum[i0]
+
+    def U(theta: np.ndarray | float) -> np.ndarray:  # noqa: N802
+        x = np.clip(np.asarray(theta, dtype=float), nodes[0], nodes[-1])
+        j = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, nodes.size - 2)
+        x0, m_0 = nodes[j], vals[j]
+        slope = (vals[j + 1] - vals[j]) / (nodes[j + 1] - nodes[j])
+        dx = x - x0
+        return cum[j] + m_0 * dx + 0.5 * slope * dx**2
+
+    return U
+
+
+def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None, **overrides: Any) -> RockingResult:
+    """Rocking response of the paper's equivalent SDOF model, integrated by scipy.
+
+    Parameters
+    ----------
+    block : Block
+        The block.
+    excitation : Excitation
+        Floor acceleration (m/s²) as a function of time (s).
+    settings : SDOFSettings, optional
+        Model and numerical settings; keyword ``overrides`` replace single fields.
+
+    Returns
+    -------
+    RockingResult
+        ``solver="sdof"``, with ``spring_moment`` and ``damper_force`` histories when
+        ``record``; ``n_impacts`` counts damper-band entries; ``rocked`` is True once
+        ``|theta|`` leaves the stiff branch. Integrator failures and exceeded caps give
+        ``status="failed"`` with the reason.
+    """
+    s = make_settings(SDOFSettings, settings, overrides)
+    settings_dict: dict[str, Any] = dict(asdict(s))
+    if math.isinf(s.max_step):
+        settings_dict["max_step"] = "inf"
+    t_wall = _time.perf_counter()
+    model = s.model
+    alpha, p = block.alpha, block.p
+    inertia = block.I_O
+    lam = model.lever_arm(block)
+    theta_e = model.theta_e(block)
+    band = model.band(block)
+    th_tab, m_tab = model.spring_table(block)
+    U = table_potential(th_tab, m_tab)
+    u_band = float(U(band))
+    m_e = float(np.interp(theta_e, th_tab, m_tab))  # moment at the end of the stiff branch
+    k_e = m_e / theta_e
+    omega_e = math.sqrt(k_e / inertia)
+    kinks = np.unique(np.concatenate([th_tab, [-band, band]]))
+    slopes = np.diff(np.interp(kinks, th_tab, m_tab)) / np.diff(kinks)
+    intercepts = np.interp(kinks[:-1], th_tab, m_tab) - slopes * kinks[:-1]
+    in_band = (kinks[:-1] >= -band - 1e-15) & (kinks[1:] <= band + 1e-15)
+    stiff = (kinks[:-1] >= -theta_e - 1e-15) & (kinks[1:] <= theta_e + 1e-15)
+
+    duration = float(excitation.duration)
+    t_final = s.end_time if s.end_time is not None else duration + s.max_free_time
+    scan = s.scan_step if s.scan_step is not None else max(duration, 1e-9) / 2000.0
+    atol = np.array([s.atol, s.atol * p])
+    acc = excitation.acceleration
+    bps = np.asarray(excitation.breakpoints(), dtype=float)
+    bps = np.unique(np.append(bps[(bps > 0.0) & (bps < t_final)], duration if duration < t_final else t_final))
+
+    ts: list[np.ndarray] = []
+    ths: list[np.ndarray] = []
+    tds: list[np.ndarray] = []
+    cds: list[np.ndarray] = []
+    n_steps = 0
+    n_impacts = 0
+    n_segments = 0
+    overturned = False
+    c_d = 0.0
+
+    def out(t, th, td, c) -> None:
+        if s.record:
+            t = np.atleast_1d(np.asarray(t, dtype=float))
+            ts.append(t)
+            ths.append(np.broadcast_to(np.asarray(th, dtype=float), t.shape).copy())
+            tds.append(np.broadcast_to(np.asarray(td, dtype=float), t.shape).copy())
+            cds.append(np.full(t.shape, c))
+
+    def fail(reason: str) -> RockingResult:
+        return failed_result(
+            "sdof", settings_dict, alpha, reason,
+            time=np.concatenate(ts) if ts else None, theta=np.concatenate(ths) if ths else None,
+            theta_dot=np.concatenate(tds) if tds else None, n_steps=n_steps,
+            wall_time_s=_time.perf_counter() - t_wall,
+        )
+
+    def quasi_static(t: float) -> float:
+        return -lam * float(acc(t)) / k_e
+
+    t = 0.0
+    y = np.array([float(s.theta0), float(s.theta_dot0)])
+    seated = s.theta0 == 0.0 and s.theta_dot0 == 0.0
+    theta_max = abs(s.theta0)
+    rocked = abs(s.theta0) > theta_e
+    region = -1
+    if not seated:
+        region = _region_of(kinks, y[0], y[1])
+    out(t, y[0], y[1], 0.0)
+
+    while t < t_final:
+        n_segments += 1
+        if n_segments > s.max_segments:
+            return fail(f"more than max_segments = {s.max_segments} segments by t = {t:.6g} s")
+        if seated:
+            if s.end_time is None and t >= duration:
+                break
+            t_up = first_exceedance(excitation, m_e / lam, t, min(t_final, duration), scan)
+            t_stop = t_up if t_up is not None else (t_final if s.end_time is not None else min(t_final, duration))
+            if t_stop > t:
+                grid = np.union1d(np.linspace(t, t_stop, 201), bps[(bps > t) & (bps < t_stop)])
+                qs = np.clip(-lam * np.asarray(acc(grid), dtype=float) / k_e, -theta_e, theta_e)
+                out(grid, qs, np.gradient(qs, grid), c_d)
+                theta_max = max(theta_max, float(np.max(np.abs(qs))))
+            t = t_stop
+            if t_up is None:
+                continue
+            # leave the stiff branch at its edge, on the side the floor pushes towards
+            sign = -math.copysign(1.0, float(acc(t_up)))
+            h = 1e-7 * max(duration, 1e-9)
+            qs_dot = -lam * (float(acc(t_up + h)) - float(acc(t_up - h))) / (2 * h) / k_e
+            y = np.array([sign * theta_e, qs_dot if qs_dot * sign > 0 else 0.0])
+            region = _region_of(kinks, y[0], sign)
+            seated = False
+            continue
+
+        if s.end_time is None and s.tail == "rest" and t >= duration:
+            energy = 0.5 * inertia * y[1] ** 2 + float(U(y[0]))
+            if energy < u_band:
+                break  # trapped in the damper band: it can never rock out again
+
+        lo, hi = kinks[region], kinks[region + 1]
+        k_i, m_i = slopes[region], intercepts[region]
+        c_i = c_d if in_band[region] else 0.0
+        is_stiff = bool(stiff[region])
+
+        def rhs(tt, yy, k_i=k_i, m_i=m_i, c_i=c_i):
+            return [yy[1], (-lam * float(acc(tt)) - c_i * yy[1] - (k_i * yy[0] + m_i)) / inertia]
+
+        def lower(tt, yy, lo=lo):
+            return yy[0] - lo
+
+        lower.terminal, lower.direction = True, -1
+
+        def upper(tt, yy, hi=hi):
+            return yy[0] - hi
+
+        upper.terminal, upper.direction = True, 1
+
+        def overturn(tt, yy):
+            return abs(yy[0]) - OVERTURNING_ANGLE
+
+        overturn.terminal, overturn.direction = True, 1
+
+        def turning(tt, yy):
+            return yy[1]
+
+        turning.terminal = bool(s.end_time is None and s.tail == "peak" and t >= duration)
+        turning.direction = 0
+        events = [lower, upper, overturn, turning]
+        if is_stiff:
+
+            def capture(tt, yy):
+                qs = quasi_static(tt)
+                amp = math.hypot(yy[0] - qs, yy[1] / omega_e)
+                return theta_e - abs(qs) - amp
+
+            capture.terminal, capture.direction = True, 1
+            events.append(capture)
+        if s.end_time is None and s.tail == "rest" and t >= duration and in_band[region]:
+
+            def trapped(tt, yy):
+                return 0.5 * inertia * yy[1] ** 2 + float(U(yy[0])) - u_band
+
+            trapped.terminal, trapped.direction = True, -1
+            events.append(trapped)
+
+        nxt = bps[bps > t + 1e-15 * max(1.0, t)]
+        t_seg = float(nxt[0]) if nxt.size else t_final
+        sol = solve_ivp(
+            rhs, (t, t_seg), y, method=s.stiff_method if is_stiff else s.method,
+            rtol=s.rtol, atol=atol, max_step=s.max_step, events=events,
+        )
+        n_steps += max(len(sol.t) - 1, 0)
+        if sol.status == -1:
+            return fail(f"solve_ivp ({s.stiff_method if is_stiff else s.method}) failed at t = {t:.6g} s: {sol.message}")
+        out(sol.t[1:], sol.y[0, 1:], sol.y[1, 1:], c_i)
+        theta_max = max(theta_max, float(np.max(np.abs(sol.y[0]))))
+        if sol.t_events[3].size:
+            theta_max = max(theta_max, float(np.max(np.abs(sol.y_events[3][:, 0]))))
+        if not is_stiff:
+            rocked = True
+        t = float(sol.t[-1])
+        y = sol.y[:, -1].copy()
+        if sol.status == 0:
+            continue
+        if sol.t_events[2].size:
+            overturned = True
+            theta_max = max(theta_max, OVERTURNING_ANGLE)
+            break
+        if sol.t_events[3].size and turning.terminal:
+            if abs(sol.y_events[3][-1][0]) < alpha:
+                break
+            y = sol.y_events[3][-1].copy()
+            continue
+        fired = {ev.__name__ for ev, te in zip(events, sol.t_events) if te.size and ev.terminal}
+        if "capture" in fired:
+            seated = True
+            continue
+        if "trapped" in fired:
+            break
+        if sol.t_events[1].size:
+            y = sol.y_events[1][-1].copy()
+            y[0] = hi
+            new = region + 1
+        else:
+            y = sol.y_events[0][-1].copy()
+            y[0] = lo
+            new = region - 1
+        if new < 0 or new >= slopes.size:
+            return fail(f"rotation {y[0]:.6g} rad left the spring table at t = {t:.6g} s")
+        if in_band[new] and not in_band[region]:
+            c_d = model.damping_coefficient(block, y[1])
+            n_impacts += 1
+            if n_impacts > s.max_impacts:
+                return fail(f"more than max_impacts = {s.max_impacts} band entries by t = {t:.6g} s")
+        region = new
+
+    time_arr = np.concatenate(ts) if ts else np.zeros(0)
+    theta_arr = np.concatenate(ths) if ths else np.zeros(0)
+    td_arr = np.concatenate(tds) if tds else np.zeros(0)
+    spring = damper = None
+    if s.record:
+        spring = np.interp(theta_arr, th_tab, m_tab)
+        damper = np.concatenate(cds) * td_arr * (np.abs(theta_arr) <= band)
+    return RockingResult(
+        solver="sdof",
+        settings=settings_dict,
+        alpha=alpha,
+        time=time_arr,
+        theta=theta_arr,
+        theta_dot=td_arr,
+        theta_max=theta_max,
+        overturned=overturned,
+        rocked=rocked,
+        n_steps=n_steps,
+        n_impacts=n_impacts,
+        wall_time_s=_time.perf_counter() - t_wall,
+        spring_moment=spring,
+        damper_force=damper,
+    )
+
+
+def _region_of(kinks: np.ndarray, theta: float, direction: float) -> int:
+    """Index ``i`` of the region ``[kinks[i], kinks[i+1]]`` holding ``theta``; on a kink, the
+    region on the side ``direction`` points to."""
+    i = int(np.searchsorted(kinks, theta, side="right") - 1)
+    if theta == kinks[min(max(i, 0), kinks.size - 1)] and direction < 0:
+        i -= 1
+    return int(np.clip(i, 0, kinks.size - 2))
+
+
+__all__ = ["SDOFSettings", "solve", "table_potential"]

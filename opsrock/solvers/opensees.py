@@ -1,0 +1,673 @@
+"""The paper's equivalent SDOF model (Eq. 5-8) built literally in OpenSeesPy.
+
+This is the only module in the project that touches OpenSees state. Every public function
+calls ``ops.wipe()`` before building a model and again when it finishes (``try/finally``),
+so no state leaks from one run into the next.
+
+Model (DESIGN.md sections 2 and 4)
+----------------------------------
+One rotational degree of freedom (a 1-D model, ``ndm=1, ndf=1``: the node's single dof *is*
+the block rotation ``theta``), rotational mass ``I_O``, and two ``zeroLength`` elements between
+a fixed node and the free one:
+
+* the spring, ``uniaxialMaterial ElasticMultiLinear`` with the table of
+  :meth:`opsrock.model.SDOFModel.spring_table` (path-independent; its negative slopes are the
+  rocking instability); ``MultiLinear``/``Hysteretic`` would be hysteretic and wrong here;
+* the damper, ``uniaxialMaterial Viscous C 1.0`` whose ``C`` is changed through
+  ``parameter``/``updateParameter``: ``c_D`` of Eq. 8 from the angular velocity on entering the
+  band ``|theta| <= delta alpha``, zero outside (Eq. 7). The change takes effect from the next
+  step.
+
+The floor acceleration enters as the nodal moment ``-Lambda a(t)`` (``Lambda`` =
+:meth:`~opsrock.model.SDOFModel.lever_arm`): a ``Trig`` time series for a one-sine pulse (exact
+at every step, whatever the step), a ``Path`` series for a sampled :class:`~opsrock.excitation.Record`.
+
+The transient loop stops when ``|theta| >= pi/2`` (overturned: OpenSees never fails by itself,
+theta just grows), when the block can no longer exceed its peak after the excitation ended
+(see :func:`_reachable_rotation`), or at a hard end time (a *failed* run: the answer is unknown).
+
+:func:`solve_lumped_mass` builds the lumped-mass form of the paper's Figure 2b (a pivot, a rigid
+link of length ``R`` and the mass ``m`` with ``I_CM = m R^2 / 3``) for the validation of the
+excitation lever.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import asdict, dataclass, field, fields, replace
+from typing import Any
+
+import numpy as np
+import openseespy.opensees as ops
+
+from opsrock._checks import in_open_interval, int_at_least, one_of, positive_finite
+from opsrock.block import Block
+from opsrock.constants import G, OVERTURNING_ANGLE
+from opsrock.excitation import Excitation, OneSinePulse, Record
+from opsrock.model import SDOFModel
+from opsrock.result import RockingResult, failed_result
+
+SOLVER_NAME = "opensees"
+
+#: Time integrators offered. ``"newmark"``: average acceleration (gamma 1/2, beta 1/4), implicit,
+#: unconditionally stable, no numerical damping; ``"hht"`` and ``"generalized_alpha"``: implicit
+#: with high-frequency dissipation set by ``rho_inf``; ``"central_difference"``: explicit, stable
+#: only below ``dt_cr = 2 sqrt(I_O theta_e / (m g R sin alpha))`` (:func:`critical_time_step`).
+INTEGRATORS: tuple[str, ...] = ("newmark", "hht", "generalized_alpha", "central_difference")
+
+#: Equation-solving algorithms. DESIGN.md section 4: KrylovNewton converged on 60/60 random
+#: pulses, plain Newton failed on 3/60 (cycling at the stiff-branch corner near rest).
+ALGORITHMS: tuple[str, ...] = ("KrylovNewton", "NewtonLineSearch", "Newton", "ModifiedNewton", "BFGS")
+
+#: A run counts as *rocking* when ``theta_max`` exceeds this multiple of the stiff-branch
+#: half-width ``theta_e``. Below uplift the block sits on the stiff branch at
+#: ``|theta| = theta_e |Lambda a| / (m g R sin alpha) < theta_e`` (Eq. 4 with the housner lever);
+#: an uplifted block leaves it by orders of magnitude, so the factor 10 separates the two with a
+#: wide margin on either side (also for the small dynamic overshoot of the stiff branch).
+ROCKED_THETA_E_MULTIPLE: float = 10.0
+
+#: Energy-growth test for numerical instability: a run is "unstable" when its mechanical energy
+#: exceeds ``UNSTABLE_ENERGY_FACTOR * (E_0 + W_in) + UNSTABLE_ENERGY_FLOOR * m g R (1 - cos alpha)``,
+#: with ``W_in`` an upper bound on the work the floor did (``Lambda * PFA * sum |d theta|``). The
+#: physical system can never gain more energy than the floor gives, so only a numerical blow-up
+#: trips it; factor 2 leaves room for integration error of a converged-but-coarse run.
+UNSTABLE_ENERGY_FACTOR: float = 2.0
+UNSTABLE_ENERGY_FLOOR: float = 1e-3
+
+#: Default hard cap on the free-rocking tail after the excitation ends (s). Runs normally stop
+#: much earlier, at the first moment the peak can no longer grow (usually the first impact).
+DEFAULT_TAIL: float = 30.0
+
+_SPRING_MAT, _DAMPER_MAT = 1, 2
+_SPRING_ELE, _DAMPER_ELE = 1, 2
+_DAMPER_PARAM = 1
+_SERIES, _PATTERN = 1, 1
+
+
+@dataclass(frozen=True)
+class OpenSeesSettings:
+    """Settings of the OpenSees solver: the SDOF model and every numerical choice.
+
+    Parameters
+    ----------
+    model : SDOFModel
+        The equivalent SDOF model (damper band ``delta``, stiff branch ``theta_e_ratio``, table
+        points, excitation lever).
+    dt : float
+        Time step (s). Fixed-step runs use it throughout; adaptive runs use it as the *largest*
+        step, away from the damper band. Default 2e-3 s with ``adaptive=True`` (bench:
+        within 0.5 % of alpha of the dt = 1e-5 answer on the 400 paper pulses).
+    adaptive : bool
+        If True, the step shrinks ahead of and inside the damper band so that the band is crossed
+        in at least ``band_steps`` steps, and is ``dt`` elsewhere.
+    band_steps : int
+        Adaptive mode: smallest number of steps across the band width ``2 delta alpha`` (-).
+    dt_min : float
+        Smallest step the adaptive mode or the step-halving recovery may take (s).
+    integrator : str
+        One of :data:`INTEGRATORS`.
+    rho_inf : float
+        Spectral radius at infinite frequency for ``"hht"`` (in [0.5, 1]) and
+        ``"generalized_alpha"`` (in [0, 1]) (-): 1 is no numerical damping.
+    algorithm : str
+        Equation-solving algorithm, one of :data:`ALGORITHMS`.
+    fallback_algorithms : tuple of str
+        Algorithms tried, in order, when a step still fails after ``max_halvings`` halvings.
+    tol : float
+        ``NormDispIncr`` convergence tolerance (rad).
+    max_iter : int
+        Largest number of iterations per step (-).
+    max_halvings : int
+        How many times a failed step is halved before trying the fallback algorithms (-).
+    end_time : float or None
+        Hard end time (s). None: excitation duration + :data:`DEFAULT_TAIL`. A run that reaches
+        it before the block overturned or came to rest is *failed* (its peak is not known).
+    rest_tolerance : float
+        Rest test after the excitation ended, as a fraction of ``alpha`` (-): the run stops once
+        the largest rotation the remaining energy can reach is below ``theta_max +
+        rest_tolerance * alpha``, i.e. the peak can grow by less than that.
+    record_every : int
+        Keep every n-th step in the returned history (the last step is always kept) (-).
+    theta0 : float
+        Initial rotation (rad), ``|theta0| < pi/2``.
+    theta_dot0 : float
+        Initial angular velocity (rad/s).
+    """
+
+    model: SDOFModel = field(default_factory=SDOFModel)
+    dt: float = 2e-3
+    adaptive: bool = True
+    band_steps: int = 20
+    dt_min: float = 1e-7
+    integrator: str = "newmark"
+    rho_inf: float = 0.9
+    algorithm: str = "KrylovNewton"
+    fallback_algorithms: tuple[str, ...] = ("NewtonLineSearch", "ModifiedNewton")
+    tol: float = 1e-10
+    max_iter: int = 50
+    max_halvings: int = 8
+    end_time: float | None = None
+    rest_tolerance: float = 1e-4
+    record_every: int = 1
+    theta0: float = 0.0
+    theta_dot0: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.model, SDOFModel):
+            raise TypeError(f"model must be an SDOFModel, got {self.model!r}")
+        positive_finite("dt", self.dt)
+        if not isinstance(self.adaptive, bool):
+            raise TypeError(f"adaptive must be a bool, got {self.adaptive!r}")
+        int_at_least("band_steps", self.band_steps, 2)
+        positive_finite("dt_min", self.dt_min)
+        if self.dt_min > self.dt:
+            raise ValueError(f"dt_min must not exceed dt = {self.dt!r}, got {self.dt_min!r}")
+        one_of("integrator", self.integrator, INTEGRATORS)
+        low = 0.5 if self.integrator == "hht" else 0.0
+        if isinstance(self.rho_inf, bool) or not isinstance(self.rho_inf, (int, float)) or not (
+            low <= self.rho_inf <= 1.0
+        ):
+            raise ValueError(f"rho_inf must lie in [{low:g}, 1] for integrator {self.integrator!r}, got {self.rho_inf!r}")
+        one_of("algorithm", self.algorithm, ALGORITHMS)
+        fb = tuple(self.fallback_algorithms)
+        for name in fb:
+            one_of("fallback_algorithms", name, ALGORITHMS)
+        object.__setattr__(self, "fallback_algorithms", fb)
+        positive_finite("tol", self.tol)
+        int_at_least("max_iter", self.max_iter, 1)
+        int_at_least("max_halvings", self.max_halvings, 0)
+        if self.end_time is not None:
+            positive_finite("end_time", self.end_time)
+        positive_finite("rest_tolerance", self.rest_tolerance)
+        int_at_least("record_every", self.record_every, 1)
+        th0 = float(self.theta0)
+        if not (math.isfinite(th0) and abs(th0) < OVERTURNING_ANGLE):
+            raise ValueError(f"theta0 must be finite with |theta0| < pi/2, got {self.theta0!r}")
+        if not math.isfinite(float(self.theta_dot0)):
+            raise ValueError(f"theta_dot0 must be finite, got {self.theta_dot0!r}")
+
+    def as_dict(self) -> dict[str, Any]:
+        """All settings, the model's included, as a JSON-friendly dict."""
+        d = asdict(self)
+        d["fallback_algorithms"] = list(self.fallback_algorithms)
+        return d
+
+
+_MODEL_FIELDS = tuple(f.name for f in fields(SDOFModel))
+_SETTINGS_FIELDS = tuple(f.name for f in fields(OpenSeesSettings))
+
+
+def make_settings(settings: OpenSeesSettings | None = None, **overrides: Any) -> OpenSeesSettings:
+    """Return ``settings`` (or the defaults) with ``overrides`` applied.
+
+    ``overrides`` may name any :class:`OpenSeesSettings` field and, for convenience, any
+    :class:`~opsrock.model.SDOFModel` field (``delta``, ``theta_e_ratio``, ``table_points``,
+    ``lever``), which then replaces that field of ``settings.model``.
+    """
+    base = OpenSeesSettings() if settings is None else settings
+    if not isinstance(base, OpenSeesSettings):
+        raise TypeError(f"settings must be an OpenSeesSettings, got {settings!r}")
+    model_over = {k: overrides.pop(k) for k in list(overrides) if k in _MODEL_FIELDS}
+    unknown = [k for k in overrides if k not in _SETTINGS_FIELDS]
+    if unknown:
+        raise TypeError(
+            f"unknown OpenSees setting(s) {', '.join(map(repr, unknown))}; "
+            f"valid: {', '.join(_SETTINGS_FIELDS + _MODEL_FIELDS)}"
+        )
+    if model_over:
+        overrides["model"] = replace(overrides.get("model", base.model), **model_over)
+    return replace(base, **overrides) if overrides else base
+
+
+def critical_time_step(block: Block, model: SDOFModel | None = None) -> float:
+    """Explicit (central-difference) stability limit ``dt_cr = 2 / omega_e`` (s).
+
+    ``omega_e = sqrt(k_e / I_O)`` with the stiff-branch stiffness ``k_e = m g R sin(alpha) /
+    theta_e``, i.e. ``dt_cr = 2 sqrt(I_O theta_e / (m g R sin alpha))`` = the stiff branch's
+    period / pi.
+    """
+    model = SDOFModel() if model is None else model
+    k_e = block.overturning_rotation_moment / model.theta_e(block)
+    return 2.0 * math.sqrt(block.I_O / k_e)
+
+
+def _potential(block: Block, theta: float) -> float:
+    """Potential energy ``m g R [cos(alpha - |theta|) - cos(alpha)]`` (J) of the rigid block."""
+    return block.mass * G * block.R * (math.cos(block.alpha - abs(theta)) - math.cos(block.alpha))
+
+
+def _reachable_rotation(block: Block, energy: float) -> float:
+    """Largest ``|theta|`` (rad) a freely rocking block of mechanical ``energy`` (J) can reach.
+
+    With no excitation the spring is conservative and the damper only dissipates, so
+    ``V(theta) <= E``: ``theta <= alpha - arccos(cos alpha + E / (m g R))``; ``inf`` when ``E``
+    reaches the barrier ``m g R (1 - cos alpha)``.
+    """
+    c = math.cos(block.alpha) + energy / (block.mass * G * block.R)
+    if c >= 1.0:
+        return math.inf
+    return block.alpha - math.acos(c)
+
+
+def _define_time_series(excitation: Excitation, dt: float) -> None:
+    """Define time series ``_SERIES`` giving the floor acceleration ``a(t)`` (m/s^2)."""
+    if isinstance(excitation, OneSinePulse):
+        # Trig: factor * sin(2 pi (t - tStart) / period) on [tStart, tEnd], zero outside: exact.
+        ops.timeSeries("Trig", _SERIES, 0.0, excitation.T_p, excitation.T_p, "-factor", excitation.pfa)
+    elif isinstance(excitation, Record):
+        # Path with constant dt interpolates linearly and is zero after the last sample.
+        ops.timeSeries("Path", _SERIES, "-dt", excitation.dt, "-values", *map(float, excitation.values))
+    else:
+        t = np.union1d(np.arange(0.0, excitation.duration + dt, dt), excitation.breakpoints())
+        t = t[t <= excitation.duration]
+        a = excitation.acceleration(t)
+        t = np.append(t, excitation.duration + dt)
+        a = np.append(a, 0.0)
+        ops.timeSeries("Path", _SERIES, "-time", *map(float, t), "-values", *map(float, a))
+
+
+def _define_analysis(settings: OpenSeesSettings, algorithm: str) -> None:
+    ops.constraints("Plain")
+    ops.numberer("Plain")
+    # BandGeneral: a general (non-symmetric-positive) solver; the spring's tangent is negative
+    # beyond the stiff branch, so SPD solvers are wrong here.
+    ops.system("BandGeneral")
+    ops.test("NormDispIncr", settings.tol, settings.max_iter)
+    _set_integrator(settings)
+    _set_algorithm(settings, algorithm)
+    ops.analysis("Transient")
+
+
+def _set_integrator(settings: OpenSeesSettings) -> None:
+    rho = float(settings.rho_inf)
+    if settings.integrator == "newmark":
+        ops.integrator("Newmark", 0.5, 0.25)
+    elif settings.integrator == "hht":
+        # OpenSees HHT alpha in [2/3, 1] (1 = Newmark); rho_inf = alpha / (2 - alpha).
+        ops.integrator("HHT", 2.0 * rho / (1.0 + rho))
+    elif settings.integrator == "generalized_alpha":
+        # Chung & Hulbert (1993): alpha_m = (2 - rho) / (1 + rho), alpha_f = 1 / (1 + rho) in
+        # OpenSees' convention (alpha = 1 means no shift).
+        ops.integrator("GeneralizedAlpha", (2.0 - rho) / (1.0 + rho), 1.0 / (1.0 + rho))
+    else:
+        ops.integrator("CentralDifference")
+
+
+def _set_algorithm(settings: OpenSeesSettings, algorithm: str) -> None:
+    if settings.integrator == "central_difference":
+        ops.algorithm("Linear")  # explicit: one solve with the mass matrix per step
+    elif algorithm == "NewtonLineSearch":
+        ops.algorithm("NewtonLineSearch")
+    else:
+        ops.algorithm(algorithm)
+
+
+class _Failure(Exception):
+    """Internal: a step that could not be recovered, or a numerical blow-up."""
+
+
+def _build_sdof(block: Block, excitation: Excitation, settings: OpenSeesSettings) -> None:
+    model = settings.model
+    theta_tab, moment_tab = model.spring_table(block)
+    ops.model("basic", "-ndm", 1, "-ndf", 1)
+    ops.node(1, 0.0)
+    ops.node(2, 0.0)
+    ops.fix(1, 1)
+    ops.mass(2, block.I_O)
+    ops.uniaxialMaterial(
+        "ElasticMultiLinear", _SPRING_MAT, 0.0, "-strain", *map(float, theta_tab), "-stress", *map(float, moment_tab)
+    )
+    ops.uniaxialMaterial("Viscous", _DAMPER_MAT, 1.0, 1.0)
+    ops.element("zeroLength", _SPRING_ELE, 1, 2, "-mat", _SPRING_MAT, "-dir", 1)
+    ops.element("zeroLength", _DAMPER_ELE, 1, 2, "-mat", _DAMPER_MAT, "-dir", 1)
+    ops.parameter(_DAMPER_PARAM, "element", _DAMPER_ELE, "C")
+    ops.updateParameter(_DAMPER_PARAM, 0.0)
+    _define_time_series(excitation, settings.dt)
+    ops.pattern("Plain", _PATTERN, _SERIES)
+    ops.load(2, -model.lever_arm(block))
+
+
+def _set_initial_state(block: Block, excitation: Excitation, settings: OpenSeesSettings, node: int, dof: int) -> None:
+    th0, v0 = float(settings.theta0), float(settings.theta_dot0)
+    if th0 == 0.0 and v0 == 0.0:
+        return
+    ops.setNodeDisp(node, dof, th0, "-commit")
+    ops.setNodeVel(node, dof, v0, "-commit")
+    # Consistent initial acceleration: I_O theta'' = -M_s(theta0) - Lambda a(0).
+    th_tab, m_tab = settings.model.spring_table(block)
+    m_s = float(np.interp(th0, th_tab, m_tab))
+    a0 = float(excitation.acceleration(0.0))
+    ops.setNodeAccel(node, dof, (-m_s - settings.model.lever_arm(block) * a0) / block.I_O, "-commit")
+
+
+def solve(
+    block: Block, excitation: Excitation, *, settings: OpenSeesSettings | None = None, **overrides: Any
+) -> RockingResult:
+    """Rocking response of ``block`` to ``excitation`` with the paper's OpenSees SDOF model.
+
+    Parameters
+    ----------
+    block : Block
+        The block.
+    excitation : Excitation
+        Floor acceleration (m/s^2): a one-sine pulse, a record, or any :class:`Excitation`.
+    settings : OpenSeesSettings, optional
+        Model and numerics; defaults to ``OpenSeesSettings()``.
+    **overrides
+        Any :class:`OpenSeesSettings` field, or ``delta``, ``theta_e_ratio``, ``table_points``,
+        ``lever`` of the :class:`~opsrock.model.SDOFModel` (see :func:`make_settings`).
+
+    Returns
+    -------
+    RockingResult
+        ``solver="opensees"``. ``status="failed"`` with a reason if a step could not be recovered,
+        the run blew up numerically ("unstable: ..."), or the end time came before rest.
+    """
+    s = make_settings(settings, **overrides)
+    return _run(block, excitation, s, geometry=None)
+
+
+def solve_lumped_mass(
+    block: Block,
+    excitation: Excitation,
+    *,
+    geometry: str = "linear",
+    settings: OpenSeesSettings | None = None,
+    **overrides: Any,
+) -> RockingResult:
+    """Lumped-mass form of the paper's Figure 2b, built in 2-D OpenSees.
+
+    A pivot node with the same rotational spring and damper as :func:`solve`, a rigid link of
+    length ``R`` to a mass node carrying ``m`` on its translations and ``I_CM = m R^2 / 3`` on its
+    rotation, and the horizontal force ``m a(t) cos(alpha)`` on the mass (the model is the
+    mirror image of the block, so that ``theta`` keeps the sign convention of :func:`solve`).
+    The excitation lever is therefore *not* an input: it follows from the geometry. Gravity is
+    in the spring (Eq. 5), so no P-Delta.
+
+    Parameters
+    ----------
+    block, excitation, settings, overrides
+        As :func:`solve`; ``lever`` is ignored (the model has no lever input).
+    geometry : str
+        ``"linear"``: a ``rigidLink beam`` (small-rotation kinematics; the lever is exactly
+        ``m R cos(alpha)``); ``"corotational"``: a very stiff ``elasticBeamColumn`` with a
+        corotational transformation, so the force's arm becomes ``R cos(theta)`` at large
+        rotations.
+    """
+    one_of("geometry", geometry, ("linear", "corotational"))
+    s = make_settings(settings, **overrides)
+    return _run(block, excitation, s, geometry=geometry)
+
+
+def _build_lumped(block: Block, excitation: Excitation, settings: OpenSeesSettings, geometry: str) -> None:
+    model = settings.model
+    theta_tab, moment_tab = model.spring_table(block)
+    m, R = block.mass, block.R
+    ops.model("basic", "-ndm", 2, "-ndf", 3)
+    ops.node(1, 0.0, 0.0)
+    ops.node(2, 0.0, 0.0)  # pivot: translations fixed, rotation free
+    ops.node(3, 0.0, R)  # centre of mass
+    ops.fix(1, 1, 1, 1)
+    ops.fix(2, 1, 1, 0)
+    ops.mass(3, m, m, m * R**2 / 3.0)
+    ops.uniaxialMaterial(
+        "ElasticMultiLinear", _SPRING_MAT, 0.0, "-strain", *map(float, theta_tab), "-stress", *map(float, moment_tab)
+    )
+    ops.uniaxialMaterial("Viscous", _DAMPER_MAT, 1.0, 1.0)
+    ops.element("zeroLength", _SPRING_ELE, 1, 2, "-mat", _SPRING_MAT, "-dir", 6)
+    ops.element("zeroLength", _DAMPER_ELE, 1, 2, "-mat", _DAMPER_MAT, "-dir", 6)
+    ops.parameter(_DAMPER_PARAM, "element", _DAMPER_ELE, "C")
+    ops.updateParameter(_DAMPER_PARAM, 0.0)
+    if geometry == "linear":
+        ops.rigidLink("beam", 2, 3)
+    else:
+        # Link stiffness: rotational 4EI/L = LINK_STIFFNESS_FACTOR x the stiff branch k_e, so
+        # the link flexes 1e-4 of the spring's stiff-branch rotation.
+        k_e = block.overturning_rotation_moment / model.theta_e(block)
+        ei = 1e4 * k_e * R / 4.0
+        ops.geomTransf("Corotational", 1)
+        ops.element("elasticBeamColumn", 3, 2, 3, 1.0, ei / R**2, ei, 1)
+    _define_time_series(excitation, settings.dt)
+    ops.pattern("Plain", _PATTERN, _SERIES)
+    ops.load(3, m * math.cos(block.alpha), 0.0, 0.0)
+
+
+def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: str | None) -> RockingResult:
+    if not isinstance(block, Block):
+        raise TypeError(f"block must be a Block, got {block!r}")
+    if not isinstance(excitation, Excitation):
+        raise TypeError(f"excitation must be an Excitation, got {excitation!r}")
+    settings_dict = s.as_dict()
+    if geometry is not None:
+        settings_dict["form"] = f"lumped_mass/{geometry}"
+    t_wall = _time.perf_counter()
+    ops.wipe()
+    try:
+        if geometry is None:
+            _build_sdof(block, excitation, s)
+            node, dof = 2, 1
+        else:
+            _build_lumped(block, excitation, s, geometry)
+            node, dof = 2, 3
+        _define_analysis(s, s.algorithm)
+        _set_initial_state(block, excitation, s, node, dof)
+        return _integrate(block, excitation, s, settings_dict, node, dof, t_wall)
+    finally:
+        ops.wipe()
+
+
+def _integrate(
+    block: Block,
+    excitation: Excitation,
+    s: OpenSeesSettings,
+    settings_dict: dict[str, Any],
+    node: int,
+    dof: int,
+    t_wall: float,
+) -> RockingResult:
+    model = s.model
+    alpha = block.alpha
+    band = model.band(block)
+    band_len = 2.0 * band
+    half_i = 0.5 * block.I_O
+    mgR = block.mass * G * block.R
+    cos_a = math.cos(alpha)
+    barrier = mgR * (1.0 - cos_a)
+    lam_pfa = abs(model.lever_arm(block)) * excitation.pfa
+    duration = float(excitation.duration)
+    t_end = duration + DEFAULT_TAIL if s.end_time is None else float(s.end_time)
+    rest_margin = s.rest_tolerance * alpha
+    dt, dt_min, adaptive = s.dt, s.dt_min, s.adaptive
+    h_band_num = band_len / s.band_steps
+    record_every = s.record_every
+
+    analyze, node_disp, node_vel, update = ops.analyze, ops.nodeDisp, ops.nodeVel, ops.updateParameter
+    ele_resp = ops.eleResponse
+
+    th = float(node_disp(node, dof))
+    thd = float(node_vel(node, dof))
+    e_0 = half_i * thd * thd + _potential(block, th)
+    w_in = 0.0  # upper bound of the work done by the floor (J)
+    in_band = abs(th) <= band
+    c_now = 0.0
+    t = 0.0
+    n_steps = 0
+    n_impacts = 0
+    theta_max = abs(th)
+    ts, ths, thds, ms, fds = [t], [th], [thd], [ele_resp(1, "force")[1]], [0.0]
+    k_rec = 0
+
+    def record() -> None:
+        ts.append(t)
+        ths.append(th)
+        thds.append(thd)
+        ms.append(ele_resp(_SPRING_ELE, "force")[1])
+        fds.append(ele_resp(_DAMPER_ELE, "force")[1])
+
+    def fail(reason: str) -> RockingResult:
+        if not ts or ts[-1] != t:
+            ts.append(t)
+            ths.append(th)
+            thds.append(thd)
+        return failed_result(
+            SOLVER_NAME,
+            settings_dict,
+            alpha,
+            reason,
+            time=np.array(ts),
+            theta=np.array(ths),
+            theta_dot=np.array(thds),
+            n_steps=n_steps,
+            wall_time_s=_time.perf_counter() - t_wall,
+        )
+
+    status_stop = ""
+    while True:
+        # --- choose the step --------------------------------------------------------------
+        if adaptive:
+            ath = abs(th)
+            avel = abs(thd)
+            if avel * dt <= h_band_num:
+                h = dt
+            elif ath <= band:
+                h = h_band_num / avel
+            elif th * thd < 0.0:
+                h = (0.5 * (ath - band) + h_band_num) / avel
+            else:
+                h = dt
+            if h > dt:
+                h = dt
+            elif h < dt_min:
+                h = dt_min
+            if t < duration < t + h:
+                h = duration - t  # land on the end of the excitation (a kink in a(t))
+                if h < dt_min:
+                    h = dt_min
+        else:
+            h = dt
+        # --- advance ------------------------------------------------------------------------
+        if analyze(1, h) == 0:
+            n_steps += 1
+        else:
+            try:
+                n_steps += _recover(s, h)
+            except _Failure as exc:
+                return fail(f"step at t = {t:.6g} s (dt = {h:.3g} s) did not converge: {exc}")
+        t += h
+        th_prev = th
+        th = node_disp(node, dof)
+        thd = node_vel(node, dof)
+        if not (math.isfinite(th) and math.isfinite(thd)):
+            return fail(f"unstable: non-finite state at t = {t:.6g} s (theta = {th!r}, theta_dot = {thd!r})")
+        ath = abs(th)
+        if ath > theta_max:
+            theta_max = ath
+        # --- physical plausibility: energy can only come from the floor --------------------
+        if t <= duration + h:
+            w_in += lam_pfa * abs(th - th_prev)
+        energy = half_i * thd * thd + mgR * (math.cos(alpha - ath) - cos_a)
+        if energy > UNSTABLE_ENERGY_FACTOR * (e_0 + w_in) + UNSTABLE_ENERGY_FLOOR * barrier:
+            return fail(
+                f"unstable: mechanical energy {energy:.4g} J at t = {t:.6g} s exceeds the initial energy "
+                f"plus the floor's work ({e_0 + w_in:.4g} J); numerical blow-up (theta = {th:.4g} rad)"
+            )
+        # --- damper (Eq. 7-8): set on entering the band, zero outside ----------------------
+        if ath <= band:
+            if not in_band:
+                in_band = True
+                n_impacts += 1
+                c_now = block.I_O * (1.0 - block.e) * abs(thd) / (2.0 * band)
+                update(_DAMPER_PARAM, c_now)
+        elif in_band:
+            in_band = False
+            if c_now != 0.0:
+                c_now = 0.0
+                update(_DAMPER_PARAM, 0.0)
+        # --- stopping ------------------------------------------------------------------------
+        if ath >= OVERTURNING_ANGLE:
+            status_stop = "overturned"
+            break
+        # rest: excitation over, block inside the hump (|theta| < alpha; beyond it a block with
+        # less than the barrier energy falls over) and unable to pass its peak again
+        if t >= duration and ath < alpha and _reachable_rotation(block, energy) <= theta_max + rest_margin:
+            status_stop = "rest"
+            break
+        if t >= t_end:
+            return fail(
+                f"end_time = {t_end:.6g} s reached before the block overturned or came to rest "
+                f"(theta = {th:.4g} rad, theta_dot = {thd:.4g} rad/s); raise end_time"
+            )
+        k_rec += 1
+        if k_rec >= record_every:
+            k_rec = 0
+            record()
+    if ts[-1] != t:
+        record()
+    theta_arr = np.array(ths)
+    overturned = status_stop == "overturned"
+    return RockingResult(
+        solver=SOLVER_NAME,
+        settings=settings_dict,
+        alpha=alpha,
+        time=np.array(ts),
+        theta=theta_arr,
+        theta_dot=np.array(thds),
+        theta_max=float(theta_max),
+        overturned=overturned,
+        rocked=bool(theta_max > ROCKED_THETA_E_MULTIPLE * model.theta_e(block)),
+        n_steps=n_steps,
+        wall_time_s=_time.perf_counter() - t_wall,
+        spring_moment=np.array(ms),
+        damper_force=np.array(fds),
+        n_impacts=n_impacts,
+    )
+
+
+def _recover(s: OpenSeesSettings, h: float) -> int:
+    """Advance by ``h`` after a failed step: halve the step, then try the fallback algorithms.
+
+    Returns the number of sub-steps taken; raises :class:`_Failure` with the reason otherwise.
+    """
+    tried = []
+    for algorithm in (s.algorithm, *s.fallback_algorithms):
+        if algorithm != s.algorithm:
+            _set_algorithm(s, algorithm)
+        try:
+            for k in range(1, s.max_halvings + 1):
+                sub = h / 2**k
+                if sub < s.dt_min:
+                    break
+                if _advance_in_substeps(sub, 2**k):
+                    return 2**k
+            tried.append(algorithm)
+        finally:
+            if algorithm != s.algorithm:
+                _set_algorithm(s, s.algorithm)
+    raise _Failure(
+        f"no convergence with {', '.join(tried) or s.algorithm} after up to {s.max_halvings} step halvings "
+        f"(tol = {s.tol:g}, max_iter = {s.max_iter})"
+    )
+
+
+def _advance_in_substeps(sub: float, n: int) -> bool:
+    """Take ``n`` steps of ``sub``; on a failure part-way, give up (the domain keeps the
+    committed sub-steps, so the caller must not retry from the start)."""
+    for i in range(n):
+        if ops.analyze(1, sub) != 0:
+            if i > 0:
+                raise _Failure(f"sub-step {i + 1} of {n} (dt = {sub:.3g} s) failed after earlier ones committed")
+            return False
+    return True
+
+
+__all__ = [
+    "ALGORITHMS",
+    "INTEGRATORS",
+    "OpenSeesSettings",
+    "ROCKED_THETA_E_MULTIPLE",
+    "critical_time_step",
+    "make_settings",
+    "solve",
+    "solve_lumped_mass",
+]

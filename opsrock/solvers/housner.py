@@ -220,6 +220,20 @@ def first_exceedance(excitation: Any, level: float, t_start: float, t_stop: floa
     return hi
 
 
+def _out_with_turns(out: Any, sol: Any, k: int, *extra: float) -> None:
+    """Record a segment's accepted steps merged with its turning points (event ``k``), so the
+    stored history holds every peak exactly, not only the nearest step."""
+    t, th, td = sol.t[1:], sol.y[0, 1:], sol.y[1, 1:]
+    if sol.t_events[k].size:
+        inside = sol.t_events[k] < sol.t[-1]
+        t = np.concatenate([t, sol.t_events[k][inside]])
+        th = np.concatenate([th, sol.y_events[k][inside, 0]])
+        td = np.concatenate([td, sol.y_events[k][inside, 1]])
+        order = np.argsort(t, kind="stable")
+        t, th, td = t[order], th[order], td[order]
+    out(t, th, td, *extra)
+
+
 def rocking_energy(block: Block, theta: np.ndarray | float, theta_dot: np.ndarray | float) -> np.ndarray:
     """Mechanical energy of the rocking block (J), paper Section 2.1 / DESIGN.md section 2.
 
@@ -349,7 +363,7 @@ def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = N
         n_steps += max(len(sol.t) - 1, 0)
         if sol.status == -1:
             return fail(f"solve_ivp ({s.method}) failed at t = {t:.6g} s: {sol.message}")
-        out(sol.t[1:], sol.y[0, 1:], sol.y[1, 1:])
+        _out_with_turns(out, sol, 2)
         theta_max = max(theta_max, float(np.max(np.abs(sol.y[0]))))
         if sol.t_events[2].size:
             theta_max = max(theta_max, float(np.max(np.abs(sol.y_events[2][:, 0]))))

@@ -41,7 +41,14 @@ from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel
 from opsrock.result import RockingResult, failed_result
-from opsrock.solvers.housner import METHODS, TAILS, _check_common, first_exceedance, make_settings
+from opsrock.solvers.housner import (
+    METHODS,
+    TAILS,
+    _check_common,
+    _out_with_turns,
+    first_exceedance,
+    make_settings,
+)
 
 
 @dataclass(frozen=True)
@@ -337,7 +344,7 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         n_steps += max(len(sol.t) - 1, 0)
         if sol.status == -1:
             return fail(f"solve_ivp ({s.stiff_method if is_stiff else s.method}) failed at t = {t:.6g} s: {sol.message}")
-        out(sol.t[1:], sol.y[0, 1:], sol.y[1, 1:], c_i)
+        _out_with_turns(out, sol, 3, c_i)
         theta_max = max(theta_max, float(np.max(np.abs(sol.y[0]))))
         if sol.t_events[3].size:
             theta_max = max(theta_max, float(np.max(np.abs(sol.y_events[3][:, 0]))))

@@ -1,0 +1,572 @@
+"""Campaigns: run every case of a scene, store each result as it finishes, resume after a stop.
+
+:func:`run_campaign` is the whole workflow:
+
+1. the scene is validated (:func:`opsrock.scene.load_scene`) before anything is written;
+2. the output folder's store (:mod:`opsrock.store`) is opened and locked; its manifest must
+   match the scene's digest (blocks, grid, solver, settings), or the run is refused unless
+   ``force=True``, which clears the old results: results of different settings never mix;
+3. cases already stored are reused; the others are sent in batches to an executor
+   (:mod:`opsrock.executors`) and every batch's results are committed as soon as it returns;
+4. ``cases.csv`` is assembled from the store, in the scene's case order, and written
+   atomically (temporary file + ``os.replace``), with ``manifest.json`` beside it.
+
+So an interrupted run (Ctrl-C, ``kill -9``, a dead worker, a power cut) loses at most the
+batches being computed, and re-running the same command computes only the missing cases and
+ends with the same ``cases.csv`` as an uninterrupted run, column for column, except
+``wall_time_s``, which is measured (see :data:`IDENTITY_EXCLUDED`).
+
+A case whose solver raises, or returns ``status="failed"``, is stored as failed with its
+reason; so is a case whose worker process dies while it runs alone. Failed cases are never
+given a verdict other than ``"failed"``, and are not retried by a resume (they are results);
+use ``force=True`` to recompute everything.
+
+Command line (wired into ``opsrock run`` by :mod:`opsrock.cli`, also ``python -m
+opsrock.campaign``)::
+
+    opsrock run SCENE.toml --out DIR [--solver NAME] [--workers N]
+                [--scheduler tcp://HOST:PORT | --dask-local N] [--force] [--no-progress]
+
+:func:`run_command` returns the exit status: 0 done (failed cases are reported on stderr but
+are results, not errors), 2 usage error (bad scene, refused settings change, folder in use,
+Dask missing; a one-line message on stderr and nothing written), 130 interrupted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import functools
+import json
+import math
+import os
+import sys
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable, Mapping, Sequence
+
+from opsrock.executors import DaskExecutor, Executor, ExecutorUnavailableError, LocalPool, batch_size, make_batches
+from opsrock.result import RockingResult
+from opsrock.scene import Case, Scene, SceneError, load_scene, solver_kwargs
+from opsrock.solvers import SOLVERS, simulate
+from opsrock.store import STORE_FILE, ResultStore, StoreError
+
+#: Name of the assembled table in the output folder.
+CASES_FILE: str = "cases.csv"
+
+#: Name of the human-readable copy of the run manifest.
+MANIFEST_FILE: str = "manifest.json"
+
+#: Columns of ``cases.csv``, in order. Inputs (block, pulse, intensity measures) come from the
+#: scene; the rest from the store. Units: m, rad, m/s², rad/s, s, m/s; ratios dimensionless.
+CASES_COLUMNS: tuple[str, ...] = (
+    "case_id",
+    "block", "width", "height", "alpha", "R", "p", "e", "e_R",
+    "pfa", "omega_p", "T_p", "pfv", "freq_ratio", "pfa_ratio",
+    "IM1", "IM2", "IM3", "IM4", "IM5", "IM6", "IM7", "IM8", "IM9",
+    "theta_max", "theta_max_over_alpha", "overturned", "rocked",
+    "status", "reason", "verdict", "solver", "wall_time_s",
+)  # fmt: skip
+
+#: Columns that differ between two runs of the same campaign: measured, not computed. Two
+#: ``cases.csv`` of the same scene and settings agree in every other column, whatever the
+#: executor, the worker count and the interruptions.
+IDENTITY_EXCLUDED: tuple[str, ...] = ("wall_time_s",)
+
+#: Longest failure reason kept (characters); a reason is also folded onto one line.
+MAX_REASON: int = 500
+
+#: One solve at a time per process: OpenSeesPy keeps one global model per interpreter, and a
+#: Dask worker may run several threads.
+_SOLVE_LOCK = threading.Lock()
+
+
+class CampaignConflictError(RuntimeError):
+    """The output folder holds results of other settings (use another folder or ``force=True``)."""
+
+
+@dataclass(frozen=True)
+class CampaignSummary:
+    """What a campaign did.
+
+    Parameters
+    ----------
+    n_cases : int
+        Cases in the scene.
+    n_computed : int
+        Cases solved by this run.
+    n_reused : int
+        Cases found in the store from an earlier (interrupted) run.
+    n_failed : int
+        Cases of the final table with ``status == "failed"`` (computed now or earlier).
+    wall_time_s : float
+        Wall-clock time of this run (s).
+    out_dir : str
+        Output folder.
+    store_path : str
+        The SQLite store.
+    cases_csv : str
+        The assembled table.
+    manifest_path : str
+        JSON copy of the run manifest.
+    digest : str
+        Digest of what determines the results (scene, solver, settings).
+    solver : str
+        Solver that ran.
+    """
+
+    n_cases: int
+    n_computed: int
+    n_reused: int
+    n_failed: int
+    wall_time_s: float
+    out_dir: str
+    store_path: str
+    cases_csv: str
+    manifest_path: str
+    digest: str
+    solver: str
+
+
+# --- work done in the workers -------------------------------------------------------------------
+def _one_line(text: str) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= MAX_REASON else text[: MAX_REASON - 3] + "..."
+
+
+def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math.nan) -> dict[str, Any]:
+    """A store row for a case that produced no result (status ``"failed"``, verdict ``"failed"``)."""
+    return {
+        "case_id": case_id,
+        "status": "failed",
+        "reason": _one_line(reason) or "failed without a reason",
+        "verdict": "failed",
+        "theta_max": math.nan,
+        "theta_max_over_alpha": math.nan,
+        "overturned": False,
+        "rocked": False,
+        "solver": solver,
+        "wall_time_s": wall_time_s,
+        "n_steps": None,
+        "n_impacts": None,
+    }
+
+
+def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[str, Any]:
+    """A store row from a solver's result."""
+    s = result.summary()
+    return {
+        "case_id": case_id,
+        "status": s["status"],
+        "reason": _one_line(s["reason"]),
+        "verdict": s["verdict"],
+        "theta_max": s["theta_max"],
+        "theta_max_over_alpha": s["theta_max_over_alpha"],
+        "overturned": s["overturned"],
+        "rocked": s["rocked"],
+        "solver": s["solver"],
+        "wall_time_s": wall_time_s,
+        "n_steps": s["n_steps"],
+        "n_impacts": s["n_impacts"],
+    }
+
+
+def solve_batch(
+    cases: Sequence[Case],
+    *,
+    solver: str,
+    settings: Mapping[str, Any],
+    solve_fn: Callable[..., RockingResult] | None = None,
+) -> list[dict[str, Any]]:
+    """Solve cases one after the other; never raises for a bad case.
+
+    Parameters
+    ----------
+    cases : sequence of Case
+    solver : str
+        Solver name passed to ``solve_fn``.
+    settings : dict
+        Keyword settings (already converted by :func:`opsrock.scene.solver_kwargs`).
+    solve_fn : callable, optional
+        ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``. Default
+        :func:`opsrock.solvers.simulate`. Must be picklable (a module-level function).
+
+    Returns
+    -------
+    list of dict
+        One store row per case: the result's scalars, or a failed row whose reason is the
+        exception (type and message) if the solve raised or returned something else.
+    """
+    fn = simulate if solve_fn is None else solve_fn
+    rows = []
+    with _SOLVE_LOCK:
+        for case in cases:
+            t0 = time.perf_counter()
+            try:
+                result = fn(case.block, case.pulse, solver=solver, **settings)
+                if not isinstance(result, RockingResult):
+                    raise TypeError(f"solver returned {type(result).__name__}, not a RockingResult")
+                rows.append(result_row(case.case_id, result, time.perf_counter() - t0))
+            except Exception as exc:  # noqa: BLE001  (a bad case must not stop the campaign)
+                rows.append(failed_row(case.case_id, solver, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0))
+    return rows
+
+
+def _lost_row(case: Case, reason: str, *, solver: str) -> dict[str, Any]:
+    return failed_row(case.case_id, solver, reason)
+
+
+# --- the campaign ------------------------------------------------------------------------------
+def _manifest(scene: Scene, digest: str, solve_fn: Callable | None) -> dict[str, Any]:
+    from opsrock import __version__
+
+    return {
+        "digest": digest,
+        "scene_name": scene.name,
+        "scene_path": scene.path,
+        "blocks_path": scene.blocks_path,
+        "solver": scene.solver,
+        "solver_settings": dict(scene.solver_settings),
+        "solve_fn": None if solve_fn is None else _callable_name(solve_fn),
+        "pfv_convention": scene.pfv_convention,
+        "n_cases": scene.n_cases,
+        "opsrock_version": __version__,
+    }
+
+
+def _callable_name(fn: Callable) -> str:
+    if isinstance(fn, functools.partial):
+        return f"partial({_callable_name(fn.func)}, {fn.args!r}, {sorted(fn.keywords.items())!r})"
+    return f"{getattr(fn, '__module__', '?')}.{getattr(fn, '__qualname__', repr(fn))}"
+
+
+def _conflict_message(out_dir: Path, old: Mapping[str, Any], new: Mapping[str, Any]) -> str:
+    diffs = [
+        f"{k}: stored {old.get(k)!r}, now {new.get(k)!r}"
+        for k in ("solver", "solver_settings", "solve_fn", "pfv_convention", "n_cases", "scene_path")
+        if old.get(k) != new.get(k)
+    ]
+    detail = "; ".join(diffs) if diffs else "the blocks or the grid differ"
+    return (
+        f"{out_dir} holds results of other settings ({detail}); refusing to mix them. "
+        "Use another --out folder, or --force to delete the old results and start over."
+    )
+
+
+def _atomic_write(path: Path, write: Callable[[Any], None]) -> None:
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+            write(fh)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    dir_fd = os.open(path.parent, os.O_RDONLY)
+    try:
+        os.fsync(dir_fd)  # the rename itself survives a power cut
+    finally:
+        os.close(dir_fd)
+
+
+def _format(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "True" if value else "False"
+    if isinstance(value, float):
+        return repr(value)  # shortest repr that round-trips: exact, and identical run to run
+    return str(value)
+
+
+def case_table(scene: Scene, rows: Mapping[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
+    """The rows of ``cases.csv``: scene inputs and intensity measures joined to stored results.
+
+    Parameters
+    ----------
+    scene : Scene
+    rows : dict
+        Stored rows keyed by ``case_id`` (:meth:`opsrock.store.ResultStore.rows`); every case
+        of the scene must be there.
+
+    Returns
+    -------
+    list of dict
+        One dict per case, keys :data:`CASES_COLUMNS`, in the scene's case order.
+    """
+    from opsrock.intensity import intensity_measures  # lazily: written alongside this module
+
+    table = []
+    for case in scene.cases():
+        if case.case_id not in rows:
+            raise KeyError(f"case {case.case_id!r} has no stored result")
+        b, pulse, stored = case.block, case.pulse, rows[case.case_id]
+        ims = intensity_measures(b, pulse, pfv_convention=scene.pfv_convention)
+        rec = {
+            "case_id": case.case_id,
+            "block": b.name,
+            "width": b.width,
+            "height": b.height,
+            "alpha": b.alpha,
+            "R": b.R,
+            "p": b.p,
+            "e": b.e,
+            "e_R": b.e_R,
+            "pfa": pulse.pfa,
+            "omega_p": pulse.omega_p,
+            "T_p": pulse.T_p,
+            "pfv": pulse.pfv(scene.pfv_convention),
+            "freq_ratio": case.freq_ratio,
+            "pfa_ratio": case.pfa_ratio,
+            **{f"IM{k}": ims[f"IM{k}"] for k in range(1, 10)},
+        }
+        for col in CASES_COLUMNS[len(rec) :]:
+            rec[col] = stored[col]
+        table.append(rec)
+    return table
+
+
+def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]]) -> None:
+    """Write a case table atomically (temporary file, fsync, ``os.replace``)."""
+
+    def write(fh):
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(CASES_COLUMNS)
+        for rec in table:
+            w.writerow([_format(rec[c]) for c in CASES_COLUMNS])
+
+    _atomic_write(Path(path), write)
+
+
+def _progress_bar(total: int, scene: Scene, reused: int, progress: bool):
+    from tqdm import tqdm
+
+    return tqdm(
+        total=total,
+        desc=f"{scene.name} ({reused} reused)" if reused else scene.name,
+        unit="case",
+        file=sys.stderr,
+        disable=not (progress and sys.stderr.isatty()),
+        dynamic_ncols=True,
+    )
+
+
+def run_campaign(
+    scene: Scene | str | os.PathLike,
+    out_dir: str | os.PathLike,
+    *,
+    solver: str | None = None,
+    workers: int | None = None,
+    executor: Executor | None = None,
+    force: bool = False,
+    progress: bool = True,
+    solve_fn: Callable[..., RockingResult] | None = None,
+    batch: int | None = None,
+) -> CampaignSummary:
+    """Run (or resume) every case of a scene into ``out_dir``.
+
+    Parameters
+    ----------
+    scene : Scene or path
+        The scene, or its TOML file (validated first: :class:`~opsrock.scene.SceneError`
+        before anything is written).
+    out_dir : str or Path
+        Output folder: ``results.sqlite`` (the store), ``cases.csv``, ``manifest.json``.
+    solver : str, optional
+        Run with this solver instead of the scene's; the scene's settings are dropped if they
+        belong to another solver (:meth:`Scene.with_solver`).
+    workers : int, optional
+        Worker processes of the default :class:`~opsrock.executors.LocalPool` (default: all
+        available cores). Ignored when ``executor`` is given.
+    executor : Executor, optional
+        Where to run (:class:`~opsrock.executors.LocalPool`,
+        :class:`~opsrock.executors.DaskExecutor`); the caller closes it.
+    force : bool, optional
+        Delete the folder's stored results first, even if they were computed with other
+        settings. Default False: resume, and refuse a folder of other settings.
+    progress : bool, optional
+        Show a progress bar on stderr (only when stderr is a terminal). Default True.
+    solve_fn : callable, optional
+        Replace :func:`opsrock.solvers.simulate` (tests, custom solvers):
+        ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``, picklable.
+        Its name enters the manifest, so its results never mix with a real solver's.
+    batch : int, optional
+        Cases per batch. Default :func:`opsrock.executors.batch_size`.
+
+    Returns
+    -------
+    CampaignSummary
+
+    Raises
+    ------
+    SceneError
+        Invalid scene or solver settings (nothing written).
+    CampaignConflictError
+        ``out_dir`` holds results of other settings and ``force`` is False.
+    StoreError
+        Another run holds ``out_dir``.
+    """
+    t_start = time.perf_counter()
+    if not isinstance(scene, Scene):
+        scene = load_scene(scene)
+    if solver is not None:
+        scene = scene.with_solver(solver)
+    try:
+        settings = solver_kwargs(scene.solver, scene.solver_settings)
+    except (ImportError, KeyError, TypeError, ValueError) as exc:  # a Scene built in code
+        raise SceneError(scene.path or "<scene>", "solver.settings", dict(scene.solver_settings), str(exc)) from None
+    digest = scene.digest()
+    if solve_fn is not None:
+        import hashlib
+
+        digest = hashlib.sha256(f"{digest}|{_callable_name(solve_fn)}".encode()).hexdigest()
+    manifest = _manifest(scene, digest, solve_fn)
+    cases = scene.cases()
+    out = Path(out_dir)
+    own_executor = executor is None
+
+    with ResultStore(out / STORE_FILE) as store:
+        old = store.manifest()
+        if old and old.get("digest") != digest and not force:
+            raise CampaignConflictError(_conflict_message(out, old, manifest))
+        if force or not old:
+            store.clear()
+            (out / CASES_FILE).unlink(missing_ok=True)
+            store.write_manifest(manifest)
+        _atomic_write(out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
+
+        done = store.done_ids()
+        todo = [c for c in cases if c.case_id not in done]
+        n_reused = len(cases) - len(todo)
+        n_computed = 0
+        if todo:
+            if own_executor:
+                executor = LocalPool(workers)
+            try:
+                size = batch or batch_size(len(todo), executor.workers)
+                batches = make_batches(todo, size)
+                fn = functools.partial(solve_batch, solver=scene.solver, settings=settings, solve_fn=solve_fn)
+                lost = functools.partial(_lost_row, solver=scene.solver)
+                with _progress_bar(len(todo), scene, n_reused, progress) as bar:
+                    for _, rows in executor.map_batches(fn, batches, lost):
+                        store.append(rows)
+                        n_computed += len(rows)
+                        bar.update(len(rows))
+            finally:
+                if own_executor:
+                    executor.close()
+
+        table = case_table(scene, store.rows())
+        write_cases_csv(out / CASES_FILE, table)
+    return CampaignSummary(
+        n_cases=len(cases),
+        n_computed=n_computed,
+        n_reused=n_reused,
+        n_failed=sum(r["status"] == "failed" for r in table),
+        wall_time_s=time.perf_counter() - t_start,
+        out_dir=str(out),
+        store_path=str(out / STORE_FILE),
+        cases_csv=str(out / CASES_FILE),
+        manifest_path=str(out / MANIFEST_FILE),
+        digest=digest,
+        solver=scene.solver,
+    )
+
+
+# --- command line ------------------------------------------------------------------------------
+def add_run_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """Add the arguments of ``opsrock run`` to ``parser`` (see :func:`run_command`)."""
+    parser.add_argument("scene", help="scene file (TOML), e.g. models/scenes/paper.toml")
+    parser.add_argument("--out", required=True, help="output folder (store, cases.csv, manifest.json)")
+    parser.add_argument("--solver", choices=SOLVERS, help="run with this solver instead of the scene's")
+    parser.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    where = parser.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", metavar="tcp://HOST:PORT", help="run on this Dask cluster")
+    where.add_argument("--dask-local", type=int, metavar="N", help="run on a local Dask cluster of N processes")
+    parser.add_argument("--batch", type=int, help="cases per batch (default: automatic)")
+    parser.add_argument("--force", action="store_true", help="delete stored results of this folder and start over")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return parser
+
+
+def run_command(args: argparse.Namespace) -> int:
+    """Run ``opsrock run`` from parsed arguments; return the exit status.
+
+    Returns
+    -------
+    int
+        0 when every case has a stored result (failed cases are results: they are counted on
+        stderr); 2 for a usage error (invalid scene or option, settings differing from the
+        folder's, folder in use, Dask not installed), with a one-line message on stderr and
+        nothing written; 130 when interrupted (the finished cases are kept: re-run to resume).
+    """
+
+    def usage(message: str) -> int:
+        print(f"opsrock run: error: {message}", file=sys.stderr)
+        return 2
+
+    try:
+        scene = load_scene(args.scene)
+        if args.solver is not None:
+            scene = scene.with_solver(args.solver)
+    except SceneError as exc:
+        return usage(str(exc))
+    dask = args.scheduler is not None or args.dask_local is not None
+    if dask and args.workers is not None:
+        return usage("--workers sets local processes; with Dask use --dask-local N or the cluster's workers")
+    if args.workers is not None and args.workers < 1:
+        return usage(f"--workers must be >= 1, got {args.workers}")
+    if args.batch is not None and args.batch < 1:
+        return usage(f"--batch must be >= 1, got {args.batch}")
+    executor = None
+    try:
+        if dask:
+            try:
+                executor = DaskExecutor(args.scheduler, local_workers=args.dask_local)
+            except (ExecutorUnavailableError, ValueError, OSError) as exc:
+                return usage(" ".join(str(exc).split()))
+        summary = run_campaign(
+            scene,
+            args.out,
+            workers=args.workers,
+            executor=executor,
+            force=args.force,
+            progress=not args.no_progress,
+            batch=args.batch,
+        )
+    except (CampaignConflictError, StoreError, SceneError) as exc:
+        return usage(" ".join(str(exc).split()))
+    except KeyboardInterrupt:
+        print(
+            f"opsrock run: interrupted; finished cases are stored in {args.out}: "
+            "run the same command again to compute only the missing ones",
+            file=sys.stderr,
+        )
+        return 130
+    finally:
+        if executor is not None:
+            executor.close()
+    print(
+        f"{summary.n_cases} cases ({summary.n_computed} computed, {summary.n_reused} reused) "
+        f"with {summary.solver} in {summary.wall_time_s:.1f} s -> {summary.cases_csv}"
+    )
+    if summary.n_failed:
+        print(
+            f"opsrock run: {summary.n_failed} case(s) failed (status=failed, reason in {summary.cases_csv})",
+            file=sys.stderr,
+        )
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m opsrock.campaign SCENE --out DIR ...``: the same as ``opsrock run``."""
+    parser = add_run_arguments(argparse.ArgumentParser(prog="opsrock run", description=__doc__.split("\n")[0]))
+    return run_command(parser.parse_args(argv))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

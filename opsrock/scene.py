@@ -1,0 +1,641 @@
+"""Scenes: which blocks meet which one-sine pulses, read from TOML and validated first.
+
+A *scene* (``models/scenes/*.toml``) names a blocks file (``models/blocks.toml``), a grid of
+dimensionless pulse ratios, the solver and its settings, and the PFV convention of the
+intensity measures. :func:`load_scene` checks everything before anything runs: unknown keys,
+missing fields, wrong types, non-positive or non-finite numbers, empty grids and unknown
+solvers or solver settings all raise :class:`SceneError`, whose message names the file, the
+field as a dotted path (``grid.pfa_ratio.num``) and the offending value.
+
+Scene file layout (see ``models/README.md``)::
+
+    name = "paper"                      # optional, default: file stem
+    description = "..."                 # optional
+    blocks = "../blocks.toml"           # required, relative to the scene file
+    select = ["bookcase", "wardrobe"]   # optional subset of the blocks file, in this order
+    pfv_convention = "amplitude"        # optional, "amplitude" (default) or "peak"
+
+    [solver]                            # optional, default name "opensees"
+    name = "opensees"
+    [solver.settings]                   # optional keyword settings of that solver's solve()
+    dt = 1e-4
+
+    [grid.freq_ratio]                   # omega_p / p (IM1): start/stop/num ...
+    start = 0.5
+    stop = 10.0
+    num = 10
+    [grid.pfa_ratio]                    # PFA / (g tan alpha) (IM2): ... or an explicit list
+    values = [1.0, 2.0, 5.0]
+
+Blocks file layout: an array of tables ``[[block]]`` with ``name``, ``width`` (2b, m),
+``height`` (2h, m), ``reason`` (one line), and optionally ``mass`` (kg) and
+``restitution_factor`` (``e / e_R``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import inspect
+import json
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from numbers import Real
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+
+from opsrock.block import Block
+from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
+from opsrock.excitation import PFV_CONVENTIONS, OneSinePulse
+from opsrock.solvers import SOLVERS
+
+#: Version of the scene format; bump when the meaning of a scene file changes.
+SCENE_FORMAT: int = 1
+
+#: Solver used when a scene has no ``[solver]`` table: the paper's OpenSees SDOF model.
+DEFAULT_SOLVER: str = "opensees"
+
+#: Block names become part of case ids (``bookcase/f03/a07``) and file names: keep them plain.
+_NAME_PATTERN = re.compile(r"^[A-Za-z0-9_.-]+$")
+
+_SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid"}
+_SOLVER_KEYS = {"name", "settings"}
+_GRID_AXES = ("freq_ratio", "pfa_ratio")
+_BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor"}
+
+
+class SceneError(ValueError):
+    """A scene or blocks file is invalid; the message names the file, the field and the value.
+
+    Attributes
+    ----------
+    path : str
+        The file at fault.
+    field : str
+        Dotted path of the field (``grid.pfa_ratio.num``, ``block[2].width``); ``"(file)"``
+        when the file as a whole cannot be read.
+    value : object
+        The offending value.
+    """
+
+    def __init__(self, path: str | Path, field: str, value: Any, problem: str) -> None:
+        self.path = str(path)
+        self.field = field
+        self.value = value
+        shown = "<missing>" if value is _MISSING else repr(value)
+        super().__init__(f"{self.path}: {field} = {shown}: {problem}")
+
+
+_MISSING = object()
+
+
+# --- data classes ----------------------------------------------------------------------------
+@dataclass(frozen=True)
+class BlockSpec:
+    """One entry of a blocks file.
+
+    Parameters
+    ----------
+    name : str
+        Unique label (letters, digits, ``_``, ``.``, ``-``); first part of every case id.
+    width : float
+        Full base width ``2b`` (m).
+    height : float
+        Full height ``2h`` (m).
+    reason : str
+        One line saying what real object the block stands for.
+    mass : float
+        Mass (kg); rocking does not depend on it.
+    restitution_factor : float
+        ``e / e_R`` (dimensionless).
+    """
+
+    name: str
+    width: float
+    height: float
+    reason: str = ""
+    mass: float = 1.0
+    restitution_factor: float = DEFAULT_RESTITUTION_FACTOR
+
+    @property
+    def block(self) -> Block:
+        """The :class:`~opsrock.block.Block` this entry describes."""
+        return Block(
+            width=self.width,
+            height=self.height,
+            mass=self.mass,
+            restitution_factor=self.restitution_factor,
+            name=self.name,
+        )
+
+
+@dataclass(frozen=True)
+class Grid:
+    """The pulse grid, in the dimensionless ratios of the overturning spectrum.
+
+    Parameters
+    ----------
+    freq_ratio : tuple of float
+        ``omega_p / p`` values (dimensionless, IM1), > 0, in run order.
+    pfa_ratio : tuple of float
+        ``PFA / (g tan alpha)`` values (dimensionless, IM2), > 0, in run order.
+    """
+
+    freq_ratio: tuple[float, ...]
+    pfa_ratio: tuple[float, ...]
+
+    @property
+    def size(self) -> int:
+        """Number of pulses per block."""
+        return len(self.freq_ratio) * len(self.pfa_ratio)
+
+
+@dataclass(frozen=True)
+class Case:
+    """One block under one one-sine pulse: the unit of work of a campaign.
+
+    Parameters
+    ----------
+    case_id : str
+        Stable id ``"<block>/f<i>/a<j>"``: ``i`` (``j``) is the 1-based index into the
+        grid's ``freq_ratio`` (``pfa_ratio``) values, zero-padded to at least two digits.
+    block : Block
+        The block.
+    pulse : OneSinePulse
+        The pulse, ``PFA = pfa_ratio g tan(alpha)``, ``omega_p = freq_ratio p``.
+    freq_ratio : float
+        ``omega_p / p`` (dimensionless).
+    pfa_ratio : float
+        ``PFA / (g tan alpha)`` (dimensionless).
+    """
+
+    case_id: str
+    block: Block
+    pulse: OneSinePulse
+    freq_ratio: float
+    pfa_ratio: float
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene: blocks x pulse grid, with the solver and its settings.
+
+    Parameters
+    ----------
+    name : str
+        Scene label.
+    path : str
+        File the scene was read from (empty if built in code).
+    blocks : tuple of BlockSpec
+        Blocks, in run order.
+    grid : Grid
+        Pulse ratios.
+    solver : str
+        Solver name, one of :data:`opsrock.solvers.SOLVERS`.
+    solver_settings : dict
+        Keyword settings passed to that solver (JSON-serialisable scalars and lists).
+    pfv_convention : str
+        PFV convention of IM3 and IM8, one of :data:`opsrock.excitation.PFV_CONVENTIONS`.
+    description : str
+        Free text.
+    blocks_path : str
+        The blocks file the blocks came from (empty if built in code).
+    """
+
+    name: str
+    path: str
+    blocks: tuple[BlockSpec, ...]
+    grid: Grid
+    solver: str = DEFAULT_SOLVER
+    solver_settings: Mapping[str, Any] = field(default_factory=dict)
+    pfv_convention: str = "amplitude"
+    description: str = ""
+    blocks_path: str = ""
+
+    @property
+    def n_cases(self) -> int:
+        """Number of cases, ``len(blocks) * grid.size``."""
+        return len(self.blocks) * self.grid.size
+
+    def cases(self) -> list[Case]:
+        """All cases in a deterministic order: block (file order), then freq_ratio, then pfa_ratio."""
+        nf, na = len(self.grid.freq_ratio), len(self.grid.pfa_ratio)
+        wf, wa = max(2, len(str(nf))), max(2, len(str(na)))
+        out = []
+        for spec in self.blocks:
+            block = spec.block
+            for i, fr in enumerate(self.grid.freq_ratio, start=1):
+                for j, ar in enumerate(self.grid.pfa_ratio, start=1):
+                    out.append(
+                        Case(
+                            case_id=f"{spec.name}/f{i:0{wf}d}/a{j:0{wa}d}",
+                            block=block,
+                            pulse=OneSinePulse.from_ratios(block, pfa_ratio=ar, freq_ratio=fr),
+                            freq_ratio=fr,
+                            pfa_ratio=ar,
+                        )
+                    )
+        return out
+
+    def with_solver(self, solver: str, settings: Mapping[str, Any] | None = None) -> "Scene":
+        """A copy run by another solver.
+
+        Parameters
+        ----------
+        solver : str
+            One of :data:`opsrock.solvers.SOLVERS`.
+        settings : dict, optional
+            Its settings. When omitted, the scene's settings are kept if ``solver`` is the
+            scene's own solver, and dropped (solver defaults) otherwise: settings belong to
+            the solver they were written for.
+        """
+        if settings is None:
+            settings = dict(self.solver_settings) if solver == self.solver else {}
+        settings = _check_solver(self.path or "<scene>", "solver", solver, dict(settings))
+        return dataclasses.replace(self, solver=solver, solver_settings=settings)
+
+    def fingerprint(self) -> dict[str, Any]:
+        """Everything that determines the results, as plain JSON data (see :meth:`digest`).
+
+        The scene's name, description and file paths are left out: renaming a scene or moving
+        its files does not change its results.
+        """
+        return {
+            "scene_format": SCENE_FORMAT,
+            "solver": self.solver,
+            "solver_settings": _canonical(self.solver_settings),
+            "pfv_convention": self.pfv_convention,
+            "blocks": [
+                [b.name, b.width, b.height, b.mass, b.restitution_factor] for b in self.blocks
+            ],
+            "freq_ratio": list(self.grid.freq_ratio),
+            "pfa_ratio": list(self.grid.pfa_ratio),
+        }
+
+    def digest(self) -> str:
+        """SHA-256 (hex) of :meth:`fingerprint` as canonical JSON: equal digests, equal results."""
+        text = json.dumps(self.fingerprint(), sort_keys=True, separators=(",", ":"), allow_nan=False)
+        return hashlib.sha256(text.encode()).hexdigest()
+
+
+# --- loading ------------------------------------------------------------------------------------
+def load_blocks(path: str | Path) -> tuple[BlockSpec, ...]:
+    """Read and validate a blocks file.
+
+    Parameters
+    ----------
+    path : str or Path
+        TOML file with an array of tables ``[[block]]`` (see the module docstring).
+
+    Returns
+    -------
+    tuple of BlockSpec
+        In file order.
+
+    Raises
+    ------
+    SceneError
+        On any invalid content; the message names the file, the field and the value.
+    """
+    path = Path(path)
+    data = _read_toml(path)
+    _check_keys(path, "", data, allowed={"block"}, required={"block"})
+    entries = data["block"]
+    if not isinstance(entries, list) or not entries:
+        raise SceneError(path, "block", entries, "must be a non-empty array of tables [[block]]")
+    specs: list[BlockSpec] = []
+    seen: dict[str, int] = {}
+    for k, entry in enumerate(entries):
+        where = f"block[{k}]"
+        if not isinstance(entry, dict):
+            raise SceneError(path, where, entry, "must be a table")
+        _check_keys(path, where, entry, allowed=_BLOCK_KEYS, required={"name", "width", "height"})
+        name = _string(path, f"{where}.name", entry["name"])
+        if not _NAME_PATTERN.match(name):
+            raise SceneError(path, f"{where}.name", name, "must use only letters, digits, '_', '.', '-'")
+        if name in seen:
+            raise SceneError(path, f"{where}.name", name, f"duplicates block[{seen[name]}].name")
+        seen[name] = k
+        spec = BlockSpec(
+            name=name,
+            width=_positive(path, f"{where}.width", entry["width"]),
+            height=_positive(path, f"{where}.height", entry["height"]),
+            reason=_string(path, f"{where}.reason", entry.get("reason", ""), allow_empty=True),
+            mass=_positive(path, f"{where}.mass", entry.get("mass", 1.0)),
+            restitution_factor=_positive(
+                path, f"{where}.restitution_factor", entry.get("restitution_factor", DEFAULT_RESTITUTION_FACTOR)
+            ),
+        )
+        try:  # the Block's own physical checks (restitution in (0, 1], e_R > 0)
+            spec.block
+        except (TypeError, ValueError) as exc:
+            raise SceneError(path, where, {"width": spec.width, "height": spec.height}, str(exc)) from None
+        specs.append(spec)
+    return tuple(specs)
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene file and the blocks file it names.
+
+    Parameters
+    ----------
+    path : str or Path
+        Scene TOML file (see the module docstring).
+
+    Returns
+    -------
+    Scene
+
+    Raises
+    ------
+    SceneError
+        On any invalid content of the scene or its blocks file; the message names the file,
+        the dotted field and the value.
+    """
+    path = Path(path)
+    data = _read_toml(path)
+    _check_keys(path, "", data, allowed=_SCENE_KEYS, required={"blocks", "grid"})
+
+    name = _string(path, "name", data.get("name", path.stem))
+    description = _string(path, "description", data.get("description", ""), allow_empty=True)
+    pfv = data.get("pfv_convention", "amplitude")
+    if pfv not in PFV_CONVENTIONS:
+        raise SceneError(path, "pfv_convention", pfv, f"must be one of {', '.join(map(repr, PFV_CONVENTIONS))}")
+
+    blocks_ref = _string(path, "blocks", data["blocks"])
+    blocks_path = (path.parent / blocks_ref).resolve()
+    if not blocks_path.is_file():
+        raise SceneError(path, "blocks", blocks_ref, f"no such file ({blocks_path})")
+    blocks = load_blocks(blocks_path)
+    if "select" in data:
+        blocks = _select(path, data["select"], blocks)
+
+    grid_raw = data["grid"]
+    if not isinstance(grid_raw, dict):
+        raise SceneError(path, "grid", grid_raw, "must be a table with [grid.freq_ratio] and [grid.pfa_ratio]")
+    _check_keys(path, "grid", grid_raw, allowed=set(_GRID_AXES), required=set(_GRID_AXES))
+    grid = Grid(**{axis: _axis(path, f"grid.{axis}", grid_raw[axis]) for axis in _GRID_AXES})
+
+    solver_raw = data.get("solver", {})
+    if not isinstance(solver_raw, dict):
+        raise SceneError(path, "solver", solver_raw, "must be a table [solver] with name and optional settings")
+    _check_keys(path, "solver", solver_raw, allowed=_SOLVER_KEYS, required=set())
+    solver = solver_raw.get("name", DEFAULT_SOLVER)
+    settings = solver_raw.get("settings", {})
+    if not isinstance(settings, dict):
+        raise SceneError(path, "solver.settings", settings, "must be a table [solver.settings]")
+    settings = _check_solver(path, "solver", solver, settings)
+
+    return Scene(
+        name=name,
+        path=str(path),
+        blocks=blocks,
+        grid=grid,
+        solver=solver,
+        solver_settings=settings,
+        pfv_convention=pfv,
+        description=description,
+        blocks_path=str(blocks_path),
+    )
+
+
+# --- helpers ------------------------------------------------------------------------------------
+def _read_toml(path: Path) -> dict:
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh)
+    except FileNotFoundError:
+        raise SceneError(path, "(file)", str(path), "no such file") from None
+    except IsADirectoryError:
+        raise SceneError(path, "(file)", str(path), "is a directory, not a TOML file") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(path, "(file)", str(path), f"not valid TOML: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise SceneError(path, "(file)", str(path), f"not UTF-8 text: {exc}") from None
+
+
+def _dotted(prefix: str, key: str) -> str:
+    return f"{prefix}.{key}" if prefix else key
+
+
+def _check_keys(path: Path, prefix: str, table: dict, *, allowed: set[str], required: set[str]) -> None:
+    for key in table:
+        if key not in allowed:
+            raise SceneError(
+                path, _dotted(prefix, key), table[key], f"unknown key (allowed: {', '.join(sorted(allowed))})"
+            )
+    for key in sorted(required):
+        if key not in table:
+            raise SceneError(path, _dotted(prefix, key), _MISSING, "required field is missing")
+
+
+def _string(path: Path, where: str, value: Any, *, allow_empty: bool = False) -> str:
+    if not isinstance(value, str):
+        raise SceneError(path, where, value, f"must be a string, not {type(value).__name__}")
+    if not allow_empty and not value.strip():
+        raise SceneError(path, where, value, "must not be empty")
+    return value
+
+
+def _positive(path: Path, where: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise SceneError(path, where, value, f"must be a number, not {type(value).__name__}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise SceneError(path, where, value, "must be finite")
+    if v <= 0.0:
+        raise SceneError(path, where, value, "must be positive")
+    return v
+
+
+def _axis(path: Path, where: str, raw: Any) -> tuple[float, ...]:
+    """One grid axis: ``{start, stop, num}`` (``num >= 2`` equal steps) or ``{values}``."""
+    if not isinstance(raw, dict):
+        raise SceneError(path, where, raw, "must be a table with start/stop/num or values")
+    if "values" in raw:
+        _check_keys(path, where, raw, allowed={"values"}, required={"values"})
+        values = raw["values"]
+        if not isinstance(values, list):
+            raise SceneError(path, f"{where}.values", values, "must be an array of numbers")
+        if not values:
+            raise SceneError(path, f"{where}.values", values, "must not be empty")
+        out = tuple(_positive(path, f"{where}.values[{k}]", v) for k, v in enumerate(values))
+        if len(set(out)) != len(out):
+            raise SceneError(path, f"{where}.values", values, "must not repeat a value")
+        return out
+    _check_keys(path, where, raw, allowed={"start", "stop", "num"}, required={"start", "stop", "num"})
+    start = _positive(path, f"{where}.start", raw["start"])
+    stop = _positive(path, f"{where}.stop", raw["stop"])
+    num = raw["num"]
+    if isinstance(num, bool) or not isinstance(num, int):
+        raise SceneError(path, f"{where}.num", num, f"must be an integer, not {type(num).__name__}")
+    if num < 2:
+        raise SceneError(path, f"{where}.num", num, "must be >= 2 (use values = [x] for a single value)")
+    if not stop > start:
+        raise SceneError(path, f"{where}.stop", raw["stop"], f"must exceed start = {raw['start']!r}")
+    # float() of each numpy value: plain Python floats, identical on every run and platform.
+    return tuple(float(v) for v in np.linspace(start, stop, num))
+
+
+def _select(path: Path, select: Any, blocks: tuple[BlockSpec, ...]) -> tuple[BlockSpec, ...]:
+    if not isinstance(select, list) or not select:
+        raise SceneError(path, "select", select, "must be a non-empty array of block names")
+    by_name = {b.name: b for b in blocks}
+    out = []
+    for k, name in enumerate(select):
+        if name not in by_name:
+            raise SceneError(
+                path, f"select[{k}]", name, f"no such block in the blocks file (has: {', '.join(by_name)})"
+            )
+        if select.index(name) != k:
+            raise SceneError(path, f"select[{k}]", name, "named twice")
+        out.append(by_name[name])
+    return tuple(out)
+
+
+def _canonical(value: Any) -> Any:
+    """Settings as plain JSON data (dicts with sorted keys, lists, str, bool, int, float)."""
+    if isinstance(value, Mapping):
+        return {str(k): _canonical(value[k]) for k in sorted(value)}
+    if isinstance(value, (list, tuple)):
+        return [_canonical(v) for v in value]
+    return value
+
+
+def _check_setting_value(path: Path | str, where: str, value: Any) -> None:
+    if isinstance(value, (bool, int, str)):
+        return
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise SceneError(path, where, value, "must be finite")
+        return
+    if isinstance(value, list):
+        for k, v in enumerate(value):
+            _check_setting_value(path, f"{where}[{k}]", v)
+        return
+    raise SceneError(path, where, value, f"must be a number, string, boolean or array, not {type(value).__name__}")
+
+
+class UnknownSettingError(KeyError):
+    """A solver setting the solver does not know; ``key`` is its name."""
+
+    def __init__(self, key: str, message: str) -> None:
+        super().__init__(message)
+        self.key = key
+
+
+def _settings_class(module: Any) -> type | None:
+    """The module's frozen settings dataclass: the first attribute named ``*Settings``."""
+    for attr in sorted(vars(module)):
+        obj = getattr(module, attr)
+        if attr.endswith("Settings") and isinstance(obj, type) and dataclasses.is_dataclass(obj):
+            return obj
+    return None
+
+
+def solver_kwargs(solver: str, settings: Mapping[str, Any]) -> dict[str, Any]:
+    """Turn TOML-level solver settings into keyword arguments of the solver's ``solve``.
+
+    The solver module's settings dataclass (the attribute named ``*Settings``) says what is
+    accepted: its fields, plus the fields of any field whose default is itself a dataclass
+    (so ``delta = 0.01`` reaches ``OpenSeesSettings.model.delta``, as the OpenSees solver's
+    ``make_settings`` allows). A TOML table given for such a dataclass field becomes that
+    dataclass (``model = {delta = 0.01}``), and an array given for a tuple field a tuple.
+
+    Parameters
+    ----------
+    solver : str
+        One of :data:`opsrock.solvers.SOLVERS`.
+    settings : dict
+        Settings as read from TOML.
+
+    Returns
+    -------
+    dict
+        Keyword arguments for ``opsrock.solvers.simulate(..., solver=solver, **kwargs)``.
+
+    Raises
+    ------
+    UnknownSettingError
+        Naming an unknown setting (``.key``) and listing the known ones.
+    TypeError, ValueError
+        From the settings dataclass when a value is refused.
+    ImportError
+        If the solver module cannot be imported.
+    """
+    from opsrock.solvers import get_solver
+
+    cls = _settings_class(get_solver(solver))
+    if cls is None:  # no settings class to check against: pass through, the solver checks
+        return dict(settings)
+    defaults = cls()
+    direct: dict[str, Any] = {}
+    nested: dict[str, dict[str, Any]] = {}
+    nested_fields = {
+        f.name: {g.name for g in dataclasses.fields(getattr(defaults, f.name))}
+        for f in dataclasses.fields(cls)
+        if dataclasses.is_dataclass(getattr(defaults, f.name))
+    }
+    out: dict[str, Any] = {}
+    for key, value in settings.items():
+        owner = next((n for n, names in nested_fields.items() if key in names), None)
+        if key in {f.name for f in dataclasses.fields(cls)}:
+            default = getattr(defaults, key)
+            if isinstance(value, Mapping) and dataclasses.is_dataclass(default):
+                value = dataclasses.replace(default, **value)
+            elif isinstance(value, list) and isinstance(default, tuple):
+                value = tuple(value)
+            direct[key] = value
+            out[key] = value
+        elif owner is not None:
+            nested.setdefault(owner, {})[key] = value
+            out[key] = value
+        else:
+            known = sorted({f.name for f in dataclasses.fields(cls)}.union(*nested_fields.values()))
+            raise UnknownSettingError(key, f"unknown setting of solver {solver!r} (known: {', '.join(known)})")
+    # Build the settings object once, so that bad values are refused now, not mid-campaign.
+    for owner, values in nested.items():
+        direct[owner] = dataclasses.replace(direct.get(owner, getattr(defaults, owner)), **values)
+    cls(**direct)
+    return out
+
+
+def _check_solver(path: Path | str, where: str, solver: Any, settings: dict) -> dict:
+    if solver not in SOLVERS:
+        raise SceneError(path, f"{where}.name", solver, f"unknown solver (known: {', '.join(SOLVERS)})")
+    for key, value in settings.items():
+        if isinstance(value, dict):
+            for sub, v in value.items():
+                _check_setting_value(path, f"{where}.settings.{key}.{sub}", v)
+        else:
+            _check_setting_value(path, f"{where}.settings.{key}", value)
+    try:
+        solver_kwargs(solver, settings)
+    except ImportError as exc:
+        raise SceneError(path, f"{where}.name", solver, f"solver cannot be loaded: {exc}") from None
+    except UnknownSettingError as exc:
+        raise SceneError(path, f"{where}.settings.{exc.key}", settings[exc.key], exc.args[0]) from None
+    except (TypeError, ValueError) as exc:
+        # The settings classes name the field first ("delta must lie in ..."): point at it.
+        key = next((k for k in settings if str(exc).startswith(f"{k} ")), None)
+        field_, value = (f"{where}.settings.{key}", settings[key]) if key else (f"{where}.settings", dict(settings))
+        raise SceneError(path, field_, value, f"refused by solver {solver!r}: {exc}") from None
+    return dict(settings)
+
+
+__all__ = [
+    "DEFAULT_SOLVER",
+    "BlockSpec",
+    "Case",
+    "Grid",
+    "Scene",
+    "SceneError",
+    "load_blocks",
+    "load_scene",
+    "UnknownSettingError",
+    "solver_kwargs",
+]

@@ -79,6 +79,13 @@ UNSTABLE_ENERGY_FLOOR: float = 1e-3
 #: much earlier, at the first moment the peak can no longer grow (usually the first impact).
 DEFAULT_TAIL: float = 30.0
 
+#: Sawtooth test for numerical instability: theta changing sign at this many consecutive steps.
+#: A physical block needs at least a band crossing plus a flight between two impacts; a step-
+#: to-step sign alternation is the signature of an explicit integrator above its critical step
+#: on the stiff branch (measured: central difference at 1.01 dt_cr turns a no-uplift pulse into
+#: spurious "rocking" of 2e-4 alpha, validation/stability_map).
+SAWTOOTH_STEPS: int = 8
+
 _SPRING_MAT, _DAMPER_MAT = 1, 2
 _SPRING_ELE, _DAMPER_ELE = 1, 2
 _DAMPER_PARAM = 1
@@ -127,8 +134,16 @@ class OpenSeesSettings:
         Rest test after the excitation ended, as a fraction of ``alpha`` (-): the run stops once
         the largest rotation the remaining energy can reach is below ``theta_max +
         rest_tolerance * alpha``, i.e. the peak can grow by less than that.
+    stop_at_rest : bool
+        If True (default), stop at rest as above; if False, run to ``end_time`` and end normally
+        there (free-rocking studies that need the whole history).
     record_every : int
         Keep every n-th step in the returned history (the last step is always kept) (-).
+    explicit_step_check : bool
+        If True (default), an explicit run whose largest step exceeds
+        :func:`critical_time_step` is refused up front as *failed* ("unstable: ..."): above it the
+        stiff branch blows up within a step or two and the run can end in a plausible but wrong
+        verdict (measured: validation/stability_map). False lets the stability map measure that.
     theta0 : float
         Initial rotation (rad), ``|theta0| < pi/2``.
     theta_dot0 : float
@@ -149,7 +164,9 @@ class OpenSeesSettings:
     max_halvings: int = 8
     end_time: float | None = None
     rest_tolerance: float = 1e-4
+    stop_at_rest: bool = True
     record_every: int = 1
+    explicit_step_check: bool = True
     theta0: float = 0.0
     theta_dot0: float = 0.0
 
@@ -180,6 +197,8 @@ class OpenSeesSettings:
         if self.end_time is not None:
             positive_finite("end_time", self.end_time)
         positive_finite("rest_tolerance", self.rest_tolerance)
+        if not isinstance(self.stop_at_rest, bool):
+            raise TypeError(f"stop_at_rest must be a bool, got {self.stop_at_rest!r}")
         int_at_least("record_every", self.record_every, 1)
         th0 = float(self.theta0)
         if not (math.isfinite(th0) and abs(th0) < OVERTURNING_ANGLE):
@@ -267,8 +286,8 @@ def _define_time_series(excitation: Excitation, dt: float) -> None:
         ops.timeSeries("Path", _SERIES, "-time", *map(float, t), "-values", *map(float, a))
 
 
-def _define_analysis(settings: OpenSeesSettings, algorithm: str) -> None:
-    ops.constraints("Plain")
+def _define_analysis(settings: OpenSeesSettings, algorithm: str, constraints: str = "Plain") -> None:
+    ops.constraints(constraints)
     ops.numberer("Plain")
     # BandGeneral: a general (non-symmetric-positive) solver; the spring's tangent is negative
     # beyond the stiff branch, so SPD solvers are wrong here.
@@ -390,12 +409,12 @@ def solve_lumped_mass(
     block, excitation, settings, overrides
         As :func:`solve`; ``lever`` is ignored (the model has no lever input).
     geometry : str
-        ``"linear"``: a ``rigidLink beam`` (small-rotation kinematics; the lever is exactly
-        ``m R cos(alpha)``); ``"corotational"``: a very stiff ``elasticBeamColumn`` with a
-        corotational transformation, so the force's arm becomes ``R cos(theta)`` at large
-        rotations.
+        ``"linear"`` only: a ``rigidLink beam`` (small-rotation kinematics, so the lever is
+        exactly ``m R cos(alpha)``). A corotational stiff-beam variant was tried and did not
+        converge reliably with a link stiff enough to leave the stiff branch intact; it is
+        not offered.
     """
-    one_of("geometry", geometry, ("linear", "corotational"))
+    one_of("geometry", geometry, ("linear",))
     s = make_settings(settings, **overrides)
     return _run(block, excitation, s, geometry=geometry)
 
@@ -419,15 +438,7 @@ def _build_lumped(block: Block, excitation: Excitation, settings: OpenSeesSettin
     ops.element("zeroLength", _DAMPER_ELE, 1, 2, "-mat", _DAMPER_MAT, "-dir", 6)
     ops.parameter(_DAMPER_PARAM, "element", _DAMPER_ELE, "C")
     ops.updateParameter(_DAMPER_PARAM, 0.0)
-    if geometry == "linear":
-        ops.rigidLink("beam", 2, 3)
-    else:
-        # Link stiffness: rotational 4EI/L = LINK_STIFFNESS_FACTOR x the stiff branch k_e, so
-        # the link flexes 1e-4 of the spring's stiff-branch rotation.
-        k_e = block.overturning_rotation_moment / model.theta_e(block)
-        ei = 1e4 * k_e * R / 4.0
-        ops.geomTransf("Corotational", 1)
-        ops.element("elasticBeamColumn", 3, 2, 3, 1.0, ei / R**2, ei, 1)
+    ops.rigidLink("beam", 2, 3)
     _define_time_series(excitation, settings.dt)
     ops.pattern("Plain", _PATTERN, _SERIES)
     ops.load(3, m * math.cos(block.alpha), 0.0, 0.0)
@@ -442,6 +453,14 @@ def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: st
     if geometry is not None:
         settings_dict["form"] = f"lumped_mass/{geometry}"
     t_wall = _time.perf_counter()
+    if s.integrator == "central_difference" and s.explicit_step_check:
+        dt_cr = critical_time_step(block, s.model)
+        if s.dt >= dt_cr:
+            return failed_result(
+                SOLVER_NAME, settings_dict, block.alpha,
+                f"unstable: explicit central difference with dt = {s.dt:.4g} s >= its critical step "
+                f"dt_cr = 2 sqrt(I_O theta_e / (m g R sin alpha)) = {dt_cr:.4g} s",
+            )
     ops.wipe()
     try:
         if geometry is None:
@@ -450,7 +469,8 @@ def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: st
         else:
             _build_lumped(block, excitation, s, geometry)
             node, dof = 2, 3
-        _define_analysis(s, s.algorithm)
+        # the lumped form's rigidLink is a multi-point constraint: Transformation handler
+        _define_analysis(s, s.algorithm, "Plain" if geometry is None else "Transformation")
         _set_initial_state(block, excitation, s, node, dof)
         return _integrate(block, excitation, s, settings_dict, node, dof, t_wall)
     finally:
@@ -481,6 +501,7 @@ def _integrate(
     dt, dt_min, adaptive = s.dt, s.dt_min, s.adaptive
     h_band_num = band_len / s.band_steps
     record_every = s.record_every
+    stop_at_rest = s.stop_at_rest
 
     analyze, node_disp, node_vel, update = ops.analyze, ops.nodeDisp, ops.nodeVel, ops.updateParameter
     ele_resp = ops.eleResponse
@@ -494,8 +515,11 @@ def _integrate(
     t = 0.0
     n_steps = 0
     n_impacts = 0
+    n_alt = 0
     theta_max = abs(th)
-    ts, ths, thds, ms, fds = [t], [th], [thd], [ele_resp(1, "force")[1]], [0.0]
+    # initial spring moment from the table: the element's force is only updated by a step
+    th_tab, m_tab = model.spring_table(block)
+    ts, ths, thds, ms, fds = [t], [th], [thd], [float(np.interp(th, th_tab, m_tab))], [0.0]
     k_rec = 0
 
     def record() -> None:
@@ -563,6 +587,15 @@ def _integrate(
         ath = abs(th)
         if ath > theta_max:
             theta_max = ath
+        if (th > 0.0) != (th_prev > 0.0):
+            n_alt += 1
+            if n_alt >= SAWTOOTH_STEPS:
+                return fail(
+                    f"unstable: theta changed sign at {n_alt} consecutive steps up to t = {t:.6g} s "
+                    f"(dt = {h:.3g} s): a numerical sawtooth, not rocking"
+                )
+        else:
+            n_alt = 0
         # --- physical plausibility: energy can only come from the floor --------------------
         if t <= duration + h:
             w_in += lam_pfa * abs(th - th_prev)
@@ -590,10 +623,13 @@ def _integrate(
             break
         # rest: excitation over, block inside the hump (|theta| < alpha; beyond it a block with
         # less than the barrier energy falls over) and unable to pass its peak again
-        if t >= duration and ath < alpha and _reachable_rotation(block, energy) <= theta_max + rest_margin:
+        if stop_at_rest and t >= duration and ath < alpha and _reachable_rotation(block, energy) <= theta_max + rest_margin:
             status_stop = "rest"
             break
         if t >= t_end:
+            if not stop_at_rest:
+                status_stop = "end_time"
+                break
             return fail(
                 f"end_time = {t_end:.6g} s reached before the block overturned or came to rest "
                 f"(theta = {th:.4g} rad, theta_dot = {thd:.4g} rad/s); raise end_time"

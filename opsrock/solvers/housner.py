@@ -225,7 +225,7 @@ def _out_with_turns(out: Any, sol: Any, k: int, *extra: float) -> None:
     stored history holds every peak exactly, not only the nearest step."""
     t, th, td = sol.t[1:], sol.y[0, 1:], sol.y[1, 1:]
     if sol.t_events[k].size:
-        inside = sol.t_events[k] < sol.t[-1]
+        inside = (sol.t_events[k] > sol.t[0]) & (sol.t_events[k] < sol.t[-1])
         t = np.concatenate([t, sol.t_events[k][inside]])
         th = np.concatenate([th, sol.y_events[k][inside, 0]])
         td = np.concatenate([td, sol.y_events[k][inside, 1]])

@@ -71,6 +71,12 @@ TOLERANCES: dict[str, dict[str, float]] = {
 LINEARISED_TOLERANCE: float = 5e-3
 
 
+#: Rotations below this fraction of alpha count as zero when reading histories: the impact
+#: events land within ~1e-17 rad of zero on either side (the SDOF models' stiff branch,
+#: theta_e = 1e-6 alpha, is far above it).
+ZERO_ROTATION: float = 1e-12
+
+
 def linearised_time_to_impact(block: Block, theta0: float) -> float:
     """Time (s) for a slender block released at rest from ``theta0`` to reach ``theta = 0``.
 
@@ -119,7 +125,8 @@ def peak_after_impact(block: Block, theta0: float, e: float | None = None) -> fl
 
 def first_zero_crossing(result: RockingResult) -> float:
     """First time (s) at which ``theta`` reaches zero, linearly interpolated between samples."""
-    th, t = result.theta, result.time
+    t = result.time
+    th = np.where(np.abs(result.theta) < ZERO_ROTATION * result.alpha, 0.0, result.theta)
     idx = np.flatnonzero(np.sign(th[1:]) != np.sign(th[0]))
     if not idx.size:
         return math.nan
@@ -131,10 +138,9 @@ def first_zero_crossing(result: RockingResult) -> float:
 
 def peak_sequence(result: RockingResult) -> np.ndarray:
     """Successive peaks of ``|theta|`` (rad), one per excursion between zero crossings."""
-    th = result.theta
-    sign = np.sign(th)
-    cuts = np.flatnonzero(np.diff(sign) != 0) + 1
-    return np.array([np.max(np.abs(seg)) for seg in np.split(th, cuts) if seg.size and np.any(seg != 0)])
+    th = result.theta[np.abs(result.theta) >= ZERO_ROTATION * result.alpha]
+    cuts = np.flatnonzero(np.diff(np.sign(th)) != 0) + 1
+    return np.array([np.max(np.abs(seg)) for seg in np.split(th, cuts) if seg.size])
 
 
 #: Frequency ratio ``omega_p / p`` of the uplift-threshold pulses (dimensionless): a

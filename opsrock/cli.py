@@ -98,14 +98,11 @@ def _simulate(args: argparse.Namespace) -> int:
         omega_p = args.freq_ratio * block.p if args.freq_ratio is not None else 2 * math.pi * args.freq
         pulse = OneSinePulse(pfa=pfa, omega_p=omega_p)
         settings = {}
-        if sdof_like:
-            model_kwargs = {}
-            if args.delta is not None:
-                model_kwargs["delta"] = args.delta
-            if args.lever is not None:
-                model_kwargs["lever"] = args.lever
-            if model_kwargs:
-                settings["model"] = SDOFModel(**model_kwargs)
+        if args.delta is not None:
+            SDOFModel(delta=args.delta)  # checks the value, naming the argument
+            settings["delta"] = args.delta
+        if args.lever is not None:
+            settings["lever"] = args.lever
         if args.dt is not None:
             settings["dt"] = args.dt
     except (ValueError, TypeError) as exc:

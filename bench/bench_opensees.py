@@ -1,0 +1,83 @@
+"""Benchmark: fixed-step OpenSees baseline (dt = 1e-4 s) against the default (adaptive) settings.
+
+Both run in the same process on the same pulses: the paper's grid (4 blocks x 10 x 10,
+``omega_p/p`` in linspace(0.5, 10, 10), ``PFA/(g tan alpha)`` in linspace(1.0, 10.5, 10)), or with
+``--quick`` a 3 x 3 sub-grid per block. Accuracy is measured against a converged reference
+(fixed dt = 1e-5 s): ``|d theta_max| / alpha`` over cases that do not overturn in the reference,
+and verdict disagreements over all cases.
+
+    python bench/bench_opensees.py [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+
+import numpy as np
+
+from opsrock import Block, OneSinePulse
+from opsrock.solvers import opensees as osr
+
+BLOCKS = [Block(0.40, 2.20, name="B1"), Block(0.60, 2.00, name="B2"), Block(0.50, 1.15, name="B3"),
+          Block(1.00, 2.40, name="B4")]
+FREQ = np.linspace(0.5, 10.0, 10)
+PFA = np.linspace(1.0, 10.5, 10)
+BASELINE = dict(adaptive=False, dt=1e-4)
+REFERENCE = dict(adaptive=False, dt=1e-5)
+
+
+def _cases(quick: bool):
+    fr = FREQ[[0, 4, 9]] if quick else FREQ
+    pr = PFA[[1, 4, 9]] if quick else PFA
+    return [(b, f, p) for b in BLOCKS for f in fr for p in pr]
+
+
+def run(quick: bool = False, reference: dict | None = None) -> dict:
+    """Run the benchmark and return its metrics (times in s, errors as fractions of alpha)."""
+    cases = _cases(quick)
+    reference = REFERENCE if reference is None else reference
+    out = {"n_cases": len(cases), "baseline": BASELINE, "fast": osr.OpenSeesSettings().as_dict(),
+           "reference": reference}
+    rows = []
+    t_base = t_fast = 0.0
+    for b, f, p in cases:
+        pulse = OneSinePulse.from_ratios(b, p, f)
+        t0 = time.perf_counter()
+        rb = osr.solve(b, pulse, **BASELINE)
+        t1 = time.perf_counter()
+        rf = osr.solve(b, pulse)
+        t2 = time.perf_counter()
+        rr = osr.solve(b, pulse, **reference)
+        t_base += t1 - t0
+        t_fast += t2 - t1
+        rows.append((b.name, f, p, rr.verdict, rb.verdict, rf.verdict, rr.theta_max_over_alpha,
+                     rb.theta_max_over_alpha, rf.theta_max_over_alpha))
+    ref_v = np.array([r[3] for r in rows])
+    keep = ref_v != "overturned"
+    for key, iv, ith in (("baseline", 4, 7), ("fast", 5, 8)):
+        err = np.abs(np.array([r[ith] for r in rows]) - np.array([r[6] for r in rows]))[keep]
+        out[f"{key}_max_err_alpha"] = float(err.max()) if err.size else 0.0
+        out[f"{key}_p99_err_alpha"] = float(np.percentile(err, 99)) if err.size else 0.0
+        out[f"{key}_verdict_disagreements"] = int(sum(r[iv] != r[3] for r in rows))
+    out["baseline_time_s"] = t_base
+    out["fast_time_s"] = t_fast
+    out["speedup"] = t_base / t_fast
+    out["rows"] = rows
+    return out
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--quick", action="store_true", help="3 x 3 sub-grid per block")
+    args = ap.parse_args()
+    res = run(args.quick)
+    rows = res.pop("rows")
+    for r in rows:
+        print(" ".join(str(x) if not isinstance(x, float) else f"{x:.5f}" for x in r))
+    print(json.dumps({k: v for k, v in res.items() if k not in ("fast", "baseline", "reference")}, indent=1))
+
+
+if __name__ == "__main__":
+    main()

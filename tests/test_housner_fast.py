@@ -1,0 +1,448 @@
+"""Tests of the fast rigid-body solver :mod:`opsrock.solvers.housner_fast`.
+
+Every reference value is computed independently of the code under test: closed forms
+(Eq. 4, the energy integral, Housner's linearised free rocking), or ``reference_solve``
+below, a plain event-driven scipy ``solve_ivp`` (DOP853, rtol 1e-10) of the same rigid-body
+equation that integrates the free rocking after the pulse instead of using the energy
+shortcut of the fast solver. ``bench/bench_housner_fast.py`` loads ``reference_solve`` from
+here so the benchmark and the tests measure accuracy against the same reference.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad, solve_ivp
+
+from opsrock.block import Block
+from opsrock.constants import G
+from opsrock.excitation import OneSinePulse
+from opsrock.solvers import housner_fast as hf
+
+#: The four blocks of the dense-spectrum benchmark (issue 6), (width, height) in m.
+BLOCKS = [Block(0.40, 2.20), Block(0.60, 2.00), Block(0.50, 1.15), Block(1.00, 2.40)]
+
+
+# =============================================================================================
+# Independent reference: event-driven solve_ivp, dimensionless time tau = p t
+# =============================================================================================
+
+#: Reference tolerances: rtol 1e-10 per the issue; atol far below the smallest excursion the
+#: reference still resolves (REF_REST_VELOCITY² / 2 ~ 5e-13 rad).
+REF_RTOL = 1e-10
+REF_ATOL = 1e-15
+#: Post-impact velocity (units of p) below which the reference seats the block.
+REF_REST_VELOCITY = 1e-6
+#: Impacts the reference allows before giving up.
+REF_MAX_IMPACTS = 20_000
+
+
+def reference_solve(alpha: float, e: float, pfa_ratio: float, freq_ratio: float) -> dict:
+    """Rigid-body rocking by plain solve_ivp, restarted at every event.
+
+    Returns ``theta_max`` (rad), ``overturned``, ``rocked`` and ``n_impacts``. The free
+    rocking after the pulse is integrated (a = 0) up to the first peak inside ``|theta| <
+    alpha``; from there every impact lowers the energy, so theta_max cannot grow.
+    """
+    k = pfa_ratio * math.tan(alpha)  # PFA / g
+    nu = freq_ratio
+    tau_end = 2.0 * math.pi / nu
+    half_pi = 0.5 * math.pi
+
+    def ag(tau: float) -> float:
+        return k * math.sin(nu * tau) if tau <= tau_end else 0.0
+
+    def rhs_factory(side: float):
+        def rhs(tau, y):
+            phi = side * alpha - y[0]
+            return [y[1], -(math.sin(phi) + ag(tau) * math.cos(phi))]
+
+        return rhs
+
+    tau = 0.0
+    theta_max = 0.0
+    rocked = False
+    n_imp = 0
+    seated = True
+    side = 0.0
+    y = np.zeros(2)
+    peak_enabled = True
+    while True:
+        if seated:
+            if tau >= tau_end:
+                break
+            # uplift: first time |a|/g exceeds tan(alpha), found by solve_ivp events on a
+            # dummy ODE (no closed form used)
+            ev_pos = lambda t, _y: ag(t) - math.tan(alpha)  # noqa: E731
+            ev_neg = lambda t, _y: -ag(t) - math.tan(alpha)  # noqa: E731
+            for ev in (ev_pos, ev_neg):
+                ev.terminal, ev.direction = True, 1.0
+            if ag(tau) > math.tan(alpha):
+                t_up, sgn = tau, 1.0
+            elif -ag(tau) > math.tan(alpha):
+                t_up, sgn = tau, -1.0
+            else:
+                sol = solve_ivp(lambda t, _y: [0.0], (tau, tau_end), [0.0], events=(ev_pos, ev_neg),
+                                max_step=0.01 / nu, rtol=1e-12, atol=1e-12)
+                if sol.status != 1:
+                    break
+                if sol.t_events[0].size:
+                    t_up, sgn = float(sol.t_events[0][0]), 1.0
+                else:
+                    t_up, sgn = float(sol.t_events[1][0]), -1.0
+            tau, side, seated, rocked = t_up, -sgn, False, True
+            y = np.zeros(2)
+        rhs = rhs_factory(side)
+
+        def impact(t, yy, s=side):
+            return s * yy[0]
+
+        impact.terminal, impact.direction = True, -1.0
+
+        def overturn(t, yy):
+            return abs(yy[0]) - half_pi
+
+        overturn.terminal, overturn.direction = True, 1.0
+
+        def peak(t, yy):
+            return yy[1]
+
+        peak.terminal = tau >= tau_end  # after the pulse: stop at a peak, then decide
+        events = (impact, overturn, peak) if peak_enabled else (impact, overturn)
+        t_stop = tau_end if tau < tau_end else tau + 1e4
+        first = None
+        if y[0] == 0.0 and y[1] != 0.0:
+            acc = rhs(tau, y)[1]
+            if side * acc < 0.0:
+                first = 0.1 * abs(y[1]) / abs(acc)  # see the excursion: scipy grows steps <= 10x
+                first = min(first, 0.5 * (t_stop - tau))
+        sol = solve_ivp(rhs, (tau, t_stop), y, method="DOP853", rtol=REF_RTOL, atol=REF_ATOL,
+                        events=events, first_step=first, max_step=0.05)
+        if sol.status < 0:
+            raise RuntimeError(f"reference failed: {sol.message}")
+        theta_max = max(theta_max, float(np.max(np.abs(sol.y[0]))))
+        if peak_enabled and sol.y_events[2].size:
+            theta_max = max(theta_max, float(np.max(np.abs(sol.y_events[2][:, 0]))))
+        if sol.t_events[1].size:
+            return dict(theta_max=max(theta_max, half_pi), overturned=True, rocked=rocked, n_impacts=n_imp)
+        if sol.t_events[0].size:
+            tau = float(sol.t_events[0][0])
+            w = e * float(sol.y_events[0][0, 1])
+            n_imp += 1
+            if n_imp > REF_MAX_IMPACTS:
+                raise RuntimeError("reference: too many impacts")
+            side = -side
+            y = np.array([0.0, w])
+            if abs(w) < REF_REST_VELOCITY:
+                phi = side * alpha
+                acc = -(math.sin(phi) + ag(tau) * math.cos(phi))
+                if side * acc <= 0.0:
+                    seated, y = True, np.zeros(2)
+            continue
+        if peak_enabled and sol.t_events[2].size and tau >= tau_end:
+            th_pk = abs(float(sol.y_events[2][0, 0]))
+            tau = float(sol.t_events[2][0])
+            y = sol.y_events[2][0].copy()
+            if th_pk < alpha:
+                break  # peak inside the well after the pulse: energy only falls from here
+            peak_enabled = False  # peak beyond the hump: it falls outwards, integrate on
+            continue
+        # reached the end of the pulse without event
+        tau = float(sol.t[-1])
+        y = sol.y[:, -1].copy()
+        tau = max(tau, tau_end)
+    return dict(theta_max=theta_max, overturned=False, rocked=rocked, n_impacts=n_imp)
+
+
+def _energy(alpha: float, p: float, theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
+    """Rocking energy per m g R with a = 0 (DESIGN.md section 2):
+    ``(theta'/p)²/2 + cos(alpha - |theta|) - cos(alpha)``, written here independently."""
+    return 0.5 * (theta_dot / p) ** 2 + np.cos(alpha - np.abs(theta)) - math.cos(alpha)
+
+
+def _impact_rows(res) -> np.ndarray:
+    """Indices i of the history rows holding (just before, just after) an impact at i, i+1."""
+    th, t = res.theta, res.time
+    return np.flatnonzero((th[:-1] == 0.0) & (th[1:] == 0.0) & (t[:-1] == t[1:]))
+
+
+# =============================================================================================
+# Closed forms
+# =============================================================================================
+
+
+@pytest.mark.parametrize("block", BLOCKS, ids=lambda b: f"alpha={b.alpha:.3f}")
+def test_uplift_threshold_eq4(block):
+    """Eq. 4: the block leaves rest only when PFA exceeds g tan(alpha), i.e. pfa_ratio > 1.
+
+    Each side of the threshold is checked 1e-6 away: the decision is a strict comparison, so
+    any margin well above round-off (1e-16) must give the exact answer."""
+    r = hf.solve_grid(block.alpha, block.p, block.e, [1.0 - 1e-6, 1.0, 1.0 + 1e-6], 2.0)
+    assert r.ok.all()
+    assert list(r.rocked) == [False, False, True]
+    assert r.theta_max[0] == 0.0 and r.theta_max[1] == 0.0
+    assert r.theta_max[2] > 0.0
+
+
+def test_uplift_time_and_direction():
+    """Uplift happens when PFA sin(omega_p t) first reaches g tan(alpha) (Eq. 4):
+    t_up = asin(1/pfa_ratio)/omega_p, closed form; a positive a tips to negative theta.
+    The kernel seats/uplifts by the same closed form, so the tolerance is round-off."""
+    block = BLOCKS[1]
+    pulse = OneSinePulse.from_ratios(block, 2.5, 3.0)
+    res = hf.solve(block, pulse)
+    moved = np.flatnonzero(res.theta != 0.0)
+    t_up = res.time[moved[0] - 1]
+    assert t_up == pytest.approx(math.asin(1.0 / 2.5) / pulse.omega_p, rel=1e-12)
+    assert res.theta[moved[0]] < 0.0
+
+
+def _first_impact_time_quadrature(alpha: float, p: float, theta0: float) -> float:
+    """Exact time (s) to fall from rest at theta0 to theta = 0: energy integral
+    t = (1/p) ∫_0^theta0 dθ / sqrt(2 (V(theta0) - V(θ))), V(θ) = cos(alpha - θ); the
+    substitution θ = theta0 - u² removes the inverse-square-root singularity at theta0."""
+    def V(th):  # noqa: N802
+        return math.cos(alpha - th)
+
+    val, _ = quad(lambda u: 2.0 * u / math.sqrt(2.0 * (V(theta0) - V(theta0 - u * u))),
+                  0.0, math.sqrt(theta0), epsabs=1e-15, epsrel=1e-13)
+    return val / p
+
+
+@pytest.mark.parametrize("block", [BLOCKS[0], BLOCKS[2]], ids=["slender", "stocky"])
+def test_free_rocking_first_impact_time(block):
+    """Free rocking from rest at theta0 = 0.5 alpha: first impact at the time given by the
+    energy integral. Tolerance 1e-7 relative: RK4 at the default step is accurate to about
+    1e-9 here (the impact is located on the RK map itself), the quadrature to 1e-13."""
+    theta0 = 0.5 * block.alpha
+    res = hf.free_rocking(block, theta0, 3.0)
+    assert res.ok and not res.overturned
+    t_impact = res.time[_impact_rows(res)[0]]
+    assert t_impact == pytest.approx(_first_impact_time_quadrature(block.alpha, block.p, theta0), rel=1e-7)
+
+
+def test_free_rocking_first_impact_linearised_slender():
+    """Housner's linearised free rocking (slender block): t = arccosh(1/(1 - theta0/alpha))/p.
+    The linearisation replaces sin(alpha - θ) by alpha - θ, a relative error of order
+    alpha²/6 = 0.5 % for alpha = 0.18 rad, so the tolerance is 1 % (the exact solution is
+    checked to 1e-7 above)."""
+    block = BLOCKS[0]
+    theta0 = 0.5 * block.alpha
+    res = hf.free_rocking(block, theta0, 3.0)
+    t_impact = res.time[_impact_rows(res)[0]]
+    assert t_impact == pytest.approx(math.acosh(1.0 / (1.0 - theta0 / block.alpha)) / block.p, rel=1e-2)
+
+
+@pytest.mark.parametrize("block", BLOCKS, ids=lambda b: f"alpha={b.alpha:.3f}")
+def test_energy_ratio_e_squared_per_impact(block):
+    """Kinetic (= total, at theta = 0) energy falls by e² at every impact (Housner). The
+    before/after velocities are stored exactly; tolerance 1e-12 is round-off."""
+    res = hf.free_rocking(block, 0.6 * block.alpha, 4.0)
+    rows = _impact_rows(res)
+    assert rows.size >= 3
+    for i in rows[:5]:
+        before = _energy(block.alpha, block.p, res.theta[i], res.theta_dot[i])
+        after = _energy(block.alpha, block.p, res.theta[i + 1], res.theta_dot[i + 1])
+        assert after / before == pytest.approx(block.e**2, rel=1e-12)
+
+
+@pytest.mark.parametrize("block", BLOCKS, ids=lambda b: f"alpha={b.alpha:.3f}")
+def test_energy_conserved_between_impacts(block):
+    """With a = 0 the energy is constant between impacts (DESIGN.md section 2). Between the
+    start and the first impact, and between the first two impacts, it must stay within
+    1e-9 of its value (relative to the barrier 1 - cos alpha): RK4's energy drift at the
+    default step is about 1e-11 here, so a wrong sign or lever would fail by orders."""
+    res = hf.free_rocking(block, 0.5 * block.alpha, 4.0)
+    rows = _impact_rows(res)
+    E = _energy(block.alpha, block.p, res.theta, res.theta_dot)
+    barrier = 1.0 - math.cos(block.alpha)
+    seg0 = E[: rows[0] + 1]
+    seg1 = E[rows[0] + 1: rows[1] + 1]
+    assert np.ptp(seg0) / barrier < 1e-9
+    assert np.ptp(seg1) / barrier < 1e-9
+    # and the level: V(theta0), the potential at release
+    assert seg0[0] == pytest.approx(math.cos(0.5 * block.alpha) - math.cos(block.alpha), rel=1e-14)
+
+
+# =============================================================================================
+# Against the independent solve_ivp reference
+# =============================================================================================
+
+
+def _random_cases(n: int, seed: int, pfa_high: float) -> tuple[np.ndarray, ...]:
+    rng = np.random.default_rng(seed)
+    idx = rng.integers(0, len(BLOCKS), n)
+    alpha = np.array([BLOCKS[i].alpha for i in idx])
+    p = np.array([BLOCKS[i].p for i in idx])
+    e = np.array([BLOCKS[i].e for i in idx])
+    return alpha, p, e, rng.uniform(1.0, pfa_high, n), rng.uniform(0.5, 10.0, n)
+
+
+#: Largest |d theta_max| / alpha allowed against the reference. The issue asks for 5e-3;
+#: measured differences are below 2e-8 (300 random pulses: 5e-11; chattering-rich set:
+#: 7e-10), so 1e-6 still leaves a factor 50 for platform differences while catching any
+#: error in the equation, the impact rule or the post-pulse energy verdict.
+THETA_TOL = 1e-6
+
+
+@pytest.mark.parametrize(
+    "seed, pfa_high",
+    [(11, 10.5), (12, 1.6)],
+    ids=["spectrum-range", "low-pfa-chattering"],
+)
+def test_matches_solve_ivp_reference(seed, pfa_high):
+    """25 random pulses per set (the spectrum's range; and a low-PFA set where impacts
+    accumulate, the block comes to rest and lifts off again): theta_max and the verdict
+    agree with the rtol 1e-10 event-driven reference."""
+    alpha, p, e, r, f = _random_cases(25, seed, pfa_high)
+    fast = hf.solve_grid(alpha, p, e, r, f)
+    assert fast.ok.all()
+    for i in range(alpha.size):
+        ref = reference_solve(alpha[i], e[i], r[i], f[i])
+        assert bool(fast.overturned[i]) == ref["overturned"], (i, r[i], f[i])
+        assert bool(fast.rocked[i]) == ref["rocked"]
+        if not ref["overturned"]:
+            assert abs(fast.theta_max[i] - ref["theta_max"]) / alpha[i] < THETA_TOL, (i, r[i], f[i])
+    if pfa_high < 2.0:
+        assert fast.n_impacts.max() > 50  # the set really exercises chattering
+
+
+def test_solve_matches_solve_grid():
+    """The one-case entry point and the batch entry point run the same kernel: identical
+    theta_max and verdicts (exact equality: same arithmetic)."""
+    block = BLOCKS[3]
+    for r, f in [(1.3, 0.7), (4.0, 2.0), (9.0, 8.0)]:
+        one = hf.solve(block, OneSinePulse.from_ratios(block, r, f))
+        many = hf.solve_grid(block.alpha, block.p, block.e, r, f)
+        assert one.solver == "housner_fast" and one.ok
+        assert one.theta_max == float(many.theta_max)
+        assert one.overturned == bool(many.overturned)
+        assert one.verdict == many.verdict.item()
+
+
+def test_p_only_scales_time():
+    """In tau = p t the equation depends on alpha, e and the two ratios only: theta_max and
+    the verdict must not change with p (dimensional analysis), to round-off."""
+    alpha, _, e, r, f = _random_cases(40, 3, 10.5)
+    a = hf.solve_grid(alpha, 1.0, e, r, f)
+    b = hf.solve_grid(alpha, 7.3, e, r, f)
+    np.testing.assert_array_equal(a.theta_max, b.theta_max)
+    np.testing.assert_array_equal(a.overturned, b.overturned)
+
+
+def test_deterministic_regardless_of_threads_and_order():
+    """Same inputs give bit-identical outputs whatever the thread count or case order:
+    cases are independent and each is solved serially."""
+    alpha, p, e, r, f = _random_cases(600, 5, 10.5)
+    one = hf.solve_grid(alpha, p, e, r, f, threads=1)
+    two = hf.solve_grid(alpha, p, e, r, f, threads=2)
+    perm = np.random.default_rng(0).permutation(alpha.size)
+    shuffled = hf.solve_grid(alpha[perm], p[perm], e[perm], r[perm], f[perm], threads=2)
+    for name in ("theta_max", "overturned", "rocked", "status", "n_impacts", "n_steps"):
+        np.testing.assert_array_equal(getattr(one, name), getattr(two, name))
+        np.testing.assert_array_equal(getattr(one, name)[perm], getattr(shuffled, name))
+
+
+def test_overturning_monotone_in_pfa_at_fixed_frequency():
+    """Physical fact: for a sine pulse, once the block overturns at some PFA it still
+    overturns at a slightly larger PFA in the low-frequency regime (omega_p/p = 1), where
+    there is no safe 'island' above the first overturning amplitude (Zhang & Makris 2001,
+    Fig. 4). Checked on a fine 200-point PFA sweep of each block."""
+    pfa = np.linspace(1.0, 10.5, 200)
+    for block in BLOCKS:
+        res = hf.solve_grid(block.alpha, block.p, block.e, pfa, 1.0)
+        first = int(np.argmax(res.overturned))
+        assert res.overturned.any()
+        assert res.overturned[first:].all()
+
+
+# =============================================================================================
+# Results, failures and inputs
+# =============================================================================================
+
+
+def test_failure_is_reported_not_hidden():
+    """A chattering case with max_impacts = 1 cannot finish: status failed with a reason, no
+    verdict (never safe or overturned)."""
+    block = BLOCKS[0]
+    pulse = OneSinePulse.from_ratios(block, 1.1, 3.0)
+    assert hf.solve(block, pulse).n_impacts > 1  # the case does impact more than once
+    res = hf.solve(block, pulse, max_impacts=1)
+    assert res.status == "failed" and res.verdict == "failed"
+    assert "max_impacts" in res.reason
+    grid = hf.solve_grid(block.alpha, block.p, block.e, 1.1, 3.0,
+                         settings=hf.HousnerFastSettings(max_impacts=1))
+    assert grid.status.item() == hf.STATUS_MAX_IMPACTS and grid.verdict.item() == "failed"
+
+
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [({"max_step": 0.0}, "max_step"), ({"max_step": 1.0}, "max_step"),
+     ({"steps_per_pulse": 4}, "steps_per_pulse"), ({"rest_velocity": -1.0}, "rest_velocity"),
+     ({"max_impacts": 0}, "max_impacts"), ({"max_steps": 2.5}, "max_steps")],
+)
+def test_settings_errors_name_the_argument(kwargs, name):
+    with pytest.raises((ValueError, TypeError), match=name):
+        hf.HousnerFastSettings(**kwargs)
+
+
+def test_input_errors_name_the_argument():
+    with pytest.raises(ValueError, match="pfa_ratio"):
+        hf.solve_grid(0.2, 1.0, 0.9, [2.0, -1.0], 1.0)
+    with pytest.raises(ValueError, match="alpha"):
+        hf.solve_grid(2.0, 1.0, 0.9, 2.0, 1.0)
+    with pytest.raises(TypeError, match="unknown"):
+        hf.solve(BLOCKS[0], OneSinePulse(3.0, 10.0), max_stepp=0.1)
+    from opsrock.excitation import Record
+    with pytest.raises(TypeError, match="OneSinePulse"):
+        hf.solve(BLOCKS[0], Record(0.01, [0.0, 1.0, 0.0]))
+
+
+def test_grid_shape_and_verdicts():
+    """solve_pulses returns (blocks, pfa, freq) arrays; the pfa_ratio = 1.0 row never uplifts
+    (Eq. 4), every other case rocks."""
+    res = hf.solve_pulses(BLOCKS, [1.0, 3.0, 9.0], [0.5, 2.0, 9.0, 10.0])
+    assert res.theta_max.shape == (4, 3, 4)
+    assert not res.rocked[:, 0, :].any() and res.rocked[:, 1:, :].all()
+    assert set(res.verdict.ravel()) <= {"no_uplift", "safe", "overturned"}
+    assert np.array_equal(res.overturned, res.theta_max >= 0.5 * math.pi)
+
+
+# =============================================================================================
+# Against the project's per-case event-driven solver, when present
+# =============================================================================================
+
+
+def test_matches_housner_solver():
+    """opsrock.solvers.housner (scipy, rtol 1e-10, written independently) on 8 random
+    pulses: same verdicts, theta_max within THETA_TOL alpha (both converge to the same exact
+    rigid-body answer)."""
+    housner = pytest.importorskip("opsrock.solvers.housner")
+    rng = np.random.default_rng(21)
+    for _ in range(8):
+        block = BLOCKS[int(rng.integers(0, 4))]
+        pulse = OneSinePulse.from_ratios(block, float(rng.uniform(1.0, 10.5)), float(rng.uniform(0.5, 10.0)))
+        ref = housner.solve(block, pulse)
+        fast = hf.solve(block, pulse)
+        assert ref.ok and fast.ok
+        assert fast.verdict == ref.verdict
+        if not ref.overturned:
+            assert abs(fast.theta_max - ref.theta_max) / block.alpha < THETA_TOL
+
+
+# =============================================================================================
+# Dense-spectrum timing (issue 6 target 2)
+# =============================================================================================
+
+
+@pytest.mark.slow
+def test_dense_spectrum_40000_cases_under_60_s():
+    """4 blocks x 100 x 100 pulses in under 60 s on the project's 2-core machine (issue 6),
+    all finishing without failure. Measured about 2-5 s (loaded machine)."""
+    hf.solve_grid(0.2, 1.0, 0.9, 2.0, 2.0)  # compile / load the cache outside the timing
+    res = hf.solve_pulses(BLOCKS, np.linspace(1.0, 10.5, 100), np.linspace(0.5, 10.0, 100))
+    assert res.theta_max.size == 40_000
+    assert res.ok.all()
+    assert res.wall_time_s < 60.0

@@ -102,7 +102,7 @@ def exact_time_to_impact(block: Block, theta0: float) -> float:
             return 2.0 / math.sqrt(2.0 * p * p * math.sin(a - theta0))
         return 2.0 * v / math.sqrt(2.0 * p * p * d)
 
-    val, _ = quad(integrand, 0.0, math.sqrt(theta0), epsabs=0.0, epsrel=1e-13, limit=200)
+    val, _ = quad(integrand, 0.0, math.sqrt(theta0), epsabs=0.0, epsrel=1e-11, limit=200)
     return val
 
 

@@ -184,6 +184,9 @@ def test_uplift_threshold_eq4(block):
     assert list(r.rocked) == [False, False, True]
     assert r.theta_max[0] == 0.0 and r.theta_max[1] == 0.0
     assert r.theta_max[2] > 0.0
+    # the one-case entry point, with PFA built from the ratio (round-off in g tan alpha)
+    at = hf.solve(block, OneSinePulse.from_ratios(block, 1.0, 2.0))
+    assert at.verdict == "no_uplift"
 
 
 def test_uplift_time_and_direction():

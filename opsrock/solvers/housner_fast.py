@@ -85,6 +85,12 @@ STATUS_REASONS: dict[int, str] = {
 #: bisection halvings alone would shrink any bracket below double precision).
 _EVENT_MAX_ITER = 60
 
+#: Relative margin on Eq. 4: a PFA within 1e-12 of ``g tan(alpha)`` counts as *at* the
+#: threshold, which does not uplift (Eq. 4 needs strict exceedance). Without it, round-off
+#: in ``PFA = ratio * g * tan(alpha)`` (``b/h`` against ``tan(atan2(b, h))``, 1 ulp) could
+#: turn the spectrum's ``pfa_ratio = 1`` row into a rocking of 1e-24 rad.
+_UPLIFT_RTOL = 1e-12
+
 #: Shortest post-impact trial step (in units of 1/p) before an excursion is treated as
 #: negligible: far below any time scale of the problem (a 1e-14 fraction of 1/p).
 _MIN_STEP = 1e-14
@@ -210,7 +216,7 @@ def _locate(which, theta, omega, tau, h, side, alpha, k, nu, tau_end):
 def _next_uplift(tau, tan_alpha, k, nu, tau_end):
     """First time >= tau at which |a|/g > tan(alpha) for the sine pulse, and the sign of a
     there; (-1.0, 0.0) if none before the end of the pulse."""
-    if k <= tan_alpha:
+    if k <= tan_alpha * (1.0 + _UPLIFT_RTOL):
         return -1.0, 0.0
     beta = math.asin(tan_alpha / k)
     phi = nu * tau

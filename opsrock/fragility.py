@@ -599,28 +599,44 @@ def _separated(u: np.ndarray, y: np.ndarray) -> bool:
     return bool(y.any() and (~y).any() and u[~y].max() <= u[y].min())
 
 
-def _mle_core(u: np.ndarray, y: np.ndarray, q0: np.ndarray) -> tuple[np.ndarray, float, bool, str]:
-    """Probit MLE in ``u = s ln x``: returns ((m, ln beta), nll, success, message)."""
+def _mle_core(u: np.ndarray, y: np.ndarray, q0: np.ndarray | None = None
+              ) -> tuple[np.ndarray, float, bool, str]:
+    """Probit MLE in ``u = s ln x``: returns ((m, ln beta), nll, success, message).
 
-    def nll(q: np.ndarray) -> tuple[float, np.ndarray]:
-        m, lb = q
-        beta = math.exp(lb)
-        z = (u - m) / beta
+    Fitted as ``P = Phi(a + b v)`` on the standardised ``v = (u - mean) / sd``, whose
+    log-likelihood is concave in ``(a, b)`` (probit regression), so the optimiser cannot
+    wander off; then ``beta = sd / b`` and ``m = mean - a sd / b``. ``q0`` (a previous
+    ``(m, ln beta)``) only seeds the start.
+    """
+    centre, sd = float(np.mean(u)), float(np.std(u)) or 1.0
+    v = (u - centre) / sd
+    if q0 is not None:
+        b0 = sd / math.exp(q0[1])
+        start = np.array([-(q0[0] - centre) / sd * b0, b0])
+    else:
+        start = np.array([0.0, 1.0])
+
+    def nll(ab: np.ndarray) -> tuple[float, np.ndarray]:
+        z = ab[0] + ab[1] * v
         lp, lq = special.log_ndtr(z), special.log_ndtr(-z)
         value = -float(np.sum(np.where(y, lp, lq)))
-        # d log Phi(z)/dz = phi(z)/Phi(z); d log Phi(-z)/dz = -phi(z)/Phi(-z)
         log_phi = -0.5 * z**2 - 0.5 * math.log(2 * math.pi)
+        # d(-loglik)/dz: -phi/Phi(z) for y = 1, +phi/Phi(-z) for y = 0
         dz = np.where(y, -np.exp(log_phi - lp), np.exp(log_phi - lq))
-        grad = np.array([np.sum(dz * (-1.0 / beta)), np.sum(dz * (-z))])
-        return value, grad
+        return value, np.array([np.sum(dz), np.sum(dz * v)])
 
-    res = optimize.minimize(nll, q0, jac=True, method="BFGS", options={"gtol": 1e-8})
-    lb = res.x[1]
+    res = optimize.minimize(nll, start, jac=True, method="BFGS", options={"gtol": 1e-8})
+    a, b = res.x
     ok = bool(res.success) or res.status == 2  # status 2: precision loss at the optimum
     msg = str(res.message)
-    if not (math.log(BETA_BOUNDS[0]) < lb < math.log(BETA_BOUNDS[1])):
-        ok, msg = False, f"beta = {math.exp(lb):.3g} outside {BETA_BOUNDS}"
-    return res.x, float(res.fun), ok, msg
+    if not b > 0:
+        return np.array([math.nan, math.nan]), float(res.fun), False, (
+            "overturning does not grow with the (oriented) IM: slope b = %.3g <= 0" % b)
+    beta = sd / b
+    m = centre - a * sd / b
+    if not BETA_BOUNDS[0] < beta < BETA_BOUNDS[1]:
+        ok, msg = False, f"beta = {beta:.3g} outside {BETA_BOUNDS}"
+    return np.array([m, math.log(beta)]), float(res.fun), ok, msg
 
 
 def fit_lognormal_mle(
@@ -679,8 +695,7 @@ def fit_lognormal_mle(
         return MLEFit(mu, 0.0, 0.0, success=False, objective=0.0, loglik_per_case=0.0,
                       message="outcomes perfectly separated by the IM: no finite MLE "
                               "(beta -> 0); mu is the middle of the gap", **common)
-    q0 = np.array([0.5 * (u[~y].max() + u[y].min()), math.log(max(0.2 * float(np.std(u)), 0.01))])
-    q, value, ok, msg = _mle_core(u, y, q0)
+    q, value, ok, msg = _mle_core(u, y)
     mu, beta = math.exp(s * q[0]), math.exp(q[1])
     lo = hi = (math.nan, math.nan)
     used = 0
@@ -692,7 +707,7 @@ def fit_lognormal_mle(
             ub, yb = u[idx], y[idx]
             if yb.all() or (~yb).all() or _separated(ub, yb):
                 continue
-            qb, _, okb, _ = _mle_core(ub, yb, q)
+            qb, _, okb, _ = _mle_core(ub, yb, q if ok else None)
             if okb:
                 draws.append((math.exp(s * qb[0]), math.exp(qb[1])))
         used = len(draws)
@@ -933,7 +948,9 @@ def rank_ims(analysis: FragilityAnalysis, strip_factor: float = 1.0) -> pd.DataF
     Returns
     -------
     pandas.DataFrame
-        Indexed by IM: ``HR``, ``cv_percent``, ``beta``, ``mle_beta``,
+        Indexed by IM: ``HR``, ``cv_percent``, ``beta`` (NaN, so unranked, when the
+        least-squares fit is flagged unreliable, e.g. a perfectly separating IM: HR and
+        ``fraction_in_hybrid`` rank those), ``mle_beta``,
         ``mle_loglik_per_case`` (higher is better; invariant under power laws of the IM),
         ``fraction_in_hybrid`` (rocking cases in the hybrid strip; invariant under any
         monotone change of the IM), and a ``rank_<criterion>`` column for each (1 = best).
@@ -942,11 +959,12 @@ def rank_ims(analysis: FragilityAnalysis, strip_factor: float = 1.0) -> pd.DataF
     rows = {}
     for im, r in analysis.results.items():
         fit = r.ls_fits.get(strip_factor)
+        usable = fit is not None and fit.success
         rows[im] = {
             "HR": r.hybrid.HR,
-            "cv_percent": fit.cv_percent if fit is not None else math.nan,
-            "beta": fit.beta if fit is not None else math.nan,
-            "mle_beta": r.mle.beta,
+            "cv_percent": fit.cv_percent if usable else math.nan,
+            "beta": fit.beta if usable else math.nan,
+            "mle_beta": r.mle.beta if r.mle.success else math.nan,
             "mle_loglik_per_case": r.mle.loglik_per_case,
             "fraction_in_hybrid": r.hybrid.n_in_strip / n,
         }

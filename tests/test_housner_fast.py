@@ -312,6 +312,42 @@ def test_matches_solve_ivp_reference(seed, pfa_high):
         assert fast.n_impacts.max() > 50  # the set really exercises chattering
 
 
+def _end_of_pulse_branch(block, res, freq_ratio) -> str:
+    """Which exact post-pulse rule decides the case: where the block is at the end of the
+    pulse (inside the well |theta| <= alpha or beyond the hump) and whether it heads out."""
+    t_end = 2.0 * math.pi / (freq_ratio * block.p)
+    if res.time[-1] < t_end * (1.0 - 1e-12) or res.theta[-1] == 0.0:
+        return "pulse"  # overturned or seated during the pulse, or at an impact at the end
+    th, w = res.theta[-1], res.theta_dot[-1]
+    where = "beyond" if abs(th) > block.alpha else "inside"
+    return f"{where}-{'out' if th * w > 0.0 else 'in'}-{res.verdict}"
+
+
+def test_every_post_pulse_branch_matches_reference():
+    """After the pulse the fast solver decides by the energy barrier, in closed form; the
+    reference integrates the free rocking instead. Two cases of every branch met on a
+    12 x 12 scan (inside/beyond the hump x heading in/out x safe/overturned) must agree to
+    THETA_TOL and in verdict: this checks the closed-form tail branch by branch."""
+    picked: dict[str, list] = {}
+    for block in BLOCKS:
+        for r in np.linspace(1.05, 10.5, 12):
+            for f in np.linspace(0.5, 10.0, 12):
+                res = hf.solve(block, OneSinePulse.from_ratios(block, r, f))
+                if res.rocked:
+                    key = _end_of_pulse_branch(block, res, f)
+                    if len(picked.setdefault(key, [])) < 2:
+                        picked[key].append((block, r, f, res))
+    expected = {"inside-out-safe", "inside-in-safe", "beyond-in-safe", "inside-out-overturned",
+                "inside-in-overturned", "beyond-in-overturned", "beyond-out-overturned"}
+    assert expected <= set(picked), sorted(picked)
+    for key, cases in picked.items():
+        for block, r, f, res in cases:
+            ref = reference_solve(block.alpha, block.e, r, f)
+            assert res.overturned == ref["overturned"], (key, r, f)
+            if not ref["overturned"]:
+                assert abs(res.theta_max - ref["theta_max"]) / block.alpha < THETA_TOL, (key, r, f)
+
+
 def test_solve_matches_solve_grid():
     """The one-case entry point and the batch entry point run the same kernel: identical
     theta_max and verdicts (exact equality: same arithmetic)."""

@@ -284,7 +284,9 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
             seated = False
             continue
 
-        if s.end_time is None and s.tail == "rest" and t >= duration:
+        if s.end_time is None and s.tail == "rest" and t >= duration and abs(y[0]) <= band:
+            # trapped only *inside* the band: beyond alpha the table's potential falls below
+            # U(delta alpha) too, and a block out there is falling over, not at rest
             energy = 0.5 * inertia * y[1] ** 2 + float(U(y[0]))
             if energy < u_band:
                 break  # trapped in the damper band: it can never rock out again

@@ -168,7 +168,7 @@ def test_table2_rows_of_the_paper_from_a_synthetic_grid(im):
 def test_strip_fractions_on_the_grid():
     cases = grid_cases()
     split = split_cases(cases)
-    an = analyse_fragility(cases, FragilitySettings(ims=("IM1",), n_boot=0))
+    an = analyse_fragility(cases, FragilitySettings(ims=("IM1",), n_boot=0, extent="hybrid"))
     st = an["IM1"].strips[1.0]
     # W_SAS = 0.8 over [2, 6]: 5 strips, one IM1 column of 10 cases each. Overturned count
     # per column from the boundary IM2 > 1.7 IM1 on IM2 = 1.5 + k 9.5/9: IM1 = 2 -> 8,
@@ -196,7 +196,7 @@ def test_case_on_an_inner_edge_goes_to_the_upper_strip():
     x = np.array([0.0, 5.0, 0.0, 5.0, 2.0]) + 1.0
     y = np.array([0, 0, 1, 1, 1], dtype=bool)
     h = hybrid_strip(x, y)
-    st = strip_fractions(x, y, h)
+    st = strip_fractions(x, y, h, extent="hybrid")
     np.testing.assert_allclose(st.low, [1.0, 3.0, 5.0])
     np.testing.assert_array_equal(st.n_cases, [2, 1, 2])
 

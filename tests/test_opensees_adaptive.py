@@ -1,0 +1,55 @@
+"""The default adaptive stepping of the OpenSees model against the independent scipy SDOF solver."""
+
+from __future__ import annotations
+
+import pytest
+
+from opsrock import Block, OneSinePulse
+from opsrock.solvers import simulate
+
+pytestmark = pytest.mark.opensees
+
+# Paper-grid pulses (omega_p/p, PFA/(g tan alpha) on the 10 x 10 grid of DESIGN.md s.3) where the
+# first adaptive scheme was 2-10 % of alpha off: a long exit step carried half a step of stale
+# damper force (Newmark averages the force at both step ends), and the band edge was overshot.
+CASES = [
+    ((0.50, 1.15), 0.5 + 3 * 19 / 18, 1.0 + 2 * 19 / 18),  # medicine_cabinet f04/a03: was -10.5 %
+    ((1.00, 2.40), 0.5 + 3 * 19 / 18, 1.0 + 1 * 19 / 18),  # equipment_rack f04/a02
+    ((0.40, 2.20), 0.5 + 7 * 19 / 18, 1.0 + 4 * 19 / 18),  # bookcase f08/a05: was -2.4 %
+    ((0.60, 2.00), 0.5 + 7 * 19 / 18, 1.0 + 4 * 19 / 18),  # wardrobe f08/a05: was -3.1 %
+]
+
+
+@pytest.mark.parametrize(("size", "freq_ratio", "pfa_ratio"), CASES)
+def test_default_matches_scipy_sdof(size, freq_ratio, pfa_ratio):
+    # Same equations, independent numerics (scipy, events at every kink, rtol 1e-10): the
+    # difference is OpenSees' discretisation error. Measured over 100 paper pulses: at most
+    # 0.04 % of alpha; tolerance 0.3 % of alpha, well inside issue 3's 1 % target.
+    block = Block(*size)
+    pulse = OneSinePulse.from_ratios(block, pfa_ratio=pfa_ratio, freq_ratio=freq_ratio)
+    ref = simulate(block, pulse, solver="sdof")
+    r = simulate(block, pulse, solver="opensees")
+    assert r.ok and r.verdict == ref.verdict
+    assert abs(r.theta_max_over_alpha - ref.theta_max_over_alpha) < 3e-3
+
+
+def test_adaptive_velocity_ratio_across_band_is_e():
+    # Eq. 8 gives theta'_2 = e theta'_1 exactly across the band; free rocking from 0.5 alpha.
+    # Reference: the scipy SDOF solver's ratio (same model, includes the small gravity work in the
+    # band); tolerance 0.2 %: the first adaptive scheme lost 6 % here.
+    block = Block(0.50, 1.15)
+    zero = OneSinePulse(pfa=1e-9, omega_p=50.0)  # no excitation to speak of
+    kw = dict(theta0=0.5 * block.alpha)
+    os_ = simulate(block, zero, solver="opensees", stop_at_rest=False, end_time=1.5, **kw)
+    sd = simulate(block, zero, solver="sdof", end_time=1.5, **kw)
+
+    def first_ratio(res):
+        import numpy as np
+
+        band = 0.005 * block.alpha
+        inside = np.abs(res.theta) <= band
+        i_in = int(np.argmax(inside))
+        i_out = i_in + int(np.argmax(~inside[i_in:]))
+        return abs(res.theta_dot[i_out]) / abs(res.theta_dot[i_in - 1])
+
+    assert first_ratio(os_) == pytest.approx(first_ratio(sd), rel=2e-3)

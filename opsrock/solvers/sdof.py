@@ -318,7 +318,10 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
             return yy[1]
 
         turning.terminal = bool(s.end_time is None and s.tail == "peak" and t >= duration)
-        turning.direction = 0
+        # peaks of |theta| only (theta' leaving the outward sign): a turning point beyond alpha,
+        # from which the block falls outwards, does not fire again at the next segment's start
+        mid = 0.5 * (lo + hi)
+        turning.direction = 0 if is_stiff else (-1 if mid > 0 else 1)
         events = [lower, upper, overturn, turning]
         if is_stiff:
 

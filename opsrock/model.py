@@ -128,6 +128,25 @@ def lever_coefficient(block: Block, lever: str = "housner") -> float:
     return block.I_O * math.cos(block.alpha) / block.R
 
 
+#: Relative round-off allowance of the uplift test: ``PFA = 1.0 g tan(alpha)`` computed in floating
+#: point may exceed the peak restoring moment by an ulp or two.
+UPLIFT_RTOL: float = 1e-9
+
+
+def can_uplift(block: Block, model: "SDOFModel", pfa: float) -> bool:
+    """Eq. 4 for the SDOF model: can a floor motion of peak ``pfa`` (m/s²) uplift the block from rest?
+
+    True when the peak excitation moment ``|Lambda| PFA`` exceeds the peak restoring moment
+    ``m g R sin(alpha)`` (beyond a round-off allowance :data:`UPLIFT_RTOL`). With the housner
+    lever this is ``PFA > g tan(alpha)``; with the printed lever ``PFA > 0.75 g tan(alpha)``.
+
+    The SDOF model's stiff branch is finite, so at exactly the threshold it sits at neutral
+    equilibrium and can tip numerically (measured in OpenSees: up to 0.03 alpha in 6 of the 40
+    threshold cases of the paper grid); the solvers use this test instead (``uplift_check``).
+    """
+    return abs(model.lever_arm(block)) * pfa > block.overturning_rotation_moment * (1.0 + UPLIFT_RTOL)
+
+
 def restoring_moment(block: Block, theta: np.ndarray | float) -> np.ndarray:
     """Exact restoring moment ``m g R sin(alpha sgn(theta) - theta)`` (N m), Eq. 5."""
     theta = np.asarray(theta, dtype=float)
@@ -140,6 +159,8 @@ __all__ = [
     "DEFAULT_THETA_E_RATIO",
     "LEVERS",
     "SDOFModel",
+    "UPLIFT_RTOL",
+    "can_uplift",
     "lever_coefficient",
     "restoring_moment",
 ]

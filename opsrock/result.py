@@ -163,3 +163,27 @@ def failed_result(
         n_steps=n_steps,
         wall_time_s=wall_time_s,
     )
+
+
+def seated_result(solver: str, settings: Mapping[str, Any], alpha: float, duration: float,
+                  wall_time_s: float = 0.0) -> RockingResult:
+    """The result of an excitation too weak to uplift the block (Eq. 4): it stays seated.
+
+    Parameters
+    ----------
+    solver : str
+        Solver name.
+    settings : Mapping
+        The solver's settings.
+    alpha : float
+        Block slenderness (rad).
+    duration : float
+        Excitation duration (s): the history is ``theta = 0`` over ``[0, duration]``.
+    wall_time_s : float
+        Time spent (s).
+    """
+    t = np.array([0.0, float(duration)])
+    z = np.zeros(2)
+    return RockingResult(solver=solver, settings=settings, alpha=alpha, time=t, theta=z, theta_dot=z.copy(),
+                         theta_max=0.0, overturned=False, rocked=False, n_steps=0, wall_time_s=wall_time_s,
+                         spring_moment=z.copy(), damper_force=z.copy(), n_impacts=0)

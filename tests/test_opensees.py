@@ -33,7 +33,9 @@ def test_no_uplift_below_eq4_threshold_and_uplift_above():
     # the stiff branch (theta <= theta_e); at 1.05 over a long pulse (omega_p/p = 0.5, T_p ~ 5 s)
     # the block rocks. 0.98/1.05 keep a margin of a few % either side of the threshold, far
     # above the table error (0.1-0.2 % of m g R sin alpha) and the Trig sampling error.
-    below = osr.solve(CABINET, OneSinePulse.from_ratios(CABINET, 0.98, 0.5))
+    # uplift_check=False: the model itself must stay seated, not the Eq. 4 shortcut
+    below = osr.solve(CABINET, OneSinePulse.from_ratios(CABINET, 0.98, 0.5), uplift_check=False)
+    assert below.n_steps > 0
     above = osr.solve(CABINET, OneSinePulse.from_ratios(CABINET, 1.05, 0.5))
     theta_e = SDOFModel().theta_e(CABINET)
     assert below.ok and above.ok
@@ -132,18 +134,21 @@ def test_explicit_above_critical_step_is_failed_not_a_verdict(factor):
     # answer is no uplift; an unstable run must be reported failed, never as "safe" rocking.
     dt = factor * osr.critical_time_step(CABINET)
     pulse = OneSinePulse.from_ratios(CABINET, 0.5, 3.0)
-    r = osr.solve(CABINET, pulse, integrator="central_difference", adaptive=False, dt=dt)
+    # uplift_check=False: integrate the model although Eq. 4 says the pulse cannot uplift it
+    r = osr.solve(CABINET, pulse, integrator="central_difference", adaptive=False, dt=dt, uplift_check=False)
     assert r.status == "failed" and "unstable" in r.reason
     # Without the up-front check, the run itself must still not pass as no_uplift with a
     # plausible peak: it either fails (sawtooth/energy test) or shows the spurious rocking
     # that validation/stability_map classifies as wrong.
     raw = osr.solve(
-        CABINET, pulse, integrator="central_difference", adaptive=False, dt=dt, explicit_step_check=False
+        CABINET, pulse, integrator="central_difference", adaptive=False, dt=dt, explicit_step_check=False,
+        uplift_check=False,
     )
     assert raw.verdict != "no_uplift"
     # ... while below dt_cr the same explicit run is fine and finds no uplift.
     ok = osr.solve(
-        CABINET, pulse, integrator="central_difference", adaptive=False, dt=0.5 * osr.critical_time_step(CABINET)
+        CABINET, pulse, integrator="central_difference", adaptive=False, dt=0.5 * osr.critical_time_step(CABINET),
+        uplift_check=False,
     )
     assert ok.verdict == "no_uplift"
 

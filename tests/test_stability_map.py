@@ -44,7 +44,8 @@ def test_explicit_just_above_critical_step_blows_up_and_is_failed(factor):
     # central-difference amplification), so the run must fail as "unstable", not return.
     for b in BLOCKS.values():
         dt = factor * osr.critical_time_step(b)
-        r = osr.solve(b, _below_uplift(b), integrator="central_difference", dt=dt, explicit_step_check=False)
+        r = osr.solve(b, _below_uplift(b), integrator="central_difference", dt=dt, explicit_step_check=False,
+                          uplift_check=False)
         assert r.status == "failed" and r.reason.startswith("unstable"), (b.name, r.verdict, r.reason)
 
 
@@ -62,7 +63,8 @@ def test_explicit_far_above_critical_step_is_never_a_plausible_answer():
     for b in BLOCKS.values():
         for factor in (1.3, 2.0, 5.0):
             dt = factor * osr.critical_time_step(b)
-            r = osr.solve(b, _below_uplift(b), integrator="central_difference", dt=dt, explicit_step_check=False)
+            r = osr.solve(b, _below_uplift(b), integrator="central_difference", dt=dt, explicit_step_check=False,
+                          uplift_check=False)
             assert r.status == "failed", (b.name, factor, r.verdict, r.theta_max_over_alpha)
 
 

@@ -45,8 +45,8 @@ from opsrock._checks import in_open_interval, int_at_least, one_of, positive_fin
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.excitation import Excitation, OneSinePulse, Record
-from opsrock.model import SDOFModel
-from opsrock.result import RockingResult, failed_result
+from opsrock.model import SDOFModel, can_uplift
+from opsrock.result import RockingResult, failed_result, seated_result
 
 SOLVER_NAME = "opensees"
 
@@ -169,6 +169,12 @@ class OpenSeesSettings:
         :func:`critical_time_step` is refused up front as *failed* ("unstable: ..."): above it the
         stiff branch blows up within a step or two and the run can end in a plausible but wrong
         verdict (measured: validation/stability_map). False lets the stability map measure that.
+    uplift_check : bool
+        If True (default), a block starting from rest under an excitation that cannot uplift it
+        (Eq. 4: ``|Lambda| PFA <= m g R sin(alpha)``, :func:`opsrock.model.can_uplift`) is
+        returned seated without integration. At exactly the threshold the finite stiff branch is
+        at neutral equilibrium and tips numerically (up to 0.03 alpha on the paper grid's
+        ``PFA = g tan(alpha)`` row); False runs the model anyway.
     theta0 : float
         Initial rotation (rad), ``|theta0| < pi/2``.
     theta_dot0 : float
@@ -193,6 +199,7 @@ class OpenSeesSettings:
     stop_at_rest: bool = True
     record_every: int = 1
     explicit_step_check: bool = True
+    uplift_check: bool = True
     theta0: float = 0.0
     theta_dot0: float = 0.0
 
@@ -224,6 +231,8 @@ class OpenSeesSettings:
         if self.end_time is not None:
             positive_finite("end_time", self.end_time)
         positive_finite("rest_tolerance", self.rest_tolerance)
+        if not isinstance(self.uplift_check, bool):
+            raise TypeError(f"uplift_check must be a bool, got {self.uplift_check!r}")
         if not isinstance(self.stop_at_rest, bool):
             raise TypeError(f"stop_at_rest must be a bool, got {self.stop_at_rest!r}")
         int_at_least("record_every", self.record_every, 1)
@@ -488,6 +497,11 @@ def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: st
                 f"unstable: explicit central difference with dt = {s.dt:.4g} s >= its critical step "
                 f"dt_cr = 2 sqrt(I_O theta_e / (m g R sin alpha)) = {dt_cr:.4g} s",
             )
+    # Eq. 4 after the settings checks: bad settings are refused whatever the pulse
+    if (s.uplift_check and geometry is None and s.theta0 == 0.0 and s.theta_dot0 == 0.0
+            and not can_uplift(block, s.model, excitation.pfa)):
+        return seated_result(SOLVER_NAME, settings_dict, block.alpha, excitation.duration,
+                             _time.perf_counter() - t_wall)
     ops.wipe()
     try:
         if geometry is None:

@@ -39,8 +39,8 @@ from scipy.integrate import solve_ivp
 from opsrock._checks import int_at_least, one_of
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE
-from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel
-from opsrock.result import RockingResult, failed_result
+from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel, can_uplift
+from opsrock.result import RockingResult, failed_result, seated_result
 from opsrock.solvers.housner import (
     METHODS,
     TAILS,
@@ -103,6 +103,10 @@ class SDOFSettings:
     max_segments : int
         Largest number of region/breakpoint segments before the run is reported as failed.
         Default 200 000 (a record of 10 000 samples needs about that many).
+    uplift_check : bool
+        If True (default), a block starting from rest under an excitation that cannot uplift it
+        (Eq. 4 for the model's lever, :func:`opsrock.model.can_uplift`) is returned seated
+        without integration, as the OpenSees solver does.
     scan_step : float or None
         Grid spacing (s) of the seated-phase uplift scan (see
         :func:`opsrock.solvers.housner.first_exceedance`). None: ``duration / 2000``.
@@ -126,8 +130,11 @@ class SDOFSettings:
     max_impacts: int = 10_000
     max_segments: int = 200_000
     scan_step: float | None = None
+    uplift_check: bool = True
 
     def __post_init__(self) -> None:
+        if not isinstance(self.uplift_check, bool):
+            raise TypeError(f"uplift_check must be a bool, got {self.uplift_check!r}")
         self.model  # noqa: B018  (validates delta, theta_e_ratio, table_points, lever)
         one_of("method", self.method, METHODS)
         one_of("stiff_method", self.stiff_method, METHODS)
@@ -194,6 +201,8 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         settings_dict["max_step"] = "inf"
     t_wall = _time.perf_counter()
     model = s.model
+    if s.uplift_check and s.theta0 == 0.0 and s.theta_dot0 == 0.0 and not can_uplift(block, model, excitation.pfa):
+        return seated_result("sdof", settings_dict, block.alpha, excitation.duration, _time.perf_counter() - t_wall)
     alpha, p = block.alpha, block.p
     inertia = block.I_O
     lam = model.lever_arm(block)

@@ -165,12 +165,7 @@ _EXTERNAL = {
 
 def _add_external(sub, name: str) -> None:
     module_name, add_name, run_name, help_text = _EXTERNAL[name]
-    try:
-        module = importlib.import_module(module_name)
-    except ModuleNotFoundError as exc:  # TODO(lead): remove once every subcommand module has landed
-        if exc.name != module_name:
-            raise
-        return
+    module = importlib.import_module(module_name)
     p = sub.add_parser(name, help=help_text, description=(module.__doc__ or help_text).strip().splitlines()[0])
     getattr(module, add_name)(p)
     p.set_defaults(func=getattr(module, run_name))

@@ -564,6 +564,14 @@ def fit_lognormal_least_squares(
         ok, msg = False, "beta at its upper bound: no transition in the data"
     elif not (lo[0] < best.x[0] < hi[0]) or abs(best.x[0] - lo[0]) < 1e-9 or abs(best.x[0] - hi[0]) < 1e-9:
         ok, msg = False, "median at its bound: outside the data"
+    elif ok:
+        # Resolution: the fitted curve rises from 16 % to 84 % over about 2 beta mu (IM units).
+        # If that is narrower than one strip, the strip fractions cannot tell beta = 0.02 from
+        # 0.002: the data are a step at strip resolution and beta is not identified.
+        spacing = float(np.median(np.diff(np.sort(x))))
+        if 2.0 * beta * mu < spacing:
+            ok, msg = False, (f"beta = {beta:.3g} below the strip resolution: the fitted transition "
+                              f"2 beta mu = {2 * beta * mu:.3g} is narrower than one strip ({spacing:.3g})")
     return LognormalFit(mu, beta, 100.0 * beta / mu, method, int(x.size), decreasing, ok, msg, sse)
 
 

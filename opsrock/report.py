@@ -183,7 +183,7 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         "## 7. Files",
         "",
         "`cases.csv` (one row a case), `table2.csv/.md`, `table3.csv/.md`, `im_ranking.csv`, `figures/`, "
-        "`spectrum/cases.csv` (dense spectrum, rigid-body equation), `validation_gate.md`, `timings.json`.",
+        "`spectrum/spectrum.csv` (dense spectrum, rigid-body equation), `validation_gate.md`, `timings.json`.",
         "",
     ]
     path = out_dir / "report.md"

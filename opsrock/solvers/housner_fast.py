@@ -30,13 +30,22 @@ Method
   impacts and multiplied by ``e²`` at each one, so the block overturns if and only if it
   heads over the barrier ``1 - cos(alpha)`` with more energy than that, and otherwise its
   next peak is ``alpha - arccos(E + cos alpha)``, after which every impact lowers the energy
-  and ``theta_max`` can no longer grow. This is exact, not an approximation.
+  and ``theta_max`` can no longer grow. A block beyond the hump (``|theta| > alpha``) at the
+  end of the pulse overturns if it heads out, or heads in without the energy to recross the
+  hump; with that energy it falls back to ``theta = 0``, impacts, and the same rules apply.
+  This is exact, not an approximation.
 
 Why numba: a per-case ``solve_ivp`` loop costs milliseconds per case (Python overhead per
 step and per restart at every impact), too slow for 40,000-case spectra; a numpy-vectorised
 fixed-step integrator over all cases wastes work on cases that have already settled or
 overturned and handles per-case events clumsily. A compiled per-case integrator with a
-thread pool over chunks of cases has neither problem (see ``bench/bench_housner_fast.py``).
+thread pool over chunks of cases has neither problem. Measured by
+``python bench/bench_housner_fast.py`` on the 2-core project machine while it was shared
+(load average 8-11): 40,000 cases in 2.4-3.7 s, 25-90 µs per case against 23-77 ms per
+case for a per-case ``solve_ivp`` loop (x250-x2000), with ``|d theta_max| / alpha`` below
+1e-8 of the converged answer. The kernel is compiled once and cached (``cache=True``, in
+``__pycache__``): about 16-20 s for a cold compile on that machine, 2-4 s to load the
+cache in a new process.
 """
 
 from __future__ import annotations

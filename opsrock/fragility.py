@@ -710,7 +710,13 @@ def fit_lognormal_mle(
                       message="outcomes perfectly separated by the IM: no finite MLE "
                               "(beta -> 0); mu is the middle of the gap", **common)
     q, value, ok, msg = _mle_core(u, y)
-    mu, beta = math.exp(s * q[0]), math.exp(q[1])
+    with np.errstate(over="ignore"):
+        mu, beta = float(np.exp(s * q[0])), float(np.exp(q[1]))
+    if not (math.isfinite(mu) and mu > 0.0 and math.isfinite(beta)):
+        # the optimiser ran off to a median of 0 or infinity: too few or too one-sided outcomes
+        return MLEFit(math.nan, math.nan, math.nan, success=False, objective=value,
+                      message=f"no finite MLE: the median ran off to {mu!r} (too few transitional "
+                              "outcomes)", **common)
     lo = hi = (math.nan, math.nan)
     used = 0
     if n_boot:

@@ -129,8 +129,12 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         verdicts = []
         for col, label in (("HR", "HR"), ("cv_percent", "CV"), ("beta", "beta"), ("mle_beta", "MLE beta")):
             if col in ranking:
-                rank = int(ranking.loc[im9, f"rank_{col}"]) if f"rank_{col}" in ranking else None
-                verdicts.append(f"{label}: rank {rank} of {len(ranking)}")
+                rank = ranking.loc[im9, f"rank_{col}"] if f"rank_{col}" in ranking else math.nan
+                ranked = int(ranking[col].notna().sum())
+                if math.isfinite(rank):
+                    verdicts.append(f"{label}: rank {int(rank)} of {ranked}")
+                else:
+                    verdicts.append(f"{label}: not ranked (its fit is flagged unreliable)")
         lines.append(f"**Is IM9 the best IM here?** {'; '.join(verdicts)}.")
         lines.append("")
     lines += [

@@ -184,7 +184,7 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
 
     # 5. figures and report ------------------------------------------------------------------
     t0 = time.perf_counter()
-    figures = make_figures(cases, analysis, fig_dir, spectrum=spectrum, solver=solver)
+    figures = make_figures(cases, analysis, fig_dir, spectrum=spectrum, solver=solver, scene=scene)
     timings["figures_s"] = time.perf_counter() - t0
     timings["total_s"] = time.perf_counter() - t_start
     from opsrock.report import write_report
@@ -221,15 +221,18 @@ def dense_spectrum(scene, workers: int | None = None) -> pd.DataFrame:
 
 
 def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.DataFrame | None,
-                 solver: str) -> dict[str, Path]:
-    """Figures 3, 4, 6a, 6b, 8-12 into ``fig_dir``; returns name -> path."""
+                 solver: str, scene) -> dict[str, Path]:
+    """Figures 3, 4, 6a, 6b, 8-12 into ``fig_dir``; returns name -> path.
+
+    ``scene`` is the campaign's scene: Figures 3 and 4 re-run a few of its cases with full
+    histories (the campaign stores peaks and verdicts only).
+    """
     from opsrock.plots import fragility as fplots
     from opsrock.plots.response import plot_histories, plot_response
-    from opsrock.scene import load_scene
     from opsrock.solvers import simulate
 
     figs: dict[str, Path] = {}
-    by_id = {c.case_id: c for c in load_scene(PAPER_SCENE).cases()}
+    by_id = {c.case_id: c for c in scene.cases()}
     ok = cases[cases["status"] == "ok"]
     safe = ok[ok["verdict"] == "safe"].sort_values("theta_max_over_alpha")
     over = ok[ok["verdict"] == "overturned"].sort_values("pfa_ratio")

@@ -239,7 +239,9 @@ def _manifest(scene: Scene, digest: str, solve_fn: Callable | None) -> dict[str,
 def _callable_name(fn: Callable) -> str:
     if isinstance(fn, functools.partial):
         return f"partial({_callable_name(fn.func)}, {fn.args!r}, {sorted(fn.keywords.items())!r})"
-    return f"{getattr(fn, '__module__', '?')}.{getattr(fn, '__qualname__', repr(fn))}"
+    # A callable instance is named by its class: its repr may hold a memory address.
+    name = getattr(fn, "__qualname__", None) or type(fn).__qualname__
+    return f"{getattr(fn, '__module__', '?')}.{name}"
 
 
 def _conflict_message(out_dir: Path, old: Mapping[str, Any], new: Mapping[str, Any]) -> str:

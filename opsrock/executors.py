@@ -293,41 +293,38 @@ class DaskExecutor:
         """Yield ``(batch_index, fn(batch))`` in completion order (see :class:`Executor`).
 
         Dask itself re-runs a task whose worker died, on another worker, up to the scheduler's
-        ``allowed-failures`` (default 3) before it raises ``KilledWorker``. A batch that ends in
-        ``KilledWorker`` is re-run one item per task; an item that ends in ``KilledWorker``
-        alone gets ``lost(item, reason)``.
+        ``allowed-failures`` (default 3) before it raises ``KilledWorker``. Batches that end in
+        ``KilledWorker`` are re-run after all others, one item at a time with nothing else
+        running; an item that ends in ``KilledWorker`` alone gets ``lost(item, reason)``.
         """
         distributed = _import_distributed()
         killed = distributed.KilledWorker
-        futures = {self.client.submit(fn, batch, pure=False): ("batch", k) for k, batch in enumerate(batches)}
-        singles: dict[int, list[Any]] = {}
-        pending_single: dict[int, int] = {}
-        ac = distributed.as_completed(futures)
+        futures = {self.client.submit(fn, batch, pure=False): k for k, batch in enumerate(batches)}
+        suspects: list[int] = []
         try:
-            for fut in ac:
-                kind, key = futures.pop(fut)
+            for fut in distributed.as_completed(list(futures)):
+                k = futures.pop(fut)
                 try:
                     result = fut.result()
-                except killed as exc:
-                    if kind == "batch":
-                        k = key
-                        singles[k] = [None] * len(batches[k])
-                        pending_single[k] = len(batches[k])
-                        for j, item in enumerate(batches[k]):
-                            f = self.client.submit(fn, [item], pure=False)
-                            futures[f] = ("single", (k, j))
-                            ac.add(f)
-                        continue
-                    k, j = key
-                    result = [lost(batches[k][j], _lost_reason("KilledWorker", str(exc)))]
-                if kind == "batch":
-                    yield key, result
+                except killed:
+                    suspects.append(k)
                     continue
-                k, j = key
-                singles[k][j] = result[0]
-                pending_single[k] -= 1
-                if pending_single[k] == 0:
-                    yield k, singles.pop(k)
+                finally:
+                    fut.release()  # gathered: do not keep the result in worker memory
+                yield k, result
+            # Suspects: one item at a time, nothing else running, so a death names its item
+            # (tasks merely sharing a dying worker would otherwise be counted as suspicious).
+            for k in sorted(suspects):
+                results = []
+                for item in batches[k]:
+                    fut = self.client.submit(fn, [item], pure=False)
+                    try:
+                        results.append(fut.result()[0])
+                    except killed as exc:
+                        results.append(lost(item, _lost_reason("KilledWorker", str(exc))))
+                    finally:
+                        fut.release()
+                yield k, results
         finally:
             for fut in list(futures):
                 fut.cancel()

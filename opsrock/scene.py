@@ -59,6 +59,11 @@ SCENE_FORMAT: int = 1
 #: Solver used when a scene has no ``[solver]`` table: the paper's OpenSees SDOF model.
 DEFAULT_SOLVER: str = "opensees"
 
+#: Largest number of values on one grid axis: a guard against a typo (``num = 1000000``)
+#: that would otherwise allocate and queue an absurd campaign; 10 000 x 10 000 pulses per
+#: block is already far beyond any overturning spectrum.
+MAX_AXIS_POINTS: int = 10_000
+
 #: Block names become part of case ids (``bookcase/f03/a07``) and file names: keep them plain.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9_.-]+$")
 
@@ -379,6 +384,7 @@ def load_scene(path: str | Path) -> Scene:
         raise SceneError(path, "grid", grid_raw, "must be a table with [grid.freq_ratio] and [grid.pfa_ratio]")
     _check_keys(path, "grid", grid_raw, allowed=set(_GRID_AXES), required=set(_GRID_AXES))
     grid = Grid(**{axis: _axis(path, f"grid.{axis}", grid_raw[axis]) for axis in _GRID_AXES})
+    _check_pulses(path, blocks, grid)
 
     solver_raw = data.get("solver", {})
     if not isinstance(solver_raw, dict):
@@ -463,6 +469,8 @@ def _axis(path: Path, where: str, raw: Any) -> tuple[float, ...]:
             raise SceneError(path, f"{where}.values", values, "must be an array of numbers")
         if not values:
             raise SceneError(path, f"{where}.values", values, "must not be empty")
+        if len(values) > MAX_AXIS_POINTS:
+            raise SceneError(path, f"{where}.values", f"<{len(values)} values>", f"must hold <= {MAX_AXIS_POINTS}")
         out = tuple(_positive(path, f"{where}.values[{k}]", v) for k, v in enumerate(values))
         if len(set(out)) != len(out):
             raise SceneError(path, f"{where}.values", values, "must not repeat a value")
@@ -475,10 +483,32 @@ def _axis(path: Path, where: str, raw: Any) -> tuple[float, ...]:
         raise SceneError(path, f"{where}.num", num, f"must be an integer, not {type(num).__name__}")
     if num < 2:
         raise SceneError(path, f"{where}.num", num, "must be >= 2 (use values = [x] for a single value)")
+    if num > MAX_AXIS_POINTS:
+        raise SceneError(path, f"{where}.num", num, f"must be <= {MAX_AXIS_POINTS} (MAX_AXIS_POINTS)")
     if not stop > start:
         raise SceneError(path, f"{where}.stop", raw["stop"], f"must exceed start = {raw['start']!r}")
     # float() of each numpy value: plain Python floats, identical on every run and platform.
     return tuple(float(v) for v in np.linspace(start, stop, num))
+
+
+def _check_pulses(path: Path, blocks: tuple[BlockSpec, ...], grid: Grid) -> None:
+    """Every pulse of the grid must be a valid OneSinePulse (finite, positive PFA and omega_p).
+
+    ``PFA`` and ``omega_p`` grow with their ratios, so the extreme ratios of each axis decide.
+    """
+    for spec in blocks:
+        block = spec.block
+        for axis in _GRID_AXES:
+            values = getattr(grid, axis)
+            for ratio in (min(values), max(values)):
+                # PFA depends only on pfa_ratio and omega_p only on freq_ratio: hold the other at 1.
+                other = {a: 1.0 for a in _GRID_AXES if a != axis}
+                try:
+                    OneSinePulse.from_ratios(block, **{axis: ratio}, **other)
+                except (TypeError, ValueError) as exc:
+                    raise SceneError(
+                        path, f"grid.{axis}", ratio, f"gives no valid pulse for block {spec.name!r}: {exc}"
+                    ) from None
 
 
 def _select(path: Path, select: Any, blocks: tuple[BlockSpec, ...]) -> tuple[BlockSpec, ...]:
@@ -487,6 +517,8 @@ def _select(path: Path, select: Any, blocks: tuple[BlockSpec, ...]) -> tuple[Blo
     by_name = {b.name: b for b in blocks}
     out = []
     for k, name in enumerate(select):
+        if not isinstance(name, str):
+            raise SceneError(path, f"select[{k}]", name, f"must be a block name (string), not {type(name).__name__}")
         if name not in by_name:
             raise SceneError(
                 path, f"select[{k}]", name, f"no such block in the blocks file (has: {', '.join(by_name)})"
@@ -629,6 +661,7 @@ def _check_solver(path: Path | str, where: str, solver: Any, settings: dict) -> 
 
 __all__ = [
     "DEFAULT_SOLVER",
+    "MAX_AXIS_POINTS",
     "BlockSpec",
     "Case",
     "Grid",

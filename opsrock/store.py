@@ -243,12 +243,22 @@ def _from_sql(name: str, value: Any) -> Any:
 
 
 def read_rows(out_dir: str | Path) -> dict[str, dict[str, Any]]:
-    """Read the stored rows of a campaign folder without taking its lock (e.g. while it runs)."""
+    """Read the stored rows of a campaign folder, read-only and without its lock (e.g. while it runs)."""
     path = Path(out_dir) / STORE_FILE
     if not path.is_file():
         return {}
-    with ResultStore(path, lock=False) as store:
-        return store.rows()
+    names = list(RESULT_COLUMNS)
+    db = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True, timeout=30.0)
+    try:
+        try:
+            records = db.execute(f"SELECT case_id, {', '.join(names)} FROM results").fetchall()
+        except sqlite3.OperationalError as exc:  # created but its tables not yet committed
+            if "no such table" in str(exc):
+                return {}
+            raise
+    finally:
+        db.close()
+    return {rec[0]: {n: _from_sql(n, v) for n, v in zip(names, rec[1:])} for rec in records}
 
 
 __all__ = ["LOCK_FILE", "RESULT_COLUMNS", "STORE_FILE", "ResultStore", "StoreError", "read_rows"]

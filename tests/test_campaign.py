@@ -1,0 +1,255 @@
+"""Campaigns: nothing lost, nothing mixed, same table whatever ran it or however often it stopped."""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from opsrock.campaign import (
+    CASES_COLUMNS,
+    IDENTITY_EXCLUDED,
+    CampaignConflictError,
+    main,
+    run_campaign,
+)
+from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.executors import DaskExecutor, LocalPool
+from opsrock.result import RockingResult, failed_result
+from opsrock.scene import load_scene
+from opsrock.store import read_rows
+
+ROOT = Path(__file__).resolve().parents[1]
+RUNNER = Path(__file__).parent / "data" / "campaign_runner.py"
+
+# A small scene of cases the rigid-body solver finishes in milliseconds each (checked: each
+# under 0.2 s): one stocky block, 3 x 3 pulses, one row below the uplift threshold.
+SMALL_SCENE = """\
+name = "small"
+blocks = "{blocks}"
+select = ["medicine_cabinet"]
+[solver]
+name = "housner"
+[solver.settings]
+rtol = {rtol}
+[grid.freq_ratio]
+values = [1.0, 3.0, 6.0]
+[grid.pfa_ratio]
+values = [0.8, 2.0, 5.0]
+"""
+
+
+def small_scene(tmp_path: Path, rtol: str = "1e-10") -> Path:
+    path = tmp_path / f"small-{rtol}.toml"
+    path.write_text(SMALL_SCENE.format(blocks=ROOT / "models" / "blocks.toml", rtol=rtol))
+    return path
+
+
+def read_csv(path: Path) -> list[dict[str, str]]:
+    with open(path, newline="") as fh:
+        reader = csv.DictReader(fh)
+        assert tuple(reader.fieldnames) == CASES_COLUMNS
+        return list(reader)
+
+
+def identity_view(rows: list[dict[str, str]]) -> list[dict[str, str]]:
+    """Every column but the measured ones (IDENTITY_EXCLUDED): what must match run to run."""
+    return [{k: v for k, v in r.items() if k not in IDENTITY_EXCLUDED} for r in rows]
+
+
+# --- stand-in solvers (module level: picklable by reference for the worker processes) ------------
+def fake_solve(block, excitation, solver, **settings) -> RockingResult:
+    """Closed-form stand-in: no uplift below g tan(alpha) (Eq. 4), else theta_max = alpha (r - 1)."""
+    r = excitation.pfa / block.uplift_acceleration
+    theta_max = 0.0 if r <= 1.0 else min(OVERTURNING_ANGLE, block.alpha * (r - 1.0))
+    return RockingResult(
+        solver="fake", settings=settings, alpha=block.alpha, time=[], theta=[], theta_dot=[],
+        theta_max=theta_max, overturned=theta_max >= OVERTURNING_ANGLE, rocked=r > 1.0,
+    )  # fmt: skip
+
+
+def failing_solve(block, excitation, solver, **settings) -> RockingResult:
+    """fake_solve, except one case raises and one reports a solver failure."""
+    f, a = round(excitation.omega_p / block.p, 6), round(excitation.pfa / block.uplift_acceleration, 6)
+    if (f, a) == (3.0, 2.0):
+        raise RuntimeError("singular matrix at step 12")
+    if (f, a) == (6.0, 5.0):
+        return failed_result("fake", settings, block.alpha, "no convergence at t = 0.41 s")
+    return fake_solve(block, excitation, solver, **settings)
+
+
+def dying_solve(block, excitation, solver, **settings) -> RockingResult:
+    """fake_solve, except the worker process dies outright on one case."""
+    if round(excitation.omega_p / block.p, 6) == 3.0 and round(excitation.pfa / block.uplift_acceleration, 6) == 5.0:
+        os._exit(3)
+    return fake_solve(block, excitation, solver, **settings)
+
+
+class Interrupt:
+    """Picklable solve function that raises KeyboardInterrupt (a Ctrl-C) after n solves."""
+
+    def __init__(self, n: int) -> None:
+        self.n = n
+
+    def __call__(self, block, excitation, solver, **settings):
+        if self.n == 0:
+            raise KeyboardInterrupt
+        self.n -= 1
+        return fake_solve(block, excitation, solver, **settings)
+
+
+# --- tests ----------------------------------------------------------------------------------
+def test_tiny_scene_end_to_end_from_the_command_line(tmp_path, capsys):
+    out = tmp_path / "tiny"
+    status = main([str(ROOT / "models" / "scenes" / "tiny.toml"), "--out", str(out), "--workers", "1", "--no-progress"])
+    assert status == 0
+    rows = read_csv(out / "cases.csv")
+    assert len(rows) == 18 and rows[0]["case_id"] == "bookcase/f01/a01"
+    for r in rows:
+        alpha, theta_max = float(r["alpha"]), float(r["theta_max"])
+        assert r["status"] == "ok" and r["solver"] == "housner"
+        # IM1 and IM2 are the grid ratios by definition (Table 1)
+        assert float(r["IM1"]) == pytest.approx(float(r["freq_ratio"]), rel=1e-12)
+        assert float(r["IM2"]) == pytest.approx(float(r["pfa_ratio"]), rel=1e-12)
+        # Eq. 4: below g tan(alpha) (ratio 0.8) the block never leaves the ground
+        if float(r["pfa_ratio"]) < 1.0:
+            assert r["verdict"] == "no_uplift" and r["rocked"] == "False" and theta_max == 0.0
+        # Eq. 11: overturned exactly when |theta|max reached pi/2
+        assert (r["overturned"] == "True") == (theta_max >= math.pi / 2)
+        assert float(r["theta_max_over_alpha"]) == pytest.approx(theta_max / alpha, rel=1e-12)
+    assert "18 cases (18 computed, 0 reused)" in capsys.readouterr().out
+
+
+def test_bad_scene_exits_2_with_one_line_and_writes_nothing(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(small_scene(tmp_path).read_text().replace("values = [0.8", "values = [-0.8"))
+    out = tmp_path / "out"
+    assert main([str(bad), "--out", str(out), "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and "grid.pfa_ratio.values[0] = -0.8" in err and str(bad) in err
+    assert not out.exists()
+
+
+def test_identical_tables_whatever_the_executor(tmp_path):
+    # Same scene through the in-process pool, two worker processes and a Dask LocalCluster of
+    # two worker processes: every column but the measured wall time must agree exactly.
+    pytest.importorskip("distributed")
+    scene = small_scene(tmp_path)
+    tables = {}
+    with LocalPool(1) as one:
+        run_campaign(scene, tmp_path / "one", executor=one, progress=False)
+    tables["one"] = read_csv(tmp_path / "one" / "cases.csv")
+    with LocalPool(2) as two:
+        run_campaign(scene, tmp_path / "two", executor=two, progress=False, batch=2)
+    tables["two"] = read_csv(tmp_path / "two" / "cases.csv")
+    with DaskExecutor(local_workers=2) as dask:
+        run_campaign(scene, tmp_path / "dask", executor=dask, progress=False, batch=1)
+    tables["dask"] = read_csv(tmp_path / "dask" / "cases.csv")
+    assert identity_view(tables["one"]) == identity_view(tables["two"]) == identity_view(tables["dask"])
+    verdicts = {r["verdict"] for r in tables["one"]}
+    assert "no_uplift" in verdicts and len(verdicts) >= 2  # the table is not trivially uniform
+
+
+def test_changed_settings_are_refused_unless_forced(tmp_path, capsys):
+    out = tmp_path / "out"
+    first = run_campaign(small_scene(tmp_path, "1e-10"), out, workers=1, progress=False)
+    assert first.n_computed == 9
+    changed = small_scene(tmp_path, "1e-9")
+    with pytest.raises(CampaignConflictError, match="solver_settings.*rtol"):
+        run_campaign(changed, out, workers=1, progress=False)
+    assert main([str(changed), "--out", str(out), "--no-progress"]) == 2
+    assert "--force" in capsys.readouterr().err
+    assert json.loads((out / "manifest.json").read_text())["solver_settings"] == {"rtol": 1e-10}
+    forced = run_campaign(changed, out, workers=1, progress=False, force=True)
+    assert (forced.n_computed, forced.n_reused) == (9, 0)  # nothing of the old settings kept
+    assert json.loads((out / "manifest.json").read_text())["solver_settings"] == {"rtol": 1e-9}
+    # an injected solve function is another "setting": its rows never mix with the real solver's
+    with pytest.raises(CampaignConflictError, match="solve_fn"):
+        run_campaign(changed, out, workers=1, progress=False, solve_fn=fake_solve)
+
+
+def test_failed_cases_are_stored_as_failed_with_reasons(tmp_path):
+    out = tmp_path / "out"
+    summary = run_campaign(small_scene(tmp_path), out, workers=2, progress=False, solve_fn=failing_solve, batch=2)
+    assert (summary.n_cases, summary.n_failed) == (9, 2)
+    rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
+    raised, reported = rows["medicine_cabinet/f02/a02"], rows["medicine_cabinet/f03/a03"]
+    assert raised["reason"] == "RuntimeError: singular matrix at step 12"
+    assert reported["reason"] == "no convergence at t = 0.41 s"
+    for r in (raised, reported):
+        assert (r["status"], r["verdict"], r["overturned"], r["rocked"]) == ("failed", "failed", "False", "False")
+        assert math.isnan(float(r["theta_max"]))
+    assert all(r["status"] == "ok" for k, r in rows.items() if r not in (raised, reported))
+    # failed cases are results: a resume does not retry them
+    again = run_campaign(small_scene(tmp_path), out, workers=1, progress=False, solve_fn=failing_solve)
+    assert (again.n_computed, again.n_reused, again.n_failed) == (0, 9, 2)
+
+
+def test_a_dying_worker_fails_only_its_case(tmp_path):
+    out = tmp_path / "out"
+    summary = run_campaign(small_scene(tmp_path), out, workers=2, progress=False, solve_fn=dying_solve, batch=3)
+    rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
+    dead = rows["medicine_cabinet/f02/a03"]
+    assert dead["status"] == "failed" and "worker process died" in dead["reason"]
+    assert summary.n_failed == 1 and len(rows) == 9
+
+
+def test_ctrl_c_then_resume_computes_only_the_missing_cases(tmp_path):
+    scene, out = small_scene(tmp_path), tmp_path / "out"
+    reference = run_campaign(scene, tmp_path / "ref", workers=1, progress=False, solve_fn=Interrupt(10**6))
+    assert reference.n_computed == 9
+    with pytest.raises(KeyboardInterrupt):
+        run_campaign(scene, out, workers=1, progress=False, solve_fn=Interrupt(4), batch=1)
+    before = read_rows(out)
+    assert len(before) == 4 and not (out / "cases.csv").exists()  # no table until complete
+    resumed = run_campaign(scene, out, workers=1, progress=False, solve_fn=Interrupt(10**6))
+    assert (resumed.n_reused, resumed.n_computed) == (4, 5)
+    after = read_rows(out)
+    assert all(after[k] == v for k, v in before.items())  # stored rows untouched, not recomputed
+    assert identity_view(read_csv(out / "cases.csv")) == identity_view(read_csv(tmp_path / "ref" / "cases.csv"))
+    assert not [p for p in out.iterdir() if ".tmp-" in p.name]  # no temporary file left behind
+
+
+def test_sigkill_mid_campaign_then_resume(tmp_path):
+    # A real `kill -9` of the whole running campaign (its process group), part-way through.
+    scene, out = small_scene(tmp_path), tmp_path / "killed"
+    cmd = [sys.executable, str(RUNNER), str(scene), str(out), "1"]
+    proc = subprocess.Popen(cmd, start_new_session=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    try:
+        while len(read_rows(out)) < 3:
+            assert proc.poll() is None, f"runner ended before the kill: {proc.communicate()}"
+            assert time.monotonic() < deadline, "runner made no progress"
+            time.sleep(0.02)
+        os.killpg(proc.pid, signal.SIGKILL)
+    finally:
+        proc.wait()
+    assert proc.returncode == -signal.SIGKILL
+    before = read_rows(out)
+    assert 3 <= len(before) < 9, "the kill must land mid-way"
+    assert not (out / "cases.csv").exists()
+
+    done = subprocess.run(cmd, capture_output=True, text=True, check=True)
+    summary = json.loads(done.stdout.strip().splitlines()[-1])
+    assert summary == {"n_computed": 9 - len(before), "n_reused": len(before), "n_cases": 9}
+    after = read_rows(out)
+    assert all(after[k] == v for k, v in before.items())
+
+    run_campaign(scene, tmp_path / "straight", workers=1, progress=False)  # uninterrupted, real solver
+    assert identity_view(read_csv(out / "cases.csv")) == identity_view(read_csv(tmp_path / "straight" / "cases.csv"))
+
+
+def test_scene_path_and_scene_object_agree(tmp_path):
+    path = small_scene(tmp_path)
+    a = run_campaign(path, tmp_path / "a", workers=1, progress=False, solve_fn=fake_solve)
+    b = run_campaign(load_scene(path), tmp_path / "b", workers=1, progress=False, solve_fn=fake_solve)
+    assert a.digest == b.digest
+    assert identity_view(read_csv(Path(a.cases_csv))) == identity_view(read_csv(Path(b.cases_csv)))

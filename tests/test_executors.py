@@ -1,0 +1,117 @@
+"""Executors: real process pools and a real Dask LocalCluster (worker processes on loopback)."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import pytest
+
+from opsrock.executors import (
+    DASK_EXTRA_HINT,
+    DaskExecutor,
+    ExecutorUnavailableError,
+    LocalPool,
+    batch_size,
+    make_batches,
+)
+
+
+# Module-level, so that spawned workers can import them by reference.
+def square_batch(batch: list[int]) -> list[tuple[int, int, int]]:
+    """(item, item², pid of the process that computed it)."""
+    return [(x, x * x, os.getpid()) for x in batch]
+
+
+def dying_batch(batch: list[int]) -> list[tuple[int, int, int]]:
+    """Like square_batch, but the worker process dies outright on item 13."""
+    if 13 in batch:
+        os._exit(1)  # no exception, no cleanup: what a segfault in native code looks like
+    return square_batch(batch)
+
+
+def lost(item: int, reason: str) -> tuple[int, str, int]:
+    return (item, reason, -1)
+
+
+def collect(executor, fn, batches):
+    out = {}
+    for k, results in executor.map_batches(fn, batches, lost):
+        assert k not in out, "a batch was yielded twice"
+        assert len(results) == len(batches[k])
+        out[k] = results
+    assert sorted(out) == list(range(len(batches)))
+    return [r for k in sorted(out) for r in out[k]]
+
+
+def test_batch_size_balances_and_caps():
+    assert batch_size(400, 2) == 16  # 400 / (2 workers x 4) = 50, capped at MAX_BATCH = 16
+    assert batch_size(40, 2) == 5  # ceil(40 / 8): four batches per worker
+    assert batch_size(3, 8) == 1 and batch_size(0, 2) == 1
+    items = list(range(10))
+    batches = make_batches(items, 4)
+    assert [len(b) for b in batches] == [4, 4, 2] and sum(batches, []) == items
+    with pytest.raises(ValueError, match="size"):
+        make_batches(items, 0)
+
+
+@pytest.mark.parametrize("workers", [0, -1, 1.5, True])
+def test_local_pool_refuses_bad_worker_counts(workers):
+    with pytest.raises(ValueError, match="workers"):
+        LocalPool(workers)
+
+
+def test_local_pool_one_worker_runs_in_process():
+    batches = make_batches(list(range(7)), 3)
+    with LocalPool(1) as pool:
+        results = collect(pool, square_batch, batches)
+    assert [r[:2] for r in results] == [(x, x * x) for x in range(7)]
+    assert {r[2] for r in results} == {os.getpid()}
+
+
+def test_local_pool_two_workers_use_other_processes_and_lose_nothing():
+    batches = make_batches(list(range(40)), 3)
+    with LocalPool(2) as pool:
+        results = collect(pool, square_batch, batches)
+    assert [r[:2] for r in results] == [(x, x * x) for x in range(40)]
+    pids = {r[2] for r in results}
+    assert os.getpid() not in pids and 1 <= len(pids) <= 2
+
+
+def test_local_pool_survives_a_dying_worker_and_names_the_item():
+    # Item 13 kills its worker. Everything else must be computed; 13 alone gets `lost`.
+    batches = make_batches(list(range(30)), 4)
+    with LocalPool(2) as pool:
+        results = collect(pool, dying_batch, batches)
+    by_item = {r[0]: r for r in results}
+    assert sorted(by_item) == list(range(30))
+    assert by_item[13][2] == -1 and "worker process died" in by_item[13][1]
+    assert all(by_item[x][1] == x * x for x in range(30) if x != 13)
+
+
+def test_dask_missing_names_the_extra(monkeypatch):
+    monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed -> ImportError
+    with pytest.raises(ExecutorUnavailableError) as info:
+        DaskExecutor(local_workers=1)
+    assert str(info.value) == DASK_EXTRA_HINT and "opsrock[dask]" in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [({}, "exactly one"), ({"scheduler": "localhost", "local_workers": None}, "tcp://"),
+     ({"local_workers": 0}, "local_workers")],
+)
+def test_dask_refuses_bad_arguments(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        DaskExecutor(**kwargs)
+
+
+def test_dask_local_cluster_two_processes():
+    pytest.importorskip("distributed")
+    batches = make_batches(list(range(20)), 3)
+    with DaskExecutor(local_workers=2) as ex:
+        assert ex.workers == 2 and ex.scheduler.startswith("tcp://127.0.0.1:")
+        results = collect(ex, square_batch, batches)
+    assert [r[:2] for r in results] == [(x, x * x) for x in range(20)]
+    assert os.getpid() not in {r[2] for r in results}  # worker processes, not threads

@@ -1,0 +1,125 @@
+"""The append-only SQLite store: durable rows, first result wins, manifest, lock, NaN round trip."""
+
+from __future__ import annotations
+
+import math
+import sqlite3
+import subprocess
+import sys
+
+import pytest
+
+from opsrock.store import RESULT_COLUMNS, STORE_FILE, ResultStore, StoreError, read_rows
+
+
+def row(case_id: str, theta_max: float = 0.1, **over) -> dict:
+    base = {
+        "case_id": case_id,
+        "status": "ok",
+        "reason": "",
+        "verdict": "safe",
+        "theta_max": theta_max,
+        "theta_max_over_alpha": theta_max / 0.2,
+        "overturned": False,
+        "rocked": True,
+        "solver": "fake",
+        "wall_time_s": 0.01,
+        "n_steps": 10,
+        "n_impacts": 2,
+    }
+    base.update(over)
+    return base
+
+
+def test_rows_round_trip_exactly(tmp_path):
+    # SQLite REAL is an IEEE-754 double: a float must come back bit for bit.
+    value = 0.1 + 0.2  # not representable in few digits: any text round trip would show
+    with ResultStore(tmp_path / STORE_FILE) as store:
+        assert store.append([row("a", value), row("b", math.pi, overturned=True, verdict="overturned")]) == 2
+        got = store.rows()
+    assert got["a"]["theta_max"] == value
+    assert got["b"]["theta_max"] == math.pi and got["b"]["overturned"] is True
+    assert set(got["a"]) == set(RESULT_COLUMNS)
+
+
+def test_nan_survives_as_nan(tmp_path):
+    # SQLite stores NaN as NULL; a failed case with no history must read back as NaN, not 0.
+    failed = row("f", math.nan, status="failed", reason="diverged", verdict="failed", rocked=False,
+                 theta_max_over_alpha=math.nan, wall_time_s=math.nan, n_steps=None, n_impacts=None)
+    with ResultStore(tmp_path / STORE_FILE) as store:
+        store.append([failed])
+        got = store.rows()["f"]
+    assert math.isnan(got["theta_max"]) and math.isnan(got["wall_time_s"])
+    assert got["status"] == "failed" and got["reason"] == "diverged"
+
+
+def test_append_only_first_result_wins(tmp_path):
+    with ResultStore(tmp_path / STORE_FILE) as store:
+        assert store.append([row("a", 0.1)]) == 1
+        assert store.append([row("a", 0.9), row("b", 0.2)]) == 1  # "a" kept, "b" new
+        rows = store.rows()
+    assert rows["a"]["theta_max"] == 0.1 and len(rows) == 2
+
+
+def test_incomplete_row_is_refused_and_nothing_written(tmp_path):
+    bad = row("b")
+    del bad["verdict"]
+    with ResultStore(tmp_path / STORE_FILE) as store:
+        with pytest.raises(StoreError, match="verdict"):
+            store.append([row("a"), bad])
+        assert len(store) == 0  # the batch is one transaction: all or nothing
+
+
+def test_rows_survive_reopen_and_clear_empties(tmp_path):
+    path = tmp_path / STORE_FILE
+    with ResultStore(path) as store:
+        store.write_manifest({"digest": "abc", "solver": "fake"})
+        store.append([row(f"c{k}") for k in range(5)])
+    with ResultStore(path) as store:
+        assert store.manifest() == {"digest": "abc", "solver": "fake"}
+        assert store.done_ids() == {f"c{k}" for k in range(5)}
+        store.clear()
+        assert len(store) == 0 and store.manifest() == {}
+
+
+def test_committed_rows_survive_sigkill(tmp_path):
+    # A writer killed with SIGKILL right after a commit: the row must be there (WAL + FULL sync).
+    code = (
+        "import os, signal, sys\n"
+        "from opsrock.store import ResultStore\n"
+        "sys.path.insert(0, sys.argv[2])\n"
+        "from test_store import row\n"
+        "s = ResultStore(sys.argv[1])\n"
+        "s.append([row('x', 0.25)])\n"
+        "os.kill(os.getpid(), signal.SIGKILL)\n"
+    )
+    from pathlib import Path
+
+    proc = subprocess.run(
+        [sys.executable, "-c", code, str(tmp_path / STORE_FILE), str(Path(__file__).parent)], capture_output=True
+    )
+    assert proc.returncode == -9
+    rows = read_rows(tmp_path)
+    assert rows["x"]["theta_max"] == 0.25
+
+
+def test_second_writer_is_refused_but_readers_are_not(tmp_path):
+    path = tmp_path / STORE_FILE
+    with ResultStore(path) as store:
+        store.append([row("a")])
+        with pytest.raises(StoreError, match="another opsrock run"):
+            ResultStore(path)
+        assert set(read_rows(tmp_path)) == {"a"}  # a reader does not need the lock
+    with ResultStore(path) as again:  # the lock is released on close
+        assert len(again) == 1
+
+
+def test_other_schema_version_is_refused(tmp_path):
+    path = tmp_path / STORE_FILE
+    ResultStore(path).close()
+    db = sqlite3.connect(path)
+    db.execute("UPDATE manifest SET value = '999' WHERE key = 'schema_version'")
+    db.commit()
+    db.close()
+    with pytest.raises(StoreError, match="schema version 999"):
+        ResultStore(path)

@@ -1,0 +1,53 @@
+"""The fast part of validation cases 2-4 (case 1 runs in tests/test_closed_forms.py).
+
+Each case's ``run(out_dir, quick=True)`` regenerates its outputs into a temporary folder and
+reports ``passed`` against the relation and tolerance its README derives.
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+import pytest
+
+from opsrock.validation import CASES, run_case
+
+pytestmark = pytest.mark.opensees
+
+
+def test_registry_lists_the_six_cases_of_issue_3():
+    assert CASES == ("closed_forms", "sdof_agreement", "model_form", "lumped_mass", "speed_accuracy",
+                     "stability_map")
+
+
+def test_sdof_agreement_quick(tmp_path):
+    # 24 paper pulses (6 per block): targets 99 % within 1 % of alpha, 99 % same verdict.
+    m = run_case("sdof_agreement", tmp_path, quick=True)
+    assert m["passed"] and m["n_failed"] == 0
+    assert m["theta_within_rate"] >= 0.99 and m["verdict_rate"] >= 0.99
+    assert (tmp_path / "histories_quick.png").stat().st_size > 10_000
+    df = pd.read_csv(tmp_path / "agreement_quick.csv")
+    assert len(df) == 24
+
+
+def test_model_form_quick(tmp_path):
+    # 36 pulses; the SDOF model approaches the rigid body as delta shrinks (README of the case).
+    m = run_case("model_form", tmp_path, quick=True)
+    assert m["passed"]
+
+
+def test_lumped_mass_quick(tmp_path):
+    # Figure 2b's lumped-mass form equals the rotational form with lever m R cos(alpha).
+    m = run_case("lumped_mass", tmp_path, quick=True)
+    assert m["passed"]
+
+
+def test_unknown_case_is_refused():
+    with pytest.raises(ValueError, match="case must be one of"):
+        run_case("nonsense")
+
+
+def test_cli_validate_one_quick_case(tmp_path, capsys):
+    from opsrock.cli import main
+
+    assert main(["validate", "--case", "lumped_mass", "--quick", "--out", str(tmp_path)]) == 0
+    assert "lumped_mass: passed" in capsys.readouterr().out

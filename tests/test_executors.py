@@ -107,6 +107,7 @@ def test_dask_refuses_bad_arguments(kwargs, match):
         DaskExecutor(**kwargs)
 
 
+@pytest.mark.slow  # ~10 s of cluster start-up; test_campaign's executor-identity test runs Dask in the fast suite
 def test_dask_local_cluster_two_processes():
     pytest.importorskip("distributed")
     batches = make_batches(list(range(20)), 3)

@@ -184,7 +184,7 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
 
     # 5. figures and report ------------------------------------------------------------------
     t0 = time.perf_counter()
-    figures = make_figures(cases, analysis, fig_dir, spectrum=spectrum, solver=solver, scene=scene)
+    figures = make_figures(cases, analysis, fig_dir, spectrum=spectrum, solver=solver, scene=scene, workers=workers)
     timings["figures_s"] = time.perf_counter() - t0
     timings["total_s"] = time.perf_counter() - t_start
     from opsrock.report import write_report
@@ -221,7 +221,7 @@ def dense_spectrum(scene, workers: int | None = None) -> pd.DataFrame:
 
 
 def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.DataFrame | None,
-                 solver: str, scene) -> dict[str, Path]:
+                 solver: str, scene, workers: int | None = None) -> dict[str, Path]:
     """Figures 3, 4, 6a, 6b, 8-12 into ``fig_dir``; returns name -> path.
 
     ``scene`` is the campaign's scene: Figures 3 and 4 re-run a few of its cases with full
@@ -257,11 +257,12 @@ def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.D
         for cid in chosen:
             c = by_id[cid]
             res_a.append(simulate(c.block, c.pulse, solver=solver))
-            res_b.append(simulate(c.block, c.pulse, solver="sdof"))
+            # tail="peak": stop at the first turning point after the pulse, as the model does
+            res_b.append(simulate(c.block, c.pulse, solver="sdof", tail="peak"))
             titles.append(f"{cid}  " + r"$\omega_p/p$" + f"={c.freq_ratio:.3g}, " + r"PFA/g tan$\alpha$" + f"={c.pfa_ratio:.3g}")
         figs["fig4"] = plot_histories(res_a, titles, fig_dir / "fig4_histories.png", references=res_b,
                                       reference_label="independent scipy SDOF")
-    figs.update(fplots.paper_figures(cases, analysis, fig_dir, spectrum=spectrum))
+    figs.update(fplots.paper_figures(cases, analysis, fig_dir, spectrum=spectrum, workers=workers or os.cpu_count() or 1))
     return figs
 
 

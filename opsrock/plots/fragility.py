@@ -381,6 +381,7 @@ def paper_figures(
     analysis: FragilityAnalysis,
     out_dir: str | Path,
     spectrum: pd.DataFrame | None = None,
+    workers: int = 1,
 ) -> Mapping[str, Path]:
     """Write Figures 6a, 6b, 8, 9, 10, 11 and 12 into ``out_dir``.
 
@@ -394,6 +395,9 @@ def paper_figures(
         Folder for the PNGs (created if missing).
     spectrum : pandas.DataFrame, optional
         Dense spectrum table for Figure 6b.
+    workers : int, optional
+        Processes drawing figures at once (matplotlib is single-threaded; the figures are
+        independent). Default 1: in this process.
 
     Returns
     -------
@@ -402,12 +406,19 @@ def paper_figures(
         "fig12": ...}``.
     """
     out = Path(out_dir)
-    return {
-        "fig6a": plot_case_distribution(cases, out / "fig6a_cases.png"),
-        "fig6b": plot_overturning_spectrum(cases, out / "fig6b_spectrum.png", spectrum),
-        "fig8": plot_response_vs_im(analysis, out / "fig8_response_vs_im.png"),
-        "fig9": plot_hybrid_ratios(table2(analysis), out / "fig9_hybrid_ratio.png"),
-        "fig10": plot_fragility_curves(analysis, out / "fig10_fragility.png"),
-        "fig11": plot_dispersion(analysis, out / "fig11_cv_beta.png"),
-        "fig12": plot_strip_widths(analysis, out / "fig12_strip_widths.png"),
+    jobs = {
+        "fig6a": (plot_case_distribution, (cases, out / "fig6a_cases.png")),
+        "fig6b": (plot_overturning_spectrum, (cases, out / "fig6b_spectrum.png", spectrum)),
+        "fig8": (plot_response_vs_im, (analysis, out / "fig8_response_vs_im.png")),
+        "fig9": (plot_hybrid_ratios, (table2(analysis), out / "fig9_hybrid_ratio.png")),
+        "fig10": (plot_fragility_curves, (analysis, out / "fig10_fragility.png")),
+        "fig11": (plot_dispersion, (analysis, out / "fig11_cv_beta.png")),
+        "fig12": (plot_strip_widths, (analysis, out / "fig12_strip_widths.png")),
     }
+    if workers <= 1:
+        return {name: fn(*args) for name, (fn, args) in jobs.items()}
+    from concurrent.futures import ProcessPoolExecutor
+
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        futures = {name: pool.submit(fn, *args) for name, (fn, args) in jobs.items()}
+        return {name: f.result() for name, f in futures.items()}

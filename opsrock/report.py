@@ -31,6 +31,12 @@ def markdown_table(df: pd.DataFrame, floatfmt: str = ".3g") -> str:
     return "\n".join([header, rule, *body])
 
 
+def _unranked(ranking: pd.DataFrame, col: str) -> str:
+    """'; not ranked: ...' for IMs whose least-squares fit is flagged (NaN in ``col``)."""
+    missing = list(ranking.index[ranking[col].isna()])
+    return f"; not ranked (least-squares fit flagged unreliable, see Table 3): {', '.join(missing)}" if missing else ""
+
+
 def _paper_best(metric: str) -> str:
     if metric == "HR":
         return min(TABLE2, key=lambda im: TABLE2[im].HR)
@@ -109,7 +115,8 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
             f"**Best IM by CV = beta/mu (least squares, W_SAS): {best['cv_percent']}** "
             f"({ranking.loc[best['cv_percent'], 'cv_percent']:.2f} %); the paper's best is {_paper_best('cv_percent')} "
             f"({TABLE3[_paper_best('cv_percent')][1.0].cv_percent:.2f} %). Order here: "
-            f"{', '.join(f'{im} {v:.1f} %' for im, v in r2['cv_percent'].items())}.")
+            f"{', '.join(f'{im} {v:.1f} %' for im, v in r2['cv_percent'].dropna().items())}"
+            + _unranked(ranking, "cv_percent") + ".")
         lines.append("")
     if "beta" in best:
         r3 = ranking.sort_values("beta")
@@ -117,7 +124,8 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
             f"**Best IM by beta (scale-free): {best['beta']}** (beta {ranking.loc[best['beta'], 'beta']:.3f}); "
             f"by the paper's own Table 3 the smallest beta is {_paper_best('beta')} "
             f"({TABLE3[_paper_best('beta')][1.0].beta:.2f}), not IM9 ({TABLE3['IM9'][1.0].beta:.2f}). Order here: "
-            f"{', '.join(f'{im} {v:.3f}' for im, v in r3['beta'].items())}.")
+            f"{', '.join(f'{im} {v:.3f}' for im, v in r3['beta'].dropna().items())}"
+            + _unranked(ranking, "beta") + ".")
         lines.append("")
     if "mle_beta" in best:
         lines.append(f"Maximum likelihood on the raw 0/1 outcomes: smallest beta **{best['mle_beta']}**"

@@ -1,1 +1,22 @@
 """Figures: each function writes a PNG to an explicit path and returns it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+#: Resolution of every figure (dots per inch).
+FIGURE_DPI: int = 110
+
+
+def save_figure(fig, path: str | Path) -> Path:
+    """Write ``fig`` to ``path`` through a temporary file (no half-written figure if
+    interrupted), close it, and return the path."""
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(path.stem + ".tmp" + path.suffix)
+    fig.savefig(tmp, dpi=FIGURE_DPI)
+    plt.close(fig)
+    tmp.replace(path)
+    return path

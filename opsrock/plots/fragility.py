@@ -39,14 +39,7 @@ LOG_AXIS_RATIO: float = 50.0
 DENSE_SPECTRUM_CASES: int = 400
 
 
-def _save(fig, path: str | Path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.stem + ".tmp" + path.suffix)
-    fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    tmp.replace(path)  # no half-written figure if interrupted
-    return path
+from opsrock.plots import save_figure as _save  # noqa: E402
 
 
 def _verdicts(cases: pd.DataFrame) -> pd.Series:

@@ -17,14 +17,7 @@ from opsrock.model import restoring_moment  # noqa: E402
 from opsrock.result import RockingResult  # noqa: E402
 
 
-def _save(fig, path: str | Path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.stem + ".tmp" + path.suffix)
-    fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    tmp.replace(path)  # no half-written figure if interrupted
-    return path
+from opsrock.plots import save_figure as _save  # noqa: E402
 
 
 def plot_response(result: RockingResult, block: Block, excitation, path: str | Path) -> Path:

@@ -53,6 +53,8 @@ def run_command(args: argparse.Namespace) -> int:
         print(f"== {name}")
         print(json.dumps(res, indent=2, default=str))
     out = BENCH_DIR / ("results_quick.json" if args.quick else "results.json")
+    if args.only and out.exists():  # keep the other benchmarks' last results
+        results = {**json.loads(out.read_text()), **results}
     tmp = out.with_suffix(".json.tmp")
     tmp.write_text(json.dumps(results, indent=2, default=str) + "\n")
     tmp.replace(out)

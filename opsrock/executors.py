@@ -103,8 +103,21 @@ def _lost_reason(kind: str, detail: str) -> str:
     return f"worker process died while solving this case alone ({kind}: {detail})"
 
 
+class _Closing:
+    """Context-manager protocol shared by the executors: ``with`` closes them."""
+
+    def close(self) -> None:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
 # --- local process pool ------------------------------------------------------------------------
-class LocalPool:
+class LocalPool(_Closing):
     """Local worker processes (``concurrent.futures.ProcessPoolExecutor``).
 
     Parameters
@@ -147,12 +160,6 @@ class LocalPool:
     def close(self) -> None:
         """Stop the worker processes (queued batches are cancelled)."""
         self._shutdown_pool()
-
-    def __enter__(self) -> "LocalPool":
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()
 
     def map_batches(
         self,
@@ -216,7 +223,7 @@ def _import_distributed():
     return distributed
 
 
-class DaskExecutor:
+class DaskExecutor(_Closing):
     """Batches as tasks on a ``dask.distributed`` cluster.
 
     Parameters
@@ -277,12 +284,6 @@ class DaskExecutor:
         if self._cluster is not None:
             self._cluster.close()
             self._cluster = None
-
-    def __enter__(self) -> "DaskExecutor":
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()
 
     def map_batches(
         self,

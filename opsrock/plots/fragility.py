@@ -267,6 +267,21 @@ def _curve_x(analysis: FragilityAnalysis, im: str) -> np.ndarray:
     return np.linspace(lo, hi, 300)
 
 
+def _label_probability_axes(ax, xs: np.ndarray, im: str, decreasing: bool) -> None:
+    """Axis scale, labels and legend shared by the fragility-curve panels (Figures 10, 12)."""
+    _maybe_log(ax, xs)
+    ax.set(xlabel=get_im(im).label, ylabel="P(overturning)", ylim=(-0.03, 1.03), title=im)
+    ax.legend(fontsize=6, loc="center right" if decreasing else "lower right")
+
+
+def _finish_grid(fig, axes, n_used: int, path: str | Path) -> Path:
+    """Hide the unused panels of a grid, lay it out and save it."""
+    for ax in axes.flat[n_used:]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    return _save(fig, path)
+
+
 def plot_fragility_curves(analysis: FragilityAnalysis, path: str | Path, strip_factor: float = 1.0) -> Path:
     """Figure 10: strip fractions and fitted fragility curves (least squares and MLE) per IM."""
     ims = list(analysis.results)
@@ -291,13 +306,8 @@ def plot_fragility_curves(analysis: FragilityAnalysis, path: str | Path, strip_f
         if p is not None:
             ax.plot(xs, _paper_curve(xs, p.mu, p.beta, r.hybrid.decreasing), color="tab:orange",
                     ls=":", label=f"paper: mu {p.mu:g}, beta {p.beta:g}")
-        _maybe_log(ax, xs)
-        ax.set(xlabel=get_im(im).label, ylabel="P(overturning)", ylim=(-0.03, 1.03), title=im)
-        ax.legend(fontsize=6, loc="center right" if r.hybrid.decreasing else "lower right")
-    for ax in axes.flat[len(ims):]:
-        ax.set_visible(False)
-    fig.tight_layout()
-    return _save(fig, path)
+        _label_probability_axes(ax, xs, im, r.hybrid.decreasing)
+    return _finish_grid(fig, axes, len(ims), path)
 
 
 def _paper_curve(x: np.ndarray, mu: float, beta: float, decreasing: bool) -> np.ndarray:
@@ -323,13 +333,8 @@ def plot_strip_widths(analysis: FragilityAnalysis, path: str | Path) -> Path:
             if np.isfinite(fit.mu):
                 ax.plot(xs, fit.probability(xs), color=colour, ls=styles[i % len(styles)],
                         label=f"{fac:g} W_SAS: CV {fit.cv_percent:.1f} %" + ("" if fit.success else " *"))
-        _maybe_log(ax, xs)
-        ax.set(xlabel=get_im(im).label, ylabel="P(overturning)", ylim=(-0.03, 1.03), title=im)
-        ax.legend(fontsize=6, loc="center right" if r.hybrid.decreasing else "lower right")
-    for ax in axes.flat[len(ims):]:
-        ax.set_visible(False)
-    fig.tight_layout()
-    return _save(fig, path)
+        _label_probability_axes(ax, xs, im, r.hybrid.decreasing)
+    return _finish_grid(fig, axes, len(ims), path)
 
 
 # --- Figure 11 -------------------------------------------------------------------------------

@@ -46,3 +46,15 @@ def int_at_least(name: str, value: object, minimum: int = 1) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
     return value
+
+
+def bool_fields(obj: object) -> None:
+    """Raise ``TypeError`` naming the first field of dataclass ``obj`` declared ``bool`` whose value
+    is not a bool (``"no"``, ``0`` and ``None`` are refused, never read as true or false)."""
+    from dataclasses import fields
+
+    for f in fields(obj):  # type: ignore[arg-type]
+        if f.type in ("bool", bool):
+            value = getattr(obj, f.name)
+            if not isinstance(value, bool):
+                raise TypeError(f"{f.name} must be true or false (a bool), got {value!r}")

@@ -5,8 +5,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from opsrock._checks import in_open_interval, positive_finite
+from opsrock._checks import in_open_interval
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR, G
+from opsrock.limits import check
 
 
 @dataclass(frozen=True)
@@ -16,9 +17,9 @@ class Block:
     Parameters
     ----------
     width : float
-        Full base width ``2b`` (m).
+        Full base width ``2b`` (m), within :data:`opsrock.limits.LIMITS`.
     height : float
-        Full height ``2h`` (m).
+        Full height ``2h`` (m), within :data:`opsrock.limits.LIMITS`.
     mass : float, optional
         Mass ``m`` (kg). Rocking of a rigid block does not depend on it; it scales the
         moments and forces reported by the OpenSees model. Default 1 kg.
@@ -42,9 +43,9 @@ class Block:
     name: str = ""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "width", positive_finite("width", self.width))
-        object.__setattr__(self, "height", positive_finite("height", self.height))
-        object.__setattr__(self, "mass", positive_finite("mass", self.mass))
+        object.__setattr__(self, "width", check("width", self.width))
+        object.__setattr__(self, "height", check("height", self.height))
+        object.__setattr__(self, "mass", check("mass", self.mass))
         f = in_open_interval("restitution_factor", self.restitution_factor, 0.0, 1.0 + 1e-12)
         object.__setattr__(self, "restitution_factor", f)
         if not isinstance(self.name, str):

@@ -49,9 +49,11 @@ from typing import Any, Callable, Mapping, Sequence
 
 from opsrock.executors import DaskExecutor, Executor, ExecutorUnavailableError, LocalPool, batch_size, make_batches
 from opsrock.result import RockingResult
+from opsrock._paths import output_dir
 from opsrock.scene import Case, Scene, SceneError, load_scene, solver_kwargs
 from opsrock.solvers import SOLVERS, simulate
 from opsrock.store import STORE_FILE, ResultStore, StoreError
+from opsrock.timeout import DEFAULT_CASE_TIMEOUT, CaseTimeout, time_limit
 
 #: Name of the assembled table in the output folder.
 CASES_FILE: str = "cases.csv"
@@ -179,6 +181,7 @@ def solve_batch(
     solver: str,
     settings: Mapping[str, Any],
     solve_fn: Callable[..., RockingResult] | None = None,
+    case_timeout: float | None = DEFAULT_CASE_TIMEOUT,
 ) -> list[dict[str, Any]]:
     """Solve cases one after the other; never raises for a bad case.
 
@@ -192,6 +195,9 @@ def solve_batch(
     solve_fn : callable, optional
         ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``. Default
         :func:`opsrock.solvers.simulate`. Must be picklable (a module-level function).
+    case_timeout : float or None
+        Wall-clock budget of each case (s); a case past it is a failed row whose reason
+        starts with ``"timeout"`` (:func:`opsrock.timeout.time_limit`). None: no budget.
 
     Returns
     -------
@@ -205,10 +211,14 @@ def solve_batch(
         for case in cases:
             t0 = time.perf_counter()
             try:
-                result = fn(case.block, case.pulse, solver=solver, **settings)
+                with time_limit(case_timeout):
+                    result = fn(case.block, case.pulse, solver=solver, **settings)
                 if not isinstance(result, RockingResult):
                     raise TypeError(f"solver returned {type(result).__name__}, not a RockingResult")
                 rows.append(result_row(case.case_id, result, time.perf_counter() - t0))
+            except CaseTimeout as exc:
+                reason = str(exc) or f"timeout: no answer within the case budget of {case_timeout:g} s"
+                rows.append(failed_row(case.case_id, solver, reason, time.perf_counter() - t0))
             except Exception as exc:  # noqa: BLE001  (a bad case must not stop the campaign)
                 rows.append(failed_row(case.case_id, solver, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0))
     return rows
@@ -368,6 +378,7 @@ def run_campaign(
     progress: bool = True,
     solve_fn: Callable[..., RockingResult] | None = None,
     batch: int | None = None,
+    case_timeout: float | None = None,
 ) -> CampaignSummary:
     """Run (or resume) every case of a scene into ``out_dir``.
 
@@ -398,6 +409,11 @@ def run_campaign(
         Its name enters the manifest, so its results never mix with a real solver's.
     batch : int, optional
         Cases per batch. Default :func:`opsrock.executors.batch_size`.
+    case_timeout : float, optional
+        Wall-clock budget of one case (s). Default: the scene's ``[solver] case_timeout``, else
+        :data:`opsrock.timeout.DEFAULT_CASE_TIMEOUT`. A case past it is stored failed with a
+        reason starting ``"timeout"`` and the campaign goes on; the local executor also kills a
+        worker stuck in native code (:class:`opsrock.executors.LocalPool`).
 
     Returns
     -------
@@ -426,6 +442,10 @@ def run_campaign(
         import hashlib
 
         digest = hashlib.sha256(f"{digest}|{_callable_name(solve_fn)}".encode()).hexdigest()
+    if case_timeout is None:
+        case_timeout = scene.case_timeout if scene.case_timeout is not None else DEFAULT_CASE_TIMEOUT
+    if isinstance(case_timeout, bool) or not isinstance(case_timeout, (int, float)) or not case_timeout > 0:
+        raise ValueError(f"case_timeout must be a positive number of seconds, got {case_timeout!r}")
     manifest = _manifest(scene, digest, solve_fn)
     cases = scene.cases()
     out = Path(out_dir)
@@ -447,11 +467,12 @@ def run_campaign(
         n_computed = 0
         if todo:
             if own_executor:
-                executor = LocalPool(workers)
+                executor = LocalPool(workers, item_timeout=case_timeout)
             try:
                 size = batch or batch_size(len(todo), executor.workers)
                 batches = make_batches(todo, size)
-                fn = functools.partial(solve_batch, solver=scene.solver, settings=settings, solve_fn=solve_fn)
+                fn = functools.partial(solve_batch, solver=scene.solver, settings=settings, solve_fn=solve_fn,
+                                       case_timeout=case_timeout)
                 lost = functools.partial(_lost_row, solver=scene.solver)
                 with _progress_bar(len(todo), scene, n_reused, progress) as bar:
                     for _, rows in executor.map_batches(fn, batches, lost):
@@ -490,6 +511,9 @@ def add_run_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParse
     where.add_argument("--scheduler", metavar="tcp://HOST:PORT", help="run on this Dask cluster")
     where.add_argument("--dask-local", type=int, metavar="N", help="run on a local Dask cluster of N processes")
     parser.add_argument("--batch", type=int, help="cases per batch (default: automatic)")
+    parser.add_argument("--case-timeout", type=float, metavar="SECONDS",
+                        help=f"wall-clock budget of one case; past it the case is stored failed with reason "
+                             f"'timeout' (default: the scene's [solver] case_timeout, else {DEFAULT_CASE_TIMEOUT:g} s)")
     parser.add_argument("--force", action="store_true", help="delete stored results of this folder and start over")
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
     return parser
@@ -517,6 +541,10 @@ def run_command(args: argparse.Namespace) -> int:
             scene = scene.with_solver(args.solver)
     except SceneError as exc:
         return usage(str(exc))
+    try:
+        output_dir("--out", args.out)
+    except ValueError as exc:
+        return usage(str(exc))
     dask = args.scheduler is not None or args.dask_local is not None
     if dask and args.workers is not None:
         return usage("--workers sets local processes; with Dask use --dask-local N or the cluster's workers")
@@ -524,6 +552,8 @@ def run_command(args: argparse.Namespace) -> int:
         return usage(f"--workers must be >= 1, got {args.workers}")
     if args.batch is not None and args.batch < 1:
         return usage(f"--batch must be >= 1, got {args.batch}")
+    if args.case_timeout is not None and not (math.isfinite(args.case_timeout) and args.case_timeout > 0):
+        return usage(f"--case-timeout must be a positive number of seconds, got {args.case_timeout:g}")
     executor = None
     try:
         if dask:
@@ -539,6 +569,7 @@ def run_command(args: argparse.Namespace) -> int:
             force=args.force,
             progress=not args.no_progress,
             batch=args.batch,
+            case_timeout=args.case_timeout,
         )
     except (CampaignConflictError, StoreError, SceneError) as exc:
         return usage(" ".join(str(exc).split()))

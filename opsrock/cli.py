@@ -80,8 +80,13 @@ def _simulate(args: argparse.Namespace) -> int:
         raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
     if args.lever is not None and args.lever not in LEVERS:
         raise UsageError(f"--lever must be one of {', '.join(LEVERS)}; got {args.lever!r}")
-    if args.plot is not None and not args.plot.lower().endswith(".png"):
-        raise UsageError(f"--plot must name a .png file, got {args.plot!r}")
+    if args.plot is not None:
+        from opsrock._paths import output_file
+
+        try:
+            output_file("--plot", args.plot, ".png")
+        except ValueError as exc:
+            raise UsageError(str(exc)) from None
     sdof_like = args.solver in ("opensees", "sdof")
     if not sdof_like and (args.delta is not None or args.lever is not None):
         raise UsageError(f"--delta and --lever apply to the SDOF models (opensees, sdof), not --solver {args.solver}")
@@ -107,8 +112,12 @@ def _simulate(args: argparse.Namespace) -> int:
             settings["dt"] = args.dt
     except (ValueError, TypeError) as exc:
         raise UsageError(str(exc)) from None
-
-    result = simulate(block, pulse, solver=args.solver, **settings)
+    try:
+        # the solvers check their settings before any work and raise only for bad settings;
+        # a solver failure is a failed result, never an exception
+        result = simulate(block, pulse, solver=args.solver, **settings)
+    except (ValueError, TypeError) as exc:
+        raise UsageError(str(exc)) from None
     summary = result.summary()
     out = {
         "theta_max": summary["theta_max"],

@@ -14,6 +14,7 @@ import numpy as np
 
 from opsrock._checks import one_of, positive_finite
 from opsrock.constants import G
+from opsrock.limits import LIMITS, check
 
 if TYPE_CHECKING:
     from opsrock.block import Block
@@ -44,6 +45,18 @@ class Excitation(Protocol):
         """Times where the acceleration is not smooth (s), for event-driven solvers."""
 
 
+def _scaled(name: str, value: float, target: str, scale: float) -> float:
+    """``value * scale`` checked against the limit of ``target``, with a message naming ``name``."""
+    try:
+        return check(target, value * scale)
+    except ValueError:
+        lim = LIMITS[target]
+        raise ValueError(
+            f"{name} = {value!r} gives {target} = {value * scale:.4g} {lim.unit}, outside "
+            f"[{lim.low:g}, {lim.high:g}] {lim.unit}"
+        ) from None
+
+
 @dataclass(frozen=True)
 class OneSinePulse:
     """One full sine cycle of floor acceleration, ``a(t) = PFA sin(omega_p t)`` on ``[0, T_p]``.
@@ -51,17 +64,17 @@ class OneSinePulse:
     Parameters
     ----------
     pfa : float
-        Peak floor acceleration ``PFA`` (m/s²), > 0.
+        Peak floor acceleration ``PFA`` (m/s²), within :data:`opsrock.limits.LIMITS`.
     omega_p : float
-        Circular frequency of the pulse ``omega_p`` (rad/s), > 0.
+        Circular frequency of the pulse ``omega_p`` (rad/s), within :data:`opsrock.limits.LIMITS`.
     """
 
     pfa: float
     omega_p: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "pfa", positive_finite("pfa", self.pfa))
-        object.__setattr__(self, "omega_p", positive_finite("omega_p", self.omega_p))
+        object.__setattr__(self, "pfa", check("pfa", self.pfa))
+        object.__setattr__(self, "omega_p", check("omega_p", self.omega_p))
 
     @classmethod
     def from_ratios(cls, block: "Block", pfa_ratio: float, freq_ratio: float) -> "OneSinePulse":
@@ -78,14 +91,17 @@ class OneSinePulse:
         """
         pfa_ratio = positive_finite("pfa_ratio", pfa_ratio)
         freq_ratio = positive_finite("freq_ratio", freq_ratio)
-        return cls(pfa=pfa_ratio * block.uplift_acceleration, omega_p=freq_ratio * block.p)
+        return cls(
+            pfa=_scaled("pfa_ratio", pfa_ratio, "pfa", block.uplift_acceleration),
+            omega_p=_scaled("freq_ratio", freq_ratio, "omega_p", block.p),
+        )
 
     @classmethod
     def from_hz(cls, pfa_g: float, frequency_hz: float) -> "OneSinePulse":
         """Build a pulse from ``PFA`` in g and the pulse frequency in Hz."""
         pfa_g = positive_finite("pfa_g", pfa_g)
         frequency_hz = positive_finite("frequency_hz", frequency_hz)
-        return cls(pfa=pfa_g * G, omega_p=2.0 * math.pi * frequency_hz)
+        return cls(pfa=_scaled("pfa_g", pfa_g, "pfa", G), omega_p=_scaled("frequency_hz", frequency_hz, "omega_p", 2.0 * math.pi))
 
     @property
     def T_p(self) -> float:  # noqa: N802  (the paper's symbol)
@@ -125,7 +141,8 @@ class OneSinePulse:
         """Floor acceleration (m/s²) at times ``t`` (s); zero outside ``[0, T_p]``."""
         t = np.asarray(t, dtype=float)
         inside = (t >= 0.0) & (t <= self.T_p)
-        return np.where(inside, self.pfa * np.sin(self.omega_p * t), 0.0)
+        # evaluate the sine inside the pulse only: omega_p t outside it can be arbitrarily large
+        return np.where(inside, self.pfa * np.sin(self.omega_p * np.where(inside, t, 0.0)), 0.0)
 
     def breakpoints(self) -> np.ndarray:
         """Start and end of the pulse (s): the acceleration's slope jumps there."""
@@ -152,7 +169,7 @@ class Record:
     name: str = ""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "dt", positive_finite("dt", self.dt))
+        object.__setattr__(self, "dt", check("dt", self.dt))
         arr = np.array(self.values, dtype=float, copy=True).ravel()
         if arr.size < 2:
             raise ValueError(f"values must hold at least 2 samples, got {arr.size}")

@@ -1,7 +1,7 @@
 """Where a campaign's cases run: one executor interface, two implementations.
 
 * :class:`LocalPool` (the default): a ``concurrent.futures.ProcessPoolExecutor`` over the local
-  cores; ``workers=1`` runs in the calling process.
+  cores; every item runs in a worker process, ``workers=1`` included.
 * :class:`DaskExecutor`: a ``dask.distributed`` cluster, an existing one
   (``scheduler="tcp://HOST:PORT"``) or a ``LocalCluster`` of worker *processes* on loopback
   (``local_workers=N``). Dask is an optional extra: ``pip install "opsrock[dask]"``.
@@ -27,7 +27,9 @@ from __future__ import annotations
 import math
 import multiprocessing
 import os
+import time
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures import TimeoutError as FutureTimeout
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable, Iterator, Protocol, Sequence, TypeVar, runtime_checkable
 
@@ -41,6 +43,10 @@ BATCHES_PER_WORKER: int = 4
 #: Largest automatic batch: bounds the work lost when a run is interrupted (results are
 #: stored per finished batch) and the granularity of the progress bar.
 MAX_BATCH: int = 16
+
+#: Seconds a batch may run past its items' budgets before :class:`LocalPool` kills its worker:
+#: room for the in-process budget to fire first and for a spawned worker's imports.
+KILL_GRACE: float = 30.0
 
 #: The optional extra that provides Dask.
 DASK_EXTRA_HINT: str = 'the Dask executor needs the optional extra: pip install "opsrock[dask]"'
@@ -120,18 +126,28 @@ class _Closing:
 class LocalPool(_Closing):
     """Local worker processes (``concurrent.futures.ProcessPoolExecutor``).
 
+    Every item runs in a worker process, never in the caller's: a case that kills its process
+    (a native crash, the OOM killer) or hangs in native code costs that case only, whatever the
+    worker count, and a resumed campaign does not die on it again.
+
     Parameters
     ----------
     workers : int, optional
         Worker processes, >= 1. Default: the number of CPUs available to this process.
-        ``workers=1`` runs every batch in the calling process (no pool, no pickling).
     mp_context : str, optional
         ``multiprocessing`` start method. Default ``"spawn"``: every worker starts from a fresh
         interpreter (no OpenSees model, thread or lock inherited from the parent), the same on
         Linux, macOS and Windows; it costs about a second of imports per worker, once.
+    item_timeout : float, optional
+        Hard wall-clock budget per item (s). A batch still running after ``len(batch) *
+        item_timeout + KILL_GRACE`` seconds has its worker processes killed; its items are then
+        re-run one at a time, and an item that overruns alone gets ``lost(item, reason)`` with a
+        reason starting ``"timeout"``. This backs up the in-process budget
+        (:func:`opsrock.timeout.time_limit`), which cannot interrupt native code. None: no limit.
     """
 
-    def __init__(self, workers: int | None = None, *, mp_context: str = "spawn") -> None:
+    def __init__(self, workers: int | None = None, *, mp_context: str = "spawn",
+                 item_timeout: float | None = None) -> None:
         if workers is None:
             workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
         if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
@@ -140,8 +156,11 @@ class LocalPool(_Closing):
             raise ValueError(
                 f"mp_context must be one of {multiprocessing.get_all_start_methods()}, got {mp_context!r}"
             )
+        if item_timeout is not None and not (isinstance(item_timeout, (int, float)) and item_timeout > 0):
+            raise ValueError(f"item_timeout must be a positive number of seconds, got {item_timeout!r}")
         self.workers = workers
         self.mp_context = mp_context
+        self.item_timeout = None if item_timeout is None or math.isinf(item_timeout) else float(item_timeout)
         self._pool: ProcessPoolExecutor | None = None
 
     def __repr__(self) -> str:
@@ -152,6 +171,13 @@ class LocalPool(_Closing):
         self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context(self.mp_context))
         return self._pool
 
+    def _kill_pool(self) -> None:
+        """Kill the worker processes (a hung native call cannot be stopped otherwise)."""
+        if self._pool is not None:
+            for proc in list(getattr(self._pool, "_processes", {}).values()):
+                proc.kill()
+        self._shutdown_pool()
+
     def _shutdown_pool(self) -> None:
         if self._pool is not None:
             self._pool.shutdown(wait=False, cancel_futures=True)
@@ -161,6 +187,11 @@ class LocalPool(_Closing):
         """Stop the worker processes (queued batches are cancelled)."""
         self._shutdown_pool()
 
+    def _deadline(self, n_items: int) -> float:
+        if self.item_timeout is None:
+            return math.inf
+        return time.monotonic() + n_items * self.item_timeout + KILL_GRACE
+
     def map_batches(
         self,
         fn: Callable[[list[T]], list[R]],
@@ -168,50 +199,60 @@ class LocalPool(_Closing):
         lost: Callable[[T, str], R],
     ) -> Iterator[tuple[int, list[R]]]:
         """Yield ``(batch_index, fn(batch))`` in completion order (see :class:`Executor`)."""
-        if self.workers == 1:
-            for k, batch in enumerate(batches):
-                yield k, fn(batch)
-            return
         # At most `workers` batches in flight: when the pool breaks, exactly those batches
         # may have been running, and only they need the one-at-a-time re-run.
         todo = list(range(len(batches)))[::-1]  # a stack, popped from the end = in order
         suspects: list[int] = []
-        pool = self._new_pool(self.workers)
-        running: dict[Future, int] = {}
         try:
-            while todo or running:
-                while todo and len(running) < self.workers:
-                    k = todo.pop()
-                    running[pool.submit(fn, batches[k])] = k
-                done, _ = wait(running, return_when=FIRST_COMPLETED)
-                broken = False
-                for fut in done:
-                    k = running.pop(fut)
-                    try:
-                        result = fut.result()
-                    except BrokenProcessPool:
-                        suspects.append(k)
-                        broken = True
-                        continue
-                    yield k, result
-                if broken:
-                    suspects.extend(running.values())
-                    running.clear()
-                    pool = self._new_pool(self.workers)
+            yield from self._run_batches(fn, batches, todo, suspects)
             # Suspects: every item alone in a one-worker pool, so a death names its item.
-            if suspects:
-                pool = self._new_pool(1)
             for k in sorted(suspects):
-                results = []
-                for item in batches[k]:
-                    try:
-                        results.append(pool.submit(fn, [item]).result()[0])
-                    except BrokenProcessPool as exc:
-                        results.append(lost(item, _lost_reason("BrokenProcessPool", str(exc) or "no detail")))
-                        pool = self._new_pool(1)
-                yield k, results
+                yield k, [self._run_alone(fn, item, lost) for item in batches[k]]
         finally:
             self._shutdown_pool()
+
+    def _run_batches(self, fn, batches, todo: list[int], suspects: list[int]) -> Iterator[tuple[int, list]]:
+        pool = self._new_pool(self.workers)
+        running: dict[Future, tuple[int, float]] = {}
+        while todo or running:
+            while todo and len(running) < self.workers:
+                k = todo.pop()
+                running[pool.submit(fn, batches[k])] = (k, self._deadline(len(batches[k])))
+            first = min(deadline for _, deadline in running.values())
+            wait_for = None if math.isinf(first) else max(0.0, first - time.monotonic())
+            done, _ = wait(running, timeout=wait_for, return_when=FIRST_COMPLETED)
+            broken = False
+            for fut in done:
+                k, _ = running.pop(fut)
+                try:
+                    result = fut.result()
+                except BrokenProcessPool:
+                    suspects.append(k)
+                    broken = True
+                    continue
+                yield k, result
+            if not done:  # a batch overran its budget: kill the workers, re-run its items alone
+                self._kill_pool()
+                broken = True
+            if broken:
+                suspects.extend(k for k, _ in running.values())
+                running.clear()
+                pool = self._new_pool(self.workers)
+
+    def _run_alone(self, fn, item, lost):
+        if self._pool is None or getattr(self._pool, "_max_workers", 1) != 1:
+            self._new_pool(1)
+        fut = self._pool.submit(fn, [item])
+        budget = None if self.item_timeout is None else self.item_timeout + KILL_GRACE
+        try:
+            return fut.result(timeout=budget)[0]
+        except BrokenProcessPool as exc:
+            self._new_pool(1)
+            return lost(item, _lost_reason("BrokenProcessPool", str(exc) or "no detail"))
+        except FutureTimeout:
+            self._kill_pool()
+            return lost(item, f"timeout: no answer within {budget:g} s (the case budget plus {KILL_GRACE:g} s "
+                              "of grace); its worker process was killed")
 
 
 # --- Dask ------------------------------------------------------------------------------------
@@ -336,6 +377,7 @@ __all__ = [
     "DASK_EXTRA_HINT",
     "DaskExecutor",
     "Executor",
+    "KILL_GRACE",
     "ExecutorUnavailableError",
     "LocalPool",
     "MAX_BATCH",

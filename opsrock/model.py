@@ -69,9 +69,15 @@ class SDOFModel:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "delta", in_open_interval("delta", self.delta, 0.0, 1.0))
-        object.__setattr__(
-            self, "theta_e_ratio", in_open_interval("theta_e_ratio", self.theta_e_ratio, 0.0, self.delta)
-        )
+        object.__setattr__(self, "theta_e_ratio", in_open_interval("theta_e_ratio", self.theta_e_ratio, 0.0, 1.0))
+        if self.theta_e_ratio >= self.delta:
+            # name delta when theta_e_ratio is at its default: delta is what the caller changed
+            changed = "delta" if self.theta_e_ratio == DEFAULT_THETA_E_RATIO else "theta_e_ratio"
+            value = self.delta if changed == "delta" else self.theta_e_ratio
+            raise ValueError(
+                f"{changed} = {value!r}: the stiff branch must lie inside the damper band, i.e. "
+                f"theta_e_ratio < delta; got theta_e_ratio = {self.theta_e_ratio:g}, delta = {self.delta:g}"
+            )
         int_at_least("table_points", self.table_points, 4)
         one_of("lever", self.lever, LEVERS)
 

@@ -57,6 +57,10 @@ class RockingResult:
         Damper moment ``f_d`` (N m) at ``time`` (SDOF models only).
     n_impacts : int or None
         Number of impacts / band crossings, where the solver counts them.
+    diagnostics : Mapping
+        Solver bookkeeping that is not part of the answer, JSON-serialisable: for OpenSees the
+        number of its own console messages (sent to its log file, never to the terminal), the
+        failed steps retried and the log file's path.
     """
 
     solver: str
@@ -75,6 +79,7 @@ class RockingResult:
     spring_moment: np.ndarray | None = field(default=None, repr=False)
     damper_force: np.ndarray | None = field(default=None, repr=False)
     n_impacts: int | None = None
+    diagnostics: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if self.status not in STATUSES:
@@ -125,6 +130,7 @@ class RockingResult:
             "n_impacts": None if self.n_impacts is None else int(self.n_impacts),
             "wall_time_s": float(self.wall_time_s),
             "settings": dict(self.settings),
+            "diagnostics": dict(self.diagnostics),
         }
 
 

@@ -64,11 +64,17 @@ DEFAULT_SOLVER: str = "opensees"
 #: block is already far beyond any overturning spectrum.
 MAX_AXIS_POINTS: int = 10_000
 
+#: Largest number of cases in one scene (blocks x grid). A campaign keeps every case (block, pulse,
+#: id) in memory and one store row per case: about 1 KB each, so 250,000 cases are a few hundred MB.
+#: Dense spectra beyond that go through :func:`opsrock.solvers.housner_fast.solve_pulses`, which
+#: streams arrays instead of case objects.
+MAX_CASES: int = 250_000
+
 #: Block names become part of case ids (``bookcase/f03/a07``) and file names: keep them plain.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9_.-]+$")
 
 _SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid"}
-_SOLVER_KEYS = {"name", "settings"}
+_SOLVER_KEYS = {"name", "settings", "case_timeout"}
 _GRID_AXES = ("freq_ratio", "pfa_ratio")
 _BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor"}
 
@@ -209,6 +215,10 @@ class Scene:
         Free text.
     blocks_path : str
         The blocks file the blocks came from (empty if built in code).
+    case_timeout : float or None
+        Wall-clock budget of one case (s), ``[solver] case_timeout``; None: the campaign's
+        default (:data:`opsrock.timeout.DEFAULT_CASE_TIMEOUT`). Not part of the digest: it
+        decides how long a stuck case may run, not what a finished case computes.
     """
 
     name: str
@@ -220,6 +230,7 @@ class Scene:
     pfv_convention: str = "amplitude"
     description: str = ""
     blocks_path: str = ""
+    case_timeout: float | None = None
 
     @property
     def n_cases(self) -> int:
@@ -384,6 +395,9 @@ def load_scene(path: str | Path) -> Scene:
         raise SceneError(path, "grid", grid_raw, "must be a table with [grid.freq_ratio] and [grid.pfa_ratio]")
     _check_keys(path, "grid", grid_raw, allowed=set(_GRID_AXES), required=set(_GRID_AXES))
     grid = Grid(**{axis: _axis(path, f"grid.{axis}", grid_raw[axis]) for axis in _GRID_AXES})
+    if len(blocks) * grid.size > MAX_CASES:
+        raise SceneError(path, "grid", f"<{len(blocks)} blocks x {grid.size} pulses = {len(blocks) * grid.size} cases>",
+                         f"must give <= {MAX_CASES} cases in all (MAX_CASES); split the scene")
     _check_pulses(path, blocks, grid)
 
     solver_raw = data.get("solver", {})
@@ -395,6 +409,13 @@ def load_scene(path: str | Path) -> Scene:
     if not isinstance(settings, dict):
         raise SceneError(path, "solver.settings", settings, "must be a table [solver.settings]")
     settings = _check_solver(path, "solver", solver, settings)
+    case_timeout = solver_raw.get("case_timeout")
+    if case_timeout is not None:
+        if isinstance(case_timeout, bool) or not isinstance(case_timeout, Real) or not (
+            math.isfinite(case_timeout) and case_timeout > 0
+        ):
+            raise SceneError(path, "solver.case_timeout", case_timeout, "must be a positive number of seconds")
+        case_timeout = float(case_timeout)
 
     return Scene(
         name=name,
@@ -406,6 +427,7 @@ def load_scene(path: str | Path) -> Scene:
         pfv_convention=pfv,
         description=description,
         blocks_path=str(blocks_path),
+        case_timeout=case_timeout,
     )
 
 
@@ -662,6 +684,7 @@ def _check_solver(path: Path | str, where: str, solver: Any, settings: dict) -> 
 __all__ = [
     "DEFAULT_SOLVER",
     "MAX_AXIS_POINTS",
+    "MAX_CASES",
     "BlockSpec",
     "Case",
     "Grid",

@@ -80,18 +80,28 @@ class ResultStore:
 
     def __init__(self, path: str | Path, *, lock: bool = True) -> None:
         self.path = Path(path)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
         self._lock_fd: int | None = None
-        if lock:
-            self._take_lock()
+        self._db = None
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            if lock:
+                self._take_lock()
+        except OSError as exc:
+            raise StoreError(f"cannot use folder {str(self.path.parent)!r}: {exc.strerror or exc}") from None
         try:
             # isolation_level=None: no implicit transactions; we BEGIN and COMMIT ourselves.
             self._db = sqlite3.connect(self.path, isolation_level=None, timeout=30.0)
             self._db.execute("PRAGMA journal_mode=WAL")
             self._db.execute("PRAGMA synchronous=FULL")
             self._create()
+        except sqlite3.DatabaseError as exc:
+            self.close()
+            raise StoreError(
+                f"{self.path} is not a usable opsrock store ({exc}); delete or move the file, or use "
+                "another --out folder"
+            ) from None
         except BaseException:
-            self._release_lock()
+            self.close()
             raise
 
     # --- lifecycle -------------------------------------------------------------------------

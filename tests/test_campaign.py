@@ -94,15 +94,25 @@ def dying_solve(block, excitation, solver, **settings) -> RockingResult:
 
 
 class Interrupt:
-    """Picklable solve function that raises KeyboardInterrupt (a Ctrl-C) after n solves."""
+    """Picklable solve function that raises KeyboardInterrupt (a Ctrl-C) after n solves.
 
-    def __init__(self, n: int) -> None:
+    Cases run in worker processes and each batch gets its own copy of this object, so the
+    solves are counted in a file (one byte each) that every copy shares. A terminal's Ctrl-C
+    reaches the workers too (SIGINT goes to the whole process group): a worker's
+    KeyboardInterrupt travels back to the campaign through its batch's future.
+    """
+
+    def __init__(self, n: int, counter: Path | None = None) -> None:
         self.n = n
+        self.counter = counter
 
     def __call__(self, block, excitation, solver, **settings):
-        if self.n == 0:
-            raise KeyboardInterrupt
-        self.n -= 1
+        if self.counter is not None:
+            done = self.counter.stat().st_size if self.counter.exists() else 0
+            if done >= self.n:
+                raise KeyboardInterrupt
+            with open(self.counter, "ab") as fh:
+                fh.write(b".")
         return fake_solve(block, excitation, solver, **settings)
 
 
@@ -207,7 +217,7 @@ def test_ctrl_c_then_resume_computes_only_the_missing_cases(tmp_path):
     reference = run_campaign(scene, tmp_path / "ref", workers=1, progress=False, solve_fn=Interrupt(10**6))
     assert reference.n_computed == 9
     with pytest.raises(KeyboardInterrupt):
-        run_campaign(scene, out, workers=1, progress=False, solve_fn=Interrupt(4), batch=1)
+        run_campaign(scene, out, workers=1, progress=False, solve_fn=Interrupt(4, tmp_path / "count"), batch=1)
     before = read_rows(out)
     assert len(before) == 4 and not (out / "cases.csv").exists()  # no table until complete
     resumed = run_campaign(scene, out, workers=1, progress=False, solve_fn=Interrupt(10**6))
@@ -253,3 +263,90 @@ def test_scene_path_and_scene_object_agree(tmp_path):
     b = run_campaign(load_scene(path), tmp_path / "b", workers=1, progress=False, solve_fn=fake_solve)
     assert a.digest == b.digest
     assert identity_view(read_csv(Path(a.cases_csv))) == identity_view(read_csv(Path(b.cases_csv)))
+
+
+# A scene whose one OpenSees case is slow for real: free rocking simulated for 5,000 s of model
+# time (2.5 million steps of 2 ms, minutes of work), next to a pulse that takes milliseconds.
+SLOW_SCENE = """\
+name = "slow"
+blocks = "{blocks}"
+select = ["medicine_cabinet"]
+[solver]
+name = "opensees"
+case_timeout = {timeout}
+[solver.settings]
+stop_at_rest = {stop_at_rest}
+end_time = 5000.0
+[grid.freq_ratio]
+values = [6.0]
+[grid.pfa_ratio]
+values = [0.8, 3.0]
+"""
+
+
+def slow_scene(tmp_path: Path, timeout: float = 1.0, stop_at_rest: str = "false") -> Path:
+    path = tmp_path / "slow.toml"
+    path.write_text(SLOW_SCENE.format(blocks=ROOT / "models" / "blocks.toml", timeout=timeout,
+                                      stop_at_rest=stop_at_rest))
+    return path
+
+
+def test_a_case_past_its_budget_is_stored_as_timeout_and_the_campaign_goes_on(tmp_path):
+    out = tmp_path / "out"
+    t0 = time.monotonic()
+    summary = run_campaign(slow_scene(tmp_path, timeout=1.0), out, workers=1, progress=False)
+    assert time.monotonic() - t0 < 60  # not the minutes of the slow case
+    rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
+    slow, seated = rows["medicine_cabinet/f01/a02"], rows["medicine_cabinet/f01/a01"]
+    assert (slow["status"], slow["verdict"]) == ("failed", "failed")
+    assert slow["reason"].startswith("timeout") and "1 s" in slow["reason"]
+    assert 1.0 <= float(slow["wall_time_s"]) < 30.0
+    assert seated["status"] == "ok" and seated["verdict"] == "no_uplift"
+    assert summary.n_failed == 1
+
+
+def test_case_timeout_on_the_command_line_overrides_the_scene(tmp_path, capsys):
+    scene = slow_scene(tmp_path, timeout=600.0)
+    out = tmp_path / "cli"
+    assert main([str(scene), "--out", str(out), "--no-progress", "--workers", "1", "--case-timeout", "0.5"]) == 0
+    assert "1 case(s) failed" in capsys.readouterr().err
+    rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
+    assert rows["medicine_cabinet/f01/a02"]["reason"].startswith("timeout: no answer within the case budget of 0.5 s")
+    for bad in ("0", "-1", "nan", "inf"):
+        assert main([str(scene), "--out", str(tmp_path / "x"), "--case-timeout", bad]) == 2
+        assert "--case-timeout" in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()  # nothing written for a refused command
+
+
+def slow_fake_solve(block, excitation, solver, **settings) -> RockingResult:
+    """fake_solve after a pause, so that a worker can be killed while cases are in flight."""
+    time.sleep(0.3)
+    return fake_solve(block, excitation, solver, **settings)
+
+
+def test_a_dask_worker_killed_mid_campaign_loses_no_finished_case(tmp_path):
+    pytest.importorskip("distributed")
+    import threading
+
+    scene, out = small_scene(tmp_path), tmp_path / "dask"
+    snapshot: dict = {}
+
+    def kill_after(n_rows: int, pid: int) -> None:
+        deadline = time.monotonic() + 120
+        while len(read_rows(out)) < n_rows and time.monotonic() < deadline:
+            time.sleep(0.02)
+        snapshot.update(read_rows(out))
+        os.kill(pid, signal.SIGKILL)  # the worker process, from outside, as the OOM killer would
+
+    with DaskExecutor(local_workers=2) as dask:
+        victim = sorted(dask.client.run(os.getpid).values())[0]
+        killer = threading.Thread(target=kill_after, args=(3, victim))
+        killer.start()
+        summary = run_campaign(scene, out, executor=dask, progress=False, batch=1, solve_fn=slow_fake_solve)
+        killer.join()
+    assert 3 <= len(snapshot) < 9, "the kill must land mid-way"
+    after = read_rows(out)
+    assert all(after[k] == v for k, v in snapshot.items())  # finished cases kept as they were
+    assert summary.n_cases == 9 and summary.n_failed == 0  # the killed worker's cases were re-run
+    run_campaign(scene, tmp_path / "local", workers=2, progress=False, solve_fn=slow_fake_solve)
+    assert identity_view(read_csv(out / "cases.csv")) == identity_view(read_csv(tmp_path / "local" / "cases.csv"))

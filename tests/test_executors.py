@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+import time
 
 import pytest
 
@@ -61,12 +62,40 @@ def test_local_pool_refuses_bad_worker_counts(workers):
         LocalPool(workers)
 
 
-def test_local_pool_one_worker_runs_in_process():
-    batches = make_batches(list(range(7)), 3)
+def test_local_pool_one_worker_still_isolates_items():
+    # workers=1 (the default on a one-CPU machine) runs in a worker process too: an item that
+    # kills its process must cost that item only, not the campaign and every resume after it.
+    batches = make_batches(list(range(20)), 3)
     with LocalPool(1) as pool:
-        results = collect(pool, square_batch, batches)
-    assert [r[:2] for r in results] == [(x, x * x) for x in range(7)]
-    assert {r[2] for r in results} == {os.getpid()}
+        results = collect(pool, dying_batch, batches)
+    by_item = {r[0]: r for r in results}
+    assert sorted(by_item) == list(range(20))
+    assert by_item[13][2] == -1 and "worker process died" in by_item[13][1]
+    assert all(by_item[x][1] == x * x and by_item[x][2] != os.getpid() for x in range(20) if x != 13)
+
+
+def hanging_batch(batch: list[int]) -> list[tuple[int, int, int]]:
+    """Like square_batch, but item 5 blocks in a native call (time.sleep) for an hour."""
+    if 5 in batch:
+        time.sleep(3600)  # a C call: no Python-level timeout can interrupt it
+    return square_batch(batch)
+
+
+def test_local_pool_kills_a_worker_hung_in_native_code(monkeypatch):
+    # The hard backstop: a batch past len(batch) * item_timeout + KILL_GRACE has its worker
+    # killed, its items re-run alone, and the one that hangs alone is lost with "timeout".
+    import opsrock.executors as ex
+
+    monkeypatch.setattr(ex, "KILL_GRACE", 1.0)
+    batches = make_batches(list(range(8)), 2)
+    t0 = time.monotonic()
+    with LocalPool(1, item_timeout=1.0) as pool:
+        results = collect(pool, hanging_batch, batches)
+    by_item = {r[0]: r for r in results}
+    assert sorted(by_item) == list(range(8))
+    assert by_item[5][2] == -1 and by_item[5][1].startswith("timeout")
+    assert all(by_item[x][1] == x * x for x in range(8) if x != 5)
+    assert time.monotonic() - t0 < 60  # not the hour of the hung call
 
 
 def test_local_pool_two_workers_use_other_processes_and_lose_nothing():

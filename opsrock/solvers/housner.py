@@ -33,7 +33,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, minimize_scalar
 
-from opsrock._checks import int_at_least, one_of, positive_finite
+from opsrock._checks import bool_fields, int_at_least, one_of, positive_finite
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.result import RockingResult, failed_result
@@ -114,6 +114,7 @@ class HousnerSettings:
     scan_step: float | None = None
 
     def __post_init__(self) -> None:
+        bool_fields(self)
         one_of("method", self.method, METHODS)
         one_of("tail", self.tail, TAILS)
         _check_common(self)

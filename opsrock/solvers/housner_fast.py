@@ -60,7 +60,7 @@ from typing import Any, Sequence
 import numba
 import numpy as np
 
-from opsrock._checks import int_at_least, positive_finite
+from opsrock._checks import bool_fields, int_at_least, positive_finite
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.excitation import OneSinePulse
@@ -143,6 +143,7 @@ class HousnerFastSettings:
     max_steps: int = 10_000_000
 
     def __post_init__(self) -> None:
+        bool_fields(self)
         positive_finite("max_step", self.max_step)
         if self.max_step > 0.5:
             raise ValueError(f"max_step must be <= 0.5 (units of 1/p), got {self.max_step!r}")

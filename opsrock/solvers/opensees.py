@@ -33,7 +33,11 @@ excitation lever.
 
 from __future__ import annotations
 
+import atexit
+import dataclasses
 import math
+import os
+import tempfile
 import time as _time
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
@@ -41,9 +45,10 @@ from typing import Any
 import numpy as np
 import openseespy.opensees as ops
 
-from opsrock._checks import in_open_interval, int_at_least, one_of, positive_finite
+from opsrock._checks import bool_fields, in_open_interval, int_at_least, one_of, positive_finite
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
+from opsrock.limits import check
 from opsrock.excitation import Excitation, OneSinePulse, Record
 from opsrock.model import SDOFModel, can_uplift
 from opsrock.result import RockingResult, failed_result, seated_result
@@ -211,9 +216,10 @@ class OpenSeesSettings:
     theta_dot0: float = 0.0
 
     def __post_init__(self) -> None:
+        bool_fields(self)
         if not isinstance(self.model, SDOFModel):
             raise TypeError(f"model must be an SDOFModel, got {self.model!r}")
-        positive_finite("dt", self.dt)
+        check("dt", self.dt)
         if not isinstance(self.adaptive, bool):
             raise TypeError(f"adaptive must be a bool, got {self.adaptive!r}")
         int_at_least("band_steps", self.band_steps, 2)
@@ -367,6 +373,66 @@ def _set_algorithm(settings: OpenSeesSettings, algorithm: str) -> None:
         ops.algorithm(algorithm)
 
 
+# --- OpenSees' console output: to a log file, never to the user's terminal -------------------
+#: Per process: the log file OpenSees writes to (``logFile -noEcho``) and the failed steps
+#: retried by :func:`_recover` in the current run.
+_CONSOLE: dict[str, Any] = {"pid": None, "path": None, "retries": 0}
+
+
+def opensees_log_path() -> str:
+    """Path of this process's OpenSees log file (its warnings and progress lines go there)."""
+    return os.path.join(tempfile.gettempdir(), f"opsrock-opensees-{os.getpid()}.log")
+
+
+def _console_to_log() -> str:
+    """Send OpenSees' output to :func:`opensees_log_path` (once per process); return the path.
+
+    OpenSees also prints a ``Process 0 Terminating`` line on stderr when the interpreter exits,
+    whatever its log setting; an exit handler points stderr at the same log just before that.
+    """
+    pid = os.getpid()
+    if _CONSOLE["pid"] != pid:
+        path = opensees_log_path()
+        ops.logFile(path, "-noEcho")
+        _CONSOLE.update(pid=pid, path=path)
+        atexit.register(_stderr_to_log_at_exit, path, pid)
+    return _CONSOLE["path"]
+
+
+def _stderr_to_log_at_exit(path: str, pid: int) -> None:
+    if os.getpid() != pid:  # a forked child inherited the handler: not its log
+        return
+    try:
+        import sys
+
+        sys.stderr.flush()
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+        os.dup2(fd, 2)
+        os.close(fd)
+    except OSError:
+        pass
+
+
+def _log_size(path: str) -> int:
+    try:
+        return os.path.getsize(path)
+    except OSError:
+        return 0
+
+
+def _count_messages(path: str, start: int) -> int:
+    """Non-empty lines OpenSees wrote to its log after byte ``start``."""
+    try:
+        with open(path, "rb") as fh:
+            fh.seek(start)
+            return sum(1 for line in fh.read().splitlines() if line.strip())
+    except OSError:
+        return 0
+
+
+_console_to_log()  # from import on: nothing OpenSees prints reaches the terminal
+
+
 class _Failure(Exception):
     """Internal: a step that could not be recovered, or a numerical blow-up."""
 
@@ -511,6 +577,20 @@ def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: st
             and not can_uplift(block, s.model, excitation.pfa)):
         return seated_result(SOLVER_NAME, settings_dict, block.alpha, excitation.duration,
                              _time.perf_counter() - t_wall)
+    log = _console_to_log()
+    start = _log_size(log)
+    _CONSOLE["retries"] = 0
+    result = _build_and_integrate(block, excitation, s, settings_dict, geometry, t_wall)
+    diagnostics = {
+        "opensees_messages": _count_messages(log, start),
+        "retried_steps": int(_CONSOLE["retries"]),
+        "opensees_log": log,
+    }
+    return dataclasses.replace(result, diagnostics=diagnostics)
+
+
+def _build_and_integrate(block: Block, excitation: Excitation, s: OpenSeesSettings,
+                         settings_dict: dict[str, Any], geometry: str | None, t_wall: float) -> RockingResult:
     ops.wipe()
     try:
         if geometry is None:
@@ -787,6 +867,7 @@ def _recover(s: OpenSeesSettings, h: float) -> int:
 
     Returns the number of sub-steps taken; raises :class:`_Failure` with the reason otherwise.
     """
+    _CONSOLE["retries"] += 1
     tried = []
     for algorithm in (s.algorithm, *s.fallback_algorithms):
         if algorithm != s.algorithm:
@@ -826,6 +907,7 @@ __all__ = [
     "ROCKED_THETA_E_MULTIPLE",
     "critical_time_step",
     "make_settings",
+    "opensees_log_path",
     "solve",
     "solve_lumped_mass",
 ]

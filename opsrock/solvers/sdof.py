@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from opsrock._checks import int_at_least, one_of
+from opsrock._checks import bool_fields, int_at_least, one_of
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel, can_uplift
@@ -133,6 +133,7 @@ class SDOFSettings:
     uplift_check: bool = True
 
     def __post_init__(self) -> None:
+        bool_fields(self)
         if not isinstance(self.uplift_check, bool):
             raise TypeError(f"uplift_check must be a bool, got {self.uplift_check!r}")
         self.model  # noqa: B018  (validates delta, theta_e_ratio, table_points, lever)

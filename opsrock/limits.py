@@ -1,0 +1,83 @@
+"""Parameter limits of opsrock's inputs, declared in one place.
+
+Every input class checks its numbers against this table (:func:`check`), so a value outside the
+range the models and solvers were built and tested for is refused with one line naming the
+argument, its value and the range, instead of overflowing or running for hours later on.
+
+The limits are generous: they bound what the physics and floating point can carry, not what
+is typical. Each states its reason.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from numbers import Real
+
+
+@dataclass(frozen=True)
+class Limit:
+    """A closed range ``[low, high]`` for one named input.
+
+    Parameters
+    ----------
+    low, high : float
+        Smallest and largest accepted value, in ``unit``.
+    unit : str
+        Unit of the value (SI), for the message.
+    why : str
+        Reason for the range.
+    """
+
+    low: float
+    high: float
+    unit: str
+    why: str
+
+
+#: The limits, by argument name.
+LIMITS: dict[str, Limit] = {
+    "width": Limit(1e-3, 1e3, "m", "a rigid block from 1 mm to 1 km; beyond, R² and I_O overflow or underflow"),
+    "height": Limit(1e-3, 1e3, "m", "as width"),
+    "mass": Limit(1e-6, 1e12, "kg", "mass only scales moments; kept where m g R² stays finite"),
+    "pfa": Limit(1e-9, 1e4, "m/s²", "up to about 1,000 g; beyond, no floor motion is physical"),
+    "omega_p": Limit(1e-3, 1e5, "rad/s",
+                     "pulse periods from 63 µs to 1.7 h: a longer pulse is a static tilt, a shorter one "
+                     "cannot be sampled by any solver's step"),
+    "duration": Limit(1e-6, 1e5, "s", "pulse and record durations from 1 µs to about 28 h"),
+    "dt": Limit(1e-7, 1.0, "s", "time steps: below 1e-7 s the OpenSees model's smallest step dt_min cannot "
+                "fit, above 1 s no pulse or record is resolved"),
+}
+
+
+def check(name: str, value: object) -> float:
+    """Return ``value`` as a float if it is a real number within ``LIMITS[name]``.
+
+    Parameters
+    ----------
+    name : str
+        Argument name, a key of :data:`LIMITS`; used in the message.
+    value : object
+        The value to check (bool is refused).
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a real number.
+    ValueError
+        If it is not finite or lies outside the limit; the message names ``name``, the value and
+        the range with its unit.
+    """
+    limit = LIMITS[name]
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise TypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
+    try:
+        v = float(value)
+    except (OverflowError, ValueError):
+        raise ValueError(f"{name} must be a finite number, got {value!r}") from None
+    if not math.isfinite(v) or not (limit.low <= v <= limit.high):
+        raise ValueError(f"{name} must lie in [{limit.low:g}, {limit.high:g}] {limit.unit}, got {value!r}")
+    return v
+
+
+__all__ = ["LIMITS", "Limit", "check"]

@@ -94,13 +94,17 @@ def _simulate(args: argparse.Namespace) -> int:
         raise UsageError(f"--dt applies to --solver opensees only, not --solver {args.solver}")
     try:
         block = Block(width=args.width, height=args.height, mass=args.mass)
-        if args.pfa_ratio is not None:
-            pfa = args.pfa_ratio * block.uplift_acceleration
-        else:
-            from opsrock.constants import G
+        from opsrock.constants import G
+        from opsrock.excitation import scaled_input
 
-            pfa = args.pfa * G
-        omega_p = args.freq_ratio * block.p if args.freq_ratio is not None else 2 * math.pi * args.freq
+        if args.pfa_ratio is not None:
+            pfa = scaled_input("--pfa-ratio", args.pfa_ratio, "pfa", block.uplift_acceleration)
+        else:
+            pfa = scaled_input("--pfa", args.pfa, "pfa", G)
+        if args.freq_ratio is not None:
+            omega_p = scaled_input("--freq-ratio", args.freq_ratio, "omega_p", block.p)
+        else:
+            omega_p = scaled_input("--freq", args.freq, "omega_p", 2.0 * math.pi)
         pulse = OneSinePulse(pfa=pfa, omega_p=omega_p)
         settings = {}
         if args.delta is not None:

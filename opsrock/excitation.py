@@ -45,8 +45,20 @@ class Excitation(Protocol):
         """Times where the acceleration is not smooth (s), for event-driven solvers."""
 
 
-def _scaled(name: str, value: float, target: str, scale: float) -> float:
-    """``value * scale`` checked against the limit of ``target``, with a message naming ``name``."""
+def scaled_input(name: str, value: float, target: str, scale: float) -> float:
+    """``value * scale`` checked against the limit of ``target``, with a message naming ``name``.
+
+    Parameters
+    ----------
+    name : str
+        The argument the user gave (``"pfa_ratio"``, ``"--freq"``), named in the message.
+    value : float
+        Its value (its own unit).
+    target : str
+        The checked quantity, a key of :data:`opsrock.limits.LIMITS`.
+    scale : float
+        Factor from ``value`` to ``target``'s SI unit.
+    """
     try:
         return check(target, value * scale)
     except ValueError:
@@ -92,8 +104,8 @@ class OneSinePulse:
         pfa_ratio = positive_finite("pfa_ratio", pfa_ratio)
         freq_ratio = positive_finite("freq_ratio", freq_ratio)
         return cls(
-            pfa=_scaled("pfa_ratio", pfa_ratio, "pfa", block.uplift_acceleration),
-            omega_p=_scaled("freq_ratio", freq_ratio, "omega_p", block.p),
+            pfa=scaled_input("pfa_ratio", pfa_ratio, "pfa", block.uplift_acceleration),
+            omega_p=scaled_input("freq_ratio", freq_ratio, "omega_p", block.p),
         )
 
     @classmethod
@@ -101,7 +113,7 @@ class OneSinePulse:
         """Build a pulse from ``PFA`` in g and the pulse frequency in Hz."""
         pfa_g = positive_finite("pfa_g", pfa_g)
         frequency_hz = positive_finite("frequency_hz", frequency_hz)
-        return cls(pfa=_scaled("pfa_g", pfa_g, "pfa", G), omega_p=_scaled("frequency_hz", frequency_hz, "omega_p", 2.0 * math.pi))
+        return cls(pfa=scaled_input("pfa_g", pfa_g, "pfa", G), omega_p=scaled_input("frequency_hz", frequency_hz, "omega_p", 2.0 * math.pi))
 
     @property
     def T_p(self) -> float:  # noqa: N802  (the paper's symbol)

@@ -211,7 +211,7 @@ def dense_spectrum(scene, workers: int | None = None) -> pd.DataFrame:
     fr, ar = np.meshgrid(np.asarray(scene.grid.freq_ratio), np.asarray(scene.grid.pfa_ratio), indexing="ij")
     for spec in scene.blocks:
         b = spec.block
-        res = solve_grid(b.alpha, b.p, b.e, ar.ravel(), fr.ravel(), threads=workers)
+        res = solve_grid(b.alpha, b.e, ar.ravel(), fr.ravel(), threads=workers)
         frames.append(pd.DataFrame({
             "block": spec.name, "freq_ratio": fr.ravel(), "pfa_ratio": ar.ravel(),
             "theta_max_over_alpha": res.theta_max.ravel() / b.alpha, "verdict": res.verdict.ravel(),

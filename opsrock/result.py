@@ -18,6 +18,51 @@ VERDICTS: tuple[str, ...] = ("no_uplift", "safe", "overturned", "failed")
 
 
 @dataclass(frozen=True)
+class Impacts:
+    """The impacts of one run, as the solver located them (not read off stored samples).
+
+    An impact is a passage of the block from one base corner to the other. For the rigid body
+    it is instantaneous at ``theta = 0``; for the SDOF models it is a crossing of the damper
+    band ``|theta| <= delta alpha`` from one side to the other (entering and leaving on the same
+    side is not an impact).
+
+    Parameters
+    ----------
+    time : ndarray
+        When each impact began (s): the instant of impact (rigid body), the band entry (SDOF).
+    theta_dot_before : ndarray
+        Angular velocity just before (rad/s): at impact, or at the band entry.
+    theta_dot_after : ndarray
+        Angular velocity just after (rad/s): after the impact, or at the band exit.
+    """
+
+    time: np.ndarray
+    theta_dot_before: np.ndarray
+    theta_dot_after: np.ndarray
+
+    def __post_init__(self) -> None:
+        arrays = [np.asarray(getattr(self, n), dtype=float).ravel() for n in ("time", "theta_dot_before", "theta_dot_after")]
+        if len({a.size for a in arrays}) != 1:
+            raise ValueError(f"impact arrays must have one length, got {[a.size for a in arrays]}")
+        for name, a in zip(("time", "theta_dot_before", "theta_dot_after"), arrays):
+            a.setflags(write=False)
+            object.__setattr__(self, name, a)
+
+    def __len__(self) -> int:
+        return int(self.time.size)
+
+    @property
+    def velocity_ratio(self) -> np.ndarray:
+        """``|theta_dot_after / theta_dot_before|`` per impact (dimensionless)."""
+        return np.abs(self.theta_dot_after) / np.abs(self.theta_dot_before)
+
+    @classmethod
+    def from_lists(cls, time: list[float], before: list[float], after: list[float]) -> "Impacts":
+        """Build from three equal-length lists."""
+        return cls(np.array(time, dtype=float), np.array(before, dtype=float), np.array(after, dtype=float))
+
+
+@dataclass(frozen=True)
 class RockingResult:
     """Response of one block to one excitation, whatever solver produced it.
 
@@ -56,7 +101,10 @@ class RockingResult:
     damper_force : ndarray or None
         Damper moment ``f_d`` (N m) at ``time`` (SDOF models only).
     n_impacts : int or None
-        Number of impacts / band crossings, where the solver counts them.
+        Number of impacts (passages from one base corner to the other, see :class:`Impacts`),
+        the same meaning in every solver; None where a solver does not count them.
+    impacts : Impacts or None
+        Each impact's time and velocities, where the solver logs them.
     diagnostics : Mapping
         Solver bookkeeping that is not part of the answer, JSON-serialisable: for OpenSees the
         number of its own console messages (sent to its log file, never to the terminal), the
@@ -79,6 +127,7 @@ class RockingResult:
     spring_moment: np.ndarray | None = field(default=None, repr=False)
     damper_force: np.ndarray | None = field(default=None, repr=False)
     n_impacts: int | None = None
+    impacts: Impacts | None = field(default=None, repr=False)
     diagnostics: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -88,6 +137,8 @@ class RockingResult:
             raise ValueError("a failed result must carry a reason")
         if self.status == "failed" and self.overturned:
             raise ValueError("a failed result cannot carry an overturned verdict")
+        if self.impacts is not None and self.n_impacts != len(self.impacts):
+            raise ValueError(f"n_impacts = {self.n_impacts} but {len(self.impacts)} impacts are logged")
         if self.status == "ok" and not math.isfinite(self.theta_max):
             raise ValueError(f"an ok result must have a finite theta_max, got {self.theta_max!r}")
         if self.status == "ok" and self.overturned != (self.theta_max >= OVERTURNING_ANGLE):

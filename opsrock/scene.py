@@ -444,6 +444,8 @@ def _read_toml(path: Path) -> dict:
         raise SceneError(path, "(file)", str(path), f"not valid TOML: {exc}") from None
     except UnicodeDecodeError as exc:
         raise SceneError(path, "(file)", str(path), f"not UTF-8 text: {exc}") from None
+    except OSError as exc:  # unreadable (permissions), a FIFO gone wrong, an I/O error
+        raise SceneError(path, "(file)", str(path), f"cannot be read: {exc.strerror or exc}") from None
 
 
 def _dotted(prefix: str, key: str) -> str:

@@ -34,25 +34,23 @@ def test_default_matches_scipy_sdof(size, freq_ratio, pfa_ratio):
 
 
 def test_adaptive_velocity_ratio_across_band_is_e():
-    # Eq. 8 gives theta'_2 = e theta'_1 exactly across the band; free rocking from 0.5 alpha.
-    # Reference: the scipy SDOF solver's ratio (same model, includes the small gravity work in the
-    # band); tolerance 0.2 %: the first adaptive scheme lost 6 % here.
+    # Eq. 8 gives theta'_2 = e theta'_1 across the band; free rocking from 0.5 alpha.
+    # Reference: the scipy SDOF solver (same model, independent numerics), whose band entry and
+    # exit are located events (terminal solve_ivp events at |theta| = delta alpha, rtol 1e-10), so
+    # its ratio is exact to ~1e-9 and includes the small gravity work inside the band. OpenSees'
+    # adaptive stepper lands 5 % of a band step past each edge; each edge then shifts the ratio by
+    # about EDGE_FRACTION / band_steps of the band's velocity change, a few 1e-4 on any machine.
+    # Tolerance 0.2 %: the first adaptive scheme lost 6 % here. An earlier form of this test read
+    # the ratio off stored samples and broke when a sample fell exactly on the band edge.
     block = Block(0.50, 1.15)
     zero = OneSinePulse(pfa=1e-9, omega_p=50.0)  # no excitation to speak of
     kw = dict(theta0=0.5 * block.alpha)
     os_ = simulate(block, zero, solver="opensees", stop_at_rest=False, end_time=1.5, **kw)
     sd = simulate(block, zero, solver="sdof", end_time=1.5, **kw)
-
-    def first_ratio(res):
-        import numpy as np
-
-        band = 0.005 * block.alpha
-        inside = np.abs(res.theta) <= band
-        i_in = int(np.argmax(inside))
-        i_out = i_in + int(np.argmax(~inside[i_in:]))
-        return abs(res.theta_dot[i_out]) / abs(res.theta_dot[i_in - 1])
-
-    assert first_ratio(os_) == pytest.approx(first_ratio(sd), rel=2e-3)
+    assert os_.n_impacts >= 2 and sd.n_impacts >= 2
+    assert sd.impacts.velocity_ratio[0] == pytest.approx(block.e, rel=5e-3)  # Eq. 8, gravity aside
+    assert os_.impacts.velocity_ratio[0] == pytest.approx(sd.impacts.velocity_ratio[0], rel=2e-3)
+    assert os_.impacts.velocity_ratio[1] == pytest.approx(sd.impacts.velocity_ratio[1], rel=2e-3)
 
 
 @pytest.mark.parametrize("adaptive", [True, False])

@@ -523,7 +523,6 @@ def _check_array(name: str, arr: np.ndarray, low: float, high: float) -> None:
 
 def solve_grid(
     alpha: Any,
-    p: Any,
     e: Any,
     pfa_ratio: Any,
     freq_ratio: Any,
@@ -534,14 +533,15 @@ def solve_grid(
     """Solve many one-sine-pulse cases at once: the batch entry point for dense spectra.
 
     All inputs broadcast together; each element of the broadcast is one independent case.
+    The kernel integrates in the dimensionless time ``tau = p t``, in which the peak rotation and
+    the verdict depend on ``alpha``, ``e`` and the two ratios alone, so the block's size (``p``)
+    is not an input here (tests/test_housner_fast.py checks that claim against the dimensional
+    solver ``housner``).
 
     Parameters
     ----------
     alpha : array_like of float
         Block slenderness ``atan(b/h)`` (rad), in (0, pi/2).
-    p : array_like of float
-        Frequency parameter ``sqrt(3g/4R)`` (rad/s), > 0. It only scales time: the peak
-        rotation and the verdict depend on ``alpha``, ``e`` and the two ratios alone.
     e : array_like of float
         Coefficient of restitution (dimensionless), in (0, 1].
     pfa_ratio : array_like of float
@@ -561,11 +561,10 @@ def solve_grid(
     """
     settings = _as_settings(settings, {})
     threads = _default_threads() if threads is None else int_at_least("threads", threads, 1)
-    arrays = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (alpha, p, e, pfa_ratio, freq_ratio)))
+    arrays = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (alpha, e, pfa_ratio, freq_ratio)))
     shape = arrays[0].shape
-    a_, p_, e_, r_, f_ = (np.ascontiguousarray(x).ravel() for x in arrays)
+    a_, e_, r_, f_ = (np.ascontiguousarray(x).ravel() for x in arrays)
     _check_array("alpha", a_, 0.0, 0.5 * math.pi)
-    _check_array("p", p_, 0.0, math.inf)
     _check_array("e", e_, 0.0, 1.0 + 1e-12)
     _check_array("pfa_ratio", r_, 0.0, math.inf)
     _check_array("freq_ratio", f_, 0.0, math.inf)
@@ -614,7 +613,7 @@ def solve_pulses(
     Parameters
     ----------
     blocks : sequence of Block
-        The blocks (their ``alpha``, ``p`` and ``e`` are used).
+        The blocks (their ``alpha`` and ``e`` are used).
     pfa_ratios : array_like of float
         ``PFA / (g tan alpha)`` values (dimensionless), 1-D.
     freq_ratios : array_like of float
@@ -635,9 +634,8 @@ def solve_pulses(
     r = np.asarray(pfa_ratios, dtype=float).ravel()
     f = np.asarray(freq_ratios, dtype=float).ravel()
     al = np.array([b.alpha for b in blocks])[:, None, None]
-    pp = np.array([b.p for b in blocks])[:, None, None]
     ee = np.array([b.e for b in blocks])[:, None, None]
-    return solve_grid(al, pp, ee, r[None, :, None], f[None, None, :], settings=settings,
+    return solve_grid(al, ee, r[None, :, None], f[None, None, :], settings=settings,
                       threads=threads)
 
 

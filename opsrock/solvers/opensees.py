@@ -51,7 +51,7 @@ from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.limits import check
 from opsrock.excitation import Excitation, OneSinePulse, Record
 from opsrock.model import SDOFModel, can_uplift
-from opsrock.result import RockingResult, failed_result, seated_result
+from opsrock.result import Impacts, RockingResult, failed_result, seated_result
 
 SOLVER_NAME = "opensees"
 
@@ -637,6 +637,9 @@ def _integrate(
         dt_exc = min(dt_exc, float(rec_dt))
     record_every = s.record_every
     stop_at_rest = s.stop_at_rest
+    # explicit scheme: a step longer than the stiff branch's critical step, taken from inside
+    # the branch, is unstable there (omega_e h > 2); its outcome is not an answer
+    dt_cr = critical_time_step(block, model) if s.integrator == "central_difference" else math.inf
 
     analyze, node_disp, node_vel, update = ops.analyze, ops.nodeDisp, ops.nodeVel, ops.updateParameter
     ele_resp = ops.eleResponse
@@ -650,6 +653,8 @@ def _integrate(
     t = 0.0
     n_steps = 0
     n_impacts = 0
+    impact_log: tuple[list[float], list[float], list[float]] = ([], [], [])
+    entry: tuple[float, float, bool] | None = None  # (time, velocity, side) of the last band entry
     n_alt = 0
     theta_max = abs(th)
     theta_e = model.theta_e(block)
@@ -742,6 +747,11 @@ def _integrate(
                 n_steps += _recover(s, h)
             except _Failure as exc:
                 return fail(f"step at t = {t:.6g} s (dt = {h:.3g} s) did not converge: {exc}")
+        if h >= dt_cr and abs(th) <= theta_e:
+            return fail(
+                f"unstable: explicit central difference stepped {h:.4g} s from inside the stiff branch "
+                f"(|theta| <= theta_e) at t = {t:.6g} s, above its critical step dt_cr = {dt_cr:.4g} s"
+            )
         t += h
         th_prev = th
         th = node_disp(node, dof)
@@ -774,12 +784,18 @@ def _integrate(
         if ath <= band:
             if not in_band:
                 in_band = True
-                n_impacts += 1
+                entry = (t, thd, th > 0.0)
                 c_now = block.I_O * (1.0 - block.e) * abs(thd) / (2.0 * band)
                 update(_DAMPER_PARAM, c_now)
                 switched = True
         elif in_band:
             in_band = False
+            if entry is not None and (th > 0.0) != entry[2]:  # left on the other side: an impact
+                impact_log[0].append(entry[0])
+                impact_log[1].append(entry[1])
+                impact_log[2].append(thd)
+                n_impacts += 1
+            entry = None
             if c_now != 0.0:
                 c_now = 0.0
                 update(_DAMPER_PARAM, 0.0)
@@ -859,6 +875,7 @@ def _integrate(
         spring_moment=spring,
         damper_force=damper,
         n_impacts=n_impacts,
+        impacts=Impacts.from_lists(*impact_log),
     )
 
 

@@ -40,7 +40,7 @@ from opsrock._checks import bool_fields, int_at_least, one_of
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel, can_uplift
-from opsrock.result import RockingResult, failed_result, seated_result
+from opsrock.result import Impacts, RockingResult, failed_result, seated_result
 from opsrock.solvers.housner import (
     METHODS,
     TAILS,
@@ -98,8 +98,8 @@ class SDOFSettings:
     record : bool
         Keep the time histories (every accepted step). Default True.
     max_impacts : int
-        Largest number of damper-band entries before the run is reported as failed.
-        Default 10 000.
+        Largest number of impacts (band crossings from one side to the other) before the run is
+        reported as failed. Default 10 000.
     max_segments : int
         Largest number of region/breakpoint segments before the run is reported as failed.
         Default 200 000 (a record of 10 000 samples needs about that many).
@@ -192,7 +192,8 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
     -------
     RockingResult
         ``solver="sdof"``, with ``spring_moment`` and ``damper_force`` histories when
-        ``record``; ``n_impacts`` counts damper-band entries; ``rocked`` is True once
+        ``record``; ``n_impacts`` counts impacts (crossings of the damper band from one side to
+        the other, logged in ``impacts`` with the velocities at the band's edges); ``rocked`` is True once
         ``|theta|`` leaves the stiff branch. Integrator failures and exceeded caps give
         ``status="failed"`` with the reason.
     """
@@ -235,6 +236,8 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
     cds: list[np.ndarray] = []
     n_steps = 0
     n_impacts = 0
+    impact_log: tuple[list[float], list[float], list[float]] = ([], [], [])
+    entry: tuple[float, float, float] | None = None  # (time, velocity, side) of the last band entry
     n_segments = 0
     overturned = False
     c_d = 0.0
@@ -396,9 +399,16 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
             return fail(f"rotation {y[0]:.6g} rad left the spring table at t = {t:.6g} s")
         if in_band[new] and not in_band[region]:
             c_d = model.damping_coefficient(block, y[1])
-            n_impacts += 1
-            if n_impacts > s.max_impacts:
-                return fail(f"more than max_impacts = {s.max_impacts} band entries by t = {t:.6g} s")
+            entry = (t, float(y[1]), math.copysign(1.0, y[0]))
+        elif in_band[region] and not in_band[new] and entry is not None:
+            if math.copysign(1.0, y[0]) != entry[2]:  # left on the other side: an impact
+                impact_log[0].append(entry[0])
+                impact_log[1].append(entry[1])
+                impact_log[2].append(float(y[1]))
+                n_impacts += 1
+                if n_impacts > s.max_impacts:
+                    return fail(f"more than max_impacts = {s.max_impacts} impacts by t = {t:.6g} s")
+            entry = None
         region = new
 
     time_arr = np.concatenate(ts) if ts else np.zeros(0)
@@ -420,6 +430,7 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         rocked=rocked,
         n_steps=n_steps,
         n_impacts=n_impacts,
+        impacts=Impacts.from_lists(*impact_log),
         wall_time_s=_time.perf_counter() - t_wall,
         spring_moment=spring,
         damper_force=damper,

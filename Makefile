@@ -8,9 +8,10 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.opsrock-installed
+LOCK   := requirements.lock
 OUT    ?= results
 
-.PHONY: reproduce test test-slow validate bench blas install clean
+.PHONY: reproduce test test-slow test-fuzz validate bench blas install lock clean
 
 reproduce: install
 	$(BIN)/opsrock reproduce --out $(OUT)
@@ -20,6 +21,10 @@ test: install
 
 test-slow: install
 	$(BIN)/python -m pytest -m slow
+
+# Property tests with fresh random seeds and ten times the examples (make test is derandomised).
+test-fuzz: install
+	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest tests/test_input_properties.py
 
 validate: install
 	$(BIN)/opsrock validate
@@ -32,11 +37,24 @@ install: blas $(STAMP)
 blas:
 	@sh tools/ensure-blas.sh
 
-$(STAMP): pyproject.toml
+# Installs the exact versions of the lock file (see its header); pyproject.toml keeps the ranges.
+$(STAMP): pyproject.toml $(LOCK)
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test,dask]'
+	$(BIN)/python -m pip install --quiet -c $(LOCK) pip
+	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test,dask]'
 	@touch $(STAMP)
 
+# Refresh the lock file: the newest versions within pyproject.toml's ranges, in a throw-away venv.
+# Run make test afterwards, and commit the lock only if it passes.
+lock:
+	rm -rf .lock-venv
+	$(PYTHON) -m venv .lock-venv
+	.lock-venv/bin/python -m pip install --quiet --upgrade pip
+	.lock-venv/bin/python -m pip install --quiet '.[test,dask]'
+	{ sed -n '/^#/p' $(LOCK); .lock-venv/bin/python -m pip freeze --all --exclude-editable \
+	    | grep -v -e '^opsrock' -e '^setuptools' -e '^wheel'; } > $(LOCK).new
+	mv $(LOCK).new $(LOCK)
+	rm -rf .lock-venv
+
 clean:
-	rm -rf $(VENV) *.egg-info .pytest_cache
+	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis .lock-venv

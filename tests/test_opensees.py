@@ -10,6 +10,7 @@ import pytest
 from opsrock import Block, OneSinePulse, Record
 from opsrock.model import SDOFModel, restoring_moment
 from opsrock.solvers import opensees as osr
+from opsrock.solvers import simulate
 
 pytestmark = pytest.mark.opensees
 
@@ -189,3 +190,22 @@ def test_lumped_mass_form_of_fig2b_equals_rotational_form_with_housner_lever():
 def test_settings_errors_name_the_argument(kwargs, name):
     with pytest.raises((ValueError, TypeError), match=name):
         osr.make_settings(**kwargs)
+
+
+@pytest.mark.parametrize("table_points", [100, 200])
+def test_long_spring_tables_match_the_scipy_solver(table_points):
+    # OpenSees issue #1538: ElasticMultiLinear tables of more than 64 points went wrong. A table of
+    # 100 or 200 points per side (202 and 402 points in all) must give OpenSees the same answer as
+    # the scipy SDOF solver, which reads the same table with its own numerics (events at every
+    # kink). Measured with the locked OpenSeesPy: 5.5e-5 alpha at 30, 100 and 200 points alike;
+    # tolerance 3e-3 alpha, the pulse agreement bound of test_opensees_adaptive.py. A table
+    # truncated at 64 points would end near 0.6 rad and send a rocking block off the table.
+    block = Block(0.40, 2.20)
+    pulse = OneSinePulse.from_ratios(block, pfa_ratio=3.0, freq_ratio=8.0)
+    ref = simulate(block, pulse, solver="sdof", table_points=table_points)
+    r = simulate(block, pulse, solver="opensees", table_points=table_points)
+    assert r.ok and r.verdict == ref.verdict == "safe"
+    assert abs(r.theta_max_over_alpha - ref.theta_max_over_alpha) < 3e-3
+    big = OneSinePulse.from_ratios(block, pfa_ratio=3.0, freq_ratio=2.0)  # rocks far up the table
+    a, b = (simulate(block, big, solver=s, table_points=table_points) for s in ("opensees", "sdof"))
+    assert a.verdict == b.verdict

@@ -1,4 +1,4 @@
-"""Benchmark of the fast rigid-body solver on a dense overturning spectrum (issue 6, target 2).
+"""Benchmark of the fast rigid-body solver on a dense overturning spectrum (docs/modelling.md section 5).
 
     python bench/bench_housner_fast.py [--quick] [--cold]
 
@@ -38,9 +38,9 @@ from opsrock.excitation import OneSinePulse
 
 ROOT = Path(__file__).resolve().parents[1]
 
-#: The four blocks of issue 6, (width, height) in m.
+#: The four blocks of the dense-spectrum target (docs/modelling.md section 5), (width, height) in m.
 BLOCKS = [Block(0.40, 2.20), Block(0.60, 2.00), Block(0.50, 1.15), Block(1.00, 2.40)]
-#: Spectrum ranges (DESIGN.md section 3): omega_p/p and PFA/(g tan alpha).
+#: Spectrum ranges (docs/modelling.md section 3): omega_p/p and PFA/(g tan alpha).
 FREQ_RANGE = (0.5, 10.0)
 PFA_RANGE = (1.0, 10.5)
 

@@ -31,7 +31,7 @@ class Block:
 
     Notes
     -----
-    Derived quantities follow DESIGN.md section 2: ``R = sqrt(b² + h²)``,
+    Derived quantities follow docs/modelling.md section 2: ``R = sqrt(b² + h²)``,
     ``alpha = atan(b / h)``, ``p = sqrt(3 g / 4 R)``, ``I_O = 4/3 m R²``,
     ``e_R = 1 - 1.5 sin²(alpha)`` (Eq. 9), ``e = restitution_factor · e_R``.
     """

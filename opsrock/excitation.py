@@ -1,6 +1,6 @@
 """Floor-acceleration excitations: the one-sine pulse and arbitrary records.
 
-Sign convention (DESIGN.md section 2): a positive floor acceleration tips the block towards
+Sign convention (docs/modelling.md section 2): a positive floor acceleration tips the block towards
 negative ``theta``.
 """
 
@@ -19,7 +19,7 @@ from opsrock.limits import LIMITS, check
 if TYPE_CHECKING:
     from opsrock.block import Block
 
-#: Peak-floor-velocity conventions for IM3 and IM8 (DESIGN.md section 2).
+#: Peak-floor-velocity conventions for IM3 and IM8 (docs/modelling.md section 2).
 #: ``"amplitude"``: the harmonic velocity amplitude ``PFA / omega_p``, which the paper's
 #: Table 3 medians fit; ``"peak"``: the true peak of the floor velocity from rest,
 #: ``2 PFA / omega_p``, reached at ``t = T_p / 2``.

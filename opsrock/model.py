@@ -11,7 +11,7 @@ table and the excitation lever ``Lambda``.
 * ``f_d = c_D theta'`` while ``|theta| <= delta alpha``, zero outside, with
   ``c_D = I_O (1 - e) |theta'_1| / (2 delta alpha)`` set on entering the band (Eq. 7-8);
 * ``Lambda = m R cos(alpha)`` (``lever="housner"``, default) or the paper's printed
-  ``I_O cos(alpha) / R`` (``lever="printed"``); DESIGN.md section 2 explains the choice.
+  ``I_O cos(alpha) / R`` (``lever="printed"``); docs/modelling.md section 2 explains the choice.
 """
 
 from __future__ import annotations
@@ -33,11 +33,11 @@ LEVERS: tuple[str, ...] = ("housner", "printed")
 #: study (validation/model_form): see the README's validation section.
 DEFAULT_DELTA: float = 0.005
 
-#: Default stiff-branch half-width ``theta_e / alpha``. DESIGN.md section 4: 1e-6 alpha matched
+#: Default stiff-branch half-width ``theta_e / alpha``. docs/modelling.md section 4: 1e-6 alpha matched
 #: the rigid-body first peak to 0.04 %, 1e-4 alpha gave 0.9 % high, 1e-2 alpha 10 % low.
 DEFAULT_THETA_E_RATIO: float = 1e-6
 
-#: Default number of table points per side beyond the stiff branch. DESIGN.md section 4:
+#: Default number of table points per side beyond the stiff branch. docs/modelling.md section 4:
 #: about 30 points give 0.1-0.2 % of ``m g R sin(alpha)``.
 DEFAULT_TABLE_POINTS: int = 30
 

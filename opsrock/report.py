@@ -14,7 +14,7 @@ import pandas as pd
 from opsrock.paper_values import TABLE2, TABLE3
 
 #: IMs whose overturning threshold is nearly geometry-free, so their dimensionless medians can
-#: be compared with the paper's even though its blocks are not listed (DESIGN.md section 3).
+#: be compared with the paper's even though its blocks are not listed (docs/modelling.md section 3).
 GEOMETRY_FREE_IMS: tuple[str, ...] = ("IM3", "IM4", "IM6", "IM7", "IM8", "IM9")
 
 
@@ -62,7 +62,7 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         "",
         f"Solver: **{solver}** (the paper's equivalent SDOF model"
         + (" built in OpenSeesPy" if solver == "opensees" else "") + "), excitation lever "
-        "`Lambda = m R cos(alpha)` (DESIGN.md section 2: the printed `I_O cos(alpha)/R` would uplift "
+        "`Lambda = m R cos(alpha)` (docs/modelling.md section 2: the printed `I_O cos(alpha)/R` would uplift "
         "blocks at 0.75 g tan(alpha)); PFV convention of IM3 and IM8: "
         f"**{pfv_convention}** (`PFA/omega_p`, the paper's).",
         "",
@@ -178,12 +178,12 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
             med.append({"im": im, "mu_ours": ours, "mu_paper": paper, "ratio": ours / paper if paper else math.nan,
                         "mle_mu_ours": float(row["mle_mu"].iloc[0])})
     if med:
-        lines += ["**Medians of the nearly geometry-free IMs** (DESIGN.md section 3: the paper's blocks are not "
+        lines += ["**Medians of the nearly geometry-free IMs** (docs/modelling.md section 3: the paper's blocks are not "
                   "listed, so these are the numbers that can be compared):", "", markdown_table(pd.DataFrame(med)), ""]
     lines += [
         "## 6. What differs from the paper, and why",
         "",
-        "- The four blocks and the exact pulse grid are the project's reconstruction (DESIGN.md section 3); "
+        "- The four blocks and the exact pulse grid are the project's reconstruction (docs/modelling.md section 3); "
         "Table 2 ranges and Table 3 medians therefore differ in the second digit even where the method is the same.",
         f"- IM8 = e_R^4 IM3: the project's blocks span e_R^4 from "
         f"{(cases.drop_duplicates('block')['e_R'] ** 4).min():.2f} to {(cases.drop_duplicates('block')['e_R'] ** 4).max():.2f} "

@@ -290,6 +290,13 @@ def run_command(args: argparse.Namespace) -> int:
     if args.workers is not None and args.workers < 1:
         print(f"opsrock reproduce: --workers must be >= 1, got {args.workers}", file=sys.stderr)
         return 2
+    from opsrock._paths import output_dir
+
+    try:
+        output_dir("--out", args.out)
+    except ValueError as exc:
+        print(f"opsrock reproduce: {exc}", file=sys.stderr)
+        return 2
     try:
         result = reproduce(args.out, solver=args.solver, workers=args.workers, ignore_gate=args.ignore_gate,
                            force=args.force, progress=not args.no_progress)

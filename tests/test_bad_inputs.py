@@ -99,6 +99,11 @@ def test_run_out_that_is_a_file(tmp_path):
     assert (tmp_path / "out").read_text() == "not a folder"
 
 
+def test_reproduce_out_that_is_a_file(tmp_path):
+    (tmp_path / "results").write_text("not a folder")
+    assert_one_line_usage_error(run(["reproduce", "--out", "results"], tmp_path), "--out", "is a file")
+
+
 def test_run_on_a_corrupt_store(tmp_path):
     out = tmp_path / "out"
     out.mkdir()

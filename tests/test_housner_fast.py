@@ -22,7 +22,7 @@ from opsrock.excitation import OneSinePulse
 from opsrock.solvers import housner_fast as hf
 from opsrock.solvers import simulate
 
-#: The four blocks of the dense-spectrum benchmark (issue 6), (width, height) in m.
+#: The four blocks of the dense-spectrum benchmark (docs/modelling.md section 5), (width, height) in m.
 BLOCKS = [Block(0.40, 2.20), Block(0.60, 2.00), Block(0.50, 1.15), Block(1.00, 2.40)]
 
 
@@ -30,7 +30,7 @@ BLOCKS = [Block(0.40, 2.20), Block(0.60, 2.00), Block(0.50, 1.15), Block(1.00, 2
 # Independent reference: event-driven solve_ivp, dimensionless time tau = p t
 # =============================================================================================
 
-#: Reference tolerances: rtol 1e-10 per the issue; atol far below the smallest excursion the
+#: Reference tolerances: rtol 1e-10 (the reference solver's setting); atol far below the smallest excursion the
 #: reference still resolves (REF_REST_VELOCITY² / 2 ~ 5e-13 rad).
 REF_RTOL = 1e-10
 REF_ATOL = 1e-15
@@ -158,7 +158,7 @@ def reference_solve(alpha: float, e: float, pfa_ratio: float, freq_ratio: float)
 
 
 def _energy(alpha: float, p: float, theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
-    """Rocking energy per m g R with a = 0 (DESIGN.md section 2):
+    """Rocking energy per m g R with a = 0 (docs/modelling.md section 2):
     ``(theta'/p)²/2 + cos(alpha - |theta|) - cos(alpha)``, written here independently."""
     return 0.5 * (theta_dot / p) ** 2 + np.cos(alpha - np.abs(theta)) - math.cos(alpha)
 
@@ -254,7 +254,7 @@ def test_energy_ratio_e_squared_per_impact(block):
 
 @pytest.mark.parametrize("block", BLOCKS, ids=lambda b: f"alpha={b.alpha:.3f}")
 def test_energy_conserved_between_impacts(block):
-    """With a = 0 the energy is constant between impacts (DESIGN.md section 2). Between the
+    """With a = 0 the energy is constant between impacts (docs/modelling.md section 2). Between the
     start and the first impact, and between the first two impacts, it must stay within
     1e-9 of its value (relative to the barrier 1 - cos alpha): RK4's energy drift at the
     default step is about 1e-11 here, so a wrong sign or lever would fail by orders."""
@@ -484,13 +484,13 @@ def test_matches_housner_solver():
 
 
 # =============================================================================================
-# Dense-spectrum timing (issue 6 target 2)
+# Dense-spectrum timing (docs/modelling.md section 5)
 # =============================================================================================
 
 
 @pytest.mark.slow
 def test_dense_spectrum_40000_cases_under_60_s():
-    """4 blocks x 100 x 100 pulses in under 60 s on the project's 2-core machine (issue 6),
+    """4 blocks x 100 x 100 pulses in under 60 s on the project's 2-core machine (docs/modelling.md section 5),
     all finishing without failure. Measured about 2-5 s (loaded machine)."""
     hf.solve_grid(0.2, 0.9, 2.0, 2.0)  # compile / load the cache outside the timing
     res = hf.solve_pulses(BLOCKS, np.linspace(1.0, 10.5, 100), np.linspace(0.5, 10.0, 100))

@@ -236,7 +236,7 @@ def _out_with_turns(out: Any, sol: Any, k: int, *extra: float) -> None:
 
 
 def rocking_energy(block: Block, theta: np.ndarray | float, theta_dot: np.ndarray | float) -> np.ndarray:
-    """Mechanical energy of the rocking block (J), paper Section 2.1 / DESIGN.md section 2.
+    """Mechanical energy of the rocking block (J), paper Section 2.1 / docs/modelling.md section 2.
 
     ``E = 1/2 I_O theta'² + m g R [cos(alpha - |theta|) - cos(alpha)]``, zero when seated;
     conserved between impacts when ``a = 0``.

@@ -1,7 +1,7 @@
 """Fast rigid-body rocking solver for dense overturning spectra (numba-compiled).
 
 Solves the same exact rigid-body equation as :mod:`opsrock.solvers.housner` (paper Eq. 1-3,
-DESIGN.md section 2), written in the dimensionless time ``tau = p t``::
+docs/modelling.md section 2), written in the dimensionless time ``tau = p t``::
 
     d²theta/dtau² = -[ sin(alpha s - theta) + (a(t)/g) cos(alpha s - theta) ],   s = sgn(theta)
 
@@ -116,7 +116,7 @@ class HousnerFastSettings:
         Default 0.02. Measured on the 40,000-case benchmark grid against a run with steps
         eight times shorter: (max_step, steps_per_pulse) = (0.02, 200) differs by at most
         1.5e-8 alpha in theta_max (0.04, 100: 2.3e-7; 0.08, 50: 2.5e-5), with the same
-        verdict everywhere; the issue asks for 5e-3 alpha, so the default keeps a wide
+        verdict everywhere; the target is 5e-3 alpha, so the default keeps a wide
         margin for verdicts of cases close to the overturning boundary at little cost.
     steps_per_pulse : int
         Minimum number of steps per pulse period ``T_p`` (dimensionless count), so short

@@ -4,7 +4,7 @@ This is the only module in the project that touches OpenSees state. Every public
 calls ``ops.wipe()`` before building a model and again when it finishes (``try/finally``),
 so no state leaks from one run into the next.
 
-Model (DESIGN.md sections 2 and 4)
+Model (docs/modelling.md sections 2 and 4)
 ----------------------------------
 One rotational degree of freedom (a 1-D model, ``ndm=1, ndf=1``: the node's single dof *is*
 the block rotation ``theta``), rotational mass ``I_O``, and two ``zeroLength`` elements between
@@ -61,7 +61,7 @@ SOLVER_NAME = "opensees"
 #: only below ``dt_cr = 2 sqrt(I_O theta_e / (m g R sin alpha))`` (:func:`critical_time_step`).
 INTEGRATORS: tuple[str, ...] = ("newmark", "hht", "generalized_alpha", "central_difference")
 
-#: Equation-solving algorithms. DESIGN.md section 4: KrylovNewton converged on 60/60 random
+#: Equation-solving algorithms. docs/modelling.md section 4: KrylovNewton converged on 60/60 random
 #: pulses, plain Newton failed on 3/60 (cycling at the stiff-branch corner near rest).
 ALGORITHMS: tuple[str, ...] = ("KrylovNewton", "NewtonLineSearch", "Newton", "ModifiedNewton", "BFGS")
 
@@ -180,6 +180,13 @@ class OpenSeesSettings:
         :func:`critical_time_step` is refused up front as *failed* ("unstable: ..."): above it the
         stiff branch blows up within a step or two and the run can end in a plausible but wrong
         verdict (measured: validation/stability_map). False lets the stability map measure that.
+    stiff_branch_check : bool
+        If True (default), an explicit run reports *failed* ("unstable: ...") as soon as it takes a
+        step at or above :func:`critical_time_step` from inside the stiff branch, the only place
+        where the explicit scheme is unstable; this catches what ``explicit_step_check=False``
+        lets through (such runs used to come back "ok" with spurious rocking: the state
+        saturates off the branch, and neither the sawtooth nor the energy test sees it). False
+        only to measure the raw scheme (validation/stability_map does).
     uplift_check : bool
         If True (default), a block starting from rest under an excitation that cannot uplift it
         (Eq. 4: ``|Lambda| PFA <= m g R sin(alpha)``, :func:`opsrock.model.can_uplift`) is
@@ -211,6 +218,7 @@ class OpenSeesSettings:
     record_every: int = 1
     element_forces: bool = False
     explicit_step_check: bool = True
+    stiff_branch_check: bool = True
     uplift_check: bool = True
     theta0: float = 0.0
     theta_dot0: float = 0.0
@@ -639,7 +647,8 @@ def _integrate(
     stop_at_rest = s.stop_at_rest
     # explicit scheme: a step longer than the stiff branch's critical step, taken from inside
     # the branch, is unstable there (omega_e h > 2); its outcome is not an answer
-    dt_cr = critical_time_step(block, model) if s.integrator == "central_difference" else math.inf
+    explicit = s.integrator == "central_difference" and s.stiff_branch_check
+    dt_cr = critical_time_step(block, model) if explicit else math.inf
 
     analyze, node_disp, node_vel, update = ops.analyze, ops.nodeDisp, ops.nodeVel, ops.updateParameter
     ele_resp = ops.eleResponse

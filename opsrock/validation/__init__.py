@@ -13,7 +13,7 @@ import sys
 import time
 from pathlib import Path
 
-#: The cases, in the order the evidence builds up (issue 3, items 1-6).
+#: The cases, in the order the evidence builds up (docs/modelling.md section 5).
 CASES: tuple[str, ...] = (
     "closed_forms",      # 1. closed forms, all solvers
     "sdof_agreement",    # 2. OpenSees against the scipy SDOF solver (same model)

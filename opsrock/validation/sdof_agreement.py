@@ -2,7 +2,7 @@
 
 Both solve the *same* equations (Eq. 6-8: tabulated spring, discrete damper, same lever), so
 any difference is an implementation or discretisation error of the OpenSees model. Targets
-(issue 3): ``|d theta_max| / alpha <= 1 %`` for at least 99 % of the cases that do not
+(docs/modelling.md section 5): ``|d theta_max| / alpha <= 1 %`` for at least 99 % of the cases that do not
 overturn, the same verdict for at least 99 % of all cases, every disagreement listed with its
 distance to the overturning boundary.
 """
@@ -23,10 +23,10 @@ from opsrock.excitation import OneSinePulse
 from opsrock.scene import Case, load_scene
 from opsrock.solvers import simulate
 
-#: Repository scene of the paper's 400 pulses (DESIGN.md section 3).
+#: Repository scene of the paper's 400 pulses (docs/modelling.md section 3).
 PAPER_SCENE = Path(__file__).resolve().parents[2] / "models" / "scenes" / "paper.toml"
 
-#: Agreement targets of issue 3, item 2.
+#: Agreement targets (docs/modelling.md section 5).
 THETA_TOLERANCE = 0.01  # |d theta_max| / alpha
 THETA_TARGET_RATE = 0.99  # share of cases safe in both within THETA_TOLERANCE
 VERDICT_TARGET_RATE = 0.99  # share of all cases with the same verdict
@@ -128,7 +128,7 @@ def compare(
 
 
 def summarize(df: pd.DataFrame) -> Agreement:
-    """Agreement figures of a :func:`compare` table against the issue-3 targets."""
+    """Agreement figures of a :func:`compare` table against the targets of docs/modelling.md section 5."""
     failed = (df["verdict_a"] == "failed") | (df["verdict_b"] == "failed")
     safe = (df["verdict_a"] == "safe") & (df["verdict_b"] == "safe")
     d = df.loc[safe, "dtheta_over_alpha"].to_numpy()

@@ -271,7 +271,8 @@ def _label_probability_axes(ax, xs: np.ndarray, im: str, decreasing: bool) -> No
     """Axis scale, labels and legend shared by the fragility-curve panels (Figures 10, 12)."""
     _maybe_log(ax, xs)
     ax.set(xlabel=get_im(im).label, ylabel="P(overturning)", ylim=(-0.03, 1.03), title=im)
-    ax.legend(fontsize=6, loc="center right" if decreasing else "lower right")
+    if ax.get_legend_handles_labels()[0]:  # a panel with no fitted curve has nothing to list
+        ax.legend(fontsize=6, loc="center right" if decreasing else "lower right")
 
 
 def _finish_grid(fig, axes, n_used: int, path: str | Path) -> Path:

@@ -37,6 +37,7 @@ import atexit
 import dataclasses
 import math
 import os
+import sys
 import tempfile
 import time as _time
 from dataclasses import asdict, dataclass, field, fields, replace
@@ -396,7 +397,8 @@ def _console_to_log() -> str:
     """Send OpenSees' output to :func:`opensees_log_path` (once per process); return the path.
 
     OpenSees also prints a ``Process 0 Terminating`` line on stderr when the interpreter exits,
-    whatever its log setting; an exit handler points stderr at the same log just before that.
+    whatever its log setting; an exit handler silences stderr just before that (nothing of
+    Python's runs after it) and removes the log if it stayed empty.
     """
     pid = os.getpid()
     if _CONSOLE["pid"] != pid:
@@ -408,15 +410,17 @@ def _console_to_log() -> str:
 
 
 def _stderr_to_log_at_exit(path: str, pid: int) -> None:
+    """At exit: silence stderr for OpenSees' ``Process 0 Terminating`` line, and remove the log
+    file if OpenSees never wrote to it (one per process would otherwise pile up)."""
     if os.getpid() != pid:  # a forked child inherited the handler: not its log
         return
     try:
-        import sys
-
         sys.stderr.flush()
-        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+        fd = os.open(os.devnull, os.O_WRONLY)
         os.dup2(fd, 2)
         os.close(fd)
+        if os.path.getsize(path) == 0:
+            os.unlink(path)
     except OSError:
         pass
 

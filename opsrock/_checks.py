@@ -6,6 +6,17 @@ import math
 from numbers import Real
 
 
+def real_number(name: str, value: object) -> float:
+    """Return ``value`` as a float, or raise ``TypeError`` naming ``name`` if it is not a real
+    number (bool is refused), ``ValueError`` if it does not fit a float."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise TypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
+    try:
+        return float(value)
+    except (OverflowError, ValueError):
+        raise ValueError(f"{name} must be a finite number, got {value!r}") from None
+
+
 def positive_finite(name: str, value: object) -> float:
     """Return ``value`` as a float, or raise ``ValueError`` naming ``name`` and the value.
 
@@ -16,9 +27,7 @@ def positive_finite(name: str, value: object) -> float:
     value : object
         Value to check; must be a real, finite, strictly positive number (bool is refused).
     """
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise TypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
-    v = float(value)
+    v = real_number(name, value)
     if not math.isfinite(v) or v <= 0.0:
         raise ValueError(f"{name} must be positive and finite, got {value!r}")
     return v
@@ -26,9 +35,7 @@ def positive_finite(name: str, value: object) -> float:
 
 def in_open_interval(name: str, value: object, low: float, high: float) -> float:
     """Return ``value`` as a float if ``low < value < high``, else raise naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise TypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
-    v = float(value)
+    v = real_number(name, value)
     if not (math.isfinite(v) and low < v < high):
         raise ValueError(f"{name} must lie in ({low:g}, {high:g}), got {value!r}")
     return v

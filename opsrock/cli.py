@@ -95,7 +95,7 @@ def _simulate(args: argparse.Namespace) -> int:
     try:
         block = Block(width=args.width, height=args.height, mass=args.mass)
         from opsrock.constants import G
-        from opsrock.excitation import scaled_input
+        from opsrock.limits import scaled_input
 
         if args.pfa_ratio is not None:
             pfa = scaled_input("--pfa-ratio", args.pfa_ratio, "pfa", block.uplift_acceleration)

@@ -14,7 +14,7 @@ import numpy as np
 
 from opsrock._checks import one_of, positive_finite
 from opsrock.constants import G
-from opsrock.limits import LIMITS, check
+from opsrock.limits import check, scaled_input
 
 if TYPE_CHECKING:
     from opsrock.block import Block
@@ -43,30 +43,6 @@ class Excitation(Protocol):
 
     def breakpoints(self) -> np.ndarray:
         """Times where the acceleration is not smooth (s), for event-driven solvers."""
-
-
-def scaled_input(name: str, value: float, target: str, scale: float) -> float:
-    """``value * scale`` checked against the limit of ``target``, with a message naming ``name``.
-
-    Parameters
-    ----------
-    name : str
-        The argument the user gave (``"pfa_ratio"``, ``"--freq"``), named in the message.
-    value : float
-        Its value (its own unit).
-    target : str
-        The checked quantity, a key of :data:`opsrock.limits.LIMITS`.
-    scale : float
-        Factor from ``value`` to ``target``'s SI unit.
-    """
-    try:
-        return check(target, value * scale)
-    except ValueError:
-        lim = LIMITS[target]
-        raise ValueError(
-            f"{name} = {value!r} gives {target} = {value * scale:.4g} {lim.unit}, outside "
-            f"[{lim.low:g}, {lim.high:g}] {lim.unit}"
-        ) from None
 
 
 @dataclass(frozen=True)

@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from numbers import Real
+
+from opsrock._checks import real_number
 
 
 @dataclass(frozen=True)
@@ -69,15 +70,34 @@ def check(name: str, value: object) -> float:
         the range with its unit.
     """
     limit = LIMITS[name]
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise TypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
-    try:
-        v = float(value)
-    except (OverflowError, ValueError):
-        raise ValueError(f"{name} must be a finite number, got {value!r}") from None
+    v = real_number(name, value)
     if not math.isfinite(v) or not (limit.low <= v <= limit.high):
         raise ValueError(f"{name} must lie in [{limit.low:g}, {limit.high:g}] {limit.unit}, got {value!r}")
     return v
 
 
-__all__ = ["LIMITS", "Limit", "check"]
+def scaled_input(name: str, value: float, target: str, scale: float) -> float:
+    """``value * scale`` checked against the limit of ``target``, with a message naming ``name``.
+
+    Parameters
+    ----------
+    name : str
+        The argument the user gave (``"pfa_ratio"``, ``"--freq"``), named in the message.
+    value : float
+        Its value (its own unit).
+    target : str
+        The checked quantity, a key of :data:`opsrock.limits.LIMITS`.
+    scale : float
+        Factor from ``value`` to ``target``'s SI unit.
+    """
+    try:
+        return check(target, value * scale)
+    except ValueError:
+        lim = LIMITS[target]
+        raise ValueError(
+            f"{name} = {value!r} gives {target} = {value * scale:.4g} {lim.unit}, outside "
+            f"[{lim.low:g}, {lim.high:g}] {lim.unit}"
+        ) from None
+
+
+__all__ = ["LIMITS", "Limit", "check", "scaled_input"]

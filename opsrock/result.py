@@ -56,10 +56,25 @@ class Impacts:
         """``|theta_dot_after / theta_dot_before|`` per impact (dimensionless)."""
         return np.abs(self.theta_dot_after) / np.abs(self.theta_dot_before)
 
-    @classmethod
-    def from_lists(cls, time: list[float], before: list[float], after: list[float]) -> "Impacts":
-        """Build from three equal-length lists."""
-        return cls(np.array(time, dtype=float), np.array(before, dtype=float), np.array(after, dtype=float))
+
+
+class ImpactLog:
+    """What a solver fills while it runs; :meth:`freeze` gives the result's :class:`Impacts`."""
+
+    def __init__(self) -> None:
+        self._rows: list[tuple[float, float, float]] = []
+
+    def add(self, time: float, theta_dot_before: float, theta_dot_after: float) -> None:
+        """Log one impact: its time (s) and the angular velocities before and after (rad/s)."""
+        self._rows.append((float(time), float(theta_dot_before), float(theta_dot_after)))
+
+    def __len__(self) -> int:
+        return len(self._rows)
+
+    def freeze(self) -> Impacts:
+        """The logged impacts as an immutable :class:`Impacts`."""
+        cols = np.array(self._rows, dtype=float).reshape(-1, 3)
+        return Impacts(cols[:, 0], cols[:, 1], cols[:, 2])
 
 
 @dataclass(frozen=True)

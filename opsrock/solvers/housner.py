@@ -36,7 +36,7 @@ from scipy.optimize import brentq, minimize_scalar
 from opsrock._checks import bool_fields, int_at_least, one_of, positive_finite
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
-from opsrock.result import Impacts, RockingResult, failed_result
+from opsrock.result import ImpactLog, RockingResult, failed_result
 
 #: Explicit Runge-Kutta methods of :func:`scipy.integrate.solve_ivp` accepted here. The
 #: rigid-body equation is not stiff (its only rate is ``p``), so explicit high-order methods
@@ -288,8 +288,7 @@ def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = N
     theta_max = abs(s.theta0)
     rocked = s.theta0 != 0.0 or s.theta_dot0 != 0.0
     n_steps = 0
-    n_impacts = 0
-    impact_log: tuple[list[float], list[float], list[float]] = ([], [], [])
+    impacts = ImpactLog()
     overturned = False
 
     def out(t: np.ndarray, th: np.ndarray, td: np.ndarray) -> None:
@@ -384,14 +383,11 @@ def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = N
             y = y_turn.copy()
             continue
         # impact: theta = 0, theta' -> e theta', pivot switches corner
-        n_impacts += 1
-        if n_impacts > s.max_impacts:
+        if len(impacts) + 1 > s.max_impacts:
             return fail(f"more than max_impacts = {s.max_impacts} impacts by t = {t:.6g} s")
         v_before = float(sol.y_events[0][-1][1])
         v = e * v_before
-        impact_log[0].append(t)
-        impact_log[1].append(v_before)
-        impact_log[2].append(v)
+        impacts.add(t, v_before, v)
         out(np.array(t), 0.0, v)
         if abs(v) < v_rest:
             seated = True
@@ -413,8 +409,8 @@ def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = N
         overturned=overturned,
         rocked=rocked,
         n_steps=n_steps,
-        n_impacts=n_impacts,
-        impacts=Impacts.from_lists(*impact_log),
+        n_impacts=len(impacts),
+        impacts=impacts.freeze(),
         wall_time_s=_time.perf_counter() - t_wall,
     )
 

@@ -52,7 +52,7 @@ from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.limits import check
 from opsrock.excitation import Excitation, OneSinePulse, Record
 from opsrock.model import SDOFModel, can_uplift
-from opsrock.result import Impacts, RockingResult, failed_result, seated_result
+from opsrock.result import ImpactLog, RockingResult, failed_result, seated_result
 
 SOLVER_NAME = "opensees"
 
@@ -665,8 +665,7 @@ def _integrate(
     c_now = 0.0
     t = 0.0
     n_steps = 0
-    n_impacts = 0
-    impact_log: tuple[list[float], list[float], list[float]] = ([], [], [])
+    impacts = ImpactLog()
     entry: tuple[float, float, bool] | None = None  # (time, velocity, side) of the last band entry
     n_alt = 0
     theta_max = abs(th)
@@ -804,10 +803,7 @@ def _integrate(
         elif in_band:
             in_band = False
             if entry is not None and (th > 0.0) != entry[2]:  # left on the other side: an impact
-                impact_log[0].append(entry[0])
-                impact_log[1].append(entry[1])
-                impact_log[2].append(thd)
-                n_impacts += 1
+                impacts.add(entry[0], entry[1], thd)
             entry = None
             if c_now != 0.0:
                 c_now = 0.0
@@ -887,8 +883,8 @@ def _integrate(
         wall_time_s=_time.perf_counter() - t_wall,
         spring_moment=spring,
         damper_force=damper,
-        n_impacts=n_impacts,
-        impacts=Impacts.from_lists(*impact_log),
+        n_impacts=len(impacts),
+        impacts=impacts.freeze(),
     )
 
 

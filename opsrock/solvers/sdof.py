@@ -40,7 +40,7 @@ from opsrock._checks import bool_fields, int_at_least, one_of
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel, can_uplift
-from opsrock.result import Impacts, RockingResult, failed_result, seated_result
+from opsrock.result import ImpactLog, RockingResult, failed_result, seated_result
 from opsrock.solvers.housner import (
     METHODS,
     TAILS,
@@ -235,8 +235,7 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
     tds: list[np.ndarray] = []
     cds: list[np.ndarray] = []
     n_steps = 0
-    n_impacts = 0
-    impact_log: tuple[list[float], list[float], list[float]] = ([], [], [])
+    impacts = ImpactLog()
     entry: tuple[float, float, float] | None = None  # (time, velocity, side) of the last band entry
     n_segments = 0
     overturned = False
@@ -402,11 +401,8 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
             entry = (t, float(y[1]), math.copysign(1.0, y[0]))
         elif in_band[region] and not in_band[new] and entry is not None:
             if math.copysign(1.0, y[0]) != entry[2]:  # left on the other side: an impact
-                impact_log[0].append(entry[0])
-                impact_log[1].append(entry[1])
-                impact_log[2].append(float(y[1]))
-                n_impacts += 1
-                if n_impacts > s.max_impacts:
+                impacts.add(entry[0], entry[1], y[1])
+                if len(impacts) > s.max_impacts:
                     return fail(f"more than max_impacts = {s.max_impacts} impacts by t = {t:.6g} s")
             entry = None
         region = new
@@ -429,8 +425,8 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         overturned=overturned,
         rocked=rocked,
         n_steps=n_steps,
-        n_impacts=n_impacts,
-        impacts=Impacts.from_lists(*impact_log),
+        n_impacts=len(impacts),
+        impacts=impacts.freeze(),
         wall_time_s=_time.perf_counter() - t_wall,
         spring_moment=spring,
         damper_force=damper,

@@ -48,6 +48,15 @@ LIMITS: dict[str, Limit] = {
     "duration": Limit(1e-6, 1e5, "s", "pulse and record durations from 1 µs to about 28 h"),
     "dt": Limit(1e-7, 1.0, "s", "time steps: below 1e-7 s the OpenSees model's smallest step dt_min cannot "
                 "fit, above 1 s no pulse or record is resolved"),
+    "scale": Limit(1e-2, 1e2, "-",
+                   "record scale factors: beyond x100 (or below x0.01) a record no longer stands for "
+                   "a motion of its kind; FEMA P695 and IDA practice stay well inside"),
+    "record_dt_p": Limit(0.0, 0.2, "-",
+                         "record sample interval times the block's p: the block's motion evolves on the "
+                         "time scale 1/p, and the piecewise-linear record must sample it at least five "
+                         "times per 1/p, or steps bound to the samples jump over impacts"),
+    "period": Limit(1e-2, 10.0, "s", "first periods of buildings, from very stiff (0.01 s) to very flexible (10 s)"),
+    "damping": Limit(0.0, 0.5, "-", "viscous damping ratio of a building's modes; above 0.5 no building is linear"),
 }
 
 

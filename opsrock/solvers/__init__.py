@@ -17,7 +17,7 @@ from typing import Any
 
 from opsrock._checks import one_of
 from opsrock.block import Block
-from opsrock.excitation import Excitation
+from opsrock.excitations import Excitation
 from opsrock.result import RockingResult
 
 #: Solver names accepted by :func:`simulate` and the command line.
@@ -38,7 +38,7 @@ def simulate(block: Block, excitation: Excitation, solver: str = "opensees", **s
     block : Block
         The block.
     excitation : Excitation
-        A :class:`~opsrock.excitation.OneSinePulse`, :class:`~opsrock.excitation.Record`, or
+        A :class:`~opsrock.excitations.OneSinePulse`, :class:`~opsrock.excitations.Record`, or
         anything with ``duration``, ``pfa``, ``acceleration(t)`` and ``breakpoints()``.
     solver : str
         One of :data:`SOLVERS`.

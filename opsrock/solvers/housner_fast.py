@@ -57,53 +57,20 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass, replace
 from typing import Any, Sequence
 
-import numba
 import numpy as np
 
 from opsrock._checks import bool_fields, int_at_least, positive_finite
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse, Record
+from opsrock.excitations.records import check_sampling
 from opsrock.result import RockingResult, failed_result
+from opsrock.solvers._housner_fast_kernel import (  # noqa: F401  (status codes are public)
+    STATUS_EVENT_FAILED, STATUS_MAX_IMPACTS, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK,
+    STATUS_REASONS, _solve_case, _solve_chunk)
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "housner_fast"
-
-# --- status codes of the compiled kernel (one per case in :class:`GridResult`) ---------------
-#: Finished: verdict (no uplift, safe or overturned) is valid.
-STATUS_OK = 0
-#: More impacts than ``max_impacts`` without coming to rest: no verdict.
-STATUS_MAX_IMPACTS = 1
-#: A non-finite state appeared: no verdict.
-STATUS_NONFINITE = 2
-#: More integrator steps than ``max_steps``: no verdict.
-STATUS_MAX_STEPS = 3
-#: Event location (impact or peak) did not converge: no verdict.
-STATUS_EVENT_FAILED = 4
-
-#: Human-readable reason for every failure code.
-STATUS_REASONS: dict[int, str] = {
-    STATUS_OK: "",
-    STATUS_MAX_IMPACTS: "max_impacts reached without the block coming to rest",
-    STATUS_NONFINITE: "non-finite rotation or angular velocity",
-    STATUS_MAX_STEPS: "max_steps reached before the end of the pulse",
-    STATUS_EVENT_FAILED: "impact/peak location did not converge",
-}
-
-#: Iterations allowed to the safeguarded Newton event location (it converges in 2-4; 60
-#: bisection halvings alone would shrink any bracket below double precision).
-_EVENT_MAX_ITER = 60
-
-#: Relative margin on Eq. 4: a PFA within 1e-12 of ``g tan(alpha)`` counts as *at* the
-#: threshold, which does not uplift (Eq. 4 needs strict exceedance). Without it, round-off
-#: in ``PFA = ratio * g * tan(alpha)`` (``b/h`` against ``tan(atan2(b, h))``, 1 ulp) could
-#: turn the spectrum's ``pfa_ratio = 1`` row into a rocking of 1e-24 rad.
-_UPLIFT_RTOL = 1e-12
-
-#: Shortest post-impact trial step (in units of 1/p) before an excursion is treated as
-#: negligible: far below any time scale of the problem (a 1e-14 fraction of 1/p).
-_MIN_STEP = 1e-14
-
 
 @dataclass(frozen=True)
 class HousnerFastSettings:
@@ -153,291 +120,6 @@ class HousnerFastSettings:
             raise ValueError(f"rest_velocity must be <= 1e-3 (units of p), got {self.rest_velocity!r}")
         int_at_least("max_impacts", self.max_impacts, 1)
         int_at_least("max_steps", self.max_steps, 1)
-
-
-# =============================================================================================
-# Compiled kernel
-# =============================================================================================
-
-
-@numba.njit(cache=True)
-def _accel(theta, tau, side, alpha, k, nu, tau_end):
-    """d²theta/dtau² on pivot ``side`` (+1/-1); ``k = PFA/g``; pulse ``k sin(nu tau)`` to ``tau_end``."""
-    ag = k * math.sin(nu * tau) if tau <= tau_end else 0.0
-    phi = side * alpha - theta
-    return -(math.sin(phi) + ag * math.cos(phi))
-
-
-@numba.njit(cache=True)
-def _rk4(theta, omega, tau, h, side, alpha, k, nu, tau_end):
-    """One classical RK4 step of size ``h`` (the right side does not depend on omega)."""
-    a1 = _accel(theta, tau, side, alpha, k, nu, tau_end)
-    th2 = theta + 0.5 * h * omega
-    w2 = omega + 0.5 * h * a1
-    a2 = _accel(th2, tau + 0.5 * h, side, alpha, k, nu, tau_end)
-    th3 = theta + 0.5 * h * w2
-    w3 = omega + 0.5 * h * a2
-    a3 = _accel(th3, tau + 0.5 * h, side, alpha, k, nu, tau_end)
-    th4 = theta + h * w3
-    w4 = omega + h * a3
-    a4 = _accel(th4, tau + h, side, alpha, k, nu, tau_end)
-    theta_new = theta + h / 6.0 * (omega + 2.0 * w2 + 2.0 * w3 + w4)
-    omega_new = omega + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
-    return theta_new, omega_new
-
-
-@numba.njit(cache=True)
-def _locate(which, theta, omega, tau, h, side, alpha, k, nu, tau_end):
-    """Step length ``d`` in (0, h] at which the RK4 map's ``theta`` (which=0) or ``omega``
-    (which=1) vanishes, given a sign change over ``[0, h]``. Safeguarded Newton (bisection
-    fallback) on the RK4 map, derivative from the right side. Returns (d, ok)."""
-    lo = 0.0
-    hi = h
-    f_lo = theta if which == 0 else omega
-    th_h, w_h = _rk4(theta, omega, tau, h, side, alpha, k, nu, tau_end)
-    f_hi = th_h if which == 0 else w_h
-    if f_hi == 0.0:
-        return h, True
-    # linear first guess from the end values
-    d = lo + (hi - lo) * f_lo / (f_lo - f_hi)
-    for _ in range(_EVENT_MAX_ITER):
-        if not (lo < d < hi):
-            d = 0.5 * (lo + hi)
-        th_d, w_d = _rk4(theta, omega, tau, d, side, alpha, k, nu, tau_end)
-        f = th_d if which == 0 else w_d
-        if f == 0.0:
-            return d, True
-        if (f > 0.0) == (f_lo > 0.0):
-            lo = d
-        else:
-            hi = d
-        df = w_d if which == 0 else _accel(th_d, tau + d, side, alpha, k, nu, tau_end)
-        step = f / df if df != 0.0 else 0.0
-        d_new = d - step
-        if abs(step) <= 4e-16 * max(1.0, tau + d) or hi - lo <= 4e-16 * max(1.0, tau + d):
-            if lo < d_new < hi:
-                return d_new, True
-            return d, True
-        d = d_new
-    return d, False
-
-
-@numba.njit(cache=True)
-def _next_uplift(tau, tan_alpha, k, nu, tau_end):
-    """First time >= tau at which |a|/g > tan(alpha) for the sine pulse, and the sign of a
-    there; (-1.0, 0.0) if none before the end of the pulse."""
-    if k <= tan_alpha * (1.0 + _UPLIFT_RTOL):
-        return -1.0, 0.0
-    beta = math.asin(tan_alpha / k)
-    phi = nu * tau
-    # exceedance windows in phase: (beta, pi - beta) with a > 0, (pi + beta, 2 pi - beta) a < 0
-    if beta < phi < math.pi - beta:
-        return tau, 1.0
-    if math.pi + beta < phi < 2.0 * math.pi - beta:
-        return tau, -1.0
-    if phi <= beta:
-        return beta / nu, 1.0
-    if phi <= math.pi + beta:
-        return (math.pi + beta) / nu, -1.0
-    return -1.0, 0.0
-
-
-@numba.njit(cache=True)
-def _solve_case(alpha, e, k, nu, max_step, steps_per_pulse, rest_velocity, max_impacts,
-                max_steps, theta0, omega0, hist_tau, hist_theta, hist_omega):
-    """Solve one case in dimensionless time. ``k = PFA/g``, ``nu = omega_p/p``; initial
-    rotation ``theta0`` (rad) and angular velocity ``omega0`` (units of p), zero for a block
-    at rest.
-
-    Returns (theta_max, overturned, rocked, status, n_impacts, n_steps, n_hist).
-    History arrays of length 0 disable recording; otherwise states are recorded at every
-    accepted step, uplift and impact until the arrays are full.
-    """
-    tan_alpha = math.tan(alpha)
-    tau_end = 2.0 * math.pi / nu
-    h_nom = min(max_step, tau_end / steps_per_pulse)
-    n_cap = hist_tau.shape[0]
-    n_hist = 0
-    if n_cap > 0:
-        hist_tau[0] = 0.0
-        hist_theta[0] = theta0
-        hist_omega[0] = omega0
-        n_hist = 1
-
-    tau = 0.0
-    theta = theta0
-    omega = omega0
-    side = 0.0  # 0: seated; +1/-1: rocking on that pivot
-    theta_max = abs(theta0)
-    rocked = False
-    n_imp = 0
-    n_steps = 0
-    fresh = False  # True right after an impact or uplift (theta == 0 exactly)
-    if theta0 != 0.0:
-        side = 1.0 if theta0 > 0.0 else -1.0
-        rocked = True
-    elif omega0 != 0.0:
-        side = 1.0 if omega0 > 0.0 else -1.0
-        rocked = True
-        fresh = True
-
-    while True:
-        if side == 0.0:
-            t_up, sgn_a = _next_uplift(tau, tan_alpha, k, nu, tau_end)
-            if t_up < 0.0:
-                return theta_max, False, rocked, STATUS_OK, n_imp, n_steps, n_hist
-            tau = t_up
-            side = -sgn_a
-            theta = 0.0
-            omega = 0.0
-            rocked = True
-            fresh = True
-            if n_hist < n_cap:
-                hist_tau[n_hist] = tau
-                hist_theta[n_hist] = 0.0
-                hist_omega[n_hist] = 0.0
-                n_hist += 1
-        if tau >= tau_end:
-            break
-        if n_steps >= max_steps:
-            return theta_max, False, rocked, STATUS_MAX_STEPS, n_imp, n_steps, n_hist
-
-        h = min(h_nom, tau_end - tau)
-        last = h == tau_end - tau
-        if fresh:
-            acc0 = _accel(0.0, tau, side, alpha, k, nu, tau_end)
-            if side * acc0 < 0.0 and omega != 0.0:
-                # restoring: the excursion peaks after about |omega| / |acc0|
-                h_peak = abs(omega) / abs(acc0)
-                if h_peak < h:
-                    h = h_peak
-                    last = False
-        th1, w1 = _rk4(theta, omega, tau, h, side, alpha, k, nu, tau_end)
-        n_steps += 1
-        if fresh:
-            # the whole step must stay on the new side; halve until it does
-            while side * th1 <= 0.0:
-                h *= 0.5
-                last = False
-                if h < _MIN_STEP:
-                    break
-                th1, w1 = _rk4(theta, omega, tau, h, side, alpha, k, nu, tau_end)
-                n_steps += 1
-            if side * th1 <= 0.0:
-                # an excursion shorter than 1e-14/p: negligible, seat the block
-                side = 0.0
-                theta = 0.0
-                omega = 0.0
-                fresh = False
-                continue
-        if not (math.isfinite(th1) and math.isfinite(w1)):
-            return theta_max, False, rocked, STATUS_NONFINITE, n_imp, n_steps, n_hist
-
-        if side * th1 < 0.0:
-            # impact inside the step
-            d, ok = _locate(0, theta, omega, tau, h, side, alpha, k, nu, tau_end)
-            if not ok:
-                return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp, n_steps, n_hist
-            th_d, w_d = _rk4(theta, omega, tau, d, side, alpha, k, nu, tau_end)
-            n_steps += 1
-            # a peak may lie between the start of the step and the impact
-            if omega * w_d < 0.0:
-                dp, ok = _locate(1, theta, omega, tau, d, side, alpha, k, nu, tau_end)
-                if not ok:
-                    return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp, n_steps, n_hist
-                th_p, _ = _rk4(theta, omega, tau, dp, side, alpha, k, nu, tau_end)
-                theta_max = max(theta_max, abs(th_p))
-            tau = tau + d if d < h else (tau_end if last else tau + h)
-            n_imp += 1
-            if n_imp > max_impacts:
-                return theta_max, False, rocked, STATUS_MAX_IMPACTS, n_imp, n_steps, n_hist
-            omega = e * w_d
-            theta = 0.0
-            side = -side
-            fresh = True
-            if n_hist + 1 < n_cap:  # the state just before and just after the impact
-                hist_tau[n_hist] = tau
-                hist_theta[n_hist] = 0.0
-                hist_omega[n_hist] = w_d
-                hist_tau[n_hist + 1] = tau
-                hist_theta[n_hist + 1] = 0.0
-                hist_omega[n_hist + 1] = omega
-                n_hist += 2
-            # come to rest? tiny velocity into a side whose acceleration points back to 0
-            if abs(omega) < rest_velocity:
-                acc_new = _accel(0.0, tau, side, alpha, k, nu, tau_end)
-                if side * acc_new <= 0.0:
-                    side = 0.0
-                    omega = 0.0
-                    fresh = False
-            continue
-
-        # ordinary step: a peak inside it?
-        if omega * w1 < 0.0:
-            dp, ok = _locate(1, theta, omega, tau, h, side, alpha, k, nu, tau_end)
-            if not ok:
-                return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp, n_steps, n_hist
-            th_p, _ = _rk4(theta, omega, tau, dp, side, alpha, k, nu, tau_end)
-            theta_max = max(theta_max, abs(th_p))
-        tau = tau_end if last else tau + h
-        theta = th1
-        omega = w1
-        fresh = False
-        theta_max = max(theta_max, abs(theta))
-        if n_hist < n_cap:
-            hist_tau[n_hist] = tau
-            hist_theta[n_hist] = theta
-            hist_omega[n_hist] = omega
-            n_hist += 1
-        if abs(theta) >= OVERTURNING_ANGLE:
-            return theta_max, True, rocked, STATUS_OK, n_imp, n_steps, n_hist
-
-    # ---- pulse over, block rocking: exact free-rocking verdict from the energy -------------
-    if side == 0.0:
-        return theta_max, False, rocked, STATUS_OK, n_imp, n_steps, n_hist
-    st = side * theta  # |theta| on the current pivot (>= 0)
-    energy = 0.5 * omega * omega + math.cos(alpha - st) - math.cos(alpha)
-    barrier = 1.0 - math.cos(alpha)
-    outward = side * omega > 0.0
-    for _ in range(3):
-        if st > alpha:
-            if outward or energy <= barrier:
-                return max(theta_max, OVERTURNING_ANGLE), True, rocked, STATUS_OK, n_imp, n_steps, n_hist
-            # crosses the hump inwards, falls to theta = 0, impact
-            energy *= e * e
-            n_imp += 1
-            st = 0.0
-            outward = True
-        elif not outward:
-            energy *= e * e
-            n_imp += 1
-            st = 0.0
-            outward = True
-        else:
-            if energy > barrier:
-                return max(theta_max, OVERTURNING_ANGLE), True, rocked, STATUS_OK, n_imp, n_steps, n_hist
-            peak = alpha - math.acos(min(1.0, energy + math.cos(alpha)))
-            return max(theta_max, peak), False, rocked, STATUS_OK, n_imp, n_steps, n_hist
-    return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp, n_steps, n_hist
-
-
-@numba.njit(cache=True, nogil=True)
-def _solve_chunk(alpha, e, k, nu, max_step, steps_per_pulse, rest_velocity, max_impacts, max_steps,
-                 start, stop, theta_max, overturned, rocked, status, n_impacts, n_steps):
-    """Solve cases ``start:stop`` one after the other (releases the GIL, so Python threads
-    can run chunks in parallel; each case is independent, so results do not depend on the
-    chunking or the number of threads)."""
-    empty = np.zeros(0)
-    for i in range(start, stop):
-        tm, ov, rk, st, ni, ns, _ = _solve_case(
-            alpha[i], e[i], k[i], nu[i], max_step, steps_per_pulse, rest_velocity,
-            max_impacts, max_steps, 0.0, 0.0, empty, empty, empty)
-        theta_max[i] = tm
-        overturned[i] = ov
-        rocked[i] = rk
-        status[i] = st
-        n_impacts[i] = ni
-        n_steps[i] = ns
 
 
 # =============================================================================================
@@ -645,20 +327,30 @@ def solve_pulses(
 _HISTORY_EXTRA = 20_000
 
 
+_EMPTY = np.zeros(0)
+
+
 def _run_one(block: Block, k: float, nu: float, theta0: float, omega0: float,
-             settings: HousnerFastSettings) -> RockingResult:
-    """Solve one case with history; ``k = PFA/g``, ``nu = omega_p/p`` (dimensionless)."""
+             settings: HousnerFastSettings, record: Record | None = None) -> RockingResult:
+    """Solve one case with history; ``k = PFA/g``, ``nu = omega_p/p`` (dimensionless) for the sine
+    pulse, or the samples of ``record`` when it is given."""
     settings_dict = {"solver": SOLVER_NAME, **asdict(settings)}
     alpha = block.alpha
     p = block.p
-    tau_end = 2.0 * math.pi / nu
-    h_nom = min(settings.max_step, tau_end / settings.steps_per_pulse)
+    if record is None:
+        kvals, dtau = _EMPTY, 1.0
+        tau_end = 2.0 * math.pi / nu
+        h_nom = min(settings.max_step, tau_end / settings.steps_per_pulse)
+    else:
+        kvals, dtau = record.values / G, record.dt * p
+        tau_end = record.duration * p
+        h_nom = min(settings.max_step, dtau)
     cap = int(math.ceil(tau_end / h_nom)) + _HISTORY_EXTRA
     hist = [np.zeros(cap) for _ in range(3)]
     t0 = _time.perf_counter()
     try:
         tm, ov, rk, st, ni, ns, nh = _solve_case(
-            alpha, block.e, k, nu, float(settings.max_step), int(settings.steps_per_pulse),
+            alpha, block.e, k, nu, kvals, dtau, h_nom,
             float(settings.rest_velocity), int(settings.max_impacts), int(settings.max_steps),
             float(theta0), float(omega0), *hist)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
@@ -688,17 +380,19 @@ def _run_one(block: Block, k: float, nu: float, theta0: float, omega0: float,
     )
 
 
-def solve(block: Block, excitation: OneSinePulse, *, settings: HousnerFastSettings | None = None,
+def solve(block: Block, excitation: OneSinePulse | Record, *, settings: HousnerFastSettings | None = None,
           **overrides: Any) -> RockingResult:
-    """Rocking response of one block, initially at rest, to one sine pulse (exact rigid-body model).
+    """Rocking response of one block, initially at rest, to a one-sine pulse or a record (exact
+    rigid-body model).
 
     Parameters
     ----------
     block : Block
         The block.
-    excitation : OneSinePulse
-        The one-sine floor pulse (other excitations are not supported by this solver; use
-        ``solver="housner"`` for records).
+    excitation : OneSinePulse or Record
+        The floor motion. A record is integrated segment by segment (linear acceleration between
+        samples, every step ending on a sample), with the step also bounded by ``max_step``; it
+        must be sampled finely enough for the block (:func:`opsrock.excitations.records.check_sampling`).
     settings : HousnerFastSettings, optional
         Numerical settings; keyword ``overrides`` replace individual fields.
 
@@ -714,10 +408,13 @@ def solve(block: Block, excitation: OneSinePulse, *, settings: HousnerFastSettin
     settings = _as_settings(settings, overrides)
     if not isinstance(block, Block):
         raise TypeError(f"block must be a Block, got {block!r}")
+    if isinstance(excitation, Record):
+        check_sampling(excitation, block)
+        return _run_one(block, 0.0, 1.0, 0.0, 0.0, settings, record=excitation)
     if not isinstance(excitation, OneSinePulse):
         raise TypeError(
-            f"housner_fast solves one-sine pulses only (OneSinePulse), got {type(excitation).__name__}; "
-            "use solver='housner' for records")
+            f"housner_fast solves one-sine pulses and records (OneSinePulse, Record), got "
+            f"{type(excitation).__name__}; use solver='housner' for other excitations")
     return _run_one(block, excitation.pfa / G, excitation.omega_p / block.p, 0.0, 0.0, settings)
 
 

@@ -1,8 +1,8 @@
 """The paper's equivalent SDOF model (Eq. 5-8) built literally in OpenSeesPy.
 
-This is the only module in the project that touches OpenSees state. Every public function
-calls ``ops.wipe()`` before building a model and again when it finishes (``try/finally``),
-so no state leaks from one run into the next.
+OpenSees state is owned by :mod:`opsrock.opensees_session`: every model here is built inside its
+``fresh_model()`` context, which wipes OpenSees before and after (also on errors), so no state
+leaks from one run into the next.
 
 Model (docs/modelling.md sections 2 and 4)
 ----------------------------------
@@ -20,7 +20,7 @@ a fixed node and the free one:
 
 The floor acceleration enters as the nodal moment ``-Lambda a(t)`` (``Lambda`` =
 :meth:`~opsrock.model.SDOFModel.lever_arm`): a ``Trig`` time series for a one-sine pulse (exact
-at every step, whatever the step), a ``Path`` series for a sampled :class:`~opsrock.excitation.Record`.
+at every step, whatever the step), a ``Path`` series for a sampled :class:`~opsrock.excitations.Record`.
 
 The transient loop stops when ``|theta| >= pi/2`` (overturned: OpenSees never fails by itself,
 theta just grows), when the block can no longer exceed its peak after the excitation ended
@@ -33,25 +33,24 @@ excitation lever.
 
 from __future__ import annotations
 
-import atexit
 import dataclasses
 import math
-import os
-import sys
-import tempfile
 import time as _time
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
 
 import numpy as np
-import openseespy.opensees as ops
 
 from opsrock._checks import bool_fields, in_open_interval, int_at_least, one_of, positive_finite
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.limits import check
-from opsrock.excitation import Excitation, OneSinePulse, Record
+from opsrock.excitations import Excitation, OneSinePulse, Record
 from opsrock.model import SDOFModel, can_uplift
+from opsrock.opensees_session import CONSOLE as _CONSOLE
+from opsrock.opensees_session import count_messages as _count_messages
+from opsrock.opensees_session import console_to_log, fresh_model, opensees_log_path, ops
+from opsrock.opensees_session import log_size as _log_size
 from opsrock.result import ImpactLog, RockingResult, failed_result, seated_result
 
 SOLVER_NAME = "opensees"
@@ -382,67 +381,6 @@ def _set_algorithm(settings: OpenSeesSettings, algorithm: str) -> None:
         ops.algorithm(algorithm)
 
 
-# --- OpenSees' console output: to a log file, never to the user's terminal -------------------
-#: Per process: the log file OpenSees writes to (``logFile -noEcho``) and the failed steps
-#: retried by :func:`_recover` in the current run.
-_CONSOLE: dict[str, Any] = {"pid": None, "path": None, "retries": 0}
-
-
-def opensees_log_path() -> str:
-    """Path of this process's OpenSees log file (its warnings and progress lines go there)."""
-    return os.path.join(tempfile.gettempdir(), f"opsrock-opensees-{os.getpid()}.log")
-
-
-def _console_to_log() -> str:
-    """Send OpenSees' output to :func:`opensees_log_path` (once per process); return the path.
-
-    OpenSees also prints a ``Process 0 Terminating`` line on stderr when the interpreter exits,
-    whatever its log setting; an exit handler silences stderr just before that (nothing of
-    Python's runs after it) and removes the log if it stayed empty.
-    """
-    pid = os.getpid()
-    if _CONSOLE["pid"] != pid:
-        path = opensees_log_path()
-        ops.logFile(path, "-noEcho")
-        _CONSOLE.update(pid=pid, path=path)
-        atexit.register(_stderr_to_log_at_exit, path, pid)
-    return _CONSOLE["path"]
-
-
-def _stderr_to_log_at_exit(path: str, pid: int) -> None:
-    """At exit: silence stderr for OpenSees' ``Process 0 Terminating`` line, and remove the log
-    file if OpenSees never wrote to it (one per process would otherwise pile up)."""
-    if os.getpid() != pid:  # a forked child inherited the handler: not its log
-        return
-    try:
-        sys.stderr.flush()
-        fd = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(fd, 2)
-        os.close(fd)
-        if os.path.getsize(path) == 0:
-            os.unlink(path)
-    except OSError:
-        pass
-
-
-def _log_size(path: str) -> int:
-    try:
-        return os.path.getsize(path)
-    except OSError:
-        return 0
-
-
-def _count_messages(path: str, start: int) -> int:
-    """Non-empty lines OpenSees wrote to its log after byte ``start``."""
-    try:
-        with open(path, "rb") as fh:
-            fh.seek(start)
-            return sum(1 for line in fh.read().splitlines() if line.strip())
-    except OSError:
-        return 0
-
-
-_console_to_log()  # from import on: nothing OpenSees prints reaches the terminal
 
 
 class _Failure(Exception):
@@ -589,7 +527,7 @@ def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: st
             and not can_uplift(block, s.model, excitation.pfa)):
         return seated_result(SOLVER_NAME, settings_dict, block.alpha, excitation.duration,
                              _time.perf_counter() - t_wall)
-    log = _console_to_log()
+    log = console_to_log()
     start = _log_size(log)
     _CONSOLE["retries"] = 0
     result = _build_and_integrate(block, excitation, s, settings_dict, geometry, t_wall)
@@ -603,8 +541,7 @@ def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: st
 
 def _build_and_integrate(block: Block, excitation: Excitation, s: OpenSeesSettings,
                          settings_dict: dict[str, Any], geometry: str | None, t_wall: float) -> RockingResult:
-    ops.wipe()
-    try:
+    with fresh_model():
         if geometry is None:
             _build_sdof(block, excitation, s)
             node, dof = 2, 1
@@ -615,8 +552,6 @@ def _build_and_integrate(block: Block, excitation: Excitation, s: OpenSeesSettin
         _define_analysis(s, s.algorithm, "Plain" if geometry is None else "Transformation")
         _set_initial_state(block, excitation, s, node, dof)
         return _integrate(block, excitation, s, settings_dict, node, dof, t_wall)
-    finally:
-        ops.wipe()
 
 
 def _integrate(

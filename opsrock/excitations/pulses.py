@@ -1,4 +1,4 @@
-"""Floor-acceleration excitations: the one-sine pulse and arbitrary records.
+"""Analytic floor-acceleration pulses: the one-sine pulse of the paper.
 
 Sign convention (docs/modelling.md section 2): a positive floor acceleration tips the block towards
 negative ``theta``.
@@ -7,8 +7,8 @@ negative ``theta``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Protocol, runtime_checkable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -24,25 +24,6 @@ if TYPE_CHECKING:
 #: Table 3 medians fit; ``"peak"``: the true peak of the floor velocity from rest,
 #: ``2 PFA / omega_p``, reached at ``t = T_p / 2``.
 PFV_CONVENTIONS: tuple[str, ...] = ("amplitude", "peak")
-
-
-@runtime_checkable
-class Excitation(Protocol):
-    """What every solver needs from a floor motion."""
-
-    @property
-    def duration(self) -> float:
-        """Time after which the acceleration is zero (s)."""
-
-    @property
-    def pfa(self) -> float:
-        """Peak absolute floor acceleration (m/s²)."""
-
-    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
-        """Floor acceleration at times ``t`` (m/s²); zero before 0 and after ``duration``."""
-
-    def breakpoints(self) -> np.ndarray:
-        """Times where the acceleration is not smooth (s), for event-driven solvers."""
 
 
 @dataclass(frozen=True)
@@ -135,74 +116,3 @@ class OneSinePulse:
     def breakpoints(self) -> np.ndarray:
         """Start and end of the pulse (s): the acceleration's slope jumps there."""
         return np.array([0.0, self.T_p])
-
-
-@dataclass(frozen=True)
-class Record:
-    """A floor-acceleration history sampled at a constant time step.
-
-    Parameters
-    ----------
-    dt : float
-        Sampling interval (s), > 0.
-    values : array_like
-        Floor acceleration samples (m/s²), finite, at ``t = 0, dt, 2 dt, ...``. Linear
-        interpolation between samples; zero after the last one.
-    name : str, optional
-        Label of the record (file name, station, ...).
-    """
-
-    dt: float
-    values: np.ndarray = field(repr=False)
-    name: str = ""
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "dt", check("dt", self.dt))
-        arr = np.array(self.values, dtype=float, copy=True).ravel()
-        if arr.size < 2:
-            raise ValueError(f"values must hold at least 2 samples, got {arr.size}")
-        if not np.all(np.isfinite(arr)):
-            bad = int(np.flatnonzero(~np.isfinite(arr))[0])
-            raise ValueError(f"values must be finite; sample {bad} is {arr[bad]!r}")
-        arr.setflags(write=False)
-        object.__setattr__(self, "values", arr)
-
-    @classmethod
-    def from_file(cls, path: str, dt: float, *, scale: float = 1.0, name: str = "") -> "Record":
-        """Read a one-column (or whitespace/comma separated) acceleration file.
-
-        Parameters
-        ----------
-        path : str
-            Text file of acceleration samples, read row by row.
-        dt : float
-            Sampling interval (s).
-        scale : float, optional
-            Factor to SI units (m/s²), e.g. ``9.81`` for a file in g.
-        """
-        data = np.loadtxt(path, delimiter=None if not str(path).endswith(".csv") else ",", ndmin=1)
-        return cls(dt=dt, values=np.ravel(data) * float(scale), name=name or str(path))
-
-    @property
-    def time(self) -> np.ndarray:
-        """Sample times (s)."""
-        return np.arange(self.values.size) * self.dt
-
-    @property
-    def duration(self) -> float:
-        """Time of the last sample (s)."""
-        return (self.values.size - 1) * self.dt
-
-    @property
-    def pfa(self) -> float:
-        """Peak absolute floor acceleration (m/s²)."""
-        return float(np.max(np.abs(self.values)))
-
-    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
-        """Floor acceleration (m/s²) at times ``t`` (s), linearly interpolated; zero outside."""
-        t = np.asarray(t, dtype=float)
-        return np.interp(t, self.time, self.values, left=0.0, right=0.0)
-
-    def breakpoints(self) -> np.ndarray:
-        """Every sample time (s): the interpolated acceleration has a kink at each."""
-        return self.time

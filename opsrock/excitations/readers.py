@@ -1,0 +1,242 @@
+"""Record files: PEER NGA ``.AT2`` and plain text/CSV, read into SI :class:`Record` objects.
+
+Formats
+-------
+``.AT2`` (PEER NGA strong-motion database)
+    Four header lines: title, event/station/component, ``ACCELERATION TIME SERIES IN UNITS OF G``
+    (the units), and ``NPTS= n, DT= dt SEC`` (the older ``n dt NPTS, DT`` order is read too);
+    then the ``n`` samples, several per line. The sample count must match ``NPTS``.
+Text and CSV
+    One column of accelerations at a given ``dt``, or two columns ``time acceleration`` (time in
+    s, uniformly spaced: every step within 0.1 % of the first). Columns are separated by commas
+    (``.csv``) or white space (anything else). Lines starting with ``#`` are comments; one header
+    line of names (e.g. ``time,acc``) may come first and must have as many names as the data
+    has columns. The units of the acceleration are not in such files and must be declared.
+
+Every problem (missing file, empty file, wrong header, non-numeric or NaN value, ragged rows,
+non-uniform time step, count mismatch, missing units) raises :class:`RecordFileError` whose
+message is ``"<file>:<line>: <reason>"``.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+from opsrock.constants import G
+from opsrock.excitations.records import Record, RecordInfo
+
+#: Acceleration units accepted for record files, with their factor to m/s².
+UNITS: dict[str, float] = {"g": G, "m/s2": 1.0, "cm/s2": 0.01}
+
+#: Largest relative deviation of a time step from the first one in a two-column file: time
+#: columns printed with a few decimals stay far inside it, a record with a changed sampling
+#: rate or a gap far outside.
+DT_RTOL: float = 1e-3
+
+_NAME_SAFE = re.compile(r"[^A-Za-z0-9_.-]+")
+
+
+class RecordFileError(ValueError):
+    """A record file that cannot be read; the message names the file, the line and the reason."""
+
+    def __init__(self, path: str | Path, line: int | None, reason: str) -> None:
+        where = f"{path}:{line}" if line else f"{path}"
+        super().__init__(f"{where}: {reason}")
+
+
+def units_factor(units: str | None, *, where: str = "units") -> float:
+    """Factor from ``units`` (one of :data:`UNITS`) to m/s²; ``ValueError`` naming ``where``."""
+    if units not in UNITS:
+        raise ValueError(f"{where} must be one of {', '.join(UNITS)}; got {units!r}")
+    return UNITS[units]
+
+
+def safe_name(text: str) -> str:
+    """``text`` with every run of characters outside ``[A-Za-z0-9_.-]`` replaced by ``_``."""
+    return _NAME_SAFE.sub("_", text).strip("_") or "record"
+
+
+def read_record(path: str | Path, *, units: str | None = None, dt: float | None = None,
+                name: str = "") -> Record:
+    """Read a record file into a :class:`Record` in m/s².
+
+    Parameters
+    ----------
+    path : str or Path
+        ``.AT2`` file (any case) or a text/CSV file.
+    units : {"g", "m/s2", "cm/s2"}, optional
+        Units of a text/CSV file's accelerations (required there); for ``.AT2`` files the header
+        says the units, and a different ``units`` is refused.
+    dt : float, optional
+        Sampling interval (s) of a one-column text/CSV file; refused for two-column files and
+        ``.AT2`` files, whose own time step is used.
+    name : str, optional
+        Record name; default the file's stem (characters outside ``[A-Za-z0-9_.-]`` become ``_``).
+
+    Raises
+    ------
+    RecordFileError
+        Naming the file, the line and the reason.
+    """
+    path = Path(path)
+    lines = _read_lines(path)
+    name = name or safe_name(path.stem)
+    if path.suffix.lower() == ".at2":
+        return _read_at2(path, lines, units, dt, name)
+    return _read_text(path, lines, units, dt, name)
+
+
+def _read_lines(path: Path) -> list[str]:
+    try:
+        text = path.read_text(encoding="utf-8", errors="strict")
+    except FileNotFoundError:
+        raise RecordFileError(path, None, "no such file") from None
+    except IsADirectoryError:
+        raise RecordFileError(path, None, "is a folder, not a record file") from None
+    except PermissionError:
+        raise RecordFileError(path, None, "cannot be read: permission denied") from None
+    except UnicodeDecodeError as exc:
+        raise RecordFileError(path, None, f"not a text file ({exc.reason} at byte {exc.start})") from None
+    except OSError as exc:
+        raise RecordFileError(path, None, f"cannot be read: {exc.strerror or exc}") from None
+    lines = text.splitlines()
+    if not any(line.strip() for line in lines):
+        raise RecordFileError(path, None, "empty file: no samples")
+    return lines
+
+
+def _numbers(path: Path, lineno: int, tokens: list[str]) -> list[float]:
+    out = []
+    for tok in tokens:
+        try:
+            v = float(tok)
+        except ValueError:
+            raise RecordFileError(path, lineno, f"{tok!r} is not a number") from None
+        if not np.isfinite(v):
+            raise RecordFileError(path, lineno, f"{tok!r} is not a finite number")
+        out.append(v)
+    return out
+
+
+# --- PEER NGA .AT2 ------------------------------------------------------------------------------
+_AT2_NPTS = re.compile(r"NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*([0-9.eE+-]+)", re.IGNORECASE)
+_AT2_OLD = re.compile(r"^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS\s*,\s*DT", re.IGNORECASE)
+_AT2_UNITS = re.compile(r"UNITS\s+OF\s+(G|CM/S(?:\^?2|/S)|M/S(?:\^?2|/S))\b", re.IGNORECASE)
+
+
+def _at2_units(path: Path, line: str) -> str:
+    m = _AT2_UNITS.search(line)
+    if not m:
+        raise RecordFileError(path, 3, f"wrong header: expected 'ACCELERATION ... IN UNITS OF G' "
+                                       f"(the units), got {line.strip()[:60]!r}")
+    unit = m.group(1).upper()
+    return "g" if unit == "G" else ("cm/s2" if unit.startswith("CM") else "m/s2")
+
+
+def _read_at2(path: Path, lines: list[str], units: str | None, dt: float | None, name: str) -> Record:
+    if len(lines) < 5:
+        raise RecordFileError(path, len(lines), "wrong header: a PEER .AT2 file has 4 header lines and then samples")
+    file_units = _at2_units(path, lines[2])
+    if units is not None and units != file_units:
+        raise RecordFileError(path, 3, f"the header says units of {file_units}, but units = {units!r} was given")
+    if dt is not None:
+        raise RecordFileError(path, 4, f"dt = {dt!r} given, but an .AT2 file states its own DT")
+    m = _AT2_NPTS.search(lines[3]) or _AT2_OLD.search(lines[3])
+    if not m:
+        raise RecordFileError(path, 4, f"wrong header: expected 'NPTS= n, DT= dt SEC', got {lines[3].strip()[:60]!r}")
+    npts, step = int(m.group(1)), float(m.group(2))
+    if not (np.isfinite(step) and step > 0):
+        raise RecordFileError(path, 4, f"DT = {m.group(2)!r} must be positive")
+    values: list[float] = []
+    for lineno, line in enumerate(lines[4:], start=5):
+        values.extend(_numbers(path, lineno, line.split()))
+    if len(values) != npts:
+        raise RecordFileError(path, len(lines), f"the header says NPTS = {npts}, the file holds {len(values)} samples")
+    info = RecordInfo(source=str(path), event=lines[1].split(",")[0].strip(), units_in_file=file_units,
+                      component=lines[1].split(",")[-1].strip() if "," in lines[1] else "")
+    return _record(path, step, np.asarray(values) * UNITS[file_units], name, info)
+
+
+# --- text / CSV ---------------------------------------------------------------------------------
+def _data_rows(path: Path, lines: list[str]) -> tuple[list[tuple[int, list[str]]], list[str] | None]:
+    sep = "," if path.suffix.lower() == ".csv" else None
+    rows: list[tuple[int, list[str]]] = []
+    header = None
+    for lineno, raw in enumerate(lines, start=1):
+        line = raw.strip()
+        if not line or line.startswith("#"):
+            continue
+        tokens = [t.strip() for t in line.split(sep)] if sep else line.split()
+        if not rows and header is None and not _looks_numeric(tokens[0]):
+            header = tokens
+            header_line = lineno
+            continue
+        rows.append((lineno, tokens))
+    if not rows:
+        raise RecordFileError(path, None, "empty file: no samples (only comments or a header)")
+    ncol = len(rows[0][1])
+    if header is not None and len(header) != ncol:
+        raise RecordFileError(path, header_line, f"wrong header: {len(header)} names {header} for {ncol} data column(s)")
+    return rows, header
+
+
+def _looks_numeric(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return token.lower() in ("nan", "inf", "-inf", "+inf")
+    return True
+
+
+def _read_text(path: Path, lines: list[str], units: str | None, dt: float | None, name: str) -> Record:
+    if units is None:
+        raise RecordFileError(path, None, "units missing: a text/CSV record needs units = g, m/s2 or cm/s2")
+    factor = units_factor(units)
+    rows, _ = _data_rows(path, lines)
+    ncol = len(rows[0][1])
+    if ncol not in (1, 2):
+        raise RecordFileError(path, rows[0][0], f"{ncol} columns: expected 1 (acceleration) or 2 (time, acceleration)")
+    data = np.empty((len(rows), ncol))
+    for i, (lineno, tokens) in enumerate(rows):
+        if len(tokens) != ncol:
+            raise RecordFileError(path, lineno, f"{len(tokens)} column(s) where the first data row has {ncol}")
+        data[i] = _numbers(path, lineno, tokens)
+    if ncol == 1:
+        if dt is None:
+            raise RecordFileError(path, None, "one-column record: give its time step dt (s)")
+        acc = data[:, 0]
+    else:
+        if dt is not None:
+            raise RecordFileError(path, None, f"dt = {dt!r} given, but the file has a time column")
+        dt = _uniform_step(path, rows, data[:, 0])
+        acc = data[:, 1]
+    info = RecordInfo(source=str(path), units_in_file=units)
+    return _record(path, dt, acc * factor, name, info)
+
+
+def _uniform_step(path: Path, rows, times: np.ndarray) -> float:
+    if times.size < 2:
+        raise RecordFileError(path, rows[0][0], "a two-column record needs at least 2 samples")
+    steps = np.diff(times)
+    step = float(steps[0])
+    if step <= 0:
+        raise RecordFileError(path, rows[1][0], f"time does not increase ({times[0]!r} then {times[1]!r})")
+    bad = np.flatnonzero(np.abs(steps - step) > DT_RTOL * step)
+    if bad.size:
+        i = int(bad[0])
+        raise RecordFileError(path, rows[i + 1][0], f"non-uniform time step: {steps[i]!r} s after {step!r} s "
+                                                    f"(resample the record to a constant step)")
+    return (float(times[-1]) - float(times[0])) / (times.size - 1)
+
+
+def _record(path: Path, dt: float, values: np.ndarray, name: str, info: RecordInfo) -> Record:
+    try:
+        return Record(dt=dt, values=values, name=name, info=info)
+    except (TypeError, ValueError) as exc:
+        raise RecordFileError(path, None, str(exc)) from None
+
+
+__all__ = ["DT_RTOL", "RecordFileError", "UNITS", "read_record", "safe_name", "units_factor"]

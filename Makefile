@@ -41,7 +41,7 @@ blas:
 $(STAMP): pyproject.toml $(LOCK)
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet -c $(LOCK) pip
-	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test,dask]'
+	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test,dask,records]'
 	@touch $(STAMP)
 
 # Refresh the lock file: the newest versions within pyproject.toml's ranges, in a throw-away venv.
@@ -50,7 +50,7 @@ lock:
 	rm -rf .lock-venv
 	$(PYTHON) -m venv .lock-venv
 	.lock-venv/bin/python -m pip install --quiet --upgrade pip
-	.lock-venv/bin/python -m pip install --quiet '.[test,dask]'
+	.lock-venv/bin/python -m pip install --quiet '.[test,dask,records]'
 	{ sed -n '/^#/p' $(LOCK); .lock-venv/bin/python -m pip freeze --all --exclude-editable \
 	    | grep -v -e '^opsrock' -e '^setuptools' -e '^wheel'; } > $(LOCK).new
 	mv $(LOCK).new $(LOCK)

@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from opsrock.block import Block
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -58,7 +58,7 @@ _COLD_SNIPPET = (
     "import time; t0 = time.perf_counter();"
     "from opsrock.solvers import housner_fast as hf; t1 = time.perf_counter();"
     "hf.solve_grid(0.2, 0.9, 3.0, 2.0); t2 = time.perf_counter();"
-    "from opsrock.block import Block; from opsrock.excitation import OneSinePulse;"
+    "from opsrock.block import Block; from opsrock.excitations import OneSinePulse;"
     "b = Block(0.6, 2.0); hf.solve(b, OneSinePulse.from_ratios(b, 3.0, 2.0)); t3 = time.perf_counter();"
     "print(t1 - t0, t2 - t1, t3 - t2)"
 )

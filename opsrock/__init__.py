@@ -12,7 +12,7 @@ _require_blas()
 
 from opsrock.block import Block  # noqa: E402
 from opsrock.constants import G  # noqa: E402
-from opsrock.excitation import OneSinePulse, Record  # noqa: E402
+from opsrock.excitations import OneSinePulse, Record  # noqa: E402
 from opsrock.model import SDOFModel  # noqa: E402
 from opsrock.result import RockingResult  # noqa: E402
 from opsrock.solvers import SOLVERS, simulate  # noqa: E402

@@ -210,9 +210,12 @@ def solve_batch(
     with _SOLVE_LOCK:
         for case in cases:
             t0 = time.perf_counter()
+            if getattr(case, "problem", ""):
+                rows.append(failed_row(case.case_id, solver, case.problem, 0.0))
+                continue
             try:
                 with time_limit(case_timeout):
-                    result = fn(case.block, case.pulse, solver=solver, **settings)
+                    result = fn(case.block, case.excitation, solver=solver, **settings)
                 if not isinstance(result, RockingResult):
                     raise TypeError(f"solver returned {type(result).__name__}, not a RockingResult")
                 rows.append(result_row(case.case_id, result, time.perf_counter() - t0))
@@ -226,6 +229,52 @@ def solve_batch(
 
 def _lost_row(case: Case, reason: str, *, solver: str) -> dict[str, Any]:
     return failed_row(case.case_id, solver, reason)
+
+
+def _columns(scene: Scene) -> tuple[str, ...]:
+    if scene.records is None:
+        return CASES_COLUMNS
+    from opsrock.scene_records import RECORD_CASES_COLUMNS
+
+    return RECORD_CASES_COLUMNS
+
+
+#: Floor motions of a record scene, cached in its output folder (computed once, reused on resume).
+MOTIONS_FILE: str = "floor_motions.pickle"
+
+
+def _floor_motions(scene: Scene, out: Path, digest: str, executor: Executor, progress: bool) -> dict:
+    """The scene's floor motions and their measures: from the folder's cache when it was written for
+    this digest, else computed by ``executor`` (one item per record and building) and cached."""
+    import pickle
+
+    from opsrock.scene_records import assemble_motions, compute_motions, motion_items
+
+    spec = scene.records
+    items = motion_items(spec)
+    cache = out / MOTIONS_FILE
+    try:
+        with open(cache, "rb") as fh:
+            saved = pickle.load(fh)
+        if saved.get("digest") == digest and len(saved["results"]) == len(items):
+            return assemble_motions(spec, items, saved["results"])
+    except (OSError, EOFError, pickle.UnpicklingError, AttributeError, KeyError, TypeError):
+        pass
+    results: list[Any] = [None] * len(items)
+    size = max(1, math.ceil(len(items) / (4 * executor.workers)))
+    batches = make_batches(items, size)
+    bar = _progress_bar(len(items), scene, 0, progress)
+    bar.set_description(f"{scene.name}: floor motions")
+    with bar:
+        for k, res in executor.map_batches(compute_motions, batches, _lost_motion):
+            results[k * size : k * size + len(res)] = res
+            bar.update(len(res))
+    _atomic_write(cache, lambda fh: pickle.dump({"digest": digest, "results": results}, fh), binary=True)
+    return assemble_motions(spec, items, results)
+
+
+def _lost_motion(item: Any, reason: str) -> str:
+    return reason
 
 
 # --- the campaign ------------------------------------------------------------------------------
@@ -267,10 +316,10 @@ def _conflict_message(out_dir: Path, old: Mapping[str, Any], new: Mapping[str, A
     )
 
 
-def _atomic_write(path: Path, write: Callable[[Any], None]) -> None:
+def _atomic_write(path: Path, write: Callable[[Any], None], *, binary: bool = False) -> None:
     tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
     try:
-        with open(tmp, "w", newline="", encoding="utf-8") as fh:
+        with (open(tmp, "wb") if binary else open(tmp, "w", newline="", encoding="utf-8")) as fh:
             write(fh)
             fh.flush()
             os.fsync(fh.fileno())
@@ -295,7 +344,7 @@ def _format(value: Any) -> str:
     return str(value)
 
 
-def case_table(scene: Scene, rows: Mapping[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
+def case_table(scene: Scene, rows: Mapping[str, Mapping[str, Any]], cases: Sequence | None = None) -> list[dict[str, Any]]:
     """The rows of ``cases.csv``: scene inputs and intensity measures joined to stored results.
 
     Parameters
@@ -312,8 +361,11 @@ def case_table(scene: Scene, rows: Mapping[str, Mapping[str, Any]]) -> list[dict
     """
     from opsrock.intensity import intensity_measures  # lazily: written alongside this module
 
+    cases = scene.cases() if cases is None else cases
+    if scene.records is not None:
+        return _record_case_table(cases, rows)
     table = []
-    for case in scene.cases():
+    for case in cases:
         if case.case_id not in rows:
             raise KeyError(f"case {case.case_id!r} has no stored result")
         b, pulse, stored = case.block, case.pulse, rows[case.case_id]
@@ -342,14 +394,29 @@ def case_table(scene: Scene, rows: Mapping[str, Mapping[str, Any]]) -> list[dict
     return table
 
 
-def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]]) -> None:
-    """Write a case table atomically (temporary file, fsync, ``os.replace``)."""
+def _record_case_table(cases: Sequence, rows: Mapping[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
+    from opsrock.scene_records import RECORD_CASES_COLUMNS, record_case_row
+
+    table = []
+    for case in cases:
+        if case.case_id not in rows:
+            raise KeyError(f"case {case.case_id!r} has no stored result")
+        rec = record_case_row(case)
+        for col in RECORD_CASES_COLUMNS[len(rec):]:
+            rec[col] = rows[case.case_id][col]
+        table.append(rec)
+    return table
+
+
+def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]],
+                    columns: Sequence[str] = CASES_COLUMNS) -> None:
+    """Write a case table atomically (temporary file, fsync, ``os.replace``), columns ``columns``."""
 
     def write(fh):
         w = csv.writer(fh, lineterminator="\n")
-        w.writerow(CASES_COLUMNS)
+        w.writerow(columns)
         for rec in table:
-            w.writerow([_format(rec[c]) for c in CASES_COLUMNS])
+            w.writerow([_format(rec[c]) for c in columns])
 
     _atomic_write(Path(path), write)
 
@@ -447,7 +514,7 @@ def run_campaign(
     if isinstance(case_timeout, bool) or not isinstance(case_timeout, (int, float)) or not case_timeout > 0:
         raise ValueError(f"case_timeout must be a positive number of seconds, got {case_timeout!r}")
     manifest = _manifest(scene, digest, solve_fn)
-    cases = scene.cases()
+    cases = scene.cases() if scene.records is None else None
     out = Path(out_dir)
     own_executor = executor is None
 
@@ -461,14 +528,16 @@ def run_campaign(
             store.write_manifest(manifest)
         _atomic_write(out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
 
-        done = store.done_ids()
-        todo = [c for c in cases if c.case_id not in done]
-        n_reused = len(cases) - len(todo)
-        n_computed = 0
-        if todo:
-            if own_executor:
-                executor = LocalPool(workers, item_timeout=case_timeout)
-            try:
+        if own_executor:
+            executor = LocalPool(workers, item_timeout=case_timeout)
+        try:
+            if cases is None:
+                cases = scene.cases(_floor_motions(scene, out, digest, executor, progress))
+            done = store.done_ids()
+            todo = [c for c in cases if c.case_id not in done]
+            n_reused = len(cases) - len(todo)
+            n_computed = 0
+            if todo:
                 size = batch or batch_size(len(todo), executor.workers)
                 batches = make_batches(todo, size)
                 fn = functools.partial(solve_batch, solver=scene.solver, settings=settings, solve_fn=solve_fn,
@@ -479,12 +548,12 @@ def run_campaign(
                         store.append(rows)
                         n_computed += len(rows)
                         bar.update(len(rows))
-            finally:
-                if own_executor:
-                    executor.close()
+        finally:
+            if own_executor:
+                executor.close()
 
-        table = case_table(scene, store.rows())
-        write_cases_csv(out / CASES_FILE, table)
+        table = case_table(scene, store.rows(), cases)
+        write_cases_csv(out / CASES_FILE, table, _columns(scene))
     return CampaignSummary(
         n_cases=len(cases),
         n_computed=n_computed,

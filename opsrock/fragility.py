@@ -59,7 +59,7 @@ from scipy import optimize, special
 
 from opsrock._checks import int_at_least, one_of, positive_finite
 from opsrock.intensity import IM_NAMES, add_intensity_measures, get_im
-from opsrock.excitation import PFV_CONVENTIONS
+from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.paper_values import STRIP_FACTORS, TABLE2, TABLE3
 
 #: ``W_SAS = W_HS / STANDARD_STRIP_DIVISOR`` (paper Section 4.4: "one-fifth of W_HS").

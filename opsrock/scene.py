@@ -44,14 +44,17 @@ import tomllib
 from dataclasses import dataclass, field
 from numbers import Real
 from pathlib import Path
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
 from opsrock.block import Block
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
-from opsrock.excitation import PFV_CONVENTIONS, OneSinePulse
+from opsrock.excitations import PFV_CONVENTIONS, OneSinePulse
 from opsrock.solvers import SOLVERS
+
+if TYPE_CHECKING:
+    from opsrock.scene_records import RecordSet
 
 #: Version of the scene format; bump when the meaning of a scene file changes.
 SCENE_FORMAT: int = 1
@@ -73,7 +76,7 @@ MAX_CASES: int = 250_000
 #: Block names become part of case ids (``bookcase/f03/a07``) and file names: keep them plain.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9_.-]+$")
 
-_SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid"}
+_SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid", "records"}
 _SOLVER_KEYS = {"name", "settings", "case_timeout"}
 _GRID_AXES = ("freq_ratio", "pfa_ratio")
 _BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor"}
@@ -190,6 +193,11 @@ class Case:
     freq_ratio: float
     pfa_ratio: float
 
+    @property
+    def excitation(self) -> OneSinePulse:
+        """What the solver gets: the pulse."""
+        return self.pulse
+
 
 @dataclass(frozen=True)
 class Scene:
@@ -203,14 +211,14 @@ class Scene:
         File the scene was read from (empty if built in code).
     blocks : tuple of BlockSpec
         Blocks, in run order.
-    grid : Grid
-        Pulse ratios.
+    grid : Grid or None
+        Pulse ratios (a pulse scene), or None (a record scene).
     solver : str
         Solver name, one of :data:`opsrock.solvers.SOLVERS`.
     solver_settings : dict
         Keyword settings passed to that solver (JSON-serialisable scalars and lists).
     pfv_convention : str
-        PFV convention of IM3 and IM8, one of :data:`opsrock.excitation.PFV_CONVENTIONS`.
+        PFV convention of IM3 and IM8, one of :data:`opsrock.excitations.PFV_CONVENTIONS`.
     description : str
         Free text.
     blocks_path : str
@@ -219,26 +227,44 @@ class Scene:
         Wall-clock budget of one case (s), ``[solver] case_timeout``; None: the campaign's
         default (:data:`opsrock.timeout.DEFAULT_CASE_TIMEOUT`). Not part of the digest: it
         decides how long a stuck case may run, not what a finished case computes.
+    records : RecordSet or None
+        The ``[records]`` table of a record scene (:mod:`opsrock.scene_records`), or None.
     """
 
     name: str
     path: str
     blocks: tuple[BlockSpec, ...]
-    grid: Grid
+    grid: Grid | None
     solver: str = DEFAULT_SOLVER
     solver_settings: Mapping[str, Any] = field(default_factory=dict)
     pfv_convention: str = "amplitude"
     description: str = ""
     blocks_path: str = ""
     case_timeout: float | None = None
+    records: RecordSet | None = None
 
     @property
     def n_cases(self) -> int:
-        """Number of cases, ``len(blocks) * grid.size``."""
+        """Number of cases: ``len(blocks) * grid.size``, or blocks x floor motions x levels."""
+        if self.records is not None:
+            return len(self.blocks) * self.records.n_per_block
         return len(self.blocks) * self.grid.size
 
-    def cases(self) -> list[Case]:
-        """All cases in a deterministic order: block (file order), then freq_ratio, then pfa_ratio."""
+    def cases(self, motions: Mapping | None = None) -> list:
+        """All cases in a deterministic order.
+
+        Pulse scene: :class:`Case` by block (file order), then freq_ratio, then pfa_ratio.
+        Record scene: :class:`~opsrock.scene_records.RecordCase` by block, record, floor, level;
+        ``motions`` are the floor motions (:func:`opsrock.scene_records.assemble_motions`),
+        computed here, in this process, when omitted.
+        """
+        if self.records is not None:
+            from opsrock.scene_records import assemble_motions, compute_motions, motion_items, record_cases
+
+            if motions is None:
+                items = motion_items(self.records)
+                motions = assemble_motions(self.records, items, compute_motions(items))
+            return record_cases(self.blocks, self.records, motions)
         nf, na = len(self.grid.freq_ratio), len(self.grid.pfa_ratio)
         wf, wa = max(2, len(str(nf))), max(2, len(str(na)))
         out = []
@@ -288,8 +314,8 @@ class Scene:
             "blocks": [
                 [b.name, b.width, b.height, b.mass, b.restitution_factor] for b in self.blocks
             ],
-            "freq_ratio": list(self.grid.freq_ratio),
-            "pfa_ratio": list(self.grid.pfa_ratio),
+            **({"freq_ratio": list(self.grid.freq_ratio), "pfa_ratio": list(self.grid.pfa_ratio)}
+               if self.grid is not None else {"records": self.records.fingerprint()}),
         }
 
     def digest(self) -> str:
@@ -374,7 +400,10 @@ def load_scene(path: str | Path) -> Scene:
     """
     path = Path(path)
     data = _read_toml(path)
-    _check_keys(path, "", data, allowed=_SCENE_KEYS, required={"blocks", "grid"})
+    _check_keys(path, "", data, allowed=_SCENE_KEYS, required={"blocks"})
+    if ("grid" in data) == ("records" in data):
+        raise SceneError(path, "grid", "<both>" if "grid" in data else "<missing>",
+                         "a scene needs exactly one of [grid] (pulses) or [records] (floor motions)")
 
     name = _string(path, "name", data.get("name", path.stem))
     description = _string(path, "description", data.get("description", ""), allow_empty=True)
@@ -390,15 +419,11 @@ def load_scene(path: str | Path) -> Scene:
     if "select" in data:
         blocks = _select(path, data["select"], blocks)
 
-    grid_raw = data["grid"]
-    if not isinstance(grid_raw, dict):
-        raise SceneError(path, "grid", grid_raw, "must be a table with [grid.freq_ratio] and [grid.pfa_ratio]")
-    _check_keys(path, "grid", grid_raw, allowed=set(_GRID_AXES), required=set(_GRID_AXES))
-    grid = Grid(**{axis: _axis(path, f"grid.{axis}", grid_raw[axis]) for axis in _GRID_AXES})
-    if len(blocks) * grid.size > MAX_CASES:
-        raise SceneError(path, "grid", f"<{len(blocks)} blocks x {grid.size} pulses = {len(blocks) * grid.size} cases>",
-                         f"must give <= {MAX_CASES} cases in all (MAX_CASES); split the scene")
-    _check_pulses(path, blocks, grid)
+    grid, records = None, None
+    if "grid" in data:
+        grid = _grid(path, data["grid"], blocks)
+    else:
+        records = _records(path, data["records"], blocks)
 
     solver_raw = data.get("solver", {})
     if not isinstance(solver_raw, dict):
@@ -428,7 +453,33 @@ def load_scene(path: str | Path) -> Scene:
         description=description,
         blocks_path=str(blocks_path),
         case_timeout=case_timeout,
+        records=records,
     )
+
+
+def _grid(path: Path, grid_raw: Any, blocks: tuple[BlockSpec, ...]) -> Grid:
+    if not isinstance(grid_raw, dict):
+        raise SceneError(path, "grid", grid_raw, "must be a table with [grid.freq_ratio] and [grid.pfa_ratio]")
+    _check_keys(path, "grid", grid_raw, allowed=set(_GRID_AXES), required=set(_GRID_AXES))
+    grid = Grid(**{axis: _axis(path, f"grid.{axis}", grid_raw[axis]) for axis in _GRID_AXES})
+    if len(blocks) * grid.size > MAX_CASES:
+        raise SceneError(path, "grid", f"<{len(blocks)} blocks x {grid.size} pulses = {len(blocks) * grid.size} cases>",
+                         f"must give <= {MAX_CASES} cases in all (MAX_CASES); split the scene")
+    _check_pulses(path, blocks, grid)
+    return grid
+
+
+def _records(path: Path, raw: Any, blocks: tuple[BlockSpec, ...]) -> "RecordSet":
+    from opsrock.scene_records import RecordSceneError, parse_records
+
+    try:
+        records = parse_records(path, raw, [b.block for b in blocks])
+    except RecordSceneError as exc:
+        raise SceneError(path, exc.field, exc.value, exc.problem) from None
+    n = len(blocks) * records.n_per_block
+    if n > MAX_CASES:
+        raise SceneError(path, "records", f"<{n} cases>", f"must give <= {MAX_CASES} cases in all (MAX_CASES); split the scene")
+    return records
 
 
 # --- helpers ------------------------------------------------------------------------------------

@@ -18,7 +18,7 @@ from scipy.integrate import quad, solve_ivp
 
 from opsrock.block import Block
 from opsrock.constants import G
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse
 from opsrock.solvers import housner_fast as hf
 from opsrock.solvers import simulate
 
@@ -446,9 +446,12 @@ def test_input_errors_name_the_argument():
         hf.solve_grid(2.0, 0.9, 2.0, 1.0)
     with pytest.raises(TypeError, match="unknown"):
         hf.solve(BLOCKS[0], OneSinePulse(3.0, 10.0), max_stepp=0.1)
-    from opsrock.excitation import Record
     with pytest.raises(TypeError, match="OneSinePulse"):
-        hf.solve(BLOCKS[0], Record(0.01, [0.0, 1.0, 0.0]))
+        hf.solve(BLOCKS[0], "a pulse")
+    from opsrock.excitations import Record
+    # a record sampled too coarsely for the block (dt p = 0.5 x 2.57 > 0.2) is refused, named
+    with pytest.raises(ValueError, match="dt = 0.5 s is too coarse"):
+        hf.solve(BLOCKS[0], Record(0.5, [0.0, 1.0, 0.0]))
 
 
 def test_grid_shape_and_verdicts():

@@ -17,7 +17,7 @@ from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from opsrock.block import Block
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse
 from opsrock.model import LEVERS, SDOFModel
 from opsrock.scene import SceneError, load_scene
 

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse
 from opsrock.result import RockingResult, failed_result
 from opsrock.solvers import opensees as osr
 from opsrock.validation import stability_map as sm

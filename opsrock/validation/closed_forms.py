@@ -32,7 +32,7 @@ from scipy.integrate import quad
 
 from opsrock.block import Block
 from opsrock.constants import G
-from opsrock.excitation import OneSinePulse, Record
+from opsrock.excitations import OneSinePulse, Record
 from opsrock.model import SDOFModel
 from opsrock.result import RockingResult
 

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from opsrock.block import Block
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse
 from opsrock.solvers import opensees as osr
 
 #: Agreement tolerance on ``max |theta_lumped - theta_1dof| / alpha``: the two models solve the

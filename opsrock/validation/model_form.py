@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from opsrock.block import Block
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse
 from opsrock.solvers import housner, sdof
 
 #: The four project blocks (width, height) in m, slender to stocky (docs/modelling.md section 3).
@@ -50,7 +50,7 @@ TARGET_AGREEMENT: float = 0.97
 
 def band_error(delta: float) -> float:
     """Relative error of the first rebound peak of free rocking from alpha/2 (slender block)."""
-    from opsrock.excitation import Record
+    from opsrock.excitations import Record
     from opsrock.validation.closed_forms import BLOCK, peak_after_impact, peak_sequence
 
     theta0 = 0.5 * BLOCK.alpha

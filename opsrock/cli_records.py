@@ -93,14 +93,13 @@ def _plot(args) -> int:
     from opsrock._paths import output_file
     from opsrock.cli import UsageError
     from opsrock.excitations import library
-    from opsrock.excitations.readers import read_record
     from opsrock.plots.records import plot_record
 
     try:
         out = output_file("--out", args.out, ".png")
     except ValueError as exc:
         raise UsageError(str(exc)) from None
-    rec = library.load(args.name) if library.is_reference(args.name) else read_record(args.name, units=args.units, dt=args.dt)
+    rec = library.record(args.name, units=args.units, dt=args.dt)
     floor = None
     if (args.building_period is None) != (args.storeys is None):
         raise UsageError("--building-period and --storeys go together")

@@ -38,7 +38,7 @@ from __future__ import annotations
 import glob as _glob
 import hashlib
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Sequence
 
@@ -51,7 +51,7 @@ from opsrock.excitations.building import ShearBuilding, floor_motions
 from opsrock.excitations.readers import RecordFileError, read_record
 from opsrock.excitations.records import Record, check_sampling
 from opsrock.intensity.records import MotionMeasures, motion_measures
-from opsrock.limits import LIMITS
+from opsrock.limits import LIMITS, check
 
 #: Intensity methods of a record scene.
 METHODS: tuple[str, ...] = ("cloud", "ida", "msa")
@@ -380,9 +380,10 @@ def _intensity(raw: Any, names: set[str]) -> Intensity:
 
 
 def _scale_ok(where: str, value: Any) -> None:
-    lim = LIMITS["scale"]
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (lim.low <= value <= lim.high):
-        raise RecordSceneError(where, value, f"must be a number in [{lim.low:g}, {lim.high:g}]")
+    try:
+        check("scale", value)
+    except (TypeError, ValueError) as exc:
+        raise RecordSceneError(where, value, str(exc)) from None
 
 
 def _levels(raw: Any) -> tuple[float, ...]:
@@ -457,7 +458,7 @@ def assemble_motions(spec: RecordSet, items, results) -> dict[tuple[str, str], M
                 continue
             values, measures = res[j]
             rec = Record(dt=ground.dt, values=values, name=ground.name,
-                         info=ground.info.__class__(**{**ground.info.__dict__, "floor": label}))
+                         info=replace(ground.info, floor=label))
             motions[(ground.name, label)] = Motion(record=rec, measures=measures, floor=label, ground=ground.name)
     return motions
 

@@ -217,7 +217,17 @@ class LocalPool(_Closing):
         while todo or running:
             while todo and len(running) < self.workers:
                 k = todo.pop()
-                running[pool.submit(fn, batches[k])] = (k, self._deadline(len(batches[k])))
+                try:
+                    fut = pool.submit(fn, batches[k])
+                except BrokenProcessPool:
+                    # a worker died after the last wait returned: batch k never ran; the batches
+                    # in flight are the suspects, exactly as when wait() reports the break
+                    todo.append(k)
+                    suspects.extend(j for j, _ in running.values())
+                    running.clear()
+                    pool = self._new_pool(self.workers)
+                    continue
+                running[fut] = (k, self._deadline(len(batches[k])))
             first = min(deadline for _, deadline in running.values())
             wait_for = None if math.isinf(first) else max(0.0, first - time.monotonic())
             done, _ = wait(running, timeout=wait_for, return_when=FIRST_COMPLETED)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from opsrock._checks import in_open_interval
+from opsrock._checks import in_open_interval, real_number
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR, G
 from opsrock.limits import check
 
@@ -28,12 +28,17 @@ class Block:
         value (dimensionless, in (0, 1]). Default 0.95, the paper's choice.
     name : str, optional
         Label used in tables and figures.
+    restitution : float or None, optional
+        The restitution coefficient ``e`` itself (dimensionless, in (0, 1]), as the rocking
+        literature sets it (e.g. ``e = 0.9``), instead of ``restitution_factor · e_R``. Give one of
+        the two: with ``restitution`` set, ``restitution_factor`` must keep its default. Default
+        None (``e = restitution_factor · e_R``).
 
     Notes
     -----
     Derived quantities follow docs/modelling.md section 2: ``R = sqrt(b² + h²)``,
     ``alpha = atan(b / h)``, ``p = sqrt(3 g / 4 R)``, ``I_O = 4/3 m R²``,
-    ``e_R = 1 - 1.5 sin²(alpha)`` (Eq. 9), ``e = restitution_factor · e_R``.
+    ``e_R = 1 - 1.5 sin²(alpha)`` (Eq. 9), ``e = restitution_factor · e_R`` (or ``restitution``).
     """
 
     width: float
@@ -41,6 +46,7 @@ class Block:
     mass: float = 1.0
     restitution_factor: float = DEFAULT_RESTITUTION_FACTOR
     name: str = ""
+    restitution: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "width", check("width", self.width))
@@ -50,6 +56,15 @@ class Block:
         object.__setattr__(self, "restitution_factor", f)
         if not isinstance(self.name, str):
             raise TypeError(f"name must be a string, got {self.name!r}")
+        if self.restitution is not None:
+            e = real_number("restitution", self.restitution)
+            if not (math.isfinite(e) and 0.0 < e <= 1.0):
+                raise ValueError(f"restitution must lie in (0, 1], got {self.restitution!r}")
+            object.__setattr__(self, "restitution", e)
+            if f != DEFAULT_RESTITUTION_FACTOR:
+                raise ValueError(f"give restitution or restitution_factor, not both (restitution = {e!r}, "
+                                 f"restitution_factor = {f!r})")
+            return
         if self.e_R <= 0.0:
             raise ValueError(
                 f"width/height = {self.width:g}/{self.height:g} gives alpha = {self.alpha:.4f} rad and "
@@ -101,8 +116,9 @@ class Block:
 
     @property
     def e(self) -> float:
-        """Restitution coefficient used, ``restitution_factor · e_R`` (dimensionless)."""
-        return self.restitution_factor * self.e_R
+        """Restitution coefficient used, ``restitution`` if set, else ``restitution_factor · e_R``
+        (dimensionless)."""
+        return self.restitution if self.restitution is not None else self.restitution_factor * self.e_R
 
     @property
     def uplift_acceleration(self) -> float:

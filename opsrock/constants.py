@@ -15,3 +15,10 @@ DEFAULT_RESTITUTION_FACTOR: float = 0.95
 
 #: Overturning limit state on ``|theta|`` (rad), paper Eq. 11.
 OVERTURNING_ANGLE: float = 1.5707963267948966  # pi / 2
+
+#: Forms of the rigid-body equation the rigid-body solvers offer. ``"exact"``: Eq. 1,
+#: ``theta'' = -p² [sin(alpha s - theta) + a/g cos(alpha s - theta)]``, uplift when
+#: ``|a| > g tan(alpha)``. ``"linearised"``: the small-angle form of the classical rocking papers
+#: (Housner 1963 onwards), ``theta'' = -p² [(alpha s - theta) + a/g]``, uplift when ``|a| > g alpha``;
+#: its free-rocking energy is ``theta'²/(2p²) + [alpha² - (alpha - |theta|)²]/2``.
+EQUATIONS: tuple[str, ...] = ("exact", "linearised")

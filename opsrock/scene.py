@@ -1,4 +1,4 @@
-"""Scenes: which blocks meet which one-sine pulses (``[grid]``) or floor motions (``[records]``,
+"""Scenes: which blocks meet which pulses (``[grid]``) or floor motions (``[records]``,
 :mod:`opsrock.scene_records`), read from TOML and validated first.
 
 A *scene* (``models/scenes/*.toml``) names a blocks file (``models/blocks.toml``), a grid of
@@ -21,6 +21,9 @@ Scene file layout (see ``models/README.md``)::
     [solver.settings]                   # optional keyword settings of that solver's solve()
     dt = 1e-4
 
+    [pulse]                             # optional, default shape "one-sine"
+    shape = "one-sine"                  # rectangular, half-sine, one-sine, one-cosine, ricker
+
     [grid.freq_ratio]                   # omega_p / p (IM1): start/stop/num ...
     start = 0.5
     stop = 10.0
@@ -29,8 +32,8 @@ Scene file layout (see ``models/README.md``)::
     values = [1.0, 2.0, 5.0]
 
 Blocks file layout: an array of tables ``[[block]]`` with ``name``, ``width`` (2b, m),
-``height`` (2h, m), ``reason`` (one line), and optionally ``mass`` (kg) and
-``restitution_factor`` (``e / e_R``).
+``height`` (2h, m), ``reason`` (one line), and optionally ``mass`` (kg) and either
+``restitution_factor`` (``e / e_R``) or ``restitution`` (``e`` itself).
 """
 
 from __future__ import annotations
@@ -51,7 +54,7 @@ import numpy as np
 
 from opsrock.block import Block
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
-from opsrock.excitations import PFV_CONVENTIONS, OneSinePulse
+from opsrock.excitations import PFV_CONVENTIONS, PULSE_SHAPES, Pulse, pulse_class
 from opsrock.solvers import SOLVERS
 
 if TYPE_CHECKING:
@@ -77,10 +80,10 @@ MAX_CASES: int = 250_000
 #: Block names become part of case ids (``bookcase/f03/a07``) and file names: keep them plain.
 _NAME_PATTERN = re.compile(r"^[A-Za-z0-9_.-]+$")
 
-_SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid", "records"}
+_SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid", "records", "pulse"}
 _SOLVER_KEYS = {"name", "settings", "case_timeout"}
 _GRID_AXES = ("freq_ratio", "pfa_ratio")
-_BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor"}
+_BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor", "restitution"}
 
 
 class SceneError(ValueError):
@@ -127,6 +130,8 @@ class BlockSpec:
         Mass (kg); rocking does not depend on it.
     restitution_factor : float
         ``e / e_R`` (dimensionless).
+    restitution : float or None
+        ``e`` itself (dimensionless, in (0, 1]), instead of ``restitution_factor``; None if not set.
     """
 
     name: str
@@ -135,6 +140,7 @@ class BlockSpec:
     reason: str = ""
     mass: float = 1.0
     restitution_factor: float = DEFAULT_RESTITUTION_FACTOR
+    restitution: float | None = None
 
     @property
     def block(self) -> Block:
@@ -145,6 +151,7 @@ class BlockSpec:
             mass=self.mass,
             restitution_factor=self.restitution_factor,
             name=self.name,
+            restitution=self.restitution,
         )
 
 
@@ -158,10 +165,13 @@ class Grid:
         ``omega_p / p`` values (dimensionless, IM1), > 0, in run order.
     pfa_ratio : tuple of float
         ``PFA / (g tan alpha)`` values (dimensionless, IM2), > 0, in run order.
+    shape : str
+        Pulse shape, a key of :data:`opsrock.excitations.PULSE_SHAPES` (``[pulse] shape``).
     """
 
     freq_ratio: tuple[float, ...]
     pfa_ratio: tuple[float, ...]
+    shape: str = "one-sine"
 
     @property
     def size(self) -> int:
@@ -171,7 +181,7 @@ class Grid:
 
 @dataclass(frozen=True)
 class Case:
-    """One block under one one-sine pulse: the unit of work of a campaign.
+    """One block under one pulse: the unit of work of a campaign.
 
     Parameters
     ----------
@@ -180,8 +190,8 @@ class Case:
         grid's ``freq_ratio`` (``pfa_ratio``) values, zero-padded to at least two digits.
     block : Block
         The block.
-    pulse : OneSinePulse
-        The pulse, ``PFA = pfa_ratio g tan(alpha)``, ``omega_p = freq_ratio p``.
+    pulse : Pulse
+        The pulse (the scene's shape), ``PFA = pfa_ratio g tan(alpha)``, ``omega_p = freq_ratio p``.
     freq_ratio : float
         ``omega_p / p`` (dimensionless).
     pfa_ratio : float
@@ -190,12 +200,12 @@ class Case:
 
     case_id: str
     block: Block
-    pulse: OneSinePulse
+    pulse: Pulse
     freq_ratio: float
     pfa_ratio: float
 
     @property
-    def excitation(self) -> OneSinePulse:
+    def excitation(self) -> Pulse:
         """What the solver gets: the pulse."""
         return self.pulse
 
@@ -277,7 +287,7 @@ class Scene:
                         Case(
                             case_id=f"{spec.name}/f{i:0{wf}d}/a{j:0{wa}d}",
                             block=block,
-                            pulse=OneSinePulse.from_ratios(block, pfa_ratio=ar, freq_ratio=fr),
+                            pulse=pulse_class(self.grid.shape).from_ratios(block, pfa_ratio=ar, freq_ratio=fr),
                             freq_ratio=fr,
                             pfa_ratio=ar,
                         )
@@ -312,11 +322,15 @@ class Scene:
             "solver": self.solver,
             "solver_settings": _canonical(self.solver_settings),
             "pfv_convention": self.pfv_convention,
+            # a directly set restitution (and a pulse shape other than the paper's) enter only when
+            # used, so the digests of existing scenes, and the stores that resume from them, stay valid
             "blocks": [
-                [b.name, b.width, b.height, b.mass, b.restitution_factor] for b in self.blocks
+                [b.name, b.width, b.height, b.mass, b.restitution_factor]
+                + ([b.restitution] if b.restitution is not None else []) for b in self.blocks
             ],
             **({"freq_ratio": list(self.grid.freq_ratio), "pfa_ratio": list(self.grid.pfa_ratio)}
                if self.grid is not None else {"records": self.records.fingerprint()}),
+            **({"pulse_shape": self.grid.shape} if self.grid is not None and self.grid.shape != "one-sine" else {}),
         }
 
     def digest(self) -> str:
@@ -372,6 +386,7 @@ def load_blocks(path: str | Path) -> tuple[BlockSpec, ...]:
             restitution_factor=_positive(
                 path, f"{where}.restitution_factor", entry.get("restitution_factor", DEFAULT_RESTITUTION_FACTOR)
             ),
+            restitution=_positive(path, f"{where}.restitution", entry["restitution"]) if "restitution" in entry else None,
         )
         try:  # the Block's own physical checks (restitution in (0, 1], e_R > 0)
             spec.block
@@ -422,7 +437,13 @@ def load_scene(path: str | Path) -> Scene:
 
     grid, records = None, None
     if "grid" in data:
-        grid = _grid(path, data["grid"], blocks)
+        grid = _grid(path, data["grid"], blocks, _pulse_shape(path, data.get("pulse", {})))
+        if pfv == "peak" and grid.shape != "one-sine":
+            # IM3/IM8 under "peak" use the one-sine pulse's peak velocity 2 PFA / omega_p
+            raise SceneError(path, "pfv_convention", pfv, f"'peak' is defined for the one-sine pulse only, "
+                             f"not for [pulse] shape = {grid.shape!r}; use 'amplitude' (PFA / omega_p)")
+    elif "pulse" in data:
+        raise SceneError(path, "pulse", data["pulse"], "[pulse] goes with [grid] (pulses), not with [records]")
     else:
         records = _records(path, data["records"], blocks)
 
@@ -458,11 +479,21 @@ def load_scene(path: str | Path) -> Scene:
     )
 
 
-def _grid(path: Path, grid_raw: Any, blocks: tuple[BlockSpec, ...]) -> Grid:
+def _pulse_shape(path: Path, pulse_raw: Any) -> str:
+    if not isinstance(pulse_raw, dict):
+        raise SceneError(path, "pulse", pulse_raw, "must be a table [pulse] with shape")
+    _check_keys(path, "pulse", pulse_raw, allowed={"shape"}, required=set())
+    shape = pulse_raw.get("shape", "one-sine")
+    if shape not in PULSE_SHAPES:
+        raise SceneError(path, "pulse.shape", shape, f"must be one of {', '.join(map(repr, PULSE_SHAPES))}")
+    return shape
+
+
+def _grid(path: Path, grid_raw: Any, blocks: tuple[BlockSpec, ...], shape: str = "one-sine") -> Grid:
     if not isinstance(grid_raw, dict):
         raise SceneError(path, "grid", grid_raw, "must be a table with [grid.freq_ratio] and [grid.pfa_ratio]")
     _check_keys(path, "grid", grid_raw, allowed=set(_GRID_AXES), required=set(_GRID_AXES))
-    grid = Grid(**{axis: _axis(path, f"grid.{axis}", grid_raw[axis]) for axis in _GRID_AXES})
+    grid = Grid(**{axis: _axis(path, f"grid.{axis}", grid_raw[axis]) for axis in _GRID_AXES}, shape=shape)
     if len(blocks) * grid.size > MAX_CASES:
         raise SceneError(path, "grid", f"<{len(blocks)} blocks x {grid.size} pulses = {len(blocks) * grid.size} cases>",
                          f"must give <= {MAX_CASES} cases in all (MAX_CASES); split the scene")
@@ -568,7 +599,7 @@ def _axis(path: Path, where: str, raw: Any) -> tuple[float, ...]:
 
 
 def _check_pulses(path: Path, blocks: tuple[BlockSpec, ...], grid: Grid) -> None:
-    """Every pulse of the grid must be a valid OneSinePulse (finite, positive PFA and omega_p).
+    """Every pulse of the grid must be a valid pulse (finite, positive PFA and omega_p).
 
     ``PFA`` and ``omega_p`` grow with their ratios, so the extreme ratios of each axis decide.
     """
@@ -580,7 +611,7 @@ def _check_pulses(path: Path, blocks: tuple[BlockSpec, ...], grid: Grid) -> None
                 # PFA depends only on pfa_ratio and omega_p only on freq_ratio: hold the other at 1.
                 other = {a: 1.0 for a in _GRID_AXES if a != axis}
                 try:
-                    OneSinePulse.from_ratios(block, **{axis: ratio}, **other)
+                    pulse_class(grid.shape).from_ratios(block, **{axis: ratio}, **other)
                 except (TypeError, ValueError) as exc:
                     raise SceneError(
                         path, f"grid.{axis}", ratio, f"gives no valid pulse for block {spec.name!r}: {exc}"

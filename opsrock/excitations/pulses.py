@@ -1,4 +1,24 @@
-"""Analytic floor-acceleration pulses: the one-sine pulse of the paper.
+"""Analytic floor-acceleration pulses: the paper's one-sine pulse and the classical pulse family of
+the rocking literature.
+
+Every pulse starts at ``t = 0`` from a floor at rest and is zero after its :attr:`duration`:
+
+==============  ==========================================  ===============================  ==========
+shape           ``a(t)`` on the pulse                       duration                         ``omega_p``
+==============  ==========================================  ===============================  ==========
+``rectangular``  ``PFA``                                    ``t_1``                          ``pi / t_1``
+``half-sine``    ``PFA sin(omega_p t)``                     ``T_p / 2``                      its own
+``one-sine``     ``PFA sin(omega_p t)``                     ``T_p``                          its own
+``one-cosine``   ``PFA cos(omega_p t)``                     ``T_p``                          its own
+``ricker``       ``PFA (1 - 2 x²) exp(-x²)``,               ``2 t_0``, ``t_0 = 1.6 T_p``     peak of its
+                 ``x = omega_p (t - t_0) / 2``                                               Fourier amplitude
+==============  ==========================================  ===============================  ==========
+
+with ``T_p = 2 pi / omega_p``. ``omega_p`` is the frequency the dimensionless ratio ``omega_p / p``
+(IM1) and the Table 1 intensity measures use: for the rectangular pulse it is the frequency of the
+half-sine of the same duration (so ``p t_1 = pi / (omega_p / p)``); for the symmetric Ricker wavelet it
+is the frequency at which its Fourier amplitude peaks. The Ricker wavelet has infinite support; it is
+cut at ``|t - t_0| = 1.6 T_p``, where it is below ``6e-10 PFA``.
 
 Sign convention (docs/modelling.md section 2): a positive floor acceleration tips the block towards
 negative ``theta``.
@@ -8,7 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
@@ -21,32 +41,38 @@ if TYPE_CHECKING:
 
 #: Peak-floor-velocity conventions for IM3 and IM8 (docs/modelling.md section 2).
 #: ``"amplitude"``: the harmonic velocity amplitude ``PFA / omega_p``, which the paper's
-#: Table 3 medians fit; ``"peak"``: the true peak of the floor velocity from rest,
-#: ``2 PFA / omega_p``, reached at ``t = T_p / 2``.
+#: Table 3 medians fit; ``"peak"``: the true peak of the floor velocity from rest (for the one-sine
+#: pulse ``2 PFA / omega_p``, reached at ``t = T_p / 2``).
 PFV_CONVENTIONS: tuple[str, ...] = ("amplitude", "peak")
+
+#: Half-width of the cut Ricker wavelet, in units of ``T_p``.
+RICKER_HALF_WIDTH: float = 1.6
 
 
 @dataclass(frozen=True)
-class OneSinePulse:
-    """One full sine cycle of floor acceleration, ``a(t) = PFA sin(omega_p t)`` on ``[0, T_p]``.
+class Pulse:
+    """Base of the analytic pulses: a peak acceleration ``pfa`` and a frequency ``omega_p``.
 
     Parameters
     ----------
     pfa : float
         Peak floor acceleration ``PFA`` (m/s²), within :data:`opsrock.limits.LIMITS`.
     omega_p : float
-        Circular frequency of the pulse ``omega_p`` (rad/s), within :data:`opsrock.limits.LIMITS`.
+        Circular frequency of the pulse ``omega_p`` (rad/s), within :data:`opsrock.limits.LIMITS`;
+        its meaning per shape is in the module docstring.
     """
 
     pfa: float
     omega_p: float
+    #: Name of the shape (a key of :data:`PULSE_SHAPES`).
+    SHAPE: ClassVar[str] = ""
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "pfa", check("pfa", self.pfa))
         object.__setattr__(self, "omega_p", check("omega_p", self.omega_p))
 
     @classmethod
-    def from_ratios(cls, block: "Block", pfa_ratio: float, freq_ratio: float) -> "OneSinePulse":
+    def from_ratios(cls, block: "Block", pfa_ratio: float, freq_ratio: float) -> "Pulse":
         """Build a pulse from the dimensionless pair of the overturning spectrum.
 
         Parameters
@@ -66,11 +92,16 @@ class OneSinePulse:
         )
 
     @classmethod
-    def from_hz(cls, pfa_g: float, frequency_hz: float) -> "OneSinePulse":
-        """Build a pulse from ``PFA`` in g and the pulse frequency in Hz."""
+    def from_hz(cls, pfa_g: float, frequency_hz: float) -> "Pulse":
+        """Build a pulse from ``PFA`` in g and the pulse frequency ``omega_p / 2 pi`` in Hz."""
         pfa_g = positive_finite("pfa_g", pfa_g)
         frequency_hz = positive_finite("frequency_hz", frequency_hz)
         return cls(pfa=scaled_input("pfa_g", pfa_g, "pfa", G), omega_p=scaled_input("frequency_hz", frequency_hz, "omega_p", 2.0 * math.pi))
+
+    @property
+    def shape(self) -> str:
+        """Name of the shape (a key of :data:`PULSE_SHAPES`)."""
+        return self.SHAPE
 
     @property
     def T_p(self) -> float:  # noqa: N802  (the paper's symbol)
@@ -78,20 +109,23 @@ class OneSinePulse:
         return 2.0 * math.pi / self.omega_p
 
     @property
-    def duration(self) -> float:
-        """Pulse duration, equal to ``T_p`` (s)."""
-        return self.T_p
-
-    @property
     def frequency_hz(self) -> float:
         """Pulse frequency ``omega_p / 2 pi`` (Hz)."""
         return self.omega_p / (2.0 * math.pi)
 
+    @property
+    def duration(self) -> float:
+        """Time after which the acceleration is zero (s)."""
+        raise NotImplementedError
+
+    def peak_velocity(self) -> float:
+        """True peak of the floor velocity from rest (m/s)."""
+        raise NotImplementedError
+
     def pfv(self, convention: str = "amplitude") -> float:
         """Peak floor velocity (m/s) under the named convention (see :data:`PFV_CONVENTIONS`)."""
         one_of("convention", convention, PFV_CONVENTIONS)
-        amplitude = self.pfa / self.omega_p
-        return amplitude if convention == "amplitude" else 2.0 * amplitude
+        return self.pfa / self.omega_p if convention == "amplitude" else self.peak_velocity()
 
     @property
     def PFV(self) -> float:  # noqa: N802
@@ -106,13 +140,188 @@ class OneSinePulse:
         """``omega_p / p`` for ``block`` (dimensionless)."""
         return self.omega_p / block.p
 
+    def shape_values(self, t: np.ndarray) -> np.ndarray:
+        """``a(t) / PFA`` for times ``t`` (s) inside ``[0, duration]``."""
+        raise NotImplementedError
+
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
-        """Floor acceleration (m/s²) at times ``t`` (s); zero outside ``[0, T_p]``."""
+        """Floor acceleration (m/s²) at times ``t`` (s); zero outside ``[0, duration]``."""
         t = np.asarray(t, dtype=float)
-        inside = (t >= 0.0) & (t <= self.T_p)
-        # evaluate the sine inside the pulse only: omega_p t outside it can be arbitrarily large
-        return np.where(inside, self.pfa * np.sin(self.omega_p * np.where(inside, t, 0.0)), 0.0)
+        inside = (t >= 0.0) & (t <= self.duration)
+        # evaluate the shape inside the pulse only: omega_p t outside it can be arbitrarily large
+        return np.where(inside, self.pfa * self.shape_values(np.where(inside, t, 0.0)), 0.0)
 
     def breakpoints(self) -> np.ndarray:
-        """Start and end of the pulse (s): the acceleration's slope jumps there."""
-        return np.array([0.0, self.T_p])
+        """Start and end of the pulse (s): the acceleration or its slope jumps there."""
+        return np.array([0.0, self.duration])
+
+
+@dataclass(frozen=True)
+class HarmonicPulse(Pulse):
+    """``a(t) = PFA sin(omega_p t + PHASE)`` for ``0 <= t <= CYCLES T_p``, zero after."""
+
+    #: Phase of the sine at ``t = 0`` (rad).
+    PHASE: ClassVar[float] = 0.0
+    #: Duration in periods ``T_p``.
+    CYCLES: ClassVar[float] = 1.0
+
+    @property
+    def duration(self) -> float:
+        """Pulse duration ``CYCLES T_p`` (s)."""
+        return self.CYCLES * self.T_p
+
+    def shape_values(self, t: np.ndarray) -> np.ndarray:
+        """``sin(omega_p t + PHASE)`` (dimensionless)."""
+        return np.sin(self.omega_p * t + self.PHASE)
+
+    def peak_velocity(self) -> float:
+        """Peak of ``|v(t)|``, ``v = PFA [cos(PHASE) - cos(omega_p t + PHASE)] / omega_p`` (m/s)."""
+        # the velocity's extremes are at the zeros of a(t) inside the pulse and at its end
+        n = int(round(2.0 * self.CYCLES))
+        phases = [k * math.pi for k in range(n + 1)] + [2.0 * math.pi * self.CYCLES + self.PHASE]
+        amp = self.pfa / self.omega_p
+        end = phases[-1]
+        return max(abs(amp * (math.cos(self.PHASE) - math.cos(ph))) for ph in phases if self.PHASE <= ph <= end)
+
+
+@dataclass(frozen=True)
+class OneSinePulse(HarmonicPulse):
+    """One full sine cycle of floor acceleration, ``a(t) = PFA sin(omega_p t)`` on ``[0, T_p]``:
+    the paper's pulse. ``omega_p`` is its own frequency; the peak velocity is ``2 PFA / omega_p``.
+
+    Parameters
+    ----------
+    pfa : float
+        Peak floor acceleration ``PFA`` (m/s²), within :data:`opsrock.limits.LIMITS`.
+    omega_p : float
+        Circular frequency of the pulse ``omega_p`` (rad/s), within :data:`opsrock.limits.LIMITS`.
+    """
+
+    SHAPE: ClassVar[str] = "one-sine"
+
+
+@dataclass(frozen=True)
+class HalfSinePulse(HarmonicPulse):
+    """Half a sine cycle, ``a(t) = PFA sin(omega_p t)`` on ``[0, T_p / 2]``: a one-sided pulse
+    (Makris and Roussos 2000). ``omega_p`` is the frequency of the sine; the floor velocity rises
+    to ``2 PFA / omega_p`` and stays there.
+
+    Parameters
+    ----------
+    pfa : float
+        Peak floor acceleration ``PFA`` (m/s²).
+    omega_p : float
+        Circular frequency of the sine (rad/s).
+    """
+
+    SHAPE: ClassVar[str] = "half-sine"
+    CYCLES: ClassVar[float] = 0.5
+
+
+@dataclass(frozen=True)
+class OneCosinePulse(HarmonicPulse):
+    """One full cosine cycle, ``a(t) = PFA cos(omega_p t)`` on ``[0, T_p]`` (Makris and
+    Konstantinidis 2003): the acceleration jumps to ``PFA`` at ``t = 0``; the floor velocity peaks
+    at ``PFA / omega_p`` and ends at zero.
+
+    Parameters
+    ----------
+    pfa : float
+        Peak floor acceleration ``PFA`` (m/s²).
+    omega_p : float
+        Circular frequency of the cosine (rad/s).
+    """
+
+    SHAPE: ClassVar[str] = "one-cosine"
+    PHASE: ClassVar[float] = 0.5 * math.pi
+
+
+@dataclass(frozen=True)
+class RectangularPulse(Pulse):
+    """A constant acceleration ``PFA`` for ``0 <= t <= t_1`` (Housner 1963), zero after.
+
+    Parameters
+    ----------
+    pfa : float
+        The acceleration ``PFA`` (m/s²).
+    omega_p : float
+        ``pi / t_1`` (rad/s): the frequency of the half-sine of the same duration, so that
+        ``omega_p / p = pi / (p t_1)``. Build from the duration with :meth:`from_duration`.
+    """
+
+    SHAPE: ClassVar[str] = "rectangular"
+
+    @classmethod
+    def from_duration(cls, pfa: float, duration: float) -> "RectangularPulse":
+        """Build from ``PFA`` (m/s²) and the duration ``t_1`` (s)."""
+        duration = check("duration", duration)
+        return cls(pfa=pfa, omega_p=scaled_input("duration", math.pi / duration, "omega_p", 1.0))
+
+    @property
+    def duration(self) -> float:
+        """Pulse duration ``t_1 = pi / omega_p`` (s)."""
+        return math.pi / self.omega_p
+
+    def shape_values(self, t: np.ndarray) -> np.ndarray:
+        """1 (dimensionless)."""
+        return np.ones_like(t)
+
+    def peak_velocity(self) -> float:
+        """``PFA t_1`` (m/s): the velocity at the end of the pulse."""
+        return self.pfa * self.duration
+
+
+@dataclass(frozen=True)
+class RickerWavelet(Pulse):
+    """The symmetric Ricker wavelet ``a(t) = PFA (1 - 2 x²) exp(-x²)``, ``x = omega_p (t - t_0) / 2``,
+    centred at ``t_0 = 1.6 T_p`` and cut at ``t = 2 t_0`` (where ``|a| < 6e-10 PFA``).
+
+    The central lobe is positive (``PFA`` at ``t_0``), the two side lobes reach
+    ``-2 exp(-3/2) PFA = -0.446 PFA``; the floor velocity ``PFA (t - t_0) exp(-x²)`` peaks at
+    ``sqrt(2) exp(-1/2) PFA / omega_p``.
+
+    Parameters
+    ----------
+    pfa : float
+        Peak floor acceleration ``PFA`` (m/s²).
+    omega_p : float
+        Frequency at which the Fourier amplitude of the wavelet peaks (rad/s).
+    """
+
+    SHAPE: ClassVar[str] = "ricker"
+
+    @property
+    def t0(self) -> float:
+        """Centre of the wavelet (s)."""
+        return RICKER_HALF_WIDTH * self.T_p
+
+    @property
+    def duration(self) -> float:
+        """``2 t_0`` (s)."""
+        return 2.0 * self.t0
+
+    def shape_values(self, t: np.ndarray) -> np.ndarray:
+        """``(1 - 2 x²) exp(-x²)`` (dimensionless)."""
+        x2 = (0.5 * self.omega_p * (t - self.t0)) ** 2
+        return (1.0 - 2.0 * x2) * np.exp(-x2)
+
+    def peak_velocity(self) -> float:
+        """``sqrt(2) exp(-1/2) PFA / omega_p`` (m/s)."""
+        return math.sqrt(2.0) * math.exp(-0.5) * self.pfa / self.omega_p
+
+    def extrema(self) -> np.ndarray:
+        """Times of the three extremes of ``a`` (s): side lobes at ``x = -+sqrt(3/2)``, centre."""
+        d = 2.0 * math.sqrt(1.5) / self.omega_p
+        return np.array([self.t0 - d, self.t0, self.t0 + d])
+
+
+#: The pulse shapes by name.
+PULSE_SHAPES: dict[str, type[Pulse]] = {
+    cls.SHAPE: cls for cls in (RectangularPulse, HalfSinePulse, OneSinePulse, OneCosinePulse, RickerWavelet)
+}
+
+
+def pulse_class(shape: str) -> type[Pulse]:
+    """The pulse class of ``shape``, one of :data:`PULSE_SHAPES` (the message names ``shape``)."""
+    one_of("shape", shape, tuple(PULSE_SHAPES))
+    return PULSE_SHAPES[shape]

@@ -198,14 +198,18 @@ def intensity_measures_array(
 def intensity_measures(
     block: "Block", pulse: "OneSinePulse", pfv_convention: str = "amplitude"
 ) -> dict[str, float]:
-    """The nine IMs of Table 1 for one block under one one-sine pulse.
+    """The nine IMs of Table 1 for one block under one pulse.
 
     Parameters
     ----------
     block : Block
         The block (sets ``alpha``, ``R``, ``p``, ``e_R``).
-    pulse : OneSinePulse
-        The pulse (sets ``PFA`` in m/s² and ``omega_p`` in rad/s).
+    pulse : Pulse
+        The pulse (sets ``PFA`` in m/s² and ``omega_p`` in rad/s). The IMs keep their definitions
+        for every shape, with ``omega_p`` as the shape defines it (:mod:`opsrock.excitations.pulses`:
+        its own frequency for the harmonic pulses, ``pi / t_1`` for the rectangular pulse, the
+        Fourier peak for the Ricker wavelet). ``pfv_convention="peak"`` (``2 PFA / omega_p``) is
+        the one-sine pulse's true peak velocity and is meant for it only.
     pfv_convention : {"amplitude", "peak"}, optional
         PFV used by IM3 and IM8 (see :data:`opsrock.excitations.PFV_CONVENTIONS`).
 

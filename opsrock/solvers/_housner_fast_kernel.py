@@ -15,6 +15,7 @@ import numba
 import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.excitations.pulses import RICKER_HALF_WIDTH
 
 # --- status codes of the compiled kernel (one per case in :class:`GridResult`) ---------------
 #: Finished: verdict (no uplift, safe or overturned) is valid.
@@ -54,47 +55,75 @@ _MIN_STEP = 1e-14
 
 
 
+# --- forms of the floor acceleration inside one integration segment ----------------------------
+#: ``a/g = c0 + c1 (tau - c2)``: one sample interval of a record, or the rectangular pulse.
+FORM_LINEAR = 0
+#: ``a/g = c0 sin(c1 tau + c2)``: half-sine, one-sine and one-cosine pulses.
+FORM_SINE = 1
+#: ``a/g = c0 (1 - 2 x²) exp(-x²)``, ``x = c1 (tau - c2)``: the Ricker wavelet.
+FORM_RICKER = 2
+
+# --- analytic pulses known to the kernel (ids of :func:`_pulse_forcing`) -------------------------
+PULSE_RECTANGULAR = 0
+PULSE_HALF_SINE = 1
+PULSE_ONE_SINE = 2
+PULSE_ONE_COSINE = 3
+PULSE_RICKER = 4
+#: Kernel id of every pulse shape of :data:`opsrock.excitations.PULSE_SHAPES`.
+PULSE_IDS: dict[str, int] = {"rectangular": PULSE_RECTANGULAR, "half-sine": PULSE_HALF_SINE,
+                             "one-sine": PULSE_ONE_SINE, "one-cosine": PULSE_ONE_COSINE,
+                             "ricker": PULSE_RICKER}
+
+
 @numba.njit(cache=True)
-def _accel(theta, tau, side, alpha, k, nu, tau_end, lin):
-    """d²theta/dtau² on pivot ``side`` (+1/-1). The floor acceleration over g is the sine pulse
-    ``k sin(nu tau)`` up to ``tau_end`` (``lin`` False; ``k = PFA/g``, ``nu = omega_p/p``), or the
-    linear segment ``k + nu (tau - tau_end)`` of a record (``lin`` True: value ``k`` at the
-    segment start ``tau_end``, slope ``nu``)."""
-    if lin:
-        ag = k + nu * (tau - tau_end)
-    else:
-        ag = k * math.sin(nu * tau) if tau <= tau_end else 0.0
+def _forcing(tau, form, c0, c1, c2):
+    """Floor acceleration over g at ``tau`` inside a segment of the given form."""
+    if form == FORM_LINEAR:
+        return c0 + c1 * (tau - c2)
+    if form == FORM_SINE:
+        return c0 * math.sin(c1 * tau + c2)
+    x = c1 * (tau - c2)
+    return c0 * (1.0 - 2.0 * x * x) * math.exp(-x * x)
+
+
+@numba.njit(cache=True)
+def _accel(theta, tau, side, alpha, form, c0, c1, c2, lineq):
+    """d²theta/dtau² on pivot ``side`` (+1/-1) under the forcing ``(form, c0, c1, c2)``; the exact
+    equation, or its small-angle form when ``lineq``."""
+    ag = _forcing(tau, form, c0, c1, c2)
     phi = side * alpha - theta
+    if lineq:
+        return -(phi + ag)
     return -(math.sin(phi) + ag * math.cos(phi))
 
 
 @numba.njit(cache=True)
-def _rk4(theta, omega, tau, h, side, alpha, k, nu, tau_end, lin):
+def _rk4(theta, omega, tau, h, side, alpha, form, c0, c1, c2, lineq):
     """One classical RK4 step of size ``h`` (the right side does not depend on omega)."""
-    a1 = _accel(theta, tau, side, alpha, k, nu, tau_end, lin)
+    a1 = _accel(theta, tau, side, alpha, form, c0, c1, c2, lineq)
     th2 = theta + 0.5 * h * omega
     w2 = omega + 0.5 * h * a1
-    a2 = _accel(th2, tau + 0.5 * h, side, alpha, k, nu, tau_end, lin)
+    a2 = _accel(th2, tau + 0.5 * h, side, alpha, form, c0, c1, c2, lineq)
     th3 = theta + 0.5 * h * w2
     w3 = omega + 0.5 * h * a2
-    a3 = _accel(th3, tau + 0.5 * h, side, alpha, k, nu, tau_end, lin)
+    a3 = _accel(th3, tau + 0.5 * h, side, alpha, form, c0, c1, c2, lineq)
     th4 = theta + h * w3
     w4 = omega + h * a3
-    a4 = _accel(th4, tau + h, side, alpha, k, nu, tau_end, lin)
+    a4 = _accel(th4, tau + h, side, alpha, form, c0, c1, c2, lineq)
     theta_new = theta + h / 6.0 * (omega + 2.0 * w2 + 2.0 * w3 + w4)
     omega_new = omega + h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4)
     return theta_new, omega_new
 
 
 @numba.njit(cache=True)
-def _locate(which, theta, omega, tau, h, side, alpha, k, nu, tau_end, lin):
+def _locate(which, theta, omega, tau, h, side, alpha, form, c0, c1, c2, lineq):
     """Step length ``d`` in (0, h] at which the RK4 map's ``theta`` (which=0) or ``omega``
     (which=1) vanishes, given a sign change over ``[0, h]``. Safeguarded Newton (bisection
     fallback) on the RK4 map, derivative from the right side. Returns (d, ok)."""
     lo = 0.0
     hi = h
     f_lo = theta if which == 0 else omega
-    th_h, w_h = _rk4(theta, omega, tau, h, side, alpha, k, nu, tau_end, lin)
+    th_h, w_h = _rk4(theta, omega, tau, h, side, alpha, form, c0, c1, c2, lineq)
     f_hi = th_h if which == 0 else w_h
     if f_hi == 0.0:
         return h, True
@@ -103,7 +132,7 @@ def _locate(which, theta, omega, tau, h, side, alpha, k, nu, tau_end, lin):
     for _ in range(_EVENT_MAX_ITER):
         if not (lo < d < hi):
             d = 0.5 * (lo + hi)
-        th_d, w_d = _rk4(theta, omega, tau, d, side, alpha, k, nu, tau_end, lin)
+        th_d, w_d = _rk4(theta, omega, tau, d, side, alpha, form, c0, c1, c2, lineq)
         f = th_d if which == 0 else w_d
         if f == 0.0:
             return d, True
@@ -111,7 +140,7 @@ def _locate(which, theta, omega, tau, h, side, alpha, k, nu, tau_end, lin):
             lo = d
         else:
             hi = d
-        df = w_d if which == 0 else _accel(th_d, tau + d, side, alpha, k, nu, tau_end, lin)
+        df = w_d if which == 0 else _accel(th_d, tau + d, side, alpha, form, c0, c1, c2, lineq)
         step = f / df if df != 0.0 else 0.0
         d_new = d - step
         if abs(step) <= 4e-16 * max(1.0, tau + d) or hi - lo <= 4e-16 * max(1.0, tau + d):
@@ -123,31 +152,80 @@ def _locate(which, theta, omega, tau, h, side, alpha, k, nu, tau_end, lin):
 
 
 @numba.njit(cache=True)
-def _next_uplift(tau, tan_alpha, k, nu, tau_end):
-    """First time >= tau at which |a|/g > tan(alpha) for the sine pulse, and the sign of a
-    there; (-1.0, 0.0) if none before the end of the pulse."""
-    if k <= tan_alpha * (1.0 + _UPLIFT_RTOL):
+def _next_uplift_sine(tau, level, k, nu, phase, tau_end):
+    """First time >= tau at which ``|k sin(nu tau + phase)| > level`` before ``tau_end``, and the
+    sign of a there; (-1.0, 0.0) if none. Closed form: the exceedance windows in the phase
+    ``Phi = nu tau + phase`` are ``(m pi + beta, (m + 1) pi - beta)``, ``beta = asin(level / k)``,
+    with the sign of a ``(-1)^m``."""
+    if k <= level * (1.0 + _UPLIFT_RTOL):
         return -1.0, 0.0
-    beta = math.asin(tan_alpha / k)
-    phi = nu * tau
-    # exceedance windows in phase: (beta, pi - beta) with a > 0, (pi + beta, 2 pi - beta) a < 0
-    if beta < phi < math.pi - beta:
-        return tau, 1.0
-    if math.pi + beta < phi < 2.0 * math.pi - beta:
-        return tau, -1.0
-    if phi <= beta:
-        return beta / nu, 1.0
-    if phi <= math.pi + beta:
-        return (math.pi + beta) / nu, -1.0
+    beta = math.asin(level / k)
+    ph = nu * tau + phase
+    ph_end = nu * tau_end + phase
+    m = math.floor(ph / math.pi)
+    while True:
+        lo = m * math.pi + beta
+        hi = (m + 1.0) * math.pi - beta
+        sgn = 1.0 if m % 2 == 0 else -1.0
+        if ph >= hi:
+            m += 1.0
+            continue
+        if ph > lo:
+            return tau, sgn
+        if lo >= ph_end:
+            return -1.0, 0.0
+        return (lo - phase) / nu, sgn
+
+
+@numba.njit(cache=True)
+def _next_uplift_ricker(tau, level, k, c, t0, tau_end):
+    """First time >= tau at which the Ricker wavelet ``|a|/g`` exceeds ``level`` before ``tau_end``,
+    and the sign of a there; (-1.0, 0.0) if none. ``a`` is monotone between its extremes
+    (``x = -+sqrt(3/2)``, 0), so each piece holds at most one crossing, found by bisection to the
+    last bit (the returned time is on the exceeding side)."""
+    thr = level * (1.0 + _UPLIFT_RTOL)
+    if k <= thr:
+        return -1.0, 0.0
+    d = math.sqrt(1.5) / c
+    bounds = (0.0, t0 - d, t0, t0 + d, tau_end)
+    for j in range(4):
+        ta = bounds[j]
+        tb = bounds[j + 1]
+        if tb <= tau:
+            continue
+        s = max(tau, ta)
+        fa = _forcing(s, FORM_RICKER, k, c, t0)
+        if fa > thr:
+            return s, 1.0
+        if fa < -thr:
+            return s, -1.0
+        fb = _forcing(tb, FORM_RICKER, k, c, t0)
+        if fb > thr:
+            sgn = 1.0
+        elif fb < -thr:
+            sgn = -1.0
+        else:
+            continue
+        lo = s
+        hi = tb
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if mid <= lo or mid >= hi:
+                break
+            if sgn * _forcing(mid, FORM_RICKER, k, c, t0) > thr:
+                hi = mid
+            else:
+                lo = mid
+        return hi, sgn
     return -1.0, 0.0
 
 
 @numba.njit(cache=True)
-def _next_uplift_record(tau, tan_alpha, kvals, dtau):
-    """First time >= tau at which |a|/g > tan(alpha) for the piecewise-linear record ``kvals``
+def _next_uplift_record(tau, level, kvals, dtau):
+    """First time >= tau at which |a|/g > level for the piecewise-linear record ``kvals``
     (a/g at ``tau = i dtau``), exact on the linear segments, and the sign of a there;
     (-1.0, 0.0) if none before the end of the record."""
-    thr = tan_alpha * (1.0 + _UPLIFT_RTOL)
+    thr = level * (1.0 + _UPLIFT_RTOL)
     n = kvals.shape[0]
     i = min(int(tau / dtau), n - 2)
     while i < n - 1:
@@ -169,12 +247,22 @@ def _next_uplift_record(tau, tan_alpha, kvals, dtau):
 
 
 @numba.njit(cache=True)
-def _segment(lin, tau, i, k, nu, tau_end, kvals, dtau):
+def _next_uplift(tau, level, form, c0, c1, c2, tau_end, kvals, dtau):
+    """First uplift time >= tau (``|a|/g > level``) and the sign of a there, for any form."""
+    if form == FORM_LINEAR:
+        return _next_uplift_record(tau, level, kvals, dtau)
+    if form == FORM_SINE:
+        return _next_uplift_sine(tau, level, c0, c1, c2, tau_end)
+    return _next_uplift_ricker(tau, level, c0, c1, c2, tau_end)
+
+
+@numba.njit(cache=True)
+def _segment(form, tau, i, c0, c1, c2, tau_end, kvals, dtau):
     """Forcing on the segment that holds ``tau``: (segment index, c0, c1, c2, segment end) with
-    ``(c0, c1, c2)`` the ``(k, nu, tau_end)`` arguments of :func:`_accel`. The sine pulse is one
-    segment; a record has one per sample interval (its acceleration has a kink at each sample)."""
-    if not lin:
-        return 0, k, nu, tau_end, tau_end
+    ``(c0, c1, c2)`` the coefficients of :func:`_forcing`. An analytic pulse is one segment; a
+    record (``FORM_LINEAR``) has one per sample interval (its acceleration has a kink at each)."""
+    if form != FORM_LINEAR:
+        return 0, c0, c1, c2, tau_end
     n = kvals.shape[0]
     while i < n - 2 and tau >= (i + 1) * dtau:
         i += 1
@@ -183,22 +271,78 @@ def _segment(lin, tau, i, k, nu, tau_end, kvals, dtau):
 
 
 @numba.njit(cache=True)
-def _solve_case(alpha, e, k, nu, kvals, dtau, h_nom, rest_velocity, max_impacts,
-                max_steps, theta0, omega0, hist_tau, hist_theta, hist_omega):
+def _pulse_forcing(pulse, k, nu):
+    """Forcing of an analytic pulse of peak ``k = PFA/g`` and ``nu = omega_p/p``:
+    (form, c0, c1, c2, tau_end, kvals, dtau), in the dimensionless time ``tau = p t``."""
+    empty = np.zeros(0)
+    if pulse == PULSE_RECTANGULAR:
+        tau_end = math.pi / nu
+        return FORM_LINEAR, 0.0, 0.0, 0.0, tau_end, np.array([k, k]), tau_end
+    if pulse == PULSE_HALF_SINE:
+        return FORM_SINE, k, nu, 0.0, math.pi / nu, empty, 1.0
+    if pulse == PULSE_ONE_COSINE:
+        return FORM_SINE, k, nu, 0.5 * math.pi, 2.0 * math.pi / nu, empty, 1.0
+    if pulse == PULSE_RICKER:
+        t0 = RICKER_HALF_WIDTH * 2.0 * math.pi / nu
+        return FORM_RICKER, k, 0.5 * nu, t0, 2.0 * t0, empty, 1.0
+    return FORM_SINE, k, nu, 0.0, 2.0 * math.pi / nu, empty, 1.0
+
+
+@numba.njit(cache=True)
+def _free_verdict(alpha, e, side, theta, omega, lineq):
+    """Exact verdict after the excitation (a = 0) from the rocking energy (per m g R in the exact
+    form, per m g R alpha-scaled in the linearised one): returns (overturned, peak |theta| of the
+    next excursion, impacts on the way, ok)."""
+    st = side * theta  # |theta| on the current pivot (>= 0)
+    if lineq:
+        energy = 0.5 * omega * omega + 0.5 * (alpha * alpha - (alpha - st) ** 2)
+        barrier = 0.5 * alpha * alpha
+    else:
+        energy = 0.5 * omega * omega + math.cos(alpha - st) - math.cos(alpha)
+        barrier = 1.0 - math.cos(alpha)
+    outward = side * omega > 0.0
+    n_imp = 0
+    for _ in range(3):
+        if st > alpha:
+            if outward or energy <= barrier:
+                return True, OVERTURNING_ANGLE, n_imp, True
+            # crosses the hump inwards, falls to theta = 0, impact
+            energy *= e * e
+            n_imp += 1
+            st = 0.0
+            outward = True
+        elif not outward:
+            energy *= e * e
+            n_imp += 1
+            st = 0.0
+            outward = True
+        else:
+            if energy > barrier:
+                return True, OVERTURNING_ANGLE, n_imp, True
+            if lineq:
+                peak = alpha - math.sqrt(max(0.0, alpha * alpha - 2.0 * energy))
+            else:
+                peak = alpha - math.acos(min(1.0, energy + math.cos(alpha)))
+            return False, peak, n_imp, True
+    return False, 0.0, n_imp, False
+
+
+@numba.njit(cache=True)
+def _solve_case(alpha, e, form, k, nu, phase, tau_end, kvals, dtau, h_nom, lineq, rest_velocity,
+                max_impacts, max_steps, theta0, omega0, hist_tau, hist_theta, hist_omega):
     """Solve one case in dimensionless time ``tau = p t``, from rotation ``theta0`` (rad) and
     angular velocity ``omega0`` (units of p), zero for a block at rest.
 
-    Excitation: the one-sine pulse ``k sin(nu tau)`` (``k = PFA/g``, ``nu = omega_p/p``) when
-    ``kvals`` is empty; otherwise the record ``kvals`` (a/g at ``tau = i dtau``, linear between).
-    ``h_nom`` is the nominal step (units of 1/p); steps also end on every segment end.
+    Excitation: the forcing ``(form, k, nu, phase)`` of :func:`_forcing` up to ``tau_end`` for an
+    analytic pulse (:func:`_pulse_forcing`); for ``form == FORM_LINEAR`` the samples ``kvals``
+    (a/g at ``tau = i dtau``, linear between, ending at ``tau_end``). ``h_nom`` is the nominal step
+    (units of 1/p); steps also end on every segment end. ``lineq``: the small-angle equation.
 
     Returns (theta_max, overturned, rocked, status, n_impacts, n_steps, n_hist).
     History arrays of length 0 disable recording; otherwise states are recorded at every
     accepted step, uplift and impact until the arrays are full.
     """
-    lin = kvals.shape[0] > 0
-    tan_alpha = math.tan(alpha)
-    tau_end = (kvals.shape[0] - 1) * dtau if lin else 2.0 * math.pi / nu
+    level = alpha if lineq else math.tan(alpha)
     seg = 0
     n_cap = hist_tau.shape[0]
     n_hist = 0
@@ -227,10 +371,7 @@ def _solve_case(alpha, e, k, nu, kvals, dtau, h_nom, rest_velocity, max_impacts,
 
     while True:
         if side == 0.0:
-            if lin:
-                t_up, sgn_a = _next_uplift_record(tau, tan_alpha, kvals, dtau)
-            else:
-                t_up, sgn_a = _next_uplift(tau, tan_alpha, k, nu, tau_end)
+            t_up, sgn_a = _next_uplift(tau, level, form, k, nu, phase, tau_end, kvals, dtau)
             if t_up < 0.0:
                 return theta_max, False, rocked, STATUS_OK, n_imp, n_steps, n_hist
             tau = t_up
@@ -249,18 +390,18 @@ def _solve_case(alpha, e, k, nu, kvals, dtau, h_nom, rest_velocity, max_impacts,
         if n_steps >= max_steps:
             return theta_max, False, rocked, STATUS_MAX_STEPS, n_imp, n_steps, n_hist
 
-        seg, c0, c1, c2, seg_end = _segment(lin, tau, seg, k, nu, tau_end, kvals, dtau)
+        seg, c0, c1, c2, seg_end = _segment(form, tau, seg, k, nu, phase, tau_end, kvals, dtau)
         h = min(h_nom, seg_end - tau)
         last = h == seg_end - tau
         if fresh:
-            acc0 = _accel(0.0, tau, side, alpha, c0, c1, c2, lin)
+            acc0 = _accel(0.0, tau, side, alpha, form, c0, c1, c2, lineq)
             if side * acc0 < 0.0 and omega != 0.0:
                 # restoring: the excursion peaks after about |omega| / |acc0|
                 h_peak = abs(omega) / abs(acc0)
                 if h_peak < h:
                     h = h_peak
                     last = False
-        th1, w1 = _rk4(theta, omega, tau, h, side, alpha, c0, c1, c2, lin)
+        th1, w1 = _rk4(theta, omega, tau, h, side, alpha, form, c0, c1, c2, lineq)
         n_steps += 1
         if fresh:
             # the whole step must stay on the new side; halve until it does
@@ -269,7 +410,7 @@ def _solve_case(alpha, e, k, nu, kvals, dtau, h_nom, rest_velocity, max_impacts,
                 last = False
                 if h < _MIN_STEP:
                     break
-                th1, w1 = _rk4(theta, omega, tau, h, side, alpha, c0, c1, c2, lin)
+                th1, w1 = _rk4(theta, omega, tau, h, side, alpha, form, c0, c1, c2, lineq)
                 n_steps += 1
             if side * th1 <= 0.0:
                 # an excursion shorter than 1e-14/p: negligible, seat the block
@@ -283,17 +424,17 @@ def _solve_case(alpha, e, k, nu, kvals, dtau, h_nom, rest_velocity, max_impacts,
 
         if side * th1 < 0.0:
             # impact inside the step
-            d, ok = _locate(0, theta, omega, tau, h, side, alpha, c0, c1, c2, lin)
+            d, ok = _locate(0, theta, omega, tau, h, side, alpha, form, c0, c1, c2, lineq)
             if not ok:
                 return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp, n_steps, n_hist
-            th_d, w_d = _rk4(theta, omega, tau, d, side, alpha, c0, c1, c2, lin)
+            th_d, w_d = _rk4(theta, omega, tau, d, side, alpha, form, c0, c1, c2, lineq)
             n_steps += 1
             # a peak may lie between the start of the step and the impact
             if omega * w_d < 0.0:
-                dp, ok = _locate(1, theta, omega, tau, d, side, alpha, c0, c1, c2, lin)
+                dp, ok = _locate(1, theta, omega, tau, d, side, alpha, form, c0, c1, c2, lineq)
                 if not ok:
                     return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp, n_steps, n_hist
-                th_p, _ = _rk4(theta, omega, tau, dp, side, alpha, c0, c1, c2, lin)
+                th_p, _ = _rk4(theta, omega, tau, dp, side, alpha, form, c0, c1, c2, lineq)
                 theta_max = max(theta_max, abs(th_p))
             tau = tau + d if d < h else (seg_end if last else tau + h)
             n_imp += 1
@@ -313,7 +454,7 @@ def _solve_case(alpha, e, k, nu, kvals, dtau, h_nom, rest_velocity, max_impacts,
                 n_hist += 2
             # come to rest? tiny velocity into a side whose acceleration points back to 0
             if abs(omega) < rest_velocity:
-                acc_new = _accel(0.0, tau, side, alpha, c0, c1, c2, lin)
+                acc_new = _accel(0.0, tau, side, alpha, form, c0, c1, c2, lineq)
                 if side * acc_new <= 0.0:
                     side = 0.0
                     omega = 0.0
@@ -322,10 +463,10 @@ def _solve_case(alpha, e, k, nu, kvals, dtau, h_nom, rest_velocity, max_impacts,
 
         # ordinary step: a peak inside it?
         if omega * w1 < 0.0:
-            dp, ok = _locate(1, theta, omega, tau, h, side, alpha, c0, c1, c2, lin)
+            dp, ok = _locate(1, theta, omega, tau, h, side, alpha, form, c0, c1, c2, lineq)
             if not ok:
                 return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp, n_steps, n_hist
-            th_p, _ = _rk4(theta, omega, tau, dp, side, alpha, c0, c1, c2, lin)
+            th_p, _ = _rk4(theta, omega, tau, dp, side, alpha, form, c0, c1, c2, lineq)
             theta_max = max(theta_max, abs(th_p))
         tau = seg_end if last else tau + h
         theta = th1
@@ -343,43 +484,24 @@ def _solve_case(alpha, e, k, nu, kvals, dtau, h_nom, rest_velocity, max_impacts,
     # ---- pulse over, block rocking: exact free-rocking verdict from the energy -------------
     if side == 0.0:
         return theta_max, False, rocked, STATUS_OK, n_imp, n_steps, n_hist
-    st = side * theta  # |theta| on the current pivot (>= 0)
-    energy = 0.5 * omega * omega + math.cos(alpha - st) - math.cos(alpha)
-    barrier = 1.0 - math.cos(alpha)
-    outward = side * omega > 0.0
-    for _ in range(3):
-        if st > alpha:
-            if outward or energy <= barrier:
-                return max(theta_max, OVERTURNING_ANGLE), True, rocked, STATUS_OK, n_imp, n_steps, n_hist
-            # crosses the hump inwards, falls to theta = 0, impact
-            energy *= e * e
-            n_imp += 1
-            st = 0.0
-            outward = True
-        elif not outward:
-            energy *= e * e
-            n_imp += 1
-            st = 0.0
-            outward = True
-        else:
-            if energy > barrier:
-                return max(theta_max, OVERTURNING_ANGLE), True, rocked, STATUS_OK, n_imp, n_steps, n_hist
-            peak = alpha - math.acos(min(1.0, energy + math.cos(alpha)))
-            return max(theta_max, peak), False, rocked, STATUS_OK, n_imp, n_steps, n_hist
-    return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp, n_steps, n_hist
+    ov, peak, extra, ok = _free_verdict(alpha, e, side, theta, omega, lineq)
+    if not ok:
+        return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp + extra, n_steps, n_hist
+    return max(theta_max, peak), ov, rocked, STATUS_OK, n_imp + extra, n_steps, n_hist
 
 
 @numba.njit(cache=True, nogil=True)
-def _solve_chunk(alpha, e, k, nu, max_step, steps_per_pulse, rest_velocity, max_impacts, max_steps,
-                 start, stop, theta_max, overturned, rocked, status, n_impacts, n_steps):
-    """Solve cases ``start:stop`` one after the other (releases the GIL, so Python threads
-    can run chunks in parallel; each case is independent, so results do not depend on the
-    chunking or the number of threads)."""
+def _solve_chunk(alpha, e, k, nu, pulse, lineq, max_step, steps_per_pulse, rest_velocity, max_impacts,
+                 max_steps, start, stop, theta_max, overturned, rocked, status, n_impacts, n_steps):
+    """Solve cases ``start:stop`` of analytic pulse ``pulse`` (a :data:`PULSE_IDS` value) one after
+    the other (releases the GIL, so Python threads can run chunks in parallel; each case is
+    independent, so results do not depend on the chunking or the number of threads)."""
     empty = np.zeros(0)
     for i in range(start, stop):
         h_nom = min(max_step, 2.0 * math.pi / nu[i] / steps_per_pulse)
+        form, c0, c1, c2, tau_end, kvals, dtau = _pulse_forcing(pulse, k[i], nu[i])
         tm, ov, rk, st, ni, ns, _ = _solve_case(
-            alpha[i], e[i], k[i], nu[i], empty, 1.0, h_nom, rest_velocity,
+            alpha[i], e[i], form, c0, c1, c2, tau_end, kvals, dtau, h_nom, lineq, rest_velocity,
             max_impacts, max_steps, 0.0, 0.0, empty, empty, empty)
         theta_max[i] = tm
         overturned[i] = ov
@@ -387,6 +509,3 @@ def _solve_chunk(alpha, e, k, nu, max_step, steps_per_pulse, rest_velocity, max_
         status[i] = st
         n_impacts[i] = ni
         n_steps[i] = ns
-
-
-

@@ -17,6 +17,10 @@ solver is event-driven:
   set down as seated; it lifts off again if ``|a|`` still exceeds ``g tan(alpha)``;
 * **overturning** when ``|theta|`` reaches ``pi/2`` (Eq. 11), a terminal event.
 
+With ``equations="linearised"`` the small-angle form of the classical rocking papers is solved
+instead, ``theta'' = -p² [(alpha s - theta) + a/g]`` with uplift when ``|a| > g alpha``
+(:data:`opsrock.constants.EQUATIONS`); overturning is still ``|theta| = pi/2``.
+
 The lever here is the exact ``cos(alpha s - theta)`` of Eq. 1; the SDOF model of Eq. 6 keeps
 it constant at ``cos(alpha)`` (see :mod:`opsrock.solvers.sdof`): one of the model-form
 differences measured by ``validation/model_form``.
@@ -35,7 +39,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from opsrock._checks import bool_fields, int_at_least, one_of, positive_finite
 from opsrock.block import Block
-from opsrock.constants import G, OVERTURNING_ANGLE
+from opsrock.constants import EQUATIONS, G, OVERTURNING_ANGLE
 from opsrock.result import ImpactLog, RockingResult, failed_result
 
 #: Explicit Runge-Kutta methods of :func:`scipy.integrate.solve_ivp` accepted here. The
@@ -112,10 +116,12 @@ class HousnerSettings:
     max_impacts: int = 10_000
     rest_velocity_ratio: float = 1e-6
     scan_step: float | None = None
+    equations: str = "exact"
 
     def __post_init__(self) -> None:
         bool_fields(self)
         one_of("method", self.method, METHODS)
+        one_of("equations", self.equations, EQUATIONS)
         one_of("tail", self.tail, TAILS)
         _check_common(self)
         positive_finite("rest_velocity_ratio", self.rest_velocity_ratio)
@@ -272,7 +278,8 @@ def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = N
     t_wall = _time.perf_counter()
     alpha, p, e = block.alpha, block.p, block.e
     p2 = p * p
-    level = block.uplift_acceleration
+    linearised = s.equations == "linearised"
+    level = G * alpha if linearised else block.uplift_acceleration
     duration = float(excitation.duration)
     t_final = s.end_time if s.end_time is not None else duration + s.max_free_time
     scan = s.scan_step if s.scan_step is not None else max(duration, 1e-9) / 2000.0
@@ -334,6 +341,8 @@ def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = N
 
         def rhs(tt: float, yy: np.ndarray, sd: float = sd) -> list[float]:
             ang = alpha * sd - yy[0]
+            if linearised:
+                return [yy[1], -p2 * (ang + float(acc(tt)) / G)]
             return [yy[1], -p2 * (math.sin(ang) + float(acc(tt)) / G * math.cos(ang))]
 
         def impact(tt: float, yy: np.ndarray, sd: float = sd) -> float:

@@ -69,15 +69,15 @@ from typing import Any, Sequence
 
 import numpy as np
 
-from opsrock._checks import bool_fields, int_at_least, positive_finite
+from opsrock._checks import bool_fields, int_at_least, one_of, positive_finite
 from opsrock.block import Block
-from opsrock.constants import G, OVERTURNING_ANGLE
-from opsrock.excitations import OneSinePulse, Record
+from opsrock.constants import EQUATIONS, G, OVERTURNING_ANGLE
+from opsrock.excitations import PULSE_SHAPES, Pulse, Record
 from opsrock.excitations.records import check_sampling
 from opsrock.result import RockingResult, failed_result
 from opsrock.solvers._housner_fast_kernel import (  # noqa: F401  (status codes are public)
     STATUS_EVENT_FAILED, STATUS_MAX_IMPACTS, STATUS_MAX_STEPS, STATUS_NONFINITE, STATUS_OK,
-    STATUS_REASONS, _solve_case, _solve_chunk)
+    STATUS_REASONS, FORM_LINEAR, PULSE_IDS, PULSE_ONE_SINE, _pulse_forcing, _solve_case, _solve_chunk)
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "housner_fast"
@@ -111,6 +111,10 @@ class HousnerFastSettings:
         ``e = 0.74`` (alpha = 0.42 rad).
     max_steps : int
         Integrator steps allowed per case before it is reported as failed. Default 10**7.
+    equations : str
+        Form of the equation of motion, one of :data:`opsrock.constants.EQUATIONS`. Default
+        ``"exact"``; ``"linearised"``: ``d²theta/dtau² = -[(alpha s - theta) + a/g]`` with uplift when
+        ``|a| > g alpha`` and the free-rocking verdict from the linearised energy.
     """
 
     max_step: float = 0.02
@@ -118,9 +122,11 @@ class HousnerFastSettings:
     rest_velocity: float = 1e-7
     max_impacts: int = 100_000
     max_steps: int = 10_000_000
+    equations: str = "exact"
 
     def __post_init__(self) -> None:
         bool_fields(self)
+        one_of("equations", self.equations, EQUATIONS)
         positive_finite("max_step", self.max_step)
         if self.max_step > 0.5:
             raise ValueError(f"max_step must be <= 0.5 (units of 1/p), got {self.max_step!r}")
@@ -221,8 +227,9 @@ def solve_grid(
     *,
     settings: HousnerFastSettings | None = None,
     threads: int | None = None,
+    pulse: str = "one-sine",
 ) -> GridResult:
-    """Solve many one-sine-pulse cases at once: the batch entry point for dense spectra.
+    """Solve many analytic-pulse cases at once: the batch entry point for dense spectra.
 
     All inputs broadcast together; each element of the broadcast is one independent case.
     The kernel integrates in the dimensionless time ``tau = p t``, in which the peak rotation and
@@ -245,6 +252,8 @@ def solve_grid(
     threads : int, optional
         Worker threads (the compiled kernel releases the GIL). Default: the CPUs this
         process may use. Results are identical for any value: cases are independent.
+    pulse : str, optional
+        Pulse shape, a key of :data:`opsrock.excitations.PULSE_SHAPES`. Default ``"one-sine"``.
 
     Returns
     -------
@@ -252,6 +261,7 @@ def solve_grid(
         Arrays of the broadcast shape.
     """
     settings = _as_settings(settings, {})
+    one_of("pulse", pulse, tuple(PULSE_SHAPES))
     threads = _default_threads() if threads is None else int_at_least("threads", threads, 1)
     arrays = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (alpha, e, pfa_ratio, freq_ratio)))
     shape = arrays[0].shape
@@ -268,7 +278,8 @@ def solve_grid(
     status = np.empty(n, dtype=np.int8)
     n_impacts = np.empty(n, dtype=np.int64)
     n_steps = np.empty(n, dtype=np.int64)
-    args = (a_, e_, k, f_, float(settings.max_step), int(settings.steps_per_pulse),
+    args = (a_, e_, k, f_, PULSE_IDS[pulse], settings.equations == "linearised",
+            float(settings.max_step), int(settings.steps_per_pulse),
             float(settings.rest_velocity), int(settings.max_impacts), int(settings.max_steps))
     outs = (theta_max, overturned, rocked, status, n_impacts, n_steps)
     bounds = [(i, min(i + _CHUNK, n)) for i in range(0, n, _CHUNK)]
@@ -299,6 +310,7 @@ def solve_pulses(
     *,
     settings: HousnerFastSettings | None = None,
     threads: int | None = None,
+    pulse: str = "one-sine",
 ) -> GridResult:
     """Solve every block against the full grid ``pfa_ratios x freq_ratios``.
 
@@ -314,6 +326,8 @@ def solve_pulses(
         Numerical settings.
     threads : int, optional
         Worker threads, see :func:`solve_grid`.
+    pulse : str, optional
+        Pulse shape, see :func:`solve_grid`.
 
     Returns
     -------
@@ -328,7 +342,7 @@ def solve_pulses(
     al = np.array([b.alpha for b in blocks])[:, None, None]
     ee = np.array([b.e for b in blocks])[:, None, None]
     return solve_grid(al, ee, r[None, :, None], f[None, None, :], settings=settings,
-                      threads=threads)
+                      threads=threads, pulse=pulse)
 
 
 #: History slots reserved beyond the nominal steps of a case in :func:`solve` and
@@ -337,21 +351,21 @@ def solve_pulses(
 _HISTORY_EXTRA = 20_000
 
 
-_EMPTY = np.zeros(0)
 
 
 def _run_one(block: Block, k: float, nu: float, theta0: float, omega0: float,
-             settings: HousnerFastSettings, record: Record | None = None) -> RockingResult:
-    """Solve one case with history; ``k = PFA/g``, ``nu = omega_p/p`` (dimensionless) for the sine
-    pulse, or the samples of ``record`` when it is given."""
+             settings: HousnerFastSettings, record: Record | None = None,
+             pulse: int = PULSE_ONE_SINE) -> RockingResult:
+    """Solve one case with history; ``k = PFA/g``, ``nu = omega_p/p`` (dimensionless) for the
+    analytic pulse ``pulse`` (a kernel id), or the samples of ``record`` when it is given."""
     settings_dict = {"solver": SOLVER_NAME, **asdict(settings)}
     alpha = block.alpha
     p = block.p
     if record is None:
-        kvals, dtau = _EMPTY, 1.0
-        tau_end = 2.0 * math.pi / nu
-        h_nom = min(settings.max_step, tau_end / settings.steps_per_pulse)
+        form, c0, c1, c2, tau_end, kvals, dtau = _pulse_forcing(pulse, k, nu)
+        h_nom = min(settings.max_step, 2.0 * math.pi / nu / settings.steps_per_pulse)
     else:
+        form, c0, c1, c2 = FORM_LINEAR, 0.0, 0.0, 0.0
         kvals, dtau = record.values / G, record.dt * p
         tau_end = record.duration * p
         h_nom = min(settings.max_step, dtau)
@@ -360,8 +374,8 @@ def _run_one(block: Block, k: float, nu: float, theta0: float, omega0: float,
     t0 = _time.perf_counter()
     try:
         tm, ov, rk, st, ni, ns, nh = _solve_case(
-            alpha, block.e, k, nu, kvals, dtau, h_nom,
-            float(settings.rest_velocity), int(settings.max_impacts), int(settings.max_steps),
+            alpha, block.e, form, c0, c1, c2, tau_end, kvals, dtau, h_nom,
+            settings.equations == "linearised", float(settings.rest_velocity), int(settings.max_impacts), int(settings.max_steps),
             float(theta0), float(omega0), *hist)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, settings_dict, alpha, f"{type(exc).__name__}: {exc}",
@@ -390,17 +404,17 @@ def _run_one(block: Block, k: float, nu: float, theta0: float, omega0: float,
     )
 
 
-def solve(block: Block, excitation: OneSinePulse | Record, *, settings: HousnerFastSettings | None = None,
+def solve(block: Block, excitation: Pulse | Record, *, settings: HousnerFastSettings | None = None,
           **overrides: Any) -> RockingResult:
-    """Rocking response of one block, initially at rest, to a one-sine pulse or a record (exact
-    rigid-body model).
+    """Rocking response of one block, initially at rest, to an analytic pulse or a record
+    (rigid-body model, exact or linearised equations).
 
     Parameters
     ----------
     block : Block
         The block.
-    excitation : OneSinePulse or Record
-        The floor motion. A record is integrated segment by segment (linear acceleration between
+    excitation : Pulse or Record
+        The floor motion: any pulse of :data:`opsrock.excitations.PULSE_SHAPES`, or a record. A record is integrated segment by segment (linear acceleration between
         samples, every step ending on a sample), with the step also bounded by ``max_step``; it
         must be sampled finely enough for the block (:func:`opsrock.excitations.records.check_sampling`).
     settings : HousnerFastSettings, optional
@@ -421,11 +435,12 @@ def solve(block: Block, excitation: OneSinePulse | Record, *, settings: HousnerF
     if isinstance(excitation, Record):
         check_sampling(excitation, block)
         return _run_one(block, 0.0, 1.0, 0.0, 0.0, settings, record=excitation)
-    if not isinstance(excitation, OneSinePulse):
+    if not isinstance(excitation, Pulse) or excitation.shape not in PULSE_IDS:
         raise TypeError(
-            f"housner_fast solves one-sine pulses and records (OneSinePulse, Record), got "
+            f"housner_fast solves the pulses of PULSE_SHAPES and records (Pulse, Record), got "
             f"{type(excitation).__name__}; use solver='housner' for other excitations")
-    return _run_one(block, excitation.pfa / G, excitation.omega_p / block.p, 0.0, 0.0, settings)
+    return _run_one(block, excitation.pfa / G, excitation.omega_p / block.p, 0.0, 0.0, settings,
+                    pulse=PULSE_IDS[excitation.shape])
 
 
 def free_rocking(block: Block, theta0: float, duration: float, *, theta_dot0: float = 0.0,

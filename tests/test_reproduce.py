@@ -12,7 +12,7 @@ from opsrock import reproduce as rp
 TINY = Path(__file__).resolve().parents[1] / "models" / "scenes" / "tiny.toml"
 
 TABLE2_COLUMNS = ["im", "W_HS", "R_S", "R_O", "W_HS_over_R_S", "W_HS_over_R_O", "HR", "W_SAS"]
-FIGURES = ["fig3", "fig4", "fig6a", "fig6b", "fig8", "fig9", "fig10", "fig11", "fig12"]
+FIGURES = ["fig3", "fig4", "fig6a", "fig6b", "fig8", "fig9", "fig10", "fig11", "fig12", "thresholds"]
 
 
 @pytest.mark.opensees
@@ -36,6 +36,7 @@ def test_reproduce_end_to_end_on_tiny_scene(tmp_path):
     report = (out / "report.md").read_text()
     assert report.startswith("# Reproduction")
     assert "Best IM by hybrid ratio" in report and "Validation gate PASSED" in report
+    assert "published overturning thresholds" in report and "figures/thresholds.png" in report
     # no temporary files left behind
     assert not list(out.rglob("*.tmp*"))
     # a second run reuses every stored case

@@ -1,4 +1,4 @@
-"""The fast part of validation cases 2-4 (case 1 runs in tests/test_closed_forms.py).
+"""The fast part of validation cases 2-4, 7 and 8 (case 1 runs in tests/test_closed_forms.py).
 
 Each case's ``run(out_dir, quick=True)`` regenerates its outputs into a temporary folder and
 reports ``passed`` against the relation and tolerance its README derives.
@@ -16,7 +16,21 @@ pytestmark = pytest.mark.opensees
 
 def test_registry_lists_the_cases_in_order():
     assert CASES == ("closed_forms", "sdof_agreement", "model_form", "lumped_mass", "speed_accuracy",
-                     "stability_map", "records")
+                     "stability_map", "published_thresholds", "records")
+
+
+def test_published_thresholds_quick(tmp_path):
+    # every published value with a number (Housner 1963, Makris and Roussos 2000, Zhang and Makris
+    # 2001 incl. the locomotive example) within the tolerance its row justifies (printing precision),
+    # and housner_fast within 1e-5 of each independent reference (closed forms, closed-form event
+    # solution); the table and the chart are written
+    m = run_case("published_thresholds", tmp_path, quick=True)
+    assert m["passed"] and m["n_published_compared"] == 6
+    assert m["max_rel_diff_reference"] <= 1e-5
+    table = pd.read_csv(tmp_path / "table.csv").set_index("key")
+    assert table.loc["zhang_makris2001_locomotive_linearised", "role"] == "reading"
+    assert abs(table.loc["zhang_makris2001_locomotive_linearised", "rel_diff_published"]) > 0.1  # not reproduced
+    assert (tmp_path / "thresholds.png").stat().st_size > 20_000
 
 
 def test_records_quick(tmp_path):

@@ -21,7 +21,8 @@ CASES: tuple[str, ...] = (
     "lumped_mass",       # 4. the lumped-mass form of Figure 2b against the rotational form
     "speed_accuracy",    # 5. wall time against error, Pareto front
     "stability_map",     # 6. time step x method: accurate / wrong / failed / unstable
-    "records",           # 8. the four solvers on FEMA P695 records, ground and roof (7: thresholds, to come)
+    "published_thresholds",  # 7. the overturning thresholds of the rocking literature
+    "records",           # 8. the four solvers on FEMA P695 records, ground and roof
 )
 
 #: Repository folder that holds the case folders (README, run.py, outputs).

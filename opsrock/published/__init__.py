@@ -1,0 +1,17 @@
+"""Published results of the rocking literature, one module per paper (named for it).
+
+Each module holds the paper's closed-form relation (derived again here, in our own words, for the
+pulse it studies), the parameter range in which it applies, and the values the paper reports, each
+with its source and the tolerance a comparison may use and why. Validation case 7
+(:mod:`opsrock.validation.published_thresholds`) compares the solvers against them.
+
+* :mod:`~opsrock.published.housner_1963`: rectangular pulse, linearised equation;
+* :mod:`~opsrock.published.makris_roussos_2000`: half-sine pulse, linearised, no impact;
+* :mod:`~opsrock.published.zhang_makris_2001`: one-sine pulse, both overturning branches, and the
+  locomotive example;
+* :mod:`~opsrock.published.makris_konstantinidis_2003`: one-cosine pulse, ``T_p = 2 s``, ``alpha = 15°``.
+"""
+
+from opsrock.published.reference import PublishedValue
+
+__all__ = ["PublishedValue"]

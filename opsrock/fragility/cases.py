@@ -1,0 +1,100 @@
+"""Which cases enter the fragility statistics: rocking cases only (Eq. 13); no-uplift and failed
+cases counted and reported, never a verdict."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+
+def _as_bool(series: pd.Series, name: str) -> np.ndarray:
+    if series.dtype == bool:
+        return series.to_numpy()
+    mapping = {"true": True, "false": False, "1": True, "0": False, "1.0": True, "0.0": False}
+    out = series.astype(str).str.strip().str.lower().map(mapping)
+    if out.isna().any():
+        bad = series[out.isna()].iloc[0]
+        raise ValueError(f"column {name!r} must hold booleans, got {bad!r}")
+    return out.to_numpy(dtype=bool)
+
+
+@dataclass(frozen=True)
+class CaseSplit:
+    """The cases table split into what enters the fragility statistics and what does not.
+
+    Parameters
+    ----------
+    rocking : pandas.DataFrame
+        The rocking cases (``status == "ok"`` and ``rocked``), with a boolean column
+        ``overturned``: the only rows any fragility statistic uses.
+    n_total, n_rocking, n_safe, n_overturned, n_no_uplift, n_failed : int
+        Counts. ``n_total = n_rocking + n_no_uplift + n_failed`` and
+        ``n_rocking = n_safe + n_overturned``.
+    """
+
+    rocking: pd.DataFrame = field(repr=False)
+    n_total: int
+    n_rocking: int
+    n_safe: int
+    n_overturned: int
+    n_no_uplift: int
+    n_failed: int
+
+    def counts(self) -> dict[str, int]:
+        """The counts as a dict (for tables and reports)."""
+        return {k: getattr(self, k) for k in
+                ("n_total", "n_rocking", "n_safe", "n_overturned", "n_no_uplift", "n_failed")}
+
+
+def split_cases(cases: pd.DataFrame) -> CaseSplit:
+    """Keep the rocking cases, count the no-uplift and failed ones (Eq. 13).
+
+    Parameters
+    ----------
+    cases : pandas.DataFrame
+        Needs columns ``status`` (``"ok"``/``"failed"``), ``rocked`` and ``overturned``
+        (booleans). If a ``verdict`` column is present it must agree with them.
+
+    Returns
+    -------
+    CaseSplit
+    """
+    missing = [c for c in ("status", "rocked", "overturned") if c not in cases.columns]
+    if missing:
+        raise KeyError(f"cases lacks the column(s) {missing}")
+    status = cases["status"].astype(str).to_numpy()
+    bad = ~np.isin(status, ("ok", "failed"))
+    if bad.any():
+        raise ValueError(f"column 'status' must be 'ok' or 'failed', got {status[bad][0]!r}")
+    ok = status == "ok"
+    rocked = _as_bool(cases["rocked"], "rocked")
+    overturned = _as_bool(cases["overturned"], "overturned")
+    rocking = ok & rocked
+    if np.any(ok & ~rocked & overturned):
+        i = int(np.flatnonzero(ok & ~rocked & overturned)[0])
+        raise ValueError(f"case at row {i} is marked overturned but not rocked")
+    if "verdict" in cases.columns:
+        expected = np.where(~ok, "failed", np.where(~rocked, "no_uplift",
+                                                    np.where(overturned, "overturned", "safe")))
+        verdict = cases["verdict"].astype(str).to_numpy()
+        wrong = verdict != expected
+        if wrong.any():
+            i = int(np.flatnonzero(wrong)[0])
+            raise ValueError(
+                f"case at row {i}: verdict {verdict[i]!r} disagrees with status/rocked/overturned "
+                f"({expected[i]!r})"
+            )
+    table = cases.loc[rocking].copy()
+    table["overturned"] = overturned[rocking]
+    n_over = int(np.sum(overturned[rocking]))
+    return CaseSplit(
+        rocking=table.reset_index(drop=True),
+        n_total=int(len(cases)),
+        n_rocking=int(rocking.sum()),
+        n_safe=int(rocking.sum()) - n_over,
+        n_overturned=n_over,
+        n_no_uplift=int(np.sum(ok & ~rocked)),
+        n_failed=int(np.sum(~ok)),
+    )

@@ -131,8 +131,7 @@ def _scan_grid(lo: float, hi: float, n: int) -> np.ndarray:
     return np.geomspace(lo * (1.0 + 1e-9), hi, n)
 
 
-def _check_common(block: Any, freq_ratio_name: str, shape: str, equations: str, pfa_ratio_max: float,
-                  n_scan: int, rtol: float) -> None:
+def _check_common(block: Any, shape: str, equations: str, pfa_ratio_max: float, n_scan: int, rtol: float) -> None:
     if not isinstance(block, Block):
         raise TypeError(f"block must be a Block, got {block!r}")
     one_of("shape", shape, tuple(PULSE_SHAPES))
@@ -254,7 +253,7 @@ def overturning_intervals(block: Block, freq_ratio: float, *, shape: str = "one-
     from opsrock.solvers import SOLVERS
 
     one_of("solver", solver, SOLVERS)
-    _check_common(block, "freq_ratio", shape, equations, pfa_ratio_max, n_scan, rtol)
+    _check_common(block, shape, equations, pfa_ratio_max, n_scan, rtol)
     freq_ratio = positive_finite("freq_ratio", freq_ratio)
     if equations == "linearised" and solver not in RIGID_SOLVERS:
         raise ValueError(f"equations = 'linearised' needs a rigid-body solver ({', '.join(RIGID_SOLVERS)}), "
@@ -338,7 +337,7 @@ def threshold_chart(block: Block, freq_ratios: Sequence[float], *, shape: str = 
     """
     from opsrock.solvers.housner_fast import HousnerFastSettings, solve_grid
 
-    _check_common(block, "freq_ratios", shape, equations, pfa_ratio_max, n_scan, rtol)
+    _check_common(block, shape, equations, pfa_ratio_max, n_scan, rtol)
     nu = np.asarray(freq_ratios, dtype=float).ravel()
     if nu.size == 0 or not np.all(np.isfinite(nu) & (nu > 0)):
         raise ValueError(f"freq_ratios must be a non-empty list of positive numbers, got {freq_ratios!r}")

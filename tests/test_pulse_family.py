@@ -130,6 +130,8 @@ def test_housner_fast_agrees_with_housner_on_every_shape(shape, equations):
         assert a.verdict == b.verdict
         # both integrate the same equation to ~1e-8 alpha; 1e-6 leaves room for event location
         assert a.theta_max_over_alpha == pytest.approx(b.theta_max_over_alpha, abs=1e-6)
+        # n_impacts: impacts up to the first free-rocking peak, as housner with tail="peak" counts them
+        assert a.n_impacts == housner.solve(BLOCK, pulse, equations=equations, record=False, tail="peak").n_impacts
 
 
 def test_linearised_uplift_is_at_g_alpha():

@@ -427,7 +427,8 @@ def solve(block: Block, excitation: Pulse | Record, *, settings: HousnerFastSett
         state just before and just after each, at the same time) while the pulse lasts
         (s, rad, rad/s); ``theta_max`` (rad) includes the exact first free-rocking peak after
         the pulse; an overturning decided after the pulse by the energy barrier reports
-        ``theta_max = pi/2``.
+        ``theta_max = pi/2``. ``n_impacts`` counts impacts up to that first free-rocking peak (the
+        decay to rest after it is not simulated): the count of ``housner`` with ``tail="peak"``.
     """
     settings = _as_settings(settings, overrides)
     if not isinstance(block, Block):

@@ -94,6 +94,11 @@ def _atomic_csv(path: Path, df: pd.DataFrame) -> None:
     tmp.replace(path)
 
 
+#: Block sets of the ranking-robustness study in the report (seeded; issue: the paper's blocks are
+#: unknown, so is its IM ranking a property of the IMs or of its blocks?).
+ROBUSTNESS_SETS: int = 200
+
+
 def validation_gate(ignore: bool = False, workers: int | None = None) -> GateReport:
     """Run validation case 2 on its fixed 24-pulse subset (6 per block)."""
     from opsrock.validation.sdof_agreement import compare, disagreements, paper_cases, summarize
@@ -109,7 +114,8 @@ def validation_gate(ignore: bool = False, workers: int | None = None) -> GateRep
 def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: int | None = None,
               ignore_gate: bool = False, force: bool = False, progress: bool = True,
               paper_scene: str | os.PathLike = PAPER_SCENE,
-              spectrum_scene: str | os.PathLike | None = SPECTRUM_SCENE) -> dict[str, Any]:
+              spectrum_scene: str | os.PathLike | None = SPECTRUM_SCENE,
+              robustness_sets: int = ROBUSTNESS_SETS, seed: int = 0) -> dict[str, Any]:
     """Run the whole pipeline into ``out_dir``; return what was written and measured.
 
     Parameters
@@ -129,6 +135,10 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
         Progress bars on stderr.
     paper_scene, spectrum_scene : path
         Scenes of the campaign and of the dense spectrum (None skips the spectrum).
+    robustness_sets : int
+        Block sets of the ranking-robustness study (0 skips it); ``robustness.csv``.
+    seed : int
+        Seed of the block-set draws.
     """
     from opsrock import fragility
     from opsrock.campaign import run_campaign
@@ -182,6 +192,17 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
     _atomic_csv(out / "im_ranking.csv", ranking.reset_index())
     timings["fragility_s"] = time.perf_counter() - t0
 
+    # 4b. is the ranking robust to the (unknown) blocks? ------------------------------------
+    robustness = None
+    if robustness_sets:
+        from opsrock.fragility.robustness import ranking_robustness
+
+        t0 = time.perf_counter()
+        robustness = ranking_robustness(robustness_sets, seed=seed, workers=workers or os.cpu_count() or 1,
+                                        progress=progress)
+        _atomic_csv(out / "robustness.csv", robustness.shares)
+        timings["robustness_s"] = time.perf_counter() - t0
+
     # 5. figures and report ------------------------------------------------------------------
     t0 = time.perf_counter()
     figures = make_figures(cases, analysis, fig_dir, spectrum=spectrum, solver=solver, scene=scene, workers=workers)
@@ -191,7 +212,7 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
 
     report = write_report(out, cases=cases, analysis=analysis, table2=t2, table3=t3, ranking=ranking,
                           gate=gate, figures=figures, timings=timings, solver=solver,
-                          campaign=summary, pfv_convention=conv)
+                          campaign=summary, pfv_convention=conv, robustness=robustness)
     _atomic_text(out / "timings.json", json.dumps(timings, indent=2) + "\n")
     return {"gate": gate, "stopped": False, "campaign": summary, "figures": figures, "report": report,
             "timings": timings, "table2": t2, "table3": t3, "ranking": ranking}
@@ -218,6 +239,23 @@ def dense_spectrum(scene, workers: int | None = None) -> pd.DataFrame:
             "status": np.where(res.ok.ravel(), "ok", "failed"),
         }))
     return pd.concat(frames, ignore_index=True)
+
+
+#: Free rocking drawn after the pulse in Figure 4 (s): the whole decay to rest, as the paper shows.
+FIG4_TAIL_S: float = 8.0
+
+
+def _figure4_history(case, solver: str, simulate):
+    """One Figure 4 history of the campaign solver, run past the pulse through the decay to rest
+    (OpenSees: every step kept, not stopped at the first post-pulse peak; scipy solvers: dense
+    output every T_p/200)."""
+    if solver == "opensees":
+        return simulate(case.block, case.pulse, solver=solver, stop_at_rest=False,
+                        end_time=case.pulse.duration + FIG4_TAIL_S)
+    if solver in ("housner", "sdof"):
+        return simulate(case.block, case.pulse, solver=solver, tail="rest", max_free_time=FIG4_TAIL_S,
+                        dense_step=case.pulse.duration / 200)
+    return simulate(case.block, case.pulse, solver=solver)
 
 
 def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.DataFrame | None,
@@ -256,9 +294,10 @@ def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.D
         res_a, res_b, titles = [], [], []
         for cid in chosen:
             c = by_id[cid]
-            res_a.append(simulate(c.block, c.pulse, solver=solver))
-            # tail="peak": stop at the first turning point after the pulse, as the model does
-            res_b.append(simulate(c.block, c.pulse, solver="sdof", tail="peak"))
+            res_a.append(_figure4_history(c, solver, simulate))
+            # the independent scipy SDOF solver, from its dense output, down to rest
+            res_b.append(simulate(c.block, c.pulse, solver="sdof", tail="rest", max_free_time=FIG4_TAIL_S,
+                                  dense_step=c.pulse.duration / 200))
             titles.append(f"{cid}  " + r"$\omega_p/p$" + f"={c.freq_ratio:.3g}, " + r"PFA/g tan$\alpha$" + f"={c.pfa_ratio:.3g}")
         figs["fig4"] = plot_histories(res_a, titles, fig_dir / "fig4_histories.png", references=res_b,
                                       reference_label="independent scipy SDOF")
@@ -280,6 +319,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="go on if the validation gate fails (the report says so on its first line)")
     parser.add_argument("--force", action="store_true", help="discard stored results of other settings in --out")
     parser.add_argument("--no-progress", action="store_true", help="no progress bars")
+    parser.add_argument("--robustness-sets", type=int, default=ROBUSTNESS_SETS,
+                        help=f"block sets of the ranking-robustness study (default {ROBUSTNESS_SETS}; 0 skips it)")
 
 
 def run_command(args: argparse.Namespace) -> int:
@@ -290,6 +331,9 @@ def run_command(args: argparse.Namespace) -> int:
 
     if args.solver not in SOLVERS:
         print(f"opsrock reproduce: --solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}", file=sys.stderr)
+        return 2
+    if args.robustness_sets < 0:
+        print(f"opsrock reproduce: --robustness-sets must be >= 0, got {args.robustness_sets}", file=sys.stderr)
         return 2
     if args.workers is not None and args.workers < 1:
         print(f"opsrock reproduce: --workers must be >= 1, got {args.workers}", file=sys.stderr)
@@ -303,7 +347,7 @@ def run_command(args: argparse.Namespace) -> int:
         return 2
     try:
         result = reproduce(args.out, solver=args.solver, workers=args.workers, ignore_gate=args.ignore_gate,
-                           force=args.force, progress=not args.no_progress)
+                           force=args.force, progress=not args.no_progress, robustness_sets=args.robustness_sets)
     except (CampaignConflictError, StoreError) as exc:
         print(f"opsrock reproduce: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2

@@ -101,6 +101,14 @@ class HousnerSettings:
         Grid spacing (s) on which the seated phase scans ``|a(t)|`` for uplift before refining
         with Brent's method (local maxima are refined too, so a peak just above the threshold
         between grid points is not missed). None: ``duration / 2000``.
+    equations : str
+        Form of the equation of motion, one of :data:`opsrock.constants.EQUATIONS`. Default
+        ``"exact"`` (Eq. 1); ``"linearised"`` for the small-angle form of the classical papers.
+    dense_step : float or None
+        If set (s), the stored history also holds the integrator's dense output (its own
+        interpolant, of the method's order) every ``dense_step`` inside each step, for figures
+        that must not show the long straight chords of large steps. None (default): accepted
+        steps and events only.
     """
 
     method: str = "DOP853"
@@ -117,6 +125,7 @@ class HousnerSettings:
     rest_velocity_ratio: float = 1e-6
     scan_step: float | None = None
     equations: str = "exact"
+    dense_step: float | None = None
 
     def __post_init__(self) -> None:
         bool_fields(self)
@@ -146,6 +155,8 @@ def _check_common(s: Any) -> None:
     int_at_least("max_impacts", s.max_impacts, 1)
     if s.scan_step is not None:
         positive_finite("scan_step", s.scan_step)
+    if s.dense_step is not None:
+        positive_finite("dense_step", s.dense_step)
 
 
 def _real(name: str, value: object) -> float:
@@ -227,10 +238,18 @@ def first_exceedance(excitation: Any, level: float, t_start: float, t_stop: floa
     return hi
 
 
-def _out_with_turns(out: Any, sol: Any, k: int, *extra: float) -> None:
+def _out_with_turns(out: Any, sol: Any, k: int, *extra: float, dense_step: float | None = None) -> None:
     """Record a segment's accepted steps merged with its turning points (event ``k``), so the
-    stored history holds every peak exactly, not only the nearest step."""
+    stored history holds every peak exactly, not only the nearest step; with ``dense_step`` also
+    the dense output (``sol.sol``) every ``dense_step`` seconds."""
     t, th, td = sol.t[1:], sol.y[0, 1:], sol.y[1, 1:]
+    if dense_step is not None and sol.sol is not None and sol.t[-1] > sol.t[0]:
+        td_grid = np.arange(sol.t[0] + dense_step, sol.t[-1], dense_step)
+        if td_grid.size:
+            yd = sol.sol(td_grid)
+            t, th, td = np.concatenate([t, td_grid]), np.concatenate([th, yd[0]]), np.concatenate([td, yd[1]])
+            order = np.argsort(t, kind="stable")
+            t, th, td = t[order], th[order], td[order]
     if sol.t_events[k].size:
         inside = (sol.t_events[k] > sol.t[0]) & (sol.t_events[k] < sol.t[-1])
         t = np.concatenate([t, sol.t_events[k][inside]])
@@ -368,12 +387,12 @@ def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = N
         t_seg = float(nxt[0]) if nxt.size else t_final
         sol = solve_ivp(
             rhs, (t, t_seg), y, method=s.method, rtol=s.rtol, atol=atol, max_step=s.max_step,
-            events=(impact, overturn, turning),
+            events=(impact, overturn, turning), dense_output=s.dense_step is not None,
         )
         n_steps += max(len(sol.t) - 1, 0)
         if sol.status == -1:
             return fail(f"solve_ivp ({s.method}) failed at t = {t:.6g} s: {sol.message}")
-        _out_with_turns(out, sol, 2)
+        _out_with_turns(out, sol, 2, dense_step=s.dense_step)
         theta_max = max(theta_max, float(np.max(np.abs(sol.y[0]))))
         if sol.t_events[2].size:
             theta_max = max(theta_max, float(np.max(np.abs(sol.y_events[2][:, 0]))))

@@ -110,6 +110,9 @@ class SDOFSettings:
     scan_step : float or None
         Grid spacing (s) of the seated-phase uplift scan (see
         :func:`opsrock.solvers.housner.first_exceedance`). None: ``duration / 2000``.
+    dense_step : float or None
+        If set (s), the history also holds the integrator's dense output every ``dense_step``
+        (see :class:`opsrock.solvers.housner.HousnerSettings`). None (default): steps and events.
     """
 
     delta: float = DEFAULT_DELTA
@@ -131,6 +134,7 @@ class SDOFSettings:
     max_segments: int = 200_000
     scan_step: float | None = None
     uplift_check: bool = True
+    dense_step: float | None = None
 
     def __post_init__(self) -> None:
         bool_fields(self)
@@ -358,12 +362,12 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         t_seg = float(nxt[0]) if nxt.size else t_final
         sol = solve_ivp(
             rhs, (t, t_seg), y, method=s.stiff_method if is_stiff else s.method,
-            rtol=s.rtol, atol=atol, max_step=s.max_step, events=events,
+            rtol=s.rtol, atol=atol, max_step=s.max_step, events=events, dense_output=s.dense_step is not None,
         )
         n_steps += max(len(sol.t) - 1, 0)
         if sol.status == -1:
             return fail(f"solve_ivp ({s.stiff_method if is_stiff else s.method}) failed at t = {t:.6g} s: {sol.message}")
-        _out_with_turns(out, sol, 3, c_i)
+        _out_with_turns(out, sol, 3, c_i, dense_step=s.dense_step)
         theta_max = max(theta_max, float(np.max(np.abs(sol.y[0]))))
         if sol.t_events[3].size:
             theta_max = max(theta_max, float(np.max(np.abs(sol.y_events[3][:, 0]))))

@@ -11,7 +11,7 @@ STAMP  := $(VENV)/.opsrock-installed
 LOCK   := requirements.lock
 OUT    ?= results
 
-.PHONY: reproduce test test-slow test-fuzz validate bench blas install lock clean
+.PHONY: reproduce test test-slow test-fuzz test-pelicun validate bench blas install lock clean
 
 reproduce: install
 	$(BIN)/opsrock reproduce --out $(OUT)
@@ -25,6 +25,16 @@ test-slow: install
 # Property tests with fresh random seeds and ten times the examples (make test is derandomised).
 test-fuzz: install
 	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest tests/test_input_properties.py
+
+# The FEMA P-58 / pelicun export loads in pelicun: pelicun 3.10 pins scipy < 1.16 and pandas < 3, so it
+# gets a venv of its own; opsrock writes a sample export and pelicun reads every parameter back.
+test-pelicun: install
+	@test -x .pelicun-venv/bin/python || $(PYTHON) -m venv .pelicun-venv
+	.pelicun-venv/bin/python -m pip install --quiet 'pelicun==3.10.0'
+	$(BIN)/python -c "from opsrock.fragility.pelicun_export import ComponentFragility as C, write_pelicun_csv as w; \
+	  w([C('opsrock.sample.PFA', 'pfa', 6.055398004958769, 0.6505432263063391), \
+	     C('opsrock.sample.PFV', 'pfv', 0.6115985322309946, 0.36682703654629484)], '.pelicun-venv/sample.csv')"
+	.pelicun-venv/bin/python tools/pelicun_load.py .pelicun-venv/sample.csv
 
 validate: install
 	$(BIN)/opsrock validate
@@ -57,4 +67,4 @@ lock:
 	rm -rf .lock-venv
 
 clean:
-	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis .lock-venv
+	rm -rf $(VENV) *.egg-info .pytest_cache .hypothesis .lock-venv .pelicun-venv

@@ -319,6 +319,8 @@ _EXTERNAL = {
     "validate": ("opsrock.validation", "add_arguments", "run_command", "regenerate the validation cases"),
     "bench": ("opsrock.bench", "add_arguments", "run_command", "benchmarks: ratios measured in one run"),
     "records": ("opsrock.cli_records", "add_arguments", "run_command", "browse the record library"),
+    "fragility": ("opsrock.report_records", "add_arguments", "run_command",
+                  "fragility report of a record campaign"),
     "threshold": ("opsrock.cli_threshold", "add_arguments", "run_command",
                   "overturning intervals along the amplitude axis of a pulse"),
 }

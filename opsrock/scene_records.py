@@ -162,6 +162,8 @@ class Motion:
     measures: MotionMeasures
     floor: str
     ground: str
+    #: First period (s) of the building the motion was filtered through; NaN on the ground.
+    building_period: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -459,7 +461,8 @@ def assemble_motions(spec: RecordSet, items, results) -> dict[tuple[str, str], M
             values, measures = res[j]
             rec = Record(dt=ground.dt, values=values, name=ground.name,
                          info=replace(ground.info, floor=label))
-            motions[(ground.name, label)] = Motion(record=rec, measures=measures, floor=label, ground=ground.name)
+            motions[(ground.name, label)] = Motion(record=rec, measures=measures, floor=label, ground=ground.name,
+                                                   building_period=math.nan if building is None else building.period)
     return motions
 
 
@@ -505,7 +508,8 @@ def _case(bname: str, block: Block, rname: str, flabel: str, motion, inten: Inte
 RECORD_CASES_COLUMNS: tuple[str, ...] = (
     "case_id",
     "block", "width", "height", "alpha", "R", "p", "e", "e_R",
-    "record", "event", "component", "floor", "level", "level_value", "scale",
+    "record", "event", "component", "magnitude", "distance_km", "floor", "building_period",
+    "level", "level_value", "scale",
     "pfa", "pfv", "pfd", "T_m", "T_pred", "pfa_ratio",
     "IM1", "IM2", "IM3", "IM4", "IM5", "IM6", "IM7", "IM8", "IM9",
     "theta_max", "theta_max_over_alpha", "overturned", "rocked",
@@ -525,7 +529,10 @@ def record_case_row(case: RecordCase) -> dict[str, Any]:
     return {
         "case_id": case.case_id, "block": b.name, "width": b.width, "height": b.height,
         "alpha": b.alpha, "R": b.R, "p": b.p, "e": b.e, "e_R": b.e_R,
-        "record": m.ground, "event": info.event, "component": info.component, "floor": m.floor,
+        "record": m.ground, "event": info.event, "component": info.component,
+        "magnitude": math.nan if info.magnitude is None else info.magnitude,
+        "distance_km": math.nan if info.distance_km is None else info.distance_km,
+        "floor": m.floor, "building_period": m.building_period,
         "level": case.level, "level_value": case.level_value, "scale": case.scale,
         "pfa": meas.pfa, "pfv": meas.pfv, "pfd": meas.pfd, "T_m": meas.mean_period,
         "T_pred": meas.predominant_period, "pfa_ratio": meas.pfa / b.uplift_acceleration, **ims,

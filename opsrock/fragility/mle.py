@@ -98,6 +98,7 @@ def fit_lognormal_mle(
     n_boot: int = 200,
     confidence: float = 0.95,
     seed: int = 0,
+    groups: np.ndarray | None = None,
 ) -> MLEFit:
     """Maximum-likelihood lognormal fragility on the raw outcomes of rocking cases.
 
@@ -119,6 +120,10 @@ def fit_lognormal_mle(
         Confidence level of the bounds, in (0, 1).
     seed : int, optional
         Seed of the resampling.
+    groups : array_like, optional
+        A label per case (e.g. the record name). When given, the bootstrap resamples whole groups
+        with replacement, keeping each group's cases together: the cases of one record are not
+        independent draws (the same record scaled to many levels), the records are.
 
     Returns
     -------
@@ -157,11 +162,20 @@ def fit_lognormal_mle(
                               "outcomes)", **common)
     lo = hi = (math.nan, math.nan)
     used = 0
+    members = None
+    if groups is not None:
+        g = np.asarray(groups)
+        if g.shape != x.shape:
+            raise ValueError(f"groups must have one label per case, got {g.shape} for {x.shape}")
+        members = [np.flatnonzero(g == label) for label in dict.fromkeys(g.tolist())]
     if n_boot:
         rng = np.random.default_rng(seed)
         draws = []
         for _ in range(n_boot):
-            idx = rng.integers(0, n, n)
+            if members is None:
+                idx = rng.integers(0, n, n)
+            else:
+                idx = np.concatenate([members[i] for i in rng.integers(0, len(members), len(members))])
             ub, yb = u[idx], y[idx]
             if yb.all() or (~yb).all() or _separated(ub, yb):
                 continue

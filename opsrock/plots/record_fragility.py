@@ -1,0 +1,112 @@
+"""Figures of the record fragility study: IDA curves, fragility curves with observed fractions, the IM
+ranking, and the robustness of the ranking."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+
+from opsrock.fragility.lognormal import fragility_probability  # noqa: E402
+from opsrock.plots import save_figure  # noqa: E402
+
+#: Height at which overturned cases are drawn on the IDA axes (theta_max / alpha).
+OVERTURNED_Y: float = 1.25
+
+
+def plot_ida_curves(cases: pd.DataFrame, path: str | Path, measure_label: str = "level") -> Path:
+    """One panel per block: theta_max/alpha against the scene's measure for every IDA curve, one
+    line per (record, floor); overturned cases drawn at the top, resurrections visible as drops."""
+    blocks = list(dict.fromkeys(cases["block"]))
+    n = len(blocks)
+    cols = min(n, 2)
+    rows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 3.6 * rows), squeeze=False, constrained_layout=True)
+    floors = list(dict.fromkeys(cases["floor"]))
+    colors = {f: c for f, c in zip(floors, plt.rcParams["axes.prop_cycle"].by_key()["color"] * 4)}
+    for ax, block in zip(axes.ravel(), blocks):
+        sub = cases[cases["block"] == block]
+        for (_, floor), g in sub.groupby(["record", "floor"], sort=False):
+            g = g.sort_values("level")
+            y = np.where(g["y"], OVERTURNED_Y, np.minimum(g["theta_max_over_alpha"], 1.0))
+            ax.plot(g["level_value"], y, "-", lw=0.5, alpha=0.45, color=colors[floor])
+        for f in floors:
+            ax.plot([], [], "-", color=colors[f], label=f"floor {f}")
+        ax.legend(fontsize=7, loc="center right")
+        ax.axhline(1.0, color="k", lw=0.6, ls=":")
+        ax.set_ylim(0, OVERTURNED_Y + 0.1)
+        ax.set_yticks([0, 0.25, 0.5, 0.75, 1.0, OVERTURNED_Y])
+        ax.set_yticklabels(["0", "0.25", "0.5", "0.75", "1", "overturned"])
+        ax.set_xlabel(measure_label)
+        ax.set_ylabel(r"$\theta_{max}/\alpha$")
+        ax.set_title(str(block), fontsize=10)
+    for ax in axes.ravel()[n:]:
+        ax.set_visible(False)
+    return save_figure(fig, path)
+
+
+def plot_measure_fragility(cases: pd.DataFrame, measure_fits: pd.DataFrame, path: str | Path,
+                           measure_label: str = "level") -> Path:
+    """Observed overturned fraction per level (all blocks and per block) and the MLE curve of each
+    outcome convention, with the band spanned by the curves at the corners of the intervals."""
+    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
+    for block, g in cases.groupby("block", sort=False):
+        frac = g.groupby("level_value")["y"].mean()
+        ax.plot(frac.index, frac.values, "o", ms=3, alpha=0.6, label=f"observed, {block}")
+    frac = cases.groupby("level_value")["y"].mean()
+    ax.plot(frac.index, frac.values, "ks", ms=5, label="observed, all blocks")
+    x = np.geomspace(max(cases["level_value"].min() * 0.7, 1e-6), cases["level_value"].max() * 1.4, 300)
+    for (_, r), color in zip(measure_fits.iterrows(), ("tab:red", "tab:green")):
+        if not np.isfinite(r["mu"]):
+            continue
+        ax.plot(x, fragility_probability(x, r["mu"], r["beta"]), color=color, lw=1.6,
+                label=f"MLE, {r['outcome']}: median {r['mu']:.3g}, beta {r['beta']:.2f}")
+        if np.isfinite(r["mu_lo"]):
+            corners = [fragility_probability(x, m, b) for m in (r["mu_lo"], r["mu_hi"]) for b in (r["beta_lo"], r["beta_hi"])]
+            ax.fill_between(x, np.min(corners, axis=0), np.max(corners, axis=0), color=color, alpha=0.15, lw=0)
+    ax.set_xscale("log")
+    ax.set_ylim(-0.02, 1.02)
+    ax.set_xlabel(measure_label)
+    ax.set_ylabel("P(overturning)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    return save_figure(fig, path)
+
+
+def plot_im_ranking(ims: pd.DataFrame, frequencies: pd.DataFrame, path: str | Path,
+                    robustness: pd.DataFrame | None = None) -> Path:
+    """Three panels: MLE beta with its interval per IM; HR per IM; share of record resamples (and,
+    if given, of pulse block sets) in which each IM has the smallest beta, HR and CV."""
+    fig, axes = plt.subplots(1, 3, figsize=(14.0, 4.0), constrained_layout=True)
+    x = np.arange(len(ims))
+    ax = axes[0]
+    err = np.vstack([ims["beta"] - ims["beta_lo"], ims["beta_hi"] - ims["beta"]]).clip(min=0)
+    ax.bar(x, ims["beta"], color="tab:blue", alpha=0.7)
+    ax.errorbar(x, ims["beta"], yerr=np.nan_to_num(err), fmt="none", ecolor="k", capsize=3)
+    ax.set_title("MLE dispersion beta (interval: records resampled)", fontsize=9)
+    ax = axes[1]
+    ax.bar(x, ims["HR"], color="tab:orange", alpha=0.7)
+    ax.set_title("hybrid ratio HR (paper Eq. 12)", fontsize=9)
+    ax = axes[2]
+    w = 0.13
+    series = [("record resamples", frequencies)] + ([("pulse block sets", robustness)] if robustness is not None else [])
+    k = 0
+    for label, df in series:
+        for crit, hatch in (("beta", ""), ("HR", "//"), ("cv_percent", "..")):
+            if f"share_{crit}" not in df:
+                continue
+            ax.bar(x + (k - 2.5) * w, df[f"share_{crit}"], w, hatch=hatch, alpha=0.7,
+                   label=f"{label}: smallest {crit.replace('_percent', '')}")
+            k += 1
+    ax.set_ylim(0, 1)
+    ax.set_title("how often each IM wins", fontsize=9)
+    ax.legend(fontsize=6)
+    for ax in axes:
+        ax.set_xticks(x)
+        ax.set_xticklabels(ims["im"])
+    return save_figure(fig, path)

@@ -131,6 +131,7 @@ def test_wilson_interval():
     # Wilson (1927): k = 0 of 10 -> (0, 0.2775); 5 of 10 -> (0.2366, 0.7634) at 95 %
     lo, hi = wilson_interval(0, 10)
     assert lo == 0.0 and hi == pytest.approx(0.27754, abs=1e-4)
+    assert wilson_interval(10, 10)[1] == 1.0
     lo, hi = wilson_interval(5, 10)
     assert lo == pytest.approx(0.23659, abs=1e-4) and hi == pytest.approx(0.76341, abs=1e-4)
 

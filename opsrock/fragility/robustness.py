@@ -40,7 +40,8 @@ def wilson_interval(k: int, n: int, z: float = 1.959963984540054) -> tuple[float
     d = 1.0 + z * z / n
     c = (p + z * z / (2 * n)) / d
     h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return max(0.0, c - h), min(1.0, c + h)
+    # exact ends: at k = 0 (k = n) the lower (upper) bound is 0 (1), not a round-off residue of it
+    return (0.0 if k == 0 else max(0.0, c - h)), (1.0 if k == n else min(1.0, c + h))
 
 
 def draw_block_sets(n_sets: int, seed: int, per_set: int = 4) -> list[list[Block]]:

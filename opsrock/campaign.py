@@ -47,6 +47,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable, Mapping, Sequence
 
+from opsrock._io import atomic_write
 from opsrock.executors import DaskExecutor, Executor, ExecutorUnavailableError, LocalPool, batch_size, make_batches
 from opsrock.result import RockingResult
 from opsrock._paths import output_dir
@@ -269,7 +270,7 @@ def _floor_motions(scene: Scene, out: Path, digest: str, executor: Executor, pro
         for k, res in executor.map_batches(compute_motions, batches, _lost_motion):
             results[k * size : k * size + len(res)] = res
             bar.update(len(res))
-    _atomic_write(cache, lambda fh: pickle.dump({"digest": digest, "results": results}, fh), binary=True)
+    atomic_write(cache, lambda fh: pickle.dump({"digest": digest, "results": results}, fh), binary=True)
     return assemble_motions(spec, items, results)
 
 
@@ -316,22 +317,7 @@ def _conflict_message(out_dir: Path, old: Mapping[str, Any], new: Mapping[str, A
     )
 
 
-def _atomic_write(path: Path, write: Callable[[Any], None], *, binary: bool = False) -> None:
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
-    try:
-        with (open(tmp, "wb") if binary else open(tmp, "w", newline="", encoding="utf-8")) as fh:
-            write(fh)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-    dir_fd = os.open(path.parent, os.O_RDONLY)
-    try:
-        os.fsync(dir_fd)  # the rename itself survives a power cut
-    finally:
-        os.close(dir_fd)
+
 
 
 def _format(value: Any) -> str:
@@ -418,7 +404,7 @@ def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]],
         for rec in table:
             w.writerow([_format(rec[c]) for c in columns])
 
-    _atomic_write(Path(path), write)
+    atomic_write(Path(path), write)
 
 
 def _progress_bar(total: int, scene: Scene, reused: int, progress: bool):
@@ -526,7 +512,7 @@ def run_campaign(
             store.clear()
             (out / CASES_FILE).unlink(missing_ok=True)
             store.write_manifest(manifest)
-        _atomic_write(out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
+        atomic_write(out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
 
         if own_executor:
             executor = LocalPool(workers, item_timeout=case_timeout)

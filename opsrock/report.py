@@ -11,6 +11,7 @@ from typing import Any, Mapping
 import numpy as np
 import pandas as pd
 
+from opsrock._io import atomic_text
 from opsrock.paper_values import TABLE2, TABLE3
 
 #: IMs whose overturning threshold is nearly geometry-free, so their dimensionless medians can
@@ -62,8 +63,8 @@ def _robustness_lines(robustness, ranking: pd.DataFrame) -> list[str]:
     ]
     words = {"HR": "hybrid ratio", "cv_percent": "CV", "beta": "beta"}
     lines.append("**Conclusion.** " + "; ".join(
-        f"by {words[c]}, {t['im']} wins in {100 * t[f'share_{c}']:.0f} % of the block sets "
-        f"[{100 * t[f'share_{c}_lo']:.0f}-{100 * t[f'share_{c}_hi']:.0f} %]" for c, t in top.items())
+        f"By {words[c]}, {t['im']} wins in {100 * t[f'share_{c}']:.0f} % of the block sets "
+        f"[{100 * t[f'share_{c}_lo']:.0f}-{100 * t[f'share_{c}_hi']:.0f} %]" for c, t in top.items()).replace("; By", "; by")
         + f". The paper's choice, IM9, wins by HR in {100 * im9['share_HR']:.0f} %, by CV in "
         f"{100 * im9['share_cv_percent']:.0f} % and by beta in {100 * im9['share_beta']:.0f} % of the sets"
         + (": its CV win follows its large median (CV = beta/mu is not scale-free), not a narrower spread."
@@ -243,7 +244,5 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         "",
     ]
     path = out_dir / "report.md"
-    tmp = path.with_name(f".report.md.tmp{os.getpid()}")
-    tmp.write_text("\n".join(lines))
-    tmp.replace(path)
+    atomic_text(path, "\n".join(lines))
     return path

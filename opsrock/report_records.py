@@ -20,13 +20,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from opsrock._io import atomic_csv, atomic_text
 from opsrock.report import markdown_table
-
-
-def _atomic_csv(path: Path, df: pd.DataFrame) -> None:
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    df.to_csv(tmp, index=False)
-    tmp.replace(path)
 
 
 def _read_cases(source: str | Path) -> pd.DataFrame:
@@ -89,9 +84,9 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
         from opsrock.fragility.robustness import ranking_robustness
 
         robust = ranking_robustness(robustness_sets, seed=seed, workers=workers).shares
-        _atomic_csv(out / "robustness.csv", robust)
+        atomic_csv(out / "robustness.csv", robust)
     for name in ("ims", "measure_fits", "resurrections", "sufficiency", "frequencies", "blocks"):
-        _atomic_csv(out / f"{name}.csv", getattr(study, name))
+        atomic_csv(out / f"{name}.csv", getattr(study, name))
     comps, skipped = _exports(study.blocks)
     pel = write_pelicun_csv(comps, out / "fragility_pelicun.csv")
     fig = out / "figures"
@@ -152,7 +147,7 @@ def _write_markdown(out, study, robust, figs, skipped, timings, source, n_sets) 
               markdown_table(study.blocks[["block", "demand", "unit", "mu", "mu_lo", "mu_hi", "beta", "n_cases"]], ".4g"), ""]
     if skipped:
         lines += ["Not exported (no finite fit): " + "; ".join(skipped), ""]
-    (out / "report.md").write_text("\n".join(lines))
+    atomic_text(out / "report.md", "\n".join(lines))
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:

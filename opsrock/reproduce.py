@@ -29,6 +29,8 @@ from typing import Any
 
 import pandas as pd
 
+from opsrock._io import atomic_csv, atomic_text
+
 #: Repository folder of the scenes and blocks.
 MODELS_DIR = Path(__file__).resolve().parents[1] / "models"
 PAPER_SCENE = MODELS_DIR / "scenes" / "paper.toml"
@@ -80,18 +82,6 @@ class GateReport:
                 ["case_id", "theta_max_over_alpha_a", "theta_max_over_alpha_b", "verdict_a", "verdict_b",
                  "pfa_change_to_flip_reference"]])]
         return "\n".join(lines) + "\n"
-
-
-def _atomic_text(path: Path, text: str) -> None:
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    tmp.write_text(text)
-    tmp.replace(path)
-
-
-def _atomic_csv(path: Path, df: pd.DataFrame) -> None:
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    df.to_csv(tmp, index=False, float_format="%.6g")
-    tmp.replace(path)
 
 
 #: Block sets of the ranking-robustness study in the report (seeded; issue: the paper's blocks are
@@ -156,7 +146,7 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
     gate = validation_gate(ignore=ignore_gate, workers=workers) if solver == "opensees" else None
     timings["validation_gate_s"] = time.perf_counter() - t0
     if gate is not None:
-        _atomic_text(out / "validation_gate.md", gate.text())
+        atomic_text(out / "validation_gate.md", gate.text())
         if not gate.passed and not ignore_gate:
             return {"gate": gate, "stopped": True, "timings": timings}
 
@@ -175,7 +165,7 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
         t0 = time.perf_counter()
         spectrum = dense_spectrum(load_scene(spectrum_scene), workers=workers)
         (out / "spectrum").mkdir(exist_ok=True)
-        _atomic_csv(out / "spectrum" / "spectrum.csv", spectrum)
+        atomic_csv(out / "spectrum" / "spectrum.csv", spectrum)
         timings["spectrum_s"] = time.perf_counter() - t0
 
     # 4. fragility ---------------------------------------------------------------------------
@@ -183,13 +173,13 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
     analysis = fragility.analyse_fragility(cases)
     t2 = fragility.table2(analysis)
     t3 = fragility.table3(analysis)
-    _atomic_csv(out / "table2.csv", t2)
-    _atomic_csv(out / "table3.csv", t3)
+    atomic_csv(out / "table2.csv", t2)
+    atomic_csv(out / "table3.csv", t3)
     conv = scene.pfv_convention
-    _atomic_text(out / "table2.md", fragility.table2_markdown(t2, conv) + "\n")
-    _atomic_text(out / "table3.md", fragility.table3_markdown(t3, conv) + "\n")
+    atomic_text(out / "table2.md", fragility.table2_markdown(t2, conv) + "\n")
+    atomic_text(out / "table3.md", fragility.table3_markdown(t3, conv) + "\n")
     ranking = fragility.rank_ims(analysis)
-    _atomic_csv(out / "im_ranking.csv", ranking.reset_index())
+    atomic_csv(out / "im_ranking.csv", ranking.reset_index())
     timings["fragility_s"] = time.perf_counter() - t0
 
     # 4b. is the ranking robust to the (unknown) blocks? ------------------------------------
@@ -200,7 +190,7 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
         t0 = time.perf_counter()
         robustness = ranking_robustness(robustness_sets, seed=seed, workers=workers or os.cpu_count() or 1,
                                         progress=progress)
-        _atomic_csv(out / "robustness.csv", robustness.shares)
+        atomic_csv(out / "robustness.csv", robustness.shares)
         timings["robustness_s"] = time.perf_counter() - t0
 
     # 5. figures and report ------------------------------------------------------------------
@@ -213,7 +203,7 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
     report = write_report(out, cases=cases, analysis=analysis, table2=t2, table3=t3, ranking=ranking,
                           gate=gate, figures=figures, timings=timings, solver=solver,
                           campaign=summary, pfv_convention=conv, robustness=robustness)
-    _atomic_text(out / "timings.json", json.dumps(timings, indent=2) + "\n")
+    atomic_text(out / "timings.json", json.dumps(timings, indent=2) + "\n")
     return {"gate": gate, "stopped": False, "campaign": summary, "figures": figures, "report": report,
             "timings": timings, "table2": t2, "table3": t3, "ranking": ranking}
 
@@ -358,5 +348,6 @@ def run_command(args: argparse.Namespace) -> int:
     t = result["timings"]
     print(f"reproduced into {args.out}/ in {t['total_s']:.1f} s (gate {t['validation_gate_s']:.1f} s, "
           f"campaign {t['campaign_s']:.1f} s, spectrum {t.get('spectrum_s', 0):.1f} s, "
-          f"fragility {t['fragility_s']:.1f} s, figures {t['figures_s']:.1f} s): see {args.out}/report.md")
+          f"fragility {t['fragility_s']:.1f} s, robustness {t.get('robustness_s', 0):.1f} s, "
+          f"figures {t['figures_s']:.1f} s): see {args.out}/report.md")
     return 0

@@ -12,9 +12,10 @@ from __future__ import annotations
 
 import csv
 import math
-import os
 from dataclasses import dataclass
 from pathlib import Path
+
+from opsrock._io import atomic_write
 
 #: Our demand column -> (pelicun demand type, pelicun unit).
 PELICUN_DEMANDS: dict[str, tuple[str, str]] = {
@@ -65,18 +66,15 @@ def write_pelicun_csv(components: list[ComponentFragility], path: str | Path) ->
     """Write the components to ``path`` (through a temporary file: nothing half-written)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    try:
-        with open(tmp, "w", newline="") as fh:
-            w = csv.writer(fh, lineterminator="\n")
-            w.writerow(COLUMNS)
-            for c in components:
-                dtype, unit = PELICUN_DEMANDS[c.demand]
-                w.writerow([c.component_id, 0, dtype, unit, 0, 1, "lognormal", repr(float(c.median)), repr(float(c.beta))])
-        tmp.replace(path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+
+    def write(fh) -> None:
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(COLUMNS)
+        for c in components:
+            dtype, unit = PELICUN_DEMANDS[c.demand]
+            w.writerow([c.component_id, 0, dtype, unit, 0, 1, "lognormal", repr(float(c.median)), repr(float(c.beta))])
+
+    atomic_write(path, write, durable=False)
     return path
 
 

@@ -246,3 +246,17 @@ def test_a_record_below_the_uplift_threshold_does_not_rock():
     for solver in ("housner_fast", "housner"):
         r = simulate(block, rec, solver)
         assert r.verdict == "no_uplift" and r.theta_max == 0.0
+
+
+def test_scalar_acceleration_is_numpy_interp_exactly():
+    # the O(1) scalar path must return numpy.interp's number, bit for bit, everywhere: at the
+    # samples, one ulp either side of them, between them and outside the record
+    from opsrock.excitations import Record
+
+    rng = np.random.default_rng(0)
+    rec = Record(0.005, rng.standard_normal(3000))
+    t = np.concatenate([rng.uniform(-1.0, 16.0, 20_000), rec.time, np.nextafter(rec.time, -1.0),
+                        np.nextafter(rec.time, 99.0)])
+    scalar = np.array([rec.acceleration(float(x)) for x in t])
+    assert np.array_equal(scalar, np.interp(t, rec.time, rec.values, left=0.0, right=0.0))
+    assert not rec.time.flags.writeable  # the cached grid cannot be changed behind the record's back

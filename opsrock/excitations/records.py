@@ -10,6 +10,8 @@ record library (:mod:`opsrock.excitations.library`) or the building filter
 
 from __future__ import annotations
 
+import functools
+
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -120,10 +122,12 @@ class Record:
 
         return read_record(path, units=units, dt=dt, name=name)
 
-    @property
+    @functools.cached_property
     def time(self) -> np.ndarray:
-        """Sample times (s)."""
-        return np.arange(self.values.size) * self.dt
+        """Sample times (s), read-only (computed once)."""
+        t = np.arange(self.values.size) * self.dt
+        t.setflags(write=False)
+        return t
 
     @property
     def duration(self) -> float:
@@ -136,9 +140,32 @@ class Record:
         return float(np.max(np.abs(self.values)))
 
     def acceleration(self, t: np.ndarray | float) -> np.ndarray:
-        """Acceleration (m/s²) at times ``t`` (s), linearly interpolated; zero outside."""
+        """Acceleration (m/s²) at times ``t`` (s), linearly interpolated; zero outside.
+
+        A scalar ``t`` (what the event-driven solvers ask, once per right-hand-side call) is
+        interpolated in O(1) on the uniform grid with ``numpy.interp``'s own formula, so both paths
+        give the same number; arrays go through ``numpy.interp``.
+        """
+        if isinstance(t, (float, int, np.floating)) and not isinstance(t, bool):
+            return np.float64(self._at(float(t)))
         t = np.asarray(t, dtype=float)
         return np.interp(t, self.time, self.values, left=0.0, right=0.0)
+
+    def _at(self, t: float) -> float:
+        """Scalar interpolation: the bracket ``time[j] <= t < time[j + 1]`` found arithmetically."""
+        times, v = self.time, self.values
+        n = v.size
+        if not (0.0 <= t <= times[-1]):
+            return 0.0
+        if t == times[-1]:
+            return float(v[-1])
+        j = min(int(t / self.dt), n - 2)
+        while j > 0 and times[j] > t:  # round-off in t / dt: step to the true bracket
+            j -= 1
+        while j < n - 2 and times[j + 1] <= t:
+            j += 1
+        x0, x1 = times[j], times[j + 1]
+        return float((v[j + 1] - v[j]) / (x1 - x0) * (t - x0) + v[j])
 
     def breakpoints(self) -> np.ndarray:
         """Every sample time (s): the interpolated acceleration has a kink at each."""

@@ -22,7 +22,7 @@ import openseespy.opensees as ops
 # --- OpenSees' console output: to a log file, never to the user's terminal -------------------
 #: Per process: the log file OpenSees writes to (``logFile -noEcho``) and the failed steps
 #: retried by :func:`_recover` in the current run.
-CONSOLE: dict[str, Any] = {"pid": None, "path": None, "retries": 0}
+CONSOLE: dict[str, Any] = {"pid": None, "path": None, "retries": 0, "recovered_by": {}}
 
 
 def opensees_log_path() -> str:

@@ -535,10 +535,15 @@ def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: st
     log = console_to_log()
     start = _log_size(log)
     _CONSOLE["retries"] = 0
+    _CONSOLE["recovered_by"] = {}
     result = _build_and_integrate(block, excitation, s, settings_dict, geometry, t_wall)
     diagnostics = {
         "opensees_messages": _count_messages(log, start),
         "retried_steps": int(_CONSOLE["retries"]),
+        # how each retried step was recovered: "halving:<algorithm>" -> count; the default
+        # algorithm and tolerance, with the step halved, or a fallback algorithm (same tol)
+        "recovered_by": dict(_CONSOLE["recovered_by"]),
+        "needed_fallback_algorithm": any(not k.endswith(":" + s.algorithm) for k in _CONSOLE["recovered_by"]),
         "opensees_log": log,
     }
     return dataclasses.replace(result, diagnostics=diagnostics)
@@ -844,6 +849,8 @@ def _recover(s: OpenSeesSettings, h: float) -> int:
                 if sub < s.dt_min:
                     break
                 if _advance_in_substeps(sub, 2**k):
+                    key = f"halving:{algorithm}"
+                    _CONSOLE["recovered_by"][key] = _CONSOLE["recovered_by"].get(key, 0) + 1
                     return 2**k
             tried.append(algorithm)
         finally:

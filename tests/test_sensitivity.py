@@ -1,0 +1,49 @@
+"""The hypersensitivity test (opsrock.sensitivity): a smooth pulse is not sensitive, a broadband
+record on which the rigid body makes hundreds of small impacts is, for both rigid-body solvers.
+
+Reference for the pulse: theta_max depends smoothly on the amplitude there, so scaling it by
+1 +- 1e-5 moves theta_max by about 1e-5 alpha (measured 1.0e-5): 1e-3 alpha is a wide bound, far
+below the test's threshold of 0.01 alpha. The record (band-passed noise, seeded) moved theta_max by
+0.20-0.21 alpha under the same perturbations with both solvers; 0.05 alpha leaves a wide margin.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import signal
+
+from opsrock import Block, OneSinePulse
+from opsrock.excitations import Record
+from opsrock.sensitivity import amplitude_sensitivity
+
+BLOCK = Block(0.4, 2.2)
+
+
+def noise_record(seed: int = 2, duration: float = 20.0, dt: float = 0.01) -> Record:
+    rng = np.random.default_rng(seed)
+    n = int(duration / dt)
+    a = signal.sosfiltfilt(signal.butter(4, (0.5, 6.0), btype="bandpass", fs=1 / dt, output="sos"), rng.standard_normal(n))
+    ramp = np.minimum(1.0, np.minimum(np.arange(n) * dt / 2.0, (n - np.arange(n)) * dt / 2.0))
+    rec = Record(dt, a * ramp)
+    return rec.scaled(2.0 * BLOCK.uplift_acceleration / rec.pfa)
+
+
+def test_a_smooth_pulse_is_not_sensitive():
+    s = amplitude_sensitivity(BLOCK, OneSinePulse.from_ratios(BLOCK, 6, 8))
+    assert not s.sensitive and s.spread < 1e-3 and set(s.verdicts) == {"safe"}
+    assert s.eps == (0.0, -1e-6, 1e-6, -1e-5, 1e-5)
+
+
+@pytest.mark.parametrize("solver", ["housner_fast", "housner"])
+def test_a_broadband_record_is_sensitive_for_the_rigid_body(solver):
+    s = amplitude_sensitivity(BLOCK, noise_record(), solver)
+    assert s.sensitive and s.spread > 0.05
+
+
+def test_sensitivity_input_checks():
+    pulse = OneSinePulse.from_ratios(BLOCK, 6, 8)
+    with pytest.raises(ValueError, match="eps"):
+        amplitude_sensitivity(BLOCK, pulse, eps=(0.5,))
+    with pytest.raises(ValueError, match="threshold"):
+        amplitude_sensitivity(BLOCK, pulse, threshold=-1.0)

@@ -39,6 +39,7 @@ from scipy.integrate import solve_ivp
 from opsrock._checks import bool_fields, int_at_least, one_of
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.excitations.records import Record
 from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel, can_uplift
 from opsrock.result import ImpactLog, RockingResult, failed_result, seated_result
 from opsrock.solvers.housner import (
@@ -113,6 +114,10 @@ class SDOFSettings:
     dense_step : float or None
         If set (s), the history also holds the integrator's dense output every ``dense_step``
         (see :class:`opsrock.solvers.housner.HousnerSettings`). None (default): steps and events.
+    stiff_closed_form : bool
+        Under a record (acceleration linear between samples), solve the stiff branch in closed form
+        (:class:`_ClosedFormSegment`) instead of with ``stiff_method``. Default True; False: the
+        implicit integrator everywhere (the reference of the test that checks the closed form).
     """
 
     delta: float = DEFAULT_DELTA
@@ -135,6 +140,7 @@ class SDOFSettings:
     scan_step: float | None = None
     uplift_check: bool = True
     dense_step: float | None = None
+    stiff_closed_form: bool = True
 
     def __post_init__(self) -> None:
         bool_fields(self)
@@ -230,6 +236,8 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
     t_final = s.end_time if s.end_time is not None else duration + s.max_free_time
     scan = s.scan_step if s.scan_step is not None else max(duration, 1e-9) / 2000.0
     atol = np.array([s.atol, s.atol * p])
+    # the stiff branch in closed form where the floor acceleration is linear between breakpoints
+    closed_form = s.stiff_closed_form and isinstance(excitation, Record)
     acc = excitation.acceleration
     bps = np.asarray(excitation.breakpoints(), dtype=float)
     bps = np.unique(np.append(bps[(bps > 0.0) & (bps < t_final)], duration if duration < t_final else t_final))
@@ -360,10 +368,18 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
 
         nxt = bps[bps > t + 1e-15 * max(1.0, t)]
         t_seg = float(nxt[0]) if nxt.size else t_final
-        sol = solve_ivp(
-            rhs, (t, t_seg), y, method=s.stiff_method if is_stiff else s.method,
-            rtol=s.rtol, atol=atol, max_step=s.max_step, events=events, dense_output=s.dense_step is not None,
-        )
+        if is_stiff and closed_form and t_seg > t:
+            # a record's acceleration is linear between samples: the stiff branch in closed form
+            a0, a1 = float(acc(t)), (float(acc(t_seg)) - float(acc(t))) / (t_seg - t)
+            if t_seg > duration:  # after the last sample the floor is still (a = 0)
+                a0, a1 = (0.0, 0.0) if t >= duration else (a0, a1)
+            seg = _ClosedFormSegment(inertia, c_i, k_i, m_i, lam, a0, a1, t, y)
+            sol = _closed_form_solve(seg, t, t_seg, events)
+        else:
+            sol = solve_ivp(
+                rhs, (t, t_seg), y, method=s.stiff_method if is_stiff else s.method,
+                rtol=s.rtol, atol=atol, max_step=s.max_step, events=events, dense_output=s.dense_step is not None,
+            )
         n_steps += max(len(sol.t) - 1, 0)
         if sol.status == -1:
             return fail(f"solve_ivp ({s.stiff_method if is_stiff else s.method}) failed at t = {t:.6g} s: {sol.message}")
@@ -437,6 +453,85 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         spring_moment=spring,
         damper_force=damper,
     )
+
+
+class _ClosedFormSegment:
+    """The exact solution on one region of the table under a linear floor acceleration.
+
+    ``I theta'' + c theta' + k theta + m = -lam (a0 + a1 (t - t0))`` has the solution
+    ``P + Q tau + C1 exp(r1 tau) + C2 exp(r2 tau)`` (``tau = t - t0``; ``Q = f1 / k``,
+    ``P = (f0 - c Q) / k`` with ``f0 = -lam a0 - m``, ``f1 = -lam a1``; ``r1,2`` the roots of
+    ``I r² + c r + k``; ``C1, C2`` from the state at ``t0``). Used for the stiff branch under a record:
+    there the natural frequency is about 1000 p and an implicit integrator needs thousands of steps
+    per second of record, whereas the closed form needs none.
+    """
+
+    def __init__(self, inertia, c, k, m, lam, a0, a1, t0, y0):
+        f0, f1 = -lam * a0 - m, -lam * a1
+        self.Q = f1 / k
+        self.P = (f0 - c * self.Q) / k
+        sq = np.sqrt(complex(c * c - 4.0 * k * inertia))
+        if sq == 0:  # critical damping: separate the roots by a relative 1e-12 (no effect on the answer)
+            sq = complex(1e-12 * abs(c) + 1e-300)
+        self.r1, self.r2 = (-c + sq) / (2.0 * inertia), (-c - sq) / (2.0 * inertia)
+        d0, d1 = y0[0] - self.P, y0[1] - self.Q
+        self.C1 = (d1 - self.r2 * d0) / (self.r1 - self.r2)
+        self.C2 = d0 - self.C1
+        self.t0 = t0
+        self.omega = max(abs(self.r1.imag), abs(self.r1.real), abs(self.r2.real))
+
+    def __call__(self, t):
+        tau = np.asarray(t, dtype=float) - self.t0
+        e1, e2 = np.exp(self.r1 * tau), np.exp(self.r2 * tau)
+        th = self.P + self.Q * tau + (self.C1 * e1 + self.C2 * e2).real
+        td = self.Q + (self.r1 * self.C1 * e1 + self.r2 * self.C2 * e2).real
+        return np.array([th, td])
+
+
+class _Solution:
+    """What :func:`scipy.integrate.solve_ivp` returns, for a closed-form segment."""
+
+    def __init__(self, t, y, status, t_events, y_events, sol):
+        self.t, self.y, self.status, self.t_events, self.y_events, self.sol = t, y, status, t_events, y_events, sol
+        self.message = ""
+
+
+#: Samples per period of the fastest mode on which a closed-form segment's events are bracketed.
+CLOSED_FORM_SAMPLES_PER_PERIOD: int = 16
+
+
+def _closed_form_solve(seg: _ClosedFormSegment, t0: float, t1: float, events) -> _Solution:
+    """Events of ``seg`` on ``[t0, t1]`` with solve_ivp's conventions (direction, terminal): sign
+    changes bracketed on a grid of :data:`CLOSED_FORM_SAMPLES_PER_PERIOD` points per period, then
+    refined by Brent's method on the closed form to 1e-15 s."""
+    from scipy.optimize import brentq
+
+    n = int(min(200_000, max(8, math.ceil((t1 - t0) * seg.omega / (2 * math.pi) * CLOSED_FORM_SAMPLES_PER_PERIOD))))
+    grid = np.linspace(t0, t1, n + 1)
+    Y = seg(grid)
+    hits: list[list[float]] = [[] for _ in events]
+    stop = t1
+    for j, ev in enumerate(events):
+        g = np.array([ev(tt, Y[:, i]) for i, tt in enumerate(grid)])
+        if ev.direction > 0:
+            idx = np.flatnonzero((g[:-1] < 0) & (g[1:] >= 0))
+        elif ev.direction < 0:
+            idx = np.flatnonzero((g[:-1] > 0) & (g[1:] <= 0))
+        else:
+            idx = np.flatnonzero(((g[:-1] < 0) & (g[1:] >= 0)) | ((g[:-1] > 0) & (g[1:] <= 0)))
+        for i in idx:
+            a, b = grid[i], grid[i + 1]
+            te = b if g[i + 1] == 0 else brentq(lambda tt: ev(tt, seg(tt)), a, b, xtol=1e-15, rtol=1e-15)
+            hits[j].append(te)
+            if ev.terminal:
+                stop = min(stop, te)
+                break
+    t_events = [np.array([te for te in h if te <= stop]) for h in hits]
+    y_events = [seg(te).T.reshape(-1, 2) if te.size else np.zeros((0, 2)) for te in t_events]
+    keep = grid[grid < stop]
+    t_out = np.append(keep, stop)
+    status = 1 if stop < t1 or any(te.size and ev.terminal for te, ev in zip(t_events, events)) else 0
+    return _Solution(t_out, seg(t_out), status, t_events, y_events, seg)
 
 
 def _region_of(kinks: np.ndarray, theta: float, direction: float) -> int:

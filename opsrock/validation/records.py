@@ -31,7 +31,7 @@ BLOCKS: tuple[tuple[str, float, float], ...] = (("bookcase", 0.40, 2.20), ("ward
 LEVELS: tuple[float, ...] = (1.5, 2.5, 4.0)
 #: Wall-clock budget per solve (s): beyond it the case is failed ("timeout").
 CASE_BUDGET: float = 30.0
-#: ``sdof`` (scipy, up to 40 s per 26-s floor motion) runs on the motions of the first records only.
+#: ``sdof`` (scipy, 0.3-12 s per 30-40-s floor motion) runs on the motions of the first records only.
 SDOF_RECORDS: int = 2
 SOLVERS: tuple[str, ...] = ("housner", "housner_fast", "opensees", "sdof")
 

@@ -54,12 +54,18 @@ def main():
     p.add_argument("--workers", type=int, default=2)
     args = p.parse_args()
     cases = [(s, b, lv) for s in SEEDS for b in BLOCKS for lv in LEVELS]
-    with ProcessPoolExecutor(args.workers) as pool:
-        rows = list(pool.map(one, cases, chunksize=4))
-    with open("sdof_consistency_probe.csv", "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]), lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
+    rows = []
+    # each finished case is written at once (a long run can be stopped and its rows kept)
+    with ProcessPoolExecutor(args.workers) as pool, open("sdof_consistency_probe.csv", "w", newline="") as fh:
+        w = None
+        for k, row in enumerate(pool.map(one, cases), start=1):
+            if w is None:
+                w = csv.DictWriter(fh, fieldnames=list(row), lineterminator="\n")
+                w.writeheader()
+            w.writerow(row)
+            fh.flush()
+            rows.append(row)
+            print(f"{k}/{len(cases)} seed {row['seed']} {row['width']}x{row['height']} at {row['level']}", flush=True)
     sens = [r for r in rows if r["sdof_sensitive"] or r["opensees_sensitive"]]
     rest = [r for r in rows if not (r["sdof_sensitive"] or r["opensees_sensitive"])]
     agree = [r for r in rest if r["sdof_verdict"] == r["opensees_verdict"]]

@@ -142,6 +142,11 @@ def _check_common(block: Any, shape: str, equations: str, pfa_ratio_max: float, 
         raise ValueError(f"rtol must lie in (0, 0.1), got {rtol!r}")
 
 
+def _codes(res) -> np.ndarray:
+    """Verdict codes of a ``housner_fast`` batch: 1 overturned, 0 not, -1 failed."""
+    return np.where(res.ok, res.overturned.astype(int), -1)
+
+
 class _Verdicts:
     """Verdict of one block at amplitudes ``pfa_ratio`` of one pulse, per solver; counts solves."""
 
@@ -162,7 +167,7 @@ class _Verdicts:
 
             res = solve_grid(self.block.alpha, self.block.e, ratios, self.freq_ratio,
                              settings=HousnerFastSettings(**self.settings), pulse=self.shape)
-            code = np.where(res.ok, res.overturned.astype(int), -1)
+            code = _codes(res)
             return code, [STATUS_REASONS.get(int(s), "") for s in res.status]
         from opsrock.solvers import simulate
 
@@ -347,7 +352,7 @@ def threshold_chart(block: Block, freq_ratios: Sequence[float], *, shape: str = 
 
     def run(r: np.ndarray, f: np.ndarray) -> np.ndarray:
         res = solve_grid(block.alpha, block.e, r, f, settings=hs, pulse=shape)
-        return np.where(res.ok, res.overturned.astype(int), -1)
+        return _codes(res)
 
     code = run(np.broadcast_to(grid, (nu.size, grid.size)), nu[:, None])
     rows, cols = np.nonzero((code[:, :-1] >= 0) & (code[:, 1:] >= 0) & (code[:, :-1] != code[:, 1:]))

@@ -69,6 +69,9 @@ class SDOFSettings:
     lever : str
         Excitation lever, ``"housner"`` (``m R cos alpha``) or ``"printed"`` (see
         :data:`opsrock.model.LEVERS`).
+    damper : str
+        How the damper coefficient is set, ``"energy"`` or ``"entry_velocity"`` (Eq. 8 as printed;
+        see :data:`opsrock.model.DAMPER_LAWS`).
     method : str
         :func:`scipy.integrate.solve_ivp` method outside the stiff branch. Default ``"DOP853"``:
         there the equation is linear, non-stiff (rates ``p`` and ``c_D / I_O``) and smooth.
@@ -124,6 +127,7 @@ class SDOFSettings:
     theta_e_ratio: float = DEFAULT_THETA_E_RATIO
     table_points: int = DEFAULT_TABLE_POINTS
     lever: str = "housner"
+    damper: str = "energy"
     method: str = "DOP853"
     stiff_method: str = "Radau"
     rtol: float = 1e-10
@@ -157,7 +161,8 @@ class SDOFSettings:
     def model(self) -> SDOFModel:
         """The SDOF model these settings describe."""
         return SDOFModel(
-            delta=self.delta, theta_e_ratio=self.theta_e_ratio, table_points=self.table_points, lever=self.lever
+            delta=self.delta, theta_e_ratio=self.theta_e_ratio, table_points=self.table_points, lever=self.lever,
+            damper=self.damper,
         )
 
 
@@ -278,8 +283,12 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
     theta_max = abs(s.theta0)
     rocked = abs(s.theta0) > theta_e
     region = -1
+    at_turn = False  # the current state is a turning point just handled (its event must not fire again)
     if not seated:
         region = _region_of(kinks, y[0], y[1])
+        if model.tracks_passages() and theta_e < abs(y[0]) <= band and y[0] * y[1] <= 0.0:
+            # starting inside the band, at rest or heading back towards zero: a passage begins
+            c_d = model.arm_damper(block, y[0], y[1])
     out(t, y[0], y[1], 0.0)
 
     while t < t_final:
@@ -318,6 +327,7 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
                 break  # trapped in the damper band: it can never rock out again
 
         lo, hi = kinks[region], kinks[region + 1]
+        at_turn, was_at_turn = False, at_turn
         k_i, m_i = slopes[region], intercepts[region]
         c_i = c_d if in_band[region] else 0.0
         is_stiff = bool(stiff[region])
@@ -340,14 +350,21 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
 
         overturn.terminal, overturn.direction = True, 1
 
-        def turning(tt, yy):
-            return yy[1]
-
-        turning.terminal = bool(s.end_time is None and s.tail == "peak" and t >= duration)
         # peaks of |theta| only (theta' leaving the outward sign): a turning point beyond alpha,
         # from which the block falls outwards, does not fire again at the next segment's start
         mid = 0.5 * (lo + hi)
-        turning.direction = 0 if is_stiff else (-1 if mid > 0 else 1)
+        direction = 0 if is_stiff else (-1 if mid > 0 else 1)
+
+        def turning(tt, yy, t_start=t if was_at_turn else -math.inf, direction=direction):
+            # a segment that starts at the turning point just handled reports there the sign that
+            # follows a peak, so the same peak does not fire again
+            return float(direction) if (tt <= t_start and direction) else yy[1]
+
+        stop_at_peak = bool(s.end_time is None and s.tail == "peak" and t >= duration)
+        # a turning point inside the band starts a new passage: the damper is re-armed there
+        rearm = model.tracks_passages() and bool(in_band[region]) and not is_stiff
+        turning.terminal = stop_at_peak or rearm
+        turning.direction = direction
         events = [lower, upper, overturn, turning]
         if is_stiff:
 
@@ -398,13 +415,18 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
             theta_max = max(theta_max, OVERTURNING_ANGLE)
             break
         if sol.t_events[3].size and turning.terminal:
-            if abs(sol.y_events[3][-1][0]) < alpha:
+            if stop_at_peak and abs(sol.y_events[3][-1][0]) < alpha:
                 break
             y = sol.y_events[3][-1].copy()
+            if rearm:
+                c_d = model.arm_damper(block, y[0], 0.0)
+            at_turn = True
             continue
         fired = {ev.__name__ for ev, te in zip(events, sol.t_events) if te.size and ev.terminal}
         if "capture" in fired:
             seated = True
+            if model.tracks_passages():
+                c_d = 0.0  # no passage under way: the floor lifts the block again undamped
             continue
         if "trapped" in fired:
             break
@@ -419,7 +441,7 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         if new < 0 or new >= slopes.size:
             return fail(f"rotation {y[0]:.6g} rad left the spring table at t = {t:.6g} s")
         if in_band[new] and not in_band[region]:
-            c_d = model.damping_coefficient(block, y[1])
+            c_d = model.arm_damper(block, y[0], y[1])
             entry = (t, float(y[1]), math.copysign(1.0, y[0]))
         elif in_band[region] and not in_band[new] and entry is not None:
             if math.copysign(1.0, y[0]) != entry[2]:  # left on the other side: an impact
@@ -500,17 +522,45 @@ class _Solution:
 CLOSED_FORM_SAMPLES_PER_PERIOD: int = 16
 
 
+#: Periods of the fastest mode per window of a closed-form segment: the events are searched window
+#: by window and the search stops at the first terminal one (a block crosses the stiff branch in a
+#: fraction of a period; a free tail can otherwise be a minute of record, a million grid points).
+CLOSED_FORM_WINDOW_PERIODS: int = 64
+
+
 def _closed_form_solve(seg: _ClosedFormSegment, t0: float, t1: float, events) -> _Solution:
     """Events of ``seg`` on ``[t0, t1]`` with solve_ivp's conventions (direction, terminal): sign
-    changes bracketed on a grid of :data:`CLOSED_FORM_SAMPLES_PER_PERIOD` points per period, then
-    refined by Brent's method on the closed form to 1e-15 s."""
+    changes bracketed on a grid of :data:`CLOSED_FORM_SAMPLES_PER_PERIOD` points per period, window
+    by window (:data:`CLOSED_FORM_WINDOW_PERIODS`), then refined by Brent's method on the closed
+    form to 1e-15 s."""
+    period = 2 * math.pi / seg.omega if seg.omega > 0 else t1 - t0
+    window = CLOSED_FORM_WINDOW_PERIODS * period
+    hits: list[list[float]] = [[] for _ in events]
+    grids, stop, ta = [], t1, t0
+    while ta < t1:
+        tb = min(t1, ta + window)
+        n = int(max(8, math.ceil((tb - ta) / period * CLOSED_FORM_SAMPLES_PER_PERIOD)))
+        grid = np.linspace(ta, tb, n + 1)
+        grids.append(grid if not grids else grid[1:])
+        stop = min(stop, _window_events(seg, grid, events, hits))
+        if stop < t1 or any(h and ev.terminal for h, ev in zip(hits, events)):
+            break
+        ta = tb
+    grid = np.concatenate(grids)
+    t_events = [np.array([te for te in h if te <= stop]) for h in hits]
+    y_events = [seg(te).T.reshape(-1, 2) if te.size else np.zeros((0, 2)) for te in t_events]
+    t_out = np.append(grid[grid < stop], stop)
+    status = 1 if stop < t1 or any(te.size and ev.terminal for te, ev in zip(t_events, events)) else 0
+    return _Solution(t_out, seg(t_out), status, t_events, y_events, seg)
+
+
+def _window_events(seg: _ClosedFormSegment, grid: np.ndarray, events, hits: list[list[float]]) -> float:
+    """Append the events of ``seg`` on ``grid`` to ``hits``; return the first terminal one's time
+    (or the grid's end)."""
     from scipy.optimize import brentq
 
-    n = int(min(200_000, max(8, math.ceil((t1 - t0) * seg.omega / (2 * math.pi) * CLOSED_FORM_SAMPLES_PER_PERIOD))))
-    grid = np.linspace(t0, t1, n + 1)
     Y = seg(grid)
-    hits: list[list[float]] = [[] for _ in events]
-    stop = t1
+    stop = float(grid[-1])
     for j, ev in enumerate(events):
         g = np.array([ev(tt, Y[:, i]) for i, tt in enumerate(grid)])
         if ev.direction > 0:
@@ -526,12 +576,7 @@ def _closed_form_solve(seg: _ClosedFormSegment, t0: float, t1: float, events) ->
             if ev.terminal:
                 stop = min(stop, te)
                 break
-    t_events = [np.array([te for te in h if te <= stop]) for h in hits]
-    y_events = [seg(te).T.reshape(-1, 2) if te.size else np.zeros((0, 2)) for te in t_events]
-    keep = grid[grid < stop]
-    t_out = np.append(keep, stop)
-    status = 1 if stop < t1 or any(te.size and ev.terminal for te, ev in zip(t_events, events)) else 0
-    return _Solution(t_out, seg(t_out), status, t_events, y_events, seg)
+    return stop
 
 
 def _region_of(kinks: np.ndarray, theta: float, direction: float) -> int:

@@ -52,6 +52,7 @@ from opsrock.opensees_session import count_messages as _count_messages
 from opsrock.opensees_session import console_to_log, fresh_model, opensees_log_path, ops
 from opsrock.opensees_session import log_size as _log_size
 from opsrock.result import ImpactLog, RockingResult, failed_result, seated_result
+from opsrock.solvers.housner import first_exceedance
 
 SOLVER_NAME = "opensees"
 
@@ -109,6 +110,11 @@ EDGE_FRACTION: float = 0.05
 #: Adaptive mode: length of the reset step after the damper coefficient changes, as a fraction
 #: of a band step.
 RESET_FRACTION: float = 1e-3
+
+#: Adaptive mode: smallest rotation per step (in ``theta_e``) of a passage that starts inside the
+#: band. Passages shrink geometrically as a block settles; without a floor their steps would too
+#: (measured: 1.9 million steps on a 20-s record at band_steps 160).
+MIN_PASSAGE_STEP_RATIO: float = 10.0
 _SERIES, _PATTERN = 1, 1
 
 
@@ -623,16 +629,21 @@ def _integrate(
     theta_e = model.theta_e(block)
     n_seated = 0
     rearm = model.tracks_passages()
+    th_tab0, m_tab0 = model.spring_table(block)
+    m_e = float(np.interp(theta_e, th_tab0, m_tab0))
+    uplift_level = m_e / abs(model.lever_arm(block))  # m/s²
+    seat = _Seat(excitation, model.lever_arm(block), m_e / theta_e, math.sqrt(m_e / theta_e / block.I_O), theta_e, duration)
     if rearm and in_band and abs(th) > model.theta_e(block) and th * thd <= 0.0:
         # starting inside the band, at rest or heading back towards zero: a passage begins
         c_now = model.arm_damper(block, th, thd)
         ops.updateParameter(_DAMPER_PARAM, c_now)
-        h_len = min(h_band_num, 2.0 * abs(th) / s.band_steps)
+        h_len = max(min(h_band_num, 2.0 * abs(th) / s.band_steps), MIN_PASSAGE_STEP_RATIO * model.theta_e(block))
     # initial spring moment from the table: the element's force is only updated by a step
     th_tab, m_tab = model.spring_table(block)
     ts, ths, thds, ms, fds = [t], [th], [thd], [float(np.interp(th, th_tab, m_tab))], [0.0]
     cs = [0.0]  # damper coefficient at each recorded state (after its update: Eq. 7 at that state)
     element_forces = s.element_forces
+    seated_state = False  # the current state was set by the seat, not by a step
     k_rec = 0
 
     def record() -> None:
@@ -640,7 +651,11 @@ def _integrate(
         ths.append(th)
         thds.append(thd)
         cs.append(c_now)
-        if element_forces:
+        if element_forces and seated_state:
+            # a state set by the seat (no step since): the elements still hold the step's forces
+            ms.append(float(np.interp(th, th_tab, m_tab)))
+            fds.append(c_now * thd)
+        elif element_forces:
             ms.append(ele_resp(_SPRING_ELE, "force")[1])
             fds.append(ele_resp(_DAMPER_ELE, "force")[1])
 
@@ -707,6 +722,12 @@ def _integrate(
                 h = duration - t  # land on the end of the excitation (a kink in a(t))
                 if h < dt_min:
                     h = dt_min
+            if ath <= theta_e and t < duration:
+                # seated: land on the instant the floor can lift the block (|Lambda a| = M_s(theta_e)),
+                # as the scipy solver does; a step of omega_e h >> 1 across it lifts it late
+                t_up = first_exceedance(excitation, uplift_level, t, t + h, h)
+                if t_up is not None and t_up > t + dt_min:
+                    h = t_up - t
         else:
             h = dt
         # --- advance ------------------------------------------------------------------------
@@ -749,6 +770,15 @@ def _integrate(
                 f"unstable: mechanical energy {energy:.4g} J at t = {t:.6g} s exceeds the initial energy "
                 f"plus the floor's work ({e_0 + w_in:.4g} J); numerical blow-up (theta = {th:.4g} rad)"
             )
+        # --- seated: drop the stiff branch's free oscillation, as the scipy solver does ----------
+        seated_state = ath <= theta_e and seat.captures(t, th, thd)
+        if seated_state:
+            th, thd = seat.theta_qs(t), 0.0
+            ops.setNodeDisp(node, dof, th, "-commit")
+            ops.setNodeVel(node, dof, 0.0, "-commit")
+            ops.setNodeAccel(node, dof, 0.0, "-commit")
+            ops.domainChange()  # the integrator keeps its own state vectors: re-read the domain's
+            ath = abs(th)
         # --- damper (Eq. 7-8): set on entering the band, zero outside ----------------------
         switched = False
         if ath <= band:
@@ -771,7 +801,7 @@ def _integrate(
                 c_now = model.arm_damper(block, th, thd)
                 update(_DAMPER_PARAM, c_now)
                 switched = True
-                h_len = min(h_band_num, 2.0 * ath / s.band_steps)
+                h_len = max(min(h_band_num, 2.0 * ath / s.band_steps), MIN_PASSAGE_STEP_RATIO * theta_e)
         elif in_band:
             in_band = False
             if entry is not None and (th > 0.0) != entry[2]:  # left on the other side: an impact
@@ -797,6 +827,7 @@ def _integrate(
             t += h_reset
             th = node_disp(node, dof)
             thd = node_vel(node, dof)
+            seated_state = False
             ath = abs(th)
             if ath > theta_max:
                 theta_max = ath
@@ -858,6 +889,33 @@ def _integrate(
         n_impacts=len(impacts),
         impacts=impacts.freeze(),
     )
+
+
+class _Seat:
+    """The stiff branch ``|theta| <= theta_e`` holding a seated block (the scipy solver's treatment).
+
+    There the exact solution is the quasi-static deflection ``theta_qs = -Lambda a(t) / k_e`` plus a
+    free oscillation of amplitude ``A`` at ``omega_e`` (about 1000 p). Newmark's average acceleration
+    keeps that oscillation undamped at ``omega_e h >> 1`` and, the branch's kink being crossed at step
+    ends, can pump it out of the branch: a seated block then rattles in the band (measured: up to
+    0.02 delta alpha while the scipy solver's block sat still) and lifts off at another time. Once
+    ``|theta_qs| + A < theta_e`` the oscillation is dropped and the state set to ``theta_qs``.
+    """
+
+    def __init__(self, excitation: Excitation, lam: float, k_e: float, omega_e: float, theta_e: float,
+                 duration: float) -> None:
+        self.acc, self.lam, self.k_e, self.omega_e = excitation.acceleration, lam, k_e, omega_e
+        self.theta_e, self.duration = theta_e, duration
+
+    def theta_qs(self, t: float) -> float:
+        """Quasi-static deflection (rad) at ``t`` (s); the floor is still after the excitation."""
+        return -self.lam * float(self.acc(t)) / self.k_e if t <= self.duration else 0.0
+
+    def captures(self, t: float, theta: float, theta_dot: float) -> bool:
+        """True if the state's oscillation about ``theta_qs`` fits inside the branch (and is not zero)."""
+        qs = self.theta_qs(t)
+        amp = math.hypot(theta - qs, theta_dot / self.omega_e)
+        return 0.0 < amp and abs(qs) + amp < self.theta_e
 
 
 def _recover(s: OpenSeesSettings, h: float) -> int:

@@ -14,9 +14,14 @@ a fixed node and the free one:
   :meth:`opsrock.model.SDOFModel.spring_table` (path-independent; its negative slopes are the
   rocking instability); ``MultiLinear``/``Hysteretic`` would be hysteretic and wrong here;
 * the damper, ``uniaxialMaterial Viscous C 1.0`` whose ``C`` is changed through
-  ``parameter``/``updateParameter``: ``c_D`` of Eq. 8 from the angular velocity on entering the
-  band ``|theta| <= delta alpha``, zero outside (Eq. 7). The change takes effect from the next
-  step.
+  ``parameter``/``updateParameter``: ``c_D`` set by the model's damper law at the start of every
+  passage through the band ``|theta| <= delta alpha`` (on entering it, at the first step after a
+  turning point inside it; :meth:`opsrock.model.SDOFModel.arm_damper`), zero outside (Eq. 7) and
+  while the block is seated. The change takes effect from the next step.
+
+A block seated in the stiff branch is treated as the scipy solver treats it (:class:`_Seat`): its
+free oscillation at ``omega_e`` is dropped once it fits in the branch, and under a record a step
+lands on the instant the floor can lift it.
 
 The floor acceleration enters as the nodal moment ``-Lambda a(t)`` (``Lambda`` =
 :meth:`~opsrock.model.SDOFModel.lever_arm`): a ``Trig`` time series for a one-sine pulse (exact
@@ -632,6 +637,9 @@ def _integrate(
     th_tab0, m_tab0 = model.spring_table(block)
     m_e = float(np.interp(theta_e, th_tab0, m_tab0))
     uplift_level = m_e / abs(model.lever_arm(block))  # m/s²
+    lift_times = None  # record samples at which the floor can lift a seated block (s)
+    if isinstance(excitation, Record):
+        lift_times = excitation.time[np.abs(excitation.values) > uplift_level]
     seat = _Seat(excitation, model.lever_arm(block), m_e / theta_e, math.sqrt(m_e / theta_e / block.I_O), theta_e, duration)
     if rearm and in_band and abs(th) > model.theta_e(block) and th * thd <= 0.0:
         # starting inside the band, at rest or heading back towards zero: a passage begins
@@ -722,12 +730,16 @@ def _integrate(
                 h = duration - t  # land on the end of the excitation (a kink in a(t))
                 if h < dt_min:
                     h = dt_min
-            if ath <= theta_e and t < duration:
-                # seated: land on the instant the floor can lift the block (|Lambda a| = M_s(theta_e)),
-                # as the scipy solver does; a step of omega_e h >> 1 across it lifts it late
-                t_up = first_exceedance(excitation, uplift_level, t, t + h, h)
-                if t_up is not None and t_up > t + dt_min:
-                    h = t_up - t
+            if ath <= theta_e and t < duration and lift_times is not None:
+                # seated under a record: land on the instant the floor can lift the block
+                # (|Lambda a| = M_s(theta_e)), as the scipy solver does; a step of omega_e h >> 1
+                # across it lifts it late. Between samples a(t) is linear, so a crossing in
+                # (t, t + h] ends at a sample above the level: only then is it searched for.
+                j = int(np.searchsorted(lift_times, t, side="right"))
+                if j < lift_times.size and lift_times[j] - rec_dt < t + h:
+                    t_up = first_exceedance(excitation, uplift_level, t, min(t + h, lift_times[j]), h)
+                    if t_up is not None and t_up > t + dt_min:
+                        h = t_up - t
         else:
             h = dt
         # --- advance ------------------------------------------------------------------------
@@ -789,9 +801,8 @@ def _integrate(
                 update(_DAMPER_PARAM, c_now)
                 switched = True
                 h_len = h_band_num
-            elif rearm and ath <= theta_e and c_now != 0.0:
-                # a step that ends inside the stiff branch: the block is seated (a passage crosses
-                # the branch within one step), no passage is under way
+            elif rearm and seated_state and c_now != 0.0:
+                # seated (the seat just dropped the branch's oscillation): no passage under way
                 c_now = 0.0
                 update(_DAMPER_PARAM, 0.0)
                 switched = True

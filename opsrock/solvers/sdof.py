@@ -11,8 +11,11 @@ solved with the same model as the OpenSees solver (:class:`opsrock.model.SDOFMod
   :func:`scipy.integrate.solve_ivp` integrates it with tight tolerances, stopping on a
   terminal event at the region's edges, at ``|theta| = pi/2`` (overturning, Eq. 11) and at
   every excitation breakpoint (pulse start and end, record samples);
-* the damper is switched on when the band is entered, with ``c_D`` from the velocity at
-  entry (Eq. 8), and off when it is left. Before the first entry ``c_D = 0``;
+* the damper is armed at the start of every passage through the band (on entering it, at a
+  turning point inside it, and at the start from a state inside it) by the model's damper law
+  (:meth:`opsrock.model.SDOFModel.arm_damper`: by default so that a free passage keeps ``e²`` of
+  the energy; ``damper="entry_velocity"`` is Eq. 8 on entry only), and off when it is left. Before
+  the first passage, and while the block is seated, ``c_D = 0``;
 * the stiff branch ``|theta| <= theta_e`` (slope ``k_e = M_s(theta_e) / theta_e``, natural
   frequency ``omega_e = sqrt(k_e / I_O)``, about ``p sqrt(1 / theta_e_ratio)``: 1000 p by
   default) is integrated with an implicit method (``stiff_method``). A block that sits in it

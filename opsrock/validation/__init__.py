@@ -23,6 +23,7 @@ CASES: tuple[str, ...] = (
     "stability_map",     # 6. time step x method: accurate / wrong / failed / unstable
     "published_thresholds",  # 7. the overturning thresholds of the rocking literature
     "records",           # 8. the four solvers on FEMA P695 records, ground and roof
+    "sdof_records",      # 9. the SDOF model's two implementations and the rigid body on 207 broadband records
 )
 
 #: Repository folder that holds the case folders (README, run.py, outputs).

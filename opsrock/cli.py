@@ -108,13 +108,14 @@ def add_model_arguments(p, default_solver: str) -> None:
     p.add_argument("--delta", type=_finite("--delta"), help="damper band, fraction of alpha (SDOF models)")
     p.add_argument("--step", type=_finite("--step"), help="OpenSees time step (s) (--solver opensees)")
     p.add_argument("--lever", help="excitation lever: housner (m R cos alpha, default) or printed (I_O cos alpha / R)")
+    p.add_argument("--damper", help="damper law (SDOF models): energy (e² per passage, default) or entry_velocity (Eq. 8 as printed)")
 
 
 def check_model_args(args: argparse.Namespace) -> None:
     """Solver, pulse and model options that do not go together: UsageError naming them."""
     from opsrock.constants import EQUATIONS
     from opsrock.excitations import PULSE_SHAPES
-    from opsrock.model import LEVERS
+    from opsrock.model import DAMPER_LAWS, LEVERS
     from opsrock.solvers import SOLVERS
 
     if args.solver not in SOLVERS:
@@ -125,11 +126,13 @@ def check_model_args(args: argparse.Namespace) -> None:
         raise UsageError(f"--duration applies to --pulse rectangular, not --pulse {args.pulse} (use --freq or --freq-ratio)")
     if args.lever is not None and args.lever not in LEVERS:
         raise UsageError(f"--lever must be one of {', '.join(LEVERS)}; got {args.lever!r}")
+    if args.damper is not None and args.damper not in DAMPER_LAWS:
+        raise UsageError(f"--damper must be one of {', '.join(DAMPER_LAWS)}; got {args.damper!r}")
     if args.equations is not None and args.equations not in EQUATIONS:
         raise UsageError(f"--equations must be one of {', '.join(EQUATIONS)}; got {args.equations!r}")
     sdof_like = args.solver in ("opensees", "sdof")
-    if not sdof_like and (args.delta is not None or args.lever is not None):
-        raise UsageError(f"--delta and --lever apply to the SDOF models (opensees, sdof), not --solver {args.solver}")
+    if not sdof_like and (args.delta is not None or args.lever is not None or args.damper is not None):
+        raise UsageError(f"--delta, --lever and --damper apply to the SDOF models (opensees, sdof), not --solver {args.solver}")
     if sdof_like and args.equations is not None:
         raise UsageError(f"--equations applies to the rigid-body solvers (housner, housner_fast), not --solver {args.solver}")
     if args.step is not None and args.solver != "opensees":
@@ -233,7 +236,7 @@ def _record(args: argparse.Namespace, block):
 
 
 def model_settings(args: argparse.Namespace) -> dict:
-    """Solver settings of --delta, --lever, --step and --equations."""
+    """Solver settings of --delta, --lever, --damper, --step and --equations."""
     from opsrock.model import SDOFModel
 
     settings = {}
@@ -244,6 +247,8 @@ def model_settings(args: argparse.Namespace) -> dict:
         settings["delta"] = args.delta
     if args.lever is not None:
         settings["lever"] = args.lever
+    if args.damper is not None:
+        settings["damper"] = args.damper
     if args.step is not None:
         settings["dt"] = args.step
     return settings

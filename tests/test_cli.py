@@ -64,6 +64,9 @@ def test_simulate_plot_writes_png(tmp_path, capsys):
         (["simulate", "--width", "0.4", "--height", "2", "--pfa", "1", "--freq", "1", "--solver", "abaqus"], "--solver"),
         (["simulate", "--width", "0.4", "--height", "2", "--pfa", "1", "--freq", "1", "--delta", "3"], "delta"),
         (["simulate", "--width", "0.4", "--height", "2", "--pfa", "1", "--freq", "1", "--lever", "long"], "--lever"),
+        (["simulate", "--width", "0.4", "--height", "2", "--pfa", "1", "--freq", "1", "--damper", "eq8"], "--damper"),
+        (["simulate", "--width", "0.4", "--height", "2", "--pfa", "1", "--freq", "1", "--solver", "housner",
+          "--damper", "energy"], "--damper"),
         (["simulate", "--width", "0.4", "--height", "2", "--pfa", "1", "--freq", "1", "--solver", "housner", "--dt", "1e-3"], "--dt"),
         (["simulate", "--width", "3", "--height", "2", "--pfa", "1", "--freq", "1"], "stocky"),
         (["simulate", "--width", "0.4", "--height", "2", "--pfa", "1", "--freq", "1", "--plot", "x.jpg"], "--plot"),
@@ -87,6 +90,14 @@ def test_console_entry_point_exits_2_without_traceback(args):
     lines = [ln for ln in proc.stderr.splitlines() if ln.strip() and "Process 0 Terminating" not in ln]
     assert len(lines) == 1, proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_damper_option_reaches_the_sdof_solver(capsys):
+    # --damper entry_velocity is the paper's Eq. 8: the result's settings carry it
+    main(["simulate", "--width", "0.5", "--height", "1.15", "--pfa-ratio", "3", "--freq-ratio", "4", "--solver", "sdof",
+          "--damper", "entry_velocity", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert out["settings"]["damper"] == "entry_velocity"
 
 
 def test_simulate_is_fast_at_default_settings(capsys):

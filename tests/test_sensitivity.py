@@ -47,3 +47,26 @@ def test_sensitivity_input_checks():
         amplitude_sensitivity(BLOCK, pulse, eps=(0.5,))
     with pytest.raises(ValueError, match="threshold"):
         amplitude_sensitivity(BLOCK, pulse, threshold=-1.0)
+
+
+@pytest.mark.parametrize("solver", ["sdof", "opensees"])
+def test_step_convergence_of_a_smooth_pulse(solver):
+    # On a pulse that rocks the block to 0.50 alpha both SDOF implementations are converged at their
+    # defaults: tightening the numerics (sdof rtol 1e-10 -> 1e-12; OpenSees dt / 4 and band steps x 2)
+    # moved theta_max by 2.5e-11 (sdof) and 6.3e-5 alpha (OpenSees, its band stepping is first order
+    # in 1 / band_steps); 1e-3 alpha bounds both with margin, the case's threshold is 0.01.
+    from opsrock.sensitivity import TIGHTENED, step_convergence
+
+    c = step_convergence(BLOCK, OneSinePulse.from_ratios(BLOCK, 6, 8), solver)
+    assert c.converged and c.verdicts == ("safe", "safe") and c.spread < 1e-3
+    assert set(TIGHTENED) == {"sdof", "housner", "opensees"}
+
+
+def test_step_convergence_input_checks():
+    from opsrock.sensitivity import step_convergence
+
+    pulse = OneSinePulse.from_ratios(BLOCK, 6, 8)
+    with pytest.raises(ValueError, match="solver"):
+        step_convergence(BLOCK, pulse, "housner_fast")
+    with pytest.raises(ValueError, match="threshold"):
+        step_convergence(BLOCK, pulse, "sdof", threshold=0.0)

@@ -16,7 +16,7 @@ pytestmark = pytest.mark.opensees
 
 def test_registry_lists_the_cases_in_order():
     assert CASES == ("closed_forms", "sdof_agreement", "model_form", "lumped_mass", "speed_accuracy",
-                     "stability_map", "published_thresholds", "records")
+                     "stability_map", "published_thresholds", "records", "sdof_records")
 
 
 def test_published_thresholds_quick(tmp_path):
@@ -83,9 +83,9 @@ def test_cli_validate_one_quick_case(tmp_path, capsys):
 
 def test_sdof_records_quick(tmp_path):
     # Validation case 9, quick form: 3 broadband records (seed 1, the three blocks at 1.3 g tan alpha).
-    # On these the two SDOF implementations are well-conditioned (theta_max moves by < 1e-6 alpha under
-    # a 1e-6 amplitude change and under tightened numerics) and agree: measured |sdof - opensees|
-    # <= 2e-4 alpha, so the case's own 0.01 alpha criterion passes with a wide margin.
+    # On these the two SDOF implementations are well-conditioned (theta_max moves by < 1e-4 alpha under
+    # amplitude changes of 1e-6 and 1e-5 and under tightened numerics) and agree: measured
+    # |sdof - opensees| <= 2e-4 alpha, so the case's own 0.01 alpha criterion passes with a wide margin.
     from opsrock.validation import sdof_records
 
     m = run_case("sdof_records", tmp_path, quick=True)

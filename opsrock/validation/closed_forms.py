@@ -264,7 +264,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
         writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
         writer.writeheader()
         for row in rows:
-            writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
+            writer.writerow({k: (repr(float(v)) if isinstance(v, float) else v) for k, v in row.items()})
     return {
         "rows": rows,
         "passed": all(row["passed"] for row in rows),

@@ -134,7 +134,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
         w = csv.DictWriter(fh, fieldnames=keys)
         w.writeheader()
         for row in rows:
-            w.writerow({k: (f"{row[k]:.5g}" if isinstance(row[k], float) else row[k]) for k in keys})
+            w.writerow({k: (repr(float(row[k])) if isinstance(row[k], float) else row[k]) for k in keys})
     hous = sorted((r for r in rows if r["study"] == "delta" and r["lever"] == "housner"), key=lambda r: r["delta"])
     floor = hous[0]
     recommended = float("nan")

@@ -417,13 +417,13 @@ def run(out_dir: Path, quick: bool = False) -> dict:
         w = csv.writer(f)
         w.writerow(fields)
         for c in [*cells, *default_cells.values()]:
-            w.writerow([c.block, c.method, f"{c.dt:g}", c.cls, f"{c.max_error:.4g}", c.n_wrong_verdicts,
-                        c.n_failed, c.reasons, f"{c.wall_time_s:.3f}"])
+            w.writerow([c.block, c.method, repr(float(c.dt)), c.cls, repr(float(c.max_error)), c.n_wrong_verdicts,
+                        c.n_failed, c.reasons, repr(float(c.wall_time_s))])
     with open(out_dir / "critical_step.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(crit_rows[0]))
         w.writeheader()
         for r in crit_rows:
-            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+            w.writerow({k: (repr(float(v)) if isinstance(v, float) else v) for k, v in r.items()})
     plot(cells, dt_cr, default_cells, out_dir / "stability_map.png")
     wrong_explicit = wrong_above_critical(cells, dt_cr)
     defaults_ok = all(c.cls == "accurate" for c in default_cells.values())

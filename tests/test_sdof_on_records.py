@@ -1,0 +1,38 @@
+"""The paper's SDOF model on broadband floor motions: findings of validation case 9 pinned here.
+
+The records are band-passed noise (opsrock.validation.sdof_records.noise_record, seeded, so the same
+numbers on every machine with the locked numpy/scipy).
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from opsrock import Block
+from opsrock.solvers import simulate
+from opsrock.validation.sdof_records import noise_record
+
+pytestmark = pytest.mark.opensees
+
+
+def _record(block: Block, seed: int, level: float):
+    base = noise_record(seed)
+    return base.scaled(level * block.uplift_acceleration / base.pfa)
+
+
+def test_opensees_seat_matches_the_scipy_solver_on_a_weak_record():
+    # Seed 2, 0.5 x 1.15 m block at 1.3 g tan alpha: the block is lifted a little and sits down again
+    # many times. OpenSees' Newmark steps kept the stiff branch's free oscillation (omega_e h >> 1) and
+    # rattled the seated block out of it: theta_max 0.0069 alpha against the scipy solver's 0.0237,
+    # in 330,000 steps. With the seat (the scipy solver's treatment: oscillation dropped once it fits
+    # in the branch, steps landing on the uplift instant) it gives 0.02349 against 0.02371 in 13,000
+    # steps. Reference: the scipy solver (same model, independent numerics). Tolerance 0.002 alpha
+    # (ten times the measured difference, a fifth of the case's 0.01 alpha criterion).
+    block = Block(0.5, 1.15)
+    rec = _record(block, 2, 1.3)
+    ref = simulate(block, rec, "sdof")
+    r = simulate(block, rec, "opensees")
+    assert ref.ok and r.ok and ref.verdict == r.verdict == "safe"
+    assert abs(r.theta_max_over_alpha - ref.theta_max_over_alpha) < 2e-3
+    assert r.n_steps < 50_000
+

@@ -89,7 +89,7 @@ def test_sdof_records_quick(tmp_path):
     from opsrock.validation import sdof_records
 
     m = run_case("sdof_records", tmp_path, quick=True)
-    assert m["passed"] and m["n_cases"] == 3 and m["n_ill_conditioned"] == 0
+    assert m["passed"] and m["n_cases"] == 3 and m["n_ill_conditioned"] == 0 and m["n_rigid_sensitive"] == 0
     assert m["verdict_agreement"] == 1.0 and m["within_1pct_alpha"] == 1.0
     df = pd.read_csv(tmp_path / "cases_quick.csv")
     assert len(df) == 3 and (df["sdof_theta"] - df["opensees_theta"]).abs().max() < 0.01

@@ -176,6 +176,22 @@ def summarise(rows: list[dict]) -> dict:
     return m
 
 
+def rigid_sensitivity(todo: list) -> list[tuple[float, bool]]:
+    """The rigid body's own amplitude sensitivity (``housner_fast``, the same :data:`EPS`) per case:
+    ``(spread, sensitive)``. Context for the SDOF model's: is a case ill-conditioned in the physics too?"""
+    from opsrock.block import Block
+    from opsrock.sensitivity import amplitude_sensitivity
+
+    out = []
+    for seed, (w, h), level in todo:
+        b = Block(w, h)
+        base = noise_record(seed)
+        s = amplitude_sensitivity(b, base.scaled(level * b.uplift_acceleration / base.pfa), "housner_fast",
+                                  eps=EPS, threshold=THRESHOLD)
+        out.append((s.spread, s.sensitive))
+    return out
+
+
 def _share(flags: list[bool]) -> float:
     return float(np.mean(flags)) if flags else float("nan")
 
@@ -201,10 +217,72 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     workers = max(1, min(2, os.cpu_count() or 1))
     rows = compute(out_dir / f"cases{suffix}.csv", cases(quick), workers)
     m = summarise(rows)
+    rigid = rigid_sensitivity(cases(quick))
+    atomic_text(out_dir / f"rigid_sensitivity{suffix}.csv", "seed,width,height,level,spread,sensitive\n" + "".join(
+        f"{c[0]},{c[1][0]},{c[1][1]},{c[2]},{sp!r},{sens}\n" for c, (sp, sens) in zip(cases(quick), rigid)))
+    m["n_rigid_sensitive"] = sum(sens for _, sens in rigid)
     atomic_text(out_dir / f"summary{suffix}.csv",
                 "metric,value\n" + "".join(f"{k},{v!r}\n" for k, v in m.items()))
     _plot(rows, out_dir / f"sdof_records{suffix}.png")
+    if not quick:
+        m.update(divergence(out_dir))
     return m
+
+
+#: The case of the divergence figure: seed, (width, height) m, PFA / (g tan alpha).
+DIVERGENCE_CASE = (1, (0.4, 2.2), 3.5)
+#: Grid spacing (s) of the divergence histories (dense output).
+DIVERGENCE_STEP = 0.005
+
+
+def divergence(out_dir: Path, eps: float = 1e-6) -> dict:
+    """Divergence of nearby histories: |theta(t; a) - theta(t; a (1 + eps))| / alpha for the SDOF model
+    (``sdof``) and the rigid body (``housner``) on :data:`DIVERGENCE_CASE`, from dense output, and a
+    finite-time growth rate (1/s): the slope of ``ln`` of its running maximum while that lies between
+    1e-6 and 1e-2 alpha (least squares). Writes ``divergence.csv`` and ``divergence.png``."""
+    from opsrock.block import Block
+    from opsrock.solvers import simulate
+
+    seed, (w, h), level = DIVERGENCE_CASE
+    b = Block(w, h)
+    base = noise_record(seed)
+    rec = base.scaled(level * b.uplift_acceleration / base.pfa)
+    grid = np.arange(0.0, base.duration, DIVERGENCE_STEP)
+    curves, rates = {}, {}
+    for solver in ("sdof", "housner"):
+        r0, r1 = (simulate(b, x, solver, dense_step=DIVERGENCE_STEP, end_time=base.duration)
+                  for x in (rec, rec.scaled(1.0 + eps)))
+        d = np.abs(np.interp(grid, r0.time, r0.theta) - np.interp(grid, r1.time, r1.theta)) / b.alpha
+        env = np.maximum.accumulate(d)
+        sel = (env > 1e-6) & (env < 1e-2)
+        rates[solver] = float(np.polyfit(grid[sel], np.log(env[sel]), 1)[0]) if sel.sum() > 10 else float("nan")
+        curves[solver] = d
+    atomic_text(out_dir / "divergence.csv", "time_s,sdof,housner\n" + "".join(
+        f"{t!r},{a!r},{c!r}\n" for t, a, c in zip(grid.tolist(), curves["sdof"].tolist(), curves["housner"].tolist())))
+    _plot_divergence(grid, curves, rates, eps, out_dir / "divergence.png")
+    return {"growth_rate_sdof_per_s": rates["sdof"], "growth_rate_rigid_per_s": rates["housner"]}
+
+
+def _plot_divergence(grid, curves, rates, eps, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from opsrock._io import atomic_write
+
+    fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
+    for solver, label in (("sdof", "SDOF model (sdof)"), ("housner", "rigid body (housner)")):
+        ax.semilogy(grid, np.maximum(curves[solver], 1e-16), lw=0.8,
+                    label=f"{label}: growth {rates[solver]:.2f} /s")
+    seed, (w, h), level = DIVERGENCE_CASE
+    ax.set_title(f"noise seed {seed}, {w} x {h} m block, {level} g tan alpha: amplitude x (1 + {eps:g})")
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("|theta - theta_perturbed| / alpha")
+    ax.set_ylim(1e-12, 10)
+    ax.legend(fontsize=8)
+    atomic_write(path, lambda fh: fig.savefig(fh, format="png", dpi=110), binary=True)
+    plt.close(fig)
 
 
 def _plot(rows: list[dict], path: Path) -> None:
@@ -240,4 +318,5 @@ def _plot(rows: list[dict], path: Path) -> None:
     plt.close(fig)
 
 
-__all__ = ["BLOCKS", "EPS", "LEVELS", "SEEDS", "THRESHOLD", "cases", "compute", "noise_record", "run", "run_one", "summarise"]
+__all__ = ["BLOCKS", "EPS", "LEVELS", "SEEDS", "THRESHOLD", "cases", "compute", "noise_record", "rigid_sensitivity", "run", "run_one",
+           "summarise"]

@@ -211,7 +211,8 @@ def _model_form(rows: list[dict], solver: str, tag: str) -> dict:
 
 
 def run(out_dir: Path, quick: bool = False) -> dict:
-    """Run (or complete) the case into ``out_dir``: ``cases.csv``, ``summary.csv``, ``sdof_records.png``."""
+    """Run (or complete) the case into ``out_dir``: ``cases.csv``, ``summary.csv``, ``sdof_records.png``,
+    ``rigid_sensitivity.csv``; the full form also ``divergence.csv`` and ``divergence.png``."""
     out_dir = Path(out_dir)
     suffix = "_quick" if quick else ""
     workers = max(1, min(2, os.cpu_count() or 1))
@@ -221,11 +222,11 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     atomic_text(out_dir / f"rigid_sensitivity{suffix}.csv", "seed,width,height,level,spread,sensitive\n" + "".join(
         f"{c[0]},{c[1][0]},{c[1][1]},{c[2]},{sp!r},{sens}\n" for c, (sp, sens) in zip(cases(quick), rigid)))
     m["n_rigid_sensitive"] = sum(sens for _, sens in rigid)
-    atomic_text(out_dir / f"summary{suffix}.csv",
-                "metric,value\n" + "".join(f"{k},{v!r}\n" for k, v in m.items()))
     _plot(rows, out_dir / f"sdof_records{suffix}.png")
     if not quick:
         m.update(divergence(out_dir))
+    atomic_text(out_dir / f"summary{suffix}.csv",
+                "metric,value\n" + "".join(f"{k},{v!r}\n" for k, v in m.items()))
     return m
 
 

@@ -46,7 +46,7 @@ from typing import Any
 
 import numpy as np
 
-from opsrock._checks import bool_fields, in_open_interval, int_at_least, one_of, positive_finite
+from opsrock._checks import bool_fields, int_at_least, one_of, positive_finite
 from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.limits import check

@@ -7,7 +7,7 @@ a 1e-6 change of the amplitude cannot be compared case by case between two imple
 
     .venv/bin/python tools/sensitivity_probe.py     # prints one line per case, writes sensitivity_probe.json
 """
-import json, math, time
+import json
 import numpy as np
 from scipy import signal
 from opsrock.block import Block

@@ -52,7 +52,7 @@ from opsrock.executors import DaskExecutor, Executor, ExecutorUnavailableError, 
 from opsrock.result import RockingResult
 from opsrock._paths import output_dir
 from opsrock.scene import Case, Scene, SceneError, load_scene, solver_kwargs
-from opsrock.solvers import SOLVERS, simulate
+from opsrock.solvers import SOLVERS, get_solver, simulate
 from opsrock.store import STORE_FILE, ResultStore, StoreError
 from opsrock.timeout import DEFAULT_CASE_TIMEOUT, CaseTimeout, time_limit
 
@@ -207,6 +207,8 @@ def solve_batch(
         exception (type and message) if the solve raised or returned something else.
     """
     fn = simulate if solve_fn is None else solve_fn
+    if solve_fn is None and solver in SOLVERS:
+        get_solver(solver)  # import the solver module (and compile it, in a fresh clone) outside the budget
     rows = []
     with _SOLVE_LOCK:
         for case in cases:

@@ -209,7 +209,9 @@ def test_a_failing_opensees_solve_keeps_opensees_output_off_the_terminal(tmp_pat
 
 def test_opensees_retries_on_a_record_are_counted_by_recovery_and_kept_off_the_terminal(tmp_path):
     # A broadband record (band-passed noise, seeded) on which the default OpenSees model retries
-    # steps: every retry is in the result, with how it was recovered, and nothing is printed
+    # steps (measured: 5 retries, all recovered by halving, 25 messages; at 1.3 g tan alpha, the level
+    # used before the seated-block treatment, it no longer retries any): every retry is in the result,
+    # with how it was recovered, and nothing is printed
     code = (
         "import numpy as np\n"
         "from scipy import signal\n"
@@ -219,7 +221,7 @@ def test_opensees_retries_on_a_record_are_counted_by_recovery_and_kept_off_the_t
         "rng = np.random.default_rng(2)\n"
         "a = signal.sosfiltfilt(signal.butter(4, (0.5, 6.0), btype='bandpass', fs=100, output='sos'), rng.standard_normal(2000))\n"
         "b = Block(0.5, 1.15)\n"
-        "r = simulate(b, Record(0.01, a).scaled(1.3 * b.uplift_acceleration / np.abs(a).max()), 'opensees')\n"
+        "r = simulate(b, Record(0.01, a).scaled(2.0 * b.uplift_acceleration / np.abs(a).max()), 'opensees')\n"
         "d = r.diagnostics\n"
         "print(r.status, d['retried_steps'], sum(d['recovered_by'].values()), d['opensees_messages'])\n"
     )

@@ -125,6 +125,11 @@ class SDOFModel:
         """
         return block.I_O * (1.0 - block.e) * abs(entry_velocity) / (2.0 * self.band(block))
 
+    def edge_moment(self, block: Block) -> float:
+        """Restoring moment at the end of the stiff branch, ``M_s(theta_e)`` from the table (N m)."""
+        th, m = self.spring_table(block)
+        return float(np.interp(self.theta_e(block), th, m))
+
     def band_moment(self, block: Block) -> float:
         """Mean restoring moment of the table over ``theta_e <= |theta| <= delta alpha`` (N m)."""
         th, m = self.spring_table(block)
@@ -172,6 +177,49 @@ class SDOFModel:
         theta = np.concatenate([-pos[::-1], pos])
         moment = np.concatenate([-m_pos[::-1], m_pos])
         return theta, moment
+
+
+class Seat:
+    """The stiff branch ``|theta| <= theta_e`` holding a seated block: the treatment both SDOF solvers share.
+
+    There the exact solution is the quasi-static deflection ``theta_qs = -Lambda a(t) / k_e`` plus a
+    free oscillation of amplitude ``A`` at ``omega_e = sqrt(k_e / I_O)`` (about 1000 p), with
+    ``k_e = M_s(theta_e) / theta_e``. Once ``|theta_qs| + A < theta_e`` the oscillation is dropped and
+    the block follows ``theta_qs`` (seated) until the floor can lift it. An integrator with
+    ``omega_e h >> 1`` (OpenSees' Newmark) would otherwise keep the oscillation undamped and could pump
+    it out of the branch (docs/modelling.md section 4).
+
+    Parameters
+    ----------
+    model : SDOFModel
+    block : Block
+    acceleration : callable
+        Floor acceleration (m/s²) as a function of time (s); zero after the excitation.
+    """
+
+    def __init__(self, model: "SDOFModel", block: Block, acceleration) -> None:
+        self.acceleration = acceleration
+        self.lam = model.lever_arm(block)
+        self.theta_e = model.theta_e(block)
+        self.k_e = model.edge_moment(block) / self.theta_e
+        self.omega_e = math.sqrt(self.k_e / block.I_O)
+
+    def theta_qs(self, t: float) -> float:
+        """Quasi-static deflection (rad) at ``t`` (s)."""
+        return -self.lam * float(self.acceleration(t)) / self.k_e
+
+    def amplitude(self, t: float, theta: float, theta_dot: float) -> float:
+        """Amplitude ``A`` (rad) of the free oscillation about ``theta_qs`` of the state ``(theta, theta_dot)``."""
+        return math.hypot(theta - self.theta_qs(t), theta_dot / self.omega_e)
+
+    def margin(self, t: float, theta: float, theta_dot: float) -> float:
+        """``theta_e - |theta_qs| - A`` (rad): positive once the oscillation fits inside the branch."""
+        return self.theta_e - abs(self.theta_qs(t)) - self.amplitude(t, theta, theta_dot)
+
+    def captures(self, t: float, theta: float, theta_dot: float) -> bool:
+        """True if the state's oscillation fits inside the branch (and is not already zero)."""
+        amp = self.amplitude(t, theta, theta_dot)
+        return 0.0 < amp and abs(self.theta_qs(t)) + amp < self.theta_e
 
 
 def _g(x: float) -> float:
@@ -315,6 +363,7 @@ __all__ = [
     "DAMPER_LAWS",
     "LEVERS",
     "SDOFModel",
+    "Seat",
     "UPLIFT_RTOL",
     "can_uplift",
     "lever_coefficient",

@@ -20,7 +20,7 @@ a fixed node and the free one:
   while the block is seated. The change takes effect from the next step.
 
 With an implicit integrator a block seated in the stiff branch is treated as the scipy solver treats
-it (:class:`_Seat`): its free oscillation at ``omega_e`` is dropped once it fits in the branch, and in
+it (:class:`opsrock.model.Seat`): its free oscillation at ``omega_e`` is dropped once it fits in the branch, and in
 adaptive mode under a record a step lands on the instant the floor can lift it.
 
 The floor acceleration enters as the nodal moment ``-Lambda a(t)`` (``Lambda`` =
@@ -51,7 +51,7 @@ from opsrock.block import Block
 from opsrock.constants import G, OVERTURNING_ANGLE
 from opsrock.limits import check
 from opsrock.excitations import Excitation, HarmonicPulse, Record, RectangularPulse
-from opsrock.model import SDOFModel, can_uplift
+from opsrock.model import SDOFModel, Seat, can_uplift
 from opsrock.opensees_session import CONSOLE as _CONSOLE
 from opsrock.opensees_session import count_messages as _count_messages
 from opsrock.opensees_session import console_to_log, fresh_model, opensees_log_path, ops
@@ -634,21 +634,19 @@ def _integrate(
     n_seated = 0
     rearm = model.tracks_passages()
     seat_on = s.integrator != "central_difference"
-    th_tab0, m_tab0 = model.spring_table(block)
-    m_e = float(np.interp(theta_e, th_tab0, m_tab0))
-    uplift_level = m_e / abs(model.lever_arm(block))  # m/s²
+    uplift_level = model.edge_moment(block) / abs(model.lever_arm(block))  # m/s²
     lift_times = None  # record samples at which the floor can lift a seated block (s)
     if isinstance(excitation, Record):
         # imported here: the housner module pulls in scipy.integrate, which a pulse never needs (a
         # campaign's first case pays module imports inside its time budget)
         from opsrock.solvers.housner import first_exceedance
         lift_times = excitation.time[np.abs(excitation.values) > uplift_level]
-    seat = _Seat(excitation, model.lever_arm(block), m_e / theta_e, math.sqrt(m_e / theta_e / block.I_O), theta_e, duration)
-    if rearm and in_band and abs(th) > model.theta_e(block) and th * thd <= 0.0:
+    seat = Seat(model, block, excitation.acceleration)
+    if rearm and in_band and abs(th) > theta_e and th * thd <= 0.0:
         # starting inside the band, at rest or heading back towards zero: a passage begins
         c_now = model.arm_damper(block, th, thd)
         ops.updateParameter(_DAMPER_PARAM, c_now)
-        h_len = max(min(h_band_num, 2.0 * abs(th) / s.band_steps), MIN_PASSAGE_STEP_RATIO * model.theta_e(block))
+        h_len = _passage_step(h_band_num, abs(th), s.band_steps, theta_e)
     # initial spring moment from the table: the element's force is only updated by a step
     th_tab, m_tab = model.spring_table(block)
     ts, ths, thds, ms, fds = [t], [th], [thd], [float(np.interp(th, th_tab, m_tab))], [0.0]
@@ -818,7 +816,7 @@ def _integrate(
                 c_now = model.arm_damper(block, th, thd)
                 update(_DAMPER_PARAM, c_now)
                 switched = True
-                h_len = max(min(h_band_num, 2.0 * ath / s.band_steps), MIN_PASSAGE_STEP_RATIO * theta_e)
+                h_len = _passage_step(h_band_num, ath, s.band_steps, theta_e)
         elif in_band:
             in_band = False
             if entry is not None and (th > 0.0) != entry[2]:  # left on the other side: an impact
@@ -908,31 +906,11 @@ def _integrate(
     )
 
 
-class _Seat:
-    """The stiff branch ``|theta| <= theta_e`` holding a seated block (the scipy solver's treatment).
-
-    There the exact solution is the quasi-static deflection ``theta_qs = -Lambda a(t) / k_e`` plus a
-    free oscillation of amplitude ``A`` at ``omega_e`` (about 1000 p). Newmark's average acceleration
-    keeps that oscillation undamped at ``omega_e h >> 1`` and, the branch's kink being crossed at step
-    ends, can pump it out of the branch: a seated block then rattles in the band (measured: up to
-    0.02 delta alpha while the scipy solver's block sat still) and lifts off at another time. Once
-    ``|theta_qs| + A < theta_e`` the oscillation is dropped and the state set to ``theta_qs``.
-    """
-
-    def __init__(self, excitation: Excitation, lam: float, k_e: float, omega_e: float, theta_e: float,
-                 duration: float) -> None:
-        self.acc, self.lam, self.k_e, self.omega_e = excitation.acceleration, lam, k_e, omega_e
-        self.theta_e, self.duration = theta_e, duration
-
-    def theta_qs(self, t: float) -> float:
-        """Quasi-static deflection (rad) at ``t`` (s); the floor is still after the excitation."""
-        return -self.lam * float(self.acc(t)) / self.k_e if t <= self.duration else 0.0
-
-    def captures(self, t: float, theta: float, theta_dot: float) -> bool:
-        """True if the state's oscillation about ``theta_qs`` fits inside the branch (and is not zero)."""
-        qs = self.theta_qs(t)
-        amp = math.hypot(theta - qs, theta_dot / self.omega_e)
-        return 0.0 < amp and abs(qs) + amp < self.theta_e
+def _passage_step(h_band: float, distance: float, band_steps: int, theta_e: float) -> float:
+    """Rotation per step (rad) of a passage starting ``distance`` (rad) from zero inside the band:
+    ``band_steps`` steps over its length ``2 distance``, no more than a band step ``h_band`` and no
+    less than :data:`MIN_PASSAGE_STEP_RATIO` ``theta_e``."""
+    return max(min(h_band, 2.0 * distance / band_steps), MIN_PASSAGE_STEP_RATIO * theta_e)
 
 
 def _recover(s: OpenSeesSettings, h: float) -> int:

@@ -43,7 +43,7 @@ from opsrock._checks import bool_fields, int_at_least, one_of
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.excitations.records import Record
-from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel, can_uplift
+from opsrock.model import DEFAULT_DELTA, DEFAULT_TABLE_POINTS, DEFAULT_THETA_E_RATIO, SDOFModel, Seat, can_uplift
 from opsrock.result import ImpactLog, RockingResult, failed_result, seated_result
 from opsrock.solvers.housner import (
     METHODS,
@@ -231,9 +231,8 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
     th_tab, m_tab = model.spring_table(block)
     U = table_potential(th_tab, m_tab)
     u_band = float(U(band))
-    m_e = float(np.interp(theta_e, th_tab, m_tab))  # moment at the end of the stiff branch
-    k_e = m_e / theta_e
-    omega_e = math.sqrt(k_e / inertia)
+    seat = Seat(model, block, excitation.acceleration)
+    m_e, k_e = model.edge_moment(block), seat.k_e  # moment and stiffness of the stiff branch
     kinks = np.unique(np.concatenate([th_tab, [-band, band]]))
     slopes = np.diff(np.interp(kinks, th_tab, m_tab)) / np.diff(kinks)
     intercepts = np.interp(kinks[:-1], th_tab, m_tab) - slopes * kinks[:-1]
@@ -276,9 +275,6 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
             theta_dot=np.concatenate(tds) if tds else None, n_steps=n_steps,
             wall_time_s=_time.perf_counter() - t_wall,
         )
-
-    def quasi_static(t: float) -> float:
-        return -lam * float(acc(t)) / k_e
 
     t = 0.0
     y = np.array([float(s.theta0), float(s.theta_dot0)])
@@ -372,9 +368,7 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         if is_stiff:
 
             def capture(tt, yy):
-                qs = quasi_static(tt)
-                amp = math.hypot(yy[0] - qs, yy[1] / omega_e)
-                return theta_e - abs(qs) - amp
+                return seat.margin(tt, yy[0], yy[1])
 
             capture.terminal, capture.direction = True, 1
             events.append(capture)

@@ -69,16 +69,24 @@ def cases(quick: bool = False) -> list[tuple[int, tuple[float, float], float]]:
     return [(s, b, lv) for s in SEEDS for b in BLOCKS for lv in LEVELS]
 
 
-def run_one(case) -> dict:
-    """One case: the rigid body once, each SDOF implementation as is, perturbed and tightened."""
+def case_motion(case):
+    """``(block, record)`` of a case ``(seed, (width, height), level)``: the noise record scaled to
+    PFA = ``level`` g tan alpha of the block."""
     from opsrock.block import Block
-    from opsrock.sensitivity import amplitude_sensitivity, step_convergence
-    from opsrock.solvers import simulate
 
     seed, (w, h), level = case
     b = Block(w, h)
     base = noise_record(seed)
-    rec = base.scaled(level * b.uplift_acceleration / base.pfa)
+    return b, base.scaled(level * b.uplift_acceleration / base.pfa)
+
+
+def run_one(case) -> dict:
+    """One case: the rigid body once, each SDOF implementation as is, perturbed and tightened."""
+    from opsrock.sensitivity import amplitude_sensitivity, step_convergence
+    from opsrock.solvers import simulate
+
+    seed, (w, h), level = case
+    b, rec = case_motion(case)
     rigid = simulate(b, rec, "housner_fast")
     out = {"seed": seed, "width": w, "height": h, "level": level,
            "rigid_theta": rigid.theta_max_over_alpha, "rigid_verdict": rigid.verdict}
@@ -179,15 +187,11 @@ def summarise(rows: list[dict]) -> dict:
 def rigid_sensitivity(todo: list) -> list[tuple[float, bool]]:
     """The rigid body's own amplitude sensitivity (``housner_fast``, the same :data:`EPS`) per case:
     ``(spread, sensitive)``. Context for the SDOF model's: is a case ill-conditioned in the physics too?"""
-    from opsrock.block import Block
     from opsrock.sensitivity import amplitude_sensitivity
 
     out = []
-    for seed, (w, h), level in todo:
-        b = Block(w, h)
-        base = noise_record(seed)
-        s = amplitude_sensitivity(b, base.scaled(level * b.uplift_acceleration / base.pfa), "housner_fast",
-                                  eps=EPS, threshold=THRESHOLD)
+    for case in todo:
+        s = amplitude_sensitivity(*case_motion(case), "housner_fast", eps=EPS, threshold=THRESHOLD)
         out.append((s.spread, s.sensitive))
     return out
 
@@ -241,17 +245,13 @@ def divergence(out_dir: Path, eps: float = 1e-6) -> dict:
     (``sdof``) and the rigid body (``housner``) on :data:`DIVERGENCE_CASE`, from dense output, and a
     finite-time growth rate (1/s): the slope of ``ln`` of its running maximum while that lies between
     1e-6 and 1e-2 alpha (least squares). Writes ``divergence.csv`` and ``divergence.png``."""
-    from opsrock.block import Block
     from opsrock.solvers import simulate
 
-    seed, (w, h), level = DIVERGENCE_CASE
-    b = Block(w, h)
-    base = noise_record(seed)
-    rec = base.scaled(level * b.uplift_acceleration / base.pfa)
-    grid = np.arange(0.0, base.duration, DIVERGENCE_STEP)
+    b, rec = case_motion(DIVERGENCE_CASE)
+    grid = np.arange(0.0, rec.duration, DIVERGENCE_STEP)
     curves, rates = {}, {}
     for solver in ("sdof", "housner"):
-        r0, r1 = (simulate(b, x, solver, dense_step=DIVERGENCE_STEP, end_time=base.duration)
+        r0, r1 = (simulate(b, x, solver, dense_step=DIVERGENCE_STEP, end_time=rec.duration)
                   for x in (rec, rec.scaled(1.0 + eps)))
         d = np.abs(np.interp(grid, r0.time, r0.theta) - np.interp(grid, r1.time, r1.theta)) / b.alpha
         env = np.maximum.accumulate(d)
@@ -319,5 +319,5 @@ def _plot(rows: list[dict], path: Path) -> None:
     plt.close(fig)
 
 
-__all__ = ["BLOCKS", "EPS", "LEVELS", "SEEDS", "THRESHOLD", "cases", "compute", "noise_record", "rigid_sensitivity", "run", "run_one",
+__all__ = ["BLOCKS", "EPS", "LEVELS", "case_motion", "SEEDS", "THRESHOLD", "cases", "compute", "noise_record", "rigid_sensitivity", "run", "run_one",
            "summarise"]

@@ -19,14 +19,11 @@ DELTAS = (0.002, 0.005, 0.01, 0.02, 0.05)
 
 
 def one(case):
-    from opsrock.block import Block
     from opsrock.solvers import simulate
-    from opsrock.validation.sdof_records import noise_record
+    from opsrock.validation.sdof_records import case_motion
 
     seed, (w, h), level = case
-    b = Block(w, h)
-    base = noise_record(seed)
-    rec = base.scaled(level * b.uplift_acceleration / base.pfa)
+    b, rec = case_motion(case)
     rigid = simulate(b, rec, "housner_fast")
     rows = []
     for d in DELTAS:

@@ -9,15 +9,13 @@ from __future__ import annotations
 import ctypes
 import sys
 
+from opsrock.errors import MissingBlasError
+
 #: The one-line message shared with ``tools/ensure-blas.sh`` and the Makefile.
 MISSING_BLAS_MESSAGE = (
     "opsrock: the system BLAS libblas.so.3 is missing; install it "
     "(Debian/Ubuntu: sudo apt-get install libblas3) and retry"
 )
-
-
-class MissingBlasError(ImportError):
-    """The system BLAS needed by OpenSeesPy is not installed."""
 
 
 def blas_available(library: str = "libblas.so.3") -> bool:

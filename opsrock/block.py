@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from opsrock._checks import in_open_interval, real_number
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR, G
-from opsrock.limits import check
+from opsrock.errors import InputError, InputTypeError
+from opsrock.limits import check, in_open_interval, real_number
 
 
 @dataclass(frozen=True)
@@ -55,18 +55,18 @@ class Block:
         f = in_open_interval("restitution_factor", self.restitution_factor, 0.0, 1.0 + 1e-12)
         object.__setattr__(self, "restitution_factor", f)
         if not isinstance(self.name, str):
-            raise TypeError(f"name must be a string, got {self.name!r}")
+            raise InputTypeError(f"name must be a string, got {self.name!r}")
         if self.restitution is not None:
             e = real_number("restitution", self.restitution)
             if not (math.isfinite(e) and 0.0 < e <= 1.0):
-                raise ValueError(f"restitution must lie in (0, 1], got {self.restitution!r}")
+                raise InputError(f"restitution must lie in (0, 1], got {self.restitution!r}")
             object.__setattr__(self, "restitution", e)
             if f != DEFAULT_RESTITUTION_FACTOR:
-                raise ValueError(f"give restitution or restitution_factor, not both (restitution = {e!r}, "
+                raise InputError(f"give restitution or restitution_factor, not both (restitution = {e!r}, "
                                  f"restitution_factor = {f!r})")
             return
         if self.e_R <= 0.0:
-            raise ValueError(
+            raise InputError(
                 f"width/height = {self.width:g}/{self.height:g} gives alpha = {self.alpha:.4f} rad and "
                 f"e_R = 1 - 1.5 sin²(alpha) = {self.e_R:.4f} <= 0: the block is too stocky for "
                 "Housner's rocking model (needs alpha < 0.9553 rad, width/height < 1.414)"

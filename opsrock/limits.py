@@ -1,4 +1,4 @@
-"""Parameter limits of opsrock's inputs, declared in one place.
+"""Parameter limits of opsrock's inputs, declared in one place, and the checks every input goes through.
 
 Every input class checks its numbers against this table (:func:`check`), so a value outside the
 range the models and solvers were built and tested for is refused with one line naming the
@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from numbers import Real
 
-from opsrock._checks import real_number
+from opsrock.errors import InputError, InputTypeError
 
 
 @dataclass(frozen=True)
@@ -46,8 +47,10 @@ LIMITS: dict[str, Limit] = {
                      "pulse periods from 63 µs to 1.7 h: a longer pulse is a static tilt, a shorter one "
                      "cannot be sampled by any solver's step"),
     "duration": Limit(1e-6, 1e5, "s", "pulse and record durations from 1 µs to about 28 h"),
-    "dt": Limit(1e-7, 1.0, "s", "time steps: below 1e-7 s the OpenSees model's smallest step dt_min cannot "
-                "fit, above 1 s no pulse or record is resolved"),
+    "dt": Limit(1e-7, 1.0, "s", "record sample intervals: below 1e-7 s no accelerograph samples, above 1 s no "
+                "floor motion is resolved"),
+    "step": Limit(1e-7, 1.0, "s", "solver time steps: below 1e-7 s the OpenSees model's smallest step min_step "
+                  "cannot fit, above 1 s no pulse or record is resolved"),
     "scale": Limit(1e-2, 1e2, "-",
                    "record scale factors: beyond x100 (or below x0.01) a record no longer stands for "
                    "a motion of its kind; FEMA P695 and IDA practice stay well inside"),
@@ -81,7 +84,7 @@ def check(name: str, value: object) -> float:
     limit = LIMITS[name]
     v = real_number(name, value)
     if not math.isfinite(v) or not (limit.low <= v <= limit.high):
-        raise ValueError(f"{name} must lie in [{limit.low:g}, {limit.high:g}] {limit.unit}, got {value!r}")
+        raise InputError(f"{name} must lie in [{limit.low:g}, {limit.high:g}] {limit.unit}, got {value!r}")
     return v
 
 
@@ -103,10 +106,73 @@ def scaled_input(name: str, value: float, target: str, scale: float) -> float:
         return check(target, value * scale)
     except ValueError:
         lim = LIMITS[target]
-        raise ValueError(
+        raise InputError(
             f"{name} = {value!r} gives {target} = {value * scale:.4g} {lim.unit}, outside "
             f"[{lim.low:g}, {lim.high:g}] {lim.unit}"
         ) from None
 
 
-__all__ = ["LIMITS", "Limit", "check", "scaled_input"]
+# --- checks shared by the dataclasses: every error names the argument and its value -------------
+def real_number(name: str, value: object) -> float:
+    """Return ``value`` as a float, or raise ``TypeError`` naming ``name`` if it is not a real
+    number (bool is refused), ``ValueError`` if it does not fit a float."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise InputTypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
+    try:
+        return float(value)
+    except (OverflowError, ValueError):
+        raise InputError(f"{name} must be a finite number, got {value!r}") from None
+
+
+def positive_finite(name: str, value: object) -> float:
+    """Return ``value`` as a float, or raise ``ValueError`` naming ``name`` and the value.
+
+    Parameters
+    ----------
+    name : str
+        Argument name used in the message.
+    value : object
+        Value to check; must be a real, finite, strictly positive number (bool is refused).
+    """
+    v = real_number(name, value)
+    if not math.isfinite(v) or v <= 0.0:
+        raise InputError(f"{name} must be positive and finite, got {value!r}")
+    return v
+
+
+def in_open_interval(name: str, value: object, low: float, high: float) -> float:
+    """Return ``value`` as a float if ``low < value < high``, else raise naming ``name``."""
+    v = real_number(name, value)
+    if not (math.isfinite(v) and low < v < high):
+        raise InputError(f"{name} must lie in ({low:g}, {high:g}), got {value!r}")
+    return v
+
+
+def one_of(name: str, value: object, allowed: tuple[str, ...]) -> str:
+    """Return ``value`` if it is one of ``allowed``, else raise naming ``name``."""
+    if value not in allowed:
+        raise InputError(f"{name} must be one of {', '.join(map(repr, allowed))}; got {value!r}")
+    return value  # type: ignore[return-value]
+
+
+def int_at_least(name: str, value: object, minimum: int = 1) -> int:
+    """Return ``value`` if it is an int >= ``minimum``, else raise naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise InputError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return value
+
+
+def bool_fields(obj: object) -> None:
+    """Raise ``TypeError`` naming the first field of dataclass ``obj`` declared ``bool`` whose value
+    is not a bool (``"no"``, ``0`` and ``None`` are refused, never read as true or false)."""
+    from dataclasses import fields
+
+    for f in fields(obj):  # type: ignore[arg-type]
+        if f.type in ("bool", bool):
+            value = getattr(obj, f.name)
+            if not isinstance(value, bool):
+                raise InputTypeError(f"{f.name} must be true or false (a bool), got {value!r}")
+
+
+__all__ = ["LIMITS", "Limit", "bool_fields", "check", "in_open_interval", "int_at_least", "one_of", "positive_finite",
+           "real_number", "scaled_input"]

@@ -25,9 +25,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from opsrock._checks import in_open_interval, int_at_least, one_of
 from opsrock.block import Block
 from opsrock.constants import G
+from opsrock.errors import InputError
+from opsrock.limits import in_open_interval, int_at_least, one_of
 
 #: Excitation lever options: ``"housner"`` = ``m R cos(alpha)`` (agrees with Eq. 1 and the
 #: uplift threshold Eq. 4), ``"printed"`` = ``I_O cos(alpha) / R`` as printed in Eq. 6.
@@ -93,7 +94,7 @@ class SDOFModel:
             # name delta when theta_e_ratio is at its default: delta is what the caller changed
             changed = "delta" if self.theta_e_ratio == DEFAULT_THETA_E_RATIO else "theta_e_ratio"
             value = self.delta if changed == "delta" else self.theta_e_ratio
-            raise ValueError(
+            raise InputError(
                 f"{changed} = {value!r}: the stiff branch must lie inside the damper band, i.e. "
                 f"theta_e_ratio < delta; got theta_e_ratio = {self.theta_e_ratio:g}, delta = {self.delta:g}"
             )

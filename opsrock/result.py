@@ -9,6 +9,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.errors import InputError
 
 #: Result status values. ``"failed"`` carries a reason and is never a safe or overturned verdict.
 STATUSES: tuple[str, ...] = ("ok", "failed")
@@ -43,7 +44,7 @@ class Impacts:
     def __post_init__(self) -> None:
         arrays = [np.asarray(getattr(self, n), dtype=float).ravel() for n in ("time", "theta_dot_before", "theta_dot_after")]
         if len({a.size for a in arrays}) != 1:
-            raise ValueError(f"impact arrays must have one length, got {[a.size for a in arrays]}")
+            raise InputError(f"impact arrays must have one length, got {[a.size for a in arrays]}")
         for name, a in zip(("time", "theta_dot_before", "theta_dot_after"), arrays):
             a.setflags(write=False)
             object.__setattr__(self, name, a)
@@ -147,17 +148,17 @@ class RockingResult:
 
     def __post_init__(self) -> None:
         if self.status not in STATUSES:
-            raise ValueError(f"status must be one of {STATUSES}, got {self.status!r}")
+            raise InputError(f"status must be one of {STATUSES}, got {self.status!r}")
         if self.status == "failed" and not self.reason:
-            raise ValueError("a failed result must carry a reason")
+            raise InputError("a failed result must carry a reason")
         if self.status == "failed" and self.overturned:
-            raise ValueError("a failed result cannot carry an overturned verdict")
+            raise InputError("a failed result cannot carry an overturned verdict")
         if self.impacts is not None and self.n_impacts != len(self.impacts):
-            raise ValueError(f"n_impacts = {self.n_impacts} but {len(self.impacts)} impacts are logged")
+            raise InputError(f"n_impacts = {self.n_impacts} but {len(self.impacts)} impacts are logged")
         if self.status == "ok" and not math.isfinite(self.theta_max):
-            raise ValueError(f"an ok result must have a finite theta_max, got {self.theta_max!r}")
+            raise InputError(f"an ok result must have a finite theta_max, got {self.theta_max!r}")
         if self.status == "ok" and self.overturned != (self.theta_max >= OVERTURNING_ANGLE):
-            raise ValueError(
+            raise InputError(
                 f"overturned={self.overturned} contradicts theta_max={self.theta_max!r} "
                 f"against the limit state pi/2"
             )

@@ -19,7 +19,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 OPSROCK = Path(sys.executable).parent / "opsrock"
-BLOCKS = ROOT / "models" / "blocks.toml"
+BLOCKS = ROOT / "opsrock" / "data" / "blocks.toml"
 SIM = ["simulate", "--width", "0.4", "--height", "2.2", "--pfa", "1", "--freq", "1"]
 
 
@@ -69,7 +69,7 @@ def scene(tmp_path: Path, solver: str = "housner", settings: str = "", freq: str
 SIMULATE_CASES = [
     ("huge block", ["simulate", "--width", "1e300", "--height", "2e300", "--pfa", "1", "--freq", "1"],
      ["width", "1e+300"]),
-    ("tiny dt", [*SIM, "--step", "1e-8"], ["dt", "1e-08"]),
+    ("tiny step", [*SIM, "--step", "1e-8"], ["step", "1e-08"]),
     ("tiny delta", [*SIM, "--delta", "1e-300"], ["delta = 1e-300"]),
     ("huge pfa", ["simulate", "--width", "0.4", "--height", "2.2", "--pfa", "1e9", "--freq", "1"], ["--pfa", "1e+09"]),
     ("pulse too slow", ["simulate", "--width", "0.4", "--height", "2.2", "--pfa-ratio", "2", "--freq-ratio", "1e-6"],

@@ -14,20 +14,23 @@ from pathlib import Path
 
 import pytest
 
-from opsrock.campaign import (
-    CASES_COLUMNS,
-    IDENTITY_EXCLUDED,
-    CampaignConflictError,
-    main,
-    run_campaign,
-)
+from opsrock.campaign import CampaignConflictError, run_campaign
+from opsrock.campaign.run import CASES_COLUMNS, IDENTITY_EXCLUDED
+from opsrock.cli import main as cli_main
 from opsrock.constants import OVERTURNING_ANGLE
-from opsrock.executors import DaskExecutor, LocalPool
+from opsrock.campaign.executors import DaskExecutor, LocalPool
 from opsrock.result import RockingResult, failed_result
-from opsrock.scene import load_scene
-from opsrock.store import read_rows
+from opsrock.campaign.scene import load_scene
+from opsrock.campaign.store import read_rows
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+def main(args: list[str]) -> int:
+    """``opsrock run ARGS``."""
+    return cli_main(["run", *args])
+
+
 RUNNER = Path(__file__).parent / "data" / "campaign_runner.py"
 
 # A small scene of cases the rigid-body solver finishes in milliseconds each (checked: each
@@ -49,7 +52,7 @@ values = [0.8, 2.0, 5.0]
 
 def small_scene(tmp_path: Path, rtol: str = "1e-10") -> Path:
     path = tmp_path / f"small-{rtol}.toml"
-    path.write_text(SMALL_SCENE.format(blocks=ROOT / "models" / "blocks.toml", rtol=rtol))
+    path.write_text(SMALL_SCENE.format(blocks=ROOT / "opsrock" / "data" / "blocks.toml", rtol=rtol))
     return path
 
 
@@ -119,7 +122,7 @@ class Interrupt:
 # --- tests ----------------------------------------------------------------------------------
 def test_tiny_scene_end_to_end_from_the_command_line(tmp_path, capsys):
     out = tmp_path / "tiny"
-    status = main([str(ROOT / "models" / "scenes" / "tiny.toml"), "--out", str(out), "--workers", "1", "--no-progress"])
+    status = main([str(ROOT / "opsrock" / "data" / "scenes" / "tiny.toml"), "--out", str(out), "--workers", "1", "--no-progress"])
     assert status == 0
     rows = read_csv(out / "cases.csv")
     assert len(rows) == 18 and rows[0]["case_id"] == "bookcase/f01/a01"
@@ -286,7 +289,7 @@ values = [0.8, 3.0]
 
 def slow_scene(tmp_path: Path, timeout: float = 1.0, stop_at_rest: str = "false") -> Path:
     path = tmp_path / "slow.toml"
-    path.write_text(SLOW_SCENE.format(blocks=ROOT / "models" / "blocks.toml", timeout=timeout,
+    path.write_text(SLOW_SCENE.format(blocks=ROOT / "opsrock" / "data" / "blocks.toml", timeout=timeout,
                                       stop_at_rest=stop_at_rest))
     return path
 

@@ -97,7 +97,7 @@ def test_damper_option_reaches_the_sdof_solver(capsys):
     main(["simulate", "--width", "0.5", "--height", "1.15", "--pfa-ratio", "3", "--freq-ratio", "4", "--solver", "sdof",
           "--damper", "entry_velocity", "--json"])
     out = json.loads(capsys.readouterr().out)
-    assert out["settings"]["damper"] == "entry_velocity"
+    assert out["settings"]["model"]["damper"] == "entry_velocity"  # both SDOF solvers nest their model
 
 
 def test_simulate_is_fast_at_default_settings(capsys):

@@ -27,7 +27,8 @@ from opsrock import Block
 from opsrock.excitations import Record
 from opsrock.model import SDOFModel, passage_damping, passage_energy_ratio
 from opsrock.solvers import simulate
-from opsrock.solvers.sdof import _ClosedFormSegment, _closed_form_solve, table_potential
+from opsrock.solvers.sdof import table_potential
+from opsrock.solvers.sdof.closed_form import ClosedFormSegment, closed_form_solve
 
 BLOCK = Block(0.5, 1.15)
 MODEL = SDOFModel()
@@ -133,7 +134,7 @@ def test_closed_form_segment_stops_at_the_first_terminal_event_of_a_long_span():
     # function (one record case took 124 s of CPU). The search now goes window by window (64 periods)
     # and stops at the event: 64 x 16 + 1 calls for an event in the first window.
     k, inertia = 1e6, 0.3
-    seg = _ClosedFormSegment(inertia, 0.0, k, 0.0, 0.0, 0.0, 0.0, 0.0, np.array([1e-7, 0.0]))
+    seg = ClosedFormSegment(inertia, 0.0, k, 0.0, 0.0, 0.0, 0.0, 0.0, np.array([1e-7, 0.0]))
     calls = []
 
     def crossing(t, y):
@@ -141,7 +142,7 @@ def test_closed_form_segment_stops_at_the_first_terminal_event_of_a_long_span():
         return y[0]
 
     crossing.terminal, crossing.direction = True, -1
-    sol = _closed_form_solve(seg, 0.0, 60.0, [crossing])
+    sol = closed_form_solve(seg, 0.0, 60.0, [crossing])
     quarter = 0.5 * math.pi / math.sqrt(k / inertia)
     assert sol.status == 1 and sol.t_events[0][0] == pytest.approx(quarter, rel=1e-9)
     assert abs(seg(sol.t_events[0][0])[0]) < 1e-18  # the event is really a zero

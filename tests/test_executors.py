@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from opsrock.executors import (
+from opsrock.campaign.executors import (
     DASK_EXTRA_HINT,
     DaskExecutor,
     ExecutorUnavailableError,
@@ -84,7 +84,7 @@ def hanging_batch(batch: list[int]) -> list[tuple[int, int, int]]:
 def test_local_pool_kills_a_worker_hung_in_native_code(monkeypatch):
     # The hard backstop: a batch past len(batch) * item_timeout + KILL_GRACE has its worker
     # killed, its items re-run alone, and the one that hangs alone is lost with "timeout".
-    import opsrock.executors as ex
+    import opsrock.campaign.executors as ex
 
     monkeypatch.setattr(ex, "KILL_GRACE", 1.0)
     batches = make_batches(list(range(8)), 2)

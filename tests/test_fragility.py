@@ -28,7 +28,7 @@ from opsrock.fragility import (
     table3,
     table3_markdown,
 )
-from opsrock.paper_values import TABLE2
+from opsrock.published.liu_huang_liu_2023 import TABLE2
 
 # --- a synthetic campaign ----------------------------------------------------------------
 # A 10 x 10 grid of one-sine pulses for one block, with verdicts that follow a known

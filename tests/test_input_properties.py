@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from opsrock.block import Block
 from opsrock.excitations import OneSinePulse
 from opsrock.model import LEVERS, SDOFModel
-from opsrock.scene import SceneError, load_scene
+from opsrock.campaign.scene import SceneError, load_scene
 
 # Anything a caller might pass: numbers of every size and sign, NaN, infinities, bools,
 # strings, None, containers.
@@ -111,7 +111,7 @@ def test_sdof_model_accepts_or_raises_documented_errors(delta, theta_e_ratio, ta
 
 
 # --- scene files ------------------------------------------------------------------------------
-BLOCKS = Path(__file__).resolve().parents[1] / "models" / "blocks.toml"
+BLOCKS = Path(__file__).resolve().parents[1] / "opsrock" / "data" / "blocks.toml"
 
 VALID = {
     "name": "p",

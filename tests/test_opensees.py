@@ -10,6 +10,7 @@ import pytest
 from opsrock import Block, OneSinePulse, Record
 from opsrock.model import SDOFModel, restoring_moment
 from opsrock.solvers import opensees as osr
+from opsrock.solvers.common import make_settings
 from opsrock.solvers import simulate
 
 pytestmark = pytest.mark.opensees
@@ -24,7 +25,7 @@ NO_MOTION = Record(dt=0.01, values=np.zeros(2))
 
 def _free_rocking(block: Block, theta0_ratio: float, **kw) -> "osr.RockingResult":
     return osr.solve(
-        block, NO_MOTION, theta0=theta0_ratio * block.alpha, adaptive=False, dt=1e-5, stop_at_rest=False,
+        block, NO_MOTION, theta0=theta0_ratio * block.alpha, adaptive=False, step=1e-5, stop_at_rest=False,
         end_time=kw.pop("end_time", 1.2), **kw,
     )
 
@@ -137,19 +138,19 @@ def test_explicit_above_critical_step_is_failed_not_a_verdict(factor):
     dt = factor * osr.critical_time_step(CABINET)
     pulse = OneSinePulse.from_ratios(CABINET, 0.5, 3.0)
     # uplift_check=False: integrate the model although Eq. 4 says the pulse cannot uplift it
-    r = osr.solve(CABINET, pulse, integrator="central_difference", adaptive=False, dt=dt, uplift_check=False)
+    r = osr.solve(CABINET, pulse, integrator="central_difference", adaptive=False, step=dt, uplift_check=False)
     assert r.status == "failed" and "unstable" in r.reason
     # Without the up-front check, the run itself must still not pass as no_uplift with a
     # plausible peak: it either fails (sawtooth/energy test) or shows the spurious rocking
     # that validation/stability_map classifies as wrong.
     raw = osr.solve(
-        CABINET, pulse, integrator="central_difference", adaptive=False, dt=dt, explicit_step_check=False,
+        CABINET, pulse, integrator="central_difference", adaptive=False, step=dt, explicit_step_check=False,
         uplift_check=False,
     )
     assert raw.verdict != "no_uplift"
     # ... while below dt_cr the same explicit run is fine and finds no uplift.
     ok = osr.solve(
-        CABINET, pulse, integrator="central_difference", adaptive=False, dt=0.5 * osr.critical_time_step(CABINET),
+        CABINET, pulse, integrator="central_difference", adaptive=False, step=0.5 * osr.critical_time_step(CABINET),
         uplift_check=False,
     )
     assert ok.verdict == "no_uplift"
@@ -161,8 +162,8 @@ def test_lumped_mass_form_of_fig2b_equals_rotational_form_with_housner_lever():
     # one-DOF form with lever="housner", so the histories agree to solver round-off (1e-9 alpha
     # leaves room for the Newton tolerance 1e-10 rad accumulated over the steps).
     pulse = OneSinePulse.from_ratios(SLENDER, 2.5, 4.0)
-    one_dof = osr.solve(SLENDER, pulse, adaptive=False, dt=1e-4)
-    lumped = osr.solve_lumped_mass(SLENDER, pulse, adaptive=False, dt=1e-4)
+    one_dof = osr.solve(SLENDER, pulse, adaptive=False, step=1e-4)
+    lumped = osr.solve_lumped_mass(SLENDER, pulse, adaptive=False, step=1e-4)
     assert one_dof.rocked and lumped.ok
     n = min(one_dof.theta.size, lumped.theta.size)
     assert np.max(np.abs(one_dof.theta[:n] - lumped.theta[:n])) <= 1e-9 * SLENDER.alpha
@@ -176,7 +177,7 @@ def test_lumped_mass_form_of_fig2b_equals_rotational_form_with_housner_lever():
 @pytest.mark.parametrize(
     ("kwargs", "name"),
     [
-        ({"dt": -1e-3}, "dt"),
+        ({"step": -1e-3}, "step"),
         ({"integrator": "euler"}, "integrator"),
         ({"algorithm": "Magic"}, "algorithm"),
         ({"max_iter": 0}, "max_iter"),
@@ -189,7 +190,7 @@ def test_lumped_mass_form_of_fig2b_equals_rotational_form_with_housner_lever():
 )
 def test_settings_errors_name_the_argument(kwargs, name):
     with pytest.raises((ValueError, TypeError), match=name):
-        osr.make_settings(**kwargs)
+        make_settings(osr.OpenSeesSettings, None, kwargs)
 
 
 @pytest.mark.parametrize("table_points", [100, 200])

@@ -64,7 +64,7 @@ def test_forces_computed_after_the_run_equal_the_elements(adaptive):
     pulse = OneSinePulse.from_ratios(block, pfa_ratio=3.0, freq_ratio=4.0)
     kw = dict(stop_at_rest=False, end_time=pulse.T_p + 3.0)  # free rocking on: several band crossings
     if not adaptive:
-        kw.update(adaptive=False, dt=2e-4)
+        kw.update(adaptive=False, step=2e-4)
     fast = simulate(block, pulse, solver="opensees", **kw)
     literal = simulate(block, pulse, solver="opensees", element_forces=True, **kw)
     assert fast.theta.size == literal.theta.size and fast.n_impacts == literal.n_impacts >= 2

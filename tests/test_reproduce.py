@@ -7,9 +7,9 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from opsrock import reproduce as rp
+from opsrock.report import reproduce as rp
 
-TINY = Path(__file__).resolve().parents[1] / "models" / "scenes" / "tiny.toml"
+TINY = Path(__file__).resolve().parents[1] / "opsrock" / "data" / "scenes" / "tiny.toml"
 
 TABLE2_COLUMNS = ["im", "W_HS", "R_S", "R_O", "W_HS_over_R_S", "W_HS_over_R_O", "HR", "W_SAS"]
 FIGURES = ["fig3", "fig4", "fig6a", "fig6b", "fig8", "fig9", "fig10", "fig11", "fig12", "thresholds"]

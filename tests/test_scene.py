@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 
 from opsrock.constants import G
-from opsrock.scene import MAX_AXIS_POINTS, Scene, SceneError, load_blocks, load_scene
+from opsrock.campaign.scene import MAX_AXIS_POINTS, Scene, SceneError, load_blocks, load_scene
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[1] / "opsrock" / "data"
 
 BLOCKS_TOML = """\
 [[block]]

@@ -127,11 +127,11 @@ def test_closed_form_segment_is_the_exact_solution():
     # window of about four periods; both are exact to ~1e-12 of the amplitude
     from scipy.integrate import solve_ivp
 
-    from opsrock.solvers.sdof import _ClosedFormSegment
+    from opsrock.solvers.sdof.closed_form import ClosedFormSegment
 
     inertia, c, k, m, lam, a0, a1, t0 = 2.0, 3.0, 5.0e4, 0.1, 1.5, 0.7, -40.0, 0.3
     y0 = np.array([1e-6, 2e-3])
-    seg = _ClosedFormSegment(inertia, c, k, m, lam, a0, a1, t0, y0)
+    seg = ClosedFormSegment(inertia, c, k, m, lam, a0, a1, t0, y0)
     t_end = t0 + 4 * 2 * np.pi / np.sqrt(k / inertia)
     ref = solve_ivp(lambda t, y: [y[1], (-lam * (a0 + a1 * (t - t0)) - c * y[1] - k * y[0] - m) / inertia],
                     (t0, t_end), y0, method="DOP853", rtol=1e-12, atol=1e-16, dense_output=True)
@@ -145,7 +145,7 @@ def test_closed_form_segment_is_the_exact_solution():
 def test_sdof_stiff_branch_in_closed_form_matches_the_implicit_integrator_on_a_record():
     # the closed form replaces Radau in the stiff branch under a record: same answer (measured
     # 1e-10 alpha on FEMA roof motions), far fewer steps; a record at 1.3 g tan alpha on which the
-    # response is not hypersensitive (opsrock.sensitivity), so the two can be compared case by case
+    # response is not hypersensitive (opsrock.analysis.sensitivity), so the two can be compared case by case
     from scipy import signal
 
     from opsrock.excitations import Record

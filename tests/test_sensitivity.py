@@ -1,4 +1,4 @@
-"""The hypersensitivity test (opsrock.sensitivity): a smooth pulse is not sensitive, a broadband
+"""The hypersensitivity test (opsrock.analysis.sensitivity): a smooth pulse is not sensitive, a broadband
 record on which the rigid body makes hundreds of small impacts is, for both rigid-body solvers.
 
 Reference for the pulse: theta_max depends smoothly on the amplitude there, so scaling it by
@@ -12,7 +12,7 @@ from __future__ import annotations
 import pytest
 
 from opsrock import Block, OneSinePulse
-from opsrock.sensitivity import amplitude_sensitivity
+from opsrock.analysis.sensitivity import amplitude_sensitivity
 
 BLOCK = Block(0.4, 2.2)
 
@@ -50,7 +50,7 @@ def test_step_convergence_of_a_smooth_pulse(solver):
     # defaults: tightening the numerics (sdof rtol 1e-10 -> 1e-12; OpenSees dt / 4 and band steps x 2)
     # moved theta_max by 2.5e-11 (sdof) and 6.3e-5 alpha (OpenSees, its band stepping is first order
     # in 1 / band_steps); 1e-3 alpha bounds both with margin, the case's threshold is 0.01.
-    from opsrock.sensitivity import TIGHTENED, step_convergence
+    from opsrock.analysis.sensitivity import TIGHTENED, step_convergence
 
     c = step_convergence(BLOCK, OneSinePulse.from_ratios(BLOCK, 6, 8), solver)
     assert c.converged and c.verdicts == ("safe", "safe") and c.spread < 1e-3
@@ -58,7 +58,7 @@ def test_step_convergence_of_a_smooth_pulse(solver):
 
 
 def test_step_convergence_input_checks():
-    from opsrock.sensitivity import step_convergence
+    from opsrock.analysis.sensitivity import step_convergence
 
     pulse = OneSinePulse.from_ratios(BLOCK, 6, 8)
     with pytest.raises(ValueError, match="solver"):

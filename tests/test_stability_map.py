@@ -31,7 +31,7 @@ def test_explicit_above_critical_step_refused_as_failed(factor):
     b = BLOCKS["bookcase"]
     dt = factor * osr.critical_time_step(b)
     for pulse in (_below_uplift(b), OneSinePulse.from_ratios(b, 2.0, 2.0)):
-        r = osr.solve(b, pulse, integrator="central_difference", dt=dt)
+        r = osr.solve(b, pulse, integrator="central_difference", step=dt)
         assert r.status == "failed" and r.verdict == "failed"
         assert r.reason.startswith("unstable"), r.reason
         assert not r.overturned
@@ -44,7 +44,7 @@ def test_explicit_just_above_critical_step_blows_up_and_is_failed(factor):
     # central-difference amplification), so the run must fail as "unstable", not return.
     for b in BLOCKS.values():
         dt = factor * osr.critical_time_step(b)
-        r = osr.solve(b, _below_uplift(b), integrator="central_difference", dt=dt, explicit_step_check=False,
+        r = osr.solve(b, _below_uplift(b), integrator="central_difference", step=dt, explicit_step_check=False,
                           uplift_check=False)
         assert r.status == "failed" and r.reason.startswith("unstable"), (b.name, r.verdict, r.reason)
 
@@ -57,7 +57,7 @@ def test_explicit_far_above_critical_step_is_never_a_plausible_answer():
     for b in BLOCKS.values():
         for factor in (1.3, 2.0, 5.0):
             dt = factor * osr.critical_time_step(b)
-            r = osr.solve(b, _below_uplift(b), integrator="central_difference", dt=dt, explicit_step_check=False,
+            r = osr.solve(b, _below_uplift(b), integrator="central_difference", step=dt, explicit_step_check=False,
                           uplift_check=False)
             assert r.status == "failed", (b.name, factor, r.verdict, r.theta_max_over_alpha)
             assert r.reason.startswith("unstable"), r.reason
@@ -87,7 +87,7 @@ def test_default_settings_accurate_on_map_pulses(name):
     b = BLOCKS[name]
     refs = sm.references(b)
     defaults = osr.OpenSeesSettings()
-    cell = sm.run_cell(b, "default", defaults.dt, refs, overrides={})
+    cell = sm.run_cell(b, "default", defaults.step, refs, overrides={})
     assert cell.cls == "accurate", cell
     assert cell.n_failed == 0 and cell.n_wrong_verdicts == 0
     assert cell.max_error <= 0.005, cell

@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from opsrock.store import RESULT_COLUMNS, STORE_FILE, ResultStore, StoreError, read_rows
+from opsrock.campaign.store import RESULT_COLUMNS, STORE_FILE, ResultStore, StoreError, read_rows
 
 
 def row(case_id: str, theta_max: float = 0.1, **over) -> dict:
@@ -86,7 +86,7 @@ def test_committed_rows_survive_sigkill(tmp_path):
     # A writer killed with SIGKILL right after a commit: the row must be there (WAL + FULL sync).
     code = (
         "import os, signal, sys\n"
-        "from opsrock.store import ResultStore\n"
+        "from opsrock.campaign.store import ResultStore\n"
         "sys.path.insert(0, sys.argv[2])\n"
         "from test_store import row\n"
         "s = ResultStore(sys.argv[1])\n"

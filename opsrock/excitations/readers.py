@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from opsrock.constants import G
+from opsrock.errors import InputError, RecordFileError
 from opsrock.excitations.records import Record, RecordInfo
 
 #: Acceleration units accepted for record files, with their factor to m/s².
@@ -39,18 +40,10 @@ DT_RTOL: float = 1e-3
 _NAME_SAFE = re.compile(r"[^A-Za-z0-9_.-]+")
 
 
-class RecordFileError(ValueError):
-    """A record file that cannot be read; the message names the file, the line and the reason."""
-
-    def __init__(self, path: str | Path, line: int | None, reason: str) -> None:
-        where = f"{path}:{line}" if line else f"{path}"
-        super().__init__(f"{where}: {reason}")
-
-
 def units_factor(units: str | None, *, where: str = "units") -> float:
     """Factor from ``units`` (one of :data:`UNITS`) to m/s²; ``ValueError`` naming ``where``."""
     if units not in UNITS:
-        raise ValueError(f"{where} must be one of {', '.join(UNITS)}; got {units!r}")
+        raise InputError(f"{where} must be one of {', '.join(UNITS)}; got {units!r}")
     return UNITS[units]
 
 

@@ -11,12 +11,12 @@ record library (:mod:`opsrock.excitations.library`) or the building filter
 from __future__ import annotations
 
 import functools
-
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from opsrock.errors import InputError, InputTypeError
 from opsrock.limits import LIMITS, check
 
 if TYPE_CHECKING:
@@ -91,15 +91,15 @@ class Record:
         object.__setattr__(self, "dt", check("dt", self.dt))
         arr = np.array(self.values, dtype=float, copy=True).ravel()
         if arr.size < 2:
-            raise ValueError(f"values must hold at least 2 samples, got {arr.size}")
+            raise InputError(f"values must hold at least 2 samples, got {arr.size}")
         if not np.all(np.isfinite(arr)):
             bad = int(np.flatnonzero(~np.isfinite(arr))[0])
-            raise ValueError(f"values must be finite; sample {bad} is {arr[bad]!r}")
+            raise InputError(f"values must be finite; sample {bad} is {arr[bad]!r}")
         check("duration", (arr.size - 1) * self.dt)
         arr.setflags(write=False)
         object.__setattr__(self, "values", arr)
         if not isinstance(self.info, RecordInfo):
-            raise TypeError(f"info must be a RecordInfo, got {self.info!r}")
+            raise InputTypeError(f"info must be a RecordInfo, got {self.info!r}")
 
     @classmethod
     def from_file(cls, path: str, *, units: str | None = None, dt: float | None = None,
@@ -192,7 +192,7 @@ def check_sampling(record: Record, block: "Block") -> None:
     ratio = record.dt * block.p
     limit = LIMITS["record_dt_p"]
     if ratio > limit.high:
-        raise ValueError(
+        raise InputError(
             f"record {record.name or '<unnamed>'}: dt = {record.dt:g} s is too coarse for block "
             f"{block.name or '<unnamed>'} (p = {block.p:.4g} rad/s): dt p = {ratio:.3g} > {limit.high:g}; "
             f"resample the record to dt <= {limit.high / block.p:.3g} s")

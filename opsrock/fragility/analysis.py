@@ -8,7 +8,6 @@ from typing import Mapping
 
 import pandas as pd
 
-from opsrock._checks import int_at_least, one_of, positive_finite
 from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.fragility.cases import CaseSplit, split_cases
 from opsrock.fragility.hybrid_strip import HybridStrip, hybrid_strip
@@ -17,7 +16,8 @@ from opsrock.fragility.lognormal import LognormalFit, _failed_fit
 from opsrock.fragility.mle import MLEFit, fit_lognormal_mle
 from opsrock.fragility.strips import STRIP_EXTENTS, StripFractions, strip_fractions
 from opsrock.intensity import IM_NAMES, add_intensity_measures, get_im
-from opsrock.paper_values import STRIP_FACTORS
+from opsrock.limits import int_at_least, one_of, positive_finite
+from opsrock.published.liu_huang_liu_2023 import STRIP_FACTORS
 
 
 @dataclass(frozen=True)

@@ -8,6 +8,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from opsrock.errors import InputError
+
 
 def _as_bool(series: pd.Series, name: str) -> np.ndarray:
     if series.dtype == bool:
@@ -16,7 +18,7 @@ def _as_bool(series: pd.Series, name: str) -> np.ndarray:
     out = series.astype(str).str.strip().str.lower().map(mapping)
     if out.isna().any():
         bad = series[out.isna()].iloc[0]
-        raise ValueError(f"column {name!r} must hold booleans, got {bad!r}")
+        raise InputError(f"column {name!r} must hold booleans, got {bad!r}")
     return out.to_numpy(dtype=bool)
 
 
@@ -67,14 +69,14 @@ def split_cases(cases: pd.DataFrame) -> CaseSplit:
     status = cases["status"].astype(str).to_numpy()
     bad = ~np.isin(status, ("ok", "failed"))
     if bad.any():
-        raise ValueError(f"column 'status' must be 'ok' or 'failed', got {status[bad][0]!r}")
+        raise InputError(f"column 'status' must be 'ok' or 'failed', got {status[bad][0]!r}")
     ok = status == "ok"
     rocked = _as_bool(cases["rocked"], "rocked")
     overturned = _as_bool(cases["overturned"], "overturned")
     rocking = ok & rocked
     if np.any(ok & ~rocked & overturned):
         i = int(np.flatnonzero(ok & ~rocked & overturned)[0])
-        raise ValueError(f"case at row {i} is marked overturned but not rocked")
+        raise InputError(f"case at row {i} is marked overturned but not rocked")
     if "verdict" in cases.columns:
         expected = np.where(~ok, "failed", np.where(~rocked, "no_uplift",
                                                     np.where(overturned, "overturned", "safe")))
@@ -82,7 +84,7 @@ def split_cases(cases: pd.DataFrame) -> CaseSplit:
         wrong = verdict != expected
         if wrong.any():
             i = int(np.flatnonzero(wrong)[0])
-            raise ValueError(
+            raise InputError(
                 f"case at row {i}: verdict {verdict[i]!r} disagrees with status/rocked/overturned "
                 f"({expected[i]!r})"
             )

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from opsrock.errors import InputError
+
 #: ``W_SAS = W_HS / STANDARD_STRIP_DIVISOR`` (paper Section 4.4: "one-fifth of W_HS").
 STANDARD_STRIP_DIVISOR: float = 5.0
 
@@ -100,9 +102,9 @@ def hybrid_strip(
     x = np.asarray(values, dtype=float)
     y = np.asarray(overturned, dtype=bool)
     if x.shape != y.shape or x.ndim != 1:
-        raise ValueError(f"values and overturned must be 1-D of equal length, got {x.shape} and {y.shape}")
+        raise InputError(f"values and overturned must be 1-D of equal length, got {x.shape} and {y.shape}")
     if not np.all(np.isfinite(x)):
-        raise ValueError(f"values of {im} must be finite, got {x[~np.isfinite(x)][0]!r}")
+        raise InputError(f"values of {im} must be finite, got {x[~np.isfinite(x)][0]!r}")
     xs, xo = x[~y], x[y]
     n_s, n_o = int(xs.size), int(xo.size)
     nan = math.nan

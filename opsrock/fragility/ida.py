@@ -18,6 +18,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from opsrock.errors import InputError
+
 #: Columns that identify one IDA curve.
 CURVE_KEYS: tuple[str, ...] = ("block", "record", "floor")
 #: Outcome conventions of the fits (module notes).
@@ -35,7 +37,7 @@ def outcomes(cases: pd.DataFrame, convention: str = "as_simulated") -> pd.Series
     """Overturned (bool) per finished case under ``convention`` (one of :data:`OUTCOMES`), indexed
     like ``cases``."""
     if convention not in OUTCOMES:
-        raise ValueError(f"convention must be one of {', '.join(OUTCOMES)}; got {convention!r}")
+        raise InputError(f"convention must be one of {', '.join(OUTCOMES)}; got {convention!r}")
     ok = _ok(cases)
     if convention == "as_simulated":
         return ok["overturned"]

@@ -7,6 +7,7 @@ import math
 import numpy as np
 from scipy import optimize, special
 
+from opsrock.errors import InputError
 from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit, _failed_fit
 
 #: crawls towards the ``beta`` bound for hundreds of iterations).
@@ -38,11 +39,11 @@ def fit_lognormal_least_squares(
     f = np.asarray(fraction, dtype=float)
     method = "least_squares"
     if x.shape != f.shape or x.ndim != 1:
-        raise ValueError(f"x and fraction must be 1-D of equal length, got {x.shape} and {f.shape}")
+        raise InputError(f"x and fraction must be 1-D of equal length, got {x.shape} and {f.shape}")
     if np.any(~np.isfinite(x) | (x <= 0)):
-        raise ValueError(f"x must be positive and finite, got {x[~np.isfinite(x) | (x <= 0)][0]!r}")
+        raise InputError(f"x must be positive and finite, got {x[~np.isfinite(x) | (x <= 0)][0]!r}")
     if np.any((f < 0) | (f > 1) | ~np.isfinite(f)):
-        raise ValueError("fraction must lie in [0, 1]")
+        raise InputError("fraction must lie in [0, 1]")
     if x.size < 2:
         return _failed_fit(method, int(x.size), decreasing, f"{x.size} strip(s): need at least 2")
     if np.all(f == 0) or np.all(f == 1):

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, special
 
+from opsrock.errors import InputError
+
 
 @dataclass(frozen=True)
 class LogisticFit:
@@ -68,9 +70,9 @@ def fit_logistic(values: np.ndarray, overturned: np.ndarray, decreasing: bool = 
     x = np.asarray(values, dtype=float)
     y = np.asarray(overturned, dtype=bool)
     if x.shape != y.shape or x.ndim != 1:
-        raise ValueError(f"values and overturned must be 1-D of equal length, got {x.shape} and {y.shape}")
+        raise InputError(f"values and overturned must be 1-D of equal length, got {x.shape} and {y.shape}")
     if np.any(~np.isfinite(x) | (x <= 0)):
-        raise ValueError("values must be positive and finite")
+        raise InputError("values must be positive and finite")
     n = int(x.size)
     s = -1.0 if decreasing else 1.0
     u = s * np.log(x) if n else x

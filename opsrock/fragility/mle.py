@@ -9,8 +9,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import optimize, special
 
-from opsrock._checks import int_at_least
+from opsrock.errors import InputError
 from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit
+from opsrock.limits import int_at_least
 
 
 @dataclass(frozen=True)
@@ -132,12 +133,12 @@ def fit_lognormal_mle(
     x = np.asarray(values, dtype=float)
     y = np.asarray(overturned, dtype=bool)
     if x.shape != y.shape or x.ndim != 1:
-        raise ValueError(f"values and overturned must be 1-D of equal length, got {x.shape} and {y.shape}")
+        raise InputError(f"values and overturned must be 1-D of equal length, got {x.shape} and {y.shape}")
     if np.any(~np.isfinite(x) | (x <= 0)):
-        raise ValueError(f"values must be positive and finite, got {x[~np.isfinite(x) | (x <= 0)][0]!r}")
+        raise InputError(f"values must be positive and finite, got {x[~np.isfinite(x) | (x <= 0)][0]!r}")
     n_boot = int_at_least("n_boot", n_boot, 0)
     if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must lie in (0, 1), got {confidence!r}")
+        raise InputError(f"confidence must lie in (0, 1), got {confidence!r}")
     s = -1.0 if decreasing else 1.0
     u = s * np.log(x)
     n = int(x.size)
@@ -166,7 +167,7 @@ def fit_lognormal_mle(
     if groups is not None:
         g = np.asarray(groups)
         if g.shape != x.shape:
-            raise ValueError(f"groups must have one label per case, got {g.shape} for {x.shape}")
+            raise InputError(f"groups must have one label per case, got {g.shape} for {x.shape}")
         members = [np.flatnonzero(g == label) for label in dict.fromkeys(g.tolist())]
     if n_boot:
         rng = np.random.default_rng(seed)

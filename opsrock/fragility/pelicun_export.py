@@ -15,7 +15,8 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from opsrock._io import atomic_write
+from opsrock._files import atomic_write
+from opsrock.errors import InputError
 
 #: Our demand column -> (pelicun demand type, pelicun unit).
 PELICUN_DEMANDS: dict[str, tuple[str, str]] = {
@@ -50,11 +51,11 @@ class ComponentFragility:
 
     def __post_init__(self) -> None:
         if self.demand not in PELICUN_DEMANDS:
-            raise ValueError(f"demand must be one of {', '.join(PELICUN_DEMANDS)}; got {self.demand!r}")
+            raise InputError(f"demand must be one of {', '.join(PELICUN_DEMANDS)}; got {self.demand!r}")
         for name in ("median", "beta"):
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise ValueError(f"{name} must be positive and finite for {self.component_id}, got {v!r}")
+                raise InputError(f"{name} must be positive and finite for {self.component_id}, got {v!r}")
 
 
 def component_id(block: str, demand: str) -> str:

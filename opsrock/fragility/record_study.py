@@ -2,7 +2,7 @@
 intervals by record, resurrections counted, sufficiency tested and per-block curves for loss
 assessment.
 
-Input: the ``cases.csv`` of a record scene (:data:`opsrock.scene_records.RECORD_CASES_COLUMNS`).
+Input: the ``cases.csv`` of a record scene (:data:`opsrock.campaign.records.RECORD_CASES_COLUMNS`).
 
 Choices:
 
@@ -33,13 +33,19 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from opsrock._checks import int_at_least, one_of
+from opsrock.errors import InputError
 from opsrock.fragility.hybrid_strip import hybrid_strip
-from opsrock.fragility.ida import OUTCOMES, outcomes, resurrection_summary, resurrections
+from opsrock.fragility.ida import (
+    OUTCOMES,
+    outcomes,
+    resurrection_summary,
+    resurrections,
+)
 from opsrock.fragility.logistic import fit_logistic
 from opsrock.fragility.mle import MLEFit, fit_lognormal_mle
 from opsrock.fragility.sufficiency import sufficiency
 from opsrock.intensity import IM_NAMES, get_im
+from opsrock.limits import int_at_least, one_of
 
 #: Covariates of the sufficiency test (columns of a record ``cases.csv``).
 COVARIATES: tuple[str, ...] = ("magnitude", "distance_km", "building_period")
@@ -76,7 +82,7 @@ class RecordStudySettings:
             one_of("ims", im, IM_NAMES)
         int_at_least("n_boot", self.n_boot, 0)
         if not 0.0 < self.confidence < 1.0:
-            raise ValueError(f"confidence must lie in (0, 1), got {self.confidence!r}")
+            raise InputError(f"confidence must lie in (0, 1), got {self.confidence!r}")
         one_of("outcome", self.outcome, OUTCOMES)
 
 
@@ -150,7 +156,7 @@ def _rank(df: pd.DataFrame) -> pd.DataFrame:
 def _prepare(cases: pd.DataFrame, outcome: str) -> tuple[pd.DataFrame, int]:
     missing = {"record", "block", "floor", "level", "status", "overturned", "rocked"} - set(cases.columns)
     if missing:
-        raise ValueError(f"cases must be the cases.csv of a record scene; missing columns {sorted(missing)}")
+        raise InputError(f"cases must be the cases.csv of a record scene; missing columns {sorted(missing)}")
     n_failed = int((cases["status"] != "ok").sum())
     ok = cases[cases["status"] == "ok"].copy()
     ok["y"] = outcomes(cases, outcome).reindex(ok.index).astype(bool)
@@ -161,7 +167,7 @@ def _prepare(cases: pd.DataFrame, outcome: str) -> tuple[pd.DataFrame, int]:
 def ranking_frequencies(cases: pd.DataFrame, ims: tuple[str, ...], n_boot: int, seed: int) -> pd.DataFrame:
     """How often each IM has the smallest ``beta`` (MLE), HR and CV when the records are resampled
     with replacement ``n_boot`` times (seeded); with 95 % Wilson intervals of each share."""
-    from opsrock.fragility.robustness import wilson_interval
+    from opsrock.analysis.robustness import wilson_interval
 
     records = np.array(list(dict.fromkeys(cases["record"].tolist())))
     by_rec = {r: np.flatnonzero(cases["record"].to_numpy() == r) for r in records}

@@ -8,8 +8,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from opsrock._checks import one_of, positive_finite
+from opsrock.errors import InputError
 from opsrock.fragility.hybrid_strip import FALLBACK_STRIPS, HybridStrip
+from opsrock.limits import one_of, positive_finite
 
 #: Strip extents (see the module notes).
 STRIP_EXTENTS: tuple[str, ...] = ("hybrid", "range")
@@ -103,7 +104,7 @@ def strip_fractions(
     x = np.asarray(values, dtype=float)
     y = np.asarray(overturned, dtype=bool)
     if x.size == 0:
-        raise ValueError("values is empty: no rocking cases")
+        raise InputError("values is empty: no rocking cases")
     fallback = not strip.has_overlap
     if fallback:
         span = float(np.ptp(x))

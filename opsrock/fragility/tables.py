@@ -7,7 +7,7 @@ import math
 import pandas as pd
 
 from opsrock.fragility.analysis import TABLE2_COLUMNS
-from opsrock.paper_values import TABLE2, TABLE3
+from opsrock.published.liu_huang_liu_2023 import TABLE2, TABLE3
 
 
 def _md(header: list[str], rows: list[list[str]]) -> str:

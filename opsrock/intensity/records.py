@@ -38,6 +38,7 @@ import numpy as np
 import scipy.integrate
 
 from opsrock.constants import G
+from opsrock.errors import InputError
 from opsrock.excitations.records import Record
 from opsrock.intensity.table1 import _BIVARIATE, IM8_RESTITUTION_EXPONENT, IM_NAMES
 
@@ -101,7 +102,7 @@ def mean_period(record: Record, band: tuple[float, float] = MEAN_PERIOD_BAND) ->
     c2 = np.abs(np.asarray(sig.fa_spectrum)) ** 2
     inside = (f >= band[0]) & (f <= band[1])
     if not np.any(inside) or c2[inside].sum() == 0.0:
-        raise ValueError(f"record {record.name!r} has no Fourier amplitude in {band[0]:g}-{band[1]:g} Hz")
+        raise InputError(f"record {record.name!r} has no Fourier amplitude in {band[0]:g}-{band[1]:g} Hz")
     return float(np.sum(c2[inside] / f[inside]) / np.sum(c2[inside]))
 
 
@@ -128,7 +129,7 @@ def response_spectrum(record: Record, periods: np.ndarray = SPECTRUM_PERIODS,
 
     periods = np.asarray(periods, dtype=float)
     if periods.ndim != 1 or periods.size == 0 or not np.all(np.isfinite(periods) & (periods > 0)):
-        raise ValueError("periods must be a non-empty 1-D array of positive periods (s)")
+        raise InputError("periods must be a non-empty 1-D array of positive periods (s)")
     sd, _, sa = eqsig.sdof.true_response_spectra(np.asarray(record.values), record.dt, periods, damping)
     psa = (2.0 * math.pi / periods) ** 2 * sd
     return {"period": periods, "sd": np.asarray(sd), "psa": psa, "sa": np.asarray(sa)}

@@ -34,9 +34,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from opsrock._checks import one_of
 from opsrock.constants import G
+from opsrock.errors import InputError
 from opsrock.excitations import PFV_CONVENTIONS
+from opsrock.limits import one_of
 
 if TYPE_CHECKING:
     from opsrock.block import Block
@@ -133,7 +134,7 @@ def _positive_array(name: str, value: object) -> np.ndarray:
     bad = ~(np.isfinite(arr) & (arr > 0.0))
     if np.any(bad):
         first = arr.ravel()[int(np.flatnonzero(bad.ravel())[0])]
-        raise ValueError(f"{name} must be positive and finite everywhere, got {first!r}")
+        raise InputError(f"{name} must be positive and finite everywhere, got {first!r}")
     return arr
 
 
@@ -173,7 +174,7 @@ def intensity_measures_array(
     one_of("pfv_convention", pfv_convention, PFV_CONVENTIONS)
     alpha = _positive_array("alpha", alpha)
     if np.any(alpha >= 0.5 * math.pi):
-        raise ValueError(f"alpha must be below pi/2 rad, got {float(np.max(alpha))!r}")
+        raise InputError(f"alpha must be below pi/2 rad, got {float(np.max(alpha))!r}")
     R = _positive_array("R", R)  # noqa: N806
     p = _positive_array("p", p)
     e_R = _positive_array("e_R", e_R)  # noqa: N806

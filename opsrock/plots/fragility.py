@@ -22,7 +22,7 @@ import pandas as pd  # noqa: E402
 
 from opsrock.fragility import FragilityAnalysis, table2  # noqa: E402
 from opsrock.intensity import get_im  # noqa: E402
-from opsrock.paper_values import TABLE2, TABLE3  # noqa: E402
+from opsrock.published.liu_huang_liu_2023 import TABLE2, TABLE3  # noqa: E402
 
 #: Marker style per verdict (colour, marker, label), shared by Figures 6b and 8.
 VERDICT_STYLE: dict[str, tuple[str, str, str]] = {

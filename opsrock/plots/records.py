@@ -8,7 +8,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 
 from opsrock.constants import G  # noqa: E402
 from opsrock.excitations.records import Record  # noqa: E402

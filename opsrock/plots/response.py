@@ -14,10 +14,8 @@ import numpy as np  # noqa: E402
 
 from opsrock.block import Block  # noqa: E402
 from opsrock.model import restoring_moment  # noqa: E402
-from opsrock.result import RockingResult  # noqa: E402
-
-
 from opsrock.plots import save_figure as _save  # noqa: E402
+from opsrock.result import RockingResult  # noqa: E402
 
 
 def plot_response(result: RockingResult, block: Block, excitation, path: str | Path) -> Path:

@@ -3,7 +3,7 @@
 Four panels, one per classical pulse: Housner's rectangular pulse, Makris and Roussos' half-sine,
 Zhang and Makris' one-sine (both overturning branches and the safe window between them) and Makris
 and Konstantinidis' one-cosine. The shaded bands are every overturning interval that
-:func:`opsrock.threshold.threshold_chart` finds (``housner_fast``, linearised equation, as the papers
+:func:`opsrock.analysis.threshold.threshold_chart` finds (``housner_fast``, linearised equation, as the papers
 solve it); the lines are the papers' closed forms (:mod:`opsrock.published`).
 """
 
@@ -45,7 +45,7 @@ def chart_data(shape: str, restitution: float, freq_ratios: np.ndarray, *, n_sca
     """Overturning intervals (linearised, ``housner_fast``) at every ``omega_p / p`` of ``freq_ratios``."""
     import time
 
-    from opsrock.threshold import threshold_chart
+    from opsrock.analysis.threshold import threshold_chart
 
     block = Block(*CHART_BLOCK, restitution=restitution)
     t0 = time.perf_counter()

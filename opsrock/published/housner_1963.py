@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 
+from opsrock.errors import InputError
 from opsrock.published.reference import PublishedValue
 
 #: ``p t_1`` range of the relation: any positive duration (dimensionless).
@@ -31,7 +32,7 @@ def minimum_overturning(p_t1: float) -> float:
         ``p t_1`` (dimensionless), within :data:`P_T1_RANGE`.
     """
     if not P_T1_RANGE[0] <= p_t1 <= P_T1_RANGE[1]:
-        raise ValueError(f"p_t1 must lie in {P_T1_RANGE}, got {p_t1!r}")
+        raise InputError(f"p_t1 must lie in {P_T1_RANGE}, got {p_t1!r}")
     return 1.0 / (1.0 - math.exp(-p_t1))
 
 

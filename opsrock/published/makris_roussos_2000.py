@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 
+from opsrock.errors import InputError
 from opsrock.published import _linearised
 from opsrock.published.reference import PublishedValue
 
@@ -29,7 +30,7 @@ def minimum_overturning(freq_ratio: float) -> float:
         ``omega_p / p`` (dimensionless), within :data:`FREQ_RATIO_RANGE`.
     """
     if not FREQ_RATIO_RANGE[0] <= freq_ratio <= FREQ_RATIO_RANGE[1]:
-        raise ValueError(f"freq_ratio must lie in {FREQ_RATIO_RANGE}, got {freq_ratio!r}")
+        raise InputError(f"freq_ratio must lie in {FREQ_RATIO_RANGE}, got {freq_ratio!r}")
     return _linearised.minimum_no_impact(freq_ratio, "half-sine")
 
 

@@ -27,6 +27,7 @@ import math
 
 from scipy.optimize import brentq
 
+from opsrock.errors import InputError
 from opsrock.published import _linearised
 from opsrock.published.reference import PublishedValue
 
@@ -36,7 +37,7 @@ FREQ_RATIO_RANGE: tuple[float, float] = (0.5, 50.0)
 
 def _check(freq_ratio: float) -> None:
     if not FREQ_RATIO_RANGE[0] <= freq_ratio <= FREQ_RATIO_RANGE[1]:
-        raise ValueError(f"freq_ratio must lie in {FREQ_RATIO_RANGE}, got {freq_ratio!r}")
+        raise InputError(f"freq_ratio must lie in {FREQ_RATIO_RANGE}, got {freq_ratio!r}")
 
 
 def no_impact_equation(psi: float, freq_ratio: float) -> float:

@@ -37,8 +37,8 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     for b in blocks:
         for pr, fr in pulses:
             pulse = OneSinePulse.from_ratios(b, pr, fr)
-            one = osr.solve(b, pulse, adaptive=False, dt=DT)
-            lump = osr.solve_lumped_mass(b, pulse, adaptive=False, dt=DT)
+            one = osr.solve(b, pulse, adaptive=False, step=DT)
+            lump = osr.solve_lumped_mass(b, pulse, adaptive=False, step=DT)
             n = min(one.theta.size, lump.theta.size)
             diff = float(np.max(np.abs(one.theta[:n] - lump.theta[:n])) / b.alpha)
             rows.append({"block": b.name, "pfa_ratio": pr, "freq_ratio": fr, "verdict_1dof": one.verdict,

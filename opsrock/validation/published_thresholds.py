@@ -1,7 +1,7 @@
 """Validation case 7: the published overturning thresholds of the rocking literature.
 
 Every row is one published boundary (or one we computed where the paper's number was not available
-to us), found by :func:`opsrock.threshold.overturning_intervals` with ``housner_fast`` and compared
+to us), found by :func:`opsrock.analysis.threshold.overturning_intervals` with ``housner_fast`` and compared
 with (a) the number the paper prints, (b) an independent reference: the paper's closed form, or the
 closed-form event solution of the linearised equation (:mod:`opsrock.published._linearised`), or
 the event-driven ``housner`` solver for the exact equation, and (c) the OpenSees SDOF model near the
@@ -20,12 +20,21 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
+from opsrock.analysis.threshold import (
+    OverturningIntervals,
+    boundary,
+    overturning_intervals,
+)
 from opsrock.block import Block
 from opsrock.constants import G
-from opsrock.published import housner_1963, makris_konstantinidis_2003, makris_roussos_2000, zhang_makris_2001
-from opsrock.published import _linearised
+from opsrock.published import (
+    _linearised,
+    housner_1963,
+    makris_konstantinidis_2003,
+    makris_roussos_2000,
+    zhang_makris_2001,
+)
 from opsrock.published.reference import PublishedValue
-from opsrock.threshold import OverturningIntervals, boundary, overturning_intervals
 
 #: Tolerance of housner_fast against an independent reference of the same equation (relative): the
 #: boundary is bracketed to 1e-6 and RK4 with steps of 0.02/p moves theta_max by < 2e-8 alpha.

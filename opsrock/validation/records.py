@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from opsrock.block import Block
-from opsrock.timeout import CaseTimeout, time_limit
+from opsrock.campaign.timeout import CaseTimeout, time_limit
 
 #: Blocks (2b, 2h in m): slender bookcase, deep wardrobe, stocky cabinet.
 BLOCKS: tuple[tuple[str, float, float], ...] = (("bookcase", 0.40, 2.20), ("wardrobe", 0.60, 2.00),

@@ -19,12 +19,13 @@ from typing import Any, Sequence
 import numpy as np
 import pandas as pd
 
+from opsrock.campaign.scene import Case, load_scene
+from opsrock.data import scene_file
 from opsrock.excitations import OneSinePulse
-from opsrock.scene import Case, load_scene
 from opsrock.solvers import simulate
 
 #: Repository scene of the paper's 400 pulses (docs/modelling.md section 3).
-PAPER_SCENE = Path(__file__).resolve().parents[2] / "models" / "scenes" / "paper.toml"
+PAPER_SCENE = scene_file("paper")
 
 #: Agreement targets (docs/modelling.md section 5).
 THETA_TOLERANCE = 0.01  # |d theta_max| / alpha

@@ -4,8 +4,8 @@ against each other and against the rigid body.
 207 cases: 20-s band-passed noise records (0.5-6 Hz, dt 0.01 s, 2-s ramps, seeds 1-23) x three blocks
 (0.4 x 2.2, 0.6 x 2.0, 0.5 x 1.15 m) x PFA / (g tan alpha) = 1.3, 2.0, 3.5. For each SDOF
 implementation (``sdof``, ``opensees``) every case is run five times: as is, on copies of the record
-scaled by ``1 + eps`` for ``eps`` in :data:`EPS` (:func:`opsrock.sensitivity.amplitude_sensitivity`)
-and with its numerics tightened (:func:`opsrock.sensitivity.step_convergence`). A case is **ill-conditioned** if either
+scaled by ``1 + eps`` for ``eps`` in :data:`EPS` (:func:`opsrock.analysis.sensitivity.amplitude_sensitivity`)
+and with its numerics tightened (:func:`opsrock.analysis.sensitivity.step_convergence`). A case is **ill-conditioned** if either
 implementation's theta_max moves by more than 0.01 alpha (or its verdict changes) under either test:
 there no implementation's single answer is meaningful to 1 % of alpha, and the case is set apart with
 its count. On the others the two implementations must agree in verdict on >= 99 % and within 0.01
@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from opsrock._io import atomic_text
+from opsrock._files import atomic_text
 
 #: Blocks (2b, 2h in m).
 BLOCKS: tuple[tuple[float, float], ...] = ((0.4, 2.2), (0.6, 2.0), (0.5, 1.15))
@@ -82,7 +82,7 @@ def case_motion(case):
 
 def run_one(case) -> dict:
     """One case: the rigid body once, each SDOF implementation as is, perturbed and tightened."""
-    from opsrock.sensitivity import amplitude_sensitivity, step_convergence
+    from opsrock.analysis.sensitivity import amplitude_sensitivity, step_convergence
     from opsrock.solvers import simulate
 
     seed, (w, h), level = case
@@ -187,7 +187,7 @@ def summarise(rows: list[dict]) -> dict:
 def rigid_sensitivity(todo: list) -> list[tuple[float, bool]]:
     """The rigid body's own amplitude sensitivity (``housner_fast``, the same :data:`EPS`) per case:
     ``(spread, sensitive)``. Context for the SDOF model's: is a case ill-conditioned in the physics too?"""
-    from opsrock.sensitivity import amplitude_sensitivity
+    from opsrock.analysis.sensitivity import amplitude_sensitivity
 
     out = []
     for case in todo:
@@ -270,7 +270,7 @@ def _plot_divergence(grid, curves, rates, eps, path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from opsrock._io import atomic_write
+    from opsrock._files import atomic_write
 
     fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
     for solver, label in (("sdof", "SDOF model (sdof)"), ("housner", "rigid body (housner)")):
@@ -292,7 +292,7 @@ def _plot(rows: list[dict], path: Path) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from opsrock._io import atomic_write
+    from opsrock._files import atomic_write
 
     ill = np.array([any(r[f"{s}_sensitive"] or not r[f"{s}_converged"] for s in IMPLEMENTATIONS) for r in rows])
     cap = 1.6

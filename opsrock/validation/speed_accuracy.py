@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from opsrock.scene import Case
+from opsrock.campaign.scene import Case
 from opsrock.solvers import simulate
 from opsrock.validation.sdof_agreement import paper_cases
 
@@ -40,13 +40,13 @@ def configurations(quick: bool = False) -> list[tuple[str, str, str, dict[str, A
     for integ in integrators:
         for dt in dts:
             cfg.append((f"opensees {integ} dt={dt:g}", "sdof_model", "opensees",
-                        {"integrator": integ, "dt": dt, "adaptive": False}))
+                        {"integrator": integ, "step": dt, "adaptive": False}))
     for dt in ((5e-4, 2e-4, 1e-4, 5e-5) if not quick else (1e-4,)):
         cfg.append((f"opensees central_difference dt={dt:g}", "sdof_model", "opensees",
-                    {"integrator": "central_difference", "dt": dt, "adaptive": False}))
+                    {"integrator": "central_difference", "step": dt, "adaptive": False}))
     for dt in ((8e-3, 4e-3, 2e-3, 1e-3) if not quick else (2e-3,)):
         cfg.append((f"opensees newmark adaptive dtmax={dt:g}", "sdof_model", "opensees",
-                    {"integrator": "newmark", "dt": dt, "adaptive": True}))
+                    {"integrator": "newmark", "step": dt, "adaptive": True}))
     rtols = (1e-3, 1e-4, 1e-5, 1e-6, 1e-8, 1e-10) if not quick else (1e-4, 1e-8)
     for rtol in rtols:
         cfg.append((f"sdof rtol={rtol:g}", "sdof_model", "sdof", {"rtol": rtol, "atol": rtol * 1e-3}))

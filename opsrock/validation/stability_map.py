@@ -37,12 +37,14 @@ from typing import Any
 
 import numpy as np
 
-from opsrock._checks import positive_finite
 from opsrock.block import Block
+from opsrock.data import blocks_file
+from opsrock.errors import InputError
 from opsrock.excitations import OneSinePulse
+from opsrock.limits import positive_finite
 from opsrock.result import RockingResult
-from opsrock.solvers import simulate
 from opsrock.solvers import opensees as osr
+from opsrock.solvers import simulate
 
 #: Cell classes, from best to worst for a user (a failed run is honest; a wrong one is not).
 CLASSES: tuple[str, ...] = ("accurate", "converged_but_wrong", "failed", "unstable")
@@ -104,9 +106,9 @@ ONSET_STEPS: int = 100
 def map_blocks(names: tuple[str, ...] | None = None) -> tuple[Block, ...]:
     """The four project blocks (models/blocks.toml; the :data:`BLOCKS` sizes if it is missing)."""
     blocks: tuple[Block, ...]
-    path = Path(__file__).resolve().parents[2] / "models" / "blocks.toml"
+    path = blocks_file()
     try:
-        from opsrock.scene import load_blocks
+        from opsrock.campaign.scene import load_blocks
 
         blocks = tuple(spec.block for spec in load_blocks(path))
     except (OSError, ImportError):
@@ -133,15 +135,15 @@ def method_settings(method: str, dt: float) -> dict[str, Any]:
         Time step (s); the largest step for ``"adaptive"``.
     """
     positive_finite("dt", dt)
-    # dt_min: the default's, unless that exceeds dt (the settings refuse dt_min > dt)
-    dt_min = min(osr.OpenSeesSettings().dt_min, dt)
+    # min_step: the default's, unless that exceeds dt (the settings refuse min_step > step)
+    min_step = min(osr.OpenSeesSettings().min_step, dt)
     # uplift_check=False: the map probes the numerics, so pulses below Eq. 4's threshold are
     # integrated too (that is where explicit instability shows)
     if method == "adaptive":
-        return {"adaptive": True, "dt": dt, "dt_min": dt_min, "uplift_check": False}
+        return {"adaptive": True, "step": dt, "min_step": min_step, "uplift_check": False}
     if method not in osr.INTEGRATORS:
-        raise ValueError(f"method must be one of {', '.join(METHODS)}; got {method!r}")
-    s: dict[str, Any] = {"integrator": method, "dt": dt, "adaptive": False, "dt_min": dt_min, "uplift_check": False}
+        raise InputError(f"method must be one of {', '.join(METHODS)}; got {method!r}")
+    s: dict[str, Any] = {"integrator": method, "step": dt, "adaptive": False, "min_step": min_step, "uplift_check": False}
     if method == "central_difference":
         s["explicit_step_check"] = False
         s["stiff_branch_check"] = False  # the map measures the raw scheme
@@ -213,7 +215,7 @@ def classify(
 ) -> Cell:
     """Classify one cell from its runs and the matching references (see the module docstring)."""
     if len(results) != len(references):
-        raise ValueError(f"results and references must match one to one, got {len(results)} and {len(references)}")
+        raise InputError(f"results and references must match one to one, got {len(results)} and {len(references)}")
     errors = [peak_error(r, ref) for r, ref in zip(results, references)]
     finite = [e for e in errors if math.isfinite(e)]
     max_error = max(finite) if finite else math.nan
@@ -276,9 +278,9 @@ def measured_critical_step(block: Block, rtol: float = BISECTION_RTOL) -> dict[s
     pulse = OneSinePulse.from_ratios(block, *CRITICAL_STEP_PULSE)
 
     def run(dt: float) -> RockingResult:
-        return osr.solve(block, pulse, integrator="central_difference", dt=dt, adaptive=False,
+        return osr.solve(block, pulse, integrator="central_difference", step=dt, adaptive=False,
                          explicit_step_check=False, stiff_branch_check=False, uplift_check=False,
-                         dt_min=min(osr.OpenSeesSettings().dt_min, dt))
+                         min_step=min(osr.OpenSeesSettings().min_step, dt))
 
     def passes(dt: float) -> bool:
         r = run(dt)
@@ -327,8 +329,8 @@ def checked_refusals(block: Block, dts: tuple[float, ...]) -> list[bool]:
     out = []
     for dt in (d for d in dts if d >= dt_cr):
         for _, pulse in map_pulses(block):
-            r = osr.solve(block, pulse, integrator="central_difference", dt=dt, adaptive=False,
-                          dt_min=min(osr.OpenSeesSettings().dt_min, dt))
+            r = osr.solve(block, pulse, integrator="central_difference", step=dt, adaptive=False,
+                          min_step=min(osr.OpenSeesSettings().min_step, dt))
             out.append(is_unstable(r) and r.verdict == "failed")
     return out
 
@@ -406,7 +408,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
             for dt in dts:
                 cells.append(run_cell(b, method, dt, refs))
         label = "default/adaptive" if defaults.adaptive else "default"
-        default_cells[b.name] = run_cell(b, label, defaults.dt, refs, overrides={})
+        default_cells[b.name] = run_cell(b, label, defaults.step, refs, overrides={})
         refusals.extend(checked_refusals(b, dts))
         crit = measured_critical_step(b)
         dt_cr[b.name] = crit["dt_formula"]
@@ -433,7 +435,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     counts = {k: sum(1 for c in cells if c.cls == k) for k in CLASSES}
     return {
         "n_cells": len(cells), **{f"n_{k}": v for k, v in counts.items()},
-        "defaults": f"{defaults.integrator} dt={defaults.dt:g} adaptive={defaults.adaptive}",
+        "defaults": f"{defaults.integrator} dt={defaults.step:g} adaptive={defaults.adaptive}",
         "defaults_accurate_all_blocks": defaults_ok,
         "defaults_max_error": max(c.max_error for c in default_cells.values()),
         "dt_cr_usable_ratio_min": min(usable), "dt_cr_usable_ratio_max": max(usable),

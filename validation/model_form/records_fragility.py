@@ -38,7 +38,7 @@ def main(argv: list[str]) -> int:
         return 2
     from pathlib import Path
 
-    from opsrock._io import atomic_csv
+    from opsrock._files import atomic_csv
 
     out = compare(pd.read_csv(argv[0]), pd.read_csv(argv[1]))
     atomic_csv(Path(argv[2]), out)

@@ -1,0 +1,126 @@
+"""Files opsrock writes: output paths checked before any work, and atomic writes.
+
+* :func:`output_file`, :func:`output_dir`: checks of output paths given by the user, made before
+  any work starts. Each raises ``ValueError`` with one line naming the argument and the path, so a
+  bad path is refused up front instead of failing after the computation, half-written.
+  Writability is probed by creating and removing a file, which is right for every user, root
+  included (``os.access`` says yes to root on a read-only folder it could not write to on a
+  read-only mount, and the reverse).
+* :func:`atomic_write`, :func:`atomic_text`, :func:`atomic_csv`: every output goes through a
+  temporary file in the same folder and a rename, so an interrupted run never leaves a
+  half-written file. Data files keep full precision.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+from typing import Any, Callable
+
+import pandas as pd
+
+from opsrock.errors import InputError
+
+
+def _probe_writable(name: str, shown: str, folder: Path) -> None:
+    try:
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".opsrock-write-probe-")
+    except OSError as exc:
+        raise InputError(f"{name} {shown!r}: cannot write in folder {str(folder)!r} ({exc.strerror})") from None
+    os.close(fd)
+    os.unlink(probe)
+
+
+def output_file(name: str, path: str | os.PathLike, suffix: str | None = None) -> Path:
+    """Check that ``path`` can be written as a file, in an existing folder; return it.
+
+    Parameters
+    ----------
+    name : str
+        Argument name for the message (``"--plot"``).
+    path : str or path-like
+        The file to write.
+    suffix : str, optional
+        Required suffix, case-insensitive (``".png"``).
+    """
+    p = Path(path)
+    shown = str(path)
+    if suffix is not None and p.suffix.lower() != suffix:
+        raise InputError(f"{name} must name a {suffix} file, got {shown!r}")
+    if p.is_dir():
+        raise InputError(f"{name} {shown!r} is a folder; give a file name")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not parent.is_dir():
+        raise InputError(f"{name} {shown!r}: folder {str(parent)!r} does not exist")
+    _probe_writable(name, shown, parent)
+    return p
+
+
+def output_dir(name: str, path: str | os.PathLike) -> Path:
+    """Check that ``path`` is, or can be created as, a writable folder; return it.
+
+    Missing folders are not created here (the caller creates them once the inputs are known
+    to be good); the nearest existing ancestor must be a writable folder.
+    """
+    p = Path(path)
+    shown = str(path)
+    if p.exists() and not p.is_dir():
+        raise InputError(f"{name} {shown!r} is a file, not a folder")
+    ancestor = p
+    while not ancestor.exists():
+        if ancestor.parent == ancestor:
+            break
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise InputError(f"{name} {shown!r}: {str(ancestor)!r} is a file, not a folder")
+    _probe_writable(name, shown, ancestor)
+    return p
+
+
+def atomic_write(path: Path, write: Callable[[Any], None], *, binary: bool = False, durable: bool = True) -> None:
+    """Write ``path`` by ``write(file_handle)`` through a temporary file and an atomic rename.
+
+    Parameters
+    ----------
+    path : Path
+        Target file.
+    write : callable
+        Writes the content to the open handle.
+    binary : bool, optional
+        Open in binary mode.
+    durable : bool, optional
+        ``fsync`` the file and the folder, so the rename survives a power cut (the campaign's
+        store needs it; reports do not).
+    """
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    try:
+        with (open(tmp, "wb") if binary else open(tmp, "w", newline="", encoding="utf-8")) as fh:
+            write(fh)
+            if durable:
+                fh.flush()
+                os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    if durable:
+        dir_fd = os.open(path.parent, os.O_RDONLY)
+        try:
+            os.fsync(dir_fd)
+        finally:
+            os.close(dir_fd)
+
+
+def atomic_text(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically."""
+    atomic_write(Path(path), lambda fh: fh.write(text), durable=False)
+
+
+def atomic_csv(path: Path, df: pd.DataFrame) -> None:
+    """Write ``df`` (no index) to ``path`` atomically, at full precision (``repr`` of every float)."""
+    atomic_write(Path(path), lambda fh: df.to_csv(fh, index=False), durable=False)
+
+
+__all__ = ["atomic_csv", "atomic_text", "atomic_write", "output_dir", "output_file"]

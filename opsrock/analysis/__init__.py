@@ -1,0 +1,9 @@
+"""Many solves of one block, with a question behind them.
+
+* :mod:`~opsrock.analysis.threshold`: every amplitude interval in which a block overturns under a
+  pulse (the minimum overturning acceleration and the safe windows above it), and whole charts;
+* :mod:`~opsrock.analysis.sensitivity`: how far the answer moves when the floor motion or the
+  numerics move a little (the test for hypersensitive, ill-conditioned cases);
+* :mod:`~opsrock.analysis.robustness`: is an IM ranking a property of the IMs or of the blocks?
+  The paper's pulse study repeated over many seeded block sets.
+"""

@@ -1,0 +1,449 @@
+"""The handlers of the ``opsrock`` commands: each turns its parsed options into plain keyword
+arguments of the library function that does the work, and prints what it returns.
+
+Bad input raises :class:`~opsrock.errors.OpsrockError` (here :class:`~opsrock.errors.UsageError`
+for options that do not go together, elsewhere the library's own classes); :func:`opsrock.cli.main`
+turns every one into a single line on stderr and exit status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+
+from opsrock.errors import UsageError
+
+#: Exit status when the work ran but did not pass (a failed solve, gate or validation case).
+EXIT_FAILED = 1
+
+
+# --- simulate and threshold: one block, one pulse or record ----------------------------------------
+def check_model_args(args: argparse.Namespace) -> None:
+    """Solver, pulse and model options that do not go together: UsageError naming them."""
+    from opsrock.constants import EQUATIONS
+    from opsrock.excitations import PULSE_SHAPES
+    from opsrock.model import DAMPER_LAWS, LEVERS
+    from opsrock.solvers import SOLVERS
+
+    if args.solver not in SOLVERS:
+        raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
+    if args.pulse not in PULSE_SHAPES:
+        raise UsageError(f"--pulse must be one of {', '.join(PULSE_SHAPES)}; got {args.pulse!r}")
+    if args.duration is not None and args.pulse != "rectangular":
+        raise UsageError(f"--duration applies to --pulse rectangular, not --pulse {args.pulse} (use --freq or --freq-ratio)")
+    for option, value, allowed in (("--lever", args.lever, LEVERS), ("--damper", args.damper, DAMPER_LAWS),
+                                   ("--equations", args.equations, EQUATIONS)):
+        if value is not None and value not in allowed:
+            raise UsageError(f"{option} must be one of {', '.join(allowed)}; got {value!r}")
+    sdof_like = args.solver in ("opensees", "sdof")
+    if not sdof_like and (args.delta is not None or args.lever is not None or args.damper is not None):
+        raise UsageError(f"--delta, --lever and --damper apply to the SDOF models (opensees, sdof), not --solver {args.solver}")
+    if sdof_like and args.equations is not None:
+        raise UsageError(f"--equations applies to the rigid-body solvers (housner, housner_fast), not --solver {args.solver}")
+    if args.step is not None and args.solver != "opensees":
+        raise UsageError(f"--step applies to --solver opensees only, not --solver {args.solver}")
+
+
+def make_block(args: argparse.Namespace):
+    """The block of --width/--height/--mass/--restitution."""
+    from opsrock.block import Block
+    from opsrock.errors import InputError
+
+    if args.restitution is not None and args.restitution > 1.0:
+        raise InputError(f"--restitution must lie in (0, 1], got {args.restitution!r}")
+    return Block(width=args.width, height=args.height, mass=args.mass, restitution=args.restitution)
+
+
+def pulse_omega(args: argparse.Namespace, block) -> float:
+    """omega_p (rad/s) of --freq, --freq-ratio or --duration (rectangular: pi / t1)."""
+    from opsrock.limits import check, scaled_input
+
+    if args.freq_ratio is not None:
+        return scaled_input("--freq-ratio", args.freq_ratio, "omega_p", block.p)
+    if args.duration is not None:
+        return scaled_input("--duration", math.pi / check("duration", args.duration), "omega_p", 1.0)
+    return scaled_input("--freq", args.freq, "omega_p", 2.0 * math.pi)
+
+
+def model_settings(args: argparse.Namespace) -> dict:
+    """Solver settings of --delta, --lever, --damper, --step and --equations."""
+    from opsrock.model import SDOFModel
+
+    settings = {}
+    if args.equations is not None:
+        settings["equations"] = args.equations
+    if args.delta is not None:
+        SDOFModel(delta=args.delta)  # checks the value, naming the argument
+        settings["delta"] = args.delta
+    if args.lever is not None:
+        settings["lever"] = args.lever
+    if args.damper is not None:
+        settings["damper"] = args.damper
+    if args.step is not None:
+        settings["step"] = args.step
+    return settings
+
+
+def _need_frequency(args: argparse.Namespace) -> None:
+    if args.freq is None and args.freq_ratio is None and args.duration is None:
+        raise UsageError("give the pulse frequency: --freq (Hz) or --freq-ratio"
+                         + (" or --duration (s)" if args.pulse == "rectangular" else ""))
+
+
+def _check_simulate_args(args: argparse.Namespace) -> None:
+    check_model_args(args)
+    if args.plot is not None:
+        from opsrock._files import output_file
+
+        output_file("--plot", args.plot, ".png")
+    if args.record is None:
+        extra = [n for n in ("units", "dt", "building_period", "storeys") if getattr(args, n) is not None]
+        if extra or args.scale is not None:
+            name = "--" + (extra[0] if extra else "scale").replace("_", "-")
+            raise UsageError(f"{name} applies to --record only (the OpenSees time step is --step)")
+        if args.pfa is None and args.pfa_ratio is None:
+            raise UsageError("give the pulse amplitude: --pfa (g) or --pfa-ratio")
+        _need_frequency(args)
+    else:
+        if args.freq is not None or args.freq_ratio is not None or args.duration is not None:
+            raise UsageError("--freq, --freq-ratio and --duration apply to pulses, not to --record")
+        if args.pulse != "one-sine":
+            raise UsageError("--pulse applies to pulses, not to --record")
+        if (args.building_period is None) != (args.storeys is None):
+            raise UsageError("--building-period and --storeys go together (the building filter)")
+
+
+def _pulse(args: argparse.Namespace, block):
+    from opsrock.constants import G
+    from opsrock.excitations import pulse_class
+    from opsrock.limits import scaled_input
+
+    if args.pfa_ratio is not None:
+        pfa = scaled_input("--pfa-ratio", args.pfa_ratio, "pfa", block.uplift_acceleration)
+    else:
+        pfa = scaled_input("--pfa", args.pfa, "pfa", G)
+    return pulse_class(args.pulse)(pfa=pfa, omega_p=pulse_omega(args, block))
+
+
+def _record(args: argparse.Namespace, block):
+    """The record of ``--record``, filtered and scaled as asked."""
+    from opsrock.constants import G
+    from opsrock.errors import OpsrockError
+    from opsrock.excitations import library
+    from opsrock.excitations.records import check_sampling
+
+    try:
+        rec = library.record(args.record, units=args.units, dt=args.dt)
+    except OpsrockError as exc:
+        raise UsageError(f"--record: {exc}") from None
+    if args.building_period is not None:
+        from opsrock.excitations.building import ShearBuilding, floor_motion
+
+        floor = int(args.floor) if str(args.floor).isdigit() else args.floor
+        try:
+            building = ShearBuilding("building", args.building_period, args.storeys, damping=args.damping)
+            rec = floor_motion(rec, building, floor)
+        except OpsrockError as exc:
+            raise UsageError(f"building filter: {exc}") from None
+    try:
+        check_sampling(rec, block)
+    except OpsrockError as exc:
+        raise UsageError(f"--record: {exc}") from None
+    if args.pfa is not None:
+        factor, name, value = args.pfa * G / rec.pfa, "--pfa", args.pfa
+    elif args.pfa_ratio is not None:
+        factor, name, value = args.pfa_ratio * block.uplift_acceleration / rec.pfa, "--pfa-ratio", args.pfa_ratio
+    else:
+        factor, name, value = args.scale or 1.0, "--scale", args.scale or 1.0
+    try:
+        return rec.scaled(factor), factor
+    except OpsrockError as exc:
+        raise UsageError(f"{name} = {value!r} needs a scale factor of {factor:.4g} on record {rec.name}: {exc}") from None
+
+
+def simulate(args: argparse.Namespace) -> int:
+    """``opsrock simulate``: one block under one pulse or record, through :func:`opsrock.solvers.simulate`."""
+    from opsrock.solvers import simulate as solve
+
+    _check_simulate_args(args)
+    block = make_block(args)
+    excitation, scale = (_pulse(args, block), None) if args.record is None else _record(args, block)
+    # the solvers check their settings before any work and raise only for bad settings;
+    # a solver failure is a failed result, never an exception
+    result = solve(block, excitation, solver=args.solver, **model_settings(args))
+    out = _summary(result, block, excitation, scale)
+    if args.plot:
+        from opsrock.plots.response import plot_response
+
+        plot_response(result, block, excitation, args.plot)
+    print(json.dumps(out, default=str) if args.json else _text(result, block, excitation, out))
+    return 0 if result.ok else EXIT_FAILED
+
+
+def _summary(result, block, excitation, scale) -> dict:
+    summary = result.summary()
+    out = {k: summary[k] for k in ("theta_max", "theta_max_over_alpha", "overturned", "rocked", "verdict",
+                                   "status", "reason", "solver")}
+    out.update(alpha=block.alpha, R=block.R, p=block.p, e=block.e, e_R=block.e_R, pfa=excitation.pfa,
+               pfa_ratio=excitation.pfa / block.uplift_acceleration)
+    if scale is None:
+        out.update(pulse=excitation.shape, omega_p=excitation.omega_p, freq_ratio=excitation.freq_ratio(block),
+                   T_p=excitation.T_p, duration=excitation.duration)
+    else:
+        out.update(record=excitation.name, floor=excitation.info.floor, scale=scale, dt=excitation.dt,
+                   duration=excitation.duration)
+    out.update({k: summary[k] for k in ("n_steps", "n_impacts", "wall_time_s", "settings")})
+    return out
+
+
+def _text(result, block, excitation, out) -> str:
+    head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m: alpha = {block.alpha:.4f} rad, "
+            f"R = {block.R:.4f} m, p = {block.p:.4f} rad/s, e = {block.e:.4f}\n")
+    if "record" in out:
+        motion = (f"record {out['record']} ({out['floor']}) x {out['scale']:.4g}: PFA = {excitation.pfa:.4g} m/s² "
+                  f"({out['pfa_ratio']:.3g} g tan alpha), dt = {excitation.dt:g} s, {excitation.duration:g} s\n")
+    else:
+        motion = (f"{excitation.shape} pulse PFA = {excitation.pfa:.4g} m/s² ({out['pfa_ratio']:.3g} g tan alpha), "
+                  f"omega_p = {excitation.omega_p:.4g} rad/s ({out['freq_ratio']:.3g} p), "
+                  f"duration {excitation.duration:.4g} s\n")
+    return (head + motion + f"{result.solver}: {result.verdict}; theta_max = {result.theta_max:.5g} rad "
+            f"= {result.theta_max_over_alpha:.4g} alpha; {result.n_impacts} impacts, {result.n_steps} steps in "
+            f"{result.wall_time_s:.3f} s" + (f"\nfailed: {result.reason}" if not result.ok else ""))
+
+
+def threshold(args: argparse.Namespace) -> int:
+    """``opsrock threshold``: :func:`opsrock.analysis.threshold.overturning_intervals` of one block and pulse."""
+    from opsrock.analysis.threshold import overturning_intervals, pfa_g
+
+    check_model_args(args)
+    _need_frequency(args)
+    if args.n_scan < 3:
+        raise UsageError(f"--n-scan must be an integer >= 3, got {args.n_scan!r}")
+    block = make_block(args)
+    settings = model_settings(args)
+    res = overturning_intervals(block, pulse_omega(args, block) / block.p, shape=args.pulse, solver=args.solver,
+                                equations=settings.pop("equations", "exact"), pfa_ratio_max=args.pfa_ratio_max,
+                                n_scan=args.n_scan, rtol=args.rtol, settings=settings)
+    if args.json:
+        out = res.as_dict()
+        out.update(block={"width": block.width, "height": block.height, "alpha": block.alpha, "p": block.p, "e": block.e},
+                   intervals_g=[[pfa_g(block, a), "inf" if math.isinf(b) else pfa_g(block, b)] for a, b in res.intervals])
+        print(json.dumps(out))
+    else:
+        print(_threshold_text(res, block))
+    return 0
+
+
+def _threshold_text(res, block) -> str:
+    from opsrock.analysis.threshold import pfa_g
+
+    head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m: alpha = {block.alpha:.4f} rad, p = {block.p:.4f} rad/s, "
+            f"e = {block.e:.4f}\n{res.shape} pulse at omega_p/p = {res.freq_ratio:.6g}, {res.solver} ({res.equations}); "
+            f"scanned PFA/(g tan alpha) {res.pfa_ratio_min:.4g}..{res.pfa_ratio_max:.4g} "
+            f"(spacing x{res.scan_ratio:.5f}), boundaries to {res.rtol:g}\n")
+    if not res.intervals:
+        lines = ["no overturning in the scanned range"]
+    else:
+        lines = ["overturns for PFA/(g tan alpha) in      PFA (g)               PFA/(g alpha)"]
+        for a, b in res.intervals:
+            hi = "inf" if math.isinf(b) else f"{b:.6g}"
+            hig = "..." if math.isinf(b) else f"{pfa_g(block, b):.6g}"
+            hia = "..." if math.isinf(b) else f"{res.to_g_alpha(b):.6g}"
+            lines.append(f"  [{a:.6g}, {hi}]".ljust(40) + f"[{pfa_g(block, a):.6g}, {hig}]".ljust(22)
+                         + f"[{res.to_g_alpha(a):.6g}, {hia}]")
+    if res.failed:
+        lines.append(f"{len(res.failed)} amplitudes failed, e.g. {res.failed[0][0]:.6g}: {res.failed[0][1]}")
+    return head + "\n".join(lines)
+
+
+# --- records --------------------------------------------------------------------------------------
+def records(args: argparse.Namespace) -> int:
+    """``opsrock records list|show|plot``: the record library (:mod:`opsrock.excitations.library`)."""
+    from opsrock.errors import OpsrockError
+
+    try:
+        return {"list": _records_list, "show": _records_show, "plot": _records_plot}[args.records_command](args)
+    except UsageError:
+        raise
+    except OpsrockError as exc:
+        raise UsageError(f"records {args.records_command}: {exc}") from None
+
+
+def _entry_json(e) -> dict:
+    i = e.info
+    return {"name": e.name, "reference": e.reference, "event": i.event, "year": i.year, "magnitude": i.magnitude,
+            "station": i.station, "component": i.component, "distance_km": i.distance_km, "vs30": i.vs30,
+            "dt": e.dt, "npts": e.npts, "duration": e.duration, "pga_g": e.pga_g}
+
+
+def _records_list(args) -> int:
+    from opsrock.errors import UnknownRecordError
+    from opsrock.excitations import library
+
+    if args.set not in library.SETS:
+        raise UnknownRecordError(f"unknown record set {args.set!r}; the sets are {', '.join(library.SETS)}")
+    entries = library.entries(args.set)
+    if args.json:
+        for e in entries:
+            print(json.dumps(_entry_json(e)))
+        return 0
+    print(f"{'name':<22} {'event':<24} {'year':>4} {'M':>4} {'station':<28} {'dt s':>6} {'dur s':>6} {'PGA g':>6}")
+    for e in entries:
+        i = e.info
+        print(f"{e.name:<22} {i.event[:24]:<24} {i.year:>4} {i.magnitude:>4.1f} {i.station[:28]:<28} "
+              f"{e.dt:>6g} {e.duration:>6.1f} {e.pga_g:>6.3f}")
+    print(f"{len(entries)} records in {library.LIBRARY}:{args.set} (name them as {library.LIBRARY}:{args.set}/NAME)")
+    return 0
+
+
+def _records_show(args) -> int:
+    from opsrock.excitations import library
+    from opsrock.intensity.records import motion_measures
+
+    e = library.entry(args.name)
+    m = motion_measures(library.load(args.name))
+    out = {**_entry_json(e), "pfa": m.pfa, "pfv": m.pfv, "pfd": m.pfd, "T_m": m.mean_period,
+           "T_pred": m.predominant_period}
+    if args.json:
+        print(json.dumps(out))
+    else:
+        for k, v in out.items():
+            print(f"{k:>12}: {v}")
+        print("       units: pfa m/s², pfv m/s, pfd m, T_m and T_pred s (see opsrock.intensity.records)")
+    return 0
+
+
+def _records_plot(args) -> int:
+    from opsrock._files import output_file
+    from opsrock.errors import OpsrockError
+    from opsrock.excitations import library
+    from opsrock.plots.records import plot_record
+
+    out = output_file("--out", args.out, ".png")
+    rec = library.record(args.name, units=args.units, dt=args.dt)
+    floor = None
+    if (args.building_period is None) != (args.storeys is None):
+        raise UsageError("--building-period and --storeys go together")
+    if args.building_period is not None:
+        from opsrock.excitations.building import ShearBuilding, floor_motion
+
+        try:
+            floor = floor_motion(rec, ShearBuilding("building", args.building_period, args.storeys))
+        except OpsrockError as exc:
+            raise UsageError(f"building filter: {exc}") from None
+    plot_record(rec, out, floor=floor)
+    print(f"wrote {out}")
+    return 0
+
+
+# --- campaigns -------------------------------------------------------------------------------------
+def run(args: argparse.Namespace) -> int:
+    """``opsrock run``: :func:`opsrock.campaign.run_campaign` on a scene file or a shipped scene."""
+    from opsrock._files import output_dir
+    from opsrock.campaign import load_scene, run_campaign
+    from opsrock.campaign.executors import DaskExecutor
+
+    scene = load_scene(args.scene)
+    if args.solver is not None:
+        scene = scene.with_solver(args.solver)
+    output_dir("--out", args.out)
+    dask = args.scheduler is not None or args.dask_local is not None
+    if dask and args.workers is not None:
+        raise UsageError("--workers sets local processes; with Dask use --dask-local N or the cluster's workers")
+    for option, value in (("--workers", args.workers), ("--batch", args.batch)):
+        if value is not None and value < 1:
+            raise UsageError(f"{option} must be >= 1, got {value}")
+    if args.case_timeout is not None and not (math.isfinite(args.case_timeout) and args.case_timeout > 0):
+        raise UsageError(f"--case-timeout must be a positive number of seconds, got {args.case_timeout:g}")
+    try:
+        executor = DaskExecutor(args.scheduler, local_workers=args.dask_local) if dask else None
+    except OSError as exc:  # no scheduler at that address
+        raise UsageError(" ".join(str(exc).split())) from None
+    try:
+        summary = run_campaign(scene, args.out, workers=args.workers, executor=executor, force=args.force,
+                               progress=not args.no_progress, batch=args.batch, case_timeout=args.case_timeout)
+    except KeyboardInterrupt:
+        print(f"opsrock run: interrupted; finished cases are stored in {args.out}: "
+              "run the same command again to compute only the missing ones", file=sys.stderr)
+        return 130
+    finally:
+        if executor is not None:
+            executor.close()
+    print(f"{summary.n_cases} cases ({summary.n_computed} computed, {summary.n_reused} reused) "
+          f"with {summary.solver} in {summary.wall_time_s:.1f} s -> {summary.cases_csv}")
+    if summary.n_failed:
+        print(f"opsrock run: {summary.n_failed} case(s) failed (status=failed, reason in {summary.cases_csv})",
+              file=sys.stderr)
+    return 0
+
+
+def fragility(args: argparse.Namespace) -> int:
+    """``opsrock fragility``: :func:`opsrock.report.records.write_record_report` on a record campaign."""
+    from opsrock.report.records import read_cases, write_record_report
+
+    for option, value in (("--n-boot", args.n_boot), ("--robustness-sets", args.robustness_sets)):
+        if value < 0:
+            raise UsageError(f"{option} must be >= 0, got {value!r}")
+    if args.workers < 1:
+        raise UsageError(f"--workers must be >= 1, got {args.workers!r}")
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out: {out} exists and is not a folder")
+    cases = read_cases(args.cases)
+    res = write_record_report(cases, out, n_boot=args.n_boot, seed=args.seed, outcome=args.outcome,
+                              robustness_sets=args.robustness_sets, workers=args.workers, source=str(args.cases))
+    print(f"opsrock fragility: {len(res['study'].cases)} cases in {res['timings']['total_s']:.1f} s: see {out}/report.md")
+    return 0
+
+
+def reproduce(args: argparse.Namespace) -> int:
+    """``opsrock reproduce``: :func:`opsrock.report.reproduce.reproduce`, the paper's workflow."""
+    from opsrock._files import output_dir
+    from opsrock.report.reproduce import reproduce as run_pipeline
+    from opsrock.solvers import SOLVERS
+
+    if args.solver not in SOLVERS:
+        raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
+    if args.robustness_sets < 0:
+        raise UsageError(f"--robustness-sets must be >= 0, got {args.robustness_sets}")
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    output_dir("--out", args.out)
+    result = run_pipeline(args.out, solver=args.solver, workers=args.workers, ignore_gate=args.ignore_gate,
+                          force=args.force, progress=not args.no_progress, robustness_sets=args.robustness_sets)
+    if result["stopped"]:
+        print(result["gate"].text().splitlines()[0] + f" (see {Path(args.out) / 'validation_gate.md'})", file=sys.stderr)
+        print(result["gate"].text(), file=sys.stderr)
+        return EXIT_FAILED
+    t = result["timings"]
+    print(f"reproduced into {args.out}/ in {t['total_s']:.1f} s (gate {t['validation_gate_s']:.1f} s, "
+          f"campaign {t['campaign_s']:.1f} s, spectrum {t.get('spectrum_s', 0):.1f} s, "
+          f"fragility {t['fragility_s']:.1f} s, robustness {t.get('robustness_s', 0):.1f} s, "
+          f"figures {t['figures_s']:.1f} s): see {args.out}/report.md")
+    return 0
+
+
+def validate(args: argparse.Namespace) -> int:
+    """``opsrock validate``: :func:`opsrock.validation.run_cases`, a summary line each."""
+    from opsrock.validation import CASES, run_cases
+
+    names = args.case or list(CASES)
+    failed = run_cases(names, args.out, quick=args.quick, echo=print)
+    if failed:
+        print(f"opsrock validate: {len(failed)} case(s) failed: {', '.join(failed)}", file=sys.stderr)
+        return EXIT_FAILED
+    return 0
+
+
+def bench(args: argparse.Namespace) -> int:
+    """``opsrock bench``: :func:`opsrock.bench.run_benchmarks`."""
+    from opsrock.bench import run_benchmarks
+
+    run_benchmarks(args.only, quick=args.quick, out=args.out, echo=print)
+    return 0
+
+
+__all__ = ["bench", "fragility", "records", "reproduce", "run", "simulate", "threshold", "validate"]

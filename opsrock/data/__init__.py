@@ -1,0 +1,41 @@
+"""Data shipped inside the package: the project's blocks and scenes.
+
+* ``blocks.toml``: the four blocks of the paper's reproduction (see the file for why each);
+* ``scenes/*.toml``: the scenes, named by their file stem (``paper``, ``spectrum``, ``tiny``,
+  ``fema-far-field-ida``, ``fema-far-field-ida-b3``); a scene names its blocks file relative to
+  itself (``blocks = "../blocks.toml"``).
+
+Found with :mod:`importlib.resources`, so an installed opsrock (a wheel, not a checkout) finds them
+too: ``opsrock run paper --out DIR`` runs a shipped scene named without a path.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+
+def _root() -> Path:
+    # the package is installed as files (setuptools' wheels are never zipped), so the resource is a path
+    return Path(str(resources.files(__name__)))
+
+
+def scene_names() -> tuple[str, ...]:
+    """Names of the shipped scenes (file stems), sorted."""
+    return tuple(sorted(p.stem for p in (_root() / "scenes").glob("*.toml")))
+
+
+def scene_file(name: str) -> Path:
+    """Path of the shipped scene ``name`` (a file stem of :func:`scene_names`); ``KeyError`` if none."""
+    path = _root() / "scenes" / f"{name}.toml"
+    if not path.is_file():
+        raise KeyError(f"no shipped scene {name!r} (shipped: {', '.join(scene_names())})")
+    return path
+
+
+def blocks_file() -> Path:
+    """Path of the shipped blocks file (``blocks.toml``)."""
+    return _root() / "blocks.toml"
+
+
+__all__ = ["blocks_file", "scene_file", "scene_names"]

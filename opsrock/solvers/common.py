@@ -1,0 +1,508 @@
+"""What the solvers share: the one settings merge, the block's energy, the uplift search and the
+recorded history.
+
+Nothing here knows a particular solver; each solver module imports from here and from nowhere
+else among the solvers (as scipy's ``_ivp`` solvers share ``common.py``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time as _time
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from opsrock.block import Block
+from opsrock.constants import OVERTURNING_ANGLE, G
+from opsrock.errors import InputError, InputTypeError, UnknownSettingError
+from opsrock.limits import (
+    bool_fields,
+    int_at_least,
+    one_of,
+    positive_finite,
+    real_number,
+)
+from opsrock.result import ImpactLog, RockingResult, failed_result
+
+#: :func:`scipy.integrate.solve_ivp` methods the scipy solvers accept. Between events both equations are
+#: smooth and non-stiff (rates ``p`` and ``c_D / I_O``), so explicit high-order methods are the efficient
+#: choice; the implicit ones are there for cross-checks and for the SDOF model's stiff branch.
+METHODS: tuple[str, ...] = ("DOP853", "RK45", "RK23", "Radau", "LSODA", "BDF")
+
+#: What happens after the excitation ends when ``end_time`` is None: ``"rest"`` integrates the free
+#: rocking until the block is at rest again (or the cap ``max_free_time`` is reached); ``"peak"`` stops at
+#: the first turning point after the excitation ends with ``|theta| < alpha``: from there on the energy
+#: only falls (impacts dissipate, nothing feeds it), so no later peak can exceed it and the verdict and
+#: ``theta_max`` are already final.
+TAILS: tuple[str, ...] = ("rest", "peak")
+
+
+# --- settings ---------------------------------------------------------------------------------------
+def setting_names(cls: type) -> dict[str, str | None]:
+    """Every setting name ``cls`` accepts, with the nested field that holds it (None: ``cls`` itself).
+
+    A field whose default is itself a dataclass (the SDOF solvers' ``model``) lends its fields:
+    ``delta`` reaches ``settings.model.delta``.
+    """
+    names: dict[str, str | None] = {}
+    defaults = cls()
+    for f in dataclasses.fields(cls):
+        names[f.name] = None
+        value = getattr(defaults, f.name)
+        if dataclasses.is_dataclass(value):
+            for g in dataclasses.fields(value):
+                names.setdefault(g.name, f.name)
+    return names
+
+
+def make_settings(cls: type, settings: Any = None, overrides: dict[str, Any] | None = None) -> Any:
+    """``settings`` (an instance of ``cls``, or its defaults) with ``overrides`` applied: the one
+    place where solver settings are merged.
+
+    Parameters
+    ----------
+    cls : type
+        The solver's frozen settings dataclass.
+    settings : cls or None
+        The starting settings; None: ``cls()``.
+    overrides : dict, optional
+        Field values to replace. A field of a nested dataclass (``delta`` of the SDOF model) may be
+        named directly; a table (dict) given for a dataclass field becomes that dataclass, an array
+        (list) given for a tuple field a tuple, so settings read from TOML merge as given in code.
+
+    Raises
+    ------
+    InputTypeError
+        ``settings`` of another type; :class:`~opsrock.errors.UnknownSettingError` (one) for an unknown
+        name (its ``key``; the message lists the known ones).
+    InputError
+        A value the settings class refuses (its message names the field).
+    """
+    base = cls() if settings is None else settings
+    if not isinstance(base, cls):
+        raise InputTypeError(f"settings must be a {cls.__name__}, got {settings!r}")
+    if not overrides:
+        return base
+    names = setting_names(cls)
+    unknown = sorted(set(overrides) - set(names))
+    if unknown:
+        raise UnknownSettingError(unknown[0], f"unknown setting(s) {', '.join(map(repr, unknown))} of "
+                                              f"{cls.__name__}; known: {', '.join(sorted(names))}")
+    direct: dict[str, Any] = {}
+    nested: dict[str, dict[str, Any]] = {}
+    for key, value in overrides.items():
+        owner = names[key]
+        if owner is not None:
+            nested.setdefault(owner, {})[key] = value
+            continue
+        current = getattr(base, key)
+        if isinstance(value, dict) and dataclasses.is_dataclass(current):
+            value = dataclasses.replace(current, **value)
+        elif isinstance(value, list) and isinstance(current, tuple):
+            value = tuple(value)
+        direct[key] = value
+    for owner, values in nested.items():
+        direct[owner] = dataclasses.replace(direct.get(owner, getattr(base, owner)), **values)
+    return dataclasses.replace(base, **direct)
+
+
+def settings_record(settings: Any) -> dict[str, Any]:
+    """A settings dataclass as plain JSON data, for :attr:`RockingResult.settings` (tuples as lists,
+    ``inf`` as the string ``"inf"``)."""
+
+    def plain(v: Any) -> Any:
+        if isinstance(v, dict):
+            return {k: plain(x) for k, x in v.items()}
+        if isinstance(v, (list, tuple)):
+            return [plain(x) for x in v]
+        if isinstance(v, float) and math.isinf(v):
+            return "inf"
+        return v
+
+    return plain(dataclasses.asdict(settings))
+
+
+@dataclass(frozen=True)
+class ScipySettings:
+    """Numerical settings shared by the two scipy solvers (``housner``, ``sdof``): the settings base.
+
+    Parameters
+    ----------
+    method : str
+        :func:`scipy.integrate.solve_ivp` method, one of :data:`METHODS`. Default ``"DOP853"``.
+    rtol : float
+        Relative tolerance of the integrator (dimensionless), in (0, 1). Default 1e-10: the closed-form
+        tests compare to 1e-7, and these solvers are the references of the others.
+    atol : float
+        Absolute tolerance on ``theta`` (rad); ``atol · p`` is used on ``theta'`` (rad/s).
+    end_time : float or None
+        Time at which to stop (s). None: the excitation's duration plus a free-rocking tail chosen by
+        ``tail``, capped at ``max_free_time``.
+    tail : str
+        Free-rocking tail when ``end_time`` is None, one of :data:`TAILS`. Default ``"rest"``.
+    max_free_time : float
+        Cap on the free-rocking tail after the excitation ends (s). Default 60 s: a slender block of
+        R = 1 m rocks down from alpha to rest in a few seconds; a block still rocking after the cap has
+        its ``theta_max`` final anyway (energy only falls after the excitation).
+    max_step : float
+        Largest integrator step (s). Default ``inf`` (the error control decides; excitation breakpoints
+        are always stepped on exactly).
+    theta0 : float
+        Initial rotation (rad), ``|theta0| < pi/2``. Default 0 (seated).
+    theta_dot0 : float
+        Initial angular velocity (rad/s). Default 0.
+    record : bool
+        Keep the time histories. Default True.
+    max_impacts : int
+        Largest number of impacts before the run is reported as failed. Default 10 000 (free rocking
+        from alpha to rest takes 100-300).
+    scan_step : float or None
+        Grid spacing (s) on which a seated block's uplift is searched (:func:`first_exceedance`). None:
+        ``duration / 2000``.
+    dense_step : float or None
+        If set (s), the history also holds the integrator's dense output (its own interpolant, of the
+        method's order) every ``dense_step`` inside each step, for figures that must not show the long
+        straight chords of large steps. None (default): accepted steps and events only.
+    """
+
+    method: str = "DOP853"
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    end_time: float | None = None
+    tail: str = "rest"
+    max_free_time: float = 60.0
+    max_step: float = math.inf
+    theta0: float = 0.0
+    theta_dot0: float = 0.0
+    record: bool = True
+    max_impacts: int = 10_000
+    scan_step: float | None = None
+    dense_step: float | None = None
+
+    def __post_init__(self) -> None:
+        bool_fields(self)
+        one_of("method", self.method, METHODS)
+        one_of("tail", self.tail, TAILS)
+        if not 0.0 < real_number("rtol", self.rtol) < 1.0:
+            raise InputError(f"rtol must lie in (0, 1), got {self.rtol!r}")
+        positive_finite("atol", self.atol)
+        if self.end_time is not None:
+            positive_finite("end_time", self.end_time)
+        positive_finite("max_free_time", self.max_free_time)
+        if not (real_number("max_step", self.max_step) > 0.0):
+            raise InputError(f"max_step must be positive, got {self.max_step!r}")
+        if not (math.isfinite(real_number("theta0", self.theta0)) and abs(self.theta0) < OVERTURNING_ANGLE):
+            raise InputError(f"theta0 must be finite with |theta0| < pi/2, got {self.theta0!r}")
+        if not math.isfinite(real_number("theta_dot0", self.theta_dot0)):
+            raise InputError(f"theta_dot0 must be finite, got {self.theta_dot0!r}")
+        int_at_least("max_impacts", self.max_impacts, 1)
+        if self.scan_step is not None:
+            positive_finite("scan_step", self.scan_step)
+        if self.dense_step is not None:
+            positive_finite("dense_step", self.dense_step)
+
+
+class StopRun(Exception):
+    """Raised by a step of :class:`EventDrivenSolver` to end the run: with a reason, the run failed."""
+
+    def __init__(self, reason: str = "") -> None:
+        super().__init__(reason)
+        self.reason = reason
+
+
+class EventDrivenSolver:
+    """The skeleton of the scipy solvers, written once (as scipy's ``OdeSolver.step`` around ``_step_impl``).
+
+    The prelude (settings, times, breakpoints, history, impact log), then a loop that alternates two
+    phases until the end time: :meth:`_seated_step` (a block at rest: find when the floor lifts it) and
+    :meth:`_flight_step` (a rocking block: one segment between events), and the result. A subclass gives
+    :attr:`name`, the two phases, :meth:`_start` and :meth:`_finish`; a phase ends the run by raising
+    :class:`StopRun` (with a reason: a failed result that keeps the history computed so far).
+
+    Parameters
+    ----------
+    block : Block
+    excitation : Excitation
+        Floor acceleration (m/s²) as a function of time (s).
+    settings : ScipySettings
+        The solver's settings (already merged, :func:`make_settings`).
+    """
+
+    #: Name written into :attr:`RockingResult.solver`.
+    name: ClassVar[str] = ""
+    #: Whether the history keeps the damper coefficient of each state (the SDOF model).
+    with_damping: ClassVar[bool] = False
+
+    def __init__(self, block: Block, excitation: Any, settings: ScipySettings) -> None:
+        s = self.settings = settings
+        self.settings_dict = settings_record(s)
+        self.t_wall = _time.perf_counter()
+        self.block, self.excitation = block, excitation
+        self.alpha, self.p = block.alpha, block.p
+        self.duration = float(excitation.duration)
+        self.t_final = s.end_time if s.end_time is not None else self.duration + s.max_free_time
+        self.scan = s.scan_step if s.scan_step is not None else max(self.duration, 1e-9) / 2000.0
+        self.atol = np.array([s.atol, s.atol * self.p])
+        self.acc = excitation.acceleration
+        bps = np.asarray(excitation.breakpoints(), dtype=float)
+        end = self.duration if self.duration < self.t_final else self.t_final
+        self.breakpoints = np.unique(np.append(bps[(bps > 0.0) & (bps < self.t_final)], end))
+        self.history = History(s.record, self.with_damping)
+        self.impacts = ImpactLog()
+        self.n_steps = 0
+        self.overturned = False
+        self.t = 0.0
+        self.y = np.array([float(s.theta0), float(s.theta_dot0)])
+        self.theta_max = abs(s.theta0)
+        self.seated = s.theta0 == 0.0 and s.theta_dot0 == 0.0
+        self.rocked = not self.seated
+
+    def run(self) -> RockingResult:
+        """Solve and return the result (``status="failed"`` with the reason where a phase stopped it)."""
+        self._start()
+        try:
+            while self.t < self.t_final:
+                self.each_iteration()
+                if self.seated:
+                    if self.settings.end_time is None and self.t >= self.duration:
+                        break  # a = 0 from here on: the block stays seated
+                    self._seated_step()
+                else:
+                    self._flight_step()
+        except StopRun as stop:
+            if stop.reason:
+                return self._failed(stop.reason)
+        return self._finish()
+
+    def next_breakpoint(self) -> float:
+        """End of the current segment (s): the next excitation breakpoint after ``t``, else the end time."""
+        nxt = self.breakpoints[self.breakpoints > self.t + 1e-15 * max(1.0, self.t)]
+        return float(nxt[0]) if nxt.size else self.t_final
+
+    def count_steps(self, sol: Any) -> None:
+        """Add a segment's accepted steps; a failed integration stops the run with scipy's message."""
+        self.n_steps += max(len(sol.t) - 1, 0)
+        if sol.status == -1:
+            raise StopRun(f"solve_ivp ({self.segment_method}) failed at t = {self.t:.6g} s: {sol.message}")
+
+    def track_peak(self, sol: Any, turning_event: int) -> None:
+        """Raise ``theta_max`` to the segment's largest ``|theta|``, its turning points included."""
+        self.theta_max = max(self.theta_max, float(np.max(np.abs(sol.y[0]))))
+        if sol.t_events[turning_event].size:
+            self.theta_max = max(self.theta_max, float(np.max(np.abs(sol.y_events[turning_event][:, 0]))))
+
+    def log_impact(self, time: float, before: float, after: float) -> None:
+        """Log an impact; past ``max_impacts`` the run stops failed."""
+        if len(self.impacts) + 1 > self.settings.max_impacts:
+            raise StopRun(f"more than max_impacts = {self.settings.max_impacts} impacts by t = {self.t:.6g} s")
+        self.impacts.add(time, before, after)
+
+    def elapsed(self) -> float:
+        """Wall-clock time since the solve started (s)."""
+        return _time.perf_counter() - self.t_wall
+
+    def _failed(self, reason: str) -> RockingResult:
+        t, th, td = self.history.arrays()
+        return failed_result(self.name, self.settings_dict, self.alpha, reason,
+                             time=t if t.size else None, theta=th if th.size else None,
+                             theta_dot=td if td.size else None, n_steps=self.n_steps, wall_time_s=self.elapsed())
+
+    def result(self, **extra: Any) -> RockingResult:
+        """The finished run's :class:`RockingResult` (``extra``: the SDOF model's moment histories)."""
+        t, th, td = self.history.arrays()
+        return RockingResult(
+            solver=self.name, settings=self.settings_dict, alpha=self.alpha, time=t, theta=th, theta_dot=td,
+            theta_max=self.theta_max, overturned=self.overturned, rocked=self.rocked, n_steps=self.n_steps,
+            n_impacts=len(self.impacts), impacts=self.impacts.freeze(), wall_time_s=self.elapsed(), **extra)
+
+    # --- the solver's own parts ----------------------------------------------------------------------
+    #: Method of the segment under way, for the failure message.
+    segment_method: str = ""
+
+    def _start(self) -> None:
+        """Before the loop (the initial state is recorded here)."""
+        raise NotImplementedError
+
+    def each_iteration(self) -> None:
+        """At the top of every pass of the loop (a cap on the number of segments)."""
+
+    def _seated_step(self) -> None:
+        """A seated block: advance to its uplift (or to the end of the excitation)."""
+        raise NotImplementedError
+
+    def _flight_step(self) -> None:
+        """A rocking block: one segment, up to the next event or breakpoint."""
+        raise NotImplementedError
+
+    def _finish(self) -> RockingResult:
+        """The result of a run that ended normally."""
+        return self.result()
+
+
+# --- the block's energy -------------------------------------------------------------------------------
+def potential_energy(block: Block, theta: np.ndarray | float) -> np.ndarray | float:
+    """Potential energy of the rocking block ``m g R [cos(alpha - |theta|) - cos(alpha)]`` (J), zero when
+    seated; ``theta`` in rad."""
+    if isinstance(theta, (float, int)):
+        return block.mass * G * block.R * (math.cos(block.alpha - abs(float(theta))) - math.cos(block.alpha))
+    theta = np.asarray(theta, dtype=float)
+    return block.mass * G * block.R * (np.cos(block.alpha - np.abs(theta)) - math.cos(block.alpha))
+
+
+def rocking_energy(block: Block, theta: np.ndarray | float, theta_dot: np.ndarray | float) -> np.ndarray:
+    """Mechanical energy of the rocking block (J): ``1/2 I_O theta'² + m g R [cos(alpha - |theta|) -
+    cos(alpha)]`` (paper Section 2.1), conserved between impacts when the floor is still.
+
+    Parameters
+    ----------
+    block : Block
+    theta : float or ndarray
+        Rotation (rad).
+    theta_dot : float or ndarray
+        Angular velocity (rad/s).
+    """
+    theta = np.asarray(theta, dtype=float)
+    theta_dot = np.asarray(theta_dot, dtype=float)
+    return 0.5 * block.I_O * theta_dot**2 + potential_energy(block, theta)
+
+
+# --- uplift -----------------------------------------------------------------------------------------
+def first_exceedance(excitation: Any, level: float, t_start: float, t_stop: float, step: float) -> float | None:
+    """First time in ``[t_start, t_stop]`` at which ``|a(t)| > level``, or None.
+
+    Scans ``|a|`` on a grid of spacing ``<= step`` that includes the excitation's
+    breakpoints, refines every grid-local maximum lying within 0.1 % below ``level`` (so a
+    peak that barely exceeds ``level`` between grid points is found), and locates the
+    crossing with Brent's method to ~1e-14 s. The returned time is on the exceeding side.
+
+    Parameters
+    ----------
+    excitation : Excitation
+        Floor motion with ``acceleration(t)`` (m/s²) and ``breakpoints()`` (s).
+    level : float
+        Acceleration level (m/s²), > 0.
+    t_start, t_stop : float
+        Search interval (s).
+    step : float
+        Largest grid spacing (s).
+    """
+    if t_stop <= t_start:
+        return None
+
+    def f(t: float) -> float:
+        return float(abs(excitation.acceleration(t))) - level
+
+    if f(t_start) > 0.0:
+        return t_start
+    n = max(2, int(math.ceil((t_stop - t_start) / step)) + 1)
+    bps = np.asarray(excitation.breakpoints(), dtype=float)
+    grid = np.union1d(np.linspace(t_start, t_stop, n), bps[(bps > t_start) & (bps < t_stop)])
+    vals = np.abs(np.asarray(excitation.acceleration(grid), dtype=float)) - level
+    candidates = _crossing_brackets(f, grid, vals, level)
+    if not candidates:
+        return None
+    lo, hi = min(candidates)
+    tol = 1e-14 * max(1.0, abs(hi))
+    root = brentq(f, lo, hi, xtol=tol, rtol=4 * np.finfo(float).eps)
+    # step onto the exceeding side so the uplift starts with the right sign of theta''
+    for _ in range(60):
+        if f(root) > 0.0:
+            return root
+        root = min(hi, root + tol)
+        tol *= 2.0
+    return hi
+
+
+def _crossing_brackets(f, grid: np.ndarray, vals: np.ndarray, level: float) -> list[tuple[float, float]]:
+    """Brackets ``(t_lo, t_hi)`` with ``f(t_lo) <= 0 < f(t_hi)``: the first grid exceedance, and the first
+    grid-local maximum just below the level that exceeds it between grid points."""
+    candidates: list[tuple[float, float]] = []
+    above = np.flatnonzero(vals > 0.0)
+    if above.size:
+        j = int(above[0])
+        candidates.append((grid[j - 1], grid[j]))
+    last = int(above[0]) if above.size else grid.size - 1
+    inner = np.arange(1, last)
+    if inner.size:
+        peak = (vals[inner] >= vals[inner - 1]) & (vals[inner] >= vals[inner + 1]) & (vals[inner] > -1e-3 * level)
+        for i in inner[peak]:
+            lo, hi = grid[i - 1], grid[i + 1]
+            res = minimize_scalar(lambda t: -f(t), bounds=(lo, hi), method="bounded",
+                                  options={"xatol": 1e-14 * max(1.0, hi)})
+            if -res.fun > 0.0:
+                candidates.append((lo, float(res.x)))
+                break
+    return candidates
+
+
+# --- the recorded history -------------------------------------------------------------------------------
+class History:
+    """The time history a solver records: ``(t, theta, theta_dot)`` and, for the SDOF models, the damper
+    coefficient in force at each state; kept only when ``record`` is True.
+
+    Parameters
+    ----------
+    record : bool
+        Keep the history (False: every ``add`` is dropped, for campaigns that keep peaks only).
+    with_damping : bool
+        Also keep a damper coefficient per state (N m s/rad).
+    """
+
+    def __init__(self, record: bool = True, with_damping: bool = False) -> None:
+        self.record = record
+        self.with_damping = with_damping
+        self._t: list[np.ndarray] = []
+        self._th: list[np.ndarray] = []
+        self._td: list[np.ndarray] = []
+        self._c: list[np.ndarray] = []
+
+    def add(self, t, theta, theta_dot, damping: float = 0.0) -> None:
+        """Append states: times (s), rotations (rad), angular velocities (rad/s), scalars or arrays."""
+        if not self.record:
+            return
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        self._t.append(t)
+        self._th.append(np.broadcast_to(np.asarray(theta, dtype=float), t.shape).copy())
+        self._td.append(np.broadcast_to(np.asarray(theta_dot, dtype=float), t.shape).copy())
+        if self.with_damping:
+            self._c.append(np.full(t.shape, damping))
+
+    def add_segment(self, sol: Any, turning_event: int, damping: float = 0.0, dense_step: float | None = None) -> None:
+        """A :func:`scipy.integrate.solve_ivp` segment's accepted steps merged with its turning points
+        (event ``turning_event``), so the history holds every peak exactly, not only the nearest step;
+        with ``dense_step`` (s) also the dense output (``sol.sol``) every ``dense_step``."""
+        t, th, td = sol.t[1:], sol.y[0, 1:], sol.y[1, 1:]
+        if dense_step is not None and sol.sol is not None and sol.t[-1] > sol.t[0]:
+            grid = np.arange(sol.t[0] + dense_step, sol.t[-1], dense_step)
+            if grid.size:
+                yd = sol.sol(grid)
+                t, th, td = _merged((t, th, td), (grid, yd[0], yd[1]))
+        if sol.t_events[turning_event].size:
+            te, ye = sol.t_events[turning_event], sol.y_events[turning_event]
+            inside = (te > sol.t[0]) & (te < sol.t[-1])
+            t, th, td = _merged((t, th, td), (te[inside], ye[inside, 0], ye[inside, 1]))
+        self.add(t, th, td, damping)
+
+    def arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(time, theta, theta_dot)`` as arrays (empty when nothing was recorded)."""
+        cat = (lambda parts: np.concatenate(parts) if parts else np.zeros(0))
+        return cat(self._t), cat(self._th), cat(self._td)
+
+    def damping(self) -> np.ndarray:
+        """The damper coefficient in force at each recorded state (N m s/rad)."""
+        return np.concatenate(self._c) if self._c else np.zeros(0)
+
+
+def _merged(a: tuple[np.ndarray, ...], b: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
+    """Two sets of ``(t, theta, theta_dot)`` merged in time order (stable: ``a`` first at equal times)."""
+    t = np.concatenate([a[0], b[0]])
+    order = np.argsort(t, kind="stable")
+    return tuple(np.concatenate([x, y])[order] for x, y in zip(a, b))
+
+
+__all__ = ["EventDrivenSolver", "History", "METHODS", "ScipySettings", "StopRun", "TAILS", "first_exceedance",
+           "make_settings", "potential_energy", "rocking_energy", "setting_names", "settings_record"]

@@ -1,0 +1,56 @@
+"""The paper's equivalent SDOF model (Eq. 5-8) built literally in OpenSeesPy.
+
+OpenSees state is owned by :mod:`opsrock.opensees_session`: every model here is built inside its
+``fresh_model()`` context, which wipes OpenSees before and after (also on errors), so no state
+leaks from one run into the next.
+
+Model (docs/modelling.md sections 2 and 4)
+----------------------------------
+One rotational degree of freedom (a 1-D model, ``ndm=1, ndf=1``: the node's single dof *is*
+the block rotation ``theta``), rotational mass ``I_O``, and two ``zeroLength`` elements between
+a fixed node and the free one:
+
+* the spring, ``uniaxialMaterial ElasticMultiLinear`` with the table of
+  :meth:`opsrock.model.SDOFModel.spring_table` (path-independent; its negative slopes are the
+  rocking instability); ``MultiLinear``/``Hysteretic`` would be hysteretic and wrong here;
+* the damper, ``uniaxialMaterial Viscous C 1.0`` whose ``C`` is changed through
+  ``parameter``/``updateParameter``: ``c_D`` set by the model's damper law at the start of every
+  passage through the band ``|theta| <= delta alpha`` (on entering it, at the first step after a
+  turning point inside it; :meth:`opsrock.model.SDOFModel.arm_damper`), zero outside (Eq. 7) and
+  while the block is seated. The change takes effect from the next step.
+
+With an implicit integrator a block seated in the stiff branch is treated as the scipy solver treats
+it (:class:`opsrock.model.Seat`): its free oscillation at ``omega_e`` is dropped once it fits in the branch, and in
+adaptive mode under a record a step lands on the instant the floor can lift it.
+
+The floor acceleration enters as the nodal moment ``-Lambda a(t)`` (``Lambda`` =
+:meth:`~opsrock.model.SDOFModel.lever_arm`): a ``Trig`` time series for a one-sine pulse (exact
+at every step, whatever the step), a ``Path`` series for a sampled :class:`~opsrock.excitations.Record`.
+
+The transient loop stops when ``|theta| >= pi/2`` (overturned: OpenSees never fails by itself,
+theta just grows), when the block can no longer exceed its peak after the excitation ended
+(its energy below the barrier at ``theta_max + rest_tolerance alpha``), or at a hard end time (a
+*failed* run: the answer is unknown).
+
+:func:`solve_lumped_mass` builds the lumped-mass form of the paper's Figure 2b (a pivot, a rigid
+link of length ``R`` and the mass ``m`` with ``I_CM = m R^2 / 3``) for the validation of the
+excitation lever.
+
+The package: :mod:`~opsrock.solvers.opensees.settings` (every numerical choice, named and justified),
+:mod:`~opsrock.solvers.opensees.build` (the models), :mod:`~opsrock.solvers.opensees.stepper` (the
+transient loop: step policy, guards, the seat, damper switching, stopping) and
+:mod:`~opsrock.solvers.opensees.solver` (the entry points).
+"""
+
+from opsrock.opensees_session import opensees_log_path
+from opsrock.solvers.opensees.settings import (
+                                               ALGORITHMS,
+                                               INTEGRATORS,
+                                               ROCKED_THETA_E_MULTIPLE,
+                                               OpenSeesSettings,
+                                               critical_time_step,
+)
+from opsrock.solvers.opensees.solver import SOLVER_NAME, solve, solve_lumped_mass
+
+__all__ = ["ALGORITHMS", "INTEGRATORS", "OpenSeesSettings", "ROCKED_THETA_E_MULTIPLE", "SOLVER_NAME",
+           "critical_time_step", "opensees_log_path", "solve", "solve_lumped_mass"]

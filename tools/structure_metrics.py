@@ -1,0 +1,153 @@
+"""The package's shape in numbers: ``python tools/structure_metrics.py [PACKAGE_DIR]``.
+
+Prints, for the package folder (default ``opsrock/`` of this checkout): modules at its top level,
+the longest function and every function over 80 lines (compiled kernels, decorated with a numba
+``jit``/``njit``, counted apart), import cycles between its modules (every ``import``, at module
+level or inside a function: a cycle is a cycle either way), imports of a private name of another
+module outside the importer's own method package (see ``_shares_method_package``), and lines of Python. Used for the before/after table of the restructuring.
+"""
+
+from __future__ import annotations
+
+import ast
+import json
+import sys
+from pathlib import Path
+
+LONG = 80
+
+
+def _module_name(root: Path, path: Path) -> str:
+    parts = list(path.relative_to(root.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _imports(tree: ast.AST, here: str, is_package: bool) -> list[tuple[str, list[str]]]:
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            out += [(a.name, []) for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = here.split(".")
+                base = base[: len(base) - node.level + (1 if is_package else 0)]
+                mod = ".".join(base + ([node.module] if node.module else []))
+            else:
+                mod = node.module or ""
+            out.append((mod, [a.name for a in node.names]))
+    return out
+
+
+def _package(modules: dict[str, Path], name: str) -> str:
+    return name if modules[name].name == "__init__.py" else name.rpartition(".")[0]
+
+
+def _shares_method_package(modules: dict[str, Path], a: str, b: str) -> bool:
+    """True when ``a`` and ``b`` sit in one package at least three levels deep (a method split into
+    modules, such as ``opsrock.solvers.opensees``): its modules share private helpers. Sibling
+    solvers (``opsrock.solvers.sdof``, ``opsrock.solvers.housner``) or packages do not."""
+    pa, pb = _package(modules, a), _package(modules, b)
+    return pa == pb and pa.count(".") >= 2
+
+
+def _private_shared(modules: dict[str, Path], importer: str, source: str) -> bool:
+    """A private module (``_linearised``) serves the modules of its own package; a method package
+    shares its privates inside (:func:`_shares_method_package`)."""
+    if source.rpartition(".")[2].startswith("_") and _package(modules, importer) == _package(modules, source):
+        return True
+    return _shares_method_package(modules, importer, source)
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Strongly connected components of more than one module (Tarjan)."""
+    index, low, stack, on, comps, counter = {}, {}, [], set(), [], [0]
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = counter[0]
+        counter[0] += 1
+        stack.append(v)
+        on.add(v)
+        for w in graph.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                comps.append(sorted(comp))
+
+    sys.setrecursionlimit(10_000)
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return comps
+
+
+def metrics(root: Path) -> dict:
+    files = sorted(root.rglob("*.py"))
+    modules = {_module_name(root, f): f for f in files}
+    top = sorted(f.name for f in root.glob("*.py"))
+    long_functions, kernels, private, lines = [], [], [], 0
+    graph: dict[str, set[str]] = {m: set() for m in modules}
+    longest = ("", 0)
+    for name, f in modules.items():
+        text = f.read_text()
+        lines += len(text.splitlines())
+        tree = ast.parse(text)
+        for node in ast.walk(tree):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                n = node.end_lineno - node.lineno + 1
+                deco = " ".join(ast.unparse(d) for d in node.decorator_list)
+                where = f"{f.relative_to(root.parent)}:{node.lineno} {node.name} ({n})"
+                if "jit" in deco:
+                    kernels.append(where)
+                    continue
+                if n > longest[1]:
+                    longest = (where, n)
+                if n > LONG:
+                    long_functions.append(where)
+        for mod, names in _imports(tree, name, f.name == "__init__.py"):
+            target = mod
+            for n in names:  # "from pkg import module" imports the module
+                if f"{mod}.{n}" in modules:
+                    graph[name].add(f"{mod}.{n}")
+            while target and target not in modules:
+                target = target.rpartition(".")[0]
+            if target and target != name and target.startswith(root.name):
+                graph[name].add(target)
+                for n in names:
+                    if not n.startswith("_") or n.startswith("__"):
+                        continue
+                    source = f"{mod}.{n}" if f"{mod}.{n}" in modules else target  # a private module, or a name
+                    if _private_shared(modules, name, source):
+                        continue
+                    private.append(f"{name} imports {target}.{n}")
+    # a package's __init__ re-exporting its own modules is not a cycle of the design
+    for m in graph:
+        graph[m] = {t for t in graph[m] if not (modules[t].name == "__init__.py" and m.startswith(t + "."))}
+    return {
+        "top_level_modules": len(top),
+        "top_level": top,
+        "modules": len(modules),
+        "longest_function": longest[0],
+        "functions_over_80_lines": long_functions,
+        "compiled_kernels_over_80_lines": [k for k in kernels if int(k.rsplit("(", 1)[1][:-1]) > LONG],
+        "import_cycles": _cycles(graph),
+        "private_imports_across_packages": sorted(set(private)),
+        "lines": lines,
+    }
+
+
+if __name__ == "__main__":
+    root = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).resolve().parents[1] / "opsrock")
+    print(json.dumps(metrics(root.resolve()), indent=2))

@@ -15,7 +15,8 @@ from pathlib import Path
 import pytest
 
 from opsrock.campaign import CampaignConflictError, run_campaign
-from opsrock.campaign.run import CASES_COLUMNS, IDENTITY_EXCLUDED
+from opsrock.campaign.cases import IDENTITY_EXCLUDED
+from opsrock.campaign.cases import PULSE_COLUMNS as CASES_COLUMNS
 from opsrock.cli import main as cli_main
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.campaign.executors import DaskExecutor, LocalPool

@@ -14,7 +14,7 @@ import pytest
 
 from opsrock.campaign import run_campaign
 from opsrock.campaign.scene import SceneError, load_scene
-from opsrock.campaign.records import RECORD_CASES_COLUMNS
+from opsrock.campaign.cases import RECORD_COLUMNS as RECORD_CASES_COLUMNS
 
 ROOT = Path(__file__).resolve().parents[1]
 BLOCKS = ROOT / "opsrock" / "data" / "blocks.toml"

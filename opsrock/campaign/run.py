@@ -4,38 +4,30 @@
 
 1. the scene is validated (:func:`opsrock.campaign.scene.load_scene`) before anything is written;
 2. the output folder's store (:mod:`opsrock.campaign.store`) is opened and locked; its manifest must
-   match the scene's digest (blocks, grid, solver, settings), or the run is refused unless
+   match the scene's digest (blocks, design, solver, settings), or the run is refused unless
    ``force=True``, which clears the old results: results of different settings never mix;
-3. cases already stored are reused; the others are sent in batches to an executor
+3. a record scene's floor motions are computed by the executor, or read from the folder's cache
+   (:mod:`opsrock.campaign.motions`);
+4. cases already stored are reused; the others are sent in batches to an executor
    (:mod:`opsrock.campaign.executors`) and every batch's results are committed as soon as it returns;
-4. ``cases.csv`` is assembled from the store, in the scene's case order, and written
-   atomically (temporary file + ``os.replace``), with ``manifest.json`` beside it.
+5. ``cases.csv`` is assembled from the store, in the scene's case order (:mod:`opsrock.campaign.cases`),
+   and written atomically (temporary file + ``os.replace``), with ``manifest.json`` beside it.
 
 So an interrupted run (Ctrl-C, ``kill -9``, a dead worker, a power cut) loses at most the
 batches being computed, and re-running the same command computes only the missing cases and
 ends with the same ``cases.csv`` as an uninterrupted run, column for column, except
-``wall_time_s``, which is measured (see :data:`IDENTITY_EXCLUDED`).
+``wall_time_s``, which is measured (:data:`~opsrock.campaign.cases.IDENTITY_EXCLUDED`).
 
 A case whose solver raises, or returns ``status="failed"``, is stored as failed with its
 reason; so is a case whose worker process dies while it runs alone. Failed cases are never
 given a verdict other than ``"failed"``, and are not retried by a resume (they are results);
-use ``force=True`` to recompute everything.
-
-Command line (wired into ``opsrock run`` by :mod:`opsrock.cli`, also ``python -m
-opsrock.campaign``)::
-
-    opsrock run SCENE.toml --out DIR [--solver NAME] [--workers N]
-                [--scheduler tcp://HOST:PORT | --dask-local N] [--force] [--no-progress]
-
-:func:`run_command` returns the exit status: 0 done (failed cases are reported on stderr but
-are results, not errors), 2 usage error (bad scene, refused settings change, folder in use,
-Dask missing; a one-line message on stderr and nothing written), 130 interrupted.
+use ``force=True`` to recompute everything. The command line is ``opsrock run`` (:mod:`opsrock.cli`).
 """
 
 from __future__ import annotations
 
-import csv
 import functools
+import hashlib
 import json
 import math
 import os
@@ -47,43 +39,21 @@ from pathlib import Path
 from typing import Any, Callable, Mapping, Sequence
 
 from opsrock._files import atomic_write
-from opsrock.campaign.executors import (
-    Executor,
-    LocalPool,
-    batch_size,
-    make_batches,
-)
-from opsrock.campaign.scene import Case, Scene, SceneError, load_scene
+from opsrock.campaign.cases import IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
+from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
+from opsrock.campaign.motions import cached_motions, compute_motions
+from opsrock.campaign.scene import Scene, load_scene
 from opsrock.campaign.store import STORE_FILE, ResultStore
-from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, CaseTimeout, time_limit
-from opsrock.errors import CampaignConflictError, InputError, InputTypeError
+from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
+from opsrock.errors import CampaignConflictError, CaseTimeout, InputError, InputTypeError
 from opsrock.result import RockingResult
-from opsrock.solvers import SOLVERS, check_settings, get_solver, simulate
+from opsrock.solvers import SOLVERS, get_solver, simulate
 
 #: Name of the assembled table in the output folder.
 CASES_FILE: str = "cases.csv"
 
 #: Name of the human-readable copy of the run manifest.
 MANIFEST_FILE: str = "manifest.json"
-
-#: Columns of ``cases.csv``, in order. Inputs (block, pulse, intensity measures) come from the
-#: scene; the rest from the store. Units: m, rad, m/s², rad/s, s, m/s; ratios dimensionless.
-CASES_COLUMNS: tuple[str, ...] = (
-    "case_id",
-    "block", "width", "height", "alpha", "R", "p", "e", "e_R",
-    "pfa", "omega_p", "T_p", "pfv", "freq_ratio", "pfa_ratio",
-    "IM1", "IM2", "IM3", "IM4", "IM5", "IM6", "IM7", "IM8", "IM9",
-    "theta_max", "theta_max_over_alpha", "overturned", "rocked",
-    "status", "reason", "verdict", "solver", "wall_time_s",
-)  # fmt: skip
-
-#: Columns that differ between two runs of the same campaign: measured, not computed. Two
-#: ``cases.csv`` of the same scene and settings agree in every other column, whatever the
-#: executor, the worker count and the interruptions.
-IDENTITY_EXCLUDED: tuple[str, ...] = ("wall_time_s",)
-
-#: Longest failure reason kept (characters); a reason is also folded onto one line.
-MAX_REASON: int = 500
 
 #: One solve at a time per process: OpenSeesPy keeps one global model per interpreter, and a
 #: Dask worker may run several threads.
@@ -134,50 +104,8 @@ class CampaignSummary:
 
 
 # --- work done in the workers -------------------------------------------------------------------
-def _one_line(text: str) -> str:
-    text = " ".join(str(text).split())
-    return text if len(text) <= MAX_REASON else text[: MAX_REASON - 3] + "..."
-
-
-def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math.nan) -> dict[str, Any]:
-    """A store row for a case that produced no result (status ``"failed"``, verdict ``"failed"``)."""
-    return {
-        "case_id": case_id,
-        "status": "failed",
-        "reason": _one_line(reason) or "failed without a reason",
-        "verdict": "failed",
-        "theta_max": math.nan,
-        "theta_max_over_alpha": math.nan,
-        "overturned": False,
-        "rocked": False,
-        "solver": solver,
-        "wall_time_s": wall_time_s,
-        "n_steps": None,
-        "n_impacts": None,
-    }
-
-
-def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[str, Any]:
-    """A store row from a solver's result."""
-    s = result.summary()
-    return {
-        "case_id": case_id,
-        "status": s["status"],
-        "reason": _one_line(s["reason"]),
-        "verdict": s["verdict"],
-        "theta_max": s["theta_max"],
-        "theta_max_over_alpha": s["theta_max_over_alpha"],
-        "overturned": s["overturned"],
-        "rocked": s["rocked"],
-        "solver": s["solver"],
-        "wall_time_s": wall_time_s,
-        "n_steps": s["n_steps"],
-        "n_impacts": s["n_impacts"],
-    }
-
-
 def solve_batch(
-    cases: Sequence[Case],
+    cases: Sequence,
     *,
     solver: str,
     settings: Mapping[str, Any],
@@ -188,12 +116,11 @@ def solve_batch(
 
     Parameters
     ----------
-    cases : sequence of Case
+    cases : sequence of PulseCase or RecordCase
     solver : str
         Solver name passed to ``solve_fn``.
     settings : dict
-        Keyword settings of the solver (as the scene gives them, checked by
-        :func:`opsrock.solvers.check_settings`).
+        Keyword settings of the solver (as the scene gives them, checked when the scene was made).
     solve_fn : callable, optional
         ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``. Default
         :func:`opsrock.solvers.simulate`. Must be picklable (a module-level function).
@@ -210,71 +137,29 @@ def solve_batch(
     fn = simulate if solve_fn is None else solve_fn
     if solve_fn is None and solver in SOLVERS:
         get_solver(solver)  # import the solver module (and compile it, in a fresh clone) outside the budget
-    rows = []
     with _SOLVE_LOCK:
-        for case in cases:
-            t0 = time.perf_counter()
-            if getattr(case, "problem", ""):
-                rows.append(failed_row(case.case_id, solver, case.problem, 0.0))
-                continue
-            try:
-                with time_limit(case_timeout):
-                    result = fn(case.block, case.excitation, solver=solver, **settings)
-                if not isinstance(result, RockingResult):
-                    raise InputTypeError(f"solver returned {type(result).__name__}, not a RockingResult")
-                rows.append(result_row(case.case_id, result, time.perf_counter() - t0))
-            except CaseTimeout as exc:
-                reason = str(exc) or f"timeout: no answer within the case budget of {case_timeout:g} s"
-                rows.append(failed_row(case.case_id, solver, reason, time.perf_counter() - t0))
-            except Exception as exc:  # noqa: BLE001  (a bad case must not stop the campaign)
-                rows.append(failed_row(case.case_id, solver, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0))
-    return rows
+        return [_solve_one(case, fn, solver, settings, case_timeout) for case in cases]
 
 
-def _lost_row(case: Case, reason: str, *, solver: str) -> dict[str, Any]:
-    return failed_row(case.case_id, solver, reason)
-
-
-def _columns(scene: Scene) -> tuple[str, ...]:
-    if scene.records is None:
-        return CASES_COLUMNS
-    from opsrock.campaign.records import RECORD_CASES_COLUMNS
-
-    return RECORD_CASES_COLUMNS
-
-
-#: Floor motions of a record scene, cached in its output folder (computed once, reused on resume).
-MOTIONS_FILE: str = "floor_motions.pickle"
-
-
-def _floor_motions(scene: Scene, out: Path, digest: str, executor: Executor, progress: bool) -> dict:
-    """The scene's floor motions and their measures: from the folder's cache when it was written for
-    this digest, else computed by ``executor`` (one item per record and building) and cached."""
-    import pickle
-
-    from opsrock.campaign.records import assemble_motions, compute_motions, motion_items
-
-    spec = scene.records
-    items = motion_items(spec)
-    cache = out / MOTIONS_FILE
+def _solve_one(case, fn: Callable, solver: str, settings: Mapping[str, Any], case_timeout: float | None) -> dict:
+    t0 = time.perf_counter()
+    if case.problem:
+        return failed_row(case.case_id, solver, case.problem, 0.0)
     try:
-        with open(cache, "rb") as fh:
-            saved = pickle.load(fh)
-        if saved.get("digest") == digest and len(saved["results"]) == len(items):
-            return assemble_motions(spec, items, saved["results"])
-    except (OSError, EOFError, pickle.UnpicklingError, AttributeError, KeyError, TypeError):
-        pass
-    results: list[Any] = [None] * len(items)
-    size = max(1, math.ceil(len(items) / (4 * executor.workers)))
-    batches = make_batches(items, size)
-    bar = _progress_bar(len(items), scene, 0, progress)
-    bar.set_description(f"{scene.name}: floor motions")
-    with bar:
-        for k, res in executor.map_batches(compute_motions, batches, _lost_motion):
-            results[k * size : k * size + len(res)] = res
-            bar.update(len(res))
-    atomic_write(cache, lambda fh: pickle.dump({"digest": digest, "results": results}, fh), binary=True)
-    return assemble_motions(spec, items, results)
+        with time_limit(case_timeout):
+            result = fn(case.block, case.excitation, solver=solver, **settings)
+        if not isinstance(result, RockingResult):
+            raise InputTypeError(f"solver returned {type(result).__name__}, not a RockingResult")
+        return result_row(case.case_id, result, time.perf_counter() - t0)
+    except CaseTimeout as exc:
+        reason = str(exc) or f"timeout: no answer within the case budget of {case_timeout:g} s"
+        return failed_row(case.case_id, solver, reason, time.perf_counter() - t0)
+    except Exception as exc:  # noqa: BLE001  (a bad case must not stop the campaign)
+        return failed_row(case.case_id, solver, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
+
+
+def _lost_row(case, reason: str, *, solver: str) -> dict[str, Any]:
+    return failed_row(case.case_id, solver, reason)
 
 
 def _lost_motion(item: Any, reason: str) -> str:
@@ -320,109 +205,76 @@ def _conflict_message(out_dir: Path, old: Mapping[str, Any], new: Mapping[str, A
     )
 
 
-
-
-
-def _format(value: Any) -> str:
-    if value is None:
-        return ""
-    if isinstance(value, bool):
-        return "True" if value else "False"
-    if isinstance(value, float):
-        return repr(value)  # shortest repr that round-trips: exact, and identical run to run
-    return str(value)
-
-
-def case_table(scene: Scene, rows: Mapping[str, Mapping[str, Any]], cases: Sequence | None = None) -> list[dict[str, Any]]:
-    """The rows of ``cases.csv``: scene inputs and intensity measures joined to stored results.
-
-    Parameters
-    ----------
-    scene : Scene
-    rows : dict
-        Stored rows keyed by ``case_id`` (:meth:`opsrock.campaign.store.ResultStore.rows`); every case
-        of the scene must be there.
-
-    Returns
-    -------
-    list of dict
-        One dict per case, keys :data:`CASES_COLUMNS`, in the scene's case order.
-    """
-    from opsrock.intensity import (
-        intensity_measures,  # lazily: written alongside this module
-    )
-
-    cases = scene.cases() if cases is None else cases
-    if scene.records is not None:
-        return _record_case_table(cases, rows)
-    table = []
-    for case in cases:
-        if case.case_id not in rows:
-            raise KeyError(f"case {case.case_id!r} has no stored result")
-        b, pulse, stored = case.block, case.pulse, rows[case.case_id]
-        ims = intensity_measures(b, pulse, pfv_convention=scene.pfv_convention)
-        rec = {
-            "case_id": case.case_id,
-            "block": b.name,
-            "width": b.width,
-            "height": b.height,
-            "alpha": b.alpha,
-            "R": b.R,
-            "p": b.p,
-            "e": b.e,
-            "e_R": b.e_R,
-            "pfa": pulse.pfa,
-            "omega_p": pulse.omega_p,
-            "T_p": pulse.T_p,
-            "pfv": pulse.pfv(scene.pfv_convention),
-            "freq_ratio": case.freq_ratio,
-            "pfa_ratio": case.pfa_ratio,
-            **{f"IM{k}": ims[f"IM{k}"] for k in range(1, 10)},
-        }
-        for col in CASES_COLUMNS[len(rec) :]:
-            rec[col] = stored[col]
-        table.append(rec)
-    return table
-
-
-def _record_case_table(cases: Sequence, rows: Mapping[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
-    from opsrock.campaign.records import RECORD_CASES_COLUMNS, record_case_row
-
-    table = []
-    for case in cases:
-        if case.case_id not in rows:
-            raise KeyError(f"case {case.case_id!r} has no stored result")
-        rec = record_case_row(case)
-        for col in RECORD_CASES_COLUMNS[len(rec):]:
-            rec[col] = rows[case.case_id][col]
-        table.append(rec)
-    return table
-
-
-def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]],
-                    columns: Sequence[str] = CASES_COLUMNS) -> None:
-    """Write a case table atomically (temporary file, fsync, ``os.replace``), columns ``columns``."""
-
-    def write(fh):
-        w = csv.writer(fh, lineterminator="\n")
-        w.writerow(columns)
-        for rec in table:
-            w.writerow([_format(rec[c]) for c in columns])
-
-    atomic_write(Path(path), write)
-
-
-def _progress_bar(total: int, scene: Scene, reused: int, progress: bool):
+def _progress_bar(total: int, description: str, progress: bool):
     from tqdm import tqdm
 
-    return tqdm(
-        total=total,
-        desc=f"{scene.name} ({reused} reused)" if reused else scene.name,
-        unit="case",
-        file=sys.stderr,
-        disable=not (progress and sys.stderr.isatty()),
-        dynamic_ncols=True,
-    )
+    return tqdm(total=total, desc=description, unit="case", file=sys.stderr,
+                disable=not (progress and sys.stderr.isatty()), dynamic_ncols=True)
+
+
+@dataclass
+class _Run:
+    """One campaign under way: the scene, its folder and store, the executor, and what it did."""
+
+    scene: Scene
+    out: Path
+    digest: str
+    executor: Executor | None
+    progress: bool
+    n_computed: int = 0
+    n_reused: int = 0
+
+    def open(self, store: ResultStore, manifest: dict, force: bool) -> None:
+        """Check the folder's manifest against this run's, or start the store afresh."""
+        old = store.manifest()
+        if old and old.get("digest") != self.digest and not force:
+            raise CampaignConflictError(_conflict_message(self.out, old, manifest))
+        if force or not old:
+            store.clear()
+            (self.out / CASES_FILE).unlink(missing_ok=True)
+            store.write_manifest(manifest)
+        atomic_write(self.out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
+
+    def cases(self) -> list:
+        """The scene's cases; a record scene's floor motions by the executor (or the folder's cache)."""
+        if self.scene.records is None:
+            return self.scene.cases()
+        items = self.scene.records.motion_items()
+        return self.scene.cases(cached_motions(self.out, self.digest, items, self._compute_motions))
+
+    def _compute_motions(self, items: list) -> list:
+        results: list[Any] = [None] * len(items)
+        size = max(1, math.ceil(len(items) / (4 * self.executor.workers)))
+        with _progress_bar(len(items), f"{self.scene.name}: floor motions", self.progress) as bar:
+            for k, res in self.executor.map_batches(compute_motions, make_batches(items, size), _lost_motion):
+                results[k * size : k * size + len(res)] = res
+                bar.update(len(res))
+        return results
+
+    def solve(self, store: ResultStore, cases: list, solve: Callable, batch: int | None) -> None:
+        """Solve the cases the store does not hold yet, committing every batch as it returns."""
+        done = store.done_ids()
+        todo = [c for c in cases if c.case_id not in done]
+        self.n_reused = len(cases) - len(todo)
+        if not todo:
+            return
+        size = batch or batch_size(len(todo), self.executor.workers)
+        lost = functools.partial(_lost_row, solver=self.scene.solver)
+        name = self.scene.name
+        with _progress_bar(len(todo), f"{name} ({self.n_reused} reused)" if self.n_reused else name,
+                           self.progress) as bar:
+            for _, rows in self.executor.map_batches(solve, make_batches(todo, size), lost):
+                store.append(rows)
+                self.n_computed += len(rows)
+                bar.update(len(rows))
+
+
+def _case_budget(scene: Scene, case_timeout: float | None) -> float:
+    if case_timeout is None:
+        case_timeout = scene.case_timeout if scene.case_timeout is not None else DEFAULT_CASE_TIMEOUT
+    if isinstance(case_timeout, bool) or not isinstance(case_timeout, (int, float)) or not case_timeout > 0:
+        raise InputError(f"case_timeout must be a positive number of seconds, got {case_timeout!r}")
+    return case_timeout
 
 
 def run_campaign(
@@ -443,7 +295,7 @@ def run_campaign(
     Parameters
     ----------
     scene : Scene or path
-        The scene, or its TOML file (validated first: :class:`~opsrock.campaign.scene.SceneError`
+        The scene, or its TOML file or shipped name (validated first: :class:`~opsrock.errors.SceneError`
         before anything is written).
     out_dir : str or Path
         Output folder: ``results.sqlite`` (the store), ``cases.csv``, ``manifest.json``.
@@ -487,75 +339,35 @@ def run_campaign(
         Another run holds ``out_dir``.
     """
     t_start = time.perf_counter()
-    if not isinstance(scene, Scene):
-        scene = load_scene(scene)
+    scene = scene if isinstance(scene, Scene) else load_scene(scene)
     if solver is not None:
         scene = scene.with_solver(solver)
-    settings = dict(scene.solver_settings)
-    try:
-        check_settings(scene.solver, settings)
-    except (ImportError, KeyError, TypeError, ValueError) as exc:  # a Scene built in code
-        raise SceneError(scene.path or "<scene>", "solver.settings", dict(scene.solver_settings), str(exc)) from None
     digest = scene.digest()
     if solve_fn is not None:
-        import hashlib
-
         digest = hashlib.sha256(f"{digest}|{_callable_name(solve_fn)}".encode()).hexdigest()
-    if case_timeout is None:
-        case_timeout = scene.case_timeout if scene.case_timeout is not None else DEFAULT_CASE_TIMEOUT
-    if isinstance(case_timeout, bool) or not isinstance(case_timeout, (int, float)) or not case_timeout > 0:
-        raise InputError(f"case_timeout must be a positive number of seconds, got {case_timeout!r}")
+    case_timeout = _case_budget(scene, case_timeout)
     manifest = _manifest(scene, digest, solve_fn)
-    cases = scene.cases() if scene.records is None else None
     out = Path(out_dir)
-    own_executor = executor is None
-
+    solve = functools.partial(solve_batch, solver=scene.solver, settings=dict(scene.solver_settings),
+                              solve_fn=solve_fn, case_timeout=case_timeout)
     with ResultStore(out / STORE_FILE) as store:
-        old = store.manifest()
-        if old and old.get("digest") != digest and not force:
-            raise CampaignConflictError(_conflict_message(out, old, manifest))
-        if force or not old:
-            store.clear()
-            (out / CASES_FILE).unlink(missing_ok=True)
-            store.write_manifest(manifest)
-        atomic_write(out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
-
-        if own_executor:
-            executor = LocalPool(workers, item_timeout=case_timeout)
+        run = _Run(scene, out, digest, executor, progress)
+        run.open(store, manifest, force)
+        if executor is None:  # made once the folder is known to be ours
+            run.executor = LocalPool(workers, item_timeout=case_timeout)
         try:
-            if cases is None:
-                cases = scene.cases(_floor_motions(scene, out, digest, executor, progress))
-            done = store.done_ids()
-            todo = [c for c in cases if c.case_id not in done]
-            n_reused = len(cases) - len(todo)
-            n_computed = 0
-            if todo:
-                size = batch or batch_size(len(todo), executor.workers)
-                batches = make_batches(todo, size)
-                fn = functools.partial(solve_batch, solver=scene.solver, settings=settings, solve_fn=solve_fn,
-                                       case_timeout=case_timeout)
-                lost = functools.partial(_lost_row, solver=scene.solver)
-                with _progress_bar(len(todo), scene, n_reused, progress) as bar:
-                    for _, rows in executor.map_batches(fn, batches, lost):
-                        store.append(rows)
-                        n_computed += len(rows)
-                        bar.update(len(rows))
+            cases = run.cases()
+            run.solve(store, cases, solve, batch)
         finally:
-            if own_executor:
-                executor.close()
-
-        table = case_table(scene, store.rows(), cases)
-        write_cases_csv(out / CASES_FILE, table, _columns(scene))
+            if executor is None:
+                run.executor.close()
+        table = case_table(cases, store.rows())
+        write_cases_csv(out / CASES_FILE, table, scene.columns)
     return CampaignSummary(
-        n_cases=len(cases),
-        n_computed=n_computed,
-        n_reused=n_reused,
-        n_failed=sum(r["status"] == "failed" for r in table),
-        wall_time_s=time.perf_counter() - t_start,
-        out_dir=str(out),
-        store_path=str(out / STORE_FILE),
-        cases_csv=str(out / CASES_FILE),
-        manifest_path=str(out / MANIFEST_FILE),
-        digest=digest,
-        solver=scene.solver,
-    )
+        n_cases=len(cases), n_computed=run.n_computed, n_reused=run.n_reused,
+        n_failed=sum(r["status"] == "failed" for r in table), wall_time_s=time.perf_counter() - t_start,
+        out_dir=str(out), store_path=str(out / STORE_FILE), cases_csv=str(out / CASES_FILE),
+        manifest_path=str(out / MANIFEST_FILE), digest=digest, solver=scene.solver)
+
+
+__all__ = ["CASES_FILE", "CampaignSummary", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "run_campaign", "solve_batch"]

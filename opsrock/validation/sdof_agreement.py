@@ -19,7 +19,8 @@ from typing import Any, Sequence
 import numpy as np
 import pandas as pd
 
-from opsrock.campaign.scene import Case, load_scene
+from opsrock.campaign.cases import PulseCase
+from opsrock.campaign.scene import load_scene
 from opsrock.data import scene_file
 from opsrock.excitations import OneSinePulse
 from opsrock.solvers import simulate
@@ -70,7 +71,7 @@ class Agreement:
     passed: bool
 
 
-def _one(job: tuple[Case, str, dict, str, dict]) -> dict[str, Any]:
+def _one(job: tuple[PulseCase, str, dict, str, dict]) -> dict[str, Any]:
     case, solver_a, settings_a, solver_b, settings_b = job
     ra = simulate(case.block, case.pulse, solver=solver_a, **settings_a)
     rb = simulate(case.block, case.pulse, solver=solver_b, **settings_b)
@@ -94,7 +95,7 @@ def _one(job: tuple[Case, str, dict, str, dict]) -> dict[str, Any]:
 
 
 def compare(
-    cases: Sequence[Case],
+    cases: Sequence[PulseCase],
     solver_a: str = "opensees",
     solver_b: str = "sdof",
     *,
@@ -106,7 +107,7 @@ def compare(
 
     Parameters
     ----------
-    cases : sequence of Case
+    cases : sequence of PulseCase
         Cases (block + pulse) to compare.
     solver_a, solver_b : str
         Solver names; ``solver_b`` is the reference.
@@ -147,7 +148,7 @@ def summarize(df: pd.DataFrame) -> Agreement:
     )
 
 
-def boundary_distance(case: Case, target_verdict: str, solver: str = "sdof", settings: dict | None = None) -> float:
+def boundary_distance(case: PulseCase, target_verdict: str, solver: str = "sdof", settings: dict | None = None) -> float:
     """Smallest relative change of PFA for which ``solver`` gives ``target_verdict``.
 
     A disagreement between two solvers right at the overturning boundary (a fraction of a
@@ -162,7 +163,7 @@ def boundary_distance(case: Case, target_verdict: str, solver: str = "sdof", set
     return math.inf
 
 
-def disagreements(df: pd.DataFrame, cases: Sequence[Case], solver_b: str = "sdof") -> pd.DataFrame:
+def disagreements(df: pd.DataFrame, cases: Sequence[PulseCase], solver_b: str = "sdof") -> pd.DataFrame:
     """Every case with a different verdict, or outside the theta tolerance, with its boundary distance."""
     by_id = {c.case_id: c for c in cases}
     bad = df[(~df["same_verdict"]) | ((df["verdict_a"] == "safe") & (df["dtheta_over_alpha"] > THETA_TOLERANCE))].copy()
@@ -176,7 +177,7 @@ def disagreements(df: pd.DataFrame, cases: Sequence[Case], solver_b: str = "sdof
     return bad
 
 
-def paper_cases(quick: bool = False) -> list[Case]:
+def paper_cases(quick: bool = False) -> list[PulseCase]:
     """The paper's 400 cases, or (``quick``) a fixed spread of 24 of them: 6 per block."""
     cases = load_scene(PAPER_SCENE).cases()
     if not quick:

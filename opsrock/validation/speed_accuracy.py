@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from opsrock.campaign.scene import Case
+from opsrock.campaign.cases import PulseCase
 from opsrock.solvers import simulate
 from opsrock.validation.sdof_agreement import paper_cases
 
@@ -58,7 +58,7 @@ def configurations(quick: bool = False) -> list[tuple[str, str, str, dict[str, A
     return cfg
 
 
-def chart_cases(quick: bool = False) -> list[Case]:
+def chart_cases(quick: bool = False) -> list[PulseCase]:
     """The fixed pulse set: 24 paper pulses (6 per block: 3 overturn, 3 safe), or 8 when ``quick``
     (per block one that overturns, f02/a04, and one that rocks safely, f08/a05)."""
     cases = paper_cases(quick=True)
@@ -76,7 +76,7 @@ def pareto_front(time: np.ndarray, error: np.ndarray) -> np.ndarray:
     return front
 
 
-def measure(cases: list[Case], quick: bool = False) -> pd.DataFrame:
+def measure(cases: list[PulseCase], quick: bool = False) -> pd.DataFrame:
     """Run every configuration on ``cases``; one row a configuration."""
     refs: dict[str, list] = {}
     for model, (solver, settings) in REFERENCES.items():

@@ -1,0 +1,239 @@
+"""The unit of work of a campaign, and the one table its results make (``cases.csv``).
+
+A case is a block under one floor motion: a pulse of a grid (:class:`PulseCase`) or a scaled floor
+motion of a record scene (:class:`RecordCase`). Both give the solver ``block`` and ``excitation``, and
+``row()``: the scene-side columns of ``cases.csv`` (the block, the motion, the nine IMs). The solver's
+side is a store row (:func:`result_row`, :func:`failed_row`, columns :data:`RESULT_COLUMNS`), and
+:func:`case_table` joins the two, in the scene's case order.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+from opsrock._files import atomic_write
+from opsrock.block import Block
+from opsrock.excitations import Pulse, Record
+from opsrock.result import RockingResult
+
+#: The solver's columns of ``cases.csv``, after the scene's (units: rad; ``wall_time_s`` in s).
+RESULT_COLUMNS: tuple[str, ...] = (
+    "theta_max", "theta_max_over_alpha", "overturned", "rocked", "status", "reason", "verdict", "solver",
+    "wall_time_s",
+)  # fmt: skip
+
+#: The block's columns, first in every ``cases.csv`` (m, rad, m, rad/s; ``e``, ``e_R`` dimensionless).
+BLOCK_COLUMNS: tuple[str, ...] = ("case_id", "block", "width", "height", "alpha", "R", "p", "e", "e_R")
+
+#: The nine intensity measures of the paper's Table 1 (and their generalisation to records).
+IM_COLUMNS: tuple[str, ...] = tuple(f"IM{k}" for k in range(1, 10))
+
+#: Columns of ``cases.csv`` for a pulse scene, in order. Units: m, rad, m/s², rad/s, s, m/s; ratios
+#: dimensionless.
+PULSE_COLUMNS: tuple[str, ...] = (
+    *BLOCK_COLUMNS, "pfa", "omega_p", "T_p", "pfv", "freq_ratio", "pfa_ratio", *IM_COLUMNS, *RESULT_COLUMNS,
+)  # fmt: skip
+
+#: Columns of ``cases.csv`` for a record scene, in order. Units: m, rad, m/s², m/s, m, s; ratios
+#: dimensionless; ``level_value`` in the scene's measure.
+RECORD_COLUMNS: tuple[str, ...] = (
+    *BLOCK_COLUMNS,
+    "record", "event", "component", "magnitude", "distance_km", "floor", "building_period",
+    "level", "level_value", "scale",
+    "pfa", "pfv", "pfd", "T_m", "T_pred", "pfa_ratio", *IM_COLUMNS, *RESULT_COLUMNS,
+)  # fmt: skip
+
+#: Columns that differ between two runs of the same campaign: measured, not computed. Two
+#: ``cases.csv`` of the same scene and settings agree in every other column, whatever the
+#: executor, the worker count and the interruptions.
+IDENTITY_EXCLUDED: tuple[str, ...] = ("wall_time_s",)
+
+#: Longest failure reason kept (characters); a reason is also folded onto one line.
+MAX_REASON: int = 500
+
+
+def _block_columns(case_id: str, b: Block) -> dict[str, Any]:
+    return {"case_id": case_id, "block": b.name, "width": b.width, "height": b.height, "alpha": b.alpha,
+            "R": b.R, "p": b.p, "e": b.e, "e_R": b.e_R}
+
+
+@dataclass(frozen=True)
+class PulseCase:
+    """One block under one pulse of a grid.
+
+    Parameters
+    ----------
+    case_id : str
+        Stable id ``"<block>/f<i>/a<j>"``: ``i`` (``j``) is the 1-based index into the
+        grid's ``freq_ratio`` (``pfa_ratio``) values, zero-padded to at least two digits.
+    block : Block
+        The block.
+    pulse : Pulse
+        The pulse (the scene's shape), ``PFA = pfa_ratio g tan(alpha)``, ``omega_p = freq_ratio p``.
+    freq_ratio : float
+        ``omega_p / p`` (dimensionless).
+    pfa_ratio : float
+        ``PFA / (g tan alpha)`` (dimensionless).
+    pfv_convention : str
+        PFV convention of IM3 and IM8 (:data:`opsrock.excitations.PFV_CONVENTIONS`).
+    """
+
+    case_id: str
+    block: Block
+    pulse: Pulse
+    freq_ratio: float
+    pfa_ratio: float
+    pfv_convention: str = "amplitude"
+
+    #: A pulse case can always be run (a record case may not: its scale factor).
+    problem = ""
+
+    @property
+    def excitation(self) -> Pulse:
+        """What the solver gets: the pulse."""
+        return self.pulse
+
+    def row(self) -> dict[str, Any]:
+        """The scene-side columns of ``cases.csv`` (:data:`PULSE_COLUMNS` before the results)."""
+        from opsrock.intensity import intensity_measures
+
+        b, pulse = self.block, self.pulse
+        ims = intensity_measures(b, pulse, pfv_convention=self.pfv_convention)
+        return {**_block_columns(self.case_id, b), "pfa": pulse.pfa, "omega_p": pulse.omega_p, "T_p": pulse.T_p,
+                "pfv": pulse.pfv(self.pfv_convention), "freq_ratio": self.freq_ratio, "pfa_ratio": self.pfa_ratio,
+                **{k: ims[k] for k in IM_COLUMNS}}
+
+
+@dataclass(frozen=True)
+class RecordCase:
+    """One block under one floor motion at one intensity level.
+
+    Parameters
+    ----------
+    case_id : str
+        ``<block>/<record>/<floor>/l<k>``.
+    block : Block
+        The block.
+    motion : Motion
+        The unscaled floor motion and its measures (:class:`opsrock.campaign.motions.Motion`).
+    scale : float
+        Factor on the motion (dimensionless).
+    level : int
+        1-based level index.
+    level_value : float
+        Target value of the scene's measure at this level (NaN for a cloud).
+    problem : str
+        Non-empty if the case cannot be run (a scale factor outside the limits, a floor motion that
+        failed): it is stored failed with this reason.
+    """
+
+    case_id: str
+    block: Block
+    motion: Any = field(repr=False)
+    scale: float
+    level: int
+    level_value: float
+    problem: str = ""
+
+    @property
+    def excitation(self) -> Record:
+        """The scaled floor motion (m/s²)."""
+        rec = self.motion.record
+        return rec if self.scale == 1.0 else rec.scaled(self.scale)
+
+    def row(self) -> dict[str, Any]:
+        """The scene-side columns of ``cases.csv`` (:data:`RECORD_COLUMNS` before the results)."""
+        from opsrock.intensity.records import record_intensity_measures
+
+        b, m = self.block, self.motion
+        info = m.record.info
+        ok = not self.problem
+        meas = m.measures.scaled(self.scale) if ok else m.measures
+        ims = record_intensity_measures(b.alpha, b.R, b.p, b.e_R, meas) if ok else {k: math.nan for k in IM_COLUMNS}
+        return {
+            **_block_columns(self.case_id, b),
+            "record": m.ground, "event": info.event, "component": info.component,
+            "magnitude": math.nan if info.magnitude is None else info.magnitude,
+            "distance_km": math.nan if info.distance_km is None else info.distance_km,
+            "floor": m.floor, "building_period": m.building_period,
+            "level": self.level, "level_value": self.level_value, "scale": self.scale,
+            "pfa": meas.pfa, "pfv": meas.pfv, "pfd": meas.pfd, "T_m": meas.mean_period,
+            "T_pred": meas.predominant_period, "pfa_ratio": meas.pfa / b.uplift_acceleration, **ims,
+        }
+
+
+# --- store rows ---------------------------------------------------------------------------------------
+def _one_line(text: str) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= MAX_REASON else text[: MAX_REASON - 3] + "..."
+
+
+def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math.nan) -> dict[str, Any]:
+    """A store row for a case that produced no result (status ``"failed"``, verdict ``"failed"``)."""
+    return {
+        "case_id": case_id, "status": "failed", "reason": _one_line(reason) or "failed without a reason",
+        "verdict": "failed", "theta_max": math.nan, "theta_max_over_alpha": math.nan, "overturned": False,
+        "rocked": False, "solver": solver, "wall_time_s": wall_time_s, "n_steps": None, "n_impacts": None,
+    }
+
+
+def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[str, Any]:
+    """A store row from a solver's result."""
+    s = result.summary()
+    return {
+        "case_id": case_id, "status": s["status"], "reason": _one_line(s["reason"]), "verdict": s["verdict"],
+        "theta_max": s["theta_max"], "theta_max_over_alpha": s["theta_max_over_alpha"],
+        "overturned": s["overturned"], "rocked": s["rocked"], "solver": s["solver"], "wall_time_s": wall_time_s,
+        "n_steps": s["n_steps"], "n_impacts": s["n_impacts"],
+    }
+
+
+# --- the table --------------------------------------------------------------------------------------
+def case_table(cases: Sequence, rows: Mapping[str, Mapping[str, Any]]) -> list[dict[str, Any]]:
+    """The rows of ``cases.csv``: each case's scene-side columns joined to its stored result.
+
+    Parameters
+    ----------
+    cases : sequence of PulseCase or RecordCase
+        In the scene's order.
+    rows : dict
+        Stored rows keyed by ``case_id`` (:meth:`opsrock.campaign.store.ResultStore.rows`); every
+        case must be there.
+    """
+    table = []
+    for case in cases:
+        if case.case_id not in rows:
+            raise KeyError(f"case {case.case_id!r} has no stored result")
+        stored = rows[case.case_id]
+        table.append({**case.row(), **{col: stored[col] for col in RESULT_COLUMNS}})
+    return table
+
+
+def _format(value: Any) -> str:
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return "True" if value else "False"
+    if isinstance(value, float):
+        return repr(value)  # shortest repr that round-trips: exact, and identical run to run
+    return str(value)
+
+
+def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], columns: Sequence[str]) -> None:
+    """Write a case table atomically (temporary file, fsync, ``os.replace``), columns ``columns``."""
+
+    def write(fh):
+        w = csv.writer(fh, lineterminator="\n")
+        w.writerow(columns)
+        for rec in table:
+            w.writerow([_format(rec[c]) for c in columns])
+
+    atomic_write(Path(path), write)
+
+
+__all__ = ["BLOCK_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
+           "RESULT_COLUMNS", "RecordCase", "case_table", "failed_row", "result_row", "write_cases_csv"]

@@ -184,7 +184,7 @@ def _case(bname: str, block: Block, rname: str, flabel: str, motion, inten: Inte
         scale, level_value = value, math.nan
     else:
         target = value * G if inten.measure == "pfa_g" else value * block.uplift_acceleration
-        scale, level_value = target / motion.measures.pfa, value
+        scale, level_value = motion.record.scale_to(target), value
     lim = LIMITS["scale"]
     problem = "" if lim.low <= scale <= lim.high else (
         f"scale factor {scale:.4g} to reach {inten.measure} = {value:g} is outside [{lim.low:g}, {lim.high:g}] "

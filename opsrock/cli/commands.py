@@ -132,11 +132,11 @@ def _record(args: argparse.Namespace, block):
     """The record of ``--record``, filtered and scaled as asked."""
     from opsrock.constants import G
     from opsrock.errors import OpsrockError
-    from opsrock.excitations import library
+    from opsrock.excitations.readers import read_record
     from opsrock.excitations.records import check_sampling
 
     try:
-        rec = library.record(args.record, units=args.units, dt=args.dt)
+        rec = read_record(args.record, units=args.units, dt=args.dt)
     except OpsrockError as exc:
         raise UsageError(f"--record: {exc}") from None
     if args.building_period is not None:
@@ -153,14 +153,17 @@ def _record(args: argparse.Namespace, block):
     except OpsrockError as exc:
         raise UsageError(f"--record: {exc}") from None
     if args.pfa is not None:
-        factor, name, value = args.pfa * G / rec.pfa, "--pfa", args.pfa
+        name, value, target = "--pfa", args.pfa, args.pfa * G
     elif args.pfa_ratio is not None:
-        factor, name, value = args.pfa_ratio * block.uplift_acceleration / rec.pfa, "--pfa-ratio", args.pfa_ratio
+        name, value, target = "--pfa-ratio", args.pfa_ratio, args.pfa_ratio * block.uplift_acceleration
     else:
-        factor, name, value = args.scale or 1.0, "--scale", args.scale or 1.0
+        name, value, target = "--scale", args.scale or 1.0, None
     try:
+        factor = value if target is None else rec.scale_to(target)
         return rec.scaled(factor), factor
     except OpsrockError as exc:
+        if target is None or rec.pfa == 0.0:
+            raise UsageError(f"{name} = {value!r}: {exc}") from None
         raise UsageError(f"{name} = {value!r} needs a scale factor of {factor:.4g} on record {rec.name}: {exc}") from None
 
 
@@ -319,11 +322,11 @@ def _records_show(args) -> int:
 def _records_plot(args) -> int:
     from opsrock._files import output_file
     from opsrock.errors import OpsrockError
-    from opsrock.excitations import library
+    from opsrock.excitations.readers import read_record
     from opsrock.plots.records import plot_record
 
     out = output_file("--out", args.out, ".png")
-    rec = library.record(args.name, units=args.units, dt=args.dt)
+    rec = read_record(args.name, units=args.units, dt=args.dt)
     floor = None
     if (args.building_period is None) != (args.storeys is None):
         raise UsageError("--building-period and --storeys go together")

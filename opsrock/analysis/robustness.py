@@ -25,7 +25,7 @@ from opsrock.limits import int_at_least
 ALPHA_RANGE: tuple[float, float] = (0.15, 0.45)
 #: Size R = sqrt(b² + h²) (m): a bedside cabinet (0.5) to a wardrobe or rack (1.5).
 R_RANGE: tuple[float, float] = (0.5, 1.5)
-#: The paper's pulse grid (reconstructed, as models/scenes/paper.toml).
+#: The paper's pulse grid (reconstructed, as the shipped scene ``paper``).
 FREQ_RATIOS: tuple[float, ...] = tuple(np.linspace(0.5, 10.0, 10))
 PFA_RATIOS: tuple[float, ...] = tuple(np.linspace(1.0, 10.5, 10))
 #: Ranking criteria: column of :func:`opsrock.fragility.analysis.rank_ims` (smaller is better).

@@ -12,7 +12,7 @@ from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.fragility.cases import CaseSplit, split_cases
 from opsrock.fragility.hybrid_strip import HybridStrip, hybrid_strip
 from opsrock.fragility.least_squares import fit_lognormal_least_squares
-from opsrock.fragility.lognormal import LognormalFit, _failed_fit
+from opsrock.fragility.lognormal import LognormalFit, failed_fit
 from opsrock.fragility.mle import MLEFit, fit_lognormal_mle
 from opsrock.fragility.strips import STRIP_EXTENTS, StripFractions, strip_fractions
 from opsrock.intensity import IM_NAMES, add_intensity_measures, get_im
@@ -132,7 +132,7 @@ def analyse_fragility(
         strips, fits = {}, {}
         for fac in settings.strip_factors:
             if hs.n_safe == 0 or hs.n_overturned == 0:
-                fits[fac] = _failed_fit("least_squares", 0, dec, hs.note)
+                fits[fac] = failed_fit("least_squares", 0, dec, hs.note)
                 continue
             st = strip_fractions(x, y, hs, fac, settings.extent)
             strips[fac] = st

@@ -84,5 +84,6 @@ class LognormalFit:
         return fragility_probability(x, self.mu, self.beta, self.decreasing)
 
 
-def _failed_fit(method: str, n: int, decreasing: bool, message: str) -> LognormalFit:
+def failed_fit(method: str, n: int, decreasing: bool, message: str) -> LognormalFit:
+    """A fit that could not be made: NaN parameters, ``success=False`` and the reason (``message``)."""
     return LognormalFit(math.nan, math.nan, math.nan, method, n, decreasing, False, message)

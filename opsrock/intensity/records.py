@@ -40,7 +40,7 @@ import scipy.integrate
 from opsrock.constants import G
 from opsrock.errors import InputError
 from opsrock.excitations.records import Record
-from opsrock.intensity.table1 import _BIVARIATE, IM8_RESTITUTION_EXPONENT, IM_NAMES
+from opsrock.intensity.table1 import BIVARIATE, IM8_RESTITUTION_EXPONENT, IM_NAMES
 
 #: Frequency band of the mean period (Hz), Rathje et al. (1998).
 MEAN_PERIOD_BAND: tuple[float, float] = (0.25, 20.0)
@@ -175,7 +175,7 @@ def record_intensity_measures(alpha, R, p, e_R, measures: MotionMeasures) -> dic
     im2 = measures.pfa / (G * tan_alpha)
     im3 = p * measures.pfv / (G * tan_alpha)
     out = {"IM1": im1, "IM2": im2, "IM3": im3}
-    for name, (a, m, n) in _BIVARIATE.items():
+    for name, (a, m, n) in BIVARIATE.items():
         out[name] = a * im2**m * im1**n
     out["IM8"] = e_R**IM8_RESTITUTION_EXPONENT * im3
     out["IM9"] = measures.pfa * measures.mean_period**2 / (R * tan_alpha)

@@ -112,7 +112,7 @@ _BY_NAME = {im.name: im for im in IMS}
 
 # Coefficients and exponents of the bivariate IMs, paper Table 1 (from Dimitrakopoulos &
 # Paraskeva 2015, ref. [56]): IM = a IM2^m IM1^n.
-_BIVARIATE: dict[str, tuple[float, float, float]] = {
+BIVARIATE: dict[str, tuple[float, float, float]] = {
     "IM4": (1.484, 1.644, -2.013),
     "IM5": (0.063, 2.954, -0.942),
     "IM6": (1.0, 0.52, -0.48),
@@ -188,7 +188,7 @@ def intensity_measures_array(
     im2 = pfa / (G * tan_alpha)
     im3 = p * pfv / (G * tan_alpha)
     out = {"IM1": im1, "IM2": im2, "IM3": im3}
-    for name, (a, m, n) in _BIVARIATE.items():
+    for name, (a, m, n) in BIVARIATE.items():
         out[name] = a * im2**m * im1**n
     out["IM8"] = e_R**IM8_RESTITUTION_EXPONENT * im3
     out["IM9"] = pfa * t_p**2 / (R * tan_alpha)

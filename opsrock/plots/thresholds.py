@@ -4,13 +4,13 @@ Four panels, one per classical pulse: Housner's rectangular pulse, Makris and Ro
 Zhang and Makris' one-sine (both overturning branches and the safe window between them) and Makris
 and Konstantinidis' one-cosine. The shaded bands are every overturning interval that
 :func:`opsrock.analysis.threshold.threshold_chart` finds (``housner_fast``, linearised equation, as the papers
-solve it); the lines are the papers' closed forms (:mod:`opsrock.published`).
+solve it; computed by :mod:`opsrock.analysis.charts`); the lines are the papers' closed forms
+(:mod:`opsrock.published`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from pathlib import Path
 
 import matplotlib
@@ -19,43 +19,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from opsrock.block import Block  # noqa: E402
+from opsrock.analysis.charts import Y_MAX, ChartData  # noqa: E402
 from opsrock.plots import save_figure  # noqa: E402
-
-#: Block of the charts (2b x 2h = 0.5 x 2 m, alpha = 0.245 rad). Under the linearised equation the
-#: charts, in ``a / (g alpha)`` against ``omega_p / p``, do not depend on the block but through ``e``.
-CHART_BLOCK: tuple[float, float] = (0.5, 2.0)
-#: Upper end of the drawn amplitude axis, ``a / (g alpha)``.
-Y_MAX: float = 20.0
-
-
-@dataclass(frozen=True)
-class ChartData:
-    """The overturning intervals of one panel, in ``a / (g alpha)``, per ``omega_p / p``."""
-
-    shape: str
-    restitution: float
-    freq_ratio: np.ndarray
-    intervals: tuple[tuple[tuple[float, float], ...], ...]
-    n_solves: int
-    wall_time_s: float
-
-
-def chart_data(shape: str, restitution: float, freq_ratios: np.ndarray, *, n_scan: int = 300) -> ChartData:
-    """Overturning intervals (linearised, ``housner_fast``) at every ``omega_p / p`` of ``freq_ratios``."""
-    import time
-
-    from opsrock.analysis.threshold import threshold_chart
-
-    block = Block(*CHART_BLOCK, restitution=restitution)
-    t0 = time.perf_counter()
-    # pfa_ratio = (a / g alpha) alpha / tan alpha: scan up to Y_MAX in a / (g alpha)
-    top = 1.02 * Y_MAX * block.alpha / block.tan_alpha
-    res = threshold_chart(block, freq_ratios, shape=shape, equations="linearised", pfa_ratio_max=top, n_scan=n_scan)
-    wall = time.perf_counter() - t0
-    ivs = tuple(tuple((r.to_g_alpha(a), r.to_g_alpha(b)) for a, b in r.intervals) for r in res)
-    return ChartData(shape, restitution, np.asarray(freq_ratios, dtype=float), ivs,
-                     sum(r.n_solves for r in res), wall)
 
 
 def _draw_intervals(ax, data: ChartData, color: str, label: str) -> None:
@@ -71,22 +36,10 @@ def _draw_intervals(ax, data: ChartData, color: str, label: str) -> None:
     ax.add_collection(PolyCollection(boxes, facecolors=color, alpha=0.35, linewidths=0, label=label))
 
 
-def default_data(n: int = 200, n_scan: int = 300) -> dict[str, ChartData]:
-    """The data of the four panels: ``n`` frequencies from 0.5 to 20 (rectangular: ``p t_1`` 0.16 to 6.3)."""
-    from opsrock.published import makris_konstantinidis_2003 as mk
-
-    nu = np.geomspace(0.5, 20.0, n)
-    return {
-        "rectangular": chart_data("rectangular", 0.9, nu, n_scan=n_scan),
-        "half-sine": chart_data("half-sine", 0.9, nu, n_scan=n_scan),
-        "one-sine": chart_data("one-sine", 0.9, nu, n_scan=n_scan),
-        "one-cosine": chart_data("one-cosine", mk.restitution(), nu, n_scan=n_scan),
-    }
-
-
 def plot_threshold_charts(data: dict[str, ChartData], path: str | Path) -> Path:
-    """Draw the four panels of :func:`default_data` (or any data with those keys) into ``path``."""
-    from opsrock.published import _linearised, housner_1963, makris_roussos_2000
+    """Draw the four panels of :func:`opsrock.analysis.charts.literature_charts` (or any data with those keys)
+    into ``path``."""
+    from opsrock.published import housner_1963, linearised, makris_roussos_2000
 
     fig, axes = plt.subplots(2, 2, figsize=(10.5, 8.0), constrained_layout=True)
     panels = [
@@ -104,7 +57,7 @@ def plot_threshold_charts(data: dict[str, ChartData], path: str | Path) -> Path:
             ax.plot(fine, [housner_1963.minimum_overturning(math.pi / x) for x in fine], "k-", lw=1.2,
                     label=r"Housner: $1/(1-e^{-p t_1})$, $p t_1 = \pi/(\omega_p/p)$")
         else:
-            curve = [_linearised.minimum_no_impact(x, shape) for x in fine]
+            curve = [linearised.minimum_no_impact(x, shape) for x in fine]
             ax.plot(fine, curve, "k-", lw=1.2, label="closed form, overturning without impact")
         if shape == "half-sine":
             ax.plot(fine, [makris_roussos_2000.housner_energy_estimate(x) for x in fine], "k--", lw=1.0,

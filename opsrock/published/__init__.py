@@ -9,7 +9,10 @@ with its source and the tolerance a comparison may use and why. Validation case 
 * :mod:`~opsrock.published.makris_roussos_2000`: half-sine pulse, linearised, no impact;
 * :mod:`~opsrock.published.zhang_makris_2001`: one-sine pulse, both overturning branches, and the
   locomotive example;
-* :mod:`~opsrock.published.makris_konstantinidis_2003`: one-cosine pulse, ``T_p = 2 s``, ``alpha = 15°``.
+* :mod:`~opsrock.published.makris_konstantinidis_2003`: one-cosine pulse, ``T_p = 2 s``, ``alpha = 15°``;
+* :mod:`~opsrock.published.liu_huang_liu_2023`: the reproduced paper's Tables 2 and 3;
+* :mod:`~opsrock.published.linearised`: the linearised equation under the harmonic pulses solved in
+  closed form, independently of the solvers, which the papers' modules share.
 """
 
 from opsrock.published.reference import PublishedValue

@@ -8,7 +8,7 @@ gives the minimum overturning acceleration.
 
 We solve the linearised equation with ``e = e_R = 1 - 1.5 sin²(alpha)`` (Housner's value, 0.8995 at
 15°) and the exact equation with the same ``e``. Both branches are found: overturning without impact
-(:func:`minimum_no_impact`, closed form of :mod:`opsrock.published._linearised`) and, much lower,
+(:func:`minimum_no_impact`, closed form of :mod:`opsrock.published.linearised`) and, much lower,
 after one impact (:func:`intervals`). The paper's printed minima were not available to us when this
 case was written, so no number of the paper is tested here: validation case 7 lists ours, by
 equation form, and leaves the published column empty.
@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import math
 
-from opsrock.published import _linearised
+from opsrock.published import linearised
 
 #: The paper's example.
 T_P: float = 2.0
@@ -33,12 +33,12 @@ def restitution(alpha: float = ALPHA) -> float:
 
 def minimum_no_impact(freq_ratio: float) -> float:
     """Lower edge of the overturning-without-impact branch, ``a_p / (g alpha)`` (dimensionless)."""
-    return _linearised.minimum_no_impact(freq_ratio, "one-cosine")
+    return linearised.minimum_no_impact(freq_ratio, "one-cosine")
 
 
 def intervals(freq_ratio: float, e: float, a_max: float = 60.0) -> list[tuple[float, float]]:
     """Every overturning interval in ``a_p / (g alpha)`` (linearised, restitution ``e``)."""
-    return _linearised.intervals(freq_ratio, "one-cosine", e, a_max=a_max)
+    return linearised.intervals(freq_ratio, "one-cosine", e, a_max=a_max)
 
 
 #: No published value is tested (see the module docstring).

@@ -3,7 +3,7 @@ Géotechnique 50(3), 243-262: the half-sine pulse, linearised, overturning witho
 
 A half-sine pulse ``a(t) = a_p sin(omega_p t)``, ``0 <= t <= pi / omega_p``, uplifts the block when
 ``a_p sin(omega_p t_u) = g alpha``. From there the linearised equation is solved in closed form
-(:mod:`opsrock.published._linearised`) to the end of the pulse, and the block overturns without
+(:mod:`opsrock.published.linearised`) to the end of the pulse, and the block overturns without
 impact if it ends the pulse beyond the separatrix of the free motion. The minimum ``a_p / (g alpha)``
 as a function of ``omega_p / p`` is the root of that condition. At ``omega_p / p = 1`` it is
 1.3224, below the 1.414 of Housner's energy estimate (which is therefore unconservative there).
@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 
 from opsrock.errors import InputError
-from opsrock.published import _linearised
+from opsrock.published import linearised
 from opsrock.published.reference import PublishedValue
 
 #: ``omega_p / p`` range in which the closed form is evaluated (dimensionless).
@@ -31,7 +31,7 @@ def minimum_overturning(freq_ratio: float) -> float:
     """
     if not FREQ_RATIO_RANGE[0] <= freq_ratio <= FREQ_RATIO_RANGE[1]:
         raise InputError(f"freq_ratio must lie in {FREQ_RATIO_RANGE}, got {freq_ratio!r}")
-    return _linearised.minimum_no_impact(freq_ratio, "half-sine")
+    return linearised.minimum_no_impact(freq_ratio, "half-sine")
 
 
 def housner_energy_estimate(freq_ratio: float) -> float:

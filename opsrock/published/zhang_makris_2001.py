@@ -13,7 +13,7 @@ separatrix gives, with ``nu = omega_p / p``::
 **Overturning after one impact.** Below that branch lies a second one: the block rocks back, impacts
 and is thrown over by the second half of the pulse. It depends on ``e``; between the two branches
 lies a safe window. It has no closed form: :func:`intervals` finds both branches with the
-closed-form event solution of :mod:`opsrock.published._linearised`.
+closed-form event solution of :mod:`opsrock.published.linearised`.
 
 **The locomotive example** (``alpha = 0.25 rad``, ``p = 2.14 rad/s``, ``e = 0.9``, ``omega_p =
 15.7 rad/s``): first overturning at about 2.22 g, then safe between about 2.62 and 3.44 g. The
@@ -28,7 +28,7 @@ import math
 from scipy.optimize import brentq
 
 from opsrock.errors import InputError
-from opsrock.published import _linearised
+from opsrock.published import linearised
 from opsrock.published.reference import PublishedValue
 
 #: ``omega_p / p`` range in which the relations are evaluated (dimensionless).
@@ -60,7 +60,7 @@ def intervals(freq_ratio: float, restitution: float, a_max: float = 60.0) -> lis
     """Every overturning interval in ``a_p / (g alpha)`` (linearised, restitution ``e``), both
     branches, by the closed-form event solution."""
     _check(freq_ratio)
-    return _linearised.intervals(freq_ratio, "one-sine", restitution, a_max=a_max)
+    return linearised.intervals(freq_ratio, "one-sine", restitution, a_max=a_max)
 
 
 #: The locomotive example's block and pulse.

@@ -3,7 +3,7 @@
 Every row is one published boundary (or one we computed where the paper's number was not available
 to us), found by :func:`opsrock.analysis.threshold.overturning_intervals` with ``housner_fast`` and compared
 with (a) the number the paper prints, (b) an independent reference: the paper's closed form, or the
-closed-form event solution of the linearised equation (:mod:`opsrock.published._linearised`), or
+closed-form event solution of the linearised equation (:mod:`opsrock.published.linearised`), or
 the event-driven ``housner`` solver for the exact equation, and (c) the OpenSees SDOF model near the
 exact rigid-body boundary (not linearised, damper band: its distance is reported, not tested).
 
@@ -28,8 +28,8 @@ from opsrock.analysis.threshold import (
 from opsrock.block import Block
 from opsrock.constants import G
 from opsrock.published import (
-    _linearised,
     housner_1963,
+    linearised,
     makris_konstantinidis_2003,
     makris_roussos_2000,
     zhang_makris_2001,
@@ -102,7 +102,7 @@ def _pub(values: tuple[PublishedValue, ...], key: str) -> PublishedValue:
 
 
 def rows() -> list[Row]:
-    """The compared boundaries, in the order of the README's table."""
+    """The compared boundaries, in the order of the case README's table."""
     lin = Block(*LINEAR_BLOCK, restitution=0.9)
     h63 = _pub(housner_1963.VALUES, "housner1963_rect_pt1_1")
     mr = _pub(makris_roussos_2000.VALUES, "makris_roussos2000_half_sine_1")
@@ -146,9 +146,9 @@ def rows() -> list[Row]:
         blk = _block_from(makris_konstantinidis_2003.ALPHA, p, mk_e)
         src = f"Makris and Konstantinidis (2003), one-cosine, T_p = 2 s, alpha = 15 deg, p = {p:g} rad/s, e = e_R"
         out += [
-            Row(f"mk2003_p{p:g}_linearised", src + ", linearised", "one-cosine", "linearised", nu, blk, "first", "g",
+            Row(f"mk2003_p{p:g}linearised", src + ", linearised", "one-cosine", "linearised", nu, blk, "first", "g",
                 None, None, "published value not available to us",
-                lambda nu=nu: _linearised.intervals(nu, "one-cosine", mk_e)[0][0] * makris_konstantinidis_2003.ALPHA,
+                lambda nu=nu: linearised.intervals(nu, "one-cosine", mk_e)[0][0] * makris_konstantinidis_2003.ALPHA,
                 "closed-form event solution"),
             Row(f"mk2003_p{p:g}_no_impact", src + ", linearised, without impact", "one-cosine", "linearised", nu, blk,
                 "last", "g", None, None, "published value not available to us",
@@ -249,7 +249,8 @@ def _markdown(results: list[dict]) -> str:
 
 def run(out_dir: Path, quick: bool = False) -> dict:
     """Regenerate the case into ``out_dir``; quick: housner_fast and the closed forms only, a coarse chart."""
-    from opsrock.plots.thresholds import default_data, plot_threshold_charts
+    from opsrock.analysis.charts import literature_charts
+    from opsrock.plots.thresholds import plot_threshold_charts
 
     out_dir = Path(out_dir)
     results = [evaluate(r, quick=quick) for r in rows()]
@@ -260,7 +261,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
         w.writerows(results)
     (out_dir / "table.md").write_text(_markdown(results))
     t0 = time.perf_counter()
-    data = default_data(n=40 if quick else 200, n_scan=150 if quick else 300)
+    data = literature_charts(n=40 if quick else 200, n_scan=150 if quick else 300)
     chart_s = time.perf_counter() - t0
     plot_threshold_charts(data, out_dir / "thresholds.png")
     tested = [r for r in results if r["role"] == "test"]

@@ -300,7 +300,7 @@ def test_failure_is_reported_not_hidden():
 
 @pytest.mark.parametrize(
     "kwargs, name",
-    [({"max_step": 0.0}, "max_step"), ({"max_step": 1.0}, "max_step"),
+    [({"max_dtau": 0.0}, "max_dtau"), ({"max_dtau": 1.0}, "max_dtau"),
      ({"steps_per_pulse": 4}, "steps_per_pulse"), ({"rest_velocity": -1.0}, "rest_velocity"),
      ({"max_impacts": 0}, "max_impacts"), ({"max_steps": 2.5}, "max_steps")],
 )

@@ -42,9 +42,10 @@ CAMPAIGNS: dict[str, tuple[str, str]] = {
 }
 
 #: Settings renamed by the restructuring (one meaning per name: ``dt`` is a record's sample interval,
-#: the OpenSees step is ``step``): in a ``settings`` column the new name is mapped back to the old one
+#: the OpenSees step is ``step``; ``max_step`` is in seconds, the compiled solver's step in units of
+#: ``1/p`` is ``max_dtau``): in a ``settings`` column the new name is mapped back to the old one
 #: before hashing, so that a digest compares numbers, not the spelling of a key.
-RENAMED_SETTINGS: dict[str, str] = {"'step':": "'dt':", "'min_step':": "'dt_min':"}
+RENAMED_SETTINGS: dict[str, str] = {"'step':": "'dt':", "'min_step':": "'dt_min':", "'max_dtau':": "'max_step':"}
 
 #: Columns and summary rows that hold measured times (or what is ranked by them).
 TIMING = re.compile(r"(?:wall|cpu|_time$|^time_|_s_per_|per_wall_second|^pareto$)")

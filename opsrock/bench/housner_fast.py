@@ -82,25 +82,40 @@ def run(quick: bool = False, cold: bool = False, seed: int = 2024) -> dict:
     out["first_call_s"] = time.perf_counter() - t0  # cache load, or compile without a cache
     if cold:
         out.update(_cold_compile())
-
     n = 20 if quick else 100
     pfa = np.linspace(*PFA_RANGE, n)
     freq = np.linspace(*FREQ_RANGE, n)
+    grid = _grid(out, pfa, freq)
+    _against_finer_steps(out, grid, pfa, freq)
+    subset = _reference_subset(out, grid, pfa, freq, 15 if quick else 60, seed)
+    _against_housner(out, grid, pfa, freq, subset[: 5 if quick else 15])
+    out["load_avg_end"] = os.getloadavg()[0]
+    return out
+
+
+def _grid(out: dict, pfa: np.ndarray, freq: np.ndarray):
+    """Time the whole grid with every thread and with one (the answers must be identical)."""
+    from opsrock.solvers import housner_fast as hf
+    from opsrock.solvers.housner_fast.grid import default_threads
+
     grid = hf.solve_pulses(BLOCKS, pfa, freq)
-    out["n_cases"] = int(grid.theta_max.size)
-    out["wall_s"] = grid.wall_time_s
-    out["cases_per_s"] = grid.theta_max.size / grid.wall_time_s
-    out["failed"] = int((~grid.ok).sum())
-    out["overturned_fraction"] = float(grid.overturned.mean())
-    out["mean_steps_per_case"] = float(grid.n_steps.mean())
-    out["threads"] = hf._default_threads()
+    out.update(n_cases=int(grid.theta_max.size), wall_s=grid.wall_time_s,
+               cases_per_s=grid.theta_max.size / grid.wall_time_s, failed=int((~grid.ok).sum()),
+               overturned_fraction=float(grid.overturned.mean()), mean_steps_per_case=float(grid.n_steps.mean()),
+               threads=default_threads())
     grid1 = hf.solve_pulses(BLOCKS, pfa, freq, threads=1)
     out["wall_1thread_s"] = grid1.wall_time_s
     out["threads_identical"] = bool(np.array_equal(grid.theta_max, grid1.theta_max))
+    return grid
+
+
+def _against_finer_steps(out: dict, grid, pfa: np.ndarray, freq: np.ndarray) -> None:
+    """Every case against the same solver with steps eight times shorter."""
+    from opsrock.solvers import housner_fast as hf
 
     alpha = np.array([b.alpha for b in BLOCKS])[:, None, None] * np.ones_like(grid.theta_max)
     s = hf.HousnerFastSettings()
-    fine_settings = hf.HousnerFastSettings(max_step=s.max_step / 8, steps_per_pulse=s.steps_per_pulse * 8)
+    fine_settings = hf.HousnerFastSettings(max_dtau=s.max_dtau / 8, steps_per_pulse=s.steps_per_pulse * 8)
     fine = hf.solve_pulses(BLOCKS, pfa, freq, settings=fine_settings)
     both_safe = ~grid.overturned & ~fine.overturned
     d = np.abs(grid.theta_max - fine.theta_max)[both_safe] / alpha[both_safe]
@@ -109,41 +124,36 @@ def run(quick: bool = False, cold: bool = False, seed: int = 2024) -> dict:
     out["fine_verdict_disagreements"] = int((grid.overturned != fine.overturned).sum())
     out["fine_wall_s"] = fine.wall_time_s
 
-    # random subset against the independent solve_ivp reference
+
+def _reference_subset(out: dict, grid, pfa: np.ndarray, freq: np.ndarray, n_sub: int, seed: int) -> list:
+    """A random subset against the independent solve_ivp reference; returns the subset's indices."""
     rng = np.random.default_rng(seed)
-    n_sub = 15 if quick else 60
     flat = rng.choice(grid.theta_max.size, n_sub, replace=False)
-    ib, ip, jf = np.unravel_index(flat, grid.theta_max.shape)
-    dref, disagree = [], 0
+    subset = list(zip(*np.unravel_index(flat, grid.theta_max.shape)))
     t0 = time.perf_counter()
-    refs = [reference_solve(BLOCKS[b].alpha, BLOCKS[b].e, pfa[i], freq[j]) for b, i, j in zip(ib, ip, jf)]
+    refs = [reference_solve(BLOCKS[b].alpha, BLOCKS[b].e, pfa[i], freq[j]) for b, i, j in subset]
     t_ref = (time.perf_counter() - t0) / n_sub
-    for ref, b, i, j in zip(refs, ib, ip, jf):
+    dref, disagree = [], 0
+    for ref, (b, i, j) in zip(refs, subset):
         ov = bool(grid.overturned[b, i, j])
         disagree += ov != ref["overturned"]
         if not ov and not ref["overturned"]:
             dref.append(abs(grid.theta_max[b, i, j] - ref["theta_max"]) / BLOCKS[b].alpha)
     dref = np.array(dref) if dref else np.zeros(1)
-    out["ref_subset"] = n_sub
-    out["ref_max_dtheta_over_alpha"] = float(dref.max())
-    out["ref_p99_dtheta_over_alpha"] = float(np.percentile(dref, 99))
-    out["ref_verdict_disagreements"] = int(disagree)
     per_case_fast = grid.wall_time_s / grid.theta_max.size
-    out["fast_s_per_case"] = per_case_fast
-    out["solve_ivp_s_per_case"] = t_ref
-    out["speedup_vs_solve_ivp"] = t_ref / per_case_fast
+    out.update(ref_subset=n_sub, ref_max_dtheta_over_alpha=float(dref.max()),
+               ref_p99_dtheta_over_alpha=float(np.percentile(dref, 99)), ref_verdict_disagreements=int(disagree),
+               fast_s_per_case=per_case_fast, solve_ivp_s_per_case=t_ref, speedup_vs_solve_ivp=t_ref / per_case_fast)
+    return subset
 
-    try:
-        from opsrock.solvers import housner
-    except ImportError:
-        housner = None
-    if housner is not None:
-        n_h = 5 if quick else 15
-        t0 = time.perf_counter()
-        for b, i, j in list(zip(ib, ip, jf))[:n_h]:
-            housner.solve(BLOCKS[b], OneSinePulse.from_ratios(BLOCKS[b], pfa[i], freq[j]))
-        t_h = (time.perf_counter() - t0) / n_h
-        out["housner_s_per_case"] = t_h
-        out["speedup_vs_housner"] = t_h / per_case_fast
-    out["load_avg_end"] = os.getloadavg()[0]
-    return out
+
+def _against_housner(out: dict, grid, pfa: np.ndarray, freq: np.ndarray, subset: list) -> None:
+    """Time per case of the event-driven scipy solver on the first cases of the subset."""
+    from opsrock.solvers import housner
+
+    t0 = time.perf_counter()
+    for b, i, j in subset:
+        housner.solve(BLOCKS[b], OneSinePulse.from_ratios(BLOCKS[b], pfa[i], freq[j]))
+    t_h = (time.perf_counter() - t0) / len(subset)
+    out["housner_s_per_case"] = t_h
+    out["speedup_vs_housner"] = t_h / out["fast_s_per_case"]

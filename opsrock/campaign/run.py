@@ -39,13 +39,24 @@ from pathlib import Path
 from typing import Any, Callable, Mapping, Sequence
 
 from opsrock._files import atomic_write
-from opsrock.campaign.cases import IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
+from opsrock.campaign.cases import (
+    IDENTITY_EXCLUDED,
+    case_table,
+    failed_row,
+    result_row,
+    write_cases_csv,
+)
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
 from opsrock.campaign.motions import cached_motions, compute_motions
 from opsrock.campaign.scene import Scene, load_scene
 from opsrock.campaign.store import STORE_FILE, ResultStore
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
-from opsrock.errors import CampaignConflictError, CaseTimeout, InputError, InputTypeError
+from opsrock.errors import (
+    CampaignConflictError,
+    CaseTimeout,
+    InputError,
+    InputTypeError,
+)
 from opsrock.result import RockingResult
 from opsrock.solvers import SOLVERS, get_solver, simulate
 
@@ -224,6 +235,14 @@ class _Run:
     n_computed: int = 0
     n_reused: int = 0
 
+    def summary(self, n_cases: int, n_failed: int, wall_time_s: float) -> CampaignSummary:
+        out = self.out
+        return CampaignSummary(
+            n_cases=n_cases, n_computed=self.n_computed, n_reused=self.n_reused, n_failed=n_failed,
+            wall_time_s=wall_time_s, out_dir=str(out), store_path=str(out / STORE_FILE),
+            cases_csv=str(out / CASES_FILE), manifest_path=str(out / MANIFEST_FILE), digest=self.digest,
+            solver=self.scene.solver)
+
     def open(self, store: ResultStore, manifest: dict, force: bool) -> None:
         """Check the folder's manifest against this run's, or start the store afresh."""
         old = store.manifest()
@@ -269,6 +288,14 @@ class _Run:
                 bar.update(len(rows))
 
 
+def _identity(scene: Scene, solve_fn: Callable | None) -> tuple[str, dict[str, Any]]:
+    """The digest of what determines the results (a custom ``solve_fn`` included) and the manifest."""
+    digest = scene.digest()
+    if solve_fn is not None:
+        digest = hashlib.sha256(f"{digest}|{_callable_name(solve_fn)}".encode()).hexdigest()
+    return digest, _manifest(scene, digest, solve_fn)
+
+
 def _case_budget(scene: Scene, case_timeout: float | None) -> float:
     if case_timeout is None:
         case_timeout = scene.case_timeout if scene.case_timeout is not None else DEFAULT_CASE_TIMEOUT
@@ -295,35 +322,34 @@ def run_campaign(
     Parameters
     ----------
     scene : Scene or path
-        The scene, or its TOML file or shipped name (validated first: :class:`~opsrock.errors.SceneError`
-        before anything is written).
+        The scene, or its TOML file or shipped name (validated before anything is written).
     out_dir : str or Path
         Output folder: ``results.sqlite`` (the store), ``cases.csv``, ``manifest.json``.
     solver : str, optional
-        Run with this solver instead of the scene's; the scene's settings are dropped if they
-        belong to another solver (:meth:`Scene.with_solver`).
+        Run with this solver instead of the scene's (:meth:`Scene.with_solver`: the scene's settings
+        are dropped if they belong to another solver).
     workers : int, optional
-        Worker processes of the default :class:`~opsrock.campaign.executors.LocalPool` (default: all
-        available cores). Ignored when ``executor`` is given.
+        Processes of the default :class:`~opsrock.campaign.executors.LocalPool` (default: all cores);
+        ignored when ``executor`` is given.
     executor : Executor, optional
         Where to run (:class:`~opsrock.campaign.executors.LocalPool`,
         :class:`~opsrock.campaign.executors.DaskExecutor`); the caller closes it.
     force : bool, optional
-        Delete the folder's stored results first, even if they were computed with other
-        settings. Default False: resume, and refuse a folder of other settings.
+        Delete the folder's stored results first, even of other settings. Default False: resume, and
+        refuse a folder of other settings.
     progress : bool, optional
-        Show a progress bar on stderr (only when stderr is a terminal). Default True.
+        A progress bar on stderr (only when stderr is a terminal). Default True.
     solve_fn : callable, optional
-        Replace :func:`opsrock.solvers.simulate` (tests, custom solvers):
-        ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``, picklable.
-        Its name enters the manifest, so its results never mix with a real solver's.
+        Replace :func:`opsrock.solvers.simulate` (tests, custom solvers), picklable:
+        ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``. Its name enters the
+        manifest, so its results never mix with a real solver's.
     batch : int, optional
         Cases per batch. Default :func:`opsrock.campaign.executors.batch_size`.
     case_timeout : float, optional
         Wall-clock budget of one case (s). Default: the scene's ``[solver] case_timeout``, else
         :data:`opsrock.campaign.timeout.DEFAULT_CASE_TIMEOUT`. A case past it is stored failed with a
-        reason starting ``"timeout"`` and the campaign goes on; the local executor also kills a
-        worker stuck in native code (:class:`opsrock.campaign.executors.LocalPool`).
+        reason starting ``"timeout"`` and the campaign goes on (the local executor also kills a worker
+        stuck in native code).
 
     Returns
     -------
@@ -331,22 +357,16 @@ def run_campaign(
 
     Raises
     ------
-    SceneError
-        Invalid scene or solver settings (nothing written).
-    CampaignConflictError
-        ``out_dir`` holds results of other settings and ``force`` is False.
-    StoreError
-        Another run holds ``out_dir``.
+    SceneError, CampaignConflictError, StoreError
+        Invalid scene or settings (nothing written); ``out_dir`` holds results of other settings and
+        ``force`` is False; another run holds ``out_dir``.
     """
     t_start = time.perf_counter()
     scene = scene if isinstance(scene, Scene) else load_scene(scene)
     if solver is not None:
         scene = scene.with_solver(solver)
-    digest = scene.digest()
-    if solve_fn is not None:
-        digest = hashlib.sha256(f"{digest}|{_callable_name(solve_fn)}".encode()).hexdigest()
+    digest, manifest = _identity(scene, solve_fn)
     case_timeout = _case_budget(scene, case_timeout)
-    manifest = _manifest(scene, digest, solve_fn)
     out = Path(out_dir)
     solve = functools.partial(solve_batch, solver=scene.solver, settings=dict(scene.solver_settings),
                               solve_fn=solve_fn, case_timeout=case_timeout)
@@ -363,11 +383,7 @@ def run_campaign(
                 run.executor.close()
         table = case_table(cases, store.rows())
         write_cases_csv(out / CASES_FILE, table, scene.columns)
-    return CampaignSummary(
-        n_cases=len(cases), n_computed=run.n_computed, n_reused=run.n_reused,
-        n_failed=sum(r["status"] == "failed" for r in table), wall_time_s=time.perf_counter() - t_start,
-        out_dir=str(out), store_path=str(out / STORE_FILE), cases_csv=str(out / CASES_FILE),
-        manifest_path=str(out / MANIFEST_FILE), digest=digest, solver=scene.solver)
+    return run.summary(len(cases), sum(r["status"] == "failed" for r in table), time.perf_counter() - t_start)
 
 
 __all__ = ["CASES_FILE", "CampaignSummary", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "run_campaign", "solve_batch"]

@@ -8,7 +8,7 @@ import numpy as np
 from scipy import optimize, special
 
 from opsrock.errors import InputError
-from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit, _failed_fit
+from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit, failed_fit
 
 #: crawls towards the ``beta`` bound for hundreds of iterations).
 LS_MAX_EVALUATIONS: int = 300
@@ -45,12 +45,12 @@ def fit_lognormal_least_squares(
     if np.any((f < 0) | (f > 1) | ~np.isfinite(f)):
         raise InputError("fraction must lie in [0, 1]")
     if x.size < 2:
-        return _failed_fit(method, int(x.size), decreasing, f"{x.size} strip(s): need at least 2")
+        return failed_fit(method, int(x.size), decreasing, f"{x.size} strip(s): need at least 2")
     if np.all(f == 0) or np.all(f == 1):
-        return _failed_fit(method, int(x.size), decreasing,
+        return failed_fit(method, int(x.size), decreasing,
                            "every strip fraction is %d: no transition to fit" % f[0])
     if np.all((f == 0) | (f == 1)):
-        return _failed_fit(method, int(x.size), decreasing,
+        return failed_fit(method, int(x.size), decreasing,
                            "every strip fraction is 0 or 1: the strip fractions are a step and "
                            "beta is not identified")
     s = -1.0 if decreasing else 1.0
@@ -78,20 +78,26 @@ def fit_lognormal_least_squares(
         if best is None or res.cost < best.cost:
             best = res
     mu, beta = math.exp(best.x[0]), float(best.x[1])
-    sse = 2.0 * float(best.cost)
+    ok, msg = _judge(best, mu, beta, lo, hi, x)
+    return LognormalFit(mu, beta, 100.0 * beta / mu, method, int(x.size), decreasing, ok, msg, 2.0 * float(best.cost))
+
+
+def _judge(best, mu: float, beta: float, lo: list, hi: list, x: np.ndarray) -> tuple[bool, str]:
+    """Whether the least-squares optimum is a fit, and why not: a parameter at its bound, or a transition
+    narrower than one strip."""
     ok, msg = bool(best.success), str(best.message)
     if beta <= BETA_BOUNDS[0] * (1 + 1e-6):
-        ok, msg = False, "beta at its lower bound: the strip fractions are a step"
-    elif beta >= BETA_BOUNDS[1] * (1 - 1e-6):
-        ok, msg = False, "beta at its upper bound: no transition in the data"
-    elif not (lo[0] < best.x[0] < hi[0]) or abs(best.x[0] - lo[0]) < 1e-9 or abs(best.x[0] - hi[0]) < 1e-9:
-        ok, msg = False, "median at its bound: outside the data"
-    elif ok:
+        return False, "beta at its lower bound: the strip fractions are a step"
+    if beta >= BETA_BOUNDS[1] * (1 - 1e-6):
+        return False, "beta at its upper bound: no transition in the data"
+    if not (lo[0] < best.x[0] < hi[0]) or abs(best.x[0] - lo[0]) < 1e-9 or abs(best.x[0] - hi[0]) < 1e-9:
+        return False, "median at its bound: outside the data"
+    if ok:
         # Resolution: the fitted curve rises from 16 % to 84 % over about 2 beta mu (IM units).
         # If that is narrower than one strip, the strip fractions cannot tell beta = 0.02 from
         # 0.002: the data are a step at strip resolution and beta is not identified.
         spacing = float(np.median(np.diff(np.sort(x))))
         if 2.0 * beta * mu < spacing:
-            ok, msg = False, (f"beta = {beta:.3g} below the strip resolution: the fitted transition "
-                              f"2 beta mu = {2 * beta * mu:.3g} is narrower than one strip ({spacing:.3g})")
-    return LognormalFit(mu, beta, 100.0 * beta / mu, method, int(x.size), decreasing, ok, msg, sse)
+            return False, (f"beta = {beta:.3g} below the strip resolution: the fitted transition "
+                           f"2 beta mu = {2 * beta * mu:.3g} is narrower than one strip ({spacing:.3g})")
+    return ok, msg

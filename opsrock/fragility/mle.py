@@ -92,6 +92,45 @@ def _mle_core(u: np.ndarray, y: np.ndarray, q0: np.ndarray | None = None
     return np.array([m, math.log(beta)]), float(res.fun), ok, msg
 
 
+def _group_members(groups: np.ndarray | None, shape: tuple) -> list[np.ndarray] | None:
+    """Indices of each group's cases, groups in order of first appearance (None: cases are independent)."""
+    if groups is None:
+        return None
+    g = np.asarray(groups)
+    if g.shape != shape:
+        raise InputError(f"groups must have one label per case, got {g.shape} for {shape}")
+    return [np.flatnonzero(g == label) for label in dict.fromkeys(g.tolist())]
+
+
+def _bootstrap(u: np.ndarray, y: np.ndarray, s: float, start: np.ndarray | None, n_boot: int, seed: int,
+               members: list[np.ndarray] | None, confidence: float) -> tuple[tuple, tuple, int]:
+    """Percentile bounds ``(mu_lo, beta_lo), (mu_hi, beta_hi)`` of the MLE over ``n_boot`` resamples of the
+    cases (or of whole groups of them), and the number of resamples that gave a fit."""
+    lo = hi = (math.nan, math.nan)
+    if not n_boot:
+        return lo, hi, 0
+    n = u.size
+    rng = np.random.default_rng(seed)
+    draws = []
+    for _ in range(n_boot):
+        if members is None:
+            idx = rng.integers(0, n, n)
+        else:
+            idx = np.concatenate([members[i] for i in rng.integers(0, len(members), len(members))])
+        ub, yb = u[idx], y[idx]
+        if yb.all() or (~yb).all() or _separated(ub, yb):
+            continue
+        qb, _, okb, _ = _mle_core(ub, yb, start)
+        if okb:
+            draws.append((math.exp(s * qb[0]), math.exp(qb[1])))
+    if len(draws) >= 2:
+        arr = np.array(draws)
+        tail = 50.0 * (1.0 - confidence)
+        lo = tuple(np.percentile(arr, tail, axis=0))
+        hi = tuple(np.percentile(arr, 100.0 - tail, axis=0))
+    return lo, hi, len(draws)
+
+
 def fit_lognormal_mle(
     values: np.ndarray,
     overturned: np.ndarray,
@@ -161,34 +200,8 @@ def fit_lognormal_mle(
         return MLEFit(math.nan, math.nan, math.nan, success=False, objective=value,
                       message=f"no finite MLE: the median ran off to {mu!r} (too few transitional "
                               "outcomes)", **common)
-    lo = hi = (math.nan, math.nan)
-    used = 0
-    members = None
-    if groups is not None:
-        g = np.asarray(groups)
-        if g.shape != x.shape:
-            raise InputError(f"groups must have one label per case, got {g.shape} for {x.shape}")
-        members = [np.flatnonzero(g == label) for label in dict.fromkeys(g.tolist())]
-    if n_boot:
-        rng = np.random.default_rng(seed)
-        draws = []
-        for _ in range(n_boot):
-            if members is None:
-                idx = rng.integers(0, n, n)
-            else:
-                idx = np.concatenate([members[i] for i in rng.integers(0, len(members), len(members))])
-            ub, yb = u[idx], y[idx]
-            if yb.all() or (~yb).all() or _separated(ub, yb):
-                continue
-            qb, _, okb, _ = _mle_core(ub, yb, q if ok else None)
-            if okb:
-                draws.append((math.exp(s * qb[0]), math.exp(qb[1])))
-        used = len(draws)
-        if used >= 2:
-            arr = np.array(draws)
-            tail = 50.0 * (1.0 - confidence)
-            lo = tuple(np.percentile(arr, tail, axis=0))
-            hi = tuple(np.percentile(arr, 100.0 - tail, axis=0))
+    members = _group_members(groups, x.shape)
+    lo, hi, used = _bootstrap(u, y, s, q if ok else None, n_boot, seed, members, confidence)
     return MLEFit(mu, beta, 100.0 * beta / mu, success=ok, message=msg, objective=value,
                   mu_lo=float(lo[0]), mu_hi=float(hi[0]), beta_lo=float(lo[1]),
                   beta_hi=float(hi[1]), n_boot_used=used, loglik_per_case=-value / n, **common)

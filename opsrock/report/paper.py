@@ -63,17 +63,29 @@ def _robustness_lines(robustness, ranking: pd.DataFrame) -> list[str]:
 def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.DataFrame, table3: pd.DataFrame,
                  ranking: pd.DataFrame, gate, figures: Mapping[str, Path], timings: Mapping[str, float],
                  solver: str, campaign, pfv_convention: str, robustness=None) -> Path:
-    """Write ``out_dir/report.md`` atomically and return its path."""
-    from opsrock.fragility import best_ims
-
+    """Write ``out_dir/report.md`` atomically and return its path, section by section."""
     out_dir = Path(out_dir)
-    split = analysis.split.counts()
-    best = best_ims(ranking)
-    lines: list[str] = []
-    if gate is not None and gate.overridden:
-        lines.append(gate.text().splitlines()[0])
-        lines.append("")
-    lines += [
+    lines = [*_header(gate, solver, pfv_convention, timings, campaign),
+             *_validation(gate, solver),
+             *_cases(cases, analysis.split.counts(), figures, out_dir),
+             "## 3. Table 2: hybrid strips", "", (out_dir / "table2.md").read_text().strip(), "",
+             "## 4. Table 3: lognormal fits for three strip widths", "", (out_dir / "table3.md").read_text().strip(), "",
+             *_conclusions(ranking, table3),
+             *_differences(cases),
+             *_robustness_lines(robustness, ranking),
+             *_thresholds(figures, out_dir),
+             "## 8. Files", "",
+             "`cases.csv` (one row a case), `table2.csv/.md`, `table3.csv/.md`, `im_ranking.csv`, `figures/`, "
+             "`spectrum/spectrum.csv` (dense spectrum, rigid-body equation), `validation_gate.md`, `timings.json`.",
+             ""]
+    path = out_dir / "report.md"
+    atomic_text(path, "\n".join(lines))
+    return path
+
+
+def _header(gate, solver: str, pfv_convention: str, timings: Mapping[str, float], campaign) -> list[str]:
+    lines = [gate.text().splitlines()[0], ""] if gate is not None and gate.overridden else []
+    return lines + [
         "# Reproduction of Liu, Huang & Liu (2023): overturning fragility of rigid blocks",
         "",
         f"Solver: **{solver}** (the paper's equivalent SDOF model"
@@ -88,14 +100,29 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         f"dense spectrum {timings.get('spectrum_s', 0):.1f} s, fragility {timings.get('fragility_s', 0):.1f} s, "
         f"figures {timings.get('figures_s', 0):.1f} s).",
         "",
-        "## 1. Validation before fragility",
-        "",
     ]
+
+
+def _validation(gate, solver: str) -> list[str]:
+    lines = ["## 1. Validation before fragility", ""]
     if gate is not None:
-        lines += [gate.text().strip(), ""]
-    else:
-        lines += [f"No gate: the campaign solver is `{solver}`, not the OpenSees model.", ""]
-    lines += [
+        return lines + [gate.text().strip(), ""]
+    return lines + [f"No gate: the campaign solver is `{solver}`, not the OpenSees model.", ""]
+
+
+#: The paper's figures in the report, in order: key of the figure dict, caption.
+FIGURES: tuple[tuple[str, str], ...] = (
+    ("fig3", "Figure 3: model hysteresis"), ("fig4", "Figure 4: rotation histories"),
+    ("fig6a", "Figure 6a: case distribution"), ("fig6b", "Figure 6b: overturning spectrum"),
+    ("fig8", "Figure 8: response against each IM, hybrid strip shaded"),
+    ("fig9", "Figure 9: W_HS/R_S against W_HS/R_O"),
+    ("fig10", "Figure 10: fragility curves"), ("fig11", "Figure 11: CV and beta per IM"),
+    ("fig12", "Figure 12: three strip widths"),
+)
+
+
+def _cases(cases: pd.DataFrame, split: Mapping[str, int], figures: Mapping[str, Path], out_dir: Path) -> list[str]:
+    lines = [
         "## 2. Cases",
         "",
         f"{len(cases)} cases (4 blocks x 10 x 10 one-sine pulses): {split['n_safe']} safe rocking, "
@@ -104,87 +131,91 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         f"The fragility statistics use the {split['n_rocking']} rocking cases (Eq. 13).",
         "",
     ]
-    for key, title in (("fig3", "Figure 3: model hysteresis"), ("fig4", "Figure 4: rotation histories"),
-                       ("fig6a", "Figure 6a: case distribution"), ("fig6b", "Figure 6b: overturning spectrum"),
-                       ("fig8", "Figure 8: response against each IM, hybrid strip shaded"),
-                       ("fig9", "Figure 9: W_HS/R_S against W_HS/R_O"),
-                       ("fig10", "Figure 10: fragility curves"), ("fig11", "Figure 11: CV and beta per IM"),
-                       ("fig12", "Figure 12: three strip widths")):
-        if key in figures:
-            lines.append(f"![{title}]({os.path.relpath(figures[key], out_dir)})")
-    lines += ["", "## 3. Table 2: hybrid strips", "", (out_dir / "table2.md").read_text().strip(), "",
-              "## 4. Table 3: lognormal fits for three strip widths", "",
-              (out_dir / "table3.md").read_text().strip(), ""]
+    lines += [f"![{title}]({os.path.relpath(figures[key], out_dir)})" for key, title in FIGURES if key in figures]
+    return lines + [""]
 
-    # --- the paper's conclusions, one by one -------------------------------------------------
-    lines += ["## 5. The paper's conclusions, checked", ""]
+
+def _conclusions(ranking: pd.DataFrame, table3: pd.DataFrame) -> list[str]:
+    """Section 5: the paper's conclusions, one by one."""
+    return ["## 5. The paper's conclusions, checked", "", *_best_ims(ranking), *_im9(ranking),
+            "Why CV can mislead: `CV = beta/mu` is not scale-free. Multiplying an IM by 10 leaves every "
+            "verdict and beta unchanged and divides CV by 10; IM9's median is an order of magnitude larger "
+            "than the other IMs' (paper: 13.15 against about 1-8), which by itself shrinks its CV. beta, the "
+            "logarithmic dispersion, is unchanged by any power-law rescaling of an IM, so it is the fair "
+            "comparison; the hybrid-strip share of rocking cases (`fraction_in_hybrid` in `im_ranking.csv`) "
+            "is unchanged by any monotone rescaling.",
+            "",
+            *_strip_width_robustness(table3), *_geometry_free_medians(table3)]
+
+
+def _best_ims(ranking: pd.DataFrame) -> list[str]:
+    from opsrock.fragility import best_ims
+
+    best = best_ims(ranking)
     r1 = ranking.sort_values("HR")
-    lines.append(
+    lines = [
         f"**Best IM by hybrid ratio (Eq. 12): {best.get('HR', 'n/a')}** (HR {ranking.loc[best['HR'], 'HR']:.2f}); "
         f"the paper's best is {_paper_best('HR')} (HR {TABLE2[_paper_best('HR')].HR:.2f}). "
         f"Order here: {', '.join(f'{im} {v:.2f}' for im, v in r1['HR'].items())}."
-        if "HR" in best else "Hybrid ratio: not available.")
-    lines.append("")
+        if "HR" in best else "Hybrid ratio: not available.", ""]
     if "cv_percent" in best:
         r2 = ranking.sort_values("cv_percent")
-        lines.append(
+        lines += [
             f"**Best IM by CV = beta/mu (least squares, W_SAS): {best['cv_percent']}** "
             f"({ranking.loc[best['cv_percent'], 'cv_percent']:.2f} %); the paper's best is {_paper_best('cv_percent')} "
             f"({TABLE3[_paper_best('cv_percent')][1.0].cv_percent:.2f} %). Order here: "
             f"{', '.join(f'{im} {v:.1f} %' for im, v in r2['cv_percent'].dropna().items())}"
-            + _unranked(ranking, "cv_percent") + ".")
-        lines.append("")
+            + _unranked(ranking, "cv_percent") + ".", ""]
     if "beta" in best:
         r3 = ranking.sort_values("beta")
-        lines.append(
+        lines += [
             f"**Best IM by beta (scale-free): {best['beta']}** (beta {ranking.loc[best['beta'], 'beta']:.3f}); "
             f"by the paper's own Table 3 the smallest beta is {_paper_best('beta')} "
             f"({TABLE3[_paper_best('beta')][1.0].beta:.2f}), not IM9 ({TABLE3['IM9'][1.0].beta:.2f}). Order here: "
             f"{', '.join(f'{im} {v:.3f}' for im, v in r3['beta'].dropna().items())}"
-            + _unranked(ranking, "beta") + ".")
-        lines.append("")
+            + _unranked(ranking, "beta") + ".", ""]
     if "mle_beta" in best:
-        lines.append(f"Maximum likelihood on the raw 0/1 outcomes: smallest beta **{best['mle_beta']}**"
-                     + (f", best log-likelihood per case **{best['mle_loglik_per_case']}**" if "mle_loglik_per_case" in best else "")
-                     + ".")
-        lines.append("")
+        lines += [f"Maximum likelihood on the raw 0/1 outcomes: smallest beta **{best['mle_beta']}**"
+                  + (f", best log-likelihood per case **{best['mle_loglik_per_case']}**"
+                     if "mle_loglik_per_case" in best else "") + ".", ""]
+    return lines
+
+
+def _im9(ranking: pd.DataFrame) -> list[str]:
+    """Where the paper's recommendation, IM9, ranks by each measure."""
     im9 = "IM9"
-    if im9 in ranking.index:
-        verdicts = []
-        for col, label in (("HR", "HR"), ("cv_percent", "CV"), ("beta", "beta"), ("mle_beta", "MLE beta")):
-            if col in ranking:
-                rank = ranking.loc[im9, f"rank_{col}"] if f"rank_{col}" in ranking else math.nan
-                ranked = int(ranking[col].notna().sum())
-                if math.isfinite(rank):
-                    verdicts.append(f"{label}: rank {int(rank)} of {ranked}")
-                else:
-                    verdicts.append(f"{label}: not ranked (its fit is flagged unreliable)")
-        lines.append(f"**Is IM9 the best IM here?** {'; '.join(verdicts)}.")
-        lines.append("")
-    lines += [
-        "Why CV can mislead: `CV = beta/mu` is not scale-free. Multiplying an IM by 10 leaves every "
-        "verdict and beta unchanged and divides CV by 10; IM9's median is an order of magnitude larger "
-        "than the other IMs' (paper: 13.15 against about 1-8), which by itself shrinks its CV. beta, the "
-        "logarithmic dispersion, is unchanged by any power-law rescaling of an IM, so it is the fair "
-        "comparison; the hybrid-strip share of rocking cases (`fraction_in_hybrid` in `im_ranking.csv`) "
-        "is unchanged by any monotone rescaling.",
-        "",
-    ]
-    # robustness to strip width
+    if im9 not in ranking.index:
+        return []
+    verdicts = []
+    for col, label in (("HR", "HR"), ("cv_percent", "CV"), ("beta", "beta"), ("mle_beta", "MLE beta")):
+        if col in ranking:
+            rank = ranking.loc[im9, f"rank_{col}"] if f"rank_{col}" in ranking else math.nan
+            ranked = int(ranking[col].notna().sum())
+            if math.isfinite(rank):
+                verdicts.append(f"{label}: rank {int(rank)} of {ranked}")
+            else:
+                verdicts.append(f"{label}: not ranked (its fit is flagged unreliable)")
+    return [f"**Is IM9 the best IM here?** {'; '.join(verdicts)}.", ""]
+
+
+def _strip_width_robustness(table3: pd.DataFrame) -> list[str]:
     rob = []
     for im in table3["im"].unique():
         sub = table3[(table3["im"] == im) & table3["mu"].notna()]
         if len(sub) >= 2:
             rob.append({"im": im, "mu_spread_percent": 100 * (sub["mu"].max() - sub["mu"].min()) / sub["mu"].median(),
                         "beta_min": sub["beta"].min(), "beta_max": sub["beta"].max()})
-    if rob:
-        rob_df = pd.DataFrame(rob)
-        lines += ["**Robustness to the strip width** (W_SAS/2, W_SAS, 2 W_SAS): spread of the median mu across "
-                  "the three widths, in % of its middle value, and the range of beta:", "",
-                  markdown_table(rob_df, ".3g"), "",
-                  f"The paper reports the curves 'almost the same'; here the largest mu spread is "
-                  f"{rob_df['mu_spread_percent'].max():.1f} % ({rob_df.loc[rob_df['mu_spread_percent'].idxmax(), 'im']}).", ""]
-    # dimensionless medians
+    if not rob:
+        return []
+    rob_df = pd.DataFrame(rob)
+    return ["**Robustness to the strip width** (W_SAS/2, W_SAS, 2 W_SAS): spread of the median mu across "
+            "the three widths, in % of its middle value, and the range of beta:", "",
+            markdown_table(rob_df, ".3g"), "",
+            f"The paper reports the curves 'almost the same'; here the largest mu spread is "
+            f"{rob_df['mu_spread_percent'].max():.1f} % ({rob_df.loc[rob_df['mu_spread_percent'].idxmax(), 'im']}).", ""]
+
+
+def _geometry_free_medians(table3: pd.DataFrame) -> list[str]:
     med = []
     for im in GEOMETRY_FREE_IMS:
         row = table3[(table3["im"] == im) & (table3["strip_factor"] == 1.0)]
@@ -193,16 +224,20 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
             paper = TABLE3[im][1.0].mu
             med.append({"im": im, "mu_ours": ours, "mu_paper": paper, "ratio": ours / paper if paper else math.nan,
                         "mle_mu_ours": float(row["mle_mu"].iloc[0])})
-    if med:
-        lines += ["**Medians of the nearly geometry-free IMs** (docs/modelling.md section 3: the paper's blocks are not "
-                  "listed, so these are the numbers that can be compared):", "", markdown_table(pd.DataFrame(med)), ""]
-    lines += [
+    if not med:
+        return []
+    return ["**Medians of the nearly geometry-free IMs** (docs/modelling.md section 3: the paper's blocks are not "
+            "listed, so these are the numbers that can be compared):", "", markdown_table(pd.DataFrame(med)), ""]
+
+
+def _differences(cases: pd.DataFrame) -> list[str]:
+    e_r4 = cases.drop_duplicates("block")["e_R"] ** 4
+    return [
         "## 6. What differs from the paper, and why",
         "",
         "- The four blocks and the exact pulse grid are the project's reconstruction (docs/modelling.md section 3); "
         "Table 2 ranges and Table 3 medians therefore differ in the second digit even where the method is the same.",
-        f"- IM8 = e_R^4 IM3: the project's blocks span e_R^4 from "
-        f"{(cases.drop_duplicates('block')['e_R'] ** 4).min():.2f} to {(cases.drop_duplicates('block')['e_R'] ** 4).max():.2f} "
+        f"- IM8 = e_R^4 IM3: the project's blocks span e_R^4 from {e_r4.min():.2f} to {e_r4.max():.2f} "
         "(the paper's IM8/IM3 medians imply about 0.8: mostly slender furniture), so IM8 spreads one "
         "overturning threshold over a factor of two; that is why its median and beta differ most from the paper's.",
         "- The damper band delta is not stated in the paper; the default comes from the model-form study "
@@ -212,7 +247,11 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         "- Figure 4 of the paper compares with shake-table records that are not available here; the model is "
         "drawn over the independent scipy SDOF solver instead.",
         "",
-        *_robustness_lines(robustness, ranking),
+    ]
+
+
+def _thresholds(figures: Mapping[str, Path], out_dir: Path) -> list[str]:
+    return [
         "## 7. Beyond the paper: the published overturning thresholds",
         "",
         "The classical minimum-overturning charts of the rocking literature, redrawn by `opsrock threshold`'s "
@@ -224,12 +263,4 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
         "",
         *([f"![Minimum overturning accelerations]({os.path.relpath(figures['thresholds'], out_dir)})", ""]
           if "thresholds" in figures else []),
-        "## 8. Files",
-        "",
-        "`cases.csv` (one row a case), `table2.csv/.md`, `table3.csv/.md`, `im_ranking.csv`, `figures/`, "
-        "`spectrum/spectrum.csv` (dense spectrum, rigid-body equation), `validation_gate.md`, `timings.json`.",
-        "",
     ]
-    path = out_dir / "report.md"
-    atomic_text(path, "\n".join(lines))
-    return path

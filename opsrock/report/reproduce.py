@@ -6,10 +6,10 @@ The pipeline follows the paper's workflow, validation first:
    the independent scipy SDOF solver (validation case 2); if the agreement targets are not
    met the run stops with a short report of the disagreeing cases (``--ignore-gate`` goes on,
    and the report says so on its first line);
-2. **campaign**: the paper's 400 cases (``models/scenes/paper.toml``) with the chosen solver,
+2. **campaign**: the paper's 400 cases (the shipped scene ``paper``) with the chosen solver,
    resumable, into ``DIR/cases.csv``;
 3. **dense spectrum** (Figure 6b): the rigid-body equation on the dense grid of
-   ``models/scenes/spectrum.toml`` with the compiled solver's batch entry point (the SDOF model
+   the shipped scene ``spectrum`` with the compiled solver's batch entry point (the SDOF model
    would take minutes for the same picture), the campaign's verdicts drawn over it;
 4. **fragility**: hybrid strips, Table 2, strip fractions and lognormal fits, Table 3, with the
    paper's values side by side;
@@ -18,6 +18,7 @@ The pipeline follows the paper's workflow, validation first:
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import time
@@ -133,82 +134,104 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
     seed : int
         Seed of the block-set draws.
     """
-    from opsrock import fragility
-    from opsrock.campaign import run_campaign
-    from opsrock.campaign.scene import load_scene
-
     t_start = time.perf_counter()
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    fig_dir = out / "figures"
-    fig_dir.mkdir(exist_ok=True)
-    timings: dict[str, float] = {}
-
-    # 1. validation gate ---------------------------------------------------------------------
-    t0 = time.perf_counter()
-    gate = validation_gate(ignore=ignore_gate, workers=workers) if solver == "opensees" else None
-    timings["validation_gate_s"] = time.perf_counter() - t0
+    (out / "figures").mkdir(parents=True, exist_ok=True)
+    timer = _Timings()
+    with timer("validation_gate_s"):
+        gate = validation_gate(ignore=ignore_gate, workers=workers) if solver == "opensees" else None
     if gate is not None:
         atomic_text(out / "validation_gate.md", gate.text())
         if not gate.passed and not ignore_gate:
-            return {"gate": gate, "stopped": True, "timings": timings}
-
-    # 2. campaign ----------------------------------------------------------------------------
-    t0 = time.perf_counter()
-    scene = load_scene(paper_scene)
-    if solver != scene.solver:
-        scene = scene.with_solver(solver)
-    summary = run_campaign(scene, out, workers=workers, force=force, progress=progress)
-    timings["campaign_s"] = time.perf_counter() - t0
-    cases = pd.read_csv(summary.cases_csv)
-
-    # 3. dense spectrum ----------------------------------------------------------------------
+            return {"gate": gate, "stopped": True, "timings": timer.seconds}
+    with timer("campaign_s"):
+        scene, summary, cases = _campaign(out, paper_scene, solver, workers, force, progress)
     spectrum = None
     if spectrum_scene is not None:
-        t0 = time.perf_counter()
-        spectrum = dense_spectrum(load_scene(spectrum_scene), workers=workers)
-        (out / "spectrum").mkdir(exist_ok=True)
-        atomic_csv(out / "spectrum" / "spectrum.csv", spectrum)
-        timings["spectrum_s"] = time.perf_counter() - t0
-
-    # 4. fragility ---------------------------------------------------------------------------
-    t0 = time.perf_counter()
-    analysis = fragility.analyse_fragility(cases)
-    t2 = fragility.table2(analysis)
-    t3 = fragility.table3(analysis)
-    atomic_csv(out / "table2.csv", t2)
-    atomic_csv(out / "table3.csv", t3)
-    conv = scene.pfv_convention
-    atomic_text(out / "table2.md", fragility.table2_markdown(t2, conv) + "\n")
-    atomic_text(out / "table3.md", fragility.table3_markdown(t3, conv) + "\n")
-    ranking = fragility.rank_ims(analysis)
-    atomic_csv(out / "im_ranking.csv", ranking.reset_index())
-    timings["fragility_s"] = time.perf_counter() - t0
-
-    # 4b. is the ranking robust to the (unknown) blocks? ------------------------------------
+        with timer("spectrum_s"):
+            spectrum = _spectrum(out, spectrum_scene, workers)
+    with timer("fragility_s"):
+        analysis, t2, t3, ranking = _fragility(out, cases, scene.pfv_convention)
     robustness = None
     if robustness_sets:
-        from opsrock.analysis.robustness import ranking_robustness
-
-        t0 = time.perf_counter()
-        robustness = ranking_robustness(robustness_sets, seed=seed, workers=workers or os.cpu_count() or 1,
-                                        progress=progress)
-        atomic_csv(out / "robustness.csv", robustness.shares)
-        timings["robustness_s"] = time.perf_counter() - t0
-
-    # 5. figures and report ------------------------------------------------------------------
-    t0 = time.perf_counter()
-    figures = make_figures(cases, analysis, fig_dir, spectrum=spectrum, solver=solver, scene=scene, workers=workers)
-    timings["figures_s"] = time.perf_counter() - t0
+        with timer("robustness_s"):
+            robustness = _robustness(out, robustness_sets, seed, workers, progress)
+    with timer("figures_s"):
+        figures = make_figures(cases, analysis, out / "figures", spectrum=spectrum, solver=solver, scene=scene,
+                               workers=workers)
+    timings = timer.seconds
     timings["total_s"] = time.perf_counter() - t_start
     from opsrock.report.paper import write_report
 
     report = write_report(out, cases=cases, analysis=analysis, table2=t2, table3=t3, ranking=ranking,
                           gate=gate, figures=figures, timings=timings, solver=solver,
-                          campaign=summary, pfv_convention=conv, robustness=robustness)
+                          campaign=summary, pfv_convention=scene.pfv_convention, robustness=robustness)
     atomic_text(out / "timings.json", json.dumps(timings, indent=2) + "\n")
     return {"gate": gate, "stopped": False, "campaign": summary, "figures": figures, "report": report,
             "timings": timings, "table2": t2, "table3": t3, "ranking": ranking}
+
+
+class _Timings:
+    """Wall time of each step of the pipeline (s), by name: ``with timer("campaign_s"): ...``."""
+
+    def __init__(self) -> None:
+        self.seconds: dict[str, float] = {}
+
+    @contextlib.contextmanager
+    def __call__(self, name: str):
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.seconds[name] = time.perf_counter() - t0
+
+
+def _campaign(out: Path, paper_scene, solver: str, workers, force: bool, progress: bool):
+    """Step 2: the paper's 400 cases with the chosen solver, resumable; returns the scene, the campaign's
+    summary and its ``cases.csv``."""
+    from opsrock.campaign import run_campaign
+    from opsrock.campaign.scene import load_scene
+
+    scene = load_scene(paper_scene)
+    if solver != scene.solver:
+        scene = scene.with_solver(solver)
+    summary = run_campaign(scene, out, workers=workers, force=force, progress=progress)
+    return scene, summary, pd.read_csv(summary.cases_csv)
+
+
+def _spectrum(out: Path, spectrum_scene, workers) -> pd.DataFrame:
+    """Step 3: the dense spectrum (Figure 6b), ``spectrum/spectrum.csv``."""
+    from opsrock.campaign.scene import load_scene
+
+    spectrum = dense_spectrum(load_scene(spectrum_scene), workers=workers)
+    (out / "spectrum").mkdir(exist_ok=True)
+    atomic_csv(out / "spectrum" / "spectrum.csv", spectrum)
+    return spectrum
+
+
+def _fragility(out: Path, cases: pd.DataFrame, pfv_convention: str):
+    """Step 4: hybrid strips, Table 2, strip fractions and fits, Table 3, the IM ranking."""
+    from opsrock import fragility
+
+    analysis = fragility.analyse_fragility(cases)
+    t2 = fragility.table2(analysis)
+    t3 = fragility.table3(analysis)
+    atomic_csv(out / "table2.csv", t2)
+    atomic_csv(out / "table3.csv", t3)
+    atomic_text(out / "table2.md", fragility.table2_markdown(t2, pfv_convention) + "\n")
+    atomic_text(out / "table3.md", fragility.table3_markdown(t3, pfv_convention) + "\n")
+    ranking = fragility.rank_ims(analysis)
+    atomic_csv(out / "im_ranking.csv", ranking.reset_index())
+    return analysis, t2, t3, ranking
+
+
+def _robustness(out: Path, n_sets: int, seed: int, workers, progress: bool):
+    """Step 4b: is the ranking robust to the (unknown) blocks? ``robustness.csv``."""
+    from opsrock.analysis.robustness import ranking_robustness
+
+    robustness = ranking_robustness(n_sets, seed=seed, workers=workers or os.cpu_count() or 1, progress=progress)
+    atomic_csv(out / "robustness.csv", robustness.shares)
+    return robustness
 
 
 def dense_spectrum(scene, workers: int | None = None) -> pd.DataFrame:
@@ -296,7 +319,8 @@ def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.D
                                       reference_label="independent scipy SDOF")
     figs.update(fplots.paper_figures(cases, analysis, fig_dir, spectrum=spectrum, workers=workers or os.cpu_count() or 1))
     # beyond the paper: the minimum-overturning charts of the rocking literature (validation case 7)
-    from opsrock.plots.thresholds import default_data, plot_threshold_charts
+    from opsrock.analysis.charts import literature_charts
+    from opsrock.plots.thresholds import plot_threshold_charts
 
-    figs["thresholds"] = plot_threshold_charts(default_data(), fig_dir / "thresholds.png")
+    figs["thresholds"] = plot_threshold_charts(literature_charts(), fig_dir / "thresholds.png")
     return figs

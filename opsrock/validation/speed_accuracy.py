@@ -54,7 +54,7 @@ def configurations(quick: bool = False) -> list[tuple[str, str, str, dict[str, A
         cfg.append((f"housner rtol={rtol:g}", "rigid_body", "housner", {"rtol": rtol, "atol": rtol * 1e-3}))
     for ms in ((0.2, 0.1, 0.05, 0.02, 0.01, 0.005) if not quick else (0.05, 0.01)):
         cfg.append((f"housner_fast max_step={ms:g}/p", "rigid_body", "housner_fast",
-                    {"max_step": ms, "steps_per_pulse": max(8, int(round(4.0 / ms)))}))
+                    {"max_dtau": ms, "steps_per_pulse": max(8, int(round(4.0 / ms)))}))
     return cfg
 
 

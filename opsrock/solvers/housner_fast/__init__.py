@@ -13,7 +13,7 @@ instantaneous impacts at ``theta = 0`` that multiply the angular velocity by ``e
 Method
 ------
 * While the pulse lasts: classical fourth-order Runge-Kutta with a fixed step
-  ``h = min(max_step, 2 pi / (omega_p/p) / steps_per_pulse)`` (in units of ``1/p``), landing
+  ``h = min(max_dtau, 2 pi / (omega_p/p) / steps_per_pulse)`` (in units of ``1/p``), landing
   exactly on the end of the pulse (where ``a(t)`` has a kink). Impacts and peaks inside a
   step are located by a safeguarded Newton iteration *on the Runge-Kutta map itself* (the
   step length is the unknown), so the event time is consistent with the integrator to
@@ -39,18 +39,18 @@ Records
 -------
 A :class:`~opsrock.excitations.Record` is integrated segment by segment: its acceleration is
 linear between samples, every step ends on a sample (no step straddles a kink), steps are also
-bounded by ``max_step``, and a seated block's uplift is found in closed form on the segment where
+bounded by ``max_dtau``, and a seated block's uplift is found in closed form on the segment where
 ``|a|`` first exceeds ``g tan(alpha)``. Impacts and peaks are located exactly as for the pulse,
 and after the last sample the same exact energy verdict applies. On FEMA P695 floor motions it
 matches the event-driven ``housner`` solver to 1.1e-5 alpha (validation case 8) at about a
-millisecond per record (``bench/bench_records.py``).
+millisecond per record (``opsrock bench --only records``).
 
 Why numba: a per-case ``solve_ivp`` loop costs milliseconds per case (Python overhead per
 step and per restart at every impact), too slow for 40,000-case spectra; a numpy-vectorised
 fixed-step integrator over all cases wastes work on cases that have already settled or
 overturned and handles per-case events clumsily. A compiled per-case integrator with a
 thread pool over chunks of cases has neither problem. Measured by
-``python bench/bench_housner_fast.py`` on the 2-core project machine while it was shared
+``opsrock bench --only housner_fast`` on the 2-core project machine while it was shared
 (load average 8-11): 40,000 cases in 2.4-3.7 s, 25-90 µs per case against 23-77 ms per
 case for a per-case ``solve_ivp`` loop (x250-x2000), with ``|d theta_max| / alpha`` below
 1e-8 of the converged answer. The kernel is compiled once and cached (``cache=True``, in

@@ -47,12 +47,12 @@ def _run_one(block: Block, k: float, nu: float, theta0: float, omega0: float,
     p = block.p
     if record is None:
         form, c0, c1, c2, tau_end, kvals, dtau = _pulse_forcing(pulse, k, nu)
-        h_nom = min(settings.max_step, 2.0 * math.pi / nu / settings.steps_per_pulse)
+        h_nom = min(settings.max_dtau, 2.0 * math.pi / nu / settings.steps_per_pulse)
     else:
         form, c0, c1, c2 = FORM_LINEAR, 0.0, 0.0, 0.0
         kvals, dtau = record.values / G, record.dt * p
         tau_end = record.duration * p
-        h_nom = min(settings.max_step, dtau)
+        h_nom = min(settings.max_dtau, dtau)
     cap = int(math.ceil(tau_end / h_nom)) + _HISTORY_EXTRA
     hist = [np.zeros(cap) for _ in range(3)]
     t0 = _time.perf_counter()
@@ -99,7 +99,7 @@ def solve(block: Block, excitation: Pulse | Record, *, settings: HousnerFastSett
         The block.
     excitation : Pulse or Record
         The floor motion: any pulse of :data:`opsrock.excitations.PULSE_SHAPES`, or a record. A record is integrated segment by segment (linear acceleration between
-        samples, every step ending on a sample), with the step also bounded by ``max_step``; it
+        samples, every step ending on a sample), with the step also bounded by ``max_dtau``; it
         must be sampled finely enough for the block (:func:`opsrock.excitations.records.check_sampling`).
     settings : HousnerFastSettings, optional
         Numerical settings; keyword ``overrides`` replace individual fields.
@@ -148,7 +148,7 @@ def free_rocking(block: Block, theta0: float, duration: float, *, theta_dot0: fl
         Initial angular velocity (rad/s). Default 0.
     settings : HousnerFastSettings, optional
         Numerical settings; keyword ``overrides`` replace individual fields. The step is
-        ``min(max_step, p duration / steps_per_pulse)`` in units of ``1/p``.
+        ``min(max_dtau, p duration / steps_per_pulse)`` in units of ``1/p``.
     """
     settings = make_settings(HousnerFastSettings, settings, overrides)
     if not isinstance(block, Block):

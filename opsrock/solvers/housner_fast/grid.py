@@ -74,7 +74,8 @@ _CHUNK = 256
 
 
 
-def _default_threads() -> int:
+def default_threads() -> int:
+    """Threads :func:`solve_grid` uses by default: the CPUs this process may use."""
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # not on Linux
@@ -131,45 +132,42 @@ def solve_grid(
     """
     settings = make_settings(HousnerFastSettings, settings)
     one_of("pulse", pulse, tuple(PULSE_SHAPES))
-    threads = _default_threads() if threads is None else int_at_least("threads", threads, 1)
-    arrays = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (alpha, e, pfa_ratio, freq_ratio)))
-    shape = arrays[0].shape
-    a_, e_, r_, f_ = (np.ascontiguousarray(x).ravel() for x in arrays)
-    _check_array("alpha", a_, 0.0, 0.5 * math.pi)
-    _check_array("e", e_, 0.0, 1.0 + 1e-12)
-    _check_array("pfa_ratio", r_, 0.0, math.inf)
-    _check_array("freq_ratio", f_, 0.0, math.inf)
+    threads = default_threads() if threads is None else int_at_least("threads", threads, 1)
+    shape, (a_, e_, r_, f_) = _cases(alpha, e, pfa_ratio, freq_ratio)
     n = a_.size
-    k = r_ * np.tan(a_)  # PFA / g
-    theta_max = np.empty(n)
-    overturned = np.empty(n, dtype=np.bool_)
-    rocked = np.empty(n, dtype=np.bool_)
-    status = np.empty(n, dtype=np.int8)
-    n_impacts = np.empty(n, dtype=np.int64)
-    n_steps = np.empty(n, dtype=np.int64)
-    args = (a_, e_, k, f_, PULSE_IDS[pulse], settings.equations == "linearised",
-            float(settings.max_step), int(settings.steps_per_pulse),
+    outs = (np.empty(n), np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.int8),
+            np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64))
+    args = (a_, e_, r_ * np.tan(a_), f_, PULSE_IDS[pulse], settings.equations == "linearised",  # PFA / g
+            float(settings.max_dtau), int(settings.steps_per_pulse),
             float(settings.rest_velocity), int(settings.max_impacts), int(settings.max_steps))
-    outs = (theta_max, overturned, rocked, status, n_impacts, n_steps)
-    bounds = [(i, min(i + _CHUNK, n)) for i in range(0, n, _CHUNK)]
     t0 = _time.perf_counter()
+    _run_chunks(args, outs, n, threads)
+    wall = _time.perf_counter() - t0
+    theta_max, overturned, rocked, status, n_impacts, n_steps = (x.reshape(shape) for x in outs)
+    return GridResult(theta_max=theta_max, overturned=overturned, rocked=rocked, status=status,
+                      n_impacts=n_impacts, n_steps=n_steps, wall_time_s=wall)
+
+
+def _cases(alpha: Any, e: Any, pfa_ratio: Any, freq_ratio: Any) -> tuple[tuple, tuple[np.ndarray, ...]]:
+    """The inputs broadcast together, checked, and flattened: their shape and the four flat arrays."""
+    arrays = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (alpha, e, pfa_ratio, freq_ratio)))
+    flat = tuple(np.ascontiguousarray(x).ravel() for x in arrays)
+    for name, arr, low, high in zip(("alpha", "e", "pfa_ratio", "freq_ratio"), flat,
+                                    (0.0, 0.0, 0.0, 0.0), (0.5 * math.pi, 1.0 + 1e-12, math.inf, math.inf)):
+        _check_array(name, arr, low, high)
+    return arrays[0].shape, flat
+
+
+def _run_chunks(args: tuple, outs: tuple, n: int, threads: int) -> None:
+    """The kernel over chunks of :data:`_CHUNK` cases, on ``threads`` threads (it releases the GIL)."""
+    bounds = [(i, min(i + _CHUNK, n)) for i in range(0, n, _CHUNK)]
     if threads == 1 or len(bounds) <= 1:
         for lo, hi in bounds:
             _solve_chunk(*args, lo, hi, *outs)
-    else:
-        with ThreadPoolExecutor(max_workers=threads) as pool:
-            for fut in [pool.submit(_solve_chunk, *args, lo, hi, *outs) for lo, hi in bounds]:
-                fut.result()
-    wall = _time.perf_counter() - t0
-    return GridResult(
-        theta_max=theta_max.reshape(shape),
-        overturned=overturned.reshape(shape),
-        rocked=rocked.reshape(shape),
-        status=status.reshape(shape),
-        n_impacts=n_impacts.reshape(shape),
-        n_steps=n_steps.reshape(shape),
-        wall_time_s=wall,
-    )
+        return
+    with ThreadPoolExecutor(max_workers=threads) as pool:
+        for fut in [pool.submit(_solve_chunk, *args, lo, hi, *outs) for lo, hi in bounds]:
+            fut.result()
 
 
 def solve_pulses(
@@ -214,4 +212,4 @@ def solve_pulses(
                       threads=threads, pulse=pulse)
 
 
-__all__ = ["GridResult", "solve_grid", "solve_pulses"]
+__all__ = ["GridResult", "default_threads", "solve_grid", "solve_pulses"]

@@ -54,7 +54,7 @@ class OpenSeesSettings:
         ``excitation_steps`` steps, and is ``step`` elsewhere. Measured on 100 paper pulses
         against the scipy SDOF solver: max |d theta_max| = 0.04 % of alpha, no verdict
         changed, ~20x faster than fixed steps of 1e-4 s, whose error reached 4 % of alpha
-        (bench/bench_opensees.py, validation/sdof_agreement). False: fixed steps of ``step``, the
+        (``opsrock bench --only opensees``, validation/sdof_agreement). False: fixed steps of ``step``, the
         literal step-by-step loop.
     band_steps : int
         Adaptive mode: smallest number of steps across the band width ``2 delta alpha`` (-), and

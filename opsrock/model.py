@@ -47,7 +47,7 @@ LEVERS: tuple[str, ...] = ("housner", "printed")
 DAMPER_LAWS: tuple[str, ...] = ("energy", "entry_velocity")
 
 #: Default damper band ``delta`` (fraction of alpha). Chosen by the model-form convergence
-#: study (validation/model_form): see the README's validation section.
+#: study (validation/model_form): see docs/solvers.md.
 DEFAULT_DELTA: float = 0.005
 
 #: Default stiff-branch half-width ``theta_e / alpha``. docs/modelling.md section 4: 1e-6 alpha matched

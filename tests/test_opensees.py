@@ -17,7 +17,7 @@ pytestmark = pytest.mark.opensees
 
 #: A slender block (alpha = 0.0997 rad, R = 1.005 m) for the closed forms that linearise in alpha.
 SLENDER = Block(width=0.20, height=2.00)
-#: One of the paper-grid blocks (bench/bench_opensees.py), alpha = 0.180 rad.
+#: One of the paper-grid blocks (opsrock.bench.opensees), alpha = 0.180 rad.
 CABINET = Block(width=0.40, height=2.20)
 #: No excitation at all (a zero record), for free rocking from an initial rotation.
 NO_MOTION = Record(dt=0.01, values=np.zeros(2))

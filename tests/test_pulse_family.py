@@ -4,7 +4,7 @@ threshold search (``opsrock threshold``).
 References: closed forms derived in the docstrings of :mod:`opsrock.excitations.pulses` and
 :mod:`opsrock.published` (Housner 1963's rectangular pulse; the linearised separatrix of Makris and
 Roussos 2000 and Zhang and Makris 2001), the independent closed-form event solution of
-:mod:`opsrock.published._linearised`, and the event-driven ``housner`` solver.
+:mod:`opsrock.published.linearised`, and the event-driven ``housner`` solver.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import pytest
 from opsrock.block import Block
 from opsrock.constants import G
 from opsrock.excitations import PULSE_SHAPES, HalfSinePulse, OneSinePulse, RectangularPulse, pulse_class
-from opsrock.published import _linearised, housner_1963, makris_roussos_2000, zhang_makris_2001
+from opsrock.published import linearised, housner_1963, makris_roussos_2000, zhang_makris_2001
 from opsrock.campaign.scene import SceneError, load_scene
 from opsrock.solvers import housner, housner_fast, simulate
 from opsrock.analysis.threshold import boundary, overturning_intervals, threshold_chart
@@ -248,9 +248,9 @@ def test_threshold_input_errors_name_the_argument():
 
 def test_linearised_closed_form_solution_is_independent_and_consistent():
     # the no-impact margin of the event solution vanishes where the closed forms say
-    assert _linearised.no_impact_margin(zhang_makris_2001.minimum_no_impact(5.0), 5.0, "one-sine") == pytest.approx(0.0, abs=1e-9)
-    assert not _linearised.overturns(1.2, 5.0, "one-sine", 0.9)
-    assert _linearised.overturns(10.0, 5.0, "one-sine", 0.9)
+    assert linearised.no_impact_margin(zhang_makris_2001.minimum_no_impact(5.0), 5.0, "one-sine") == pytest.approx(0.0, abs=1e-9)
+    assert not linearised.overturns(1.2, 5.0, "one-sine", 0.9)
+    assert linearised.overturns(10.0, 5.0, "one-sine", 0.9)
 
 
 # --- command line ----------------------------------------------------------------------------

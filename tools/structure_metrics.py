@@ -53,7 +53,7 @@ def _shares_method_package(modules: dict[str, Path], a: str, b: str) -> bool:
 
 
 def _private_shared(modules: dict[str, Path], importer: str, source: str) -> bool:
-    """A private module (``_linearised``) serves the modules of its own package; a method package
+    """A private module (``linearised``) serves the modules of its own package; a method package
     shares its privates inside (:func:`_shares_method_package`)."""
     if source.rpartition(".")[2].startswith("_") and _package(modules, importer) == _package(modules, source):
         return True

@@ -64,14 +64,6 @@ METHODS: tuple[str, ...] = (*osr.INTEGRATORS, "adaptive")
 DTS: tuple[float, ...] = (1e-2, 5e-3, 2e-3, 1e-3, 5e-4, 2e-4, 1e-4, 5e-5)
 QUICK_DTS: tuple[float, ...] = (1e-2, 1e-3, 1e-4)
 
-#: Blocks of models/blocks.toml as (name, width m, height m), the fallback if it cannot be read.
-BLOCKS: tuple[tuple[str, float, float], ...] = (
-    ("bookcase", 0.40, 2.20),
-    ("wardrobe", 0.60, 2.00),
-    ("medicine_cabinet", 0.50, 1.15),
-    ("equipment_rack", 1.00, 2.40),
-)
-
 #: Pulses as (label, PFA / (g tan alpha), omega_p / p). "no_uplift": half the uplift acceleration
 #: (Eq. 4), the block stays on the stiff branch, where an explicit scheme above dt_cr blows up;
 #: "safe": a moderate rocking response (sdof: theta_max 0.21-0.32 alpha on all four blocks);
@@ -104,15 +96,10 @@ ONSET_STEPS: int = 100
 
 
 def map_blocks(names: tuple[str, ...] | None = None) -> tuple[Block, ...]:
-    """The four project blocks (models/blocks.toml; the :data:`BLOCKS` sizes if it is missing)."""
-    blocks: tuple[Block, ...]
-    path = blocks_file()
-    try:
-        from opsrock.campaign.scene import load_blocks
+    """The four project blocks of the shipped blocks file (:func:`opsrock.data.blocks_file`)."""
+    from opsrock.campaign.scene import load_blocks
 
-        blocks = tuple(spec.block for spec in load_blocks(path))
-    except (OSError, ImportError):
-        blocks = tuple(Block(w, h, name=n) for n, w, h in BLOCKS)
+    blocks = tuple(spec.block for spec in load_blocks(blocks_file()))
     if names is not None:
         blocks = tuple(b for b in blocks if b.name in names)
     return blocks

@@ -7,8 +7,8 @@ fragility RUN --out DIR``): one run with the rigid body (``housner_fast``), one 
 95 % record-bootstrap intervals and says whether each SDOF value lies inside the rigid body's interval
 (and the reverse), and the ratio of medians.
 
-    opsrock run models/scenes/fema-far-field-ida.toml --out R_rigid
-    opsrock run models/scenes/fema-far-field-ida.toml --out R_sdof --solver opensees
+    opsrock run fema-far-field-ida --out R_rigid
+    opsrock run fema-far-field-ida --out R_sdof --solver opensees
     opsrock fragility R_rigid --out F_rigid --robustness-sets 0
     opsrock fragility R_sdof --out F_sdof --robustness-sets 0
     python validation/model_form/records_fragility.py F_rigid/ims.csv F_sdof/ims.csv \\

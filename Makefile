@@ -11,7 +11,7 @@ STAMP  := $(VENV)/.opsrock-installed
 LOCK   := requirements.lock
 OUT    ?= results
 
-.PHONY: reproduce test test-slow test-fuzz test-pelicun validate bench blas install lock clean
+.PHONY: reproduce test test-slow test-fuzz test-pelicun test-wheel validate bench blas install lock clean
 
 reproduce: install
 	$(BIN)/opsrock reproduce --out $(OUT)
@@ -35,6 +35,11 @@ test-pelicun: install
 	  w([C('opsrock.sample.PFA', 'pfa', 6.055398004958769, 0.6505432263063391), \
 	     C('opsrock.sample.PFV', 'pfv', 0.6115985322309946, 0.36682703654629484)], '.pelicun-venv/sample.csv')"
 	.pelicun-venv/bin/python tools/pelicun_load.py .pelicun-venv/sample.csv
+
+# A wheel built from this checkout, installed (not editable) into a fresh venv, runs `opsrock run tiny`,
+# `opsrock validate --quick` and `opsrock reproduce` from an empty folder elsewhere (.ci/run calls it).
+test-wheel: blas
+	sh tools/wheel_check.sh $(PYTHON) $(CURDIR)/$(LOCK)
 
 validate: install
 	$(BIN)/opsrock validate

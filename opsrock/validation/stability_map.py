@@ -422,7 +422,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     counts = {k: sum(1 for c in cells if c.cls == k) for k in CLASSES}
     return {
         "n_cells": len(cells), **{f"n_{k}": v for k, v in counts.items()},
-        "defaults": f"{defaults.integrator} dt={defaults.step:g} adaptive={defaults.adaptive}",
+        "defaults": f"{defaults.integrator} step={defaults.step:g} adaptive={defaults.adaptive}",
         "defaults_accurate_all_blocks": defaults_ok,
         "defaults_max_error": max(c.max_error for c in default_cells.values()),
         "dt_cr_usable_ratio_min": min(usable), "dt_cr_usable_ratio_max": max(usable),

@@ -1,0 +1,58 @@
+"""The package as it is shipped: a wheel built from the checkout holds its data, and the installed
+package finds its scenes without the checkout.
+
+`make test-wheel` (called by CI) installs such a wheel into a fresh venv and runs `opsrock run tiny`,
+`opsrock validate --quick` and `opsrock reproduce` from an empty folder; this test checks the wheel's
+contents and the lookups in seconds, on every `make test`.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SCENES = {"paper", "spectrum", "tiny", "fema-far-field-ida", "fema-far-field-ida-b3"}
+
+
+@pytest.fixture(scope="module")
+def wheel(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("dist")
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps", "-w", str(out), str(ROOT)],
+                   check=True, capture_output=True, text=True, timeout=300)
+    (whl,) = out.glob("opsrock-*.whl")
+    return whl
+
+
+def test_wheel_ships_the_data_and_nothing_of_the_repository(wheel):
+    names = set(zipfile.ZipFile(wheel).namelist())
+    assert "opsrock/data/blocks.toml" in names
+    assert {f"opsrock/data/scenes/{s}.toml" for s in SCENES} <= names
+    assert "opsrock/cli/__main__.py" in names
+    # the repository's folders are not packages: no tests, case folders or studies in the wheel
+    assert not any(n.split("/")[0] in {"tests", "validation", "studies", "docs", "tools", "bench"} for n in names)
+
+
+def test_installed_package_finds_its_scenes_outside_the_checkout(wheel, tmp_path):
+    # The wheel unpacked, imported from an empty folder: python -S processes no .pth file, so the
+    # checkout's editable install is not on the path; numpy & co. come from the venv's site-packages,
+    # behind the unpacked wheel.
+    import site
+
+    unpacked = tmp_path / "unpacked"
+    zipfile.ZipFile(wheel).extractall(unpacked)
+    code = (f"import sys; sys.path[:0] = {[str(unpacked), *site.getsitepackages()]!r}; "
+            "import opsrock, opsrock.data as d; from opsrock.campaign import load_scene; "
+            "print(opsrock.__file__); print(sorted(d.scene_names())); s = load_scene('tiny'); "
+            "print(s.n_cases); print(s.blocks_path)")
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    proc = subprocess.run([sys.executable, "-S", "-c", code], cwd=empty, capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    module, scenes, n_cases, blocks_path = proc.stdout.splitlines()
+    assert module.startswith(str(unpacked)) and blocks_path.startswith(str(unpacked))
+    assert scenes == repr(sorted(SCENES)) and n_cases == "18"

@@ -17,12 +17,12 @@ import pytest
 from opsrock.campaign import CampaignConflictError, run_campaign
 from opsrock.campaign.cases import IDENTITY_EXCLUDED
 from opsrock.campaign.cases import PULSE_COLUMNS as CASES_COLUMNS
-from opsrock.cli import main as cli_main
-from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.campaign.executors import DaskExecutor, LocalPool
-from opsrock.result import RockingResult, failed_result
 from opsrock.campaign.scene import load_scene
 from opsrock.campaign.store import read_rows
+from opsrock.cli import main as cli_main
+from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.result import RockingResult, failed_result
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+from test_fragility import BOUNDARY_SLOPE, GRID_IM1, GRID_IM2, grid_cases
 
 from opsrock import Block
 from opsrock.fragility import FragilitySettings, analyse_fragility
 from opsrock.plots.fragility import overturning_boundary, paper_figures
-from test_fragility import BOUNDARY_SLOPE, GRID_IM1, GRID_IM2, grid_cases
 
 # PNG files start with this 8-byte signature (PNG specification, section 5.2).
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"

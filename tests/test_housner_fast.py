@@ -14,11 +14,10 @@ import math
 
 import numpy as np
 import pytest
-from scipy.integrate import quad, solve_ivp
+from scipy.integrate import quad
 
 from opsrock.bench.reference import reference_solve
 from opsrock.block import Block
-from opsrock.constants import G
 from opsrock.excitations import OneSinePulse
 from opsrock.solvers import housner_fast as hf
 from opsrock.solvers import simulate

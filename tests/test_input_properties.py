@@ -17,9 +17,9 @@ from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from opsrock.block import Block
+from opsrock.campaign.scene import SceneError, load_scene
 from opsrock.excitations import OneSinePulse
 from opsrock.model import LEVERS, SDOFModel
-from opsrock.campaign.scene import SceneError, load_scene
 
 # Anything a caller might pass: numbers of every size and sign, NaN, infinities, bools,
 # strings, None, containers.

@@ -10,8 +10,8 @@ import pytest
 from opsrock import Block, OneSinePulse, Record
 from opsrock.model import SDOFModel, restoring_moment
 from opsrock.solvers import opensees as osr
-from opsrock.solvers.common import make_settings
 from opsrock.solvers import simulate
+from opsrock.solvers.common import make_settings
 
 pytestmark = pytest.mark.opensees
 

@@ -18,13 +18,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from opsrock.analysis.threshold import boundary, overturning_intervals, threshold_chart
 from opsrock.block import Block
+from opsrock.campaign.scene import SceneError, load_scene
 from opsrock.constants import G
 from opsrock.excitations import PULSE_SHAPES, HalfSinePulse, OneSinePulse, RectangularPulse, pulse_class
-from opsrock.published import linearised, housner_1963, makris_roussos_2000, zhang_makris_2001
-from opsrock.campaign.scene import SceneError, load_scene
+from opsrock.published import housner_1963, linearised, makris_roussos_2000, zhang_makris_2001
 from opsrock.solvers import housner, housner_fast, simulate
-from opsrock.analysis.threshold import boundary, overturning_intervals, threshold_chart
 
 BLOCK = Block(0.5, 2.0, restitution=0.9)  # alpha = 0.245 rad, p = 2.67 rad/s
 OPSROCK = Path(sys.executable).with_name("opsrock")

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from opsrock.campaign import run_campaign
-from opsrock.campaign.scene import SceneError, load_scene
 from opsrock.campaign.cases import RECORD_COLUMNS as RECORD_CASES_COLUMNS
+from opsrock.campaign.scene import SceneError, load_scene
 
 ROOT = Path(__file__).resolve().parents[1]
 BLOCKS = ROOT / "opsrock" / "data" / "blocks.toml"

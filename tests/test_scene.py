@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from opsrock.constants import G
 from opsrock.campaign.scene import MAX_AXIS_POINTS, Scene, SceneError, load_blocks, load_scene
+from opsrock.constants import G
 
 MODELS = Path(__file__).resolve().parents[1] / "opsrock" / "data"
 

@@ -8,11 +8,14 @@ a 1e-6 change of the amplitude cannot be compared case by case between two imple
     .venv/bin/python tools/sensitivity_probe.py     # prints one line per case, writes sensitivity_probe.json
 """
 import json
+
 import numpy as np
 from scipy import signal
+
 from opsrock.block import Block
 from opsrock.excitations import Record
 from opsrock.solvers import simulate
+
 
 def noise_record(seed, duration=20.0, dt=0.01, band=(0.5, 6.0)):
     rng = np.random.default_rng(seed)

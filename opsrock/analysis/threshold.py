@@ -164,14 +164,11 @@ class _Verdicts:
         ratios = np.atleast_1d(np.asarray(ratios, dtype=float))
         self.n_solves += ratios.size
         if self.solver == "housner_fast":
-            from opsrock.solvers.housner_fast import (
-                STATUS_REASONS,
-                HousnerFastSettings,
-                solve_grid,
-            )
+            from opsrock.solvers.common import make_settings
+            from opsrock.solvers.housner_fast import STATUS_REASONS, HousnerFastSettings, solve_grid
 
             res = solve_grid(self.block.alpha, self.block.e, ratios, self.freq_ratio,
-                             settings=HousnerFastSettings(**self.settings), pulse=self.shape)
+                             settings=make_settings(HousnerFastSettings, None, self.settings), pulse=self.shape)
             code = _codes(res)
             return code, [STATUS_REASONS.get(int(s), "") for s in res.status]
         from opsrock.solvers import simulate
@@ -345,13 +342,14 @@ def threshold_chart(block: Block, freq_ratios: Sequence[float], *, shape: str = 
     list of OverturningIntervals
         One per ``freq_ratios`` value, in order.
     """
+    from opsrock.solvers.common import make_settings
     from opsrock.solvers.housner_fast import HousnerFastSettings, solve_grid
 
     _check_common(block, shape, equations, pfa_ratio_max, n_scan, rtol)
     nu = np.asarray(freq_ratios, dtype=float).ravel()
     if nu.size == 0 or not np.all(np.isfinite(nu) & (nu > 0)):
         raise InputError(f"freq_ratios must be a non-empty list of positive numbers, got {freq_ratios!r}")
-    hs = HousnerFastSettings(**{**(settings or {}), "equations": equations})
+    hs = make_settings(HousnerFastSettings, None, {**(settings or {}), "equations": equations})
     lo = uplift_pfa_ratio(block, equations)
     grid = _scan_grid(lo, pfa_ratio_max, n_scan)
 

@@ -146,7 +146,7 @@ def rows() -> list[Row]:
         blk = _block_from(makris_konstantinidis_2003.ALPHA, p, mk_e)
         src = f"Makris and Konstantinidis (2003), one-cosine, T_p = 2 s, alpha = 15 deg, p = {p:g} rad/s, e = e_R"
         out += [
-            Row(f"mk2003_p{p:g}linearised", src + ", linearised", "one-cosine", "linearised", nu, blk, "first", "g",
+            Row(f"mk2003_p{p:g}_linearised", src + ", linearised", "one-cosine", "linearised", nu, blk, "first", "g",
                 None, None, "published value not available to us",
                 lambda nu=nu: linearised.intervals(nu, "one-cosine", mk_e)[0][0] * makris_konstantinidis_2003.ALPHA,
                 "closed-form event solution"),

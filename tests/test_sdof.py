@@ -6,12 +6,7 @@ import pytest
 from opsrock import Block, OneSinePulse, Record
 from opsrock.model import SDOFModel
 from opsrock.solvers import housner, sdof
-from opsrock.validation.closed_forms import (
-    exact_time_to_impact,
-    first_zero_crossing,
-    peak_after_impact,
-    peak_sequence,
-)
+from opsrock.validation.closed_forms import exact_time_to_impact, first_zero_crossing, peak_after_impact, peak_sequence
 
 BLOCK = Block(0.40, 2.20)  # slender cabinet, alpha = 0.18 rad
 FREE = Record(dt=1.0, values=[0.0, 0.0])  # no floor motion

@@ -95,11 +95,7 @@ class RobustnessResult:
 
 
 def _winners(cases: pd.DataFrame) -> dict[str, str]:
-    from opsrock.fragility.analysis import (
-        FragilitySettings,
-        analyse_fragility,
-        rank_ims,
-    )
+    from opsrock.fragility.analysis import FragilitySettings, analyse_fragility, rank_ims
 
     an = analyse_fragility(cases, FragilitySettings(strip_factors=(1.0,), n_boot=0))
     rank = rank_ims(an)

@@ -13,12 +13,7 @@ The flow, one module a step:
   (:mod:`~opsrock.campaign.store`) as it returns, then ``cases.csv``.
 """
 
-from opsrock.campaign.run import (
-           CASES_FILE,
-           MANIFEST_FILE,
-           CampaignSummary,
-           run_campaign,
-)
+from opsrock.campaign.run import CASES_FILE, MANIFEST_FILE, CampaignSummary, run_campaign
 from opsrock.campaign.scene import BlockSpec, Scene, load_blocks, load_scene
 from opsrock.errors import CampaignConflictError, SceneError, StoreError
 

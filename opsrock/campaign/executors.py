@@ -31,14 +31,7 @@ import time
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from concurrent.futures import TimeoutError as FutureTimeout
 from concurrent.futures.process import BrokenProcessPool
-from typing import (
-    Callable,
-    Iterator,
-    Protocol,
-    Sequence,
-    TypeVar,
-    runtime_checkable,
-)
+from typing import Callable, Iterator, Protocol, Sequence, TypeVar, runtime_checkable
 
 from opsrock.errors import ExecutorUnavailableError, InputError
 

@@ -39,24 +39,13 @@ from pathlib import Path
 from typing import Any, Callable, Mapping, Sequence
 
 from opsrock._files import atomic_write
-from opsrock.campaign.cases import (
-    IDENTITY_EXCLUDED,
-    case_table,
-    failed_row,
-    result_row,
-    write_cases_csv,
-)
+from opsrock.campaign.cases import IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
 from opsrock.campaign.motions import cached_motions, compute_motions
 from opsrock.campaign.scene import Scene, load_scene
 from opsrock.campaign.store import STORE_FILE, ResultStore
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
-from opsrock.errors import (
-    CampaignConflictError,
-    CaseTimeout,
-    InputError,
-    InputTypeError,
-)
+from opsrock.errors import CampaignConflictError, CaseTimeout, InputError, InputTypeError
 from opsrock.result import RockingResult
 from opsrock.solvers import SOLVERS, get_solver, simulate
 

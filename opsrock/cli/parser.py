@@ -95,11 +95,7 @@ def _simulate(sub) -> None:
 
 
 def _threshold(sub) -> None:
-    from opsrock.analysis.threshold import (
-        DEFAULT_N_SCAN,
-        DEFAULT_PFA_RATIO_MAX,
-        DEFAULT_RTOL,
-    )
+    from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
 
     p = sub.add_parser("threshold", help="overturning intervals along the amplitude axis of a pulse",
                        description="Every amplitude interval in which one block overturns under one pulse.")

@@ -11,16 +11,16 @@
 
 from opsrock.excitations.base import Excitation
 from opsrock.excitations.pulses import (
-                                        PFV_CONVENTIONS,
-                                        PULSE_SHAPES,
-                                        HalfSinePulse,
-                                        HarmonicPulse,
-                                        OneCosinePulse,
-                                        OneSinePulse,
-                                        Pulse,
-                                        RectangularPulse,
-                                        RickerWavelet,
-                                        pulse_class,
+    PFV_CONVENTIONS,
+    PULSE_SHAPES,
+    HalfSinePulse,
+    HarmonicPulse,
+    OneCosinePulse,
+    OneSinePulse,
+    Pulse,
+    RectangularPulse,
+    RickerWavelet,
+    pulse_class,
 )
 from opsrock.excitations.records import Record
 

@@ -61,27 +61,19 @@ The layer is a package of one method a module:
 from __future__ import annotations
 
 from opsrock.fragility.analysis import (
-                                        TABLE2_COLUMNS,
-                                        FragilityAnalysis,
-                                        FragilitySettings,
-                                        IMFragility,
-                                        analyse_fragility,
-                                        best_ims,
-                                        rank_ims,
-                                        table2,
-                                        table3,
+    TABLE2_COLUMNS,
+    FragilityAnalysis,
+    FragilitySettings,
+    IMFragility,
+    analyse_fragility,
+    best_ims,
+    rank_ims,
+    table2,
+    table3,
 )
 from opsrock.fragility.cases import CaseSplit, split_cases
-from opsrock.fragility.hybrid_strip import (
-                                        FALLBACK_STRIPS,
-                                        STANDARD_STRIP_DIVISOR,
-                                        HybridStrip,
-                                        hybrid_strip,
-)
-from opsrock.fragility.least_squares import (
-                                        LS_MAX_EVALUATIONS,
-                                        fit_lognormal_least_squares,
-)
+from opsrock.fragility.hybrid_strip import FALLBACK_STRIPS, STANDARD_STRIP_DIVISOR, HybridStrip, hybrid_strip
+from opsrock.fragility.least_squares import LS_MAX_EVALUATIONS, fit_lognormal_least_squares
 from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit, fragility_probability
 from opsrock.fragility.mle import MLEFit, fit_lognormal_mle
 from opsrock.fragility.strips import STRIP_EXTENTS, StripFractions, strip_fractions

@@ -35,12 +35,7 @@ import pandas as pd
 
 from opsrock.errors import InputError
 from opsrock.fragility.hybrid_strip import hybrid_strip
-from opsrock.fragility.ida import (
-    OUTCOMES,
-    outcomes,
-    resurrection_summary,
-    resurrections,
-)
+from opsrock.fragility.ida import OUTCOMES, outcomes, resurrection_summary, resurrections
 from opsrock.fragility.logistic import fit_logistic
 from opsrock.fragility.mle import MLEFit, fit_lognormal_mle
 from opsrock.fragility.sufficiency import sufficiency

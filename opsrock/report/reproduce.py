@@ -90,12 +90,7 @@ ROBUSTNESS_SETS: int = 200
 
 def validation_gate(ignore: bool = False, workers: int | None = None) -> GateReport:
     """Run validation case 2 on its fixed 24-pulse subset (6 per block)."""
-    from opsrock.validation.sdof_agreement import (
-        compare,
-        disagreements,
-        paper_cases,
-        summarize,
-    )
+    from opsrock.validation.sdof_agreement import compare, disagreements, paper_cases, summarize
 
     cases = paper_cases(quick=True)
     df = compare(cases, workers=workers)

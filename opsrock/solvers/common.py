@@ -19,13 +19,7 @@ from scipy.optimize import brentq, minimize_scalar
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE, G
 from opsrock.errors import InputError, InputTypeError, UnknownSettingError
-from opsrock.limits import (
-    bool_fields,
-    int_at_least,
-    one_of,
-    positive_finite,
-    real_number,
-)
+from opsrock.limits import bool_fields, int_at_least, one_of, positive_finite, real_number
 from opsrock.result import ImpactLog, RockingResult, failed_result
 
 #: :func:`scipy.integrate.solve_ivp` methods the scipy solvers accept. Between events both equations are

@@ -20,11 +20,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
-from opsrock.analysis.threshold import (
-    OverturningIntervals,
-    boundary,
-    overturning_intervals,
-)
+from opsrock.analysis.threshold import OverturningIntervals, boundary, overturning_intervals
 from opsrock.block import Block
 from opsrock.constants import G
 from opsrock.published import (

@@ -61,12 +61,12 @@ cache in a new process.
 from opsrock.solvers.housner_fast.case import SOLVER_NAME, free_rocking, solve
 from opsrock.solvers.housner_fast.grid import GridResult, solve_grid, solve_pulses
 from opsrock.solvers.housner_fast.kernel import (
-                                                 STATUS_EVENT_FAILED,
-                                                 STATUS_MAX_IMPACTS,
-                                                 STATUS_MAX_STEPS,
-                                                 STATUS_NONFINITE,
-                                                 STATUS_OK,
-                                                 STATUS_REASONS,
+    STATUS_EVENT_FAILED,
+    STATUS_MAX_IMPACTS,
+    STATUS_MAX_STEPS,
+    STATUS_NONFINITE,
+    STATUS_OK,
+    STATUS_REASONS,
 )
 from opsrock.solvers.housner_fast.settings import HousnerFastSettings
 

@@ -44,11 +44,11 @@ transient loop: step policy, guards, the seat, damper switching, stopping) and
 
 from opsrock.opensees_session import opensees_log_path
 from opsrock.solvers.opensees.settings import (
-                                               ALGORITHMS,
-                                               INTEGRATORS,
-                                               ROCKED_THETA_E_MULTIPLE,
-                                               OpenSeesSettings,
-                                               critical_time_step,
+    ALGORITHMS,
+    INTEGRATORS,
+    ROCKED_THETA_E_MULTIPLE,
+    OpenSeesSettings,
+    critical_time_step,
 )
 from opsrock.solvers.opensees.solver import SOLVER_NAME, solve, solve_lumped_mass
 

@@ -12,26 +12,11 @@ from opsrock.errors import InputTypeError
 from opsrock.excitations import Excitation
 from opsrock.limits import one_of
 from opsrock.model import can_uplift
-from opsrock.opensees_session import (
-    CONSOLE,
-    console_to_log,
-    count_messages,
-    fresh_model,
-    log_size,
-)
+from opsrock.opensees_session import CONSOLE, console_to_log, count_messages, fresh_model, log_size
 from opsrock.result import RockingResult, failed_result, seated_result
 from opsrock.solvers.common import make_settings
-from opsrock.solvers.opensees.build import (
-    build_lumped,
-    build_sdof,
-    define_analysis,
-    set_initial_state,
-)
-from opsrock.solvers.opensees.settings import (
-    ROCKED_THETA_E_MULTIPLE,
-    OpenSeesSettings,
-    critical_time_step,
-)
+from opsrock.solvers.opensees.build import build_lumped, build_sdof, define_analysis, set_initial_state
+from opsrock.solvers.opensees.settings import ROCKED_THETA_E_MULTIPLE, OpenSeesSettings, critical_time_step
 from opsrock.solvers.opensees.stepper import StepFailure, Stepper
 
 SOLVER_NAME = "opensees"

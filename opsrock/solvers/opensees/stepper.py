@@ -30,12 +30,7 @@ from opsrock.model import Seat
 from opsrock.opensees_session import CONSOLE, ops
 from opsrock.result import ImpactLog
 from opsrock.solvers.common import potential_energy
-from opsrock.solvers.opensees.build import (
-    DAMPER_ELE,
-    DAMPER_PARAM,
-    SPRING_ELE,
-    set_algorithm,
-)
+from opsrock.solvers.opensees.build import DAMPER_ELE, DAMPER_PARAM, SPRING_ELE, set_algorithm
 from opsrock.solvers.opensees.settings import OpenSeesSettings, critical_time_step
 
 #: Energy-growth test for numerical instability: a run is "unstable" when its mechanical energy

@@ -14,12 +14,7 @@ from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.excitations.records import Record
 from opsrock.model import Seat, can_uplift
 from opsrock.result import RockingResult, seated_result
-from opsrock.solvers.common import (
-    EventDrivenSolver,
-    StopRun,
-    first_exceedance,
-    make_settings,
-)
+from opsrock.solvers.common import EventDrivenSolver, StopRun, first_exceedance, make_settings
 from opsrock.solvers.sdof.closed_form import ClosedFormSegment, closed_form_solve
 from opsrock.solvers.sdof.settings import SDOFSettings
 

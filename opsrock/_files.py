@@ -13,12 +13,15 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import shutil
 import tempfile
 from pathlib import Path
-from typing import Any, Callable
+from typing import TYPE_CHECKING, Any, Callable, Iterator
 
-import pandas as pd
+if TYPE_CHECKING:
+    import pandas as pd
 
 from opsrock.errors import InputError
 
@@ -44,14 +47,20 @@ def output_file(name: str, path: str | os.PathLike, suffix: str | None = None) -
     suffix : str, optional
         Required suffix, case-insensitive (``".png"``).
     """
-    p = Path(path)
     shown = str(path)
+    if not shown.strip():
+        raise InputError(f"{name} must name a file, got {shown!r}")
+    p = Path(path)
     if suffix is not None and p.suffix.lower() != suffix:
         raise InputError(f"{name} must name a {suffix} file, got {shown!r}")
-    if p.is_dir():
-        raise InputError(f"{name} {shown!r} is a folder; give a file name")
     parent = p.parent if str(p.parent) else Path(".")
-    if not parent.is_dir():
+    try:
+        if p.is_dir():
+            raise InputError(f"{name} {shown!r} is a folder; give a file name")
+        parent_is_dir = parent.is_dir()
+    except OSError as exc:  # a folder on the way that this user may not enter
+        raise InputError(f"{name} {shown!r}: cannot write there ({exc.strerror or exc})") from None
+    if not parent_is_dir:
         raise InputError(f"{name} {shown!r}: folder {str(parent)!r} does not exist")
     _probe_writable(name, shown, parent)
     return p
@@ -63,16 +72,22 @@ def output_dir(name: str, path: str | os.PathLike) -> Path:
     Missing folders are not created here (the caller creates them once the inputs are known
     to be good); the nearest existing ancestor must be a writable folder.
     """
-    p = Path(path)
     shown = str(path)
-    if p.exists() and not p.is_dir():
-        raise InputError(f"{name} {shown!r} is a file, not a folder")
-    ancestor = p
-    while not ancestor.exists():
-        if ancestor.parent == ancestor:
-            break
-        ancestor = ancestor.parent
-    if not ancestor.is_dir():
+    if not shown.strip():
+        raise InputError(f"{name} must name a folder, got {shown!r} (use '.' for the current folder)")
+    p = Path(path)
+    try:
+        if p.exists() and not p.is_dir():
+            raise InputError(f"{name} {shown!r} is a file, not a folder")
+        ancestor = p
+        while not ancestor.exists():
+            if ancestor.parent == ancestor:
+                break
+            ancestor = ancestor.parent
+        is_dir = ancestor.is_dir()
+    except OSError as exc:  # a folder on the way that this user may not enter
+        raise InputError(f"{name} {shown!r}: cannot write there ({exc.strerror or exc})") from None
+    if not is_dir:
         raise InputError(f"{name} {shown!r}: {str(ancestor)!r} is a file, not a folder")
     _probe_writable(name, shown, ancestor)
     return p
@@ -113,14 +128,45 @@ def atomic_write(path: Path, write: Callable[[Any], None], *, binary: bool = Fal
             os.close(dir_fd)
 
 
+@contextlib.contextmanager
+def staged_folder(out: str | os.PathLike) -> Iterator[Path]:
+    """A folder of outputs written whole or not at all.
+
+    Yields a new temporary folder beside ``out``; when the block ends normally, every file in it
+    replaces its namesake in ``out`` (created if missing), each by an atomic rename. When the block
+    raises (a failure, Ctrl-C), the temporary folder and any folder made for it are removed and
+    ``out`` is left as it was: a failed command leaves nothing half-written.
+    """
+    out = Path(out)
+    made = [d for d in (out, *out.parents) if not d.exists()][::-1][:-1]  # missing ancestors of out
+    for d in made:
+        d.mkdir()
+    stage = Path(tempfile.mkdtemp(prefix=f".{out.name or 'out'}.staging-", dir=out.parent))
+    try:
+        yield stage
+        out.mkdir(exist_ok=True)
+        for f in sorted(stage.rglob("*")):
+            if f.is_file():
+                dest = out / f.relative_to(stage)
+                dest.parent.mkdir(parents=True, exist_ok=True)
+                os.replace(f, dest)
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        for d in reversed(made):
+            with contextlib.suppress(OSError):
+                d.rmdir()
+        raise
+    shutil.rmtree(stage, ignore_errors=True)
+
+
 def atomic_text(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` atomically."""
     atomic_write(Path(path), lambda fh: fh.write(text), durable=False)
 
 
-def atomic_csv(path: Path, df: pd.DataFrame) -> None:
+def atomic_csv(path: Path, df: "pd.DataFrame") -> None:
     """Write ``df`` (no index) to ``path`` atomically, at full precision (``repr`` of every float)."""
     atomic_write(Path(path), lambda fh: df.to_csv(fh, index=False), durable=False)
 
 
-__all__ = ["atomic_csv", "atomic_text", "atomic_write", "output_dir", "output_file"]
+__all__ = ["atomic_csv", "atomic_text", "atomic_write", "output_dir", "output_file", "staged_folder"]

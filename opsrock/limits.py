@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from numbers import Real
+from numbers import Integral, Real
 
 from opsrock.errors import InputError, InputTypeError
 
@@ -60,18 +60,46 @@ LIMITS: dict[str, Limit] = {
                          "times per 1/p, or steps bound to the samples jump over impacts"),
     "period": Limit(1e-2, 10.0, "s", "first periods of buildings, from very stiff (0.01 s) to very flexible (10 s)"),
     "damping": Limit(0.0, 0.5, "-", "viscous damping ratio of a building's modes; above 0.5 no building is linear"),
+    "storeys": Limit(1, 200, "-", "storeys of a shear building: the filter's cost grows faster than the storeys "
+                     "(200 storeys take 16.5 s on a 20-s record, 2 cores; opsrock.excitations.building.MAX_STOREYS)"),
+    # --- counts, tolerances and budgets: what a 2-core machine finishes in reasonable time -------------
+    "n_boot": Limit(0, 10_000, "-", "bootstrap resamples of a fragility fit: 200 give intervals to about 1 %; "
+                    "10,000 take about an hour for nine IMs on a 3,520-case campaign"),
+    "robustness_sets": Limit(0, 5_000, "-", "seeded block sets of the ranking-robustness study: 200 take 38 s "
+                             "on 2 cores, 5,000 about 16 min"),
+    "n_scan": Limit(3, 100_000, "-", "amplitudes scanned by the threshold search: 600 resolve 0.65 % steps; "
+                    "100,000 solves take minutes with housner_fast, hours with the SDOF models"),
+    "boundary_rtol": Limit(1e-12, 0.1, "-", "relative width of a refined overturning boundary: below 1e-12 the "
+                           "bisection works on round-off, above 0.1 it is not a boundary"),
+    "seed": Limit(0, 2**32 - 1, "-", "seeds of numpy's random generator, as unsigned 32-bit integers"),
+    "workers": Limit(1, 1024, "-", "worker processes or threads: at least one, at most what any machine has"),
+    "batch": Limit(1, 1_000_000, "-", "cases per batch of a campaign"),
+    "case_timeout": Limit(1e-3, 1e6, "s", "wall-clock budget of one case: from 1 ms to about 11 days (the "
+                          "slowest healthy case measured takes 17 s)"),
+    "record_file_bytes": Limit(0, 64e6, "B", "size of a record file: 64 MB hold 4 million samples, 40 times "
+                               "the longest FEMA P695 record at 0.001 s; larger files are refused unread"),
 }
 
 
-def check(name: str, value: object) -> float:
+def shown(value: object) -> str:
+    """``repr`` of a value for a message, numpy scalars as plain Python numbers (``1e+300``, not
+    ``np.float64(1e+300)``)."""
+    if type(value).__module__ == "numpy" and hasattr(value, "item"):
+        value = value.item()
+    return repr(value)
+
+
+def check(name: str, value: object, *, shown_as: str | None = None) -> float:
     """Return ``value`` as a float if it is a real number within ``LIMITS[name]``.
 
     Parameters
     ----------
     name : str
-        Argument name, a key of :data:`LIMITS`; used in the message.
+        A key of :data:`LIMITS`; the argument named in the message unless ``shown_as`` is given.
     value : object
         The value to check (bool is refused).
+    shown_as : str, optional
+        The name the user gave it (``"--n-boot"``), for the message.
 
     Raises
     ------
@@ -82,10 +110,23 @@ def check(name: str, value: object) -> float:
         the range with its unit.
     """
     limit = LIMITS[name]
-    v = real_number(name, value)
+    label = shown_as or name
+    v = real_number(label, value)
     if not math.isfinite(v) or not (limit.low <= v <= limit.high):
-        raise InputError(f"{name} must lie in [{limit.low:g}, {limit.high:g}] {limit.unit}, got {value!r}")
+        unit = "" if limit.unit == "-" else f" {limit.unit}"
+        raise InputError(f"{label} must lie in [{limit.low:g}, {limit.high:g}]{unit}, got {shown(value)}")
     return v
+
+
+def check_count(name: str, value: object, *, shown_as: str | None = None) -> int:
+    """Return ``value`` if it is an integer (bool refused) within ``LIMITS[name]``; as :func:`check`."""
+    label = shown_as or name
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        raise InputError(f"{label} must be an integer, got {shown(value)}")
+    limit = LIMITS[name]
+    if not limit.low <= value <= limit.high:
+        raise InputError(f"{label} must be an integer in [{int(limit.low)}, {int(limit.high)}], got {shown(value)}")
+    return int(value)
 
 
 def scaled_input(name: str, value: float, target: str, scale: float) -> float:
@@ -117,11 +158,11 @@ def real_number(name: str, value: object) -> float:
     """Return ``value`` as a float, or raise ``TypeError`` naming ``name`` if it is not a real
     number (bool is refused), ``ValueError`` if it does not fit a float."""
     if isinstance(value, bool) or not isinstance(value, Real):
-        raise InputTypeError(f"{name} must be a real number, got {value!r} ({type(value).__name__})")
+        raise InputTypeError(f"{name} must be a real number, got {shown(value)} ({type(value).__name__})")
     try:
         return float(value)
     except (OverflowError, ValueError):
-        raise InputError(f"{name} must be a finite number, got {value!r}") from None
+        raise InputError(f"{name} must be a finite number, got {shown(value)}") from None
 
 
 def positive_finite(name: str, value: object) -> float:
@@ -174,5 +215,5 @@ def bool_fields(obj: object) -> None:
                 raise InputTypeError(f"{f.name} must be true or false (a bool), got {value!r}")
 
 
-__all__ = ["LIMITS", "Limit", "bool_fields", "check", "in_open_interval", "int_at_least", "one_of", "positive_finite",
-           "real_number", "scaled_input"]
+__all__ = ["LIMITS", "Limit", "bool_fields", "check", "check_count", "in_open_interval", "int_at_least", "one_of",
+           "positive_finite", "real_number", "scaled_input", "shown"]

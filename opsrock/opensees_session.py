@@ -25,9 +25,68 @@ import openseespy.opensees as ops
 CONSOLE: dict[str, Any] = {"pid": None, "path": None, "retries": 0, "recovered_by": {}}
 
 
+#: Logs of finished processes younger than this (s) are kept for a look after a run; older ones are
+#: removed by the next process that uses OpenSees, so that they do not pile up.
+LOG_KEEP_S: float = 600.0
+
+#: At most this many logs of finished processes are kept, whatever their age.
+LOG_KEEP_MAX: int = 50
+
+
+def log_folder() -> str:
+    """The folder of the per-process OpenSees logs (in the system's temporary folder)."""
+    return os.path.join(tempfile.gettempdir(), "opsrock-opensees")
+
+
 def opensees_log_path() -> str:
     """Path of this process's OpenSees log file (its warnings and progress lines go there)."""
-    return os.path.join(tempfile.gettempdir(), f"opsrock-opensees-{os.getpid()}.log")
+    return os.path.join(log_folder(), f"opsrock-opensees-{os.getpid()}.log")
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    return True
+
+
+def _ended_logs(folder: str) -> list[tuple[float, str]]:
+    """``(mtime, path)`` of the logs in ``folder`` whose process has ended."""
+    out = []
+    for name in os.listdir(folder):
+        stem = name.removeprefix("opsrock-opensees-").removesuffix(".log")
+        if name.startswith("opsrock-opensees-") and stem.isdigit() and not _alive(int(stem)):
+            path = os.path.join(folder, name)
+            try:
+                out.append((os.path.getmtime(path), path))
+            except OSError:
+                pass
+    return out
+
+
+def prune_logs(now: float | None = None) -> int:
+    """Remove the logs of processes that have ended, except the :data:`LOG_KEEP_MAX` newest of those
+    younger than :data:`LOG_KEEP_S`; return how many were removed."""
+    import time
+
+    now = time.time() if now is None else now
+    ended = []
+    # the folder, and the temporary folder itself, where earlier versions left their logs
+    for folder in (log_folder(), tempfile.gettempdir()):
+        ended += _ended_logs(folder)
+    ended.sort(reverse=True)
+    removed = 0
+    for k, (mtime, path) in enumerate(ended):
+        if k >= LOG_KEEP_MAX or now - mtime > LOG_KEEP_S:
+            try:
+                os.unlink(path)
+                removed += 1
+            except OSError:
+                pass
+    return removed
 
 
 def console_to_log() -> str:
@@ -39,6 +98,8 @@ def console_to_log() -> str:
     """
     pid = os.getpid()
     if CONSOLE["pid"] != pid:
+        os.makedirs(log_folder(), exist_ok=True)
+        prune_logs()
         path = opensees_log_path()
         ops.logFile(path, "-noEcho")
         CONSOLE.update(pid=pid, path=path)
@@ -96,4 +157,5 @@ def fresh_model() -> Iterator[Any]:
         ops.wipe()
 
 
-__all__ = ["CONSOLE", "console_to_log", "count_messages", "fresh_model", "log_size", "opensees_log_path", "ops"]
+__all__ = ["CONSOLE", "console_to_log", "count_messages", "fresh_model", "log_folder", "log_size", "opensees_log_path",
+           "ops", "prune_logs"]

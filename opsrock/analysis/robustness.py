@@ -18,7 +18,7 @@ import pandas as pd
 
 from opsrock.block import Block
 from opsrock.intensity import IM_NAMES
-from opsrock.limits import int_at_least
+from opsrock.limits import check_count, int_at_least
 
 #: Slenderness of freestanding furniture and equipment (rad): a tall bookcase (about 0.15) to a
 #: squat cabinet (about 0.45).
@@ -122,8 +122,8 @@ def ranking_robustness(n_sets: int = 200, seed: int = 0, progress: bool = False,
         Processes (each set is independent; the draws are made here, so the result does not
         depend on ``workers``). Default 1.
     """
-    n_sets = int_at_least("n_sets", n_sets, 1)
-    workers = int_at_least("workers", workers, 1)
+    n_sets = int_at_least("n_sets", check_count("robustness_sets", n_sets), 1)
+    workers = check_count("workers", workers)
     sets = draw_block_sets(n_sets, seed)
     if workers == 1:
         it = map(_set_winners, sets)

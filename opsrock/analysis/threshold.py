@@ -37,7 +37,7 @@ from opsrock.block import Block
 from opsrock.constants import EQUATIONS, G
 from opsrock.errors import InputError, InputTypeError
 from opsrock.excitations import PULSE_SHAPES, pulse_class
-from opsrock.limits import int_at_least, one_of, positive_finite
+from opsrock.limits import check, check_count, one_of, positive_finite, scaled_input
 
 #: Solvers whose settings take ``equations`` (the SDOF models solve their own equation).
 RIGID_SOLVERS: tuple[str, ...] = ("housner", "housner_fast")
@@ -137,10 +137,10 @@ def _check_common(block: Any, shape: str, equations: str, pfa_ratio_max: float, 
         raise InputTypeError(f"block must be a Block, got {block!r}")
     one_of("shape", shape, tuple(PULSE_SHAPES))
     one_of("equations", equations, EQUATIONS)
-    positive_finite("pfa_ratio_max", pfa_ratio_max)
-    int_at_least("n_scan", n_scan, 3)
-    if not 0.0 < positive_finite("rtol", rtol) < 0.1:
-        raise InputError(f"rtol must lie in (0, 0.1), got {rtol!r}")
+    scaled_input("pfa_ratio_max", positive_finite("pfa_ratio_max", pfa_ratio_max), "pfa", block.uplift_acceleration)
+    check_count("n_scan", n_scan)
+    if check("boundary_rtol", rtol, shown_as="rtol") >= 0.1:
+        raise InputError(f"rtol must lie in [1e-12, 0.1), got {rtol!r}")
 
 
 def _codes(res) -> np.ndarray:

@@ -13,9 +13,23 @@ The flow, one module a step:
   (:mod:`~opsrock.campaign.store`) as it returns, then ``cases.csv``.
 """
 
-from opsrock.campaign.run import CASES_FILE, MANIFEST_FILE, CampaignSummary, run_campaign
-from opsrock.campaign.scene import BlockSpec, Scene, load_blocks, load_scene
-from opsrock.errors import CampaignConflictError, SceneError, StoreError
+import importlib
 
-__all__ = ["BlockSpec", "CASES_FILE", "CampaignConflictError", "CampaignSummary", "MANIFEST_FILE", "Scene",
-           "SceneError", "StoreError", "load_blocks", "load_scene", "run_campaign"]
+#: Public names, by the module that defines them (imported on first use: ``opsrock run`` starts fast,
+#: and a module of the package can be imported without the rest).
+_EXPORTS = {
+    "CASES_FILE": "opsrock.campaign.run", "MANIFEST_FILE": "opsrock.campaign.run",
+    "CampaignSummary": "opsrock.campaign.run", "run_campaign": "opsrock.campaign.run",
+    "BlockSpec": "opsrock.campaign.scene", "Scene": "opsrock.campaign.scene", "load_blocks": "opsrock.campaign.scene",
+    "load_scene": "opsrock.campaign.scene", "CampaignConflictError": "opsrock.errors", "SceneError": "opsrock.errors",
+    "StoreError": "opsrock.errors",
+}
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        return getattr(importlib.import_module(_EXPORTS[name]), name)
+    raise AttributeError(f"module 'opsrock.campaign' has no attribute {name!r}")
+
+
+__all__ = sorted(_EXPORTS)

@@ -34,6 +34,7 @@ from concurrent.futures.process import BrokenProcessPool
 from typing import Callable, Iterator, Protocol, Sequence, TypeVar, runtime_checkable
 
 from opsrock.errors import ExecutorUnavailableError, InputError
+from opsrock.limits import check_count
 
 T = TypeVar("T")
 R = TypeVar("R")
@@ -148,8 +149,7 @@ class LocalPool(_Closing):
                  item_timeout: float | None = None) -> None:
         if workers is None:
             workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-        if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-            raise InputError(f"workers must be an integer >= 1, got {workers!r}")
+        check_count("workers", workers)
         if mp_context not in multiprocessing.get_all_start_methods():
             raise InputError(
                 f"mp_context must be one of {multiprocessing.get_all_start_methods()}, got {mp_context!r}"
@@ -166,7 +166,8 @@ class LocalPool(_Closing):
 
     def _new_pool(self, workers: int) -> ProcessPoolExecutor:
         self._shutdown_pool()
-        self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context(self.mp_context))
+        self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context(self.mp_context),
+                                         initializer=_ignore_interrupts)
         return self._pool
 
     def _kill_pool(self) -> None:
@@ -206,6 +207,9 @@ class LocalPool(_Closing):
             # Suspects: every item alone in a one-worker pool, so a death names its item.
             for k in sorted(suspects):
                 yield k, [self._run_alone(fn, item, lost) for item in batches[k]]
+        except BaseException:  # Ctrl-C, or the caller stopped: the workers' batches are not waited for
+            self._kill_pool()
+            raise
         finally:
             self._shutdown_pool()
 
@@ -264,6 +268,14 @@ class LocalPool(_Closing):
 
 
 # --- Dask ------------------------------------------------------------------------------------
+def _ignore_interrupts() -> None:
+    """In a worker: leave Ctrl-C to the main process, which stops the pool (a worker interrupted on
+    its own would print a ``KeyboardInterrupt`` traceback of its own)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _import_distributed():
     try:
         import distributed

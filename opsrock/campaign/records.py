@@ -182,6 +182,9 @@ def _case(bname: str, block: Block, rname: str, flabel: str, motion, inten: Inte
     value = inten.levels[k - 1]
     if inten.method == "cloud":
         scale, level_value = value, math.nan
+    elif motion.measures.pfa == 0.0:  # a motion of zeros cannot reach any level: a failed case, not a crash
+        return RecordCase(case_id, block, motion, math.nan, k, value, "the floor motion is all zeros: no scale "
+                          f"factor reaches {inten.measure} = {value:g}")
     else:
         target = value * G if inten.measure == "pfa_g" else value * block.uplift_acceleration
         scale, level_value = motion.record.scale_to(target), value

@@ -45,7 +45,8 @@ from opsrock.campaign.motions import cached_motions, compute_motions
 from opsrock.campaign.scene import Scene, load_scene
 from opsrock.campaign.store import STORE_FILE, ResultStore
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
-from opsrock.errors import CampaignConflictError, CaseTimeout, InputError, InputTypeError
+from opsrock.errors import CampaignConflictError, CaseTimeout, InputTypeError
+from opsrock.limits import check
 from opsrock.result import RockingResult
 from opsrock.solvers import SOLVERS, get_solver, simulate
 
@@ -288,9 +289,7 @@ def _identity(scene: Scene, solve_fn: Callable | None) -> tuple[str, dict[str, A
 def _case_budget(scene: Scene, case_timeout: float | None) -> float:
     if case_timeout is None:
         case_timeout = scene.case_timeout if scene.case_timeout is not None else DEFAULT_CASE_TIMEOUT
-    if isinstance(case_timeout, bool) or not isinstance(case_timeout, (int, float)) or not case_timeout > 0:
-        raise InputError(f"case_timeout must be a positive number of seconds, got {case_timeout!r}")
-    return case_timeout
+    return check("case_timeout", case_timeout)
 
 
 def run_campaign(

@@ -37,16 +37,18 @@ import hashlib
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 from opsrock.block import Block
 from opsrock.campaign.grid import Grid, parse_grid
-from opsrock.campaign.records import RecordSet, parse_records
 from opsrock.campaign.toml import MAX_AXIS_POINTS, TomlFile, canonical
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.solvers import SOLVERS, check_settings
+
+if TYPE_CHECKING:
+    from opsrock.campaign.records import RecordSet
 
 #: Version of the scene format; bump when the meaning of a scene file changes.
 SCENE_FORMAT: int = 1
@@ -338,8 +340,12 @@ def load_scene(path: str | Path) -> Scene:
 def _blocks(f: TomlFile, data: dict) -> tuple[tuple[BlockSpec, ...], Path]:
     """The scene's blocks: its blocks file, and the ``select`` subset of it."""
     blocks_ref = f.string("blocks", data["blocks"])
-    blocks_path = (f.path.parent / blocks_ref).resolve()
-    if not blocks_path.is_file():
+    try:
+        blocks_path = (f.path.parent / blocks_ref).resolve()
+        is_file = blocks_path.is_file()
+    except (RuntimeError, OSError) as exc:  # a symlink loop (RuntimeError before Python 3.13), a name too long
+        raise f.error("blocks", blocks_ref, f"cannot be resolved: {exc}") from None
+    if not is_file:
         raise f.error("blocks", blocks_ref, f"no such file ({blocks_path})")
     blocks = load_blocks(blocks_path)
     if "select" in data:
@@ -359,6 +365,8 @@ def _design(f: TomlFile, data: dict, blocks: tuple[BlockSpec, ...], pfv: str) ->
     elif "pulse" in data:
         raise f.error("pulse", data["pulse"], "[pulse] goes with [grid] (pulses), not with [records]")
     else:
+        from opsrock.campaign.records import parse_records  # floor motions need scipy: only for record scenes
+
         records = parse_records(f, data["records"], [b.block for b in blocks])
     design, kind = (grid, "grid") if grid is not None else (records, "records")
     n = len(blocks) * design.n_per_block

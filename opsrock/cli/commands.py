@@ -50,11 +50,14 @@ def check_model_args(args: argparse.Namespace) -> None:
 def make_block(args: argparse.Namespace):
     """The block of --width/--height/--mass/--restitution."""
     from opsrock.block import Block
-    from opsrock.errors import InputError
+    from opsrock.errors import InputError, OpsrockError
 
     if args.restitution is not None and args.restitution > 1.0:
         raise InputError(f"--restitution must lie in (0, 1], got {args.restitution!r}")
-    return Block(width=args.width, height=args.height, mass=args.mass, restitution=args.restitution)
+    try:
+        return Block(width=args.width, height=args.height, mass=args.mass, restitution=args.restitution)
+    except OpsrockError as exc:  # the sizes together (a block too stocky to rock)
+        raise UsageError(f"--width {args.width:g}, --height {args.height:g}: {exc}") from None
 
 
 def pulse_omega(args: argparse.Namespace, block) -> float:
@@ -64,19 +67,23 @@ def pulse_omega(args: argparse.Namespace, block) -> float:
     if args.freq_ratio is not None:
         return scaled_input("--freq-ratio", args.freq_ratio, "omega_p", block.p)
     if args.duration is not None:
-        return scaled_input("--duration", math.pi / check("duration", args.duration), "omega_p", 1.0)
+        return scaled_input("--duration", math.pi / check("duration", args.duration, shown_as="--duration"), "omega_p", 1.0)
     return scaled_input("--freq", args.freq, "omega_p", 2.0 * math.pi)
 
 
 def model_settings(args: argparse.Namespace) -> dict:
     """Solver settings of --delta, --lever, --damper, --step and --equations."""
+    from opsrock.errors import OpsrockError
     from opsrock.model import SDOFModel
 
     settings = {}
     if args.equations is not None:
         settings["equations"] = args.equations
     if args.delta is not None:
-        SDOFModel(delta=args.delta)  # checks the value, naming the argument
+        try:
+            SDOFModel(delta=args.delta)  # checks the value
+        except OpsrockError as exc:
+            raise UsageError(f"--delta = {args.delta!r}: {exc}") from None
         settings["delta"] = args.delta
     if args.lever is not None:
         settings["lever"] = args.lever
@@ -100,10 +107,12 @@ def _check_simulate_args(args: argparse.Namespace) -> None:
 
         output_file("--plot", args.plot, ".png")
     if args.record is None:
-        extra = [n for n in ("units", "dt", "building_period", "storeys") if getattr(args, n) is not None]
+        extra = [n for n in ("units", "dt", "building_period", "storeys", "damping", "floor")
+                 if getattr(args, n) is not None]
         if extra or args.scale is not None:
             name = "--" + (extra[0] if extra else "scale").replace("_", "-")
-            raise UsageError(f"{name} applies to --record only (the OpenSees time step is --step)")
+            raise UsageError(f"{name} applies to --record only" + (" (the OpenSees time step is --step)"
+                                                                   if name == "--dt" else ""))
         if args.pfa is None and args.pfa_ratio is None:
             raise UsageError("give the pulse amplitude: --pfa (g) or --pfa-ratio")
         _need_frequency(args)
@@ -114,6 +123,9 @@ def _check_simulate_args(args: argparse.Namespace) -> None:
             raise UsageError("--pulse applies to pulses, not to --record")
         if (args.building_period is None) != (args.storeys is None):
             raise UsageError("--building-period and --storeys go together (the building filter)")
+        if args.building_period is None and (args.damping is not None or args.floor is not None):
+            name = "--damping" if args.damping is not None else "--floor"
+            raise UsageError(f"{name} applies to the building filter: give --building-period and --storeys too")
 
 
 def _pulse(args: argparse.Namespace, block):
@@ -142,11 +154,19 @@ def _record(args: argparse.Namespace, block):
     if args.building_period is not None:
         from opsrock.excitations.building import ShearBuilding, floor_motion
 
-        floor = int(args.floor) if str(args.floor).isdigit() else args.floor
+        floor = "roof" if args.floor is None else int(args.floor) if str(args.floor).isdigit() else args.floor
+        damping = 0.05 if args.damping is None else args.damping
         try:
-            building = ShearBuilding("building", args.building_period, args.storeys, damping=args.damping)
-            rec = floor_motion(rec, building, floor)
+            building = ShearBuilding("building", args.building_period, args.storeys, damping=damping)
         except OpsrockError as exc:
+            raise UsageError(f"building filter: {exc}") from None
+        try:
+            building.floor_index(floor)
+        except OpsrockError:
+            raise UsageError(f"--floor must be 'roof' or an integer in 1..{args.storeys}, got {args.floor!r}") from None
+        try:
+            rec = floor_motion(rec, building, floor)
+        except RuntimeError as exc:  # the building's analysis failed: say so on one line
             raise UsageError(f"building filter: {exc}") from None
     try:
         check_sampling(rec, block)
@@ -223,9 +243,10 @@ def threshold(args: argparse.Namespace) -> int:
 
     check_model_args(args)
     _need_frequency(args)
-    if args.n_scan < 3:
-        raise UsageError(f"--n-scan must be an integer >= 3, got {args.n_scan!r}")
     block = make_block(args)
+    from opsrock.limits import scaled_input
+
+    scaled_input("--pfa-ratio-max", args.pfa_ratio_max, "pfa", block.uplift_acceleration)
     settings = model_settings(args)
     res = overturning_intervals(block, pulse_omega(args, block) / block.p, shape=args.pulse, solver=args.solver,
                                 equations=settings.pop("equations", "exact"), pfa_ratio_max=args.pfa_ratio_max,
@@ -326,10 +347,10 @@ def _records_plot(args) -> int:
     from opsrock.plots.records import plot_record
 
     out = output_file("--out", args.out, ".png")
-    rec = read_record(args.name, units=args.units, dt=args.dt)
-    floor = None
     if (args.building_period is None) != (args.storeys is None):
         raise UsageError("--building-period and --storeys go together")
+    rec = read_record(args.name, units=args.units, dt=args.dt)
+    floor = None
     if args.building_period is not None:
         from opsrock.excitations.building import ShearBuilding, floor_motion
 
@@ -346,8 +367,7 @@ def _records_plot(args) -> int:
 def run(args: argparse.Namespace) -> int:
     """``opsrock run``: :func:`opsrock.campaign.run_campaign` on a scene file or a shipped scene."""
     from opsrock._files import output_dir
-    from opsrock.campaign import load_scene, run_campaign
-    from opsrock.campaign.executors import DaskExecutor
+    from opsrock.campaign.scene import load_scene
 
     scene = load_scene(args.scene)
     if args.solver is not None:
@@ -356,11 +376,9 @@ def run(args: argparse.Namespace) -> int:
     dask = args.scheduler is not None or args.dask_local is not None
     if dask and args.workers is not None:
         raise UsageError("--workers sets local processes; with Dask use --dask-local N or the cluster's workers")
-    for option, value in (("--workers", args.workers), ("--batch", args.batch)):
-        if value is not None and value < 1:
-            raise UsageError(f"{option} must be >= 1, got {value}")
-    if args.case_timeout is not None and not (math.isfinite(args.case_timeout) and args.case_timeout > 0):
-        raise UsageError(f"--case-timeout must be a positive number of seconds, got {args.case_timeout:g}")
+    from opsrock.campaign import run_campaign  # the campaign's machinery, once the inputs are known to be good
+    from opsrock.campaign.executors import DaskExecutor
+
     try:
         executor = DaskExecutor(args.scheduler, local_workers=args.dask_local) if dask else None
     except OSError as exc:  # no scheduler at that address
@@ -385,19 +403,17 @@ def run(args: argparse.Namespace) -> int:
 
 def fragility(args: argparse.Namespace) -> int:
     """``opsrock fragility``: :func:`opsrock.report.records.write_record_report` on a record campaign."""
+    from opsrock._files import output_dir, staged_folder
+    from opsrock.fragility.ida import OUTCOMES
     from opsrock.report.records import read_cases, write_record_report
 
-    for option, value in (("--n-boot", args.n_boot), ("--robustness-sets", args.robustness_sets)):
-        if value < 0:
-            raise UsageError(f"{option} must be >= 0, got {value!r}")
-    if args.workers < 1:
-        raise UsageError(f"--workers must be >= 1, got {args.workers!r}")
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise UsageError(f"--out: {out} exists and is not a folder")
+    if args.outcome not in OUTCOMES:
+        raise UsageError(f"--outcome must be one of {', '.join(OUTCOMES)}; got {args.outcome!r}")
+    out = output_dir("--out", args.out)
     cases = read_cases(args.cases)
-    res = write_record_report(cases, out, n_boot=args.n_boot, seed=args.seed, outcome=args.outcome,
-                              robustness_sets=args.robustness_sets, workers=args.workers, source=str(args.cases))
+    with staged_folder(out) as stage:  # all of the report, or nothing
+        res = write_record_report(cases, stage, n_boot=args.n_boot, seed=args.seed, outcome=args.outcome,
+                                  robustness_sets=args.robustness_sets, workers=args.workers, source=str(args.cases))
     print(f"opsrock fragility: {len(res['study'].cases)} cases in {res['timings']['total_s']:.1f} s: see {out}/report.md")
     return 0
 
@@ -410,10 +426,6 @@ def reproduce(args: argparse.Namespace) -> int:
 
     if args.solver not in SOLVERS:
         raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
-    if args.robustness_sets < 0:
-        raise UsageError(f"--robustness-sets must be >= 0, got {args.robustness_sets}")
-    if args.workers is not None and args.workers < 1:
-        raise UsageError(f"--workers must be >= 1, got {args.workers}")
     output_dir("--out", args.out)
     result = run_pipeline(args.out, solver=args.solver, workers=args.workers, ignore_gate=args.ignore_gate,
                           force=args.force, progress=not args.no_progress, robustness_sets=args.robustness_sets)
@@ -431,8 +443,10 @@ def reproduce(args: argparse.Namespace) -> int:
 
 def validate(args: argparse.Namespace) -> int:
     """``opsrock validate``: :func:`opsrock.validation.run_cases`, a summary line each."""
+    from opsrock._files import output_dir
     from opsrock.validation import CASES, run_cases
 
+    output_dir("--out", args.out)
     names = args.case or list(CASES)
     failed = run_cases(names, args.out, quick=args.quick, echo=print)
     if failed:
@@ -443,8 +457,11 @@ def validate(args: argparse.Namespace) -> int:
 
 def bench(args: argparse.Namespace) -> int:
     """``opsrock bench``: :func:`opsrock.bench.run_benchmarks`."""
+    from opsrock._files import output_file
     from opsrock.bench import run_benchmarks
 
+    if args.out is not None:
+        output_file("--out", args.out, ".json")
     run_benchmarks(args.only, quick=args.quick, out=args.out, echo=print)
     return 0
 

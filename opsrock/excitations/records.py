@@ -97,6 +97,10 @@ class Record:
             bad = int(np.flatnonzero(~np.isfinite(arr))[0])
             raise InputError(f"values must be finite; sample {bad} is {arr[bad]!r}")
         check("duration", (arr.size - 1) * self.dt)
+        peak, limit = float(np.max(np.abs(arr))), LIMITS["pfa"]
+        if peak > limit.high:
+            raise InputError(f"values: the peak |a| = {peak:.4g} m/s² ({peak / 9.81:.4g} g) of record "
+                             f"{self.name or '<unnamed>'} exceeds {limit.high:g} m/s² ({limit.why})")
         arr.setflags(write=False)
         object.__setattr__(self, "values", arr)
         if not isinstance(self.info, RecordInfo):

@@ -15,8 +15,12 @@ Two outcome conventions for the fits, both offered and reported:
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pandas as pd
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 from opsrock.errors import InputError
 
@@ -58,6 +62,8 @@ def resurrections(cases: pd.DataFrame) -> pd.DataFrame:
                      "first_overturned_level": int(g["level"].iloc[first]) if first >= 0 else 0,
                      "first_overturned_value": float(g["level_value"].iloc[first]) if first >= 0 else np.nan,
                      "n_resurrected": n_res, "resurrected": n_res > 0})
+    import pandas as pd
+
     return pd.DataFrame(rows)
 
 

@@ -40,7 +40,7 @@ from opsrock.fragility.logistic import fit_logistic
 from opsrock.fragility.mle import MLEFit, fit_lognormal_mle
 from opsrock.fragility.sufficiency import sufficiency
 from opsrock.intensity import IM_NAMES, get_im
-from opsrock.limits import int_at_least, one_of
+from opsrock.limits import check_count, one_of
 
 #: Covariates of the sufficiency test (columns of a record ``cases.csv``).
 COVARIATES: tuple[str, ...] = ("magnitude", "distance_km", "building_period")
@@ -75,7 +75,8 @@ class RecordStudySettings:
     def __post_init__(self) -> None:
         for im in self.ims:
             one_of("ims", im, IM_NAMES)
-        int_at_least("n_boot", self.n_boot, 0)
+        check_count("n_boot", self.n_boot)
+        check_count("seed", self.seed)
         if not 0.0 < self.confidence < 1.0:
             raise InputError(f"confidence must lie in (0, 1), got {self.confidence!r}")
         one_of("outcome", self.outcome, OUTCOMES)

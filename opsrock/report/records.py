@@ -12,6 +12,7 @@ seeded block sets (``robustness.csv``).
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import time
@@ -25,19 +26,65 @@ from opsrock.report.markdown import markdown_table
 
 
 def read_cases(source: str | Path) -> pd.DataFrame:
-    """The ``cases.csv`` of a record campaign: ``source`` is the campaign's folder or the file itself."""
+    """The ``cases.csv`` of a record campaign, checked: ``source`` is the campaign's folder or the file.
+
+    Refused, with the file and the reason (:class:`~opsrock.errors.InputError`): a file that is not a
+    table, a table of a pulse campaign, missing columns, text in a number column, no rows, and a table
+    shorter than the campaign it came from (its ``manifest.json`` beside it says how many cases).
+    """
     p = Path(source)
     csv_path = p / "cases.csv" if p.is_dir() else p
     if not csv_path.is_file():
         raise InputError(f"cases: no cases.csv at {source!s} (give the --out folder of `opsrock run` or a cases.csv)")
     try:
         cases = pd.read_csv(csv_path)
-    except (ValueError, pd.errors.ParserError) as exc:
+    except (ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
         raise InputError(f"cases: {csv_path} cannot be read as a table: {str(exc).splitlines()[0]}") from None
     if "record" not in cases.columns:
         raise InputError(f"cases: {csv_path} is not from a record scene (no 'record' column); "
                          "pulse campaigns go through `opsrock reproduce`")
+    _check_table(csv_path, cases)
+    _check_complete(csv_path, len(cases))
     return cases
+
+
+#: Columns of a record campaign's table the study reads, and those of them that must hold numbers.
+_STUDY_COLUMNS = ("block", "record", "floor", "level", "level_value", "status", "overturned", "rocked",
+                  "theta_max_over_alpha", "pfa", "pfv", "magnitude", "distance_km", "building_period",
+                  *(f"IM{k}" for k in range(1, 10)))
+_NUMBER_COLUMNS = ("level", "level_value", "theta_max_over_alpha", "pfa", "pfv", "magnitude", "distance_km",
+                   "building_period", *(f"IM{k}" for k in range(1, 10)))
+
+
+def _check_table(csv_path: Path, cases: pd.DataFrame) -> None:
+    missing = [c for c in _STUDY_COLUMNS if c not in cases.columns]
+    if missing:
+        raise InputError(f"cases: {csv_path} lacks the column(s) {', '.join(missing)} of a record campaign's table")
+    if cases.empty:
+        raise InputError(f"cases: {csv_path} holds no cases (a header only)")
+    for col in _NUMBER_COLUMNS:
+        if not pd.api.types.is_numeric_dtype(cases[col]):
+            bad = pd.to_numeric(cases[col], errors="coerce").isna() & cases[col].notna()
+            row = int(bad.to_numpy().nonzero()[0][0]) if bad.any() else 0
+            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + 2}: "
+                             f"{str(cases[col].iloc[row])!r} is not a number")
+    if not cases["status"].isin(("ok", "failed")).all():
+        bad = cases.loc[~cases["status"].isin(("ok", "failed")), "status"].iloc[0]
+        raise InputError(f"cases: {csv_path}, column 'status': {bad!r} is neither 'ok' nor 'failed'")
+
+
+def _check_complete(csv_path: Path, n_rows: int) -> None:
+    """A ``cases.csv`` beside its campaign's manifest must hold every case of the campaign."""
+    manifest = csv_path.parent / "manifest.json"
+    if not manifest.is_file():
+        return
+    try:
+        n_cases = int(json.loads(manifest.read_text())["n_cases"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return
+    if n_rows != n_cases:
+        raise InputError(f"cases: {csv_path} holds {n_rows} of the {n_cases} cases of its campaign "
+                         f"({manifest}); re-run `opsrock run` on the campaign to rebuild it")
 
 
 def _exports(blocks: pd.DataFrame):
@@ -52,17 +99,33 @@ def _exports(blocks: pd.DataFrame):
     return out, skipped
 
 
+def _percent(share: float) -> str:
+    return f"{100 * share:.1f} %" if math.isfinite(share) else "n/a"
+
+
+def _rank(value) -> str:
+    return f"{int(value)}" if isinstance(value, (int, float)) and math.isfinite(value) else "n/a (no fit)"
+
+
 def _conclusion(ims: pd.DataFrame, freq: pd.DataFrame, robust: pd.DataFrame | None) -> list[str]:
+    if not ims["beta"].notna().any():
+        n, k = int(ims["n_cases"].max()), int(ims["n_overturned"].max())
+        return [f"**No fragility curve can be fitted**: of the {n} finished cases {k} overturned "
+                f"({'none' if k == 0 else 'all' if k == n else 'too few'}), so there is no transition for an IM "
+                "to describe. The counts and the tables below are written; the fits are empty (NaN) and say why "
+                "in `mle_message`."]
     by = {c: ims.loc[ims[c].idxmin(), "im"] if ims[c].notna().any() else "n/a" for c in ("beta", "HR", "cv_percent")}
     im9 = ims.set_index("im").loc["IM9"] if "IM9" in set(ims["im"]) else None
     lines = [f"On these floor motions the smallest dispersion beta is **{by['beta']}**, the smallest hybrid ratio "
              f"**{by['HR']}**, the smallest CV **{by['cv_percent']}**."]
     if im9 is not None:
-        lines.append(f"The paper's recommendation, IM9, ranks {int(im9['rank_beta'])} of {len(ims)} by beta "
-                     f"({im9['beta']:.3g}), {int(im9['rank_HR'])} by HR and {int(im9['rank_cv_percent'])} by CV.")
+        lines.append(f"The paper's recommendation, IM9, ranks {_rank(im9['rank_beta'])} of {len(ims)} by beta "
+                     f"({im9['beta']:.3g}), {_rank(im9['rank_HR'])} by HR and {_rank(im9['rank_cv_percent'])} by CV.")
     top = freq.sort_values("share_beta", ascending=False).iloc[0]
-    lines.append(f"Over {int(top['n_resamples'])} record resamples, {top['im']} has the smallest beta in "
-                 f"{100 * top['share_beta']:.0f} % of them [{100 * top['share_beta_lo']:.0f}, {100 * top['share_beta_hi']:.0f}] %.")
+    if int(top["n_resamples"]) > 0:
+        lines.append(f"Over {int(top['n_resamples'])} record resamples, {top['im']} has the smallest beta in "
+                     f"{100 * top['share_beta']:.0f} % of them [{100 * top['share_beta_lo']:.0f}, "
+                     f"{100 * top['share_beta_hi']:.0f}] %.")
     if robust is not None:
         for c, name in (("HR", "HR"), ("cv_percent", "CV"), ("beta", "beta")):
             t = robust.sort_values(f"share_{c}", ascending=False).iloc[0]
@@ -116,7 +179,7 @@ def _write_markdown(out, study, robust, figs, skipped, timings, source, n_sets) 
         "## Conclusion", "", *_conclusion(study.ims, study.frequencies, robust), "",
         "## Resurrection", "",
         f"{rs['n_curves']} IDA curves (block x record x floor), {rs['n_curves_overturning']} overturn at some level; "
-        f"**{rs['n_curves_resurrected']}** of those ({100 * rs['share_of_overturning_curves']:.1f} %) are safe again at a "
+        f"**{rs['n_curves_resurrected']}** of those ({_percent(rs['share_of_overturning_curves'])}) are safe again at a "
         f"higher level ({rs['n_resurrected_cases']} resurrected cases; `resurrections.csv`). `as_simulated` counts each "
         "case's own verdict; `first_exceedance` counts a curve as overturned from its first overturning level on. "
         "The scene's measure fitted both ways:", "",

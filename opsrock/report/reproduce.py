@@ -24,9 +24,10 @@ import os
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import pandas as pd
+if TYPE_CHECKING:
+    import pandas as pd
 
 from opsrock._files import atomic_csv, atomic_text
 from opsrock.data import scene_file
@@ -191,6 +192,8 @@ def _campaign(out: Path, paper_scene, solver: str, workers, force: bool, progres
     if solver != scene.solver:
         scene = scene.with_solver(solver)
     summary = run_campaign(scene, out, workers=workers, force=force, progress=progress)
+    import pandas as pd
+
     return scene, summary, pd.read_csv(summary.cases_csv)
 
 
@@ -236,6 +239,7 @@ def dense_spectrum(scene, workers: int | None = None) -> pd.DataFrame:
     Returns one row a case: ``block, freq_ratio, pfa_ratio, theta_max_over_alpha, verdict, status``.
     """
     import numpy as np
+    import pandas as pd
 
     from opsrock.solvers.housner_fast import solve_grid
 

@@ -17,15 +17,8 @@ from opsrock.excitations.records import check_sampling
 from opsrock.limits import positive_finite
 from opsrock.result import RockingResult, failed_result
 from opsrock.solvers.common import make_settings
-from opsrock.solvers.housner_fast.kernel import (
-    FORM_LINEAR,
-    PULSE_IDS,
-    PULSE_ONE_SINE,
-    STATUS_OK,
-    STATUS_REASONS,
-    _pulse_forcing,
-    _solve_case,
-)
+from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, PULSE_ONE_SINE, pulse_forcing
+from opsrock.solvers.housner_fast.kernel import STATUS_OK, STATUS_REASONS, _solve_case
 from opsrock.solvers.housner_fast.settings import HousnerFastSettings
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
@@ -46,7 +39,7 @@ def _run_one(block: Block, k: float, nu: float, theta0: float, omega0: float,
     alpha = block.alpha
     p = block.p
     if record is None:
-        form, c0, c1, c2, tau_end, kvals, dtau = _pulse_forcing(pulse, k, nu)
+        form, c0, c1, c2, tau_end, kvals, dtau = pulse_forcing(pulse, k, nu)
         h_nom = min(settings.max_dtau, 2.0 * math.pi / nu / settings.steps_per_pulse)
     else:
         form, c0, c1, c2 = FORM_LINEAR, 0.0, 0.0, 0.0

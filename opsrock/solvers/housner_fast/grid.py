@@ -20,7 +20,8 @@ from opsrock.errors import InputError, InputTypeError
 from opsrock.excitations import PULSE_SHAPES
 from opsrock.limits import int_at_least, one_of
 from opsrock.solvers.common import make_settings
-from opsrock.solvers.housner_fast.kernel import PULSE_IDS, STATUS_OK, _solve_chunk
+from opsrock.solvers.forcing import PULSE_IDS
+from opsrock.solvers.housner_fast.kernel import STATUS_OK, _solve_chunk
 from opsrock.solvers.housner_fast.settings import HousnerFastSettings
 
 

@@ -15,7 +15,7 @@ import numba
 import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
-from opsrock.excitations.pulses import RICKER_HALF_WIDTH
+from opsrock.solvers.forcing import forcing, next_exceedance, pulse_forcing, segment
 
 # --- status codes of the compiled kernel (one per case in :class:`GridResult`) ---------------
 #: Finished: verdict (no uplift, safe or overturned) is valid.
@@ -42,12 +42,6 @@ STATUS_REASONS: dict[int, str] = {
 #: bisection halvings alone would shrink any bracket below double precision).
 _EVENT_MAX_ITER = 60
 
-#: Relative margin on Eq. 4: a PFA within 1e-12 of ``g tan(alpha)`` counts as *at* the
-#: threshold, which does not uplift (Eq. 4 needs strict exceedance). Without it, round-off
-#: in ``PFA = ratio * g * tan(alpha)`` (``b/h`` against ``tan(atan2(b, h))``, 1 ulp) could
-#: turn the spectrum's ``pfa_ratio = 1`` row into a rocking of 1e-24 rad.
-_UPLIFT_RTOL = 1e-12
-
 #: Shortest post-impact trial step (in units of 1/p) before an excursion is treated as
 #: negligible: far below any time scale of the problem (a 1e-14 fraction of 1/p).
 _MIN_STEP = 1e-14
@@ -55,42 +49,11 @@ _MIN_STEP = 1e-14
 
 
 
-# --- forms of the floor acceleration inside one integration segment ----------------------------
-#: ``a/g = c0 + c1 (tau - c2)``: one sample interval of a record, or the rectangular pulse.
-FORM_LINEAR = 0
-#: ``a/g = c0 sin(c1 tau + c2)``: half-sine, one-sine and one-cosine pulses.
-FORM_SINE = 1
-#: ``a/g = c0 (1 - 2 x²) exp(-x²)``, ``x = c1 (tau - c2)``: the Ricker wavelet.
-FORM_RICKER = 2
-
-# --- analytic pulses known to the kernel (ids of :func:`_pulse_forcing`) -------------------------
-PULSE_RECTANGULAR = 0
-PULSE_HALF_SINE = 1
-PULSE_ONE_SINE = 2
-PULSE_ONE_COSINE = 3
-PULSE_RICKER = 4
-#: Kernel id of every pulse shape of :data:`opsrock.excitations.PULSE_SHAPES`.
-PULSE_IDS: dict[str, int] = {"rectangular": PULSE_RECTANGULAR, "half-sine": PULSE_HALF_SINE,
-                             "one-sine": PULSE_ONE_SINE, "one-cosine": PULSE_ONE_COSINE,
-                             "ricker": PULSE_RICKER}
-
-
-@numba.njit(cache=True)
-def _forcing(tau, form, c0, c1, c2):
-    """Floor acceleration over g at ``tau`` inside a segment of the given form."""
-    if form == FORM_LINEAR:
-        return c0 + c1 * (tau - c2)
-    if form == FORM_SINE:
-        return c0 * math.sin(c1 * tau + c2)
-    x = c1 * (tau - c2)
-    return c0 * (1.0 - 2.0 * x * x) * math.exp(-x * x)
-
-
 @numba.njit(cache=True)
 def _accel(theta, tau, side, alpha, form, c0, c1, c2, lineq):
     """d²theta/dtau² on pivot ``side`` (+1/-1) under the forcing ``(form, c0, c1, c2)``; the exact
     equation, or its small-angle form when ``lineq``."""
-    ag = _forcing(tau, form, c0, c1, c2)
+    ag = forcing(tau, form, c0, c1, c2)
     phi = side * alpha - theta
     if lineq:
         return -(phi + ag)
@@ -152,143 +115,6 @@ def _locate(which, theta, omega, tau, h, side, alpha, form, c0, c1, c2, lineq):
 
 
 @numba.njit(cache=True)
-def _next_uplift_sine(tau, level, k, nu, phase, tau_end):
-    """First time >= tau at which ``|k sin(nu tau + phase)| > level`` before ``tau_end``, and the
-    sign of a there; (-1.0, 0.0) if none. Closed form: the exceedance windows in the phase
-    ``Phi = nu tau + phase`` are ``(m pi + beta, (m + 1) pi - beta)``, ``beta = asin(level / k)``,
-    with the sign of a ``(-1)^m``."""
-    if k <= level * (1.0 + _UPLIFT_RTOL):
-        return -1.0, 0.0
-    beta = math.asin(level / k)
-    ph = nu * tau + phase
-    ph_end = nu * tau_end + phase
-    m = math.floor(ph / math.pi)
-    while True:
-        lo = m * math.pi + beta
-        hi = (m + 1.0) * math.pi - beta
-        sgn = 1.0 if m % 2 == 0 else -1.0
-        if ph >= hi:
-            m += 1.0
-            continue
-        if ph > lo:
-            return tau, sgn
-        if lo >= ph_end:
-            return -1.0, 0.0
-        return (lo - phase) / nu, sgn
-
-
-@numba.njit(cache=True)
-def _next_uplift_ricker(tau, level, k, c, t0, tau_end):
-    """First time >= tau at which the Ricker wavelet ``|a|/g`` exceeds ``level`` before ``tau_end``,
-    and the sign of a there; (-1.0, 0.0) if none. ``a`` is monotone between its extremes
-    (``x = -+sqrt(3/2)``, 0), so each piece holds at most one crossing, found by bisection to the
-    last bit (the returned time is on the exceeding side)."""
-    thr = level * (1.0 + _UPLIFT_RTOL)
-    if k <= thr:
-        return -1.0, 0.0
-    d = math.sqrt(1.5) / c
-    bounds = (0.0, t0 - d, t0, t0 + d, tau_end)
-    for j in range(4):
-        ta = bounds[j]
-        tb = bounds[j + 1]
-        if tb <= tau:
-            continue
-        s = max(tau, ta)
-        fa = _forcing(s, FORM_RICKER, k, c, t0)
-        if fa > thr:
-            return s, 1.0
-        if fa < -thr:
-            return s, -1.0
-        fb = _forcing(tb, FORM_RICKER, k, c, t0)
-        if fb > thr:
-            sgn = 1.0
-        elif fb < -thr:
-            sgn = -1.0
-        else:
-            continue
-        lo = s
-        hi = tb
-        for _ in range(200):
-            mid = 0.5 * (lo + hi)
-            if mid <= lo or mid >= hi:
-                break
-            if sgn * _forcing(mid, FORM_RICKER, k, c, t0) > thr:
-                hi = mid
-            else:
-                lo = mid
-        return hi, sgn
-    return -1.0, 0.0
-
-
-@numba.njit(cache=True)
-def _next_uplift_record(tau, level, kvals, dtau):
-    """First time >= tau at which |a|/g > level for the piecewise-linear record ``kvals``
-    (a/g at ``tau = i dtau``), exact on the linear segments, and the sign of a there;
-    (-1.0, 0.0) if none before the end of the record."""
-    thr = level * (1.0 + _UPLIFT_RTOL)
-    n = kvals.shape[0]
-    i = min(int(tau / dtau), n - 2)
-    while i < n - 1:
-        ta = i * dtau
-        ka = kvals[i]
-        kb = kvals[i + 1]
-        t0 = max(tau, ta)
-        k0 = ka + (kb - ka) * (t0 - ta) / dtau
-        if k0 > thr:
-            return t0, 1.0
-        if k0 < -thr:
-            return t0, -1.0
-        if kb > thr:  # rising through +thr inside the segment (ka < thr < kb)
-            return ta + (thr - ka) / (kb - ka) * dtau, 1.0
-        if kb < -thr:
-            return ta + (-thr - ka) / (kb - ka) * dtau, -1.0
-        i += 1
-    return -1.0, 0.0
-
-
-@numba.njit(cache=True)
-def _next_uplift(tau, level, form, c0, c1, c2, tau_end, kvals, dtau):
-    """First uplift time >= tau (``|a|/g > level``) and the sign of a there, for any form."""
-    if form == FORM_LINEAR:
-        return _next_uplift_record(tau, level, kvals, dtau)
-    if form == FORM_SINE:
-        return _next_uplift_sine(tau, level, c0, c1, c2, tau_end)
-    return _next_uplift_ricker(tau, level, c0, c1, c2, tau_end)
-
-
-@numba.njit(cache=True)
-def _segment(form, tau, i, c0, c1, c2, tau_end, kvals, dtau):
-    """Forcing on the segment that holds ``tau``: (segment index, c0, c1, c2, segment end) with
-    ``(c0, c1, c2)`` the coefficients of :func:`_forcing`. An analytic pulse is one segment; a
-    record (``FORM_LINEAR``) has one per sample interval (its acceleration has a kink at each)."""
-    if form != FORM_LINEAR:
-        return 0, c0, c1, c2, tau_end
-    n = kvals.shape[0]
-    while i < n - 2 and tau >= (i + 1) * dtau:
-        i += 1
-    end = tau_end if i == n - 2 else (i + 1) * dtau
-    return i, kvals[i], (kvals[i + 1] - kvals[i]) / dtau, i * dtau, end
-
-
-@numba.njit(cache=True)
-def _pulse_forcing(pulse, k, nu):
-    """Forcing of an analytic pulse of peak ``k = PFA/g`` and ``nu = omega_p/p``:
-    (form, c0, c1, c2, tau_end, kvals, dtau), in the dimensionless time ``tau = p t``."""
-    empty = np.zeros(0)
-    if pulse == PULSE_RECTANGULAR:
-        tau_end = math.pi / nu
-        return FORM_LINEAR, 0.0, 0.0, 0.0, tau_end, np.array([k, k]), tau_end
-    if pulse == PULSE_HALF_SINE:
-        return FORM_SINE, k, nu, 0.0, math.pi / nu, empty, 1.0
-    if pulse == PULSE_ONE_COSINE:
-        return FORM_SINE, k, nu, 0.5 * math.pi, 2.0 * math.pi / nu, empty, 1.0
-    if pulse == PULSE_RICKER:
-        t0 = RICKER_HALF_WIDTH * 2.0 * math.pi / nu
-        return FORM_RICKER, k, 0.5 * nu, t0, 2.0 * t0, empty, 1.0
-    return FORM_SINE, k, nu, 0.0, 2.0 * math.pi / nu, empty, 1.0
-
-
-@numba.njit(cache=True)
 def _free_verdict(alpha, e, side, theta, omega, lineq):
     """Exact verdict after the excitation (a = 0) from the rocking energy (per m g R in the exact
     form, per m g R alpha-scaled in the linearised one): returns (overturned, peak |theta| of the
@@ -334,7 +160,7 @@ def _solve_case(alpha, e, form, k, nu, phase, tau_end, kvals, dtau, h_nom, lineq
     angular velocity ``omega0`` (units of p), zero for a block at rest.
 
     Excitation: the forcing ``(form, k, nu, phase)`` of :func:`_forcing` up to ``tau_end`` for an
-    analytic pulse (:func:`_pulse_forcing`); for ``form == FORM_LINEAR`` the samples ``kvals``
+    analytic pulse (:func:`pulse_forcing`); for ``form == FORM_LINEAR`` the samples ``kvals``
     (a/g at ``tau = i dtau``, linear between, ending at ``tau_end``). ``h_nom`` is the nominal step
     (units of 1/p); steps also end on every segment end. ``lineq``: the small-angle equation.
 
@@ -371,7 +197,7 @@ def _solve_case(alpha, e, form, k, nu, phase, tau_end, kvals, dtau, h_nom, lineq
 
     while True:
         if side == 0.0:
-            t_up, sgn_a = _next_uplift(tau, level, form, k, nu, phase, tau_end, kvals, dtau)
+            t_up, sgn_a = next_exceedance(tau, level, form, k, nu, phase, tau_end, kvals, dtau)
             if t_up < 0.0:
                 return theta_max, False, rocked, STATUS_OK, n_imp, n_steps, n_hist
             tau = t_up
@@ -390,7 +216,7 @@ def _solve_case(alpha, e, form, k, nu, phase, tau_end, kvals, dtau, h_nom, lineq
         if n_steps >= max_steps:
             return theta_max, False, rocked, STATUS_MAX_STEPS, n_imp, n_steps, n_hist
 
-        seg, c0, c1, c2, seg_end = _segment(form, tau, seg, k, nu, phase, tau_end, kvals, dtau)
+        seg, c0, c1, c2, seg_end = segment(form, tau, seg, k, nu, phase, tau_end, kvals, dtau)
         h = min(h_nom, seg_end - tau)
         last = h == seg_end - tau
         if fresh:
@@ -499,7 +325,7 @@ def _solve_chunk(alpha, e, k, nu, pulse, lineq, max_step, steps_per_pulse, rest_
     empty = np.zeros(0)
     for i in range(start, stop):
         h_nom = min(max_step, 2.0 * math.pi / nu[i] / steps_per_pulse)
-        form, c0, c1, c2, tau_end, kvals, dtau = _pulse_forcing(pulse, k[i], nu[i])
+        form, c0, c1, c2, tau_end, kvals, dtau = pulse_forcing(pulse, k[i], nu[i])
         tm, ov, rk, st, ni, ns, _ = _solve_case(
             alpha[i], e[i], form, c0, c1, c2, tau_end, kvals, dtau, h_nom, lineq, rest_velocity,
             max_impacts, max_steps, 0.0, 0.0, empty, empty, empty)

@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR, G
 from opsrock.errors import InputError, InputTypeError
-from opsrock.limits import check, in_open_interval, real_number
+from opsrock.limits import LIMITS, check, in_open_interval, real_number
 
 
 @dataclass(frozen=True)
@@ -33,6 +33,14 @@ class Block:
         literature sets it (e.g. ``e = 0.9``), instead of ``restitution_factor · e_R``. Give one of
         the two: with ``restitution`` set, ``restitution_factor`` must keep its default. Default
         None (``e = restitution_factor · e_R``).
+    friction : float or None, optional
+        Static Coulomb friction coefficient ``mu`` between the block's base and the floor
+        (dimensionless, within :data:`opsrock.limits.LIMITS`). Default None: the base never slips
+        (the no-slip rocking of every solver but ``friction`` and ``moreau_jean``, which then take
+        ``mu`` as infinite).
+    friction_kinetic : float or None, optional
+        Kinetic coefficient ``mu_k <= mu`` (dimensionless, below 4/3) used while the base slips.
+        Default None: ``mu_k = mu``, or infinite without ``friction``.
 
     Notes
     -----
@@ -47,8 +55,11 @@ class Block:
     restitution_factor: float = DEFAULT_RESTITUTION_FACTOR
     name: str = ""
     restitution: float | None = None
+    friction: float | None = None
+    friction_kinetic: float | None = None
 
     def __post_init__(self) -> None:
+        self._check_friction()
         object.__setattr__(self, "width", check("width", self.width))
         object.__setattr__(self, "height", check("height", self.height))
         object.__setattr__(self, "mass", check("mass", self.mass))
@@ -71,6 +82,32 @@ class Block:
                 f"e_R = 1 - 1.5 sin²(alpha) = {self.e_R:.4f} <= 0: the block is too stocky for "
                 "Housner's rocking model (needs alpha < 0.9553 rad, width/height < 1.414)"
             )
+
+    def _check_friction(self) -> None:
+        """Range-check ``friction`` and ``friction_kinetic``; ``mu_k`` defaults to ``mu``."""
+        if self.friction is None:
+            if self.friction_kinetic is not None:
+                raise InputError(f"friction_kinetic = {self.friction_kinetic!r} needs friction (the static "
+                                 "coefficient) too")
+            return
+        mu = check("friction", self.friction)
+        object.__setattr__(self, "friction", mu)
+        if self.friction_kinetic is None:
+            mu_k = mu if mu <= LIMITS["friction_kinetic"].high else None
+            if mu_k is None:
+                raise InputError(f"friction = {mu!r} needs friction_kinetic (< 4/3, the slide-rock "
+                                 "equations' bound); give it explicitly")
+        else:
+            mu_k = check("friction_kinetic", self.friction_kinetic)
+            if mu_k > mu:
+                raise InputError(f"friction_kinetic = {mu_k!r} exceeds friction = {mu!r}: the kinetic "
+                                 "coefficient must not exceed the static one")
+        object.__setattr__(self, "friction_kinetic", mu_k)
+
+    @property
+    def slips(self) -> bool:
+        """True if the block has a finite friction coefficient (its base may slide)."""
+        return self.friction is not None
 
     # --- geometry -----------------------------------------------------------------------
     @property
@@ -142,4 +179,6 @@ class Block:
             "p": self.p,
             "e_R": self.e_R,
             "e": self.e,
+            "friction": self.friction,
+            "friction_kinetic": self.friction_kinetic,
         }

@@ -58,6 +58,12 @@ LIMITS: dict[str, Limit] = {
                          "record sample interval times the block's p: the block's motion evolves on the "
                          "time scale 1/p, and the piecewise-linear record must sample it at least five "
                          "times per 1/p, or steps bound to the samples jump over impacts"),
+    "friction": Limit(0.0, 100.0, "-", "static Coulomb friction coefficient of the block on the floor: 0 is "
+                      "frictionless; above about 1 no floor motion makes a block slide"),
+    "friction_kinetic": Limit(0.0, 1.3, "-", "kinetic Coulomb friction coefficient: below 4/3, where the "
+                              "slide-rock equations of a rectangle stop having one solution (Painlevé)"),
+    "vertical": Limit(-9.8, 1e3, "m/s²", "a constant vertical floor acceleration (positive up) must leave the "
+                      "block some weight, g + a_v > 0; above 100 g no floor moves"),
     "period": Limit(1e-2, 10.0, "s", "first periods of buildings, from very stiff (0.01 s) to very flexible (10 s)"),
     "damping": Limit(0.0, 0.5, "-", "viscous damping ratio of a building's modes; above 0.5 no building is linear"),
     "storeys": Limit(1, 200, "-", "storeys of a shear building: the filter's cost grows faster than the storeys "

@@ -17,6 +17,58 @@ STATUSES: tuple[str, ...] = ("ok", "failed")
 #: Verdicts a result can carry (see :attr:`RockingResult.verdict`).
 VERDICTS: tuple[str, ...] = ("no_uplift", "safe", "overturned", "failed")
 
+#: Contact modes of a block on a floor with friction (docs/friction.md): both corners down and
+#: stuck, both down and slipping, one corner up on a stuck pivot, one up on a slipping pivot, none down.
+MODES: tuple[str, ...] = ("rest", "slide", "rock", "slide_rock", "flight")
+
+#: What a block did, in order of precedence (see :attr:`RockingResult.response`): it overturned; else
+#: it rocked (one corner lifted at some time, with or without slip); else its base slid; else it stayed
+#: at rest. ``failed`` carries no verdict.
+RESPONSES: tuple[str, ...] = ("overturned", "rocked", "slid", "at_rest", "failed")
+
+
+@dataclass(frozen=True)
+class ContactSummary:
+    """What a block on a floor with friction did, beyond its rotation (solvers of the ``friction`` model).
+
+    Parameters
+    ----------
+    first_mode : str
+        The first mode (:data:`MODES`) the block left rest into: ``"slide"``, ``"rock"``,
+        ``"slide_rock"`` or ``"flight"``; ``"rest"`` if it never moved.
+    time_sliding : float
+        Time during which the base slipped on the floor (s): modes ``slide`` and ``slide_rock``.
+    time_rocking : float
+        Time during which one base corner was lifted (s): modes ``rock`` and ``slide_rock``.
+    slide_max : float
+        Peak absolute horizontal displacement of the base relative to the floor (m).
+    slide_residual : float
+        Horizontal displacement of the base relative to the floor at the end of the run (m), signed
+        (positive along the floor's positive acceleration).
+    energy : Mapping
+        Energy balance of the run in J (per the block's mass): ``input_work`` (work of the floor's
+        inertial forces), ``kinetic`` and ``potential`` at the end, ``friction_work`` (dissipated by
+        slip), ``impact_loss`` (lost in impacts), and ``residual = input_work - kinetic - potential -
+        friction_work - impact_loss``, which the equations make zero.
+    """
+
+    first_mode: str
+    time_sliding: float
+    time_rocking: float
+    slide_max: float
+    slide_residual: float
+    energy: Mapping[str, float] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.first_mode not in MODES:
+            raise InputError(f"first_mode must be one of {MODES}, got {self.first_mode!r}")
+
+    def columns(self) -> dict[str, Any]:
+        """The summary as flat table columns (SI units), without the energy balance."""
+        return {"first_mode": self.first_mode, "time_sliding": float(self.time_sliding),
+                "time_rocking": float(self.time_rocking), "slide_max": float(self.slide_max),
+                "slide_residual": float(self.slide_residual)}
+
 
 @dataclass(frozen=True)
 class Impacts:
@@ -121,6 +173,11 @@ class RockingResult:
         the same meaning in every solver; None where a solver does not count them.
     impacts : Impacts or None
         Each impact's time and velocities, where the solver logs them.
+    slide : ndarray or None
+        Horizontal displacement of the base relative to the floor (m) at ``time`` (solvers of the
+        ``friction`` model only).
+    contact : ContactSummary or None
+        Modes, sliding and energy balance (solvers of the ``friction`` model only).
     diagnostics : Mapping
         Solver bookkeeping that is not part of the answer, JSON-serialisable: for OpenSees the
         number of its own console messages (sent to its log file, never to the terminal), the
@@ -145,6 +202,8 @@ class RockingResult:
     n_impacts: int | None = None
     impacts: Impacts | None = field(default=None, repr=False)
     diagnostics: Mapping[str, Any] = field(default_factory=dict)
+    slide: np.ndarray | None = field(default=None, repr=False)
+    contact: ContactSummary | None = None
 
     def __post_init__(self) -> None:
         if self.status not in STATUSES:
@@ -182,6 +241,20 @@ class RockingResult:
             return "overturned"
         return "safe" if self.rocked else "no_uplift"
 
+    @property
+    def response(self) -> str:
+        """One of :data:`RESPONSES`: overturned, rocked, slid (the base slipped, no corner lifted) or at
+        rest; a solver without friction never slides."""
+        if self.status != "ok":
+            return "failed"
+        if self.overturned:
+            return "overturned"
+        if self.rocked:
+            return "rocked"
+        if self.contact is not None and self.contact.slide_max > 0.0:
+            return "slid"
+        return "at_rest"
+
     def summary(self) -> dict[str, Any]:
         """Scalar fields as a JSON-serialisable dict (no time histories)."""
         return {
@@ -198,6 +271,8 @@ class RockingResult:
             "wall_time_s": float(self.wall_time_s),
             "settings": dict(self.settings),
             "diagnostics": dict(self.diagnostics),
+            **({} if self.contact is None else {"response": self.response, **self.contact.columns(),
+                                                "energy": dict(self.contact.energy)}),
         }
 
 

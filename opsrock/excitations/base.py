@@ -1,7 +1,9 @@
 """What every floor motion offers the solvers: the :class:`Excitation` protocol.
 
 Sign convention (docs/modelling.md section 2): a positive floor acceleration tips the block towards
-negative ``theta``.
+negative ``theta``. A vertical floor acceleration ``a_v`` (m/s², positive up), where an excitation
+carries one (:attr:`Pulse.vertical`, :attr:`Record.vertical`), adds to gravity: the block feels
+``g + a_v``.
 """
 
 from __future__ import annotations
@@ -28,3 +30,11 @@ class Excitation(Protocol):
 
     def breakpoints(self) -> np.ndarray:
         """Times where the acceleration is not smooth (s), for event-driven solvers."""
+
+
+def has_vertical(excitation: object) -> bool:
+    """True if ``excitation`` carries a vertical floor motion that is not identically zero."""
+    vertical = getattr(excitation, "vertical", None)
+    if vertical is None:
+        return False
+    return bool(np.any(np.asarray(vertical, dtype=float) != 0.0))

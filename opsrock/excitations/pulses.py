@@ -59,16 +59,23 @@ class Pulse:
     omega_p : float
         Circular frequency of the pulse ``omega_p`` (rad/s), within :data:`opsrock.limits.LIMITS`;
         its meaning per shape is in the module docstring.
+    vertical : float, optional
+        A constant vertical floor acceleration ``a_v`` (m/s², positive up) acting over the whole
+        run, during the pulse and after it, so the block feels ``g + a_v`` throughout; within
+        :data:`opsrock.limits.LIMITS` (``g + a_v > 0``). Default 0. Only the solvers of the
+        ``friction`` model take it; the others refuse a non-zero value.
     """
 
     pfa: float
     omega_p: float
+    vertical: float = 0.0
     #: Name of the shape (a key of :data:`PULSE_SHAPES`).
     SHAPE: ClassVar[str] = ""
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "pfa", check("pfa", self.pfa))
         object.__setattr__(self, "omega_p", check("omega_p", self.omega_p))
+        object.__setattr__(self, "vertical", check("vertical", self.vertical))
 
     @classmethod
     def from_ratios(cls, block: "Block", pfa_ratio: float, freq_ratio: float) -> "Pulse":
@@ -149,6 +156,10 @@ class Pulse:
         inside = (t >= 0.0) & (t <= self.duration)
         # evaluate the shape inside the pulse only: omega_p t outside it can be arbitrarily large
         return np.where(inside, self.pfa * self.shape_values(np.where(inside, t, 0.0)), 0.0)
+
+    def vertical_acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """Vertical floor acceleration (m/s², positive up) at times ``t`` (s): :attr:`vertical` at all times."""
+        return np.full_like(np.asarray(t, dtype=float), self.vertical)
 
     def breakpoints(self) -> np.ndarray:
         """Start and end of the pulse (s): the acceleration or its slope jumps there."""

@@ -81,12 +81,18 @@ class Record:
         Label of the record (letters, digits, ``_ . -`` when it is used in case ids).
     info : RecordInfo, optional
         Where it comes from.
+    vertical : array_like or None, optional
+        Vertical floor acceleration samples ``a_v`` (m/s², positive up) at the same times as
+        ``values``, finite; the block then feels ``g + a_v``. Only the solvers of the ``friction``
+        model take it; the others refuse a record that carries one. Default None (no vertical
+        motion).
     """
 
     dt: float
     values: np.ndarray = field(repr=False)
     name: str = ""
     info: RecordInfo = field(default_factory=RecordInfo, repr=False)
+    vertical: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "dt", check("dt", self.dt))
@@ -105,6 +111,25 @@ class Record:
         object.__setattr__(self, "values", arr)
         if not isinstance(self.info, RecordInfo):
             raise InputTypeError(f"info must be a RecordInfo, got {self.info!r}")
+        if self.vertical is not None:
+            object.__setattr__(self, "vertical", self._checked_vertical(arr.size))
+
+    def _checked_vertical(self, n: int) -> np.ndarray:
+        """The vertical samples as a read-only array of ``n`` finite values within the PFA limit."""
+        v = np.array(self.vertical, dtype=float, copy=True).ravel()
+        label = self.name or "<unnamed>"
+        if v.size != n:
+            raise InputError(f"vertical: record {label} has {n} horizontal samples but {v.size} vertical ones; "
+                             "give both at the same times")
+        if not np.all(np.isfinite(v)):
+            bad = int(np.flatnonzero(~np.isfinite(v))[0])
+            raise InputError(f"vertical must be finite; sample {bad} of record {label} is {v[bad]!r}")
+        peak, limit = float(np.max(np.abs(v))), LIMITS["pfa"]
+        if peak > limit.high:
+            raise InputError(f"vertical: the peak |a_v| = {peak:.4g} m/s² of record {label} exceeds "
+                             f"{limit.high:g} m/s² ({limit.why})")
+        v.setflags(write=False)
+        return v
 
     @functools.cached_property
     def time(self) -> np.ndarray:
@@ -151,6 +176,23 @@ class Record:
         x0, x1 = times[j], times[j + 1]
         return float((v[j + 1] - v[j]) / (x1 - x0) * (t - x0) + v[j])
 
+    @property
+    def pfa_vertical(self) -> float:
+        """Peak absolute vertical acceleration (m/s²); 0 without vertical samples."""
+        return 0.0 if self.vertical is None else float(np.max(np.abs(self.vertical)))
+
+    def vertical_acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """Vertical acceleration (m/s², positive up) at times ``t`` (s), linearly interpolated; zero
+        outside the record and without vertical samples."""
+        t = np.asarray(t, dtype=float)
+        if self.vertical is None:
+            return np.zeros_like(t)
+        return np.interp(t, self.time, self.vertical, left=0.0, right=0.0)
+
+    def with_vertical(self, vertical: np.ndarray | None) -> "Record":
+        """A copy with the vertical samples ``vertical`` (m/s², same times as the horizontal ones)."""
+        return replace(self, vertical=vertical)
+
     def breakpoints(self) -> np.ndarray:
         """Every sample time (s): the interpolated acceleration has a kink at each."""
         return self.time
@@ -158,7 +200,8 @@ class Record:
     def scaled(self, factor: float) -> "Record":
         """The record times ``factor`` (dimensionless, within ``LIMITS["scale"]``)."""
         factor = check("scale", factor)
-        return replace(self, values=self.values * factor)
+        vertical = None if self.vertical is None else self.vertical * factor
+        return replace(self, values=self.values * factor, vertical=vertical)
 
     def scale_to(self, pfa: float) -> float:
         """The factor that brings the record's peak to ``pfa`` (m/s²): ``pfa / self.pfa``.

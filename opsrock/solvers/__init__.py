@@ -8,7 +8,11 @@ settings dataclass; they share :mod:`~opsrock.solvers.common` and never each oth
   solver that touches OpenSees state);
 * ``sdof``: the same SDOF equations integrated by scipy, sharing no numerics with OpenSees;
 * ``housner``: the exact rigid-body equation with instantaneous impacts, event-driven;
-* ``housner_fast``: the same rigid-body equation, compiled, for dense spectra and campaigns.
+* ``housner_fast``: the same rigid-body equation, compiled, for dense spectra and campaigns;
+* ``friction``: the rigid block on a floor with Coulomb friction and vertical motion (rest, slide,
+  rock, slide-rock), event-driven and compiled;
+* ``moreau_jean``: the same block by Moreau-Jean time stepping with contact and friction as
+  complementarity conditions: the reference of a different formulation for ``friction``.
 
 A solver module is imported when first used (OpenSeesPy and numba are costly to import), so the
 registry names modules and settings classes instead of holding them.
@@ -21,8 +25,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from opsrock.block import Block
-from opsrock.errors import InputTypeError
+from opsrock.errors import InputError, InputTypeError
 from opsrock.excitations import Excitation
+from opsrock.excitations.base import has_vertical
 from opsrock.limits import one_of
 from opsrock.result import RockingResult
 
@@ -40,8 +45,9 @@ class SolverInfo:
     settings : str
         ``"module:Class"`` of its frozen settings dataclass.
     model : str
-        What it solves: ``"rigid"`` (the rigid-body equation, Eq. 1-3) or ``"sdof"`` (the paper's
-        equivalent SDOF model, Eq. 5-8).
+        What it solves: ``"rigid"`` (the rigid-body equation, Eq. 1-3, no slip, horizontal motion),
+        ``"sdof"`` (the paper's equivalent SDOF model, Eq. 5-8) or ``"friction"`` (the rigid block
+        with Coulomb friction under horizontal and vertical floor motion, docs/friction.md).
     """
 
     name: str
@@ -67,6 +73,8 @@ METHODS: dict[str, SolverInfo] = {
     "housner": SolverInfo("housner", "opsrock.solvers.housner", "opsrock.solvers.housner:HousnerSettings", "rigid"),
     "housner_fast": SolverInfo("housner_fast", "opsrock.solvers.housner_fast",
                                "opsrock.solvers.housner_fast.settings:HousnerFastSettings", "rigid"),
+    "friction": SolverInfo("friction", "opsrock.solvers.friction",
+                           "opsrock.solvers.friction.settings:FrictionSettings", "friction"),
 }
 
 #: Solver names accepted by :func:`simulate` and the command line.
@@ -97,6 +105,26 @@ def check_settings(name: str, settings: dict[str, Any]) -> Any:
     return make_settings(settings_class(name), None, dict(settings))
 
 
+def check_model(name: str, block: Block, excitation: object) -> None:
+    """Refuse a block with friction, or a floor motion with a vertical component, for a solver whose
+    model has neither (every model but ``"friction"``).
+
+    Raises
+    ------
+    InputError
+        Naming the solver and what it cannot model.
+    """
+    info = METHODS[one_of("solver", name, SOLVERS)]
+    if info.model == "friction":
+        return
+    if block.slips:
+        raise InputError(f"solver {name!r} models no-slip rocking; block {block.name or '<unnamed>'} has "
+                         f"friction = {block.friction!r}: use solver 'friction' (or drop friction)")
+    if has_vertical(excitation):
+        raise InputError(f"solver {name!r} takes horizontal floor motion only; the excitation has a vertical "
+                         "component: use solver 'friction' (or drop the vertical motion)")
+
+
 def simulate(block: Block, excitation: Excitation, solver: str = "opensees", **settings: Any) -> RockingResult:
     """Solve the rocking response of ``block`` to ``excitation``.
 
@@ -116,7 +144,9 @@ def simulate(block: Block, excitation: Excitation, solver: str = "opensees", **s
         raise InputTypeError(f"block must be a Block, got {block!r}")
     if not isinstance(excitation, Excitation):
         raise InputTypeError(f"excitation must be an Excitation (OneSinePulse, Record), got {excitation!r}")
+    check_model(solver, block, excitation)
     return get_solver(solver).solve(block, excitation, **settings)
 
 
-__all__ = ["METHODS", "SOLVERS", "SolverInfo", "check_settings", "get_solver", "settings_class", "simulate"]
+__all__ = ["METHODS", "SOLVERS", "SolverInfo", "check_model", "check_settings", "get_solver", "settings_class",
+           "simulate"]

@@ -1,0 +1,448 @@
+"""The compiled event-driven integrator of :mod:`opsrock.solvers.friction` (numba).
+
+One case is integrated in the units of :mod:`.modes` by :func:`solve_case`: classical fourth-order
+Runge-Kutta with a fixed step inside each forcing segment (:mod:`opsrock.solvers.forcing`), every
+step ending on a segment end; the events of the current mode (impact ``theta = 0``, stick-slip,
+loss of contact, and peaks of ``theta``) located on the Runge-Kutta map itself, so an event's time
+is consistent with the integrator to round-off; a block at rest jumps in closed form to the next
+time the floor overcomes it. After the excitation the block is followed (``a_h = 0``, the vertical
+acceleration of the pulse kept) until it is at rest or has overturned.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.solvers.forcing import forcing, next_exceedance, next_exceedance_scaled, segment
+from opsrock.solvers.friction.impacts import impact
+from opsrock.solvers.friction.modes import (
+    FLIGHT,
+    REST,
+    ROCK,
+    SLIDE,
+    SLIDE_ROCK,
+    accelerations,
+    kinetic_energy,
+    potential_energy,
+    rock_forces,
+    slide_rock_normal,
+    start_mode,
+)
+
+# --- status codes ------------------------------------------------------------------------------
+STATUS_OK = 0
+STATUS_MAX_IMPACTS = 1
+STATUS_NONFINITE = 2
+STATUS_MAX_STEPS = 3
+STATUS_EVENT_FAILED = 4
+STATUS_FLIGHT = 5
+STATUS_IMPACT_LAW = 6
+STATUS_TAIL = 7
+
+#: Why a case failed, per status code (the time of the failure is appended by the caller).
+STATUS_REASONS: dict[int, str] = {
+    STATUS_OK: "",
+    STATUS_MAX_IMPACTS: "max_impacts reached without the block coming to rest",
+    STATUS_NONFINITE: "non-finite state",
+    STATUS_MAX_STEPS: "max_steps reached before the block came to rest",
+    STATUS_EVENT_FAILED: "event location did not converge",
+    STATUS_FLIGHT: "free flight: the floor's contact force would turn negative (the block would leave the "
+                   "floor), which this solver does not model; the moreau_jean solver does",
+    STATUS_IMPACT_LAW: "the impact law has no solution with compressive impulses",
+    STATUS_TAIL: "the block was still moving max_tail after the end of the excitation",
+}
+
+# --- slots of the output array of :func:`solve_case` --------------------------------------------
+OUT_THETA_MAX, OUT_OVERTURNED, OUT_ROCKED, OUT_STATUS, OUT_IMPACTS, OUT_STEPS, OUT_HIST = 0, 1, 2, 3, 4, 5, 6
+OUT_FIRST_MODE, OUT_TIME_SLIDING, OUT_TIME_ROCKING, OUT_SLIDE_MAX, OUT_SLIDE_END = 7, 8, 9, 10, 11
+OUT_INPUT_WORK, OUT_KINETIC, OUT_POTENTIAL, OUT_FRICTION_WORK, OUT_IMPACT_LOSS, OUT_ENERGY_START = (
+    12, 13, 14, 15, 16, 17)
+OUT_EVENT_TAU = 18
+OUT_SIZE = 19
+
+# --- slots of the forcing context: a_h/g of the segment, 1 + a_v/g = g0 + g1 (tau - gt0), tail flag
+_FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL = 0, 1, 2, 3, 4, 5, 6, 7
+
+#: Iterations allowed to an event location (Illinois with a bisection every fourth step).
+_EVENT_MAX_ITER = 100
+#: Shortest step (units of 1/p) before a mode that does not develop is dropped.
+_MIN_STEP = 1e-14
+
+
+@numba.njit(cache=True)
+def _floor(tau, fc):
+    """``(a_h/g, 1 + a_v/g)`` at ``tau`` on the current segment (``a_h = 0`` after the excitation)."""
+    gv = fc[_FC_G0] + fc[_FC_G1] * (tau - fc[_FC_GT0])
+    if fc[_FC_TAIL] > 0.0:
+        return 0.0, gv
+    return forcing(tau, int(fc[_FC_FORM]), fc[_FC_C0], fc[_FC_C1], fc[_FC_C2]), gv
+
+
+@numba.njit(cache=True)
+def _deriv(mode, s, sig, th, om, w, tau, fc, alpha, mu_k):
+    ah, gv = _floor(tau, fc)
+    return accelerations(mode, s, sig, th, om, w, ah, gv, alpha, mu_k)
+
+
+@numba.njit(cache=True)
+def _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k):
+    """One RK4 step of a moving mode: ``(th, om, u, w, input work, friction work)`` after ``h``."""
+    a1, b1, p1, q1 = _deriv(mode, s, sig, th, om, w, tau, fc, alpha, mu_k)
+    th2, om2, w2 = th + 0.5 * h * om, om + 0.5 * h * a1, w + 0.5 * h * b1
+    a2, b2, p2, q2 = _deriv(mode, s, sig, th2, om2, w2, tau + 0.5 * h, fc, alpha, mu_k)
+    th3, om3, w3 = th + 0.5 * h * om2, om + 0.5 * h * a2, w + 0.5 * h * b2
+    a3, b3, p3, q3 = _deriv(mode, s, sig, th3, om3, w3, tau + 0.5 * h, fc, alpha, mu_k)
+    th4, om4, w4 = th + h * om3, om + h * a3, w + h * b3
+    a4, b4, p4, q4 = _deriv(mode, s, sig, th4, om4, w4, tau + h, fc, alpha, mu_k)
+    k = h / 6.0
+    return (th + k * (om + 2.0 * om2 + 2.0 * om3 + om4), om + k * (a1 + 2.0 * a2 + 2.0 * a3 + a4),
+            u + k * (w + 2.0 * w2 + 2.0 * w3 + w4), w + k * (b1 + 2.0 * b2 + 2.0 * b3 + b4),
+            k * (p1 + 2.0 * p2 + 2.0 * p3 + p4), k * (q1 + 2.0 * q2 + 2.0 * q3 + q4))
+
+
+@numba.njit(cache=True)
+def _event(ev, mode, s, sig, th, om, w, tau, fc, alpha, mu_s, mu_k):
+    """Value of event ``ev`` (it happens when the value falls to zero from above): 0 impact (``s theta``),
+    1 stick-slip (rock: ``mu_s N - |F|``; slide, slide-rock: ``sig w``), 2 contact (``N``; slide:
+    ``1 + a_v/g``), 3 peak (``s omega``, with ``s`` the sign of omega at the step's start)."""
+    if ev == 0:
+        return s * th
+    if ev == 3:
+        return s * om
+    ah, gv = _floor(tau, fc)
+    if mode == SLIDE:
+        return sig * w if ev == 1 else gv
+    if mode == SLIDE_ROCK:
+        return sig * w if ev == 1 else slide_rock_normal(s, sig, th, om, gv, alpha, mu_k)
+    f, n = rock_forces(s, th, om, ah, gv, alpha)
+    if ev == 2:
+        return n
+    return 1.0 if mu_s == math.inf else mu_s * n - abs(f)
+
+
+@numba.njit(cache=True)
+def _event_after(ev, sgn, mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k):
+    """Value of event ``ev`` on the RK4 map after a step of length ``d``."""
+    th1, om1, _, w1, _, _ = _rk4(mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_k)
+    return _event(ev, mode, sgn if ev == 3 else s, sig, th1, om1, w1, tau + d, fc, alpha, mu_s, mu_k)
+
+
+@numba.njit(cache=True)
+def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_s, mu_k):
+    """Smallest step ``d`` in (0, h] after which event ``ev`` has happened (its value <= 0), to
+    round-off, given ``f_lo > 0`` at 0 and ``f_hi <= 0`` at ``h``: Illinois regula falsi with a
+    bisection every fourth iteration. Returns ``(d, ok)``."""
+    lo, hi = 0.0, h
+    side = 0
+    tol = 4e-16 * max(1.0, tau + h)
+    for it in range(_EVENT_MAX_ITER):
+        if hi - lo <= tol:
+            return hi, True
+        d = hi - f_hi * (hi - lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
+        if it % 4 == 3 or not (lo < d < hi):
+            d = 0.5 * (lo + hi)
+        f = _event_after(ev, sgn, mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k)
+        if f <= 0.0:
+            hi, f_hi = d, f
+            if side == -1:
+                f_lo *= 0.5
+            side = -1
+        else:
+            lo, f_lo = d, f
+            if side == 1:
+                f_hi *= 0.5
+            side = 1
+    return hi, hi - lo <= 1e3 * tol
+
+
+@numba.njit(cache=True)
+def _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau):
+    """Load the forcing segment holding ``tau`` into ``fc``; returns ``(segment index, segment end)``."""
+    seg, c0, c1, c2, seg_end = segment(form, tau, seg, k, nu, phase, tau_end, kvals, dtau)
+    fc[_FC_FORM] = form
+    fc[_FC_C0], fc[_FC_C1], fc[_FC_C2] = c0, c1, c2
+    if gvals.shape[0] > 0:
+        fc[_FC_G0] = gvals[seg]
+        fc[_FC_G1] = (gvals[seg + 1] - gvals[seg]) / dtau
+        fc[_FC_GT0] = seg * dtau
+    else:
+        fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = g_const, 0.0, 0.0
+    return seg, seg_end
+
+
+@numba.njit(cache=True)
+def _next_departure(tau, level, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau):
+    """First time >= tau at which a block at rest is overcome (``|a_h| > level (g + a_v)``)."""
+    if gvals.shape[0] > 0:
+        return next_exceedance_scaled(tau, level, kvals, gvals, dtau)
+    return next_exceedance(tau, level * g_const, form, k, nu, phase, tau_end, kvals, dtau)
+
+
+@numba.njit(cache=True)
+def _settle(mode, s, sig, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity):
+    """The mode a block takes at ``theta = 0`` after an impact or a stop: seated if the rotation
+    left is below ``rest_velocity`` and pulled back; slide-rock if a stuck pivot cannot hold; a
+    slide that tips (``mu_k > b/h``) turns into slide-rock. Returns ``(mode, s, sig, om, w, ok)``
+    (``ok`` False: the contact force would be negative, free flight)."""
+    if (mode == ROCK or mode == SLIDE_ROCK) and abs(om) < rest_velocity:
+        thdd = accelerations(mode, s, sig, 0.0, om, w, ah, gv, alpha, mu_k)[0]
+        if s * thdd <= 0.0:
+            if abs(w) < rest_velocity:
+                return REST, 0.0, 0.0, 0.0, 0.0, True
+            mode, s, sig, om = SLIDE, 0.0, (1.0 if w > 0.0 else -1.0), 0.0
+    if mode == ROCK:
+        f, n = rock_forces(s, 0.0, om, ah, gv, alpha)
+        if n <= 0.0:
+            return mode, s, sig, om, w, False
+        if abs(f) > mu_s * n:
+            return SLIDE_ROCK, s, (-1.0 if f > 0.0 else 1.0), om, 0.0, True
+    if mode == SLIDE and mu_k > beta:
+        return SLIDE_ROCK, sig, sig, 0.0, w, True
+    return mode, s, sig, om, w, True
+
+
+@numba.njit(cache=True)
+def _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode):
+    """Append one state to the history if it has room; returns the new length."""
+    if n_hist < hist_tau.shape[0]:
+        hist_tau[n_hist] = tau
+        hist_theta[n_hist] = th
+        hist_omega[n_hist] = om
+        hist_u[n_hist] = u
+        hist_mode[n_hist] = mode
+        return n_hist + 1
+    return n_hist
+
+
+@numba.njit(cache=True)
+def _first_event(mode, s, sig, th, om, u, w, tau, h, y1, fc, alpha, mu_s, mu_k):
+    """The earliest event inside a step of length ``h`` ending in the state ``y1``: ``(event, d, ok)``,
+    ``event = -1`` if none (then ``d = h``)."""
+    best, d_best = -1, h
+    for ev in range(3):
+        if mode == SLIDE and ev == 0:
+            continue
+        f0 = _event(ev, mode, s, sig, th, om, w, tau, fc, alpha, mu_s, mu_k)
+        f1 = _event(ev, mode, s, sig, y1[0], y1[1], y1[3], tau + h, fc, alpha, mu_s, mu_k)
+        if f0 > 0.0 and f1 <= 0.0:
+            d, ok = _locate(ev, 0.0, f0, f1, mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_s, mu_k)
+            if not ok:
+                return ev, d, False
+            if d < d_best:
+                best, d_best = ev, d
+    return best, d_best, True
+
+
+@numba.njit(cache=True)
+def _peak(mode, s, sig, th, om, u, w, tau, d, om_end, fc, alpha, mu_s, mu_k):
+    """``|theta|`` at a turning point inside a step of length ``d`` (0 if ``omega`` keeps its sign)."""
+    if mode == SLIDE or om * om_end >= 0.0 or om == 0.0:
+        return 0.0, True
+    sgn = 1.0 if om > 0.0 else -1.0
+    d_p, ok = _locate(3, sgn, abs(om), -abs(om_end), mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k)
+    th_p = _rk4(mode, s, sig, th, om, u, w, tau, d_p, fc, alpha, mu_k)[0]
+    return abs(th_p), ok
+
+
+@numba.njit(cache=True)
+def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gvals, g_const, g_tail, dtau,
+               h_nom, h_tail, rest_velocity, max_impacts, max_steps, max_tail, theta0, omega0,
+               out, hist_tau, hist_theta, hist_omega, hist_u, hist_mode):
+    """Solve one case from rest (or from ``theta0``, ``omega0`` rocking without slip); results in ``out``
+    (slots ``OUT_*``), the history (``tau``, ``theta``, ``omega``, ``u``, mode) in the arrays given
+    (length 0: none).
+
+    Excitation: ``(form, k, nu, phase)`` of :func:`opsrock.solvers.forcing.forcing` up to ``tau_end``
+    for an analytic pulse; for ``form == FORM_LINEAR`` the samples ``kvals`` (``a_h/g`` at
+    ``tau = i dtau``). Vertical: the samples ``gvals`` (``1 + a_v/g``, same grid; length 0: the
+    constant ``g_const``); after the excitation ``g_tail``. ``f_rest = e / e_H``; ``mu_s``, ``mu_k``
+    may be ``inf`` (no slip). Steps: ``h_nom`` during the excitation, ``h_tail`` after it (units of
+    ``1/p``), followed for at most ``max_tail``.
+    """
+    sa, ca, beta = math.sin(alpha), math.cos(alpha), math.tan(alpha)
+    level = min(mu_s, beta)
+    fc = np.zeros(8)
+    out[:] = 0.0
+    tau, th, om, u, w = 0.0, theta0, omega0, 0.0, 0.0
+    mode, s, sig = REST, 0.0, 0.0
+    fresh_th, fresh_w = False, False
+    first_mode = -1
+    if theta0 != 0.0 or omega0 != 0.0:
+        mode, first_mode = ROCK, ROCK
+        s = (1.0 if theta0 > 0.0 else -1.0) if theta0 != 0.0 else (1.0 if omega0 > 0.0 else -1.0)
+        fresh_th = theta0 == 0.0
+        out[OUT_ROCKED] = 1.0
+    out[OUT_ENERGY_START] = kinetic_energy(mode, s, th, om, w, alpha) + potential_energy(s, th, alpha)
+    theta_max, u_max = abs(theta0), 0.0
+    win = wfr = eimp = t_slide = t_rock = 0.0
+    n_imp = n_steps = 0
+    seg, seg_end = _set_segment(fc, 0.0, 0, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+    n_hist = _record(0, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+    status = STATUS_OK
+    tail = False
+    while True:
+        if n_steps >= max_steps:
+            status = STATUS_MAX_STEPS
+            break
+        if not tail and tau >= tau_end:
+            tail = True
+            fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, g_tail, 0.0, 0.0
+            seg_end = math.inf
+        if mode == REST:
+            if tail:
+                break
+            t_up, _ = _next_departure(tau, level, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+            n_steps += 1
+            if t_up < 0.0:
+                break
+            tau = t_up
+            seg, seg_end = _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+            ah, gv = _floor(tau, fc)
+            mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k)
+            if mode == REST:  # at the threshold to round-off: leave by the level that was exceeded
+                d = -1.0 if ah > 0.0 else 1.0
+                mode, s, sig = (SLIDE, 0.0, d) if mu_s < beta else (ROCK, d, 0.0)
+            if mode == FLIGHT:
+                status = STATUS_FLIGHT
+                break
+            if first_mode < 0:
+                first_mode = mode
+            th, om, w = 0.0, 0.0, 0.0
+            fresh_th = mode == ROCK or mode == SLIDE_ROCK
+            fresh_w = mode == SLIDE or mode == SLIDE_ROCK
+            if fresh_th:
+                out[OUT_ROCKED] = 1.0
+            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            continue
+        if tail and tau - tau_end > max_tail:
+            status = STATUS_TAIL
+            break
+        if not tail and tau >= seg_end:
+            seg, seg_end = _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+        h = min(h_tail if tail else h_nom, seg_end - tau)
+        last = h == seg_end - tau
+        if fresh_th and om != 0.0:
+            thdd0 = _deriv(mode, s, sig, 0.0, om, w, tau, fc, alpha, mu_k)[0]
+            if s * thdd0 < 0.0 and abs(om) / abs(thdd0) < h:
+                h, last = abs(om) / abs(thdd0), False
+        y1 = _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k)
+        n_steps += 1
+        undeveloped = False
+        while (fresh_th and s * y1[0] <= 0.0) or (fresh_w and sig * y1[3] <= 0.0):
+            h, last = 0.5 * h, False
+            if h < _MIN_STEP:
+                undeveloped = True
+                break
+            y1 = _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k)
+            n_steps += 1
+        if undeveloped:
+            # the new mode does not develop within 1e-14/p: drop it
+            ke = kinetic_energy(mode, s, th, om, w, alpha)
+            if fresh_th:
+                th, om = 0.0, 0.0
+                mode, s = (SLIDE, 0.0) if (not fresh_w and w != 0.0) else (REST, 0.0)
+                if mode == REST:
+                    w, sig = 0.0, 0.0
+            elif mode == SLIDE:
+                mode, w, sig = REST, 0.0, 0.0
+            else:
+                mode, w, sig = ROCK, 0.0, 0.0
+            eimp += ke - kinetic_energy(mode, s, th, om, w, alpha)
+            fresh_th, fresh_w = False, False
+            continue
+        if not (math.isfinite(y1[0]) and math.isfinite(y1[1]) and math.isfinite(y1[2]) and math.isfinite(y1[3])):
+            status = STATUS_NONFINITE
+            break
+        ev, d, ok = _first_event(mode, s, sig, th, om, u, w, tau, h, y1, fc, alpha, mu_s, mu_k)
+        if not ok:
+            status = STATUS_EVENT_FAILED
+            break
+        if ev >= 0:
+            y1 = _rk4(mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_k)
+            n_steps += 1
+        th_p, ok = _peak(mode, s, sig, th, om, u, w, tau, d, y1[1], fc, alpha, mu_s, mu_k)
+        if not ok:
+            status = STATUS_EVENT_FAILED
+            break
+        theta_max = max(theta_max, th_p)
+        if mode == SLIDE or mode == SLIDE_ROCK:
+            t_slide += d
+        if mode != SLIDE:
+            t_rock += d
+        tau = seg_end if ((last and ev < 0) or (not tail and seg_end - (tau + d) <= 4e-16 * seg_end)) else tau + d
+        th, om, u, w = y1[0], y1[1], y1[2], y1[3]
+        win += y1[4]
+        wfr += y1[5]
+        fresh_th, fresh_w = False, False
+        theta_max = max(theta_max, abs(th))
+        u_max = max(u_max, abs(u))
+        if abs(th) >= OVERTURNING_ANGLE:
+            out[OUT_OVERTURNED] = 1.0
+            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            break
+        ah, gv = _floor(tau, fc)
+        if ev == 0:  # impact at theta = 0
+            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, 0.0, om, u, mode)
+            n_imp += 1
+            if n_imp > max_impacts:
+                status = STATUS_MAX_IMPACTS
+                break
+            ke = kinetic_energy(mode, s, 0.0, om, w, alpha)
+            mode, s, sig, om, w, ok = impact(s, om, w, sa, ca, mu_s, mu_k, f_rest)
+            if not ok:
+                status = STATUS_IMPACT_LAW
+                break
+            th = 0.0
+            mode, s, sig, om, w, ok = _settle(mode, s, sig, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity)
+            if not ok:
+                status = STATUS_FLIGHT
+                break
+            eimp += ke - kinetic_energy(mode, s, 0.0, om, w, alpha)
+            fresh_th = mode == ROCK or mode == SLIDE_ROCK
+            fresh_w = mode == SLIDE_ROCK and w == 0.0
+        elif ev == 1:  # stick-slip
+            if mode == ROCK:
+                f, _ = rock_forces(s, th, om, ah, gv, alpha)
+                mode, sig, w, fresh_w = SLIDE_ROCK, (-1.0 if f > 0.0 else 1.0), 0.0, True
+            elif mode == SLIDE_ROCK:
+                f, n = rock_forces(s, th, om, ah, gv, alpha)
+                w = 0.0
+                if abs(f) <= mu_s * n:
+                    mode, sig = ROCK, 0.0
+                else:
+                    sig, fresh_w = (-1.0 if f > 0.0 else 1.0), True
+            else:
+                w = 0.0
+                mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k)
+                if mode == FLIGHT:
+                    status = STATUS_FLIGHT
+                    break
+                th, om = 0.0, 0.0
+                fresh_th = mode == ROCK or mode == SLIDE_ROCK
+                fresh_w = mode == SLIDE or mode == SLIDE_ROCK
+                if fresh_th:
+                    out[OUT_ROCKED] = 1.0
+        elif ev == 2:  # contact lost
+            if mode != SLIDE and s * th > alpha and s * om > 0.0:
+                out[OUT_OVERTURNED] = 1.0  # leaves the floor beyond the hump, turning outwards
+                theta_max = OVERTURNING_ANGLE
+                break
+            status = STATUS_FLIGHT
+            break
+        n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+    out[OUT_EVENT_TAU] = tau
+    if out[OUT_OVERTURNED] > 0.0:
+        theta_max = max(theta_max, OVERTURNING_ANGLE)
+    out[OUT_THETA_MAX], out[OUT_STATUS], out[OUT_IMPACTS], out[OUT_STEPS] = theta_max, status, n_imp, n_steps
+    out[OUT_HIST], out[OUT_FIRST_MODE] = n_hist, max(first_mode, REST)
+    out[OUT_TIME_SLIDING], out[OUT_TIME_ROCKING], out[OUT_SLIDE_MAX], out[OUT_SLIDE_END] = t_slide, t_rock, u_max, u
+    out[OUT_INPUT_WORK], out[OUT_FRICTION_WORK], out[OUT_IMPACT_LOSS] = win, wfr, eimp
+    out[OUT_KINETIC] = kinetic_energy(mode, s, th, om, w, alpha)
+    out[OUT_POTENTIAL] = potential_energy(s if mode != SLIDE else 0.0, th, alpha)
+
+
+__all__ = ["OUT_SIZE", "STATUS_OK", "STATUS_REASONS", "solve_case"]

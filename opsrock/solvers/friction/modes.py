@@ -1,0 +1,124 @@
+"""The equations of motion of each contact mode, compiled (numba), in the units of the kernel.
+
+Units: time ``tau = p t`` (``p = sqrt(3 g / 4 R)``), lengths in ``R``, floor accelerations in ``g``
+(``ah = a_h / g``; ``gv = 1 + a_v / g``, the effective gravity), forces in ``m g``, energies in
+``m g R``. With these, the rocking equation has no constants left: ``theta'' = -(gv sin(phi) + ah
+cos(phi))``, ``phi = s alpha - theta``, and the kinetic energy is ``3/8 (x'² + y'² + theta'²/3)``.
+
+Generalised state of a moving mode: rotation ``th`` and its rate ``om``; the base's horizontal
+displacement relative to the floor ``u`` (the pivot corner's while one corner is up, the whole
+base's while both are down) and its rate ``w`` (the slip velocity). The derivation of every line is
+in docs/friction.md.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+
+#: Mode ids; their order is :data:`opsrock.result.MODES`.
+REST = 0
+SLIDE = 1
+ROCK = 2
+SLIDE_ROCK = 3
+FLIGHT = 4
+
+
+@numba.njit(cache=True)
+def accelerations(mode, s, sig, th, om, w, ah, gv, alpha, mu_k):
+    """``(theta'', u'', input power, friction power)`` of a moving mode (``SLIDE``, ``ROCK``,
+    ``SLIDE_ROCK``) at one instant; pivot ``s`` and slip direction ``sig`` are +-1. The powers are the
+    rates of the floor's inertial work and of the friction dissipation (units of ``m g R`` per tau)."""
+    if mode == SLIDE:
+        return 0.0, 4.0 / 3.0 * (-ah - sig * mu_k * gv), -ah * w, mu_k * gv * abs(w)
+    phi = s * alpha - th
+    sp = math.sin(phi)
+    cp = math.cos(phi)
+    av = gv - 1.0
+    if mode == ROCK:
+        return -(gv * sp + ah * cp), 0.0, -(ah * cp + av * sp) * om, 0.0
+    q = sp - mu_k * sig * cp
+    thdd = -4.0 / 3.0 * q * (gv - 0.75 * om * om * cp) / (1.0 / 3.0 + sp * q)
+    normal = gv + 0.75 * (sp * thdd - cp * om * om)
+    udd = 4.0 / 3.0 * (-ah - mu_k * sig * normal) - cp * thdd - sp * om * om
+    return thdd, udd, -ah * (w + cp * om) - av * sp * om, mu_k * normal * abs(w)
+
+
+@numba.njit(cache=True)
+def rock_forces(s, th, om, ah, gv, alpha):
+    """``(F, N)``: the horizontal and vertical force of the floor on a stuck pivot ``s`` while the
+    block rocks (units of ``m g``; ``F`` positive along +x). Rocking needs ``N > 0`` and ``|F| <= mu N``."""
+    phi = s * alpha - th
+    sp = math.sin(phi)
+    cp = math.cos(phi)
+    thdd = -(gv * sp + ah * cp)
+    return ah + 0.75 * (cp * thdd + sp * om * om), gv + 0.75 * (sp * thdd - cp * om * om)
+
+
+@numba.njit(cache=True)
+def slide_rock_normal(s, sig, th, om, gv, alpha, mu_k):
+    """``N``: the normal force on a slipping pivot ``s`` (slip direction ``sig``), units of ``m g``."""
+    phi = s * alpha - th
+    sp = math.sin(phi)
+    cp = math.cos(phi)
+    q = sp - mu_k * sig * cp
+    thdd = -4.0 / 3.0 * q * (gv - 0.75 * om * om * cp) / (1.0 / 3.0 + sp * q)
+    return gv + 0.75 * (sp * thdd - cp * om * om)
+
+
+@numba.njit(cache=True)
+def critical_friction(lam, beta):
+    """The static friction a block at rest needs to start rocking without slip when
+    ``|a_h| / (g + a_v) = lam`` (``> beta = b/h``): ``[lam (1 + 4 beta²) + 3 beta] / [4 + beta² + 3 lam beta]``
+    (docs/friction.md, mode initiation)."""
+    return (lam * (1.0 + 4.0 * beta * beta) + 3.0 * beta) / (4.0 + beta * beta + 3.0 * lam * beta)
+
+
+@numba.njit(cache=True)
+def start_mode(ah, gv, beta, mu_s, mu_k):
+    """The mode a block at rest (or whose base has just stopped slipping) takes under ``ah``, ``gv``:
+    ``(mode, s, sig)`` with the pivot ``s`` and slip direction ``sig`` (0 where they do not apply).
+
+    Rest while ``|ah| <= mu_s gv`` and ``|ah| <= beta gv``; else, towards ``-sgn(ah)``: slide if
+    ``mu_s < beta``; rock if ``mu_s >= critical_friction``; slide-rock between (or slide if the
+    kinetic friction ``mu_k <= beta`` cannot turn the block); flight if ``gv <= 0``."""
+    if gv <= 0.0:
+        return FLIGHT, 0.0, 0.0
+    mag = abs(ah)
+    if mag <= mu_s * gv and mag <= beta * gv:
+        return REST, 0.0, 0.0
+    d = -1.0 if ah > 0.0 else 1.0
+    if mu_s < beta:
+        return SLIDE, 0.0, d
+    if mu_s >= critical_friction(mag / gv, beta):
+        return ROCK, d, 0.0
+    if mu_k <= beta:
+        return SLIDE, 0.0, d
+    return SLIDE_ROCK, d, d
+
+
+@numba.njit(cache=True)
+def kinetic_energy(mode, s, th, om, w, alpha):
+    """Kinetic energy of a mode's state (units of ``m g R``)."""
+    if mode == REST:
+        return 0.0
+    if mode == SLIDE:
+        return 0.375 * w * w
+    phi = s * alpha - th
+    vx = w + math.cos(phi) * om
+    vy = math.sin(phi) * om
+    return 0.375 * (vx * vx + vy * vy + om * om / 3.0)
+
+
+@numba.njit(cache=True)
+def potential_energy(s, th, alpha):
+    """Height of the centre of mass above its seated height (units of ``R``; energy in ``m g R``,
+    with ``g``, not ``g + a_v``: the vertical floor motion's share is input work)."""
+    if s == 0.0:
+        return 0.0
+    return math.cos(s * alpha - th) - math.cos(alpha)
+
+
+__all__ = ["FLIGHT", "REST", "ROCK", "SLIDE", "SLIDE_ROCK", "accelerations", "critical_friction",
+           "kinetic_energy", "potential_energy", "rock_forces", "slide_rock_normal", "start_mode"]

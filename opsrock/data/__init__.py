@@ -3,7 +3,10 @@
 * ``blocks.toml``: the four blocks of the paper's reproduction (see the file for why each);
 * ``scenes/*.toml``: the scenes, named by their file stem (``paper``, ``spectrum``, ``tiny``,
   ``fema-far-field-ida``, ``fema-far-field-ida-b3``); a scene names its blocks file relative to
-  itself (``blocks = "../blocks.toml"``).
+  itself (``blocks = "../blocks.toml"``);
+* ``experiments/*.csv``: measured free rocking of limestone blocks (Colombo et al., University of
+  Minho, DOI 10.60756/uminho-jh25, CC BY 4.0; ``experiments/SOURCE.md``), for validation case
+  ``experiments``.
 
 Found with :mod:`importlib.resources`, so an installed opsrock (a wheel, not a checkout) finds them
 too: ``opsrock run paper --out DIR`` runs a shipped scene named without a path.

@@ -45,6 +45,8 @@ class ContactSummary:
     slide_residual : float
         Horizontal displacement of the base relative to the floor at the end of the run (m), signed
         (positive along the floor's positive acceleration).
+    time_flight : float
+        Time during which no corner touched the floor (s): mode ``flight``.
     energy : Mapping
         Energy balance of the run in J (per the block's mass): ``input_work`` (work of the floor's
         inertial forces), ``kinetic`` and ``potential`` at the end, ``friction_work`` (dissipated by
@@ -57,6 +59,7 @@ class ContactSummary:
     time_rocking: float
     slide_max: float
     slide_residual: float
+    time_flight: float = 0.0
     energy: Mapping[str, float] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -66,8 +69,8 @@ class ContactSummary:
     def columns(self) -> dict[str, Any]:
         """The summary as flat table columns (SI units), without the energy balance."""
         return {"first_mode": self.first_mode, "time_sliding": float(self.time_sliding),
-                "time_rocking": float(self.time_rocking), "slide_max": float(self.slide_max),
-                "slide_residual": float(self.slide_residual)}
+                "time_rocking": float(self.time_rocking), "time_flight": float(self.time_flight),
+                "slide_max": float(self.slide_max), "slide_residual": float(self.slide_residual)}
 
 
 @dataclass(frozen=True)

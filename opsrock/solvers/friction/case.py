@@ -76,7 +76,8 @@ def _contact(out: np.ndarray, block: Block, tau: np.ndarray) -> ContactSummary:
                           - energy["friction_work"] - energy["impact_loss"])
     return ContactSummary(first_mode=MODES[int(out[K.OUT_FIRST_MODE])], time_sliding=float(out[K.OUT_TIME_SLIDING]) / p,
                           time_rocking=float(out[K.OUT_TIME_ROCKING]) / p, slide_max=float(out[K.OUT_SLIDE_MAX]) * R,
-                          slide_residual=float(out[K.OUT_SLIDE_END]) * R, energy=energy)
+                          slide_residual=float(out[K.OUT_SLIDE_END]) * R,
+                          time_flight=float(out[K.OUT_TIME_FLIGHT]) / p, energy=energy)
 
 
 def run_case(block: Block, excitation: Pulse | Record, settings: FrictionSettings, theta0: float = 0.0,

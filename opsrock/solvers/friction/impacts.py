@@ -23,27 +23,37 @@ for the paper's ``f = 0.95`` it loses the extra energy the paper's ``e`` does.
 
 from __future__ import annotations
 
+import math
+
 import numba
 
 from opsrock.solvers.friction.modes import REST, ROCK, SLIDE, SLIDE_ROCK
 
 #: Relative round-off margin on the impact law's inequalities.
 _TOL = 1e-12
+#: Friction used in the slip branch when the coefficient is infinite (no slip): a corner that cannot
+#: be stopped by a compressive impulse (the sticking impulse would pull) takes the limit of an
+#: ever-larger friction, a finite tangential impulse with a vanishing normal one.
+_MU_CAP = 1e9
 
 
 @numba.njit(cache=True)
-def _single_contact(c, u_n, u_t, sa, ca, mu_s, mu_k):
-    """Impulse ``(P_N, P_T, ok)`` at corner ``c`` of a block at ``theta = 0`` whose corner velocity is
-    ``(u_n < 0, u_t)`` (units of ``m R p``): stick if friction allows it, else slip."""
-    wnn = 1.0 + 3.0 * sa * sa
-    wtt = 1.0 + 3.0 * ca * ca
-    wnt = 3.0 * c * sa * ca
-    # stick: W^-1 = [[wtt, -wnt], [-wnt, wnn]] / 4 (det W = 4 exactly)
-    p_n = -(wtt * u_n - wnt * u_t) / 4.0
-    p_t = -(-wnt * u_n + wnn * u_t) / 4.0
+def single_contact(gn, gt, u_n, u_t, mu_s, mu_k):
+    """Impulse ``(P_N, P_T, ok)`` at one corner whose velocity is ``(u_n < 0, u_t)`` (units of ``m R p``),
+    stick if friction allows it, else slip. ``gn`` and ``gt`` are the rotation's entries of the corner's
+    normal and tangential Jacobian rows (``h sin(theta) - c b cos(theta)`` and ``-(c b sin(theta) + h
+    cos(theta))``, over ``R``); with the mass matrix ``diag(1, 1, 1/3)`` the Delassus matrix is
+    ``W = [[1 + 3 gn², 3 gn gt], [3 gn gt, 1 + 3 gt²]]``."""
+    wnn = 1.0 + 3.0 * gn * gn
+    wtt = 1.0 + 3.0 * gt * gt
+    wnt = 3.0 * gn * gt
+    det = wnn * wtt - wnt * wnt  # = 4 + 3 (gn² + gt²) - ... > 0; exactly 4 at theta = 0
+    p_n = -(wtt * u_n - wnt * u_t) / det
+    p_t = -(-wnt * u_n + wnn * u_t) / det
     if p_n > 0.0 and abs(p_t) <= mu_s * p_n * (1.0 + _TOL):
         return p_n, p_t, True
     first = 1.0 if u_t > 0.0 else -1.0
+    mu_k = min(mu_k, _MU_CAP)
     for sig in (first, -first):
         den = wnn - sig * mu_k * wnt
         if den <= 0.0:
@@ -89,7 +99,7 @@ def impact(s, om, w, sa, ca, mu_s, mu_k, f):
     vx = w + ca * om
     vy = s * sa * om
     u_n = vy - c * sa * om
-    p_n, p_t, ok = _single_contact(c, u_n, w, sa, ca, mu_s, mu_k)
+    p_n, p_t, ok = single_contact(-c * sa, -ca, u_n, w, mu_s, mu_k)
     if not ok:
         return REST, 0.0, 0.0, 0.0, 0.0, False
     om_after = om + 3.0 * (-c * sa * p_n - ca * p_t)
@@ -104,4 +114,33 @@ def impact(s, om, w, sa, ca, mu_s, mu_k, f):
     return SLIDE_ROCK, c, (1.0 if w_after > 0.0 else -1.0), f * om_after, w_after, True
 
 
-__all__ = ["impact"]
+@numba.njit(cache=True)
+def landing(th, om, vx, vy, sa, ca, mu_s, mu_k, f):
+    """A block in free flight lands: ``(mode, s, sig, om, w, ok)`` after the impact of its lower corner
+    ``c = sgn(theta)`` (``theta``, ``om``: rotation and rate; ``vx``, ``vy``: the centre of mass's
+    velocity relative to the floor, units of ``R p``), by the same law as :func:`impact` in the general
+    position; flat (``theta = 0``), both corners land together (:func:`_flat_landing`). The new mode
+    rocks, or slide-rocks, about ``c`` (``w`` the corner's slip velocity)."""
+    if th == 0.0:
+        mode, sig, w_after, ok = _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k)
+        return mode, 0.0, sig, 0.0, w_after, ok
+    c = 1.0 if th > 0.0 else -1.0
+    sn, cs = math.sin(th), math.cos(th)
+    gn = ca * sn - c * sa * cs
+    gt = -(c * sa * sn + ca * cs)
+    u_n = vy + gn * om
+    u_t = vx + gt * om
+    if u_n >= 0.0:  # grazing: no impulse
+        p_n, p_t = 0.0, 0.0
+    else:
+        p_n, p_t, ok = single_contact(gn, gt, u_n, u_t, mu_s, mu_k)
+        if not ok:
+            return REST, 0.0, 0.0, 0.0, 0.0, False
+    om_after = om + 3.0 * (gn * p_n + gt * p_t)
+    w_after = u_t + (1.0 + 3.0 * gt * gt) * p_t + 3.0 * gn * gt * p_n
+    if abs(w_after) <= _TOL * max(abs(u_n), abs(u_t)):
+        return ROCK, c, 0.0, f * om_after, 0.0, True
+    return SLIDE_ROCK, c, (1.0 if w_after > 0.0 else -1.0), f * om_after, w_after, True
+
+
+__all__ = ["impact", "landing", "single_contact"]

@@ -18,7 +18,7 @@ import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers.forcing import forcing, next_exceedance, next_exceedance_scaled, segment
-from opsrock.solvers.friction.impacts import impact
+from opsrock.solvers.friction.impacts import impact, landing
 from opsrock.solvers.friction.modes import (
     FLIGHT,
     REST,
@@ -39,9 +39,8 @@ STATUS_MAX_IMPACTS = 1
 STATUS_NONFINITE = 2
 STATUS_MAX_STEPS = 3
 STATUS_EVENT_FAILED = 4
-STATUS_FLIGHT = 5
-STATUS_IMPACT_LAW = 6
-STATUS_TAIL = 7
+STATUS_IMPACT_LAW = 5
+STATUS_TAIL = 6
 
 #: Why a case failed, per status code (the time of the failure is appended by the caller).
 STATUS_REASONS: dict[int, str] = {
@@ -50,8 +49,6 @@ STATUS_REASONS: dict[int, str] = {
     STATUS_NONFINITE: "non-finite state",
     STATUS_MAX_STEPS: "max_steps reached before the block came to rest",
     STATUS_EVENT_FAILED: "event location did not converge",
-    STATUS_FLIGHT: "free flight: the floor's contact force would turn negative (the block would leave the "
-                   "floor), which this solver does not model; the moreau_jean solver does",
     STATUS_IMPACT_LAW: "the impact law has no solution with compressive impulses",
     STATUS_TAIL: "the block was still moving max_tail after the end of the excitation",
 }
@@ -61,8 +58,8 @@ OUT_THETA_MAX, OUT_OVERTURNED, OUT_ROCKED, OUT_STATUS, OUT_IMPACTS, OUT_STEPS, O
 OUT_FIRST_MODE, OUT_TIME_SLIDING, OUT_TIME_ROCKING, OUT_SLIDE_MAX, OUT_SLIDE_END = 7, 8, 9, 10, 11
 OUT_INPUT_WORK, OUT_KINETIC, OUT_POTENTIAL, OUT_FRICTION_WORK, OUT_IMPACT_LOSS, OUT_ENERGY_START = (
     12, 13, 14, 15, 16, 17)
-OUT_EVENT_TAU = 18
-OUT_SIZE = 19
+OUT_EVENT_TAU, OUT_TIME_FLIGHT = 18, 19
+OUT_SIZE = 20
 
 # --- slots of the forcing context: a_h/g of the segment, 1 + a_v/g = g0 + g1 (tau - gt0), tail flag
 _FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL = 0, 1, 2, 3, 4, 5, 6, 7
@@ -183,26 +180,124 @@ def _next_departure(tau, level, form, k, nu, phase, tau_end, kvals, gvals, g_con
 
 
 @numba.njit(cache=True)
-def _settle(mode, s, sig, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity):
-    """The mode a block takes at ``theta = 0`` after an impact or a stop: seated if the rotation
+def _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity):
+    """The mode a block takes after an impact or a landing: seated if, at ``theta = 0``, the rotation
     left is below ``rest_velocity`` and pulled back; slide-rock if a stuck pivot cannot hold; a
     slide that tips (``mu_k > b/h``) turns into slide-rock. Returns ``(mode, s, sig, om, w, ok)``
-    (``ok`` False: the contact force would be negative, free flight)."""
-    if (mode == ROCK or mode == SLIDE_ROCK) and abs(om) < rest_velocity:
+    (``ok`` False: the contact force would be negative, the block takes off)."""
+    if th == 0.0 and (mode == ROCK or mode == SLIDE_ROCK) and abs(om) < rest_velocity:
         thdd = accelerations(mode, s, sig, 0.0, om, w, ah, gv, alpha, mu_k)[0]
         if s * thdd <= 0.0:
             if abs(w) < rest_velocity:
                 return REST, 0.0, 0.0, 0.0, 0.0, True
             mode, s, sig, om = SLIDE, 0.0, (1.0 if w > 0.0 else -1.0), 0.0
     if mode == ROCK:
-        f, n = rock_forces(s, 0.0, om, ah, gv, alpha)
+        f, n = rock_forces(s, th, om, ah, gv, alpha)
         if n <= 0.0:
             return mode, s, sig, om, w, False
         if abs(f) > mu_s * n:
             return SLIDE_ROCK, s, (-1.0 if f > 0.0 else 1.0), om, 0.0, True
+    if mode == SLIDE_ROCK and slide_rock_normal(s, sig, th, om, gv, alpha, mu_k) <= 0.0:
+        return mode, s, sig, om, w, False
+    if (mode == SLIDE or mode == REST) and gv <= 0.0:
+        return mode, s, sig, om, w, False
     if mode == SLIDE and mu_k > beta:
         return SLIDE_ROCK, sig, sig, 0.0, w, True
     return mode, s, sig, om, w, True
+
+
+# --- free flight ------------------------------------------------------------------------------------
+@numba.njit(cache=True)
+def _flight_rhs(vx, vy, tau, fc):
+    """Accelerations of the centre of mass in flight (units of ``R p²``) and the input power."""
+    ah, gv = _floor(tau, fc)
+    return -4.0 / 3.0 * ah, -4.0 / 3.0 * gv, -(ah * vx + (gv - 1.0) * vy)
+
+
+@numba.njit(cache=True)
+def _rk4_flight(x, vx, y, vy, tau, h, fc):
+    """One RK4 step of the flight of the centre of mass: ``(x, vx, y, vy, input work)`` after ``h``
+    (the rotation rate is constant in flight)."""
+    ax1, ay1, p1 = _flight_rhs(vx, vy, tau, fc)
+    vx2, vy2 = vx + 0.5 * h * ax1, vy + 0.5 * h * ay1
+    ax2, ay2, p2 = _flight_rhs(vx2, vy2, tau + 0.5 * h, fc)
+    vx3, vy3 = vx + 0.5 * h * ax2, vy + 0.5 * h * ay2
+    ax3, ay3, p3 = _flight_rhs(vx3, vy3, tau + 0.5 * h, fc)
+    vx4, vy4 = vx + h * ax3, vy + h * ay3
+    ax4, ay4, p4 = _flight_rhs(vx4, vy4, tau + h, fc)
+    k = h / 6.0
+    return (x + k * (vx + 2.0 * vx2 + 2.0 * vx3 + vx4), vx + k * (ax1 + 2.0 * ax2 + 2.0 * ax3 + ax4),
+            y + k * (vy + 2.0 * vy2 + 2.0 * vy3 + vy4), vy + k * (ay1 + 2.0 * ay2 + 2.0 * ay3 + ay4),
+            k * (p1 + 2.0 * p2 + 2.0 * p3 + p4))
+
+
+@numba.njit(cache=True)
+def _gap(c, th, y, sa, ca):
+    """Height of corner ``c`` above the floor (units of ``R``)."""
+    return y - c * sa * math.sin(th) - ca * math.cos(th)
+
+
+@numba.njit(cache=True)
+def _takeoff(mode, s, th, om, u, w, sa, ca, alpha):
+    """The centre of mass's ``(x, vx, y, vy)`` (units of ``R``, ``R p``) of a block leaving the floor in
+    ``mode``; ``x`` is measured from the centre's position at rest, as the base displacement ``u``."""
+    if mode == ROCK or mode == SLIDE_ROCK:
+        phi = s * alpha - th
+        return s * sa + u - math.sin(phi), w + math.cos(phi) * om, math.cos(phi), math.sin(phi) * om
+    return u, w, ca, 0.0
+
+
+@numba.njit(cache=True)
+def _locate_landing(c, f_lo, f_hi, th, om, x, vx, y, vy, tau, h, fc, sa, ca):
+    """Smallest flight time ``d`` in (0, h] after which corner ``c`` touches the floor: Illinois regula
+    falsi with a bisection every fourth iteration, on the RK4 flight map. Returns ``(d, ok)``."""
+    lo, hi = 0.0, h
+    side = 0
+    tol = 4e-16 * max(1.0, tau + h)
+    for it in range(_EVENT_MAX_ITER):
+        if hi - lo <= tol:
+            return hi, True
+        d = hi - f_hi * (hi - lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
+        if it % 4 == 3 or not (lo < d < hi):
+            d = 0.5 * (lo + hi)
+        f = _gap(c, th + d * om, _rk4_flight(x, vx, y, vy, tau, d, fc)[2], sa, ca)
+        if f <= 0.0:
+            hi, f_hi = d, f
+            if side == -1:
+                f_lo *= 0.5
+            side = -1
+        else:
+            lo, f_lo = d, f
+            if side == 1:
+                f_hi *= 0.5
+            side = 1
+    return hi, hi - lo <= 1e3 * tol
+
+
+@numba.njit(cache=True)
+def _fly(th, om, x, vx, y, vy, tau, h, fc, fresh, sa, ca):
+    """One step of free flight of at most ``h``: ``(th, om, x, vx, y, vy, d, input work, landed, ok)``;
+    ``landed``: a corner reached the floor after ``d`` (``d = 0``: a lift-off that does not develop
+    within 1e-14/p lands back at once)."""
+    f1 = _rk4_flight(x, vx, y, vy, tau, h, fc)
+    while fresh and min(_gap(1.0, th + h * om, f1[2], sa, ca), _gap(-1.0, th + h * om, f1[2], sa, ca)) <= 0.0:
+        h *= 0.5
+        if h < _MIN_STEP:
+            return th, om, x, vx, y, vy, 0.0, 0.0, True, True
+        f1 = _rk4_flight(x, vx, y, vy, tau, h, fc)
+    best, d = 0.0, h
+    for c in (1.0, -1.0):
+        g0 = _gap(c, th, y, sa, ca)
+        g1 = _gap(c, th + h * om, f1[2], sa, ca)
+        if g0 > 0.0 and g1 <= 0.0:
+            dc, ok = _locate_landing(c, g0, g1, th, om, x, vx, y, vy, tau, h, fc, sa, ca)
+            if not ok:
+                return th, om, x, vx, y, vy, 0.0, 0.0, False, False
+            if dc < d:
+                best, d = c, dc
+    if best != 0.0:
+        f1 = _rk4_flight(x, vx, y, vy, tau, d, fc)
+    return th + d * om, om, f1[0], f1[1], f1[2], f1[3], d, f1[4], best != 0.0, True
 
 
 @numba.njit(cache=True)
@@ -249,6 +344,14 @@ def _peak(mode, s, sig, th, om, u, w, tau, d, om_end, fc, alpha, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
+def _energy(mode, s, th, om, w, fy, fvy, alpha, ca):
+    """Kinetic plus potential energy of any mode's state (units of ``m g R``)."""
+    if mode == FLIGHT:
+        return 0.375 * (w * w + fvy * fvy + om * om / 3.0) + fy - ca
+    return kinetic_energy(mode, s, th, om, w, alpha) + potential_energy(s if mode != SLIDE else 0.0, th, alpha)
+
+
+@numba.njit(cache=True)
 def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gvals, g_const, g_tail, dtau,
                h_nom, h_tail, rest_velocity, max_impacts, max_steps, max_tail, theta0, omega0,
                out, hist_tau, hist_theta, hist_omega, hist_u, hist_mode):
@@ -261,30 +364,38 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
     ``tau = i dtau``). Vertical: the samples ``gvals`` (``1 + a_v/g``, same grid; length 0: the
     constant ``g_const``); after the excitation ``g_tail``. ``f_rest = e / e_H``; ``mu_s``, ``mu_k``
     may be ``inf`` (no slip). Steps: ``h_nom`` during the excitation, ``h_tail`` after it (units of
-    ``1/p``), followed for at most ``max_tail``.
+    ``1/p``), followed for at most ``max_tail``. In flight ``u`` and ``w`` hold the centre of mass's
+    horizontal position and velocity, ``fy`` and ``fvy`` its height and vertical velocity.
     """
     sa, ca, beta = math.sin(alpha), math.cos(alpha), math.tan(alpha)
     level = min(mu_s, beta)
     fc = np.zeros(8)
     out[:] = 0.0
-    tau, th, om, u, w = 0.0, theta0, omega0, 0.0, 0.0
+    tau, th, om, u, w, fy, fvy = 0.0, theta0, omega0, 0.0, 0.0, 0.0, 0.0
     mode, s, sig = REST, 0.0, 0.0
-    fresh_th, fresh_w = False, False
+    fresh_th, fresh_w, fresh_fly = False, False, False
     first_mode = -1
     if theta0 != 0.0 or omega0 != 0.0:
         mode, first_mode = ROCK, ROCK
         s = (1.0 if theta0 > 0.0 else -1.0) if theta0 != 0.0 else (1.0 if omega0 > 0.0 else -1.0)
         fresh_th = theta0 == 0.0
         out[OUT_ROCKED] = 1.0
-    out[OUT_ENERGY_START] = kinetic_energy(mode, s, th, om, w, alpha) + potential_energy(s, th, alpha)
+    out[OUT_ENERGY_START] = _energy(mode, s, th, om, w, fy, fvy, alpha, ca)
     theta_max, u_max = abs(theta0), 0.0
-    win = wfr = eimp = t_slide = t_rock = 0.0
+    win = wfr = eimp = t_slide = t_rock = t_fly = 0.0
     n_imp = n_steps = 0
     seg, seg_end = _set_segment(fc, 0.0, 0, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
     n_hist = _record(0, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
     status = STATUS_OK
     tail = False
+    takeoff = False
     while True:
+        if takeoff:  # the contact force would turn negative: the block leaves the floor
+            u, w, fy, fvy = _takeoff(mode, s, th, om, u, w, sa, ca, alpha)
+            mode, s, sig, takeoff, fresh_fly, fresh_th, fresh_w = FLIGHT, 0.0, 0.0, False, True, False, False
+            if first_mode < 0:
+                first_mode = FLIGHT
+            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
         if n_steps >= max_steps:
             status = STATUS_MAX_STEPS
             break
@@ -306,12 +417,12 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
             if mode == REST:  # at the threshold to round-off: leave by the level that was exceeded
                 d = -1.0 if ah > 0.0 else 1.0
                 mode, s, sig = (SLIDE, 0.0, d) if mu_s < beta else (ROCK, d, 0.0)
-            if mode == FLIGHT:
-                status = STATUS_FLIGHT
-                break
-            if first_mode < 0:
+            if first_mode < 0 and mode != FLIGHT:
                 first_mode = mode
             th, om, w = 0.0, 0.0, 0.0
+            if mode == FLIGHT:
+                mode, takeoff = REST, True
+                continue
             fresh_th = mode == ROCK or mode == SLIDE_ROCK
             fresh_w = mode == SLIDE or mode == SLIDE_ROCK
             if fresh_th:
@@ -325,6 +436,51 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
             seg, seg_end = _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
         h = min(h_tail if tail else h_nom, seg_end - tau)
         last = h == seg_end - tau
+        if mode == FLIGHT:
+            th, om, u, w, fy, fvy, d, dwin, landed, ok = _fly(th, om, u, w, fy, fvy, tau, h, fc, fresh_fly, sa, ca)
+            n_steps += 1
+            if not ok:
+                status = STATUS_EVENT_FAILED
+                break
+            fresh_fly = False
+            win += dwin
+            t_fly += d
+            if not tail and (last and not landed or seg_end - (tau + d) <= 4e-16 * seg_end):
+                tau = seg_end
+            else:
+                tau = tau + d
+            theta_max = max(theta_max, abs(th))
+            u_max = max(u_max, abs(u))
+            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            if abs(th) >= OVERTURNING_ANGLE:
+                out[OUT_OVERTURNED] = 1.0
+                break
+            if not landed:
+                continue
+            n_imp += 1
+            if n_imp > max_impacts:
+                status = STATUS_MAX_IMPACTS
+                break
+            e_before = _energy(FLIGHT, 0.0, th, om, w, fy, fvy, alpha, ca)
+            x_cm, vx = u, w
+            mode, s, sig, om, w, ok = landing(th, om, vx, fvy, sa, ca, mu_s, mu_k, f_rest)
+            if not ok:
+                status = STATUS_IMPACT_LAW
+                break
+            # the base displacement: of the landing corner (its rest position is s b), or the centre's if flat
+            u = x_cm if th == 0.0 else x_cm + s * sa * math.cos(th) - ca * math.sin(th) - s * sa
+            ah, gv = _floor(tau, fc)
+            mode, s, sig, om, w, ok = _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity)
+            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca)
+            if not ok:
+                takeoff = True
+                continue
+            fresh_th = th == 0.0 and (mode == ROCK or mode == SLIDE_ROCK)
+            fresh_w = (mode == SLIDE_ROCK or mode == SLIDE) and w == 0.0
+            if mode == ROCK or mode == SLIDE_ROCK:
+                out[OUT_ROCKED] = 1.0
+            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            continue
         if fresh_th and om != 0.0:
             thdd0 = _deriv(mode, s, sig, 0.0, om, w, tau, fc, alpha, mu_k)[0]
             if s * thdd0 < 0.0 and abs(om) / abs(thdd0) < h:
@@ -341,7 +497,7 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
             n_steps += 1
         if undeveloped:
             # the new mode does not develop within 1e-14/p: drop it
-            ke = kinetic_energy(mode, s, th, om, w, alpha)
+            e_before = _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca)
             if fresh_th:
                 th, om = 0.0, 0.0
                 mode, s = (SLIDE, 0.0) if (not fresh_w and w != 0.0) else (REST, 0.0)
@@ -351,7 +507,7 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
                 mode, w, sig = REST, 0.0, 0.0
             else:
                 mode, w, sig = ROCK, 0.0, 0.0
-            eimp += ke - kinetic_energy(mode, s, th, om, w, alpha)
+            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca)
             fresh_th, fresh_w = False, False
             continue
         if not (math.isfinite(y1[0]) and math.isfinite(y1[1]) and math.isfinite(y1[2]) and math.isfinite(y1[3])):
@@ -391,17 +547,17 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
             if n_imp > max_impacts:
                 status = STATUS_MAX_IMPACTS
                 break
-            ke = kinetic_energy(mode, s, 0.0, om, w, alpha)
+            e_before = _energy(mode, s, 0.0, om, w, 0.0, 0.0, alpha, ca)
             mode, s, sig, om, w, ok = impact(s, om, w, sa, ca, mu_s, mu_k, f_rest)
             if not ok:
                 status = STATUS_IMPACT_LAW
                 break
             th = 0.0
-            mode, s, sig, om, w, ok = _settle(mode, s, sig, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity)
+            mode, s, sig, om, w, ok = _settle(mode, s, sig, 0.0, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity)
+            eimp += e_before - _energy(mode, s, 0.0, om, w, 0.0, 0.0, alpha, ca)
             if not ok:
-                status = STATUS_FLIGHT
-                break
-            eimp += ke - kinetic_energy(mode, s, 0.0, om, w, alpha)
+                takeoff = True
+                continue
             fresh_th = mode == ROCK or mode == SLIDE_ROCK
             fresh_w = mode == SLIDE_ROCK and w == 0.0
         elif ev == 1:  # stick-slip
@@ -419,8 +575,8 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
                 w = 0.0
                 mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k)
                 if mode == FLIGHT:
-                    status = STATUS_FLIGHT
-                    break
+                    mode, takeoff = SLIDE, True
+                    continue
                 th, om = 0.0, 0.0
                 fresh_th = mode == ROCK or mode == SLIDE_ROCK
                 fresh_w = mode == SLIDE or mode == SLIDE_ROCK
@@ -428,11 +584,12 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
                     out[OUT_ROCKED] = 1.0
         elif ev == 2:  # contact lost
             if mode != SLIDE and s * th > alpha and s * om > 0.0:
-                out[OUT_OVERTURNED] = 1.0  # leaves the floor beyond the hump, turning outwards
+                # it leaves the floor beyond its hump, turning outwards: nothing brings it back
+                out[OUT_OVERTURNED] = 1.0
                 theta_max = OVERTURNING_ANGLE
                 break
-            status = STATUS_FLIGHT
-            break
+            takeoff = True
+            continue
         n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
     out[OUT_EVENT_TAU] = tau
     if out[OUT_OVERTURNED] > 0.0:
@@ -440,9 +597,11 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
     out[OUT_THETA_MAX], out[OUT_STATUS], out[OUT_IMPACTS], out[OUT_STEPS] = theta_max, status, n_imp, n_steps
     out[OUT_HIST], out[OUT_FIRST_MODE] = n_hist, max(first_mode, REST)
     out[OUT_TIME_SLIDING], out[OUT_TIME_ROCKING], out[OUT_SLIDE_MAX], out[OUT_SLIDE_END] = t_slide, t_rock, u_max, u
+    out[OUT_TIME_FLIGHT] = t_fly
     out[OUT_INPUT_WORK], out[OUT_FRICTION_WORK], out[OUT_IMPACT_LOSS] = win, wfr, eimp
-    out[OUT_KINETIC] = kinetic_energy(mode, s, th, om, w, alpha)
-    out[OUT_POTENTIAL] = potential_energy(s if mode != SLIDE else 0.0, th, alpha)
+    total = _energy(mode, s, th, om, w, fy, fvy, alpha, ca)
+    out[OUT_POTENTIAL] = fy - ca if mode == FLIGHT else potential_energy(s if mode != SLIDE else 0.0, th, alpha)
+    out[OUT_KINETIC] = total - out[OUT_POTENTIAL]
 
 
 __all__ = ["OUT_SIZE", "STATUS_OK", "STATUS_REASONS", "solve_case"]

@@ -75,6 +75,8 @@ METHODS: dict[str, SolverInfo] = {
                                "opsrock.solvers.housner_fast.settings:HousnerFastSettings", "rigid"),
     "friction": SolverInfo("friction", "opsrock.solvers.friction",
                            "opsrock.solvers.friction.settings:FrictionSettings", "friction"),
+    "moreau_jean": SolverInfo("moreau_jean", "opsrock.solvers.moreau_jean",
+                              "opsrock.solvers.moreau_jean.settings:MoreauJeanSettings", "friction"),
 }
 
 #: Solver names accepted by :func:`simulate` and the command line.

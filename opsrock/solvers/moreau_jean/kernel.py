@@ -1,0 +1,554 @@
+"""Compiled kernel of :mod:`opsrock.solvers.moreau_jean` (numba): Moreau-Jean time stepping of a rigid
+rectangular block on a rigid floor with two corner contacts, Newton's impact law with ``e_n = 0`` and
+Coulomb friction (docs/friction.md: notation, the impact at ``theta = 0``, the reference ``moreau_jean``).
+
+Everything here is per unit mass (the motion does not depend on the mass): positions in m, velocities
+in m/s and rad/s, impulses in m/s (N s per kg), energies in J/kg. The state is the centre of mass
+``(x, y)`` in the floor frame and the clockwise rotation ``theta``; the floor's accelerations enter as
+the body force ``(-a_h, -(g + a_v), 0)``. ``M^-1 = diag(1, 1, 3 / R²)``.
+
+Corner ``c = +1`` (right) / ``-1`` (left), with ``s = sin(theta)``, ``co = cos(theta)``:
+
+* gap ``g_c = y - c b s - h co``, horizontal position ``x_c = x + c b co - h s``;
+* Jacobian rows ``G_N,c = (0, 1, gn_c)``, ``gn_c = h s - c b co``, and ``G_T,c = (1, 0, gt_c)``,
+  ``gt_c = -(c b s + h co)``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from opsrock.constants import OVERTURNING_ANGLE
+
+# --- status codes ----------------------------------------------------------------------------------
+#: Finished: the block came to rest after the excitation, overturned, or (free rocking) the span ended.
+STATUS_OK = 0
+#: A non-finite state appeared.
+STATUS_NONFINITE = 1
+#: ``max_steps`` steps taken before the end of the run.
+STATUS_MAX_STEPS = 2
+#: The block was still moving when the tail after the excitation reached ``max_tail``.
+STATUS_TAIL = 3
+#: The contact problem of a step had no solution among the statuses tried (never met in testing; a
+#: Painlevé case needs ``mu_k`` above 4/3, which blocks refuse).
+STATUS_LOCAL = 4
+
+#: Human-readable reason of every failure code.
+STATUS_REASONS: dict[int, str] = {
+    STATUS_OK: "",
+    STATUS_NONFINITE: "non-finite state (position or velocity)",
+    STATUS_MAX_STEPS: "max_steps reached before the end of the run",
+    STATUS_TAIL: "max_tail reached after the excitation without the block coming to rest (a frictionless base "
+                 "never stops sliding)",
+    STATUS_LOCAL: "the contact problem of a step had no solution (open, stick or slip at each corner)",
+}
+
+# --- contact modes, indices into opsrock.result.MODES ----------------------------------------------
+MODE_REST = 0
+MODE_SLIDE = 1
+MODE_ROCK = 2
+MODE_SLIDE_ROCK = 3
+MODE_FLIGHT = 4
+
+# --- forcing forms ---------------------------------------------------------------------------------
+#: One value per step, the floor accelerations at the step's evaluation time (analytic pulses).
+FORCING_STEPWISE = 0
+#: Samples, linear between them, ``sub`` steps per sample interval (records).
+FORCING_LINEAR = 1
+
+# --- layout of the kernel's output vector ----------------------------------------------------------
+OUT_STATUS = 0
+OUT_STEPS = 1
+OUT_THETA_MAX = 2
+OUT_OVERTURNED = 3
+OUT_ROCKED = 4
+OUT_IMPACTS = 5
+OUT_FIRST_MODE = 6
+OUT_TIME_SLIDING = 7
+OUT_TIME_ROCKING = 8
+OUT_SLIDE_MAX = 9
+OUT_INPUT_WORK = 10
+OUT_FRICTION_WORK = 11
+OUT_IMPACT_LOSS = 12
+OUT_X = 13  # final state: x, y, theta, x', y', theta' (13..18)
+OUT_N_HIST = 19
+OUT_LIMIT_STEPS = 20
+OUT_MAX_PENETRATION = 21
+OUT_MAX_FLICKER_GAP = 22
+OUT_TIME = 23
+OUT_FLICKER_STEPS = 24
+OUT_SIZE = 25
+
+
+@numba.njit(cache=True)
+def _floor(k, theta_mj, form, ah, av, sub, n_exc, tail_av):
+    """Floor accelerations ``(a_h, a_v)`` (m/s²) at the evaluation time ``(k + theta_mj) dt`` of step ``k``."""
+    if k >= n_exc:
+        return 0.0, tail_av
+    if form == FORCING_STEPWISE:
+        return ah[k], av[k]
+    j = k // sub
+    f = (k - j * sub + theta_mj) / sub
+    return ah[j] + f * (ah[j + 1] - ah[j]), av[j] + f * (av[j + 1] - av[j])
+
+
+@numba.njit(cache=True)
+def _rows(c, b, h, th):
+    """``(gn_c, gt_c)``: the rotation entries of the normal and tangential Jacobian rows of corner ``c``."""
+    s = math.sin(th)
+    co = math.cos(th)
+    return h * s - c * b * co, -(c * b * s + h * co)
+
+
+@numba.njit(cache=True)
+def _gap(c, b, h, y, th):
+    """Height of corner ``c`` above the floor (m)."""
+    return y - c * b * math.sin(th) - h * math.cos(th)
+
+
+@numba.njit(cache=True)
+def _local(wnn, wnt, wtt, un, ut, mu_s, mu_k, stick_only):
+    """One contact, exactly (docs/friction.md, the impact at ``theta = 0``, with ``e_n = 0``): the impulse
+    ``(P_N, P_T)`` making ``U+ = U + W P`` satisfy ``0 <= U_N+ _|_ P_N >= 0`` and Coulomb's law, and a
+    code: 0 solved, 1 solved by the infinite-friction limit below, 2 no solution.
+
+    Open if the corner does not approach; else stick (``U+ = 0``) if that impulse lies in the cone of
+    the static coefficient ``mu_s`` (any ``P_T`` when ``stick_only``: ``mu`` infinite); else slip with the
+    kinetic coefficient ``mu_k`` in the direction ``sigma`` that keeps ``sigma U_T+ >= 0``. Testing stick
+    first is what makes ``mu_s > mu_k`` well defined: where both a stick and a slip solution exist, the
+    contact sticks.
+
+    With ``mu`` infinite, stick fails only if it needs a pulling normal impulse (``P_N < 0``). The slip
+    solution for ``mu -> infinity`` then tends to ``P_N = 0``, ``P_T = -U_N / W_NT`` (``U_N+ = 0``), and
+    its slip direction is always consistent; that limit is returned (with code 1). It arises at a corner
+    that barely touches (``U_N`` ~ 1e-20, round-off) and near overturning, where the pivot's normal force
+    vanishes (counted in ``diagnostics["limit_steps"]``).
+    """
+    if un >= 0.0:
+        return 0.0, 0.0, 0
+    det = wnn * wtt - wnt * wnt
+    pn = -(wtt * un - wnt * ut) / det
+    pt = -(wnn * ut - wnt * un) / det
+    if pn >= 0.0 and (stick_only or abs(pt) <= mu_s * pn * (1.0 + 1e-12)):
+        return pn, pt, 0
+    if stick_only:  # here wnt ut < wtt un < 0, so wnt != 0
+        return 0.0, -un / wnt, 1
+    slack = 1e-12 * (abs(un) + abs(ut))
+    for sg in (1.0, -1.0):
+        d = wnn - sg * mu_k * wnt
+        if d <= 0.0:
+            continue
+        pn = -un / d
+        pt = -sg * mu_k * pn
+        if sg * (wnt * pn + wtt * pt + ut) >= -slack:
+            return pn, pt, 0
+    return 0.0, 0.0, 2
+
+
+# --- contact statuses of the two-contact enumeration --------------------------------------------------
+_OPEN, _STICK, _SLIP_POS, _SLIP_NEG, _LIMIT = 0, 1, 2, 3, 4
+#: Status pairs (right, left) tried in turn with finite friction: fewer contacts first, stick before slip
+#: (the static law: where a stick and a slip solution both exist, the contact sticks).
+_ORDER_FINITE = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [2, 0], [3, 0], [0, 2], [0, 3], [1, 2], [1, 3],
+                          [2, 1], [3, 1], [2, 2], [2, 3], [3, 2], [3, 3]])
+#: The same with infinite friction: stick or open, then the limit status of :func:`_local` (``P_N = 0``).
+_ORDER_INFINITE = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [4, 0], [0, 4], [1, 4], [4, 1], [4, 4]])
+
+
+@numba.njit(cache=True)
+def _solve_small(a, r, n):
+    """Solve ``a[:n, :n] z = r[:n]`` in place by Gaussian elimination with partial pivoting; returns False
+    if a pivot is below 1e-12 of the matrix's largest entry (singular status pair: skip it)."""
+    big = 0.0
+    for i in range(n):
+        for j in range(n):
+            big = max(big, abs(a[i, j]))
+    for col in range(n):
+        piv = col
+        for i in range(col + 1, n):
+            if abs(a[i, col]) > abs(a[piv, col]):
+                piv = i
+        if abs(a[piv, col]) <= 1e-12 * big:
+            return False
+        for j in range(n):
+            a[col, j], a[piv, j] = a[piv, j], a[col, j]
+        r[col], r[piv] = r[piv], r[col]
+        for i in range(col + 1, n):
+            f = a[i, col] / a[col, col]
+            for j in range(col, n):
+                a[i, j] -= f * a[col, j]
+            r[i] -= f * r[col]
+    for i in range(n - 1, -1, -1):
+        acc = r[i]
+        for j in range(i + 1, n):
+            acc -= a[i, j] * r[j]
+        r[i] = acc / a[i, i]
+    return True
+
+
+@numba.njit(cache=True)
+def _check(st, pn, pt, un, ut, mu_s, eps):
+    """Does a contact with status ``st``, impulse ``(pn, pt)`` and end-of-step velocity ``(un, ut)`` obey
+    its law (within ``eps``, m/s)?"""
+    if st == _OPEN:
+        return un >= -eps
+    if pn < -eps or abs(un) > eps:
+        return False
+    if st == _STICK:  # mu_s is inf for infinite friction
+        return (math.isinf(mu_s) or abs(pt) <= mu_s * pn + eps) and abs(ut) <= eps
+    if st == _SLIP_POS:
+        return ut >= -eps
+    if st == _SLIP_NEG:
+        return ut <= eps
+    return pt * ut <= eps * (abs(pt) + eps)  # _LIMIT: friction opposes the slip
+
+
+@numba.njit(cache=True)
+def _try_pair(sr, sl, vf, gn, gt, k3, mu_s, mu_k, eps, pn, pt, v, ws, wi):
+    """Impulses of both contacts for the status pair ``(sr, sl)`` (not both stick), by one small linear
+    system: each status adds its unknowns (stick: ``P_N``, ``P_T``; slip ``sigma``: ``P_N`` with ``P_T = -sigma
+    mu_k P_N``; limit: ``P_T`` with ``P_N = 0``) and its equations (``U_N = 0``, and ``U_T = 0`` for stick).
+    Fills ``pn``, ``pt``, ``v`` and returns True if the pair obeys every contact's law. ``ws`` (float,
+    4 x 3 x 3) and ``wi`` (int, 2 x 3) are workspace."""
+    cols, rows, a = ws[0], ws[1], ws[2]  # impulse direction of each unknown, velocity row of each equation
+    r = ws[3, 0]
+    who, kind = wi[0], wi[1]  # kind 0: a P_N unknown (with the slip's P_T), 1: a P_T unknown
+    n = 0
+    sts = (sr, sl)
+    for i in range(2):
+        st = sts[i]
+        if st == _OPEN:
+            continue
+        sg = 1.0 if st == _SLIP_POS else -1.0
+        mu = mu_k if (st == _SLIP_POS or st == _SLIP_NEG) else 0.0
+        if st != _LIMIT:  # a P_N column (for slip, with its friction), and the U_N = 0 row
+            cols[n, 0], cols[n, 1], cols[n, 2] = -sg * mu, 1.0, gn[i] - sg * mu * gt[i]
+            rows[n, 0], rows[n, 1], rows[n, 2] = 0.0, 1.0, gn[i]
+            who[n], kind[n] = i, 0
+            n += 1
+        if st == _STICK or st == _LIMIT:  # a P_T column; stick's U_T = 0 row, or the limit's U_N = 0 row
+            cols[n, 0], cols[n, 1], cols[n, 2] = 1.0, 0.0, gt[i]
+            if st == _STICK:
+                rows[n, 0], rows[n, 1], rows[n, 2] = 1.0, 0.0, gt[i]
+            else:
+                rows[n, 0], rows[n, 1], rows[n, 2] = 0.0, 1.0, gn[i]
+            who[n], kind[n] = i, 1
+            n += 1
+    for e in range(n):
+        r[e] = -(rows[e, 0] * vf[0] + rows[e, 1] * vf[1] + rows[e, 2] * vf[2])
+        for u in range(n):
+            a[e, u] = rows[e, 0] * cols[u, 0] + rows[e, 1] * cols[u, 1] + k3 * rows[e, 2] * cols[u, 2]
+    if not _solve_small(a, r, n):
+        return False
+    v[0], v[1], v[2] = vf[0], vf[1], vf[2]
+    pn[0], pt[0], pn[1], pt[1] = 0.0, 0.0, 0.0, 0.0
+    for u in range(n):
+        v[0] += cols[u, 0] * r[u]
+        v[1] += cols[u, 1] * r[u]
+        v[2] += k3 * cols[u, 2] * r[u]
+        if kind[u] == 0:
+            pn[who[u]] += r[u]
+            pt[who[u]] += cols[u, 0] * r[u]
+        else:
+            pt[who[u]] += r[u]
+    for i in range(2):
+        if not _check(sts[i], pn[i], pt[i], v[1] + gn[i] * v[2], v[0] + gt[i] * v[2], mu_s, eps):
+            return False
+    return True
+
+
+@numba.njit(cache=True)
+def _stick_both(vf, gn, gt, k3, mu_s, stick_only, eps, pn, pt, v, wb):
+    """Both corners stick: then ``v = 0`` (their four velocity rows span the three freedoms) and the
+    impulses solve ``G^T P = -M v_free``, a one-parameter family ``P(s)``, ``s = P_T`` of the left corner
+    (the split of friction between the corners, free at ``theta = 0``). Keeps the ``s`` nearest to the
+    split proportional to the normal impulses that satisfies ``P_N >= 0`` and the cones; False if none.
+    ``wb`` (2 x 4) is workspace."""
+    dgn = gn[1] - gn[0]  # 2 b cos(theta) > 0
+    dgt = gt[1] - gt[0]  # 2 b sin(theta)
+    rhs = -vf[2] / k3 + gn[0] * vf[1] + gt[0] * vf[0]
+    # P = a0 + s d over (P_N,R, P_T,R, P_N,L, P_T,L)
+    a0, d = wb[0], wb[1]
+    a0[0], a0[1], a0[2], a0[3] = -vf[1] - rhs / dgn, -vf[0], rhs / dgn, 0.0
+    d[0], d[1], d[2], d[3] = dgt / dgn, -1.0, -dgt / dgn, 1.0
+    lo, hi = -np.inf, np.inf
+    n_con = 2 if stick_only else 6
+    for c in range(n_con):  # constraints alpha + beta s >= 0: P_N,R, P_N,L, then mu P_N -+ P_T per corner
+        if c < 2:
+            al, be = a0[2 * c], d[2 * c]
+        else:
+            j = 2 * ((c - 2) // 2)
+            sg = 1.0 if c % 2 == 0 else -1.0
+            al, be = mu_s * a0[j] - sg * a0[j + 1], mu_s * d[j] - sg * d[j + 1]
+        if be > 0.0:
+            lo = max(lo, (-eps - al) / be)
+        elif be < 0.0:
+            hi = min(hi, (-eps - al) / be)
+        elif al < -eps:
+            return False
+    if lo > hi:
+        return False
+    s = 0.0
+    if vf[1] < 0.0:
+        rho = vf[0] / vf[1]  # total P_T / total P_N
+        den = dgn + rho * dgt
+        if den != 0.0:
+            s = rho * rhs / den
+    s = min(max(s, lo), hi)
+    pn[0], pt[0], pn[1], pt[1] = a0[0] + s * d[0], a0[1] + s * d[1], a0[2] + s * d[2], a0[3] + s * d[3]
+    v[0], v[1], v[2] = 0.0, 0.0, 0.0
+    return True
+
+
+@numba.njit(cache=True)
+def _try(k, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, eps, pn, pt, v, ws, wi, wb):
+    """Try status pair ``order[k]`` (:func:`_stick_both` or :func:`_try_pair`)."""
+    sr, sl = order[k, 0], order[k, 1]
+    if sr == _STICK and sl == _STICK:
+        return _stick_both(vf, gn, gt, k3, mu_s, stick_only, eps, pn, pt, v, wb)
+    return _try_pair(sr, sl, vf, gn, gt, k3, mu_s, mu_k, eps, pn, pt, v, ws, wi)
+
+
+@numba.njit(cache=True)
+def _impulses(vf, gn, gt, act, k3, R, mu_s, mu_k, stick_only, tol, scale, pn, pt, v, ws, wi, wb, last):
+    """Contact impulses of one step and the end-of-step velocity ``v`` from the free velocity ``vf``.
+
+    One active contact: the closed form :func:`_local`. Two: enumeration of the status pairs (open,
+    stick, slip +/-, and with infinite friction the limit status), in the order of ``_ORDER_*``; the
+    first pair that satisfies every law (within ``tol`` times the step's velocity scale) is the
+    answer. Returns a status: STATUS_OK, -1 (solved using the infinite-friction limit) or STATUS_LOCAL.
+
+    ``last[0]`` holds the index of the previous step's pair, tried first when ``mu_s == mu_k`` or ``mu`` is
+    infinite: it is usually the answer again (a sliding block slips at both corners step after step),
+    and should a problem have two solutions, the one that continues the previous step's statuses is
+    taken. With ``mu_s > mu_k`` the fixed order is kept, so that stick wins. ``ws`` (float, 4 x 3 x 3),
+    ``wi`` (int, 2 x 3) and ``wb`` (float, 2 x 4) are workspace.
+    """
+    pn[0], pt[0], pn[1], pt[1] = 0.0, 0.0, 0.0, 0.0
+    v[0], v[1], v[2] = vf[0], vf[1], vf[2]
+    if act[0] != act[1]:
+        i = 0 if act[0] else 1
+        un, ut = vf[1] + gn[i] * vf[2], vf[0] + gt[i] * vf[2]
+        wnn, wnt, wtt = 1.0 + k3 * gn[i] * gn[i], k3 * gn[i] * gt[i], 1.0 + k3 * gt[i] * gt[i]
+        pn[i], pt[i], code = _local(wnn, wnt, wtt, un, ut, mu_s, mu_k, stick_only)
+        v[0] += pt[i]
+        v[1] += pn[i]
+        v[2] += k3 * (gn[i] * pn[i] + gt[i] * pt[i])
+        return STATUS_LOCAL if code == 2 else (-1 if code == 1 else STATUS_OK)
+    if not act[0]:
+        return STATUS_OK
+    eps = tol * max(scale, abs(vf[0]), abs(vf[1]), R * abs(vf[2]))
+    order = _ORDER_INFINITE if stick_only else _ORDER_FINITE
+    first = last[0] if (stick_only or mu_s == mu_k) else -1
+    for i in range(-1, order.shape[0]):
+        k = first if i < 0 else i
+        if k < 0 or (i >= 0 and k == first):
+            continue
+        if _try(k, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, eps, pn, pt, v, ws, wi, wb):
+            last[0] = k
+            return -1 if (order[k, 0] == _LIMIT or order[k, 1] == _LIMIT) else STATUS_OK
+    return STATUS_LOCAL
+
+
+@numba.njit(cache=True)
+def _slide_of(b, h, x, th):
+    """Horizontal displacement of the lower base corner from where it was at rest, ``x_c(q) - c b`` (m):
+    the base's displacement as a rigid body; the CM displacement at ``theta = 0``."""
+    c = 1.0 if th >= 0.0 else -1.0
+    return x + c * b * (math.cos(th) - 1.0) - h * math.sin(th)
+
+
+@numba.njit(cache=True)
+def _mode(touch, slip):
+    """Contact mode (a ``MODE_*`` index) from the two corners' contact and slip flags."""
+    n = int(touch[0]) + int(touch[1])
+    sl = (touch[0] and slip[0]) or (touch[1] and slip[1])
+    if n == 2:
+        return MODE_SLIDE if sl else MODE_REST
+    if n == 1:
+        return MODE_SLIDE_ROCK if sl else MODE_ROCK
+    return MODE_FLIGHT
+
+
+@numba.njit(cache=True)
+def _record(j, cap, t, th, vt, sl, hist_t, hist_th, hist_thd, hist_sl):
+    """Store one history row if there is room; returns the next free row."""
+    if j < cap:
+        hist_t[j] = t
+        hist_th[j] = th
+        hist_thd[j] = vt
+        hist_sl[j] = sl
+        return j + 1
+    return j
+
+
+@numba.njit(cache=True)
+def _step(state, a_h, a_v, dt, theta_mj, geom, mu_s, mu_k, stick_only, tol, gn, gt, act, vf, pn, pt, new, work):
+    """One Moreau-Jean step (docs/friction.md, the reference ``moreau_jean``) from ``state = (x, y, theta, x', y',
+    theta')`` into ``new``: free velocity under the step's forces, active corners from the mid-step prediction of
+    their gaps, Jacobians at ``q_k``, the contact impulses (:func:`_impulses`), then ``q_{k+1} = q_k + dt [(1 -
+    theta_mj) v_k + theta_mj v_{k+1}]``. Returns the status of the contact problem; ``work`` is the workspace of
+    :func:`_impulses` (``ws, wi, wb, last``)."""
+    b, h, R, g = geom[0], geom[1], geom[2], geom[3]
+    y, th, vx, vy, vt = state[1], state[2], state[3], state[4], state[5]
+    vf[0], vf[1], vf[2] = vx - dt * a_h, vy - dt * (g + a_v), vt
+    ym, tm = y + 0.5 * dt * vy, th + 0.5 * dt * vt
+    for i in range(2):
+        c = 1.0 - 2.0 * i
+        act[i] = _gap(c, b, h, ym, tm) <= 0.0
+        gn[i], gt[i] = _rows(c, b, h, th)
+    v = new[3:]
+    ws, wi, wb, last = work
+    st = _impulses(vf, gn, gt, act, 3.0 / (R * R), R, mu_s, mu_k, stick_only, tol, dt * g, pn, pt, v, ws, wi, wb,
+                   last)
+    for i in range(3):
+        new[i] = state[i] + dt * ((1.0 - theta_mj) * state[3 + i] + theta_mj * v[i])
+    return st
+
+
+@numba.njit(cache=True)
+def _contacts(new, geom, gt, act, pn, pt, touch, slip, vel_tol, lift_gap, out):
+    """After a step: friction work of the impulses, and each corner's contact and slip flags; returns
+    True if a corner landed (an impact).
+
+    A corner with a normal impulse is down (an impact if it was up), slipping if its tangential velocity
+    (the row the solver enforced) exceeds ``vel_tol``. A corner without impulse is up once it moves away
+    from the floor faster than ``vel_tol`` or rises above ``lift_gap``; otherwise it keeps its flags (a
+    rotating pivot, constrained at velocity level, drifts up and takes an occasional free step; the
+    flags ignore that "flicker", counted in ``out``)."""
+    b, h = geom[0], geom[1]
+    y1, th1, nx, ny, nt = new[1], new[2], new[3], new[4], new[5]
+    impact = False
+    for i in range(2):
+        c = 1.0 - 2.0 * i
+        if act[i]:
+            out[OUT_FRICTION_WORK] -= pt[i] * (nx + gt[i] * nt)
+        gap1 = _gap(c, b, h, y1, th1)
+        gn1, _ = _rows(c, b, h, th1)
+        if pn[i] > 0.0:
+            impact = impact or not touch[i]
+            touch[i] = True
+            slip[i] = abs(nx + gt[i] * nt) > vel_tol
+            out[OUT_MAX_PENETRATION] = max(out[OUT_MAX_PENETRATION], -gap1)
+        elif ny + gn1 * nt > vel_tol or gap1 > lift_gap:
+            touch[i] = False
+            slip[i] = False
+        elif touch[i]:
+            out[OUT_FLICKER_STEPS] += 1.0
+            out[OUT_MAX_FLICKER_GAP] = max(out[OUT_MAX_FLICKER_GAP], gap1)
+    return impact
+
+
+@numba.njit(cache=True)
+def _tally(mode, dt, out):
+    """First mode left rest into, time sliding and time rocking."""
+    if mode != MODE_REST and out[OUT_FIRST_MODE] < 0.0:
+        out[OUT_FIRST_MODE] = mode
+    if mode == MODE_SLIDE or mode == MODE_SLIDE_ROCK:
+        out[OUT_TIME_SLIDING] += dt
+    if mode == MODE_ROCK or mode == MODE_SLIDE_ROCK:
+        out[OUT_TIME_ROCKING] += dt
+
+
+@numba.njit(cache=True)
+def run(geom, fric, num, form, ah, av, sub, n_exc, tail_av, state, limits, hist_every,
+        hist_t, hist_th, hist_thd, hist_sl, out):
+    """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history arrays; returns the status.
+
+    Parameters
+    ----------
+    geom : float64[4]
+        ``(b, h, R, g)``: half-width, half-height, ``hypot(b, h)`` (m), gravity (m/s²).
+    fric : float64[3]
+        ``(mu_s, mu_k, infinite)``: static and kinetic coefficients; ``infinite`` 1.0 for ``mu = infinity``.
+    num : float64[4]
+        ``(dt, theta_mj, local_tol, rocked_theta)``: step (s), theta-method parameter, relative slack of
+        the contact laws, rotation (rad) above which the block rocked.
+    form, ah, av, sub, n_exc, tail_av
+        Floor motion: :data:`FORCING_STEPWISE` (``ah[k]``, ``av[k]`` at step ``k``'s evaluation time) or
+        :data:`FORCING_LINEAR` (samples, ``sub`` steps per interval), for ``n_exc`` steps; after them
+        ``a_h = 0`` and ``a_v = tail_av`` (m/s²).
+    state : float64[6]
+        Initial ``(x, y, theta, x', y', theta')``; holds the final state on return.
+    limits : float64[6]
+        ``(max_steps, max_tail_steps (< 0: no tail), rest_velocity (m/s), rest_steps, velocity_tol (m/s),
+        lift_gap (m))``.
+    hist_every : int
+        A history row every this many steps (and the last state).
+    """
+    b, h, R = geom[0], geom[1], geom[2]
+    stick_only = fric[2] > 0.5
+    mu_s, mu_k = (math.inf, 0.0) if stick_only else (fric[0], fric[1])
+    dt, theta_mj, tol, rocked_theta = num[0], num[1], num[2], num[3]
+    max_steps, max_tail, rest_vel = int(limits[0]), int(limits[1]), limits[2]
+    rest_steps, vel_tol, lift_gap = int(limits[3]), limits[4], limits[5]
+    out[:] = 0.0
+    out[OUT_FIRST_MODE] = -1.0
+    gn, gt, pn, pt, vf = np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(3)
+    new = np.zeros(6)
+    work = (np.zeros((4, 3, 3)), np.zeros((2, 3), dtype=np.int64), np.zeros((2, 4)), np.full(1, -1, dtype=np.int64))
+    act = np.zeros(2, dtype=np.bool_)
+    touch = np.zeros(2, dtype=np.bool_)
+    slip = np.zeros(2, dtype=np.bool_)
+    for i in range(2):
+        touch[i] = _gap(1.0 - 2.0 * i, b, h, state[1], state[2]) <= lift_gap
+    j = _record(0, hist_t.size, 0.0, state[2], state[5], _slide_of(b, h, state[0], state[2]),
+                hist_t, hist_th, hist_thd, hist_sl)
+    theta_max = abs(state[2])
+    slide_max = abs(_slide_of(b, h, state[0], state[2]))
+    status = STATUS_OK
+    resting = 0
+    k = 0
+    while True:
+        if k >= n_exc and (max_tail < 0 or resting >= rest_steps):
+            break
+        if k >= n_exc + max(max_tail, 0) or k >= max_steps:
+            status = STATUS_TAIL if k < max_steps else STATUS_MAX_STEPS
+            break
+        a_h, a_v = _floor(k, theta_mj, form, ah, av, sub, n_exc, tail_av)
+        st = _step(state, a_h, a_v, dt, theta_mj, geom, mu_s, mu_k, stick_only, tol, gn, gt, act, vf, pn, pt,
+                   new, work)
+        if st == -1:
+            out[OUT_LIMIT_STEPS] += 1.0
+        elif st != STATUS_OK:
+            status = st
+            break
+        # energy bookkeeping (docs/friction.md, per unit mass): input work over the step's displacement,
+        # friction work in _contacts, and at an impact the kinetic energy of the impulse's velocity change
+        out[OUT_INPUT_WORK] -= a_h * (new[0] - state[0]) + a_v * (new[1] - state[1])
+        if _contacts(new, geom, gt, act, pn, pt, touch, slip, vel_tol, lift_gap, out):
+            dvx, dvy, dvt = new[3] - vf[0], new[4] - vf[1], new[5] - vf[2]
+            out[OUT_IMPACT_LOSS] += 0.5 * (dvx * dvx + dvy * dvy + R * R * dvt * dvt / 3.0)
+            out[OUT_IMPACTS] += 1.0
+        state[:] = new
+        k += 1
+        if not math.isfinite(state[0] + state[1] + state[2] + state[3] + state[4] + state[5]):
+            status = STATUS_NONFINITE
+            break
+        mode = _mode(touch, slip)
+        _tally(mode, dt, out)
+        sl = _slide_of(b, h, state[0], state[2])
+        slide_max = max(slide_max, abs(sl))
+        theta_max = max(theta_max, abs(state[2]))
+        if k % hist_every == 0:
+            j = _record(j, hist_t.size, k * dt, state[2], state[5], sl, hist_t, hist_th, hist_thd, hist_sl)
+        if theta_max >= OVERTURNING_ANGLE:
+            out[OUT_OVERTURNED] = 1.0
+            break
+        still = max(abs(state[3]), abs(state[4]), R * abs(state[5])) < rest_vel
+        resting = resting + 1 if (k >= n_exc and mode == MODE_REST and still) else 0
+    if k % hist_every != 0:
+        j = _record(j, hist_t.size, k * dt, state[2], state[5], _slide_of(b, h, state[0], state[2]),
+                    hist_t, hist_th, hist_thd, hist_sl)
+    out[OUT_STATUS] = status
+    out[OUT_STEPS] = k
+    out[OUT_THETA_MAX] = theta_max
+    out[OUT_ROCKED] = 1.0 if theta_max > rocked_theta else 0.0
+    out[OUT_SLIDE_MAX] = slide_max
+    out[OUT_X:OUT_X + 6] = state
+    out[OUT_N_HIST] = j
+    out[OUT_TIME] = k * dt
+    return status

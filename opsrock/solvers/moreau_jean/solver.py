@@ -1,0 +1,257 @@
+"""One case: :func:`solve` (a pulse or a record) and :func:`free_rocking` (from a rotated state)."""
+
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from opsrock.block import Block
+from opsrock.constants import OVERTURNING_ANGLE, G
+from opsrock.errors import InputError, InputTypeError
+from opsrock.excitations import Pulse, Record
+from opsrock.limits import positive_finite, real_number
+from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
+from opsrock.solvers.common import make_settings, settings_record
+from opsrock.solvers.moreau_jean import kernel as kn
+from opsrock.solvers.moreau_jean.settings import MoreauJeanSettings
+
+#: Name this solver writes into :attr:`RockingResult.solver`.
+SOLVER_NAME = "moreau_jean"
+
+
+@dataclass(frozen=True)
+class _Forcing:
+    """The floor motion as the kernel takes it (see :func:`kernel.run`)."""
+
+    form: int
+    ah: np.ndarray
+    av: np.ndarray
+    sub: int
+    n_exc: int
+    tail_av: float
+    dt: float
+    peak: float  # max |a_h| + max |a_v| (m/s²), for the contact gap
+
+
+def _refuse_block(block: object) -> Block:
+    """The block, if Moreau-Jean can model it: its impact law must be Housner's (``e = e_H``)."""
+    if not isinstance(block, Block):
+        raise InputTypeError(f"block must be a Block, got {block!r}")
+    if block.restitution is not None or block.restitution_factor != 1.0:
+        given = (f"restitution = {block.restitution!r}" if block.restitution is not None
+                 else f"restitution_factor = {block.restitution_factor!r}")
+        raise InputError(
+            f"solver 'moreau_jean' reproduces Housner's impact (e = e_H = {block.e_R:.6g}) and no other: block "
+            f"{block.name or '<unnamed>'} has {given}; build it with restitution_factor=1.0 and no restitution")
+    return block
+
+
+def _refuse_excitation(excitation: object) -> None:
+    """Refuse what the kernel cannot take: anything but an analytic :class:`Pulse` or a :class:`Record`."""
+    if not isinstance(excitation, (Pulse, Record)):
+        raise InputTypeError(f"solver 'moreau_jean' solves analytic pulses (Pulse) and records (Record), got "
+                             f"{type(excitation).__name__}")
+
+
+def _pulse_forcing(pulse: Pulse, dt_nom: float, theta_mj: float) -> _Forcing:
+    """The pulse sampled exactly at every step's evaluation time; a whole number of steps in the pulse."""
+    n = max(1, math.ceil(pulse.duration / dt_nom))
+    dt = pulse.duration / n
+    t = (np.arange(n) + theta_mj) * dt
+    ah = np.ascontiguousarray(pulse.acceleration(t), dtype=float)
+    av = np.full(n, float(pulse.vertical))
+    return _Forcing(kn.FORCING_STEPWISE, ah, av, 1, n, float(pulse.vertical), dt,
+                    float(np.max(np.abs(ah))) + abs(float(pulse.vertical)))
+
+
+def _record_forcing(record: Record, dt_nom: float) -> _Forcing:
+    """The record's samples, ``sub`` steps per sample interval (no step straddles a sample)."""
+    sub = max(1, math.ceil(record.dt / dt_nom))
+    # writable copies: the record's arrays are read-only, which numba would compile a second kernel for
+    ah = np.array(record.values, dtype=float)
+    av = np.zeros_like(ah) if record.vertical is None else np.array(record.vertical, dtype=float)
+    n = (ah.size - 1) * sub
+    return _Forcing(kn.FORCING_LINEAR, ah, av, sub, n, 0.0, record.dt / sub,
+                    float(np.max(np.abs(ah))) + float(np.max(np.abs(av))))
+
+
+def _free_forcing(duration: float, dt_nom: float) -> _Forcing:
+    """No floor motion for ``duration`` (s)."""
+    n = max(1, math.ceil(duration / dt_nom))
+    z = np.zeros(n)
+    return _Forcing(kn.FORCING_STEPWISE, z, z.copy(), 1, n, 0.0, duration / n, 0.0)
+
+
+def _run(block: Block, forcing: _Forcing, state: np.ndarray, settings: MoreauJeanSettings,
+         tail: bool) -> RockingResult:
+    """Run the kernel on one case and build the result."""
+    p, R, dt = block.p, block.R, forcing.dt
+    mu_inf = block.friction is None
+    fric = np.array([0.0 if mu_inf else block.friction, 0.0 if mu_inf else block.friction_kinetic,
+                     1.0 if mu_inf else 0.0])
+    num = np.array([dt, settings.theta_mj, settings.local_tol, settings.rocked_theta])
+    max_tail = math.ceil(settings.max_tail / (p * dt)) if tail else -1
+    limits = np.array([settings.max_steps, max_tail, settings.rest_velocity * p * R,
+                       max(1, math.ceil(settings.rest_duration / (p * dt))), settings.velocity_tol * p * R,
+                       settings.contact_gap * (G + forcing.peak) * dt * dt])
+    every = max(1, round(settings.history_dtau / (p * dt)))
+    cap = min(forcing.n_exc + max(max_tail, 0), settings.max_steps) // every + 3
+    hist = [np.zeros(cap) for _ in range(4)]
+    out = np.zeros(kn.OUT_SIZE)
+    record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": dt}
+    t0 = _time.perf_counter()
+    try:
+        kn.run(np.array([block.b, block.h, R, G]), fric, num, forcing.form, forcing.ah, forcing.av, forcing.sub,
+               forcing.n_exc, forcing.tail_av, state.copy(), limits, every, *hist, out)
+    except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
+        return failed_result(SOLVER_NAME, record, block.alpha, f"{type(exc).__name__}: {exc}",
+                             wall_time_s=_time.perf_counter() - t0)
+    wall = _time.perf_counter() - t0
+    return _result(block, out, hist, record, wall, state)
+
+
+def _mechanical(block: Block, state: np.ndarray) -> tuple[float, float]:
+    """Kinetic and potential energy (J) of ``state = (x, y, theta, x', y', theta')``; ``PE = m g (y - h)``."""
+    _, y, _, vx, vy, vt = (float(v) for v in state)
+    m = block.mass
+    return 0.5 * m * (vx * vx + vy * vy + block.R ** 2 / 3.0 * vt * vt), m * G * (y - block.h)
+
+
+def _energy(block: Block, out: np.ndarray, state0: np.ndarray) -> dict[str, float]:
+    """The run's energy balance in J (for the block's mass), from the kernel's per-unit-mass sums;
+    ``initial`` is the mechanical energy at the start (0 from rest)."""
+    kinetic, potential = _mechanical(block, out[kn.OUT_X:kn.OUT_X + 6])
+    initial = sum(_mechanical(block, state0))
+    work, fric, imp = (block.mass * out[i] for i in (kn.OUT_INPUT_WORK, kn.OUT_FRICTION_WORK, kn.OUT_IMPACT_LOSS))
+    return {"input_work": float(work), "kinetic": kinetic, "potential": potential, "friction_work": float(fric),
+            "impact_loss": float(imp), "initial": initial,
+            "residual": float(work + initial - kinetic - potential - fric - imp)}
+
+
+def _result(block: Block, out: np.ndarray, hist: list[np.ndarray], record: dict[str, Any],
+            wall: float, state0: np.ndarray) -> RockingResult:
+    """The :class:`RockingResult` of a finished kernel run."""
+    n = int(out[kn.OUT_N_HIST])
+    time_s, theta, theta_dot, slide = (a[:n].copy() for a in hist)
+    status = int(out[kn.OUT_STATUS])
+    steps = int(out[kn.OUT_STEPS])
+    diagnostics = {"end_time": float(out[kn.OUT_TIME]), "max_penetration": float(out[kn.OUT_MAX_PENETRATION]),
+                   "flicker_steps": int(out[kn.OUT_FLICKER_STEPS]),
+                   "max_flicker_gap": float(out[kn.OUT_MAX_FLICKER_GAP]), "limit_steps": int(out[kn.OUT_LIMIT_STEPS])}
+    if status != kn.STATUS_OK:
+        failed = failed_result(SOLVER_NAME, record, block.alpha, kn.STATUS_REASONS[status], time=time_s,
+                               theta=theta, theta_dot=theta_dot, n_steps=steps, wall_time_s=wall)
+        return replace(failed, slide=slide, diagnostics=diagnostics)
+    first = int(out[kn.OUT_FIRST_MODE])
+    contact = ContactSummary(
+        first_mode=MODES[first] if first >= 0 else "rest", time_sliding=float(out[kn.OUT_TIME_SLIDING]),
+        time_rocking=float(out[kn.OUT_TIME_ROCKING]), slide_max=float(out[kn.OUT_SLIDE_MAX]),
+        slide_residual=float(slide[-1]) if n else 0.0, energy=_energy(block, out, state0))
+    theta_max = float(out[kn.OUT_THETA_MAX])
+    return RockingResult(
+        solver=SOLVER_NAME, settings=record, alpha=block.alpha, time=time_s, theta=theta, theta_dot=theta_dot,
+        theta_max=theta_max, overturned=theta_max >= OVERTURNING_ANGLE, rocked=bool(out[kn.OUT_ROCKED]),
+        n_steps=steps, wall_time_s=wall, n_impacts=int(out[kn.OUT_IMPACTS]), diagnostics=diagnostics,
+        slide=slide, contact=contact)
+
+
+def solve(block: Block, excitation: Pulse | Record, *, settings: MoreauJeanSettings | None = None,
+          **overrides: Any) -> RockingResult:
+    """Response of a block on a floor with Coulomb friction, initially at rest, to a floor motion with
+    horizontal and vertical components, by Moreau-Jean time stepping.
+
+    Parameters
+    ----------
+    block : Block
+        The block; ``friction`` (static ``mu``, None: infinite, the base never slips) and
+        ``friction_kinetic`` (``mu_k <= mu``, used while a corner slips). Its impact law must be
+        Housner's: ``restitution_factor = 1`` and no ``restitution`` (Moreau-Jean with ``e_n = 0`` at the
+        corners gives exactly ``e_H``, and no impulses at the corners can give less).
+    excitation : Pulse or Record
+        Any analytic pulse (its constant ``vertical`` acts during the pulse and after it) or a record
+        (its ``vertical`` samples, if any; nothing after its last sample).
+    settings : MoreauJeanSettings, optional
+        Numerical settings; keyword ``overrides`` replace individual fields.
+
+    Returns
+    -------
+    RockingResult
+        Histories every ``history_dtau`` (time s, theta rad, theta_dot rad/s, slide m) over the
+        excitation and the tail to rest; ``theta_max``, ``overturned``, ``rocked`` (``|theta|`` ever
+        above ``rocked_theta``), ``n_impacts`` (closings of a corner on the floor after it had left
+        it, counted once per step), and ``contact`` (:class:`~opsrock.result.ContactSummary`). A run that
+        did not finish (non-finite state, ``max_steps``, still moving at ``max_tail``, a contact problem
+        without solution) is failed, with its reason. ``diagnostics``: ``end_time`` (s), ``max_penetration``
+        (m, deepest corner below the floor at the end of a step with a normal impulse; an impact sinks
+        the corner by up to its approach velocity times ``dt``), ``flicker_steps`` and ``max_flicker_gap``
+        (m) (free steps of a pivot that stays down, see ``contact_gap``), ``limit_steps`` (steps solved with
+        the infinite-friction limit ``P_N = 0``, :func:`kernel._local`).
+
+    Raises
+    ------
+    InputError
+        A block whose restitution is not Housner's, or a settings value out of range.
+    InputTypeError
+        A block that is not a :class:`Block`, or an excitation that is neither a pulse nor a record.
+    """
+    settings = make_settings(MoreauJeanSettings, settings, overrides)
+    block = _refuse_block(block)
+    _refuse_excitation(excitation)
+    dt_nom = settings.dtau / block.p
+    if isinstance(excitation, Record):
+        forcing = _record_forcing(excitation, dt_nom)
+    else:
+        forcing = _pulse_forcing(excitation, dt_nom, settings.theta_mj)
+    state = np.array([0.0, block.h, 0.0, 0.0, 0.0, 0.0])
+    return _run(block, forcing, state, settings, tail=True)
+
+
+def rocking_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndarray:
+    """``(x, y, theta, x', y', theta')`` of the block rocking on corner ``sgn(theta)`` (stuck, on the floor)
+    with rotation ``theta`` (rad) and angular velocity ``theta_dot`` (rad/s); the pivot is where it
+    was at rest, so the slide is zero."""
+    c = 1.0 if theta >= 0.0 else -1.0
+    phi = c * block.alpha - theta
+    x = c * block.b * (1.0 - math.cos(theta)) + block.h * math.sin(theta)
+    y = c * block.b * math.sin(theta) + block.h * math.cos(theta)
+    return np.array([x, y, theta, block.R * math.cos(phi) * theta_dot, block.R * math.sin(phi) * theta_dot,
+                     theta_dot])
+
+
+def free_rocking(block: Block, theta0: float, duration: float, *, theta_dot0: float = 0.0,
+                 settings: MoreauJeanSettings | None = None, **overrides: Any) -> RockingResult:
+    """Motion on a still floor from a rotated state, integrated for ``duration`` (no tail).
+
+    Used to check the impact law against closed forms (Housner's ``e_H``, the slipping impact).
+
+    Parameters
+    ----------
+    block : Block
+        The block (as for :func:`solve`).
+    theta0 : float
+        Initial rotation (rad), ``|theta0| < pi/2``, on the corner ``sgn(theta0)``.
+    duration : float
+        Integrated time (s), > 0.
+    theta_dot0 : float, optional
+        Initial angular velocity (rad/s), with the pivot stuck. Default 0.
+    settings : MoreauJeanSettings, optional
+        Numerical settings; keyword ``overrides`` replace individual fields.
+    """
+    settings = make_settings(MoreauJeanSettings, settings, overrides)
+    block = _refuse_block(block)
+    theta0 = real_number("theta0", theta0)
+    if not (math.isfinite(theta0) and abs(theta0) < OVERTURNING_ANGLE):
+        raise InputError(f"theta0 must be finite with |theta0| < pi/2, got {theta0!r}")
+    duration = positive_finite("duration", duration)
+    theta_dot0 = real_number("theta_dot0", theta_dot0)
+    if not math.isfinite(theta_dot0):
+        raise InputError(f"theta_dot0 must be finite, got {theta_dot0!r}")
+    forcing = _free_forcing(duration, settings.dtau / block.p)
+    return _run(block, forcing, rocking_state(block, theta0, theta_dot0), settings, tail=False)
+
+
+__all__ = ["SOLVER_NAME", "free_rocking", "rocking_state", "solve"]

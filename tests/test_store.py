@@ -26,6 +26,14 @@ def row(case_id: str, theta_max: float = 0.1, **over) -> dict:
         "wall_time_s": 0.01,
         "n_steps": 10,
         "n_impacts": 2,
+        # the contact columns, empty: a solver without friction
+        "response": None,
+        "first_mode": None,
+        "time_sliding": math.nan,
+        "time_rocking": math.nan,
+        "time_flight": math.nan,
+        "slide_max": math.nan,
+        "slide_residual": math.nan,
     }
     base.update(over)
     return base

@@ -62,7 +62,8 @@ class OverturningIntervals:
     solver : str
         Solver that gave the verdicts.
     equations : str
-        ``"exact"`` or ``"linearised"`` (rigid-body solvers); ``"sdof"`` for the SDOF models.
+        ``"exact"`` or ``"linearised"`` (rigid-body solvers); ``"sdof"`` for the SDOF models, ``"friction"`` for
+        the rigid block with friction.
     alpha : float
         Block slenderness (rad).
     intervals : tuple of (float, float)
@@ -226,6 +227,13 @@ def _intervals_from(grid: np.ndarray, code: np.ndarray, edges: dict[int, float])
     return tuple(out)
 
 
+def _model_of(solver: str) -> str:
+    """The registry's model of ``solver`` (``"sdof"``, ``"friction"``)."""
+    from opsrock.solvers import METHODS
+
+    return METHODS[solver].model
+
+
 def overturning_intervals(block: Block, freq_ratio: float, *, shape: str = "one-sine", solver: str = "housner_fast",
                           equations: str = "exact", pfa_ratio_max: float = DEFAULT_PFA_RATIO_MAX,
                           n_scan: int = DEFAULT_N_SCAN, rtol: float = DEFAULT_RTOL,
@@ -276,7 +284,7 @@ def overturning_intervals(block: Block, freq_ratio: float, *, shape: str = "one-
     edges = _edges(change, code[change], a, b)
     return OverturningIntervals(
         freq_ratio=freq_ratio, shape=shape, solver=solver,
-        equations=equations if solver in RIGID_SOLVERS else "sdof", alpha=block.alpha,
+        equations=equations if solver in RIGID_SOLVERS else _model_of(solver), alpha=block.alpha,
         intervals=_intervals_from(grid, code, edges), pfa_ratio_min=float(grid[0]), pfa_ratio_max=float(grid[-1]),
         scan_ratio=float(grid[1] / grid[0]), rtol=rtol,
         failed=tuple((float(grid[i]), reasons[i]) for i in np.flatnonzero(code < 0)), n_solves=verdicts.n_solves,

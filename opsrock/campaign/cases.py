@@ -26,6 +26,19 @@ RESULT_COLUMNS: tuple[str, ...] = (
     "wall_time_s",
 )  # fmt: skip
 
+#: Columns a scene solved with friction adds (solvers of the ``friction`` model): the block's friction
+#: coefficients (dimensionless; empty: no slip), the vertical floor motion's peak (m/s², 0 without one),
+#: and what the block did: ``response`` (overturned / rocked / slid / at_rest / failed), ``first_mode``
+#: (the mode it left rest into), ``time_sliding``, ``time_rocking`` and ``time_flight`` (s), ``slide_max`` and
+#: ``slide_residual`` (m, the base's displacement relative to the floor, peak and final).
+CONTACT_COLUMNS: tuple[str, ...] = (
+    "friction", "friction_kinetic", "pfa_vertical", "response", "first_mode", "time_sliding", "time_rocking",
+    "time_flight", "slide_max", "slide_residual",
+)  # fmt: skip
+
+#: The contact columns a solver fills (the others are the scene's).
+_SOLVED_CONTACT_COLUMNS: tuple[str, ...] = CONTACT_COLUMNS[3:]
+
 #: The block's columns, first in every ``cases.csv`` (m, rad, m, rad/s; ``e``, ``e_R`` dimensionless).
 BLOCK_COLUMNS: tuple[str, ...] = ("case_id", "block", "width", "height", "alpha", "R", "p", "e", "e_R")
 
@@ -58,7 +71,7 @@ MAX_REASON: int = 500
 
 def _block_columns(case_id: str, b: Block) -> dict[str, Any]:
     return {"case_id": case_id, "block": b.name, "width": b.width, "height": b.height, "alpha": b.alpha,
-            "R": b.R, "p": b.p, "e": b.e, "e_R": b.e_R}
+            "R": b.R, "p": b.p, "e": b.e, "e_R": b.e_R, "friction": b.friction, "friction_kinetic": b.friction_kinetic}
 
 
 @dataclass(frozen=True)
@@ -103,7 +116,8 @@ class PulseCase:
 
         b, pulse = self.block, self.pulse
         ims = intensity_measures(b, pulse, pfv_convention=self.pfv_convention)
-        return {**_block_columns(self.case_id, b), "pfa": pulse.pfa, "omega_p": pulse.omega_p, "T_p": pulse.T_p,
+        return {**_block_columns(self.case_id, b), "pfa_vertical": abs(pulse.vertical), "pfa": pulse.pfa,
+                "omega_p": pulse.omega_p, "T_p": pulse.T_p,
                 "pfv": pulse.pfv(self.pfv_convention), "freq_ratio": self.freq_ratio, "pfa_ratio": self.pfa_ratio,
                 **{k: ims[k] for k in IM_COLUMNS}}
 
@@ -163,6 +177,7 @@ class RecordCase:
             "level": self.level, "level_value": self.level_value, "scale": self.scale,
             "pfa": meas.pfa, "pfv": meas.pfv, "pfd": meas.pfd, "T_m": meas.mean_period,
             "T_pred": meas.predominant_period, "pfa_ratio": meas.pfa / b.uplift_acceleration, **ims,
+            "pfa_vertical": m.record.pfa_vertical * self.scale,
         }
 
 
@@ -178,17 +193,25 @@ def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math
         "case_id": case_id, "status": "failed", "reason": _one_line(reason) or "failed without a reason",
         "verdict": "failed", "theta_max": math.nan, "theta_max_over_alpha": math.nan, "overturned": False,
         "rocked": False, "solver": solver, "wall_time_s": wall_time_s, "n_steps": None, "n_impacts": None,
+        "response": "failed", "first_mode": None, "time_sliding": math.nan, "time_rocking": math.nan,
+        "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan,
     }
 
 
 def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[str, Any]:
     """A store row from a solver's result."""
     s = result.summary()
+    contact = {"response": None, "first_mode": None, "time_sliding": math.nan, "time_rocking": math.nan,
+               "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan}
+    if result.contact is not None:
+        contact = {"response": result.response, **result.contact.columns()}
+    elif result.status == "failed":
+        contact["response"] = "failed"
     return {
         "case_id": case_id, "status": s["status"], "reason": _one_line(s["reason"]), "verdict": s["verdict"],
         "theta_max": s["theta_max"], "theta_max_over_alpha": s["theta_max_over_alpha"],
         "overturned": s["overturned"], "rocked": s["rocked"], "solver": s["solver"], "wall_time_s": wall_time_s,
-        "n_steps": s["n_steps"], "n_impacts": s["n_impacts"],
+        "n_steps": s["n_steps"], "n_impacts": s["n_impacts"], **contact,
     }
 
 
@@ -209,7 +232,8 @@ def case_table(cases: Sequence, rows: Mapping[str, Mapping[str, Any]]) -> list[d
         if case.case_id not in rows:
             raise KeyError(f"case {case.case_id!r} has no stored result")
         stored = rows[case.case_id]
-        table.append({**case.row(), **{col: stored[col] for col in RESULT_COLUMNS}})
+        table.append({**case.row(), **{col: stored[col] for col in RESULT_COLUMNS},
+                      **{col: stored.get(col) for col in _SOLVED_CONTACT_COLUMNS}})
     return table
 
 
@@ -235,5 +259,5 @@ def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], column
     atomic_write(Path(path), write)
 
 
-__all__ = ["BLOCK_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
+__all__ = ["BLOCK_COLUMNS", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
            "RESULT_COLUMNS", "RecordCase", "case_table", "failed_row", "result_row", "write_cases_csv"]

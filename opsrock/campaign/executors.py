@@ -24,9 +24,12 @@ item is computed normally.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import multiprocessing
 import os
+import signal
+import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from concurrent.futures import TimeoutError as FutureTimeout
@@ -220,7 +223,8 @@ class LocalPool(_Closing):
             while todo and len(running) < self.workers:
                 k = todo.pop()
                 try:
-                    fut = pool.submit(fn, batches[k])
+                    with _interrupts_held():  # a worker spawned now starts deaf to Ctrl-C
+                        fut = pool.submit(fn, batches[k])
                 except BrokenProcessPool:
                     # a worker died after the last wait returned: batch k never ran; the batches
                     # in flight are the suspects, exactly as when wait() reports the break
@@ -254,7 +258,8 @@ class LocalPool(_Closing):
     def _run_alone(self, fn, item, lost):
         if self._pool is None or getattr(self._pool, "_max_workers", 1) != 1:
             self._new_pool(1)
-        fut = self._pool.submit(fn, [item])
+        with _interrupts_held():
+            fut = self._pool.submit(fn, [item])
         budget = None if self.item_timeout is None else self.item_timeout + KILL_GRACE
         try:
             return fut.result(timeout=budget)[0]
@@ -265,6 +270,21 @@ class LocalPool(_Closing):
             self._kill_pool()
             return lost(item, f"timeout: no answer within {budget:g} s (the case budget plus {KILL_GRACE:g} s "
                               "of grace); its worker process was killed")
+
+
+@contextlib.contextmanager
+def _interrupts_held():
+    """Hold SIGINT back while worker processes are spawned (``submit`` spawns them on demand): a child
+    inherits the blocked signal mask, so a Ctrl-C during its start-up, before :func:`_ignore_interrupts`
+    runs, cannot make it print a traceback; the parent gets the held Ctrl-C as soon as the spawn is over."""
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
 # --- Dask ------------------------------------------------------------------------------------

@@ -11,6 +11,8 @@ Layout (inside a scene file, instead of ``[grid]``; see ``docs/scenes.md``)::
     # names = ["NORTHR_MUL009"]            # optional subset, by record name, in this order
     # components = ["a", "b"]              # library sets: first/second horizontal component
     ground = false                  # also run on the ground motions (default: no buildings given)
+    # vertical = "synthetic"        # library sets: a vertical motion of 2/3 the other horizontal
+                                    # component (opsrock.excitations.vertical); default "none"
 
     [[records.building]]            # optional, any number: linear shear buildings
     name = "b3"
@@ -53,6 +55,7 @@ from opsrock.excitations import library
 from opsrock.excitations.building import ShearBuilding
 from opsrock.excitations.readers import read_record
 from opsrock.excitations.records import Record, check_sampling
+from opsrock.excitations.vertical import VERTICAL_SOURCES, synthetic_vertical
 from opsrock.intensity.records import MotionMeasures
 from opsrock.limits import LIMITS, check
 
@@ -65,7 +68,8 @@ MEASURES: tuple[str, ...] = ("pfa_g", "pfa_ratio")
 #: Most records in one scene.
 MAX_RECORDS: int = 2_000
 
-_RECORDS_KEYS = {"set", "files", "glob", "units", "dt", "names", "components", "ground", "building", "intensity"}
+_RECORDS_KEYS = {"set", "files", "glob", "units", "dt", "names", "components", "ground", "building", "intensity",
+                 "vertical"}
 _BUILDING_KEYS = {"name", "period", "storeys", "damping", "floors", "masses", "stiffnesses"}
 _INTENSITY_KEYS = {"method", "measure", "levels", "stripes", "scale"}
 
@@ -135,7 +139,10 @@ class RecordSet:
     def fingerprint(self) -> dict[str, Any]:
         """Everything that determines the results, as JSON data: record contents, buildings, axis."""
         return {"records": {
-            "records": [[r.name, r.dt, hashlib.sha256(r.values.tobytes()).hexdigest()] for r in self.grounds],
+            # a vertical motion enters only when there is one, so existing scenes keep their digests
+            "records": [[r.name, r.dt, hashlib.sha256(r.values.tobytes()).hexdigest()]
+                        + ([hashlib.sha256(r.vertical.tobytes()).hexdigest()] if r.vertical is not None else [])
+                        for r in self.grounds],
             "floors": [[f.label, None if f.building is None else _building_json(f.building)] for f in self.floors],
             "intensity": [self.intensity.method, self.intensity.measure, list(self.intensity.levels),
                           [list(s) for s in self.intensity.stripes]],
@@ -202,6 +209,7 @@ def parse_records(f: TomlFile, raw: Any, blocks: Sequence[Block]) -> RecordSet:
     f.table("records", raw, "a table [records]")
     f.keys("records", raw, allowed=_RECORDS_KEYS)
     grounds, source = _grounds(f, raw)
+    grounds = _vertical(f, raw, grounds)
     if not grounds:
         raise f.error("records", source, "selects no records")
     if len(grounds) > MAX_RECORDS:
@@ -248,6 +256,20 @@ def _grounds(f: TomlFile, raw: dict) -> tuple[list[Record], str]:
             raise f.error("records", r.name, "two records have this name; rename one file")
         seen.add(r.name)
     return records, source
+
+
+def _vertical(f: TomlFile, raw: dict, grounds: list[Record]) -> list[Record]:
+    """The ground records with the vertical motion ``[records] vertical`` asks for."""
+    vertical = raw.get("vertical", "none")
+    if vertical not in VERTICAL_SOURCES:
+        raise f.error("records.vertical", vertical, f"must be one of {', '.join(VERTICAL_SOURCES)}")
+    if vertical == "none":
+        return grounds
+    if "set" not in raw:
+        raise f.error("records.vertical", vertical, "a synthetic vertical motion needs a library set (set = ...): it "
+                      "is built from the recording's other horizontal component")
+    set_name, _ = library.parse_reference(raw["set"])
+    return [synthetic_vertical(f"{library.LIBRARY}:{set_name}/{r.name}") for r in grounds]
 
 
 def _library_set(f: TomlFile, raw: dict) -> tuple[list[Record], str]:

@@ -39,6 +39,7 @@ from pathlib import Path
 from typing import Any, Callable, Mapping, Sequence
 
 from opsrock._files import atomic_write
+from opsrock.campaign.advice import sliding_warnings
 from opsrock.campaign.cases import IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
 from opsrock.campaign.motions import cached_motions, compute_motions
@@ -89,6 +90,8 @@ class CampaignSummary:
         Digest of what determines the results (scene, solver, settings).
     solver : str
         Solver that ran.
+    warnings : tuple of str
+        Where the no-slip model may not hold (:func:`opsrock.campaign.advice.sliding_warnings`).
     """
 
     n_cases: int
@@ -102,6 +105,7 @@ class CampaignSummary:
     manifest_path: str
     digest: str
     solver: str
+    warnings: tuple[str, ...] = ()
 
 
 # --- work done in the workers -------------------------------------------------------------------
@@ -225,13 +229,13 @@ class _Run:
     n_computed: int = 0
     n_reused: int = 0
 
-    def summary(self, n_cases: int, n_failed: int, wall_time_s: float) -> CampaignSummary:
+    def summary(self, table: list, wall_time_s: float) -> CampaignSummary:
         out = self.out
         return CampaignSummary(
-            n_cases=n_cases, n_computed=self.n_computed, n_reused=self.n_reused, n_failed=n_failed,
-            wall_time_s=wall_time_s, out_dir=str(out), store_path=str(out / STORE_FILE),
-            cases_csv=str(out / CASES_FILE), manifest_path=str(out / MANIFEST_FILE), digest=self.digest,
-            solver=self.scene.solver)
+            n_cases=len(table), n_computed=self.n_computed, n_reused=self.n_reused,
+            n_failed=sum(r["status"] == "failed" for r in table), wall_time_s=wall_time_s, out_dir=str(out),
+            store_path=str(out / STORE_FILE), cases_csv=str(out / CASES_FILE), manifest_path=str(out / MANIFEST_FILE),
+            digest=self.digest, solver=self.scene.solver, warnings=tuple(sliding_warnings(self.scene.blocks, table)))
 
     def open(self, store: ResultStore, manifest: dict, force: bool) -> None:
         """Check the folder's manifest against this run's, or start the store afresh."""
@@ -371,7 +375,7 @@ def run_campaign(
                 run.executor.close()
         table = case_table(cases, store.rows())
         write_cases_csv(out / CASES_FILE, table, scene.columns)
-    return run.summary(len(cases), sum(r["status"] == "failed" for r in table), time.perf_counter() - t_start)
+    return run.summary(table, time.perf_counter() - t_start)
 
 
 __all__ = ["CASES_FILE", "CampaignSummary", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "run_campaign", "solve_batch"]

@@ -26,8 +26,10 @@ Scene file layout (see ``docs/scenes.md``)::
     [pulse] and [grid] (a pulse scene), or [records] (a record scene)
 
 Blocks file layout: an array of tables ``[[block]]`` with ``name``, ``width`` (2b, m),
-``height`` (2h, m), ``reason`` (one line), and optionally ``mass`` (kg) and either
-``restitution_factor`` (``e / e_R``) or ``restitution`` (``e`` itself).
+``height`` (2h, m), ``reason`` (one line), and optionally ``mass`` (kg), either
+``restitution_factor`` (``e / e_R``) or ``restitution`` (``e`` itself), and ``friction`` (the static
+Coulomb coefficient on the floor) with ``friction_kinetic``; a block with friction needs a solver of
+the ``friction`` model.
 """
 
 from __future__ import annotations
@@ -45,7 +47,8 @@ from opsrock.campaign.toml import MAX_AXIS_POINTS, TomlFile, canonical
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS
-from opsrock.solvers import SOLVERS, check_settings
+from opsrock.campaign.cases import CONTACT_COLUMNS
+from opsrock.solvers import METHODS, SOLVERS, check_settings
 
 if TYPE_CHECKING:
     from opsrock.campaign.records import RecordSet
@@ -64,7 +67,8 @@ MAX_CASES: int = 250_000
 
 _SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid", "records", "pulse"}
 _SOLVER_KEYS = {"name", "settings", "case_timeout"}
-_BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor", "restitution"}
+_BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor", "restitution", "friction",
+               "friction_kinetic"}
 
 
 @dataclass(frozen=True)
@@ -87,6 +91,10 @@ class BlockSpec:
         ``e / e_R`` (dimensionless).
     restitution : float or None
         ``e`` itself (dimensionless, in (0, 1]), instead of ``restitution_factor``; None if not set.
+    friction : float or None
+        Static Coulomb friction coefficient on the floor (dimensionless); None: the base never slips.
+    friction_kinetic : float or None
+        Kinetic coefficient (dimensionless, <= ``friction``); None: equal to ``friction``.
     """
 
     name: str
@@ -96,12 +104,15 @@ class BlockSpec:
     mass: float = 1.0
     restitution_factor: float = DEFAULT_RESTITUTION_FACTOR
     restitution: float | None = None
+    friction: float | None = None
+    friction_kinetic: float | None = None
 
     @property
     def block(self) -> Block:
         """The :class:`~opsrock.block.Block` this entry describes."""
         return Block(width=self.width, height=self.height, mass=self.mass, restitution_factor=self.restitution_factor,
-                     name=self.name, restitution=self.restitution)
+                     name=self.name, restitution=self.restitution, friction=self.friction,
+                     friction_kinetic=self.friction_kinetic)
 
 
 @dataclass(frozen=True)
@@ -157,6 +168,12 @@ class Scene:
                              "a scene needs exactly one of [grid] (pulses) or [records] (floor motions)")
         object.__setattr__(self, "solver_settings", _check_solver(TomlFile(self.path or "<scene>"), self.solver,
                                                                   dict(self.solver_settings)))
+        if METHODS[self.solver].model != "friction":
+            for b in self.blocks:
+                if b.friction is not None:
+                    raise SceneError(self.path or "<scene>", "solver.name", self.solver,
+                                     f"block {b.name!r} has friction = {b.friction!r}, and solver {self.solver!r} "
+                                     "models no-slip rocking: use solver 'friction' (or drop the block's friction)")
 
     @property
     def design(self) -> Grid | RecordSet:
@@ -165,7 +182,10 @@ class Scene:
 
     @property
     def columns(self) -> tuple[str, ...]:
-        """Columns of the scene's ``cases.csv``."""
+        """Columns of the scene's ``cases.csv``: with the contact columns for a solver of the ``friction``
+        model (:data:`opsrock.campaign.cases.CONTACT_COLUMNS`)."""
+        if METHODS[self.solver].model == "friction":
+            return (*self.design.columns, *CONTACT_COLUMNS)
         return self.design.columns
 
     @property
@@ -221,7 +241,9 @@ class Scene:
             # the stores that resume from them, stay valid
             "blocks": [
                 [b.name, b.width, b.height, b.mass, b.restitution_factor]
-                + ([b.restitution] if b.restitution is not None else []) for b in self.blocks
+                + ([b.restitution] if b.restitution is not None else [])
+                + ([{"friction": b.friction, "friction_kinetic": b.friction_kinetic}] if b.friction is not None else [])
+                for b in self.blocks
             ],
             **self.design.fingerprint(),
         }
@@ -280,10 +302,16 @@ def _block_spec(f: TomlFile, where: str, entry: dict) -> BlockSpec:
         restitution_factor=f.positive(f"{where}.restitution_factor",
                                       entry.get("restitution_factor", DEFAULT_RESTITUTION_FACTOR)),
         restitution=f.positive(f"{where}.restitution", entry["restitution"]) if "restitution" in entry else None,
+        friction=f.number(f"{where}.friction", entry["friction"]) if "friction" in entry else None,
+        friction_kinetic=(f.number(f"{where}.friction_kinetic", entry["friction_kinetic"])
+                          if "friction_kinetic" in entry else None),
     )
-    try:  # the Block's own physical checks (restitution in (0, 1], e_R > 0)
+    try:  # the Block's own physical checks (restitution in (0, 1], e_R > 0, friction ranges)
         spec.block
     except OpsrockError as exc:
+        key = next((k for k in ("friction_kinetic", "friction") if str(exc).startswith(k) and k in entry), None)
+        if key:
+            raise f.error(f"{where}.{key}", entry[key], str(exc)) from None
         raise f.error(where, {"width": spec.width, "height": spec.height}, str(exc)) from None
     return spec
 

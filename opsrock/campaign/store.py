@@ -35,8 +35,10 @@ STORE_FILE: str = "results.sqlite"
 #: File locked by the campaign that writes to a folder.
 LOCK_FILE: str = ".lock"
 
-#: Version of the table layout below; a store of another version is refused, not migrated.
-SCHEMA_VERSION: int = 1
+#: Version of the table layout below. A version-1 store (before the contact columns) is migrated in
+#: place when opened (the columns are added, empty: its cases were solved without friction); a store
+#: of any other version is refused.
+SCHEMA_VERSION: int = 2
 
 #: Columns stored per case (besides ``case_id``), with their SQLite types. Inputs (block,
 #: pulse, intensity measures) are not stored: they follow from the scene, whose digest the
@@ -53,10 +55,23 @@ RESULT_COLUMNS: dict[str, str] = {
     "wall_time_s": "REAL",  # NULL = NaN: not measured (the worker died)
     "n_steps": "INTEGER",
     "n_impacts": "INTEGER",
+    # what a block with friction did (solvers of the friction model; NULL for the others)
+    "response": "TEXT",
+    "first_mode": "TEXT",
+    "time_sliding": "REAL",
+    "time_rocking": "REAL",
+    "time_flight": "REAL",
+    "slide_max": "REAL",
+    "slide_residual": "REAL",
 }
 
+#: The columns schema version 2 added to version 1.
+_ADDED_IN_2: tuple[str, ...] = ("response", "first_mode", "time_sliding", "time_rocking", "time_flight",
+                                "slide_max", "slide_residual")
+
 _BOOL_COLUMNS = ("overturned", "rocked")
-_FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s")
+_FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s", "time_sliding", "time_rocking", "time_flight",
+                  "slide_max", "slide_residual")
 
 
 class ResultStore:
@@ -132,6 +147,11 @@ class ResultStore:
                 self._db.execute(
                     "INSERT INTO manifest (key, value) VALUES ('schema_version', ?)", (json.dumps(SCHEMA_VERSION),)
                 )
+            elif json.loads(row[0]) == 1:
+                for name in _ADDED_IN_2:
+                    self._db.execute(f"ALTER TABLE results ADD COLUMN {name} {RESULT_COLUMNS[name]}")
+                self._db.execute("UPDATE manifest SET value = ? WHERE key = 'schema_version'",
+                                 (json.dumps(SCHEMA_VERSION),))
             elif json.loads(row[0]) != SCHEMA_VERSION:
                 raise StoreError(
                     f"{self.path} has store schema version {row[0]}, this opsrock writes {SCHEMA_VERSION}; "
@@ -237,7 +257,7 @@ def _to_sql(name: str, value: Any) -> Any:
     if name in _BOOL_COLUMNS:
         return int(bool(value))
     if name in _FLOAT_COLUMNS:
-        v = float(value)
+        v = math.nan if value is None else float(value)
         return None if math.isnan(v) else v
     return value
 
@@ -255,10 +275,12 @@ def read_rows(out_dir: str | Path) -> dict[str, dict[str, Any]]:
     path = Path(out_dir) / STORE_FILE
     if not path.is_file():
         return {}
-    names = list(RESULT_COLUMNS)
     db = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True, timeout=30.0)
     try:
         try:
+            present = {rec[1] for rec in db.execute("PRAGMA table_info(results)")}
+            # a version-1 store (read, not migrated) lacks the contact columns: they read as empty
+            names = [n for n in RESULT_COLUMNS if n in present] if present else list(RESULT_COLUMNS)
             records = db.execute(f"SELECT case_id, {', '.join(names)} FROM results").fetchall()
         except sqlite3.OperationalError as exc:  # created but its tables not yet committed
             if "no such table" in str(exc):
@@ -266,7 +288,8 @@ def read_rows(out_dir: str | Path) -> dict[str, dict[str, Any]]:
             raise
     finally:
         db.close()
-    return {rec[0]: {n: _from_sql(n, v) for n, v in zip(names, rec[1:])} for rec in records}
+    missing = {n: _from_sql(n, None) for n in RESULT_COLUMNS if n not in names}
+    return {rec[0]: {**missing, **{n: _from_sql(n, v) for n, v in zip(names, rec[1:])}} for rec in records}
 
 
 __all__ = ["LOCK_FILE", "RESULT_COLUMNS", "STORE_FILE", "ResultStore", "StoreError", "read_rows"]

@@ -40,11 +40,12 @@ def _one_line(command: str | None, exc: BaseException) -> str:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``opsrock`` console script; returns the exit status."""
-    from opsrock.cli import commands
-    from opsrock.cli.parser import build_parser
-
     command = None
     try:
+        # imported inside the try: a Ctrl-C while a slow machine still imports is an interruption too
+        from opsrock.cli import commands
+        from opsrock.cli.parser import build_parser
+
         args = build_parser().parse_args(argv)
         command = args.command
         return int(getattr(commands, command)(args) or 0)

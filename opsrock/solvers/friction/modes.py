@@ -93,7 +93,7 @@ def start_mode(ah, gv, beta, mu_s, mu_k):
         return SLIDE, 0.0, d
     if mu_s >= critical_friction(mag / gv, beta):
         return ROCK, d, 0.0
-    if mu_k <= beta:
+    if mu_k <= beta * (1.0 + 1e-12):  # b/h from atan2 and back may miss mu_k = b/h by an ulp
         return SLIDE, 0.0, d
     return SLIDE_ROCK, d, d
 

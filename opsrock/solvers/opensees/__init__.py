@@ -20,8 +20,9 @@ a fixed node and the free one:
   while the block is seated. The change takes effect from the next step.
 
 With an implicit integrator a block seated in the stiff branch is treated as the scipy solver treats
-it (:class:`opsrock.model.Seat`): its free oscillation at ``omega_e`` is dropped once it fits in the branch, and in
-adaptive mode under a record a step lands on the instant the floor can lift it.
+it (:class:`opsrock.model.Seat`): its free oscillation at ``omega_e`` is dropped once it fits in the branch, and with
+adaptive Newmark under a record it is carried along its quasi-static deflection without steps up to the samples at
+which the floor can lift it, where a step lands on the uplift instant.
 
 The floor acceleration enters as the nodal moment ``-Lambda a(t)`` (``Lambda`` =
 :meth:`~opsrock.model.SDOFModel.lever_arm`): a ``Trig`` time series for a one-sine pulse (exact

@@ -207,6 +207,12 @@ def numeric_cases(b: str) -> list[Case]:
     cases += _sweep((*SIM, *rec, "--building-period", "0.45"), "--storeys")
     cases += _sweep((*SIM, *bld), "--damping", skip=("0", "1e-320"))  # an undamped building is a building
     cases += [Case(f"simulate --floor {v!r}", (*SIM, *bld, "--floor", v), ("--floor",)) for v in ("0", "-1", "4", "abc", "")]
+    # friction and vertical motion: 0 is a frictionless floor and a floor without vertical motion
+    cases += _sweep(SIM, "--friction", PULSE, skip=("0", "1e-320"))
+    cases += _sweep((*SIM, "--friction", "0.5"), "--friction-kinetic", PULSE, skip=("0", "1e-320"))
+    cases += _sweep(SIM, "--vertical", PULSE, skip=("0", "1e-320"))
+    cases += _sweep(THR, "--friction", ("--freq-ratio", "3"), skip=("0", "1e-320"))
+    cases += _sweep(("sliding-map", "--quick", "--out", "map", "--no-progress"), "--workers")
     for opt in ("--mass", "--restitution", "--freq", "--freq-ratio", "--pfa-ratio-max", "--n-scan", "--rtol"):
         suffix = () if opt in ("--freq", "--freq-ratio") else ("--freq-ratio", "3")
         cases += _sweep(THR, opt, suffix, skip=("1e-320",) if opt == "--restitution" else ())
@@ -325,6 +331,14 @@ def file_cases(b: str) -> list[Case]:
         Case("reproduce --out a file", ("reproduce", "--out", f"{b}/rec.txt"), ("--out", "is a file")),
         Case("reproduce --out ''", ("reproduce", "--out", ""), ("--out",)),
         Case("reproduce --solver bogus", ("reproduce", "--out", "res", "--solver", "bogus"), ("--solver", "bogus")),
+        Case("sliding-map --out ''", ("sliding-map", "--quick", "--out", ""), ("--out",)),
+        Case("sliding-map --out a file", ("sliding-map", "--quick", "--out", f"{b}/rec.txt"), ("--out", "is a file")),
+        Case("simulate --vertical-record synthetic on a file", (*SIM, "--record", f"{b}/rec.txt", "--units", "g", "--dt",
+                                                               "0.01", "--vertical-record", "synthetic"),
+             ("--vertical-record", "library")),
+        Case("simulate --vertical-record missing file", (*SIM, "--record", f"{b}/rec.txt", "--units", "g", "--dt",
+                                                        "0.01", "--vertical-record", f"{b}/nope.txt"),
+             ("--vertical-record", "nope.txt")),
         Case("unknown command", ("frobnicate",), ("frobnicate",)),
     ]
 
@@ -375,7 +389,8 @@ def test_harness_counts_per_command(base):
     per = {}
     for c in cases:
         per[c.args[0]] = per.get(c.args[0], 0) + 1
-    assert set(per) >= {"simulate", "threshold", "run", "fragility", "records", "validate", "bench", "reproduce"}
+    assert set(per) >= {"simulate", "threshold", "run", "fragility", "records", "validate", "bench", "reproduce",
+                        "sliding-map"}
     assert per["simulate"] >= 100 and per["threshold"] >= 80 and per["fragility"] >= 30 and per["run"] >= 40
 
 

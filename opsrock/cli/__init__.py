@@ -11,6 +11,7 @@
     opsrock reproduce --out DIR
     opsrock validate [--case NAME] [--quick] [--out DIR]
     opsrock bench [--quick] [--only NAME]
+    opsrock sliding-map [--quick] --out DIR [--workers N]
 
 The parser is :mod:`opsrock.cli.parser`, the handlers :mod:`opsrock.cli.commands`. One error path:
 every :class:`~opsrock.errors.OpsrockError` (bad arguments, scene files, record files, output
@@ -48,7 +49,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
         args = build_parser().parse_args(argv)
         command = args.command
-        return int(getattr(commands, command)(args) or 0)
+        return int(getattr(commands, command.replace("-", "_"))(args) or 0)
     except OpsrockError as exc:
         print(_one_line(command, exc), file=sys.stderr)
         return EXIT_USAGE

@@ -266,8 +266,19 @@ def _fragility(sub) -> None:
 
 
 #: The commands, in the order ``opsrock --help`` lists them.
+def _sliding_map(sub) -> None:
+    p = sub.add_parser("sliding-map", help="where no-slip rocking holds: the model-form map",
+                       description="Overturning fragility of blocks with friction (and vertical motion) against "
+                                   "no-slip rocking, on FEMA P695 floor motions: the model-form map.")
+    p.add_argument("--out", default="results/sliding-map", help="output folder (default results/sliding-map/)")
+    p.add_argument("--quick", action="store_true", help="a small map (two blocks, one friction, six records)")
+    p.add_argument("--workers", type=count("--workers", "workers"), help="local worker processes (default: all cores)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bars")
+
+
 COMMANDS = {"simulate": _simulate, "threshold": _threshold, "records": _records, "run": _run,
-            "fragility": _fragility, "reproduce": _reproduce, "validate": _validate, "bench": _bench}
+            "fragility": _fragility, "reproduce": _reproduce, "validate": _validate, "bench": _bench,
+            "sliding-map": _sliding_map}
 
 
 def build_parser() -> argparse.ArgumentParser:

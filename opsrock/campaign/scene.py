@@ -13,7 +13,7 @@ Scene file layout (see ``docs/scenes.md``)::
 
     name = "paper"                      # optional, default: file stem
     description = "..."                 # optional
-    blocks = "../blocks.toml"           # required, relative to the scene file
+    blocks = "../blocks.toml"           # required, relative to the scene file, or a shipped library's name
     select = ["bookcase", "wardrobe"]   # optional subset of the blocks file, in this order
     pfv_convention = "amplitude"        # optional, "amplitude" (default) or "peak"
 
@@ -368,6 +368,11 @@ def load_scene(path: str | Path) -> Scene:
 def _blocks(f: TomlFile, data: dict) -> tuple[tuple[BlockSpec, ...], Path]:
     """The scene's blocks: its blocks file, and the ``select`` subset of it."""
     blocks_ref = f.string("blocks", data["blocks"])
+    from opsrock.data import block_library, block_library_names
+
+    if blocks_ref in block_library_names():  # a shipped library, named without a path
+        blocks = load_blocks(block_library(blocks_ref))
+        return (_select(f, data["select"], blocks) if "select" in data else blocks), block_library(blocks_ref)
     try:
         blocks_path = (f.path.parent / blocks_ref).resolve()
         is_file = blocks_path.is_file()

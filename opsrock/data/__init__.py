@@ -41,4 +41,18 @@ def blocks_file() -> Path:
     return _root() / "blocks.toml"
 
 
-__all__ = ["blocks_file", "scene_file", "scene_names"]
+def block_library_names() -> tuple[str, ...]:
+    """Names of the shipped blocks libraries (``blocks/<name>.toml``), sorted: a scene names one as
+    ``blocks = "<name>"``."""
+    return tuple(sorted(p.stem for p in (_root() / "blocks").glob("*.toml")))
+
+
+def block_library(name: str) -> Path:
+    """Path of the shipped blocks library ``name`` (:func:`block_library_names`); ``KeyError`` if none."""
+    path = _root() / "blocks" / f"{name}.toml"
+    if not path.is_file():
+        raise KeyError(f"no shipped blocks library {name!r} (shipped: {', '.join(block_library_names())})")
+    return path
+
+
+__all__ = ["block_library", "block_library_names", "blocks_file", "scene_file", "scene_names"]

@@ -81,10 +81,11 @@ class Grid:
         make = pulse_class(self.shape).from_ratios
         out = []
         for spec in blocks:
-            block = spec.block
             for i, fr in enumerate(self.freq_ratio, start=1):
                 for j, ar in enumerate(self.pfa_ratio, start=1):
-                    out.append(PulseCase(case_id=f"{spec.name}/f{i:0{wf}d}/a{j:0{wa}d}", block=block,
+                    case_id = f"{spec.name}/f{i:0{wf}d}/a{j:0{wa}d}"
+                    block = spec.block_for(case_id)
+                    out.append(PulseCase(case_id=case_id, block=block,
                                          pulse=make(block, pfa_ratio=ar, freq_ratio=fr), freq_ratio=fr,
                                          pfa_ratio=ar, pfv_convention=pfv_convention))
         return out

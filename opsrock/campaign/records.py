@@ -166,13 +166,12 @@ class RecordSet:
         width = max(2, len(str(n_levels)))
         cases = []
         for bspec in blocks:
-            block = bspec.block
             for gi, ground in enumerate(self.grounds):
                 for fl in self.floors:
                     motion = motions[(ground.name, fl.label)]
                     for k in range(1, n_levels + 1):
                         if gi in self.level_records(k):
-                            cases.append(_case(bspec.name, block, ground.name, fl.label, motion, inten, k, width))
+                            cases.append(_case(bspec, ground.name, fl.label, motion, inten, k, width))
         return cases
 
 
@@ -180,8 +179,9 @@ def _building_json(b: ShearBuilding) -> list[Any]:
     return [b.name, b.period, b.storeys, b.damping, list(b.masses or ()), list(b.stiffnesses or ())]
 
 
-def _case(bname: str, block: Block, rname: str, flabel: str, motion, inten: Intensity, k: int, width: int) -> RecordCase:
-    case_id = f"{bname}/{rname}/{flabel}/l{k:0{width}d}"
+def _case(bspec: Any, rname: str, flabel: str, motion, inten: Intensity, k: int, width: int) -> RecordCase:
+    case_id = f"{bspec.name}/{rname}/{flabel}/l{k:0{width}d}"
+    block = bspec.block_for(case_id)
     if isinstance(motion, str):
         dummy = Motion(record=Record(dt=1.0, values=[0.0, 0.0], name=rname), floor=flabel, ground=rname,
                        measures=MotionMeasures(math.nan, math.nan, math.nan, math.nan, math.nan))

@@ -27,7 +27,8 @@ Scene file layout (see ``docs/scenes.md``)::
 
 Blocks file layout: an array of tables ``[[block]]`` with ``name``, ``width`` (2b, m),
 ``height`` (2h, m), ``reason`` (one line), and optionally ``mass`` (kg), either
-``restitution_factor`` (``e / e_R``) or ``restitution`` (``e`` itself), and ``friction`` (the static
+``restitution_factor`` (``e / e_R``, or a distribution of it sampled per case) or ``restitution`` (``e``
+itself, or a named law: :mod:`opsrock.campaign.restitution`), and ``friction`` (the static
 Coulomb coefficient on the floor) with ``friction_kinetic``; a block with friction needs a solver of
 the ``friction`` model.
 """
@@ -48,6 +49,7 @@ from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.campaign.cases import CONTACT_COLUMNS
+from opsrock.campaign.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import METHODS, SOLVERS, check_settings
 
 if TYPE_CHECKING:
@@ -95,6 +97,9 @@ class BlockSpec:
         Static Coulomb friction coefficient on the floor (dimensionless); None: the base never slips.
     friction_kinetic : float or None
         Kinetic coefficient (dimensionless, <= ``friction``); None: equal to ``friction``.
+    restitution_distribution : RestitutionDistribution or None
+        A distribution of ``e / e_R`` drawn once per case (:meth:`block_for`); ``restitution_factor`` is
+        then its mean. None: the factor is fixed.
     """
 
     name: str
@@ -106,13 +111,22 @@ class BlockSpec:
     restitution: float | None = None
     friction: float | None = None
     friction_kinetic: float | None = None
+    restitution_distribution: RestitutionDistribution | None = None
 
     @property
     def block(self) -> Block:
-        """The :class:`~opsrock.block.Block` this entry describes."""
+        """The :class:`~opsrock.block.Block` this entry describes (with the mean factor of a distribution)."""
         return Block(width=self.width, height=self.height, mass=self.mass, restitution_factor=self.restitution_factor,
                      name=self.name, restitution=self.restitution, friction=self.friction,
                      friction_kinetic=self.friction_kinetic)
+
+    def block_for(self, case_id: str) -> Block:
+        """The block of case ``case_id``: :attr:`block`, with its own draw of the restitution factor when the
+        entry has a distribution."""
+        block = self.block
+        if self.restitution_distribution is None:
+            return block
+        return dataclasses.replace(block, restitution_factor=self.restitution_distribution.sample(case_id, block.e_R))
 
 
 @dataclass(frozen=True)
@@ -243,6 +257,7 @@ class Scene:
                 [b.name, b.width, b.height, b.mass, b.restitution_factor]
                 + ([b.restitution] if b.restitution is not None else [])
                 + ([{"friction": b.friction, "friction_kinetic": b.friction_kinetic}] if b.friction is not None else [])
+                + ([{"restitution": b.restitution_distribution.fingerprint()}] if b.restitution_distribution else [])
                 for b in self.blocks
             ],
             **self.design.fingerprint(),
@@ -291,17 +306,41 @@ def load_blocks(path: str | Path) -> tuple[BlockSpec, ...]:
     return tuple(specs)
 
 
+def _restitution(f: TomlFile, where: str, entry: dict) -> tuple[float, float | None, RestitutionDistribution | None]:
+    """``(restitution_factor, restitution, distribution)`` of a blocks-file entry: a number, a named law
+    (``restitution = "housner"``), or a distribution table (``restitution_factor = {...}``)."""
+    factor, e, dist = DEFAULT_RESTITUTION_FACTOR, None, None
+    raw_f, raw_e = entry.get("restitution_factor"), entry.get("restitution")
+    if raw_f is not None and raw_e is not None:
+        raise f.error(f"{where}.restitution", raw_e, "give restitution or restitution_factor, not both")
+    try:
+        if isinstance(raw_e, str):
+            factor = law_factor(raw_e)
+        elif raw_e is not None:
+            e = f.positive(f"{where}.restitution", raw_e)
+        if isinstance(raw_f, dict):
+            dist = distribution_from_table(raw_f)
+            factor = dist.mean
+        elif raw_f is not None:
+            factor = f.positive(f"{where}.restitution_factor", raw_f)
+    except OpsrockError as exc:
+        key = "restitution" if raw_e is not None else "restitution_factor"
+        raise f.error(f"{where}.{key}", entry[key], str(exc)) from None
+    return factor, e, dist
+
+
 def _block_spec(f: TomlFile, where: str, entry: dict) -> BlockSpec:
     f.keys(where, entry, allowed=_BLOCK_KEYS, required={"name", "width", "height"})
+    factor, e, dist = _restitution(f, where, entry)
     spec = BlockSpec(
         name=f.name(f"{where}.name", entry["name"]),
         width=f.positive(f"{where}.width", entry["width"]),
         height=f.positive(f"{where}.height", entry["height"]),
         reason=f.string(f"{where}.reason", entry.get("reason", ""), allow_empty=True),
         mass=f.positive(f"{where}.mass", entry.get("mass", 1.0)),
-        restitution_factor=f.positive(f"{where}.restitution_factor",
-                                      entry.get("restitution_factor", DEFAULT_RESTITUTION_FACTOR)),
-        restitution=f.positive(f"{where}.restitution", entry["restitution"]) if "restitution" in entry else None,
+        restitution_factor=factor,
+        restitution=e,
+        restitution_distribution=dist,
         friction=f.number(f"{where}.friction", entry["friction"]) if "friction" in entry else None,
         friction_kinetic=(f.number(f"{where}.friction_kinetic", entry["friction_kinetic"])
                           if "friction_kinetic" in entry else None),

@@ -71,9 +71,16 @@ def make_block(args: argparse.Namespace):
                          "kinetic coefficient must not exceed the static one")
     if args.friction is not None and args.friction_kinetic is None and args.friction > 1.3:
         raise UsageError(f"--friction {args.friction:g} needs --friction-kinetic (at most 1.3)")
+    factor = {}
+    if args.restitution_law is not None:
+        from opsrock.campaign.restitution import LAWS, law_factor
+
+        if args.restitution_law not in LAWS:
+            raise UsageError(f"--restitution-law must be one of {', '.join(LAWS)}; got {args.restitution_law!r}")
+        factor = {"restitution_factor": law_factor(args.restitution_law)}
     try:
         return Block(width=args.width, height=args.height, mass=args.mass, restitution=args.restitution,
-                     friction=args.friction, friction_kinetic=args.friction_kinetic)
+                     friction=args.friction, friction_kinetic=args.friction_kinetic, **factor)
     except OpsrockError as exc:  # the sizes together (a block too stocky to rock)
         raise UsageError(f"--width {args.width:g}, --height {args.height:g}: {exc}") from None
 

@@ -95,8 +95,11 @@ def _block(p: argparse.ArgumentParser) -> None:
     p.add_argument("--width", required=True, type=limited("--width", "width"), help="full width 2b (m)")
     p.add_argument("--height", required=True, type=limited("--height", "height"), help="full height 2h (m)")
     p.add_argument("--mass", type=limited("--mass", "mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
-    p.add_argument("--restitution", type=positive("--restitution"),
+    r = p.add_mutually_exclusive_group()
+    r.add_argument("--restitution", type=positive("--restitution"),
                    help="restitution coefficient e in (0, 1] (default 0.95 e_R, Housner's e_R = 1 - 1.5 sin² alpha)")
+    r.add_argument("--restitution-law", help="a named law: housner (e = e_R), paper (0.95 e_R, the default) or "
+                                             "colombo-limestone (the factor measured on limestone blocks)")
     p.add_argument("--friction", type=limited("--friction", "friction"),
                    help="static friction coefficient of the base on the floor (default: never slips); solver friction")
     p.add_argument("--friction-kinetic", type=limited("--friction-kinetic", "friction_kinetic"),

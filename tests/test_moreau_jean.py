@@ -6,7 +6,8 @@ Every reference is independent of the solver: Newmark's sliding block and its ha
 Housner's rectangular-pulse threshold with ``g -> g + a_v`` (:mod:`opsrock.published.housner_1963`),
 Housner's ``e_H`` and the slipping-impact ratio of docs/friction.md (a slipping corner), Shenton's
 initiation regions (:mod:`opsrock.published.shenton_1996`), the event-driven rigid-body solver
-``housner_fast`` (no slip, ``e = e_H``) and the first-order decay of the energy residual.
+``housner_fast`` (no slip, ``e = e_H``), the event-driven ``friction`` solver with infinite friction
+on noise records, and the first-order decay of the energy residual.
 
 Tolerances come from the convergence measured with the default step ``dtau = 1e-4`` (module docstring
 of :mod:`opsrock.solvers.moreau_jean`) and are stated at each test.
@@ -27,8 +28,10 @@ from opsrock.excitations import Record
 from opsrock.excitations.pulses import HalfSinePulse, OneSinePulse, RectangularPulse
 from opsrock.published import housner_1963, shenton_1996
 from opsrock.published import newmark_1965 as nm
-from opsrock.solvers import housner_fast
+from opsrock.solvers import friction, housner_fast
 from opsrock.solvers import moreau_jean as mj
+from opsrock.solvers.moreau_jean import kernel as kn
+from opsrock.validation.sdof_records import noise_record
 
 
 def _block(width: float = 0.6, height: float = 2.0, mu: float | None = None, mu_k: float | None = None) -> Block:
@@ -209,6 +212,92 @@ def test_rocking_peak_matches_event_driven_housner():
     assert r.ok and r.contact.first_mode == "rock" and r.contact.time_sliding == 0.0
     assert r.theta_max / block.alpha == pytest.approx(ref.theta_max / block.alpha, abs=1e-3)
     assert r.n_impacts >= 1
+
+
+# =============================================================================================
+# Infinite friction at rest after an uplift: no friction "squeeze" (the both-stick wedge)
+# =============================================================================================
+
+
+def _two_contact_step(theta_k: float, lam: float, previous_pair: int):
+    """The contact problem of one step with both corners active, infinite friction, the block at rest at
+    ``theta_k`` (rad) under ``a_h = lam g tan(alpha)`` (b/h = 0.35, 2h = 1.8 m, dt = 1e-4 s), after a
+    step solved by ``_ORDER_INFINITE[previous_pair]``: ``(status, P_N, P_T, v)``, per unit mass."""
+    block = _block(0.35 * 1.8, 1.8)
+    b, h, R, dt = block.b, block.h, block.R, 1e-4
+    gn, gt = np.zeros(2), np.zeros(2)
+    for i, c in enumerate((1.0, -1.0)):
+        gn[i], gt[i] = kn._rows(c, b, h, theta_k)
+    vf = np.array([-dt * lam * G * block.tan_alpha, -dt * G, 0.0])
+    pn, pt, v = np.zeros(2), np.zeros(2), np.zeros(3)
+    work = (np.zeros((4, 3, 3)), np.zeros((2, 3), dtype=np.int64), np.zeros((2, 4)))
+    last = np.full(1, previous_pair, dtype=np.int64)
+    st = kn._impulses(vf, gn, gt, np.ones(2, dtype=np.bool_), 3.0 / R**2, R, math.inf, 0.0, True, 1e-10,
+                      dt * G, pn, pt, v, *work, last)
+    return st, pn, pt, v
+
+
+@pytest.mark.parametrize("theta_k", [0.0, 1.4e-8, -1e-5])
+def test_infinite_friction_two_contacts_uplift_before_both_stick(theta_k):
+    """At theta_k != 0 the both-stick pair has a solution at any load: the self-equilibrated friction
+    P_T,R = -s, P_T,L = s shifts s tan(theta_k) of normal impulse between the corners, and infinite
+    friction does not bound s (kernel._ORDER_FINITE). Trying the previous step's both-stick pair first
+    once took that "squeeze" (|P_T| of 1e3 m/s against P_N = g dt = 1e-3 m/s at theta_k = 1.4e-8) and
+    held a block on a record for good. Above the uplift level (1.2 g tan(alpha)) the block must tip
+    about the left corner (theta' < 0, right corner open); below it (0.8) it stays at rest with the
+    friction split in proportion to the normal impulses: |P_T| / P_N = a_h / g at each corner."""
+    for prev in (3, 2, -1):  # previous pair both-stick, left stick, none
+        st, pn, pt, v = _two_contact_step(theta_k, 1.2, prev)
+        assert st == kn.STATUS_OK and v[2] < 0.0
+        assert pn[0] == 0.0 and pt[0] == 0.0 and pn[1] > 0.0
+        assert abs(pt[1]) < pn[1]  # Housner's pivot: a friction ratio of order tan(alpha), no squeeze
+        st, pn, pt, v = _two_contact_step(theta_k, 0.8, prev)
+        assert st == kn.STATUS_OK and np.all(v == 0.0) and np.all(pn > 0.0)
+        assert np.abs(pt) / pn == pytest.approx(0.8 * 0.35, rel=1e-5)
+
+
+def _noise_case(seed: int, b_over_h: float, pfa_g: float, vertical_seed: int | None = None):
+    """Block (b/h, 2h = 1.8 m, mu infinite) and noise record (opsrock.validation.sdof_records) scaled to
+    PFA = pfa_g g; with ``vertical_seed``, vertical samples from that noise record at 2/3 of the PFA."""
+    rec = noise_record(seed).scaled_to_pfa(pfa_g * G)
+    if vertical_seed is not None:
+        vertical = noise_record(vertical_seed).scaled_to_pfa(2.0 / 3.0 * pfa_g * G).values
+        rec = Record(rec.dt, rec.values, vertical=vertical)
+    return _block(b_over_h * 1.8, 1.8), rec
+
+
+#: Infinite friction on noise records against the event-driven ``friction`` solver (friction=None), at
+#: the default step: cases the old solver got wrong (it wedged at rest after a brief uplift, see
+#: test_infinite_friction_two_contacts_uplift_before_both_stick, and rocked to 8.6e-7, 6.3e-4, 6.7e-4 and
+#: 1.2e-4 alpha). Measured differences 7.1e-4, 8.2e-4, 5.1e-4 and 1.3e-4 alpha; tolerance 5e-3 alpha. All
+#: four are well conditioned: housner_fast (the three without vertical motion) or ``friction`` (the one
+#: with) moves by at most 1.5e-4 alpha when the record is scaled by 1 +- 1e-4. (The seed-1 record at
+#: 0.8 g with the vertical motion is not: ``friction`` moves by 9e-3 alpha for 1 +- 1e-4 and Moreau-Jean by
+#: 5e-2 between steps, so no 5e-3 agreement is possible there; 0.7 g is used instead.)
+NOISE_CASES = [(1, 0.35, 0.8, None), (6, 0.35, 0.8, None), (4, 0.5, 0.8, None), (1, 0.35, 0.7, 101)]
+
+
+@pytest.mark.parametrize("seed, b_over_h, pfa_g, vertical_seed", NOISE_CASES)
+def test_infinite_friction_on_noise_records_matches_event_driven(seed, b_over_h, pfa_g, vertical_seed):
+    """theta_max/alpha and verdict of Moreau-Jean with mu infinite against ``friction`` (NOISE_CASES).
+    On the seed-1 record at 0.8 g both solvers see a blip of 2-3e-7 rad at 3.2 s (a_h 0.2 % above the
+    uplift level for 16 ms), after which the old solver stayed wedged; the real uplift starts at 4.59 s
+    in both and passes 4e-4 rad by 4.65 s."""
+    block, rec = _noise_case(seed, b_over_h, pfa_g, vertical_seed)
+    r, ref = mj.solve(block, rec), friction.solve(block, rec)
+    assert r.ok and ref.ok and r.verdict == ref.verdict == "safe"
+    assert r.theta_max_over_alpha == pytest.approx(ref.theta_max_over_alpha, abs=5e-3)
+    if (seed, pfa_g, vertical_seed) == (1, 0.8, None):
+        assert np.max(np.abs(r.theta[r.time < 4.55])) < 1e-6 and np.max(np.abs(r.theta[r.time < 4.65])) > 1e-4
+
+
+def test_infinite_friction_on_a_noise_record_overturns_as_event_driven():
+    """A slender block (b/h = 0.2) on the seed-1 record at 0.8 g overturns in both solvers (the old
+    solver, wedged after a brief uplift, called it safe at 2.4e-5 alpha); housner_fast overturns too
+    for the record scaled by 1 +- 1e-4."""
+    block, rec = _noise_case(1, 0.2, 0.8)
+    r, ref = mj.solve(block, rec), friction.solve(block, rec)
+    assert r.ok and r.verdict == ref.verdict == "overturned"
 
 
 # =============================================================================================

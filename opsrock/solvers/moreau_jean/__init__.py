@@ -25,7 +25,12 @@ for two by enumerating the status pairs (open, stick, slip +/-; with infinite fr
 ``P_N -> 0`` limit too) and keeping the first that satisfies every law; if both corners stick the block
 stops (``v_{k+1} = 0``) and the friction split, free at ``theta = 0``, is taken proportional to the
 normal impulses where the cones allow. Stick is tried before slip, which makes ``mu_k < mu`` well
-defined (where a stick and a slip solution both exist, the corner sticks). On random two-contact
+defined (where a stick and a slip solution both exist, the corner sticks). Uplift about one corner is
+tried before both-stick, and both-stick is never taken ahead of it with a friction "squeeze": at a
+rotation ``theta_k != 0`` of a settled block the self-equilibrated part of the split moves normal
+impulse between the corners, and with infinite friction it would hold the block against any load
+(kernel ``_ORDER_FINITE``; before this rule, a block with ``friction=None`` that settled at 1.4e-8 rad
+after a brief uplift never rocked again on a record that rocks it to 0.49 alpha). On random two-contact
 problems the enumeration agreed with projected Gauss-Seidel (the prototype of the research note behind
 docs/friction.md) to 1e-7 wherever the latter converged (19,823 of 20,000; the enumeration solved all).
 With ``e_n = 0`` at both corners a rocking impact gives Housner's ``e_H = 1 - 1.5 sin²(alpha)`` exactly

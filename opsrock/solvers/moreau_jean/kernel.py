@@ -152,6 +152,19 @@ def _local(wnn, wnt, wtt, un, ut, mu_s, mu_k, stick_only):
 _OPEN, _STICK, _SLIP_POS, _SLIP_NEG, _LIMIT = 0, 1, 2, 3, 4
 #: Status pairs (right, left) tried in turn with finite friction: fewer contacts first, stick before slip
 #: (the static law: where a stick and a slip solution both exist, the contact sticks).
+#:
+#: Fewer contacts first matters most for the both-stick pair ``[1, 1]``, whose friction is split between
+#: the corners by a free parameter (:func:`_stick_both`). At ``theta_k != 0`` (a block that settled after
+#: a landing a step away from ``theta = 0``, e.g. 1.4e-8 rad) the self-equilibrated split ``P_T,R = -s``,
+#: ``P_T,L = s`` moves normal impulse from one corner to the other by ``s tan(theta_k)``: a friction
+#: "squeeze" of ``|s| ~ P_N / tan(theta_k)`` wedges the block and makes ``[1, 1]`` a solution at any
+#: horizontal load, with an impulse ratio ``|P_T| / P_N ~ 1 / theta_k`` that grows as the step shrinks
+#: (a settled ``theta_k`` is a step's rotation at the last landing). With a finite ``mu`` the cones
+#: allow a squeeze only while it feeds its own friction, ``mu tan(theta_k) >= 1`` (``theta_k >= 0.01`` rad
+#: at the largest ``mu``, 100); below that the loads so held lie within a relative ``tan(theta_k)`` of
+#: the uplift level. Infinite friction bounds nothing. The one-contact pairs (uplift about one corner)
+#: are therefore tried before ``[1, 1]``, and ``[1, 1]`` with a squeeze is never taken ahead of them
+#: (:func:`_impulses`).
 _ORDER_FINITE = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [2, 0], [3, 0], [0, 2], [0, 3], [1, 2], [1, 3],
                           [2, 1], [3, 1], [2, 2], [2, 3], [3, 2], [3, 3]])
 #: The same with infinite friction: stick or open, then the limit status of :func:`_local` (``P_N = 0``).
@@ -261,12 +274,14 @@ def _try_pair(sr, sl, vf, gn, gt, k3, mu_s, mu_k, eps, pn, pt, v, ws, wi):
 
 
 @numba.njit(cache=True)
-def _stick_both(vf, gn, gt, k3, mu_s, stick_only, eps, pn, pt, v, wb):
+def _stick_both(vf, gn, gt, k3, mu_s, stick_only, strict, eps, pn, pt, v, wb):
     """Both corners stick: then ``v = 0`` (their four velocity rows span the three freedoms) and the
     impulses solve ``G^T P = -M v_free``, a one-parameter family ``P(s)``, ``s = P_T`` of the left corner
     (the split of friction between the corners, free at ``theta = 0``). Keeps the ``s`` nearest to the
     split proportional to the normal impulses that satisfies ``P_N >= 0`` and the cones; False if none.
-    ``wb`` (2 x 4) is workspace."""
+    With ``strict``, only the proportional split itself is accepted: no self-equilibrated friction
+    "squeeze" away from it, which at ``theta_k != 0`` can hold the block against any load (see
+    ``_ORDER_FINITE``). ``wb`` (2 x 4) is workspace."""
     dgn = gn[1] - gn[0]  # 2 b cos(theta) > 0
     dgt = gt[1] - gt[0]  # 2 b sin(theta)
     rhs = -vf[2] / k3 + gn[0] * vf[1] + gt[0] * vf[0]
@@ -297,6 +312,8 @@ def _stick_both(vf, gn, gt, k3, mu_s, stick_only, eps, pn, pt, v, wb):
         den = dgn + rho * dgt
         if den != 0.0:
             s = rho * rhs / den
+    if strict and not lo <= s <= hi:
+        return False
     s = min(max(s, lo), hi)
     pn[0], pt[0], pn[1], pt[1] = a0[0] + s * d[0], a0[1] + s * d[1], a0[2] + s * d[2], a0[3] + s * d[3]
     v[0], v[1], v[2] = 0.0, 0.0, 0.0
@@ -304,11 +321,11 @@ def _stick_both(vf, gn, gt, k3, mu_s, stick_only, eps, pn, pt, v, wb):
 
 
 @numba.njit(cache=True)
-def _try(k, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, eps, pn, pt, v, ws, wi, wb):
-    """Try status pair ``order[k]`` (:func:`_stick_both` or :func:`_try_pair`)."""
+def _try(k, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, strict, eps, pn, pt, v, ws, wi, wb):
+    """Try status pair ``order[k]`` (:func:`_stick_both`, with ``strict``, or :func:`_try_pair`)."""
     sr, sl = order[k, 0], order[k, 1]
     if sr == _STICK and sl == _STICK:
-        return _stick_both(vf, gn, gt, k3, mu_s, stick_only, eps, pn, pt, v, wb)
+        return _stick_both(vf, gn, gt, k3, mu_s, stick_only, strict, eps, pn, pt, v, wb)
     return _try_pair(sr, sl, vf, gn, gt, k3, mu_s, mu_k, eps, pn, pt, v, ws, wi)
 
 
@@ -322,10 +339,17 @@ def _impulses(vf, gn, gt, act, k3, R, mu_s, mu_k, stick_only, tol, scale, pn, pt
     answer. Returns a status: STATUS_OK, -1 (solved using the infinite-friction limit) or STATUS_LOCAL.
 
     ``last[0]`` holds the index of the previous step's pair, tried first when ``mu_s == mu_k`` or ``mu`` is
-    infinite: it is usually the answer again (a sliding block slips at both corners step after step),
-    and should a problem have two solutions, the one that continues the previous step's statuses is
-    taken. With ``mu_s > mu_k`` the fixed order is kept, so that stick wins. ``ws`` (float, 4 x 3 x 3),
-    ``wi`` (int, 2 x 3) and ``wb`` (float, 2 x 4) are workspace.
+    infinite: it is usually the answer again (a sliding block slips at both corners step after step, a
+    resting block sticks at both), and should a problem have two solutions, the one that continues the
+    previous step's statuses is taken. With ``mu_s > mu_k`` the fixed order is kept, so that stick wins.
+    Two exceptions keep the fixed order's "uplift before both-stick" (see ``_ORDER_FINITE``): a previous
+    both-stick pair is accepted ahead of the order only with its proportional friction split
+    (``strict``, no squeeze), and with infinite friction no other previous pair is tried first (its
+    limit pairs squeeze too; the one-contact pairs come first anyway). Accepting the previous both-stick
+    pair with a squeeze once wedged a resting block for good: on a record, a block that settled at
+    ``theta_k = 1.4e-8`` after a brief uplift was held at 1.16 times the uplift acceleration by friction
+    impulses of 2e3 m/s a step and never rocked again. ``ws`` (float, 4 x 3 x 3), ``wi`` (int, 2 x 3) and
+    ``wb`` (float, 2 x 4) are workspace.
     """
     pn[0], pt[0], pn[1], pt[1] = 0.0, 0.0, 0.0, 0.0
     v[0], v[1], v[2] = vf[0], vf[1], vf[2]
@@ -342,12 +366,17 @@ def _impulses(vf, gn, gt, act, k3, R, mu_s, mu_k, stick_only, tol, scale, pn, pt
         return STATUS_OK
     eps = tol * max(scale, abs(vf[0]), abs(vf[1]), R * abs(vf[2]))
     order = _ORDER_INFINITE if stick_only else _ORDER_FINITE
-    first = last[0] if (stick_only or mu_s == mu_k) else -1
-    for i in range(-1, order.shape[0]):
-        k = first if i < 0 else i
-        if k < 0 or (i >= 0 and k == first):
+    prev, skip = last[0], -1
+    if prev >= 0 and (stick_only or mu_s == mu_k):
+        both = order[prev, 0] == _STICK and order[prev, 1] == _STICK
+        if both or not stick_only:
+            if _try(prev, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, both, eps, pn, pt, v, ws, wi, wb):
+                return STATUS_OK  # never a limit pair: those are not tried first
+            skip = -1 if both else prev  # a failed strict both-stick is tried again in the order
+    for k in range(order.shape[0]):
+        if k == skip:
             continue
-        if _try(k, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, eps, pn, pt, v, ws, wi, wb):
+        if _try(k, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, False, eps, pn, pt, v, ws, wi, wb):
             last[0] = k
             return -1 if (order[k, 0] == _LIMIT or order[k, 1] == _LIMIT) else STATUS_OK
     return STATUS_LOCAL

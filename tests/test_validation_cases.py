@@ -103,3 +103,16 @@ def test_sdof_records_quick(tmp_path):
     assert len(sdof_records._load(path)) == 3
     path.write_text(text[: text.rstrip("\n").rfind("\n") + 1] + "1,0.5,1.15,1.3,0.0")
     assert len(sdof_records._load(path)) == 2
+
+
+def test_friction_quick(tmp_path):
+    # Validation case 11, quick form: every closed form and limit check, the mode-initiation diagram on a
+    # coarse grid, and 35 cases of the two implementations (26 pulses, 8 noise-record cases). Measured: all
+    # well-conditioned, responses equal, max |d theta_max| 1.5e-3 alpha and 2e-5 m of slide against the
+    # targets 5e-3 alpha and 1 mm.
+    m = run_case("friction", tmp_path, quick=True)
+    assert m["passed"] and m["n_failed_checks"] == 0 and m["diagram_agreement"] == 1.0
+    assert m["agreement_n_cases"] == 35 and m["agreement_response_agreement"] >= 0.99
+    assert m["agreement_max_d_theta_over_alpha"] <= 0.005 and m["agreement_max_d_slide_m"] <= 0.001
+    for name in ("checks.csv", "diagram.csv", "agreement.csv", "summary.csv", "diagram.png", "agreement.png"):
+        assert (tmp_path / name).is_file()

@@ -128,3 +128,36 @@ def test_factor_above_one_is_allowed_up_to_e_equal_one():
     assert block.e == pytest.approx(1.05 * block.e_R)
     with pytest.raises(InputError, match="1/e_R"):
         Block(0.4, 1.6, restitution_factor=1.2)
+
+
+def test_fixed_against_uncertain_restitution_study(tmp_path):
+    """The comparison's machinery on a small record scene: three variants, one row per block and floor
+    each, the fixed variant inside its own intervals, the uncertain one drawing a spread of e."""
+    from opsrock.analysis.restitution_scatter import compare, variant_scene
+
+    (tmp_path / "blocks.toml").write_text(textwrap.dedent("""
+        [[block]]
+        name = "slender"
+        width = 0.4
+        height = 2.0
+    """))
+    (tmp_path / "scene.toml").write_text(textwrap.dedent("""
+        blocks = "blocks.toml"
+        [solver]
+        name = "housner_fast"
+        [records]
+        set = "fema-p695:far-field"
+        names = ["NORTHR_MUL009", "NORTHR_LOS000", "DUZCE_BOL000", "HECTOR_HEC000", "KOBE_NIS000", "LANDERS_YER270"]
+        ground = true
+        [records.intensity]
+        method = "ida"
+        measure = "pfa_ratio"
+        levels = [1.5, 2.5, 4.0, 6.0, 9.0]
+    """))
+    scene = load_scene(tmp_path / "scene.toml")
+    assert variant_scene("uncertain", scene).blocks[0].restitution_distribution is not None
+    table = compare(tmp_path / "out", workers=1, scene=scene)
+    assert sorted(table["variant"]) == ["fixed", "paper", "uncertain"]
+    fixed = table[table["variant"] == "fixed"].iloc[0]
+    assert fixed["verdict"] == "inside" and fixed["std_e"] < 1e-12
+    assert table[table["variant"] == "uncertain"].iloc[0]["std_e"] > 0.01

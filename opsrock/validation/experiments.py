@@ -966,6 +966,20 @@ def summarise(a: EventArrays, events: pd.DataFrame, est: dict, tables: dict, che
     return m
 
 
+def scatter_outputs(out_dir: Path) -> dict:
+    """The fixed against uncertain restitution comparison (:mod:`opsrock.analysis.restitution_scatter`) into
+    ``out_dir/scatter/`` and ``scatter.csv``; its counts for the summary."""
+    from opsrock._files import atomic_csv
+    from opsrock.analysis.restitution_scatter import compare
+
+    table = compare(out_dir / "scatter")
+    atomic_csv(out_dir / "scatter.csv", table)
+    unc, pap = table[table["variant"] == "uncertain"], table[table["variant"] == "paper"]
+    return {"scatter_cells": int(len(unc)), "scatter_uncertain_inside": int((unc["verdict"] == "inside").sum()),
+            "scatter_paper_inside": int((pap["verdict"] == "inside").sum()),
+            "scatter_max_added_beta": float(unc["added_beta"].max())}
+
+
 def run(out_dir: Path, quick: bool = False) -> dict:
     """Run the case into ``out_dir``: tables (CSV, full precision), ``restitution.png``, ``decay.png``,
     ``checks.csv``, ``summary.csv`` (``_quick`` suffixes for the quick form).
@@ -1007,6 +1021,8 @@ def run(out_dir: Path, quick: bool = False) -> dict:
                      est[("factor", "median all impacts")], out_dir / f"restitution{sfx}.png")
     plot_decay(tables["decay_measured"], tables["decay_predicted"], geometry, out_dir / f"decay{sfx}.png")
     m = summarise(a, events, est, tables, checks)
+    if not quick:  # restitution as an uncertain input on the FEMA P695 IDA scene (three campaigns)
+        m.update(scatter_outputs(out_dir))
     m.update({"quick": quick, "n_boot": N_BOOT_QUICK if quick else N_BOOT, "wall_time_s": time.perf_counter() - t0})
     atomic_text(out_dir / f"summary{sfx}.csv", "metric,value\n" + "".join(f"{k},{v!r}\n" for k, v in m.items()))
     return m

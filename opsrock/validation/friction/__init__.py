@@ -51,7 +51,7 @@ def plot_agreement(rows: list[dict], path: Path) -> Path:
                        label="well-conditioned" if good else "ill-conditioned")
         lim = max([1e-9] + [max(r[f"{key}_friction"], r[f"{key}_moreau_jean"]) for r in rows
                             if math.isfinite(r[f"{key}_friction"]) and math.isfinite(r[f"{key}_moreau_jean"])
-                            and r["response_friction"] != "overturned"])
+                            and "overturned" not in (r["response_friction"], r["response_moreau_jean"])])
         ax.plot([0, lim], [0, lim], "k-", lw=0.8)
         ax.set_xlabel(f"moreau_jean: {label}")
         ax.set_ylabel(f"friction: {label}")

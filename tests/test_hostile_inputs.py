@@ -92,7 +92,9 @@ def _write_scenes(base: Path) -> None:
     scenes = {
         "good": "", "unknown_key": "colour = 'red'", "bad_setting": "[solver.settings]\nrtol = -1",
         "unknown_setting": "[solver.settings]\nbogus = 1", "bad_bool": "[solver.settings]\nrecord = 'no'",
-        "bad_timeout": "case_timeout = -5",
+        "bad_timeout": "case_timeout = -5", "bad_needs": "[needs]\nanswer = 'movies'",
+        "tight_needs": "[needs]\ntolerance = 1e-30", "needs_other_model": "[needs]\nmodel = 'sdof'",
+        "needs_bad_tolerance": "[needs]\ntolerance = -1",
     }
     for name, extra in scenes.items():
         (base / f"{name}.toml").write_text(SCENE.format(blocks=BLOCKS, extra=extra))
@@ -296,6 +298,10 @@ def file_cases(b: str) -> list[Case]:
         Case("run scene is a folder", ("run", f"{b}/folder", "--out", "out"), ("folder",)),
         Case("run unknown key", ("run", f"{b}/unknown_key.toml", "--out", "out"), ("colour",)),
         Case("run bad setting", ("run", f"{b}/bad_setting.toml", "--out", "out"), ("rtol",)),
+        Case("run bad needs.answer", ("run", f"{b}/bad_needs.toml", "--out", "out"), ("needs.answer", "movies")),
+        Case("run needs no solver meets", ("run", f"{b}/tight_needs.toml", "--out", "out"), ("measured error",)),
+        Case("run needs another model", ("run", f"{b}/needs_other_model.toml", "--out", "out"), ("cannot answer",)),
+        Case("run needs.tolerance -1", ("run", f"{b}/needs_bad_tolerance.toml", "--out", "out"), ("needs.tolerance",)),
         Case("run unknown setting", ("run", f"{b}/unknown_setting.toml", "--out", "out"), ("bogus",)),
         Case("run bool setting 'no'", ("run", f"{b}/bad_bool.toml", "--out", "out"), ("record",)),
         Case("run negative case_timeout", ("run", f"{b}/bad_timeout.toml", "--out", "out"), ("case_timeout",)),

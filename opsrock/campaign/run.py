@@ -26,6 +26,7 @@ use ``force=True`` to recompute everything. The command line is ``opsrock run`` 
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import hashlib
 import json
@@ -92,6 +93,8 @@ class CampaignSummary:
         Solver that ran.
     warnings : tuple of str
         Where the no-slip model may not hold (:func:`opsrock.campaign.advice.sliding_warnings`).
+    choice : str
+        Why the solver was chosen for (or checked against) the scene's ``[needs]``; empty without needs.
     """
 
     n_cases: int
@@ -106,6 +109,7 @@ class CampaignSummary:
     digest: str
     solver: str
     warnings: tuple[str, ...] = ()
+    choice: str = ""
 
 
 # --- work done in the workers -------------------------------------------------------------------
@@ -185,6 +189,8 @@ def _manifest(scene: Scene, digest: str, solve_fn: Callable | None) -> dict[str,
         "solve_fn": None if solve_fn is None else _callable_name(solve_fn),
         "pfv_convention": scene.pfv_convention,
         "n_cases": scene.n_cases,
+        "needs": None if scene.needs is None else dataclasses.asdict(scene.needs),
+        "choice": None if scene.choice is None else scene.choice.manifest(),
         "opsrock_version": __version__,
     }
 
@@ -235,7 +241,8 @@ class _Run:
             n_cases=len(table), n_computed=self.n_computed, n_reused=self.n_reused,
             n_failed=sum(r["status"] == "failed" for r in table), wall_time_s=wall_time_s, out_dir=str(out),
             store_path=str(out / STORE_FILE), cases_csv=str(out / CASES_FILE), manifest_path=str(out / MANIFEST_FILE),
-            digest=self.digest, solver=self.scene.solver, warnings=tuple(sliding_warnings(self.scene.blocks, table)))
+            digest=self.digest, solver=self.scene.solver, warnings=tuple(sliding_warnings(self.scene.blocks, table)),
+            choice=self.scene.choice.reason if self.scene.choice is not None else "")
 
     def open(self, store: ResultStore, manifest: dict, force: bool) -> None:
         """Check the folder's manifest against this run's, or start the store afresh."""

@@ -17,11 +17,16 @@ Scene file layout (see ``docs/scenes.md``)::
     select = ["bookcase", "wardrobe"]   # optional subset of the blocks file, in this order
     pfv_convention = "amplitude"        # optional, "amplitude" (default) or "peak"
 
-    [solver]                            # optional, default name "opensees"
+    [solver]                            # optional, default name "opensees"; "auto": picked from [needs]
     name = "opensees"
     case_timeout = 300                  # optional wall-clock budget of one case (s)
     [solver.settings]                   # optional keyword settings of that solver's solve()
     step = 1e-4
+
+    [needs]                             # optional (opsrock.campaign.needs): what is asked
+    answer = "verdicts"                 # verdicts | theta_max | histories | hysteresis
+    tolerance = 0.01                    # alpha
+    model = "either"                    # rigid | sdof | either
 
     [pulse] and [grid] (a pulse scene), or [records] (a record scene)
 
@@ -49,6 +54,7 @@ from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.campaign.cases import CONTACT_COLUMNS
+from opsrock.campaign.needs import Choice, Needs, check, choose
 from opsrock.campaign.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import METHODS, SOLVERS, check_settings
 
@@ -61,13 +67,18 @@ SCENE_FORMAT: int = 1
 #: Solver used when a scene has no ``[solver]`` table: the paper's OpenSees SDOF model.
 DEFAULT_SOLVER: str = "opensees"
 
+#: ``[solver] name`` that picks the solver from ``[needs]`` (:mod:`opsrock.campaign.needs`).
+AUTO: str = "auto"
+
 #: Largest number of cases in one scene (blocks x design). A campaign keeps every case (block, motion,
 #: id) in memory and one store row per case: about 1 KB each, so 250,000 cases are a few hundred MB.
 #: Dense spectra beyond that go through :func:`opsrock.solvers.housner_fast.solve_pulses`, which
 #: streams arrays instead of case objects.
 MAX_CASES: int = 250_000
 
-_SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid", "records", "pulse"}
+_SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid", "records", "pulse",
+               "needs"}
+_NEEDS_KEYS = {"answer", "tolerance", "model"}
 _SOLVER_KEYS = {"name", "settings", "case_timeout"}
 _BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor", "restitution", "friction",
                "friction_kinetic"}
@@ -162,6 +173,10 @@ class Scene:
         decides how long a stuck case may run, not what a finished case computes.
     records : RecordSet or None
         The ``[records]`` table of a record scene, or None.
+    needs : Needs or None
+        What the scene asks for (``[needs]``, :mod:`opsrock.campaign.needs`); None: not stated.
+    choice : Choice or None
+        The solver chosen for, or checked against, ``needs`` and why (for the manifest); None without needs.
     """
 
     name: str
@@ -175,6 +190,8 @@ class Scene:
     blocks_path: str = ""
     case_timeout: float | None = None
     records: RecordSet | None = None
+    needs: Needs | None = None
+    choice: Choice | None = None
 
     def __post_init__(self) -> None:
         if (self.grid is None) == (self.records is None):
@@ -238,7 +255,12 @@ class Scene:
         """
         if settings is None:
             settings = dict(self.solver_settings) if solver == self.solver else {}
-        return dataclasses.replace(self, solver=solver, solver_settings=dict(settings))
+        choice = self.choice
+        if self.needs is not None:  # the scene's needs hold for any solver it is run with
+            friction = any(b.friction is not None for b in self.blocks) or any(
+                r.vertical is not None for r in (self.records.grounds if self.records else ()))
+            choice = check(solver, self.needs, friction=friction)
+        return dataclasses.replace(self, solver=solver, solver_settings=dict(settings), choice=choice)
 
     def fingerprint(self) -> dict[str, Any]:
         """Everything that determines the results, as plain JSON data (see :meth:`digest`).
@@ -398,10 +420,32 @@ def load_scene(path: str | Path) -> Scene:
     blocks, blocks_path = _blocks(f, data)
     grid, records = _design(f, data, blocks, pfv)
     solver, settings, case_timeout = _solver(f, data.get("solver", {}))
+    needs, choice = _needs(f, data, solver, blocks, records)
+    if choice is not None:
+        solver = choice.solver
     return Scene(name=f.string("name", data.get("name", f.path.stem)), path=str(f.path), blocks=blocks,
                  grid=grid, solver=solver, solver_settings=settings, pfv_convention=pfv,
                  description=f.string("description", data.get("description", ""), allow_empty=True),
-                 blocks_path=str(blocks_path), case_timeout=case_timeout, records=records)
+                 blocks_path=str(blocks_path), case_timeout=case_timeout, records=records, needs=needs, choice=choice)
+
+
+def _needs(f: TomlFile, data: dict, solver: str, blocks, records) -> tuple[Needs | None, Choice | None]:
+    """``[needs]`` and the solver it picks (``solver = "auto"``) or checks (a named solver)."""
+    raw = data.get("needs")
+    if raw is None and solver != AUTO:
+        return None, None
+    raw = f.table("needs", raw if raw is not None else {}, "a table [needs]")
+    f.keys("needs", raw, allowed=_NEEDS_KEYS)
+    friction = any(b.friction is not None for b in blocks) or any(r.vertical is not None for r in
+                                                                    (records.grounds if records else ()))
+    try:
+        needs = Needs(**raw)
+        choice = choose(needs, friction=friction) if solver == AUTO else check(solver, needs, friction=friction)
+    except OpsrockError as exc:
+        key = next((k for k in raw if str(exc).startswith(f"needs.{k}")), None)
+        raise f.error(f"needs.{key}" if key else "needs", raw.get(key, dict(raw)) if key else dict(raw),
+                      str(exc)) from None
+    return needs, choice
 
 
 def _blocks(f: TomlFile, data: dict) -> tuple[tuple[BlockSpec, ...], Path]:
@@ -453,6 +497,8 @@ def _solver(f: TomlFile, raw: Any) -> tuple[str, dict, float | None]:
     f.table("solver", raw, "a table [solver] with name and optional settings")
     f.keys("solver", raw, allowed=_SOLVER_KEYS)
     settings = f.table("solver.settings", raw.get("settings", {}), "a table [solver.settings]")
+    if raw.get("name") == AUTO and settings:
+        raise f.error("solver.settings", settings, "'auto' picks the solver and its settings; give no settings")
     case_timeout = raw.get("case_timeout")
     if case_timeout is not None:
         case_timeout = f.positive("solver.case_timeout", case_timeout)
@@ -478,6 +524,8 @@ def _select(f: TomlFile, select: Any, blocks: tuple[BlockSpec, ...]) -> tuple[Bl
 def _check_solver(f: TomlFile, solver: Any, settings: dict) -> dict:
     """The solver's name and settings, checked once: the settings object the solver would run with is
     built (:func:`opsrock.solvers.check_settings`), so a bad name or value is refused now."""
+    if solver == AUTO:
+        raise f.error("solver.name", solver, "'auto' is resolved from [needs] when the scene loads")
     if solver not in SOLVERS:
         raise f.error("solver.name", solver, f"unknown solver (known: {', '.join(SOLVERS)})")
     for key, value in settings.items():

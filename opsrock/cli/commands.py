@@ -467,6 +467,8 @@ def run(args: argparse.Namespace) -> int:
             executor.close()
     print(f"{summary.n_cases} cases ({summary.n_computed} computed, {summary.n_reused} reused) "
           f"with {summary.solver} in {summary.wall_time_s:.1f} s -> {summary.cases_csv}")
+    if summary.choice:
+        print(f"solver chosen for the scene's needs: {summary.choice}")
     if summary.n_failed:
         print(f"opsrock run: {summary.n_failed} case(s) failed (status=failed, reason in {summary.cases_csv})",
               file=sys.stderr)

@@ -14,7 +14,7 @@ import os
 from opsrock.errors import OpsrockError, UsageError
 
 #: Solver names of the command line (the registry's, :data:`opsrock.solvers.SOLVERS`).
-SOLVER_NAMES = ("opensees", "sdof", "housner", "housner_fast")
+SOLVER_NAMES = ("opensees", "sdof", "housner", "housner_fast", "friction", "moreau_jean")
 
 
 class _Parser(argparse.ArgumentParser):

@@ -1,0 +1,732 @@
+"""Multi-fidelity campaigns: the rigid body screens every case, the paper's SDOF model runs only where
+its verdict can differ from the screen's, plus a seeded random audit of the rest.
+
+:func:`run_multifidelity` is the workflow, built from the campaign machinery
+(:mod:`opsrock.campaign.run`), resumable in the same way:
+
+1. **Screen.** The whole scene is a campaign of the screen solver (default ``housner_fast``, the rigid
+   body) in ``out_dir/screen`` (:func:`~opsrock.campaign.run.run_campaign`).
+2. **Escalation.** Each screened case is kept or sent to the expensive solver (default ``opensees``)
+   by an :class:`EscalationRule` (:func:`escalation_reason`):
+
+   * ``screen_failed``: the screen has no verdict;
+   * ``overturned``: the screen overturned it. Once the rigid body overturns, its ``theta_max`` is the
+     limit ``pi/2``, whatever the margin by which it went over: the screen cannot place the case
+     against the boundary, and the validation cases show the SDOF model safe in 10-21 % of them
+     (:data:`EVIDENCE`), far above what a margin at the 95th percentile leaves;
+   * ``near_overturning``: safe with ``theta_max / alpha >= 1 - margin``: within the model-form
+     error of the boundary, the SDOF model may overturn;
+   * ``near_uplift``: safe with ``theta_max / alpha < uplift_q``, or ``no_uplift`` with the floor at or
+     above the uplift threshold (``pfa_ratio >= 1``). Both models lift the block at
+     ``PFA = g tan alpha`` (Eq. 4, the default ``housner`` lever), but the SDOF model calls a block
+     rocked only past ``ROCKED_THETA_E_MULTIPLE theta_e`` (``1e-5 alpha`` by default); a rigid body
+     lifted by less reads ``no_uplift`` there. ``uplift_q`` is ten times that threshold.
+
+   The margin is a percentile (default the 95th) of the measured model-form error
+   ``|theta_max(SDOF) - theta_max(rigid)| / alpha`` on records (:data:`EVIDENCE`, validation case 9),
+   unless given.
+3. **Audit.** A seeded random ``audit_fraction`` of the kept cases also runs with the expensive solver;
+   its agreement with the screen's verdict, with a Wilson interval, measures what the rule lets
+   through.
+4. The escalated and audited cases are solved in ``out_dir/escalated``, a partial campaign of the scene
+   with the expensive solver: same store, same manifest (digest) as a full campaign of it, so its rows
+   are reused whatever the margin or the audit of a later run, and ``run_campaign`` could complete it.
+5. ``out_dir/cases.csv``: one row per case, in the scene's order, with the columns of a normal campaign
+   of the scene with the expensive solver, plus ``source`` (``screen``, ``escalated`` or ``audit``);
+   the ``solver`` column names the solver that produced the row. ``out_dir/manifest.json`` holds the
+   rule, its evidence, the audit and the counts.
+
+An interrupted run loses at most the batches in flight (the screen's and the escalated store commit
+every batch); the same call again resumes both.
+"""
+
+from __future__ import annotations
+
+import csv
+import functools
+import hashlib
+import json
+import math
+import os
+import sys
+import time
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+from opsrock._files import atomic_write
+from opsrock.campaign.cases import case_table, failed_row, write_cases_csv
+from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
+from opsrock.campaign.motions import cached_motions, compute_motions
+from opsrock.campaign.run import CASES_FILE, MANIFEST_FILE, run_campaign, solve_batch
+from opsrock.campaign.scene import Scene, load_scene
+from opsrock.campaign.store import STORE_FILE, ResultStore, read_rows
+from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
+from opsrock.errors import CampaignConflictError, InputError
+from opsrock.limits import check
+from opsrock.result import RockingResult
+from opsrock.solvers import METHODS, SOLVERS, check_settings
+
+#: Sub-folders of a multi-fidelity run: the screen's campaign and the expensive solver's partial one.
+SCREEN_DIR: str = "screen"
+ESCALATED_DIR: str = "escalated"
+
+#: Values of the ``source`` column of ``cases.csv``.
+SOURCES: tuple[str, ...] = ("screen", "escalated", "audit")
+
+#: Why a case is escalated (:func:`escalation_reason`), in the order the rule tests them.
+REASONS: tuple[str, ...] = ("screen_failed", "overturned", "near_overturning", "near_uplift")
+
+#: Default share of the kept cases audited by the expensive solver.
+DEFAULT_AUDIT_FRACTION: float = 0.02
+
+#: Default percentile of the measured model-form error that sets the margin.
+DEFAULT_PERCENTILE: int = 95
+
+#: ``uplift_q`` is this multiple of the SDOF model's own rocking threshold
+#: (``ROCKED_THETA_E_MULTIPLE * theta_e_ratio``). On 44 FEMA roof motions x 4 blocks at 1.005 g tan alpha
+#: the rigid body and the OpenSees model disagreed (safe / no_uplift) on 46 of 176 cases, all with a rigid
+#: ``theta_max / alpha`` <= 5.8e-6; at 1.02 g tan alpha (rigid >= 2.7e-5) on none
+#: (``study/multifidelity/uplift_probe.csv``).
+UPLIFT_SAFETY: float = 10.0
+
+
+@dataclass(frozen=True)
+class ModelFormEvidence:
+    """Measured model-form error of an expensive solver against the rigid-body screen, as published by
+    the validation cases of the repository (the files are not shipped with the package: the numbers are
+    copied here, each with its file and row; ``tests/test_multifidelity.py`` checks them against the
+    files when they are there).
+
+    Parameters
+    ----------
+    solver : str
+        The expensive solver the numbers are for.
+    screen_solvers : tuple of str
+        Screens the numbers hold for.
+    abs_error : dict
+        ``{percentile: |theta_max(solver) - theta_max(rigid)| / alpha}`` over the cases safe in both.
+    n_safe_both : int
+        Cases the percentiles are taken over.
+    n_screen_overturned, n_overturned_to_safe : int
+        Cases the rigid body overturned, and of them those the solver found safe.
+    n_screen_safe, n_safe_to_overturned : int
+        Cases the rigid body found safe, and of them those the solver overturned.
+    min_q_safe_to_overturned : float
+        Smallest rigid ``theta_max / alpha`` of those (NaN if none).
+    source : str
+        Where each number comes from.
+    rows : dict
+        ``{percentile: "file, row"}`` of each ``abs_error`` value.
+    cross_check : str
+        The same measurement elsewhere, not used by the rule.
+    """
+
+    solver: str
+    screen_solvers: tuple[str, ...]
+    abs_error: Mapping[int, float]
+    n_safe_both: int
+    n_screen_overturned: int
+    n_overturned_to_safe: int
+    n_screen_safe: int
+    n_safe_to_overturned: int
+    min_q_safe_to_overturned: float
+    source: str
+    rows: Mapping[int, str] = field(default_factory=dict)
+    cross_check: str = ""
+
+    @property
+    def overturned_flip_rate(self) -> float:
+        """Share of the rigid body's overturned cases the solver found safe."""
+        return self.n_overturned_to_safe / self.n_screen_overturned if self.n_screen_overturned else math.nan
+
+
+_CASE9 = "validation/sdof_records (case 9: 207 band-passed noise records x 3 blocks x 1.3/2.0/3.5 g tan alpha)"
+_RIGID = ("housner_fast", "housner")
+_PCT = {50: "median", 90: "p90", 95: "p95"}
+
+#: The measured model-form error by expensive solver (see :class:`ModelFormEvidence`).
+EVIDENCE: dict[str, ModelFormEvidence] = {
+    "opensees": ModelFormEvidence(
+        solver="opensees", screen_solvers=_RIGID,
+        # validation/sdof_records/summary.csv, rows opensees_vs_rigid_median_all, _p90_all, _p95_all
+        abs_error={50: 0.015513075377645378, 90: 0.17435672829860255, 95: 0.1975486861007526},
+        # validation/sdof_records/cases.csv: rigid_verdict x opensees_verdict over the 207 rows
+        n_safe_both=146, n_screen_overturned=52, n_overturned_to_safe=11, n_screen_safe=155,
+        n_safe_to_overturned=9, min_q_safe_to_overturned=0.6289331738378785,
+        source=f"{_CASE9}: summary.csv rows opensees_vs_rigid_median_all/_p90_all/_p95_all; verdict counts "
+               "from cases.csv (rigid_verdict, opensees_verdict, rigid_theta)",
+        rows={p: f"validation/sdof_records/summary.csv, row opensees_vs_rigid_{r}_all" for p, r in _PCT.items()},
+        # validation/records/summary.csv, row "opensees vs housner"; cases.csv housner_verdict x opensees_verdict
+        cross_check="validation/records (case 8: 108 FEMA P695 cases, ground and 3-storey roof): summary.csv row "
+                    "'opensees vs housner': p50 0.0101, p95 0.2250, max 0.3999 alpha over 78 cases safe in both; "
+                    "cases.csv: 5 of 29 rigid-overturned cases safe, 1 of 79 rigid-safe cases overturned (at 0.856)"),
+    "sdof": ModelFormEvidence(
+        solver="sdof", screen_solvers=_RIGID,
+        # validation/sdof_records/summary.csv, rows sdof_vs_rigid_median_all, _p90_all, _p95_all
+        abs_error={50: 0.013132794771153422, 90: 0.16956340848363632, 95: 0.19059885713877764},
+        # validation/sdof_records/cases.csv: rigid_verdict x sdof_verdict over the 207 rows
+        n_safe_both=151, n_screen_overturned=52, n_overturned_to_safe=13, n_screen_safe=155,
+        n_safe_to_overturned=4, min_q_safe_to_overturned=0.6289331738378785,
+        source=f"{_CASE9}: summary.csv rows sdof_vs_rigid_median_all/_p90_all/_p95_all; verdict counts "
+               "from cases.csv (rigid_verdict, sdof_verdict, rigid_theta)",
+        rows={p: f"validation/sdof_records/summary.csv, row sdof_vs_rigid_{r}_all" for p, r in _PCT.items()},
+        cross_check="validation/records/summary.csv row 'sdof vs housner': p50 0.0285, p95 0.2060 alpha (21 cases)"),
+    "housner": ModelFormEvidence(
+        solver="housner", screen_solvers=("housner_fast",),
+        # validation/records/summary.csv, row "housner_fast vs housner": median, p95 (max 1.1454576150593532e-05)
+        abs_error={50: 1.038038044409717e-08, 95: 7.793425527147195e-07},
+        # validation/records/cases.csv: housner_fast_verdict x housner_verdict, 108/108 agree
+        n_safe_both=79, n_screen_overturned=29, n_overturned_to_safe=0, n_screen_safe=79,
+        n_safe_to_overturned=0, min_q_safe_to_overturned=math.nan,
+        source="validation/records (case 8): summary.csv row 'housner_fast vs housner' (median, p95); verdict "
+               "counts from cases.csv (housner_fast_verdict, housner_verdict)",
+        rows={50: "validation/records/summary.csv, row 'housner_fast vs housner', median_dtheta_over_alpha",
+              95: "validation/records/summary.csv, row 'housner_fast vs housner', p95_dtheta_over_alpha"}),
+}
+
+
+@dataclass(frozen=True)
+class EscalationRule:
+    """Which screened cases go to the expensive solver (:func:`escalation_reason`).
+
+    Parameters
+    ----------
+    margin : float
+        A safe screen case with ``theta_max / alpha >= 1 - margin`` is escalated.
+    escalate_overturned : bool
+        Escalate every case the screen overturned.
+    uplift_q : float
+        A safe screen case with ``theta_max / alpha`` below it is escalated (0: none).
+    margin_source : str
+        Where the margin comes from.
+    evidence : ModelFormEvidence or None
+        The measurement the rule was derived from (None: none applies).
+    """
+
+    margin: float
+    escalate_overturned: bool
+    uplift_q: float
+    margin_source: str
+    evidence: ModelFormEvidence | None = None
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.margin, (int, float)) and 0.0 <= self.margin <= 1.0):
+            raise InputError(f"margin must be a number in [0, 1] (of theta_max / alpha), got {self.margin!r}")
+        if not (isinstance(self.uplift_q, (int, float)) and 0.0 <= self.uplift_q < 1.0):
+            raise InputError(f"uplift_q must be a number in [0, 1), got {self.uplift_q!r}")
+
+
+def escalation_reason(rule: EscalationRule, row: Mapping[str, Any]) -> str:
+    """Why a screened case goes to the expensive solver (one of :data:`REASONS`), or ``""`` (kept).
+
+    ``row`` is a row of the screen's ``cases.csv`` (or table): ``status``, ``verdict``,
+    ``theta_max_over_alpha`` and ``pfa_ratio`` (``PFA / (g tan alpha)`` of the floor motion) are read.
+    """
+    verdict = str(row["verdict"])
+    if str(row["status"]) != "ok" or verdict == "failed":
+        return "screen_failed"
+    if verdict == "overturned":
+        return "overturned" if rule.escalate_overturned else ""
+    q = float(row["theta_max_over_alpha"])
+    if not math.isfinite(q):
+        return "screen_failed"
+    if verdict == "safe":
+        if q >= 1.0 - rule.margin:
+            return "near_overturning"
+        return "near_uplift" if q < rule.uplift_q else ""
+    pfa_ratio = float(row["pfa_ratio"])  # no_uplift
+    return "near_uplift" if rule.uplift_q > 0.0 and not pfa_ratio < 1.0 else ""
+
+
+def _sdof_model(solver: str, settings: Mapping[str, Any]):
+    """The SDOF model the expensive solver runs (None for a solver of another model)."""
+    if METHODS[solver].model != "sdof":
+        return None
+    return check_settings(solver, dict(settings)).model
+
+
+def derive_rule(solver: str, screen_solver: str, settings: Mapping[str, Any] | None = None, *,
+                margin: float | None = None, percentile: int = DEFAULT_PERCENTILE,
+                escalate_overturned: bool | None = None) -> EscalationRule:
+    """The escalation rule for ``solver`` (with ``settings``) screened by ``screen_solver``.
+
+    Parameters
+    ----------
+    solver, screen_solver : str
+        The expensive solver and the screen (a solver of the rigid-body model).
+    settings : dict, optional
+        The expensive solver's settings: the evidence holds for its default model only.
+    margin : float, optional
+        Margin on ``theta_max / alpha``. Default: the ``percentile`` of :data:`EVIDENCE` for the pair.
+    percentile : int
+        Which measured percentile sets the margin (those :data:`EVIDENCE` holds: 50, 90, 95).
+    escalate_overturned : bool, optional
+        Default: when the evidence's share of rigid-overturned cases found safe exceeds
+        ``1 - percentile / 100`` (and always when there is no evidence).
+
+    Raises
+    ------
+    InputError
+        A screen that is not a rigid-body solver; no margin and no evidence for the pair (or for the
+        expensive solver's model when its settings change it); a percentile the evidence lacks.
+    """
+    for name in (solver, screen_solver):
+        if name not in SOLVERS:
+            raise InputError(f"unknown solver {name!r} (known: {', '.join(SOLVERS)})")
+    if METHODS[screen_solver].model != "rigid":
+        raise InputError(f"screen_solver must solve the rigid body ({', '.join(_RIGID)}), got {screen_solver!r}")
+    model = _sdof_model(solver, settings or {})
+    uplift_q = 0.0
+    if model is not None:
+        from opsrock.solvers.opensees.settings import ROCKED_THETA_E_MULTIPLE
+
+        uplift_q = UPLIFT_SAFETY * ROCKED_THETA_E_MULTIPLE * model.theta_e_ratio
+    ev = _evidence(solver, screen_solver, model, needed=margin is None)
+    if margin is None and ev is not None:
+        if percentile not in ev.abs_error:
+            raise InputError(f"percentile must be one of {sorted(ev.abs_error)} (measured for {solver!r}), "
+                             f"got {percentile!r}")
+        margin = ev.abs_error[percentile]
+        source = f"p{percentile} of |theta_max({solver}) - theta_max(rigid)| / alpha on records: {ev.rows[percentile]}"
+    else:
+        source = "given"
+    if escalate_overturned is None:
+        escalate_overturned = ev is None or not ev.overturned_flip_rate <= 1.0 - percentile / 100.0
+    return EscalationRule(margin=float(margin), escalate_overturned=bool(escalate_overturned),
+                          uplift_q=uplift_q, margin_source=source, evidence=ev)
+
+
+def _evidence(solver: str, screen_solver: str, model, *, needed: bool) -> ModelFormEvidence | None:
+    ev = EVIDENCE.get(solver)
+    problem = ""
+    if ev is None or screen_solver not in ev.screen_solvers:
+        problem = f"no measured model-form error for {solver!r} screened by {screen_solver!r}"
+    elif model is not None and model != type(model)():
+        problem = f"the evidence is for the default SDOF model; the settings give {model}"
+    if problem and needed:
+        raise InputError(f"{problem}: give margin= (of theta_max / alpha)")
+    return None if problem else ev
+
+
+# --- selection ----------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Selection:
+    """What the expensive solver runs: escalated cases with their reason, and the audit."""
+
+    escalated: Mapping[str, str]
+    audited: tuple[str, ...]
+    n_cases: int
+
+    @property
+    def ids(self) -> set[str]:
+        """Every case id the expensive solver runs."""
+        return set(self.escalated) | set(self.audited)
+
+    def source(self, case_id: str) -> str:
+        """``escalated``, ``audit`` or ``screen``."""
+        return "escalated" if case_id in self.escalated else "audit" if case_id in self.audited else "screen"
+
+
+def select_cases(screen: Sequence[Mapping[str, Any]], rule: EscalationRule, *,
+                 audit_fraction: float = DEFAULT_AUDIT_FRACTION, seed: int = 0) -> Selection:
+    """Escalated cases (:func:`escalation_reason`) and a seeded random audit of the others.
+
+    The audit draws ``ceil(audit_fraction * kept)`` of the kept cases without replacement from
+    ``numpy.random.default_rng(seed)``, in the table's order: the same screen, fraction and seed give
+    the same audit.
+    """
+    import numpy as np
+
+    if not (isinstance(audit_fraction, (int, float)) and 0.0 <= audit_fraction <= 1.0):
+        raise InputError(f"audit_fraction must be a number in [0, 1], got {audit_fraction!r}")
+    escalated, kept = {}, []
+    for row in screen:
+        reason = escalation_reason(rule, row)
+        if reason:
+            escalated[str(row["case_id"])] = reason
+        else:
+            kept.append(str(row["case_id"]))
+    n_audit = min(len(kept), math.ceil(audit_fraction * len(kept) - 1e-9))
+    picks = np.random.default_rng(seed).choice(len(kept), size=n_audit, replace=False) if n_audit else []
+    return Selection(escalated=escalated, audited=tuple(kept[k] for k in sorted(int(p) for p in picks)),
+                     n_cases=len(screen))
+
+
+# --- the summary --------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class MultiFidelitySummary:
+    """What a multi-fidelity campaign did.
+
+    Parameters
+    ----------
+    n_cases : int
+        Cases in the scene (all screened).
+    n_screened : int
+        Cases whose row in ``cases.csv`` is the screen's (not run by the expensive solver).
+    n_escalated, n_audited : int
+        Cases run by the expensive solver because of the rule, and as the audit.
+    n_solves_saved : int
+        Expensive solves a full campaign would have made and this one did not:
+        ``n_cases - n_escalated - n_audited``.
+    escalated_by_reason : dict
+        ``{reason: count}`` (:data:`REASONS`).
+    audited : tuple of str
+        The audited case ids, in the scene's order.
+    n_audit_compared, n_audit_agree : int
+        Audited cases both solvers finished, and of them those with the same verdict.
+    audit_agreement : float
+        ``n_audit_agree / n_audit_compared`` (NaN without any).
+    audit_interval : tuple of float
+        95 % Wilson interval of the agreement.
+    audit_disagreements : tuple of str
+        Audited case ids whose verdicts differ.
+    margin : float
+        Margin on ``theta_max / alpha``.
+    margin_source : str
+        Where it comes from.
+    rule : EscalationRule
+    screen_solver, solver : str
+    n_computed, n_reused : int
+        Expensive solves made by this call, and found in the store.
+    n_failed : int
+        Rows of ``cases.csv`` with ``status == "failed"``.
+    screen_wall_time_s, expensive_wall_time_s, wall_time_s : float
+        Wall-clock time of the screen, of the expensive solves, of the whole call (s).
+    out_dir, cases_csv, manifest_path, screen_dir, escalated_dir : str
+        Output paths.
+    """
+
+    n_cases: int
+    n_screened: int
+    n_escalated: int
+    n_audited: int
+    n_solves_saved: int
+    escalated_by_reason: Mapping[str, int]
+    audited: tuple[str, ...]
+    n_audit_compared: int
+    n_audit_agree: int
+    audit_agreement: float
+    audit_interval: tuple[float, float]
+    audit_disagreements: tuple[str, ...]
+    margin: float
+    margin_source: str
+    rule: EscalationRule
+    screen_solver: str
+    solver: str
+    n_computed: int
+    n_reused: int
+    n_failed: int
+    screen_wall_time_s: float
+    expensive_wall_time_s: float
+    wall_time_s: float
+    out_dir: str
+    cases_csv: str
+    manifest_path: str
+    screen_dir: str
+    escalated_dir: str
+    warnings: tuple[str, ...] = field(default=())
+
+    def lines(self) -> list[str]:
+        """The report a command line prints, one line each."""
+        n_x = self.n_escalated + self.n_audited
+        ratio = self.n_cases / n_x if n_x else math.inf
+        reasons = ", ".join(f"{k} {v}" for k, v in self.escalated_by_reason.items() if v) or "none"
+        lo, hi = self.audit_interval
+        audit = (f"{self.n_audit_agree}/{self.n_audit_compared} same verdict ({100 * self.audit_agreement:.1f} %, "
+                 f"95 % Wilson interval {100 * lo:.1f}-{100 * hi:.1f} %)" if self.n_audit_compared else "none compared")
+        return [
+            (f"{self.n_cases} cases screened with {self.screen_solver} in {self.screen_wall_time_s:.1f} s -> "
+             f"{self.screen_dir}"),
+            (f"escalated to {self.solver}: {self.n_escalated} ({reasons}); margin {self.margin:.4g} alpha "
+             f"({self.margin_source})"),
+            f"audit: {self.n_audited} of the {self.n_cases - self.n_escalated} kept cases; {audit}",
+            (f"{self.solver} solves: {n_x} of {self.n_cases} ({self.n_computed} computed, {self.n_reused} reused) "
+             f"in {self.expensive_wall_time_s:.1f} s; {self.n_solves_saved} saved ({ratio:.2f}x fewer)"),
+            (f"{self.n_cases} cases ({self.n_screened} screen, {self.n_escalated} escalated, {self.n_audited} audit) "
+             f"in {self.wall_time_s:.1f} s -> {self.cases_csv}"),
+        ]
+
+
+# --- the expensive solver's partial campaign ----------------------------------------------------------
+def _fn_name(fn: Callable) -> str:
+    if isinstance(fn, functools.partial):
+        return f"partial({_fn_name(fn.func)}, {fn.args!r}, {sorted(fn.keywords.items())!r})"
+    return f"{getattr(fn, '__module__', '?')}.{getattr(fn, '__qualname__', None) or type(fn).__qualname__}"
+
+
+def _identity(scene: Scene, solve_fn: Callable | None) -> tuple[str, dict[str, Any]]:
+    """Digest and manifest of a full campaign of ``scene`` (as :func:`run_campaign` writes them)."""
+    from opsrock import __version__
+
+    digest = scene.digest()
+    if solve_fn is not None:
+        digest = hashlib.sha256(f"{digest}|{_fn_name(solve_fn)}".encode()).hexdigest()
+    return digest, {
+        "digest": digest, "scene_name": scene.name, "scene_path": scene.path, "blocks_path": scene.blocks_path,
+        "solver": scene.solver, "solver_settings": dict(scene.solver_settings),
+        "solve_fn": None if solve_fn is None else _fn_name(solve_fn), "pfv_convention": scene.pfv_convention,
+        "n_cases": scene.n_cases, "opsrock_version": __version__,
+    }
+
+
+def _open_store(store: ResultStore, out: Path, manifest: dict, force: bool) -> None:
+    old = store.manifest()
+    if old and old.get("digest") != manifest["digest"] and not force:
+        raise CampaignConflictError(
+            f"{out} holds {old.get('solver')!r} results of other settings or another scene; refusing to mix them. "
+            "Use another out_dir, or force=True to delete the old results and start over.")
+    if force or not old:
+        store.clear()
+        store.write_manifest(manifest)
+    atomic_write(out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
+
+
+def _lost_row(case, reason: str, *, solver: str) -> dict[str, Any]:
+    return failed_row(case.case_id, solver, reason)
+
+
+def _progress_bar(total: int, description: str, progress: bool):
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=description, unit="case", file=sys.stderr,
+                disable=not (progress and sys.stderr.isatty()), dynamic_ncols=True)
+
+
+@dataclass
+class _Expensive:
+    """The expensive solver's runs: where, how, and what they did."""
+
+    scene: Scene
+    out: Path
+    executor: Executor | None
+    workers: int | None
+    progress: bool
+    solve_fn: Callable | None
+    batch: int | None
+    case_timeout: float
+    n_computed: int = 0
+    n_reused: int = 0
+
+    def run(self, cases: Sequence, ids: set[str], force: bool) -> dict[str, dict[str, Any]]:
+        """Solve the cases of ``ids`` the store lacks; return the stored rows of ``ids``."""
+        _, manifest = _identity(self.scene, self.solve_fn)
+        self.out.mkdir(parents=True, exist_ok=True)
+        with ResultStore(self.out / STORE_FILE) as store:
+            _open_store(store, self.out, manifest, force)
+            done = store.done_ids()
+            todo = [c for c in cases if c.case_id in ids and c.case_id not in done]
+            self.n_reused = len(ids) - len(todo)
+            if todo:
+                self._solve(store, todo)
+            rows = store.rows()
+        return {k: rows[k] for k in ids}
+
+    def _solve(self, store: ResultStore, todo: list) -> None:
+        solver = self.scene.solver
+        solve = functools.partial(solve_batch, solver=solver, settings=dict(self.scene.solver_settings),
+                                  solve_fn=self.solve_fn, case_timeout=self.case_timeout)
+        executor = self.executor or LocalPool(self.workers, item_timeout=self.case_timeout)
+        try:
+            size = self.batch or batch_size(len(todo), executor.workers)
+            lost = functools.partial(_lost_row, solver=solver)
+            with _progress_bar(len(todo), f"{self.scene.name}: {solver} (escalated + audit)", self.progress) as bar:
+                for _, rows in executor.map_batches(solve, make_batches(todo, size), lost):
+                    store.append(rows)
+                    self.n_computed += len(rows)
+                    bar.update(len(rows))
+        finally:
+            if self.executor is None:
+                executor.close()
+
+
+# --- the workflow ---------------------------------------------------------------------------------
+def _read_table(path: str | Path) -> list[dict[str, str]]:
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(fh))
+
+
+def _cases(screen_scene: Scene, screen_dir: Path) -> list:
+    """The scene's cases; a record scene's floor motions from the screen's cache (computed here if gone)."""
+    if screen_scene.records is None:
+        return screen_scene.cases()
+    items = screen_scene.records.motion_items()
+    motions = cached_motions(screen_dir, screen_scene.digest(), items, compute_motions)
+    return screen_scene.cases(motions)
+
+
+def _audit(selection: Selection, screen_rows: Mapping, rows: Mapping) -> tuple[int, int, tuple[str, ...]]:
+    """Audited cases both solvers finished, those with the same verdict, and the others' ids."""
+    compared, differ = 0, []
+    for cid in selection.audited:
+        a, b = screen_rows[cid], rows[cid]
+        if a["status"] != "ok" or b["status"] != "ok":
+            continue
+        compared += 1
+        if a["verdict"] != b["verdict"]:
+            differ.append(cid)
+    return compared, compared - len(differ), tuple(differ)
+
+
+def _write_table(out: Path, scene_x: Scene, cases: Sequence, selection: Selection, screen_rows: Mapping,
+                 rows: Mapping) -> list[dict[str, Any]]:
+    merged = {c.case_id: rows[c.case_id] if c.case_id in rows else screen_rows[c.case_id] for c in cases}
+    table = case_table(cases, merged)
+    for rec in table:
+        rec["source"] = selection.source(rec["case_id"])
+    write_cases_csv(out / CASES_FILE, table, (*scene_x.columns, "source"))
+    return table
+
+
+def _check_args(scene: Scene, solver: str, screen_solver: str, case_timeout: float | None) -> float:
+    if METHODS.get(solver) is None or METHODS[solver].model == "friction" or screen_solver == solver:
+        raise InputError(f"solver must be a no-slip solver other than the screen ({screen_solver!r}), got {solver!r}")
+    if case_timeout is None:
+        case_timeout = scene.case_timeout if scene.case_timeout is not None else DEFAULT_CASE_TIMEOUT
+    return check("case_timeout", case_timeout)
+
+
+def run_multifidelity(
+    scene: Scene | str | os.PathLike,
+    out_dir: str | os.PathLike,
+    *,
+    screen_solver: str = "housner_fast",
+    solver: str = "opensees",
+    margin: float | None = None,
+    percentile: int = DEFAULT_PERCENTILE,
+    escalate_overturned: bool | None = None,
+    audit_fraction: float = DEFAULT_AUDIT_FRACTION,
+    seed: int = 0,
+    workers: int | None = None,
+    executor: Executor | None = None,
+    force: bool = False,
+    progress: bool = True,
+    solve_fn: Callable[..., RockingResult] | None = None,
+    batch: int | None = None,
+    case_timeout: float | None = None,
+) -> MultiFidelitySummary:
+    """Run (or resume) a scene screened by the rigid body, with ``solver`` where its verdict can differ.
+
+    Parameters
+    ----------
+    scene : Scene or path
+        The scene, its TOML file or a shipped scene's name; its own solver is not used.
+    out_dir : str or Path
+        Output folder: ``screen/`` and ``escalated/`` (two campaign folders), ``cases.csv``,
+        ``manifest.json``.
+    screen_solver, solver : str
+        The screen (a rigid-body solver) and the expensive solver. A solver that is the scene's own keeps
+        the scene's settings; another runs with its defaults (:meth:`Scene.with_solver`).
+    margin, percentile, escalate_overturned
+        The rule (:func:`derive_rule`): by default the margin is the 95th percentile of the measured
+        model-form error (:data:`EVIDENCE`).
+    audit_fraction : float
+        Share of the kept cases also run by ``solver`` (default 0.02), drawn with ``seed``.
+    workers, executor, force, progress, batch, case_timeout
+        As for :func:`~opsrock.campaign.run.run_campaign`, for both stages; ``force`` clears both stores.
+    solve_fn : callable, optional
+        Replaces :func:`opsrock.solvers.simulate` for the expensive solver only (tests).
+
+    Returns
+    -------
+    MultiFidelitySummary
+
+    Raises
+    ------
+    SceneError, InputError, CampaignConflictError, StoreError
+        An invalid scene, solver pair or rule (nothing written); a folder holding results of other
+        settings without ``force``; another run holding the folder.
+    """
+    t0 = time.perf_counter()
+    scene = scene if isinstance(scene, Scene) else load_scene(scene)
+    scene_x = scene.with_solver(solver)
+    case_timeout = _check_args(scene, solver, screen_solver, case_timeout)
+    rule = derive_rule(solver, screen_solver, scene_x.solver_settings, margin=margin, percentile=percentile,
+                       escalate_overturned=escalate_overturned)
+    out = Path(out_dir)
+    screen = run_campaign(scene, out / SCREEN_DIR, solver=screen_solver, workers=workers, executor=executor,
+                          force=force, progress=progress, batch=batch, case_timeout=case_timeout)
+    selection = select_cases(_read_table(screen.cases_csv), rule, audit_fraction=audit_fraction, seed=seed)
+    t1 = time.perf_counter()
+    cases = _cases(scene.with_solver(screen_solver), out / SCREEN_DIR)
+    runner = _Expensive(scene_x, out / ESCALATED_DIR, executor, workers, progress, solve_fn, batch, case_timeout)
+    rows = runner.run(cases, selection.ids, force)
+    t_x = time.perf_counter() - t1
+    screen_rows = read_rows(out / SCREEN_DIR)
+    table = _write_table(out, scene_x, cases, selection, screen_rows, rows)
+    compared, agree, differ = _audit(selection, screen_rows, rows)
+    summary = _summary(selection, rule, screen, runner, table, (compared, agree, differ), out,
+                       (screen.wall_time_s, t_x, time.perf_counter() - t0))
+    _write_manifest(summary, scene, scene_x, screen, rule, audit_fraction, seed, percentile)
+    return summary
+
+
+def _summary(selection: Selection, rule: EscalationRule, screen, runner: _Expensive, table: list,
+             audit: tuple[int, int, tuple[str, ...]], out: Path, times: tuple[float, float, float]):
+    from opsrock.analysis.robustness import wilson_interval
+
+    compared, agree, differ = audit
+    n_esc, n_aud = len(selection.escalated), len(selection.audited)
+    by_reason = {r: sum(v == r for v in selection.escalated.values()) for r in REASONS}
+    return MultiFidelitySummary(
+        n_cases=selection.n_cases, n_screened=selection.n_cases - n_esc - n_aud, n_escalated=n_esc,
+        n_audited=n_aud, n_solves_saved=selection.n_cases - n_esc - n_aud, escalated_by_reason=by_reason,
+        audited=selection.audited,
+        n_audit_compared=compared, n_audit_agree=agree, audit_agreement=agree / compared if compared else math.nan,
+        audit_interval=wilson_interval(agree, compared), audit_disagreements=differ, margin=rule.margin,
+        margin_source=rule.margin_source, rule=rule, screen_solver=screen.solver, solver=runner.scene.solver,
+        n_computed=runner.n_computed, n_reused=runner.n_reused, n_failed=sum(r["status"] == "failed" for r in table),
+        screen_wall_time_s=times[0], expensive_wall_time_s=times[1], wall_time_s=times[2], out_dir=str(out),
+        cases_csv=str(out / CASES_FILE), manifest_path=str(out / MANIFEST_FILE), screen_dir=str(out / SCREEN_DIR),
+        escalated_dir=str(out / ESCALATED_DIR), warnings=screen.warnings)
+
+
+def _json_safe(value: Any) -> Any:
+    """``value`` with every non-finite float as None (strict JSON)."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, Mapping):
+        return {str(k): _json_safe(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_json_safe(v) for v in value]
+    return value
+
+
+def _write_manifest(s: MultiFidelitySummary, scene: Scene, scene_x: Scene, screen, rule: EscalationRule,
+                    audit_fraction: float, seed: int, percentile: int) -> None:
+    from opsrock import __version__
+
+    manifest = {
+        "kind": "multifidelity", "scene_name": scene.name, "scene_path": scene.path, "n_cases": s.n_cases,
+        "solver": s.solver, "solver_settings": dict(scene_x.solver_settings), "digest": scene_x.digest(),
+        "screen_solver": s.screen_solver, "screen_digest": screen.digest,
+        "rule": {**asdict(rule), "percentile": percentile},
+        "audit": {"fraction": audit_fraction, "seed": seed, "n": s.n_audited, "compared": s.n_audit_compared,
+                  "agree": s.n_audit_agree, "agreement": s.audit_agreement, "wilson_95": s.audit_interval,
+                  "disagreements": s.audit_disagreements, "cases": s.audited},
+        "counts": {"cases": s.n_cases, "screen": s.n_screened, "escalated": s.n_escalated, "audited": s.n_audited,
+                   "solves_saved": s.n_solves_saved, "by_reason": s.escalated_by_reason, "failed": s.n_failed},
+        "opsrock_version": __version__,
+    }
+    text = json.dumps(_json_safe(manifest), indent=2, sort_keys=True, allow_nan=False)
+    atomic_write(Path(s.manifest_path), lambda fh: fh.write(text))
+
+
+__all__ = [
+    "DEFAULT_AUDIT_FRACTION",
+    "DEFAULT_PERCENTILE",
+    "ESCALATED_DIR",
+    "EVIDENCE",
+    "REASONS",
+    "SCREEN_DIR",
+    "SOURCES",
+    "EscalationRule",
+    "ModelFormEvidence",
+    "MultiFidelitySummary",
+    "Selection",
+    "derive_rule",
+    "escalation_reason",
+    "run_multifidelity",
+    "select_cases",
+]

@@ -1,0 +1,152 @@
+"""A scene states what it needs; ``solver = "auto"`` picks the cheapest solver whose measured error meets it.
+
+A scene's optional ``[needs]`` table::
+
+    [needs]
+    answer = "verdicts"     # verdicts | theta_max | histories | hysteresis
+    tolerance = 0.01        # largest numerical error of theta_max accepted, in alpha
+    model = "either"        # rigid (the rigid body) | sdof (the paper's SDOF model) | either
+
+With ``[solver] name = "auto"`` the campaign runs the cheapest solver (most record-seconds per
+CPU-second) of the model asked whose measured numerical error meets the tolerance; the hysteresis of
+the model exists only in the SDOF model; a block with friction or a floor that moves vertically needs
+the rigid block with friction (solver ``friction``). The evidence is shipped with opsrock
+(``opsrock/data/evidence/solvers.csv``, derived from the validation cases' and benchmarks' outputs by
+``tools/evidence.py``), and the choice with the evidence row goes into the campaign's manifest. With a
+named solver, ``[needs]`` is checked against it. A need that no solver meets is refused before anything
+runs, with the reason.
+"""
+
+from __future__ import annotations
+
+import csv
+import functools
+import math
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from opsrock.errors import InputError
+
+#: What a scene may ask for.
+ANSWERS: tuple[str, ...] = ("verdicts", "theta_max", "histories", "hysteresis")
+#: The models an answer may come from.
+NEEDED_MODELS: tuple[str, ...] = ("rigid", "sdof", "either")
+#: The evidence table shipped in the package.
+EVIDENCE_FILE: str = "evidence/solvers.csv"
+
+
+@dataclass(frozen=True)
+class Needs:
+    """What a scene asks for.
+
+    Parameters
+    ----------
+    answer : str
+        One of :data:`ANSWERS`.
+    tolerance : float
+        Largest numerical error of theta_max accepted (alpha, dimensionless), > 0.
+    model : str
+        One of :data:`NEEDED_MODELS`.
+    """
+
+    answer: str = "verdicts"
+    tolerance: float = 0.01
+    model: str = "either"
+
+    def __post_init__(self) -> None:
+        if self.answer not in ANSWERS:
+            raise InputError(f"needs.answer must be one of {', '.join(ANSWERS)}, got {self.answer!r}")
+        if self.model not in NEEDED_MODELS:
+            raise InputError(f"needs.model must be one of {', '.join(NEEDED_MODELS)}, got {self.model!r}")
+        t = self.tolerance
+        if isinstance(t, bool) or not isinstance(t, (int, float)) or not (math.isfinite(t) and t > 0):
+            raise InputError(f"needs.tolerance must be a positive number (alpha), got {t!r}")
+
+
+@dataclass(frozen=True)
+class Choice:
+    """The solver chosen for a need, and why."""
+
+    solver: str
+    reason: str
+    evidence: dict[str, Any] = field(default_factory=dict)
+
+    def manifest(self) -> dict[str, Any]:
+        """As JSON data for the manifest."""
+        return {"solver": self.solver, "reason": self.reason, "evidence": dict(self.evidence)}
+
+
+def _evidence_path() -> Path:
+    return Path(str(resources.files("opsrock.data"))) / EVIDENCE_FILE
+
+
+@functools.lru_cache(maxsize=1)
+def evidence() -> tuple[dict[str, Any], ...]:
+    """The shipped evidence rows (numbers as floats)."""
+    with open(_evidence_path(), newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    for r in rows:
+        for k in ("numerical_error_alpha", "record_seconds_per_cpu_second", "model_form_p95_alpha",
+                  "model_form_verdict_agreement"):
+            r[k] = float(r[k])
+    return tuple(rows)
+
+
+def _candidates(needs: Needs, friction: bool) -> list[dict]:
+    """The evidence rows of the solvers whose model may answer ``needs``."""
+    if friction:
+        if needs.model == "sdof":
+            raise InputError("needs.model = 'sdof': the paper's SDOF model has no friction and no vertical motion, "
+                             "and the scene's blocks slide or its floor moves vertically; use model 'rigid' or 'either'")
+        models = {"friction"}
+    else:
+        models = {"rigid", "sdof"} if needs.model == "either" else {needs.model}
+    if needs.answer == "hysteresis":
+        if "sdof" not in models:
+            raise InputError(f"needs.answer = 'hysteresis' exists only in the paper's SDOF model (spring and damper), "
+                             f"not in model {needs.model!r}" + (" with friction" if friction else ""))
+        models = {"sdof"}
+    return [r for r in evidence() if r["model"] in models]
+
+
+def choose(needs: Needs, *, friction: bool = False) -> Choice:
+    """The cheapest solver meeting ``needs`` (``friction``: the scene's blocks slide or its floor moves
+    vertically).
+
+    Raises
+    ------
+    InputError
+        If no solver meets the need, naming the closest one and its measured error.
+    """
+    rows = _candidates(needs, friction)
+    ok = [r for r in rows if r["numerical_error_alpha"] <= needs.tolerance]
+    if not ok:
+        best = min(rows, key=lambda r: r["numerical_error_alpha"])
+        raise InputError(f"needs.tolerance = {needs.tolerance!r} alpha: no solver of model {needs.model!r} meets it; "
+                         f"the most accurate, {best['solver']}, has a measured error of "
+                         f"{best['numerical_error_alpha']:.3g} alpha ({best['source']})")
+    pick = max(ok, key=lambda r: r["record_seconds_per_cpu_second"])
+    reason = (f"{pick['solver']}: model {pick['model']}, measured error {pick['numerical_error_alpha']:.3g} alpha <= "
+              f"{needs.tolerance:g}, {pick['record_seconds_per_cpu_second']:.4g} record-seconds per CPU-second, the "
+              f"cheapest of {', '.join(r['solver'] for r in ok)}")
+    return Choice(pick["solver"], reason, pick)
+
+
+def check(solver: str, needs: Needs, *, friction: bool = False) -> Choice:
+    """A named ``solver`` against ``needs``: its evidence row, or :class:`InputError` saying why it cannot
+    answer."""
+    rows = {r["solver"]: r for r in _candidates(needs, friction)}
+    if solver not in rows:
+        raise InputError(f"solver {solver!r} cannot answer the scene's needs (answer {needs.answer!r}, model "
+                         f"{needs.model!r}); candidates: {', '.join(rows) or 'none'}")
+    r = rows[solver]
+    if r["numerical_error_alpha"] > needs.tolerance:
+        raise InputError(f"solver {solver!r} has a measured error of {r['numerical_error_alpha']:.3g} alpha, above "
+                         f"needs.tolerance = {needs.tolerance!r} ({r['source']})")
+    return Choice(solver, f"{solver}: named by the scene; measured error {r['numerical_error_alpha']:.3g} alpha <= "
+                          f"{needs.tolerance:g}", r)
+
+
+__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "NEEDED_MODELS", "Needs", "check", "choose", "evidence"]

@@ -1,0 +1,118 @@
+"""A scene states its need; solver = "auto" picks the cheapest solver that meets it (opsrock.campaign.needs)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from opsrock.campaign import run_campaign
+from opsrock.campaign.needs import Needs, check, choose, evidence
+from opsrock.campaign.scene import load_scene
+from opsrock.errors import InputError, SceneError
+from opsrock.solvers import SOLVERS
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_the_shipped_evidence_is_what_the_validation_outputs_give():
+    """The table is derived from validation/ and bench/ by tools/evidence.py, never retyped: rerunning the
+    tool on the repository's outputs must give the shipped file byte for byte."""
+    proc = subprocess.run([sys.executable, str(ROOT / "tools" / "evidence.py"), "--check"], capture_output=True)
+    assert proc.returncode == 0, "opsrock/data/evidence/solvers.csv is stale: run tools/evidence.py"
+    assert {r["solver"] for r in evidence()} == set(SOLVERS)
+
+
+def test_cheapest_solver_meeting_the_need():
+    assert choose(Needs(model="either")).solver == "housner_fast"
+    assert choose(Needs(model="sdof", tolerance=0.01)).solver == "opensees"  # 3e-4 alpha measured, the cheaper
+    # below OpenSees' measured error (3.1e-4 alpha) only the scipy SDOF solver (1.3e-10) qualifies
+    assert choose(Needs(model="sdof", tolerance=1e-6)).solver == "sdof"
+    assert choose(Needs(model="rigid", tolerance=1e-10)).solver == "housner"
+    assert choose(Needs(), friction=True).solver == "friction"
+    assert choose(Needs(answer="hysteresis")).solver == "opensees"
+
+
+@pytest.mark.parametrize("needs, friction, match", [
+    (Needs(model="sdof", tolerance=1e-12), False, "no solver of model 'sdof'"),
+    (Needs(answer="hysteresis", model="rigid"), False, "hysteresis"),
+    (Needs(model="sdof"), True, "no friction"),
+])
+def test_needs_no_solver_meets_are_refused(needs, friction, match):
+    with pytest.raises(InputError, match=match):
+        choose(needs, friction=friction)
+
+
+@pytest.mark.parametrize("kwargs", [{"answer": "movies"}, {"model": "fem"}, {"tolerance": 0}, {"tolerance": "a"}])
+def test_bad_needs(kwargs):
+    with pytest.raises(InputError):
+        Needs(**kwargs)
+
+
+def test_a_named_solver_is_checked_against_the_need():
+    assert check("sdof", Needs(model="sdof", tolerance=1e-6)).solver == "sdof"
+    with pytest.raises(InputError, match="measured error"):
+        check("opensees", Needs(model="sdof", tolerance=1e-6))
+    with pytest.raises(InputError, match="cannot answer"):
+        check("housner_fast", Needs(model="sdof"))
+
+
+SCENE = """
+blocks = "blocks.toml"
+[solver]
+name = "{solver}"
+{needs}
+[grid]
+freq_ratio = [2.0]
+pfa_ratio = [1.5, 3.0]
+"""
+BLOCKS = """
+[[block]]
+name = "b"
+width = 0.4
+height = 1.6
+"""
+
+
+def _scene(tmp_path, solver="auto", needs="[needs]\nmodel = \"either\"\ntolerance = 0.01"):
+    (tmp_path / "blocks.toml").write_text(BLOCKS)
+    (tmp_path / "scene.toml").write_text(SCENE.format(solver=solver, needs=needs))
+    return tmp_path / "scene.toml"
+
+
+def test_auto_scene_runs_and_its_manifest_states_the_choice(tmp_path):
+    summary = run_campaign(_scene(tmp_path), tmp_path / "out", workers=1, progress=False)
+    assert summary.solver == "housner_fast" and "cheapest" in summary.choice
+    manifest = json.loads((tmp_path / "out" / "manifest.json").read_text())
+    assert manifest["choice"]["solver"] == "housner_fast"
+    assert manifest["choice"]["evidence"]["source"].startswith("validation/speed_accuracy")
+    assert manifest["needs"] == {"answer": "verdicts", "tolerance": 0.01, "model": "either"}
+
+
+def test_auto_without_needs_takes_the_default_need(tmp_path):
+    assert load_scene(_scene(tmp_path, needs="")).solver == "housner_fast"
+
+
+def test_a_need_no_solver_meets_is_refused_before_anything_runs(tmp_path):
+    path = _scene(tmp_path, needs='[needs]\nmodel = "sdof"\ntolerance = 1e-12')
+    with pytest.raises(SceneError, match="needs.tolerance"):
+        run_campaign(path, tmp_path / "out", workers=1, progress=False)
+    assert not (tmp_path / "out").exists()
+
+
+def test_auto_refuses_settings(tmp_path):
+    (tmp_path / "blocks.toml").write_text(BLOCKS)
+    (tmp_path / "scene.toml").write_text(SCENE.format(solver="auto", needs="").replace(
+        '[solver]\nname = "auto"', '[solver]\nname = "auto"\n[solver.settings]\nstep = 0.001'))
+    with pytest.raises(SceneError, match="auto"):
+        load_scene(tmp_path / "scene.toml")
+
+
+def test_command_line_solver_names_are_the_registry():
+    from opsrock.cli.parser import SOLVER_NAMES
+
+    assert SOLVER_NAMES == SOLVERS

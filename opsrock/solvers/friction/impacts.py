@@ -89,29 +89,46 @@ def _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
+def contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f):
+    """The impact of a block at ``theta = 0`` whose centre of mass moves at ``(vx, vy)`` and turns at ``om``
+    (units of ``R p``, ``p``): ``(mode, s, sig, om, w, ok)``.
+
+    Both corners are at the floor. The impulse acts at one corner (each approaching corner is tried, the
+    faster first: accepted if the other corner is not then driven into the floor) or at both (a flat
+    landing, :func:`_flat_landing`); with no approaching corner there is no impulse and the block rocks or
+    slide-rocks on the corner its rotation lowers. ``ok`` is False if none of these obeys the laws."""
+    u_plus, u_minus = vy - sa * om, vy + sa * om  # normal velocities of the corners c = +1 and c = -1
+    first = 1.0 if u_plus <= u_minus else -1.0
+    for c in (first, -first):
+        u_n = vy - c * sa * om
+        if u_n >= 0.0:
+            continue
+        p_n, p_t, ok = single_contact(-c * sa, -ca, u_n, vx - ca * om, mu_s, mu_k)
+        if not ok:
+            continue
+        om_after = om + 3.0 * (-c * sa * p_n - ca * p_t)
+        if vy + p_n + c * sa * om_after < -_TOL * abs(u_n):  # the other corner, -c, would go into the floor
+            continue
+        w_after = vx + p_t - ca * om_after
+        if abs(w_after) <= _TOL * abs(u_n):
+            return ROCK, c, 0.0, f * om_after, 0.0, True
+        return SLIDE_ROCK, c, (1.0 if w_after > 0.0 else -1.0), f * om_after, w_after, True
+    if min(u_plus, u_minus) >= 0.0:  # nothing approaches: no impulse
+        c = 1.0 if om > 0.0 else -1.0
+        w = vx - ca * om
+        return SLIDE_ROCK if w != 0.0 else ROCK, c, (1.0 if w > 0.0 else -1.0) if w != 0.0 else 0.0, om, w, True
+    mode, sig, w_after, ok = _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k)
+    return mode, 0.0, sig, 0.0, w_after, ok
+
+
+@numba.njit(cache=True)
 def impact(s, om, w, sa, ca, mu_s, mu_k, f):
-    """The state after corner ``-s`` strikes: ``(mode, s, sig, om, w, ok)``.
+    """The state after corner ``-s`` strikes: ``(mode, s, sig, om, w, ok)`` (:func:`contact_at_zero`).
 
     ``om`` (< 0 along ``s``) and ``w`` are the rotation rate and the pivot's slip velocity just before.
     The new mode is ``ROCK`` or ``SLIDE_ROCK`` about ``-s`` (``sig`` the new pivot's slip direction),
     or, after a flat landing, ``REST`` or ``SLIDE``. ``ok`` is False if the law has no solution."""
-    c = -s
-    vx = w + ca * om
-    vy = s * sa * om
-    u_n = vy - c * sa * om
-    p_n, p_t, ok = single_contact(-c * sa, -ca, u_n, w, mu_s, mu_k)
-    if not ok:
-        return REST, 0.0, 0.0, 0.0, 0.0, False
-    om_after = om + 3.0 * (-c * sa * p_n - ca * p_t)
-    vy_after = vy + p_n
-    # the old pivot (corner s) must not be driven into the floor
-    if vy_after - s * sa * om_after < -_TOL * abs(u_n):
-        mode, sig, w_after, ok = _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k)
-        return mode, 0.0, sig, 0.0, w_after, ok
-    w_after = vx + p_t - ca * om_after
-    if abs(w_after) <= _TOL * abs(u_n):
-        return ROCK, c, 0.0, f * om_after, 0.0, True
-    return SLIDE_ROCK, c, (1.0 if w_after > 0.0 else -1.0), f * om_after, w_after, True
+    return contact_at_zero(w + ca * om, s * sa * om, om, sa, ca, mu_s, mu_k, f)
 
 
 @numba.njit(cache=True)
@@ -119,11 +136,10 @@ def landing(th, om, vx, vy, sa, ca, mu_s, mu_k, f):
     """A block in free flight lands: ``(mode, s, sig, om, w, ok)`` after the impact of its lower corner
     ``c = sgn(theta)`` (``theta``, ``om``: rotation and rate; ``vx``, ``vy``: the centre of mass's
     velocity relative to the floor, units of ``R p``), by the same law as :func:`impact` in the general
-    position; flat (``theta = 0``), both corners land together (:func:`_flat_landing`). The new mode
+    position; at ``theta = 0`` by :func:`contact_at_zero`. The new mode
     rocks, or slide-rocks, about ``c`` (``w`` the corner's slip velocity)."""
     if th == 0.0:
-        mode, sig, w_after, ok = _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k)
-        return mode, 0.0, sig, 0.0, w_after, ok
+        return contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f)
     c = 1.0 if th > 0.0 else -1.0
     sn, cs = math.sin(th), math.cos(th)
     gn = ca * sn - c * sa * cs
@@ -143,4 +159,4 @@ def landing(th, om, vx, vy, sa, ca, mu_s, mu_k, f):
     return SLIDE_ROCK, c, (1.0 if w_after > 0.0 else -1.0), f * om_after, w_after, True
 
 
-__all__ = ["impact", "landing", "single_contact"]
+__all__ = ["contact_at_zero", "impact", "landing", "single_contact"]

@@ -232,10 +232,15 @@ def _rk4_flight(x, vx, y, vy, tau, h, fc):
             k * (p1 + 2.0 * p2 + 2.0 * p3 + p4))
 
 
+#: Gap (units of R) below which a corner in flight counts as touching the floor: round-off of the centre's
+#: height, so that a lift-off whose gap opens more slowly than the last digit is not mistaken for a landing.
+_GAP_TOL = 1e-12
+
+
 @numba.njit(cache=True)
 def _gap(c, th, y, sa, ca):
-    """Height of corner ``c`` above the floor (units of ``R``)."""
-    return y - c * sa * math.sin(th) - ca * math.cos(th)
+    """Height of corner ``c`` above the floor (units of ``R``), plus :data:`_GAP_TOL`."""
+    return y - c * sa * math.sin(th) - ca * math.cos(th) + _GAP_TOL
 
 
 @numba.njit(cache=True)

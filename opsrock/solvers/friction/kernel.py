@@ -137,6 +137,7 @@ def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, 
     lo, hi = 0.0, h
     side = 0
     tol = 4e-16 * max(1.0, tau + h)
+    flat = 1e-14 * max(abs(f_lo), abs(f_hi))  # a value this small is the event to round-off
     for it in range(_EVENT_MAX_ITER):
         if hi - lo <= tol:
             return hi, True
@@ -144,6 +145,8 @@ def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, 
         if it % 4 == 3 or not (lo < d < hi):
             d = 0.5 * (lo + hi)
         f = _event_after(ev, sgn, mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k)
+        if abs(f) <= flat:  # zero to round-off: the event is at d
+            return d, True
         if f <= 0.0:
             hi, f_hi = d, f
             if side == -1:

@@ -116,3 +116,22 @@ def test_command_line_solver_names_are_the_registry():
     from opsrock.cli.parser import SOLVER_NAMES
 
     assert SOLVER_NAMES == SOLVERS
+
+
+def test_sdof_verdicts_at_scale_run_as_a_multifidelity_campaign(tmp_path, monkeypatch, capsys):
+    """With model 'sdof' and answer 'verdicts' for enough cases, `opsrock run` screens with the rigid body and
+    runs OpenSees only where the verdict can differ (the threshold lowered here to keep the test small)."""
+    import csv
+
+    from opsrock.campaign import needs as needs_module
+    from opsrock.cli import main
+
+    monkeypatch.setattr(needs_module, "MULTIFIDELITY_MIN_CASES", 2)
+    path = _scene(tmp_path, needs='[needs]\nmodel = "sdof"\nanswer = "verdicts"\ntolerance = 0.01')
+    assert load_scene(path).choice.strategy == "multifidelity"
+    assert main(["run", str(path), "--out", str(tmp_path / "out"), "--no-progress", "--workers", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "screened with housner_fast" in out and "multi-fidelity" in out
+    with open(tmp_path / "out" / "cases.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    assert len(rows) == 2 and {r["source"] for r in rows} <= {"screen", "escalated", "audit"}

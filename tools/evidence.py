@@ -1,5 +1,6 @@
-"""Write opsrock/data/evidence/solvers.csv: what each solver's default costs and how accurate it is,
-derived from the validation cases' and the benchmarks' own outputs (never retyped).
+"""Write opsrock/data/evidence/solvers.csv (what each solver's default costs and how accurate it is) and
+opsrock/data/evidence/model_form.csv (the SDOF model against the rigid body, for multi-fidelity
+campaigns), derived from the validation cases' and the benchmarks' own outputs (never retyped).
 
     .venv/bin/python tools/evidence.py          # rewrite the shipped table from validation/ and bench/
     .venv/bin/python tools/evidence.py --check  # exit 1 if the shipped table differs (tests call it)
@@ -23,6 +24,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "opsrock" / "data" / "evidence" / "solvers.csv"
+OUT_MODEL_FORM = ROOT / "opsrock" / "data" / "evidence" / "model_form.csv"
+MF_COLUMNS = ("solver", "screen_solvers", "p50", "p90", "p95", "n_safe_both", "n_screen_overturned",
+              "n_overturned_to_safe", "n_screen_safe", "n_safe_to_overturned", "min_q_safe_to_overturned", "row_p50",
+              "row_p90", "row_p95", "source")
 
 #: solver -> (model, label of its default settings in validation/speed_accuracy/speed_accuracy.csv,
 #: its entry in bench/results.json: (benchmark, key)).
@@ -71,17 +76,61 @@ def rows() -> list[dict]:
     return out
 
 
-def text() -> str:
+def _counts(pairs: list[tuple[str, str]], thetas: list[float]) -> dict:
+    flips = [q for (a, b), q in zip(pairs, thetas) if (a, b) == ("safe", "overturned")]
+    return {"n_safe_both": pairs.count(("safe", "safe")),
+            "n_screen_overturned": sum(a == "overturned" for a, _ in pairs),
+            "n_overturned_to_safe": pairs.count(("overturned", "safe")),
+            "n_screen_safe": sum(a == "safe" for a, _ in pairs),
+            "n_safe_to_overturned": len(flips), "min_q_safe_to_overturned": repr(min(flips)) if flips else "nan"}
+
+
+def model_form_rows() -> list[dict]:
+    """The SDOF solvers against the rigid body on validation case 9's 207 records, and ``housner`` against
+    ``housner_fast`` on case 8's 108 FEMA P695 cases."""
+    case9 = ROOT / "validation/sdof_records"
+    summary = {r["metric"]: r["value"] for r in _csv(case9 / "summary.csv")}
+    cases = _csv(case9 / "cases.csv")
+    out = []
+    for solver in ("opensees", "sdof"):
+        pairs = [(r["rigid_verdict"], r[f"{solver}_verdict"]) for r in cases]
+        out.append({"solver": solver, "screen_solvers": "housner_fast housner",
+                    **{f"p{p}": summary[f"{solver}_vs_rigid_{n}_all"] for p, n in ((50, "median"), (90, "p90"),
+                                                                                  (95, "p95"))},
+                    **_counts(pairs, [float(r["rigid_theta"]) for r in cases]),
+                    **{f"row_p{p}": f"validation/sdof_records/summary.csv, row {solver}_vs_rigid_{n}_all"
+                       for p, n in ((50, "median"), (90, "p90"), (95, "p95"))},
+                    "source": f"validation/sdof_records/summary.csv rows {solver}_vs_rigid_median_all/_p90_all/"
+                              f"_p95_all; cases.csv rigid_verdict x {solver}_verdict, rigid_theta"})
+    pair = {r["pair"]: r for r in _csv(ROOT / "validation/records/summary.csv")}["housner_fast vs housner"]
+    c8 = _csv(ROOT / "validation/records/cases.csv")
+    pairs = [(r["housner_fast_verdict"], r["housner_verdict"]) for r in c8]
+    out.append({"solver": "housner", "screen_solvers": "housner_fast", "p50": pair["median_dtheta_over_alpha"],
+                "p90": "nan", "p95": pair["p95_dtheta_over_alpha"], **_counts(pairs, [0.0] * len(pairs)),
+                "row_p50": "validation/records/summary.csv, row 'housner_fast vs housner', median_dtheta_over_alpha",
+                "row_p90": "", "row_p95": "validation/records/summary.csv, row 'housner_fast vs housner', "
+                                          "p95_dtheta_over_alpha",
+                "source": "validation/records/summary.csv row 'housner_fast vs housner'; cases.csv "
+                          "housner_fast_verdict x housner_verdict"})
+    return out
+
+
+def _write(rows_: list[dict], columns) -> str:
     buf = io.StringIO()
-    w = csv.DictWriter(buf, fieldnames=COLUMNS, lineterminator="\n")
+    w = csv.DictWriter(buf, fieldnames=columns, lineterminator="\n")
     w.writeheader()
-    w.writerows(rows())
+    w.writerows(rows_)
     return buf.getvalue()
 
 
+def text() -> str:
+    return _write(rows(), COLUMNS)
+
+
 if __name__ == "__main__":
-    new = text()
+    files = {OUT: text(), OUT_MODEL_FORM: _write(model_form_rows(), MF_COLUMNS)}
     if "--check" in sys.argv:
-        sys.exit(0 if OUT.is_file() and OUT.read_text() == new else 1)
-    OUT.write_text(new)
-    print(f"wrote {OUT}")
+        sys.exit(0 if all(p.is_file() and p.read_text() == t for p, t in files.items()) else 1)
+    for path, content in files.items():
+        path.write_text(content)
+        print(f"wrote {path}")

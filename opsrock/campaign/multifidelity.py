@@ -12,7 +12,7 @@ its verdict can differ from the screen's, plus a seeded random audit of the rest
    * ``screen_failed``: the screen has no verdict;
    * ``overturned``: the screen overturned it. Once the rigid body overturns, its ``theta_max`` is the
      limit ``pi/2``, whatever the margin by which it went over: the screen cannot place the case
-     against the boundary, and the validation cases show the SDOF model safe in 10-21 % of them
+     against the boundary, and the validation cases show the SDOF model safe in 17-21 % of them
      (:data:`EVIDENCE`), far above what a margin at the 95th percentile leaves;
    * ``near_overturning``: safe with ``theta_max / alpha >= 1 - margin``: within the model-form
      error of the boundary, the SDOF model may overturn;
@@ -43,6 +43,7 @@ every batch); the same call again resumes both.
 from __future__ import annotations
 
 import csv
+import dataclasses
 import functools
 import hashlib
 import json
@@ -85,19 +86,18 @@ DEFAULT_AUDIT_FRACTION: float = 0.02
 DEFAULT_PERCENTILE: int = 95
 
 #: ``uplift_q`` is this multiple of the SDOF model's own rocking threshold
-#: (``ROCKED_THETA_E_MULTIPLE * theta_e_ratio``). On 44 FEMA roof motions x 4 blocks at 1.005 g tan alpha
-#: the rigid body and the OpenSees model disagreed (safe / no_uplift) on 46 of 176 cases, all with a rigid
-#: ``theta_max / alpha`` <= 5.8e-6; at 1.02 g tan alpha (rigid >= 2.7e-5) on none
-#: (``study/multifidelity/uplift_probe.csv``).
+#: (``ROCKED_THETA_E_MULTIPLE * theta_e_ratio``, 1e-5 by default). On the 44 FEMA roof motions of
+#: ``fema-far-field-ida-b3`` x its 4 blocks scaled to 0.9-1.1 g tan alpha, the rigid body and the OpenSees model
+#: differed (safe / no_uplift) on 164 of the 176 cases at 1.005 g tan alpha, all with a rigid ``theta_max / alpha``
+#: <= 8.4e-6, and on none at 0.9-0.995 or 1.02-1.1 (``studies/multifidelity/uplift_probe.csv``).
 UPLIFT_SAFETY: float = 10.0
 
 
 @dataclass(frozen=True)
 class ModelFormEvidence:
     """Measured model-form error of an expensive solver against the rigid-body screen, as published by
-    the validation cases of the repository (the files are not shipped with the package: the numbers are
-    copied here, each with its file and row; ``tests/test_multifidelity.py`` checks them against the
-    files when they are there).
+    the validation cases of the repository and shipped as data (``opsrock/data/evidence/model_form.csv``,
+    derived from the validation outputs by ``tools/evidence.py``).
 
     Parameters
     ----------
@@ -142,49 +142,33 @@ class ModelFormEvidence:
         return self.n_overturned_to_safe / self.n_screen_overturned if self.n_screen_overturned else math.nan
 
 
-_CASE9 = "validation/sdof_records (case 9: 207 band-passed noise records x 3 blocks x 1.3/2.0/3.5 g tan alpha)"
 _RIGID = ("housner_fast", "housner")
-_PCT = {50: "median", 90: "p90", 95: "p95"}
 
-#: The measured model-form error by expensive solver (see :class:`ModelFormEvidence`).
-EVIDENCE: dict[str, ModelFormEvidence] = {
-    "opensees": ModelFormEvidence(
-        solver="opensees", screen_solvers=_RIGID,
-        # validation/sdof_records/summary.csv, rows opensees_vs_rigid_median_all, _p90_all, _p95_all
-        abs_error={50: 0.015513075377645378, 90: 0.17435672829860255, 95: 0.1975486861007526},
-        # validation/sdof_records/cases.csv: rigid_verdict x opensees_verdict over the 207 rows
-        n_safe_both=146, n_screen_overturned=52, n_overturned_to_safe=11, n_screen_safe=155,
-        n_safe_to_overturned=9, min_q_safe_to_overturned=0.6289331738378785,
-        source=f"{_CASE9}: summary.csv rows opensees_vs_rigid_median_all/_p90_all/_p95_all; verdict counts "
-               "from cases.csv (rigid_verdict, opensees_verdict, rigid_theta)",
-        rows={p: f"validation/sdof_records/summary.csv, row opensees_vs_rigid_{r}_all" for p, r in _PCT.items()},
-        # validation/records/summary.csv, row "opensees vs housner"; cases.csv housner_verdict x opensees_verdict
-        cross_check="validation/records (case 8: 108 FEMA P695 cases, ground and 3-storey roof): summary.csv row "
-                    "'opensees vs housner': p50 0.0101, p95 0.2250, max 0.3999 alpha over 78 cases safe in both; "
-                    "cases.csv: 5 of 29 rigid-overturned cases safe, 1 of 79 rigid-safe cases overturned (at 0.856)"),
-    "sdof": ModelFormEvidence(
-        solver="sdof", screen_solvers=_RIGID,
-        # validation/sdof_records/summary.csv, rows sdof_vs_rigid_median_all, _p90_all, _p95_all
-        abs_error={50: 0.013132794771153422, 90: 0.16956340848363632, 95: 0.19059885713877764},
-        # validation/sdof_records/cases.csv: rigid_verdict x sdof_verdict over the 207 rows
-        n_safe_both=151, n_screen_overturned=52, n_overturned_to_safe=13, n_screen_safe=155,
-        n_safe_to_overturned=4, min_q_safe_to_overturned=0.6289331738378785,
-        source=f"{_CASE9}: summary.csv rows sdof_vs_rigid_median_all/_p90_all/_p95_all; verdict counts "
-               "from cases.csv (rigid_verdict, sdof_verdict, rigid_theta)",
-        rows={p: f"validation/sdof_records/summary.csv, row sdof_vs_rigid_{r}_all" for p, r in _PCT.items()},
-        cross_check="validation/records/summary.csv row 'sdof vs housner': p50 0.0285, p95 0.2060 alpha (21 cases)"),
-    "housner": ModelFormEvidence(
-        solver="housner", screen_solvers=("housner_fast",),
-        # validation/records/summary.csv, row "housner_fast vs housner": median, p95 (max 1.1454576150593532e-05)
-        abs_error={50: 1.038038044409717e-08, 95: 7.793425527147195e-07},
-        # validation/records/cases.csv: housner_fast_verdict x housner_verdict, 108/108 agree
-        n_safe_both=79, n_screen_overturned=29, n_overturned_to_safe=0, n_screen_safe=79,
-        n_safe_to_overturned=0, min_q_safe_to_overturned=math.nan,
-        source="validation/records (case 8): summary.csv row 'housner_fast vs housner' (median, p95); verdict "
-               "counts from cases.csv (housner_fast_verdict, housner_verdict)",
-        rows={50: "validation/records/summary.csv, row 'housner_fast vs housner', median_dtheta_over_alpha",
-              95: "validation/records/summary.csv, row 'housner_fast vs housner', p95_dtheta_over_alpha"}),
-}
+
+def _load_evidence() -> dict[str, ModelFormEvidence]:
+    """The measured model-form error by expensive solver, from the table shipped in the package
+    (``opsrock/data/evidence/model_form.csv``, written by ``tools/evidence.py`` from the validation cases'
+    outputs; a test keeps the two equal)."""
+    from importlib import resources
+
+    path = Path(str(resources.files("opsrock.data"))) / "evidence" / "model_form.csv"
+    out = {}
+    with open(path, newline="") as fh:
+        table = list(csv.DictReader(fh))
+    for r in table:
+        pct = {p: float(r[f"p{p}"]) for p in (50, 90, 95) if r[f"p{p}"] != "nan"}
+        out[r["solver"]] = ModelFormEvidence(
+            solver=r["solver"], screen_solvers=tuple(r["screen_solvers"].split()), abs_error=pct,
+            n_safe_both=int(r["n_safe_both"]), n_screen_overturned=int(r["n_screen_overturned"]),
+            n_overturned_to_safe=int(r["n_overturned_to_safe"]), n_screen_safe=int(r["n_screen_safe"]),
+            n_safe_to_overturned=int(r["n_safe_to_overturned"]),
+            min_q_safe_to_overturned=float(r["min_q_safe_to_overturned"]), source=r["source"],
+            rows={p: r[f"row_p{p}"] for p in pct})
+    return out
+
+
+#: The measured model-form error by expensive solver (see :class:`ModelFormEvidence`), from the package's data.
+EVIDENCE: dict[str, ModelFormEvidence] = _load_evidence()
 
 
 @dataclass(frozen=True)
@@ -573,8 +557,10 @@ def _write_table(out: Path, scene_x: Scene, cases: Sequence, selection: Selectio
                  rows: Mapping) -> list[dict[str, Any]]:
     merged = {c.case_id: rows[c.case_id] if c.case_id in rows else screen_rows[c.case_id] for c in cases}
     table = case_table(cases, merged)
+    audited = set(selection.audited)
     for rec in table:
-        rec["source"] = selection.source(rec["case_id"])
+        cid = rec["case_id"]
+        rec["source"] = "escalated" if cid in selection.escalated else "audit" if cid in audited else "screen"
     write_cases_csv(out / CASES_FILE, table, (*scene_x.columns, "source"))
     return table
 
@@ -640,6 +626,8 @@ def run_multifidelity(
     """
     t0 = time.perf_counter()
     scene = scene if isinstance(scene, Scene) else load_scene(scene)
+    # the scene's [needs] chose this strategy; its two stages run named solvers
+    scene = dataclasses.replace(scene, needs=None, choice=None)
     scene_x = scene.with_solver(solver)
     case_timeout = _check_args(scene, solver, screen_solver, case_timeout)
     rule = derive_rule(solver, screen_solver, scene_x.solver_settings, margin=margin, percentile=percentile,

@@ -65,17 +65,26 @@ class Needs:
             raise InputError(f"needs.tolerance must be a positive number (alpha), got {t!r}")
 
 
+#: Cases from which the SDOF model's verdicts are asked for at scale: the scene is screened by the rigid
+#: body and only the cases whose verdict can differ go to the SDOF model (:mod:`opsrock.campaign.multifidelity`).
+MULTIFIDELITY_MIN_CASES: int = 500
+
+
 @dataclass(frozen=True)
 class Choice:
-    """The solver chosen for a need, and why."""
+    """The solver chosen for a need, and why; ``strategy`` ``"multifidelity"``: screen with ``screen`` and
+    run ``solver`` only where the answer can differ (:func:`opsrock.campaign.multifidelity.run_multifidelity`)."""
 
     solver: str
     reason: str
     evidence: dict[str, Any] = field(default_factory=dict)
+    strategy: str = "single"
+    screen: str = ""
 
     def manifest(self) -> dict[str, Any]:
         """As JSON data for the manifest."""
-        return {"solver": self.solver, "reason": self.reason, "evidence": dict(self.evidence)}
+        return {"solver": self.solver, "reason": self.reason, "evidence": dict(self.evidence),
+                "strategy": self.strategy, "screen": self.screen}
 
 
 def _evidence_path() -> Path:
@@ -111,9 +120,10 @@ def _candidates(needs: Needs, friction: bool) -> list[dict]:
     return [r for r in evidence() if r["model"] in models]
 
 
-def choose(needs: Needs, *, friction: bool = False) -> Choice:
+def choose(needs: Needs, *, friction: bool = False, n_cases: int = 0) -> Choice:
     """The cheapest solver meeting ``needs`` (``friction``: the scene's blocks slide or its floor moves
-    vertically).
+    vertically); the SDOF model's verdicts for :data:`MULTIFIDELITY_MIN_CASES` cases or more (``n_cases``)
+    are asked of a multi-fidelity campaign.
 
     Raises
     ------
@@ -131,6 +141,9 @@ def choose(needs: Needs, *, friction: bool = False) -> Choice:
     reason = (f"{pick['solver']}: model {pick['model']}, measured error {pick['numerical_error_alpha']:.3g} alpha <= "
               f"{needs.tolerance:g}, {pick['record_seconds_per_cpu_second']:.4g} record-seconds per CPU-second, the "
               f"cheapest of {', '.join(r['solver'] for r in ok)}")
+    if pick["model"] == "sdof" and needs.answer == "verdicts" and n_cases >= MULTIFIDELITY_MIN_CASES:
+        return Choice(pick["solver"], reason + f"; {n_cases} cases: screened by housner_fast, {pick['solver']} "
+                      "where the verdict can differ (multi-fidelity)", pick, "multifidelity", "housner_fast")
     return Choice(pick["solver"], reason, pick)
 
 
@@ -149,4 +162,5 @@ def check(solver: str, needs: Needs, *, friction: bool = False) -> Choice:
                           f"{needs.tolerance:g}", r)
 
 
-__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "NEEDED_MODELS", "Needs", "check", "choose", "evidence"]
+__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "MULTIFIDELITY_MIN_CASES", "NEEDED_MODELS", "Needs", "check", "choose",
+           "evidence"]

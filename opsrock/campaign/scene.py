@@ -420,7 +420,8 @@ def load_scene(path: str | Path) -> Scene:
     blocks, blocks_path = _blocks(f, data)
     grid, records = _design(f, data, blocks, pfv)
     solver, settings, case_timeout = _solver(f, data.get("solver", {}))
-    needs, choice = _needs(f, data, solver, blocks, records)
+    n_cases = len(blocks) * (grid if grid is not None else records).n_per_block
+    needs, choice = _needs(f, data, solver, blocks, records, n_cases)
     if choice is not None:
         solver = choice.solver
     return Scene(name=f.string("name", data.get("name", f.path.stem)), path=str(f.path), blocks=blocks,
@@ -429,7 +430,7 @@ def load_scene(path: str | Path) -> Scene:
                  blocks_path=str(blocks_path), case_timeout=case_timeout, records=records, needs=needs, choice=choice)
 
 
-def _needs(f: TomlFile, data: dict, solver: str, blocks, records) -> tuple[Needs | None, Choice | None]:
+def _needs(f: TomlFile, data: dict, solver: str, blocks, records, n_cases: int) -> tuple[Needs | None, Choice | None]:
     """``[needs]`` and the solver it picks (``solver = "auto"``) or checks (a named solver)."""
     raw = data.get("needs")
     if raw is None and solver != AUTO:
@@ -440,7 +441,8 @@ def _needs(f: TomlFile, data: dict, solver: str, blocks, records) -> tuple[Needs
                                                                     (records.grounds if records else ()))
     try:
         needs = Needs(**raw)
-        choice = choose(needs, friction=friction) if solver == AUTO else check(solver, needs, friction=friction)
+        choice = (choose(needs, friction=friction, n_cases=n_cases) if solver == AUTO
+                  else check(solver, needs, friction=friction))
     except OpsrockError as exc:
         key = next((k for k in raw if str(exc).startswith(f"needs.{k}")), None)
         raise f.error(f"needs.{key}" if key else "needs", raw.get(key, dict(raw)) if key else dict(raw),

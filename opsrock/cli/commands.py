@@ -456,6 +456,8 @@ def run(args: argparse.Namespace) -> int:
     except OSError as exc:  # no scheduler at that address
         raise UsageError(" ".join(str(exc).split())) from None
     try:
+        if scene.choice is not None and scene.choice.strategy == "multifidelity":
+            return _run_multifidelity(scene, args, executor)
         summary = run_campaign(scene, args.out, workers=args.workers, executor=executor, force=args.force,
                                progress=not args.no_progress, batch=args.batch, case_timeout=args.case_timeout)
     except KeyboardInterrupt:
@@ -472,6 +474,21 @@ def run(args: argparse.Namespace) -> int:
     if summary.n_failed:
         print(f"opsrock run: {summary.n_failed} case(s) failed (status=failed, reason in {summary.cases_csv})",
               file=sys.stderr)
+    for line in summary.warnings:
+        print(f"opsrock run: warning: {line}", file=sys.stderr)
+    return 0
+
+
+def _run_multifidelity(scene, args: argparse.Namespace, executor) -> int:
+    """``opsrock run`` of a scene whose needs chose a multi-fidelity campaign
+    (:func:`opsrock.campaign.multifidelity.run_multifidelity`)."""
+    from opsrock.campaign.multifidelity import run_multifidelity
+
+    summary = run_multifidelity(scene, args.out, screen_solver=scene.choice.screen, solver=scene.choice.solver,
+                                workers=args.workers, executor=executor, force=args.force,
+                                progress=not args.no_progress, batch=args.batch, case_timeout=args.case_timeout)
+    print("\n".join(summary.lines()))
+    print(f"solver chosen for the scene's needs: {scene.choice.reason}")
     for line in summary.warnings:
         print(f"opsrock run: warning: {line}", file=sys.stderr)
     return 0

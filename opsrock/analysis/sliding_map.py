@@ -36,6 +36,9 @@ from opsrock.constants import G
 #: Reference friction label: the no-slip block.
 NO_SLIP = math.inf
 
+#: Share of failed cases above which a cell's label is starred in the figure (dimensionless).
+FAILED_MARK = 0.01
+
 #: Verdicts of a map cell.
 VERDICTS: tuple[str, ...] = ("same", "differs", "never overturns", "no fit")
 
@@ -240,8 +243,10 @@ def plot_map(table: pd.DataFrame, path: str | Path) -> Path:
             for _, r in sel.iterrows():
                 x, y = ratios.index(r["b_over_h"]), mus.index(r["mu"])
                 ax.add_patch(plt.Rectangle((x - 0.5, y - 0.5), 1, 1, color=VERDICT_COLOURS[r["verdict"]], ec="w"))
-                if math.isfinite(r["median_ratio"]):
-                    ax.text(x, y, f"{r['median_ratio']:.2f}", ha="center", va="center", fontsize=7)
+                mark = "*" if r["n_failed"] > FAILED_MARK * r["n_cases"] else ""
+                if math.isfinite(r["median_ratio"]) or mark:
+                    label = f"{r['median_ratio']:.2f}" if math.isfinite(r["median_ratio"]) else ""
+                    ax.text(x, y, label + mark, ha="center", va="center", fontsize=7)
             ax.set_xlim(-0.5, len(ratios) - 0.5)
             ax.set_ylim(-0.5, len(mus) - 0.5)
             ax.set_xticks(range(len(ratios)), [f"{r:g}" for r in ratios])
@@ -253,8 +258,9 @@ def plot_map(table: pd.DataFrame, path: str | Path) -> Path:
                 ax.set_ylabel("friction mu")
     fig.legend(handles=[Patch(color=c, label=v) for v, c in VERDICT_COLOURS.items()],
                loc="lower center", ncol=4, frameon=False)
-    fig.suptitle("Overturning fragility with friction against no-slip rocking (labels: ratio of medians)")
-    fig.tight_layout(rect=(0, 0.04, 1, 0.97))
+    fig.suptitle("Overturning fragility with friction against no-slip rocking (labels: ratio of medians;\n"
+                 f"* more than {FAILED_MARK:.0%} of the cell's cases failed, stated in the table and left out of the fit)")
+    fig.tight_layout(rect=(0, 0.04, 1, 0.96))
     path = Path(path)
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -422,6 +422,42 @@ def bootstrap(a: EventArrays, stat: Callable[[EventArrays], dict], n_boot: int, 
     return {k: (float(point[k]), float(l), float(h)) for k, l, h in zip(point, lo, hi)}
 
 
+def headline_stats(a: EventArrays) -> dict:
+    """The few numbers of :func:`headline`: the fitted factor (median of ``measured / e_R`` over all
+    impacts) and the first impacts' RMSE against Housner's ``e_R`` and against the paper's factor.
+
+    Parameters
+    ----------
+    a : EventArrays
+        The impacts (the data or a resample).
+    """
+    first = a.event == 1
+    x, e = a.ratio[first], a.e_R[first]
+    return {"factor": _median(a.q), "rmse_first_e_R": float(np.sqrt(np.mean((x - e) ** 2))),
+            "rmse_first_paper": float(np.sqrt(np.mean((x - PAPER_FACTOR * e) ** 2)))}
+
+
+def headline(n_boot: int = N_BOOT_QUICK, seed: int = SEED) -> dict:
+    """:func:`headline_stats` of the shipped data with trial-bootstrap intervals, in about a second.
+
+    Parameters
+    ----------
+    n_boot : int
+        Resamples of whole trials (no unit); the validation case's full form uses :data:`N_BOOT`.
+    seed : int
+        Seed of the resamples (no unit).
+
+    Returns
+    -------
+    dict
+        ``{name: (estimate, low, high)}`` and ``n_trials``, ``n_impacts``, ``n_boot``.
+    """
+    a = analysis_arrays(load_events())
+    out: dict = bootstrap(a, headline_stats, n_boot, seed)
+    out.update(n_trials=int(np.unique(a.trial).size), n_impacts=int(a.trial.size), n_boot=n_boot)
+    return out
+
+
 # --- decay of free rocking -----------------------------------------------------------------------------
 def measured_decay(a: EventArrays, n_max: int = DECAY_IMPACTS) -> pd.DataFrame:
     """Running product of the measured ratios per geometry and impact: median and spread over trials.
@@ -1029,5 +1065,5 @@ def run(out_dir: Path, quick: bool = False) -> dict:
 
 
 __all__ = ["DATA_FILES", "FACTOR_VARIANTS", "MODELS", "EventArrays", "analysis_arrays", "bootstrap", "data_checks",
-           "data_file", "decay_errors", "load_events", "load_trials", "measured_decay", "predict_decay", "run",
+           "data_file", "decay_errors", "headline", "headline_stats", "load_events", "load_trials", "measured_decay", "predict_decay", "run",
            "sdof_closed_form", "statistics", "trial_resamples"]

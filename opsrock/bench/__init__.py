@@ -7,7 +7,9 @@ ratios are) and reports the accuracy reached.
 * :mod:`~opsrock.bench.opensees`: the adaptive OpenSees stepper against fixed steps of 1e-4 s;
 * :mod:`~opsrock.bench.housner_fast`: the compiled rigid-body solver on a 40,000-case spectrum;
 * :mod:`~opsrock.bench.records`: record-seconds simulated per CPU-second, every solver;
-* :mod:`~opsrock.bench.friction`: the same for the block with friction and vertical motion.
+* :mod:`~opsrock.bench.friction`: the same for the block with friction and vertical motion;
+* :mod:`~opsrock.bench.postprocessing`: ``opsrock fragility`` against the solving of its campaign, and
+  ``opsrock reproduce``.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from opsrock._files import atomic_text
 from opsrock.errors import InputError
 
 #: Benchmarks in run order.
-BENCHMARKS: tuple[str, ...] = ("opensees", "housner_fast", "records", "friction")
+BENCHMARKS: tuple[str, ...] = ("opensees", "housner_fast", "records", "friction", "postprocessing")
 
 
 def run_benchmarks(names: Sequence[str] | None = None, *, quick: bool = False, out: str | Path | None = None,

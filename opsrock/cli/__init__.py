@@ -12,6 +12,7 @@
     opsrock validate [--case NAME] [--quick] [--out DIR]
     opsrock bench [--quick] [--only NAME]
     opsrock sliding-map [--quick] --out DIR [--workers N]
+    opsrock contents [--period T --storeys N --floors ground,roof ...] [--quick] --out DIR
 
 The parser is :mod:`opsrock.cli.parser`, the handlers :mod:`opsrock.cli.commands`. One error path:
 every :class:`~opsrock.errors.OpsrockError` (bad arguments, scene files, record files, output

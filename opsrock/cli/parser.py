@@ -279,9 +279,46 @@ def _sliding_map(sub) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
 
 
+def _contents(sub) -> None:
+    p = sub.add_parser("contents", help="FEMA P-58's unanchored contents in one building, beside FEMA's fragilities",
+                       description="Overturning fragility of FEMA P-58's nine unanchored items (blocks library "
+                                   "fema-p58-contents) on the floors of one building, in PFV and PFA, beside FEMA P-58's; "
+                                   "no-slip rocking with two restitutions and rocking with friction; ratio table, a "
+                                   "figure per item, report.md and pelicun damage-model files. Resumable.")
+    p.add_argument("--out", default="results/contents", help="output folder (default results/contents/)")
+    p.add_argument("--period", type=limited("--period", "period"), default=1.0,
+                   help="first period T1 of the linear shear building (s) (default 1.0)")
+    p.add_argument("--storeys", type=count("--storeys", "storeys"), default=8, help="its storeys (default 8)")
+    p.add_argument("--damping", type=limited("--damping", "damping"), default=0.05,
+                   help="its modal damping ratio (default 0.05)")
+    p.add_argument("--floors", default="ground,roof",
+                   help="floors of interest, comma-separated: ground, 1..storeys, roof (default ground,roof)")
+    p.add_argument("--record-set", default="fema-p695:far-field",
+                   help="ground motions: a library record set (default fema-p695:far-field)")
+    p.add_argument("--records", help="only these records of the set, comma-separated names (default: all)")
+    p.add_argument("--items", help="only these FEMA IDs, comma-separated (default: all nine)")
+    p.add_argument("--variants", default="default,housner,friction",
+                   help="models, comma-separated: default (no slip, e = 0.95 e_R), housner (no slip, e = e_R), "
+                        "friction (solver friction) (default: all three)")
+    p.add_argument("--friction", type=limited("--friction", "friction_kinetic"),
+                   help="friction coefficient of the friction variant, static = kinetic (default: the library's, "
+                        "an assumption: see opsrock/data/blocks/fema-p58-contents.md)")
+    p.add_argument("--no-sweep", action="store_true",
+                   help="leave out the roofs of the buildings of T1 = 0.2-2 s (the period chart)")
+    p.add_argument("--n-boot", type=count("--n-boot", "n_boot"), default=100,
+                   help="record resamples of each fit's interval (default 100)")
+    p.add_argument("--seed", type=count("--seed", "seed"), default=0, help="seed of the resampling (default 0)")
+    p.add_argument("--quick", action="store_true",
+                   help="a small study: six records, eight levels, ground and roof, 20 resamples, no sweep")
+    p.add_argument("--store", help="folder of the campaigns' stores (large; default OUT/campaigns)")
+    p.add_argument("--workers", type=count("--workers", "workers"), help="local worker processes (default: all cores)")
+    p.add_argument("--force", action="store_true", help="discard stored cases of other settings in the campaigns")
+    p.add_argument("--no-progress", action="store_true", help="no progress on stderr")
+
+
 COMMANDS = {"simulate": _simulate, "threshold": _threshold, "records": _records, "run": _run,
             "fragility": _fragility, "reproduce": _reproduce, "validate": _validate, "bench": _bench,
-            "sliding-map": _sliding_map}
+            "sliding-map": _sliding_map, "contents": _contents}
 
 
 def build_parser() -> argparse.ArgumentParser:

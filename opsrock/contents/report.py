@@ -1,0 +1,152 @@
+"""The study's report (``report.md``): the ratio table, FEMA's rule, and what drives the differences,
+each claim with the measurement behind it (numbers taken from the study's own tables)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from opsrock.contents.design import ContentsDesign, floor_name
+from opsrock.published import fema_p58
+from opsrock.report.markdown import markdown_table
+
+
+def _rng(s: pd.Series, fmt: str = ".2f") -> str:
+    s = s.dropna()
+    return "n/a" if s.empty else f"{format(s.min(), fmt)}-{format(s.max(), fmt)}"
+
+
+def _cell(r: pd.Series) -> str:
+    if not math.isfinite(r["ratio_fema"]):
+        return "never" if r["n_overturned"] == 0 else "no fit"
+    return f"{r['ratio_fema']:.2f} [{r['ratio_fema_lo']:.2f}, {r['ratio_fema_hi']:.2f}]"
+
+
+def ratio_matrix(ratios: pd.DataFrame, variant: str, design: ContentsDesign) -> pd.DataFrame:
+    """Item by floor: opsrock's PFV median over FEMA's database median, with its 95 % record interval."""
+    sel = ratios[ratios["variant"] == variant]
+    rows = []
+    for item, g in sel.groupby("item", sort=True):
+        it = fema_p58.item(item)
+        row = {"item": item, "b/h": f"{it.aspect_ratio:.3f}", "FEMA (m/s)": f"{it.median_mps:.3f}"}
+        for _, r in g.sort_values("floor_number").iterrows():
+            row[floor_name(int(r["floor_number"]), design.storeys)] = _cell(r)
+        row["beta"] = _rng(g["beta_pfv"])
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def pfa_matrix(ratios: pd.DataFrame, variant: str, design: ContentsDesign) -> pd.DataFrame:
+    """Item by floor: opsrock's PFA median (g) with its interval, and its multiple of the uplift g b/h
+    (the rule's PFA)."""
+    sel = ratios[ratios["variant"] == variant]
+    rows = []
+    for item, g in sel.groupby("item", sort=True):
+        it = fema_p58.item(item)
+        row = {"item": item, "g b/h (g)": f"{it.aspect_ratio:.3f}"}
+        for _, r in g.sort_values("floor_number").iterrows():
+            cell = ("never" if r["n_overturned"] == 0 else "no fit") if not math.isfinite(r["median_pfa_g"]) else (
+                f"{r['median_pfa_g']:.3g} [{r['median_pfa_lo_g']:.3g}, {r['median_pfa_hi_g']:.3g}] "
+                f"(x{r['ratio_pfa_rule']:.2f})")
+            row[floor_name(int(r["floor_number"]), design.storeys)] = cell
+        row["beta"] = _rng(g["beta_pfa"])
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _head(design: ContentsDesign, summary: dict) -> list[str]:
+    t = summary["timings"]
+    lo, hi = summary["ratio_range"] or (math.nan, math.nan)
+    floors = ", ".join(floor_name(n, design.storeys) for n in design.floor_numbers)
+    return [
+        f"# Unanchored contents beside FEMA P-58: a {design.storeys}-storey building, T1 = {design.period:g} s",
+        "",
+        f"The nine unanchored items of FEMA P-58 (`fema-p58-contents`) as rigid blocks (width = depth, height = "
+        f"height) on the {floors} of a linear shear building (T1 = {design.period:g} s, {design.storeys} storeys, "
+        f"{design.damping:.0%} modal damping), under the {len(design.names) or 44} components of "
+        f"`{design.record_set}`{' (' + ', '.join(design.names) + ')' if design.names else ''}, scaled to "
+        f"{len(design.levels)} levels of PFA / (g tan alpha) from {min(design.levels):.3g} to "
+        f"{max(design.levels):.3g} (IDA). Variants: "
+        + "; ".join(f"`{v}` ({design.variant(v).label})" for v in design.variants) + ".",
+        "",
+        f"{summary['n_cases']} cases ({summary['n_failed']} failed, {summary['n_overturned']} overturned). "
+        "Fragilities: lognormal maximum likelihood on every finished case, 95 % intervals from "
+        f"{design.n_boot} resamples of whole records (seed {design.seed}). PFV is the peak absolute floor "
+        "velocity (m/s), PFA the peak absolute floor acceleration (g). Wall time "
+        f"{t['total_s']:.1f} s (campaigns " + ", ".join(f"{k[:-2]} {v:.1f} s" for k, v in t.items()
+                                                        if k.endswith("_s") and k != "total_s") + ").",
+        "",
+        (f"**opsrock's no-slip median over FEMA P-58's database median: {lo:.2f} to {hi:.2f}** "
+        "(default restitution, every item and floor)"
+         + (f"; {summary['sweep_ratio_range'][0]:.2f} to {summary['sweep_ratio_range'][1]:.2f} on the roofs of the "
+            f"buildings of T1 = {min(t for t, _ in design.sweep):g}-{max(t for t, _ in design.sweep):g} s."
+            if summary.get("sweep_ratio_range") else ".")),
+    ]
+
+
+def _ratio_section(result: dict, design: ContentsDesign) -> list[str]:
+    out = ["", "## opsrock over FEMA P-58, per item and floor", "",
+           ("PFV medians of opsrock over the database's (95 % interval from the records), and opsrock's beta "
+           "range over the floors (FEMA: 0.5). All numbers in `ratios.csv`; the curves per item in "
+           "`figures/<item>.png`.")]
+    for v in design.variants:
+        out += ["", f"### {design.variant(v).label}", "", markdown_table(ratio_matrix(result["ratios"], v, design))]
+    if "default" in design.variants:
+        out += ["", "### In PFA (default variant)", "",
+                ("opsrock's PFA median (g) with its 95 % interval and, in brackets, its multiple of the uplift "
+                "acceleration g b/h, which is FEMA's rule in PFA (`PFV_50 = g (b/h) T / 2 pi` is `PFA_50 = g b/h` "
+                "for a harmonic floor motion); FEMA P-58 itself has no PFA fragility for these items:"), "",
+                markdown_table(pfa_matrix(result["ratios"], "default", design))]
+    return out
+
+
+def _rule_section(result: dict) -> list[str]:
+    rule = result["rule"].copy()
+    rule = rule[["fema_id", "aspect_ratio", "database", "rule", "ratio", "rounding", "implied_period", "implied_lo",
+                 "implied_hi"]]
+    books = rule[rule["fema_id"].isin([i.fema_id for i in fema_p58.ITEMS if i.kind == "bookcase"])]
+    cabinets = rule[~rule.index.isin(books.index)]
+    return ["", "## FEMA P-58's rule", "",
+            ("The database says that each median is worked out from the item's aspect ratio and the building period "
+            "T, but not how; the formula was not found in any source we could reach (the FEMA P-58 volumes and "
+            "background reports could not be read). The best candidate we found is `PFV_50 = g (b/h) T / 2 pi`: the "
+            "uplift acceleration g b/h turned into a velocity by a harmonic floor motion of period T "
+            "(`opsrock.published.fema_p58`, which says how it was found and what is not known). It is our reading, "
+            f"not FEMA's text. At T = {fema_p58.REFERENCE_PERIOD:.3f} s (the bookcases' best period) "
+            f"it gives the five bookcases within {100 * (books['ratio'].min() - 1):+.1f} % / "
+            f"{100 * (books['ratio'].max() - 1):+.1f} % (the printed values are rounded to 0.1 in/s, at most "
+            f"0.5 %); the filing cabinets are {100 * (cabinets['ratio'].min() - 1):.0f}-"
+            f"{100 * (cabinets['ratio'].max() - 1):.0f} % above it (they need T = "
+            f"{cabinets['implied_period'].min():.2f}-{cabinets['implied_period'].max():.2f} s): with one period for "
+            "all nine the rule does not reproduce the database, and we could not find the further input (another "
+            "period, other dimensions, a lower centre of mass) that would."), "",
+            markdown_table(rule, ".4g"), "",
+            "![FEMA's rule against T and b/h beside opsrock](figures/fema_rule.png)"]
+
+
+def write_report(path: Path, design: ContentsDesign, result: dict, summary: dict[str, Any]) -> Path:
+    """Write ``report.md``."""
+    from opsrock._files import atomic_write
+    from opsrock.contents.drivers import drivers_section
+
+    lines = [*_head(design, summary), *_ratio_section(result, design), *_rule_section(result),
+             *drivers_section(result, design), *_pelicun_section(design)]
+    atomic_write(Path(path), lambda fh: fh.write("\n".join(lines) + "\n"), durable=False)
+    return Path(path)
+
+
+def _pelicun_section(design: ContentsDesign) -> list[str]:
+    return ["", "## Into pelicun", "",
+            ("`pelicun/` holds opsrock's fragilities as pelicun damage models (`fragility_<variant>.csv`, new IDs "
+            "`opsrock.<FEMA ID>.<floor>.<PFV|PFA>` because a pelicun component has one fragility on every floor), "
+            "`mapping.csv` (each ID's FEMA ID, floor and pelicun location: the ground floor is location 1, floor "
+            "slab n location n + 1), `demands.csv` (the unscaled records' PFV on each floor of interest, one "
+            "realisation per record) and `inventory.csv` (the small inventory). `tools/pelicun_assess.py` (in "
+            "pelicun's venv) runs pelicun's damage assessment of that inventory with the database's E.20.22 "
+            "fragilities and with opsrock's, and reports the expected number of overturned items each way.")]
+
+
+__all__ = ["ratio_matrix", "write_report"]

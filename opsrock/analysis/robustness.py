@@ -6,6 +6,11 @@ hybrid ratio and least-squares fit at ``W_SAS``) is repeated on ``n_sets`` sets 
 seeded, from furniture ranges (:data:`ALPHA_RANGE`, :data:`R_RANGE`, uniform), with the rigid-body
 solver ``housner_fast``. For each set the winner by HR, by CV and by ``beta`` is recorded; the share
 of sets each IM wins is reported with its 95 % Wilson interval.
+
+Computed in tasks of :data:`SETS_PER_TASK` sets: one ``housner_fast`` solve and one evaluation of the IMs
+for all the sets of a task (the cases are independent: the same numbers as set by set), then per set only
+what the criteria read (the hybrid strip and the least-squares fit at ``W_SAS``; not the MLE); the
+least-squares fits are scipy's own, without its wrappers (:mod:`opsrock.fragility._trf`).
 """
 
 from __future__ import annotations
@@ -95,15 +100,84 @@ class RobustnessResult:
 
 
 def _winners(cases: pd.DataFrame) -> dict[str, str]:
-    from opsrock.fragility.analysis import FragilitySettings, analyse_fragility, rank_ims
+    """The winner of each criterion on a cases table: the IM of the smallest value in
+    :func:`opsrock.fragility.analysis.rank_ims` (the paper's analysis at ``W_SAS``), "" if none has one."""
+    from opsrock.fragility.cases import split_cases
 
-    an = analyse_fragility(cases, FragilitySettings(strip_factors=(1.0,), n_boot=0))
-    rank = rank_ims(an)
-    return {c: (str(rank[c].idxmin()) if rank[c].notna().any() else "") for c in CRITERIA}
+    rock = split_cases(cases).rocking
+    return _winners_of(rock["overturned"].to_numpy(bool), {im: rock[im].to_numpy(float) for im in IM_NAMES})
+
+
+def _winners_of(overturned: np.ndarray, values: dict[str, np.ndarray]) -> dict[str, str]:
+    """:func:`_winners` from the rocking cases' outcomes and IM values: only what the criteria need, the
+    hybrid strip (HR) and the least-squares fit at ``W_SAS`` (CV, beta), made exactly as
+    :func:`~opsrock.fragility.analysis.analyse_fragility` makes them (not its MLE, which no criterion reads)."""
+    from opsrock.fragility.hybrid_strip import hybrid_strip
+    from opsrock.fragility.least_squares import fit_lognormal_least_squares
+    from opsrock.fragility.strips import strip_fractions
+    from opsrock.intensity import get_im
+
+    table = {c: [] for c in CRITERIA}
+    for im, x in values.items():
+        dec = get_im(im).decreasing
+        hs = hybrid_strip(x, overturned, im, dec)
+        usable, cv, beta = False, math.nan, math.nan
+        if hs.n_safe and hs.n_overturned:
+            st = strip_fractions(x, overturned, hs, 1.0, "range")
+            fit = fit_lognormal_least_squares(st.centre, st.fraction, dec)
+            usable = fit.success and not st.fallback  # a fallback fit is flagged, as in analyse_fragility
+            cv, beta = fit.cv_percent, fit.beta
+        table["HR"].append(hs.HR)
+        table["cv_percent"].append(cv if usable else math.nan)
+        table["beta"].append(beta if usable else math.nan)
+    ims = list(values)
+    out = {}
+    for c in CRITERIA:
+        v = np.array(table[c], dtype=float)
+        out[c] = ims[int(np.nanargmin(v))] if not np.isnan(v).all() else ""  # first smallest, as idxmin
+    return out
 
 
 def _set_winners(blocks: list[Block]) -> dict[str, str]:
-    return _winners(pulse_cases(blocks))
+    return _sets_winners([blocks])[0]
+
+
+def _sets_winners(sets: list[list[Block]]) -> list[dict[str, str]]:
+    """:func:`_winners` of :func:`pulse_cases` for each set, with one solve and one IM evaluation for all
+    the sets (the cases are independent: the same numbers as set by set), on arrays, not tables."""
+    from opsrock.constants import G
+    from opsrock.intensity.table1 import intensity_measures_array
+    from opsrock.solvers.housner_fast import solve_pulses
+
+    blocks = [b for bs in sets for b in bs]
+    res = solve_pulses(blocks, PFA_RATIOS, FREQ_RATIOS, threads=1)
+    shape = res.ok.shape  # (block, pfa, freq): the rows of pulse_cases, in its order
+    ar = np.broadcast_to(np.asarray(PFA_RATIOS)[None, :, None], shape)
+    fr = np.broadcast_to(np.asarray(FREQ_RATIOS)[None, None, :], shape)
+    prop = {k: np.broadcast_to(np.array([getattr(b, k) for b in blocks])[:, None, None], shape).ravel()
+            for k in ("alpha", "R", "p", "e_R", "tan_alpha")}
+    # the same products, in the same order, as pulse_cases' Python floats
+    pfa = np.array([a * G * t for a, t in zip(ar.ravel().tolist(), prop["tan_alpha"].tolist())])
+    omega_p = np.array([f * p for f, p in zip(fr.ravel().tolist(), prop["p"].tolist())])
+    ims = intensity_measures_array(prop["alpha"], prop["R"], prop["p"], prop["e_R"], pfa, omega_p)
+    rocking = (res.ok & res.rocked).ravel()
+    over = res.overturned.ravel()
+    odd = (res.ok & ~res.rocked & res.overturned).ravel()  # refused by split_cases
+    out = []
+    start = 0
+    for bs in sets:
+        n = len(bs) * shape[1] * shape[2]
+        if odd[start:start + n].any():
+            out.append(_winners(pulse_cases(bs)))  # raises split_cases' error on this set's table
+        else:
+            rows = np.flatnonzero(rocking[start:start + n]) + start
+            out.append(_winners_of(over[rows], {im: ims[im][rows] for im in IM_NAMES}))
+        start += n
+    return out
+
+
+#: Block sets per task of :func:`ranking_robustness` (one solve and one IM evaluation a task).
+SETS_PER_TASK: int = 10
 
 
 def ranking_robustness(n_sets: int = 200, seed: int = 0, progress: bool = False,
@@ -125,23 +199,32 @@ def ranking_robustness(n_sets: int = 200, seed: int = 0, progress: bool = False,
     n_sets = int_at_least("n_sets", check_count("robustness_sets", n_sets), 1)
     workers = check_count("workers", workers)
     sets = draw_block_sets(n_sets, seed)
-    if workers == 1:
-        it = map(_set_winners, sets)
+    chunks = [sets[i:i + SETS_PER_TASK] for i in range(0, n_sets, SETS_PER_TASK)]
+    if workers == 1 or len(chunks) == 1:
+        it = map(_sets_winners, chunks)
         pool = None
     else:
-        from concurrent.futures import ProcessPoolExecutor
+        from opsrock._pool import deferred_interrupts, process_pool
 
-        pool = ProcessPoolExecutor(max_workers=workers)
-        it = pool.map(_set_winners, sets, chunksize=max(1, n_sets // (4 * workers)))
+        pool = process_pool(min(workers, len(chunks)))
+        with deferred_interrupts():  # the workers are forked at the first task
+            it = pool.map(_sets_winners, chunks)
     if progress:
         from tqdm import tqdm
 
-        it = tqdm(it, total=n_sets, desc="block sets", unit="set")
+        bar = tqdm(total=n_sets, desc="block sets", unit="set")
     try:
-        rows = [{"set": i, **{f"winner_{c}": w for c, w in won.items()}} for i, won in enumerate(it)]
+        rows = []
+        for won in it:
+            for w in won:
+                rows.append({"set": len(rows), **{f"winner_{c}": x for c, x in w.items()}})
+            if progress:
+                bar.update(len(won))
     finally:
+        if progress:
+            bar.close()
         if pool is not None:
-            pool.shutdown()
+            pool.shutdown(cancel_futures=True)
     winners = pd.DataFrame(rows)
     shares = []
     for im in IM_NAMES:

@@ -13,10 +13,10 @@ from opsrock.fragility.cases import CaseSplit, split_cases
 from opsrock.fragility.hybrid_strip import HybridStrip, hybrid_strip
 from opsrock.fragility.least_squares import fit_lognormal_least_squares
 from opsrock.fragility.lognormal import LognormalFit, failed_fit
-from opsrock.fragility.mle import MLEFit, fit_lognormal_mle
+from opsrock.fragility.mle import MLEFit, fit_plans, plan_mle
 from opsrock.fragility.strips import STRIP_EXTENTS, StripFractions, strip_fractions
 from opsrock.intensity import IM_NAMES, add_intensity_measures, get_im
-from opsrock.limits import int_at_least, one_of, positive_finite
+from opsrock.limits import check_count, int_at_least, one_of, positive_finite
 from opsrock.published.liu_huang_liu_2023 import STRIP_FACTORS
 
 
@@ -106,7 +106,7 @@ def _with_ims(cases: pd.DataFrame, pfv_convention: str | None) -> pd.DataFrame:
 
 
 def analyse_fragility(
-    cases: pd.DataFrame, settings: FragilitySettings | None = None
+    cases: pd.DataFrame, settings: FragilitySettings | None = None, workers: int = 1
 ) -> FragilityAnalysis:
     """Hybrid strips, strip fractions, least-squares and MLE fits for every IM.
 
@@ -116,15 +116,19 @@ def analyse_fragility(
         Cases table (columns of ``cases.csv``).
     settings : FragilitySettings, optional
         Defaults to ``FragilitySettings()``.
+    workers : int, optional
+        Processes that share the MLE bootstrap resamples (default 1: all in this process); the
+        result does not depend on it.
 
     Returns
     -------
     FragilityAnalysis
     """
     settings = settings or FragilitySettings()
+    workers = check_count("workers", workers)
     split = split_cases(_with_ims(cases, settings.pfv_convention))
     y = split.rocking["overturned"].to_numpy(bool)
-    results = {}
+    parts = {}
     for im in settings.ims:
         dec = get_im(im).decreasing
         x = split.rocking[im].to_numpy(float)
@@ -142,8 +146,15 @@ def analyse_fragility(
                                    dec, False, "fallback strips (no hybrid strip); " + fit.message,
                                    fit.objective)
             fits[fac] = fit
-        mle = fit_lognormal_mle(x, y, dec, settings.n_boot, settings.confidence, settings.seed) \
-            if x.size else MLEFit(math.nan, math.nan, math.nan, "mle", 0, dec, False, "no rocking cases")
+        plan = plan_mle(x, y, dec, settings.n_boot, settings.confidence, settings.seed) if x.size else None
+        parts[im] = (hs, strips, fits, plan, dec)
+    # the MLE bootstraps last, all together: their resamples can be shared among processes
+    plans = [p[3] for p in parts.values() if p[3] is not None]
+    mles = iter(fit_plans(plans, workers))
+    results = {}
+    for im, (hs, strips, fits, plan, dec) in parts.items():
+        mle = next(mles) if plan is not None else MLEFit(math.nan, math.nan, math.nan, "mle", 0, dec, False,
+                                                         "no rocking cases")
         results[im] = IMFragility(im, hs, strips, fits, mle)
     return FragilityAnalysis(split, results, settings)
 

@@ -5,9 +5,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
 
 from opsrock.errors import InputError
+from opsrock.fragility._trf import least_squares_trf
 from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit, failed_fit
 
 #: crawls towards the ``beta`` bound for hundreds of iterations).
@@ -62,7 +63,10 @@ def fit_lognormal_least_squares(
     def jacobian(q: np.ndarray) -> np.ndarray:
         z = s * (lx - q[0]) / q[1]
         phi = np.exp(-0.5 * z**2) / math.sqrt(2.0 * math.pi)
-        return np.stack([phi * s / q[1], phi * z / q[1]], axis=1)
+        out = np.empty((lx.size, 2))  # np.stack([...], axis=1), without its checks
+        out[:, 0] = phi * s / q[1]
+        out[:, 1] = phi * z / q[1]
+        return out
 
     # start the median where the fractions cross 1/2 (nearest strip), beta from the spread
     m0 = float(lx[np.argmin(np.abs(f - 0.5))])
@@ -72,9 +76,9 @@ def fit_lognormal_least_squares(
     best = None
     for b0 in (0.05, 0.2, 0.5, 1.5):
         q0 = [m0, float(np.clip(b0 * max(spread, 0.1), *BETA_BOUNDS))]
-        res = optimize.least_squares(residual, q0, jac=jacobian, bounds=(lo, hi), method="trf",
-                                     x_scale=[1.0, 0.1], xtol=1e-10, ftol=1e-12, gtol=1e-12,
-                                     max_nfev=LS_MAX_EVALUATIONS)
+        # scipy.optimize.least_squares(method="trf") with these settings, bit for bit, without its overhead
+        res = least_squares_trf(residual, jacobian, q0, lo, hi, [1.0, 0.1], xtol=1e-10, ftol=1e-12, gtol=1e-12,
+                                max_nfev=LS_MAX_EVALUATIONS)
         if best is None or res.cost < best.cost:
             best = res
     mu, beta = math.exp(best.x[0]), float(best.x[1])

@@ -11,9 +11,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize, special
+from scipy import special
 
 from opsrock.errors import InputError
+from opsrock.fragility._bfgs import minimize_bfgs
 
 
 @dataclass(frozen=True)
@@ -89,7 +90,7 @@ def fit_logistic(values: np.ndarray, overturned: np.ndarray, decreasing: bool = 
         p = special.expit(z)
         return val, np.array([np.sum(p - yf), np.sum((p - yf) * v)])
 
-    res = optimize.minimize(nll, np.array([0.0, 1.0]), jac=True, method="BFGS", options={"gtol": 1e-10})
+    res = minimize_bfgs(nll, np.array([0.0, 1.0]), 1e-10)  # scipy's BFGS, bit for bit
     a, b = res.x
     if not (res.success or res.status == 2) or b <= 0:
         return LogisticFit(math.nan, math.nan, math.nan, n, decreasing, False, f"optimiser: {res.message}")

@@ -23,6 +23,10 @@ Choices:
 * **Ranking.** Per IM: MLE median and ``beta`` with their intervals, HR, CV = ``100 beta / mu``
   (the paper's, not scale-free), and the log-likelihood per case. Winners by ``beta``, HR and CV,
   and how often each IM wins in the record bootstrap (:func:`ranking_frequencies`).
+* **Computation.** Every resample of every fit is drawn from the seed up front and fitted on arrays;
+  with ``workers`` > 1 the resamples are shared among processes and put back in order
+  (:class:`~opsrock._pool.TaskPool`): the numbers do not depend on ``workers``. The ranking
+  resamples fit only what the winners need (the MLE point fit and HR), not the logistic regression.
 """
 
 from __future__ import annotations
@@ -33,11 +37,22 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from opsrock._pool import TaskPool
 from opsrock.errors import InputError
 from opsrock.fragility.hybrid_strip import hybrid_strip
 from opsrock.fragility.ida import OUTCOMES, outcomes, resurrection_summary, resurrections
-from opsrock.fragility.logistic import fit_logistic
-from opsrock.fragility.mle import MLEFit, fit_lognormal_mle
+from opsrock.fragility.logistic import LogisticFit, fit_logistic
+from opsrock.fragility.mle import (
+    CHUNK,
+    DistinctCases,
+    MLEFit,
+    MLEPlan,
+    _group_members,
+    _Plans,
+    plan_mle,
+    point_fit,
+    resample_indices,
+)
 from opsrock.fragility.sufficiency import sufficiency
 from opsrock.intensity import IM_NAMES, get_im
 from opsrock.limits import check_count, one_of
@@ -122,25 +137,44 @@ class RecordStudy:
     n_failed: int = 0
 
 
-def _fit(x: np.ndarray, y: np.ndarray, groups: np.ndarray, decreasing: bool, s: RecordStudySettings,
-         n_boot: int | None = None) -> MLEFit:
-    return fit_lognormal_mle(x, y, decreasing, s.n_boot if n_boot is None else n_boot, s.confidence, s.seed,
-                             groups=groups)
+def _plan(x: np.ndarray, y: np.ndarray, groups: np.ndarray, decreasing: bool, s: RecordStudySettings) -> MLEPlan:
+    return plan_mle(x, y, decreasing, s.n_boot, s.confidence, s.seed, groups=groups)
 
 
 def _im_row(cases: pd.DataFrame, im: str, s: RecordStudySettings) -> dict:
+    part = _im_part(cases, im, s)
+    return part.row(part.plan.finish(part.plan.draws()))
+
+
+@dataclass(frozen=True)
+class _IMPart:
+    """One IM of :func:`record_fragility`: its MLE (bootstrap still to draw) and everything else of its row."""
+
+    im: str
+    plan: MLEPlan
+    n_cases: int
+    n_overturned: int
+    logistic: LogisticFit
+    HR: float  # noqa: N815
+
+    def row(self, m: MLEFit) -> dict:
+        lg = self.logistic
+        return {"im": self.im, "n_cases": self.n_cases, "n_overturned": self.n_overturned, "mu": m.mu, "beta": m.beta,
+                "mu_lo": m.mu_lo, "mu_hi": m.mu_hi, "beta_lo": m.beta_lo, "beta_hi": m.beta_hi,
+                "cv_percent": m.cv_percent, "HR": self.HR, "loglik_per_case": m.loglik_per_case,
+                "mle_success": m.success, "mle_message": m.message, "n_boot_used": m.n_boot_used,
+                "logistic_mu": lg.mu, "logistic_beta_equivalent": lg.beta_equivalent}
+
+
+def _im_part(cases: pd.DataFrame, im: str, s: RecordStudySettings) -> _IMPart:
     dec = get_im(im).decreasing
     sub = cases[np.isfinite(cases[im]) & (cases[im] > 0)]
     x, y, g = sub[im].to_numpy(float), sub["y"].to_numpy(bool), sub["record"].to_numpy()
-    m = _fit(x, y, g, dec, s)
+    plan = _plan(x, y, g, dec, s)
     lg = fit_logistic(x, y, dec)
     rock = sub["rocked_bool"].to_numpy(bool)
     hs = hybrid_strip(x[rock], y[rock], im, dec)
-    return {"im": im, "n_cases": int(x.size), "n_overturned": int(y.sum()), "mu": m.mu, "beta": m.beta,
-            "mu_lo": m.mu_lo, "mu_hi": m.mu_hi, "beta_lo": m.beta_lo, "beta_hi": m.beta_hi,
-            "cv_percent": m.cv_percent, "HR": hs.HR, "loglik_per_case": m.loglik_per_case,
-            "mle_success": m.success, "mle_message": m.message, "n_boot_used": m.n_boot_used,
-            "logistic_mu": lg.mu, "logistic_beta_equivalent": lg.beta_equivalent}
+    return _IMPart(im, plan, int(x.size), int(y.sum()), lg, hs.HR)
 
 
 def _rank(df: pd.DataFrame) -> pd.DataFrame:
@@ -160,63 +194,144 @@ def _prepare(cases: pd.DataFrame, outcome: str) -> tuple[pd.DataFrame, int]:
     return ok, n_failed
 
 
+class _RankIM:
+    """One IM's finished cases, ready for many resamples: the IM, the outcome and the rocking flag of
+    the cases with a positive finite IM (as :func:`_im_row` keeps them), and where each case is."""
+
+    def __init__(self, cases: pd.DataFrame, im: str) -> None:
+        self.im, self.decreasing = im, get_im(im).decreasing
+        self.s = -1.0 if self.decreasing else 1.0
+        x = cases[im].to_numpy(float)
+        keep = np.isfinite(x) & (x > 0)
+        self.keep = keep
+        self.position = np.cumsum(keep) - 1  # position among the kept cases (where kept)
+        self.x = x[keep]
+        self.u = self.s * np.log(self.x)
+        self.y = cases["y"].to_numpy(bool)[keep]
+        self.rock = cases["rocked_bool"].to_numpy(bool)[keep]
+        self.all_kept = bool(keep.all())
+        # the rocking flag is part of a distinct case: the hybrid strip reads it from the first case of each
+        self.distinct = DistinctCases(self.x, self.y, self.u, self.rock) if self.x.size else None
+
+    def criteria(self, idx: np.ndarray) -> tuple[float, float, float]:
+        """MLE ``beta``, HR and CV of the resample ``idx`` (positions of finished cases), as :func:`_im_row`
+        gives them for the resampled table."""
+        at = idx if self.all_kept else self.position[idx[self.keep[idx]]]
+        if not at.size:
+            empty = np.empty(0)
+            return (point_fit(empty, empty.astype(bool), self.s).beta,
+                    hybrid_strip(empty, empty.astype(bool), self.im, self.decreasing).HR, math.nan)
+        table = self.distinct.table(at)  # the resample's distinct cases: the same sets of values
+        fit = point_fit(self.u[at], None, self.s, table)
+        rock = self.rock[table.base]
+        hr = hybrid_strip(self.x[table.base][rock], table.y[rock], self.im, self.decreasing).HR  # min/max only
+        return fit.beta, hr, fit.cv_percent
+
+
+class _Frequencies:
+    """:func:`ranking_frequencies` in steps (as :class:`~opsrock.fragility.mle.MLEPlan`): :meth:`criteria` of
+    any range of the seeded record resamples, :meth:`table` of all of them in order."""
+
+    CRITERIA: tuple[str, ...] = ("beta", "HR", "cv_percent")
+
+    def __init__(self, cases: pd.DataFrame, ims: tuple[str, ...], n_boot: int, seed: int) -> None:
+        self.ims, self.n_boot, self.seed = tuple(ims), n_boot, seed
+        self.n_cases = len(cases)
+        records = cases["record"].to_numpy()
+        self.members = _group_members(records, records.shape)  # records in order of first appearance
+        self.by_im = [_RankIM(cases, im) for im in self.ims]
+        self._resamples: list[np.ndarray] | None = None
+
+    def __getstate__(self) -> dict:
+        return {**self.__dict__, "_resamples": None}
+
+    def criteria(self, lo: int = 0, hi: int | None = None) -> np.ndarray:
+        """``(resample, IM, criterion)``: MLE beta, HR and CV of each IM in resamples ``lo`` to ``hi - 1``."""
+        hi = self.n_boot if hi is None else min(hi, self.n_boot)
+        if self._resamples is None:
+            self._resamples = resample_indices(self.n_cases, self.members, self.n_boot, self.seed)
+        out = np.empty((max(hi - lo, 0), len(self.ims), len(self.CRITERIA)))
+        for k, idx in enumerate(self._resamples[lo:hi]):
+            out[k] = [r.criteria(idx) for r in self.by_im]
+        return out
+
+    def table(self, values: np.ndarray) -> pd.DataFrame:
+        """Wins and shares of each IM over the resamples (``values`` of all of them, in order)."""
+        from opsrock.analysis.robustness import wilson_interval
+
+        wins = {c: {im: 0 for im in self.ims} for c in self.CRITERIA}
+        n_done = 0
+        for v in values:
+            if not np.isnan(v[:, 0]).all():
+                n_done += 1
+                for j, c in enumerate(self.CRITERIA):
+                    if not np.isnan(v[:, j]).all():  # the first IM of the smallest value, as idxmin
+                        wins[c][self.ims[int(np.nanargmin(v[:, j]))]] += 1
+        out = []
+        for im in self.ims:
+            row = {"im": im, "n_resamples": n_done}
+            for c in self.CRITERIA:
+                k = wins[c][im]
+                lo, hi = wilson_interval(k, n_done)
+                row.update({f"wins_{c}": k, f"share_{c}": k / n_done if n_done else math.nan,
+                            f"share_{c}_lo": lo, f"share_{c}_hi": hi})
+            out.append(row)
+        return pd.DataFrame(out)
+
+
 def ranking_frequencies(cases: pd.DataFrame, ims: tuple[str, ...], n_boot: int, seed: int) -> pd.DataFrame:
     """How often each IM has the smallest ``beta`` (MLE), HR and CV when the records are resampled
-    with replacement ``n_boot`` times (seeded); with 95 % Wilson intervals of each share."""
-    from opsrock.analysis.robustness import wilson_interval
+    with replacement ``n_boot`` times (seeded); with 95 % Wilson intervals of each share.
 
-    records = np.array(list(dict.fromkeys(cases["record"].tolist())))
-    by_rec = {r: np.flatnonzero(cases["record"].to_numpy() == r) for r in records}
-    rng = np.random.default_rng(seed)
-    wins = {c: {im: 0 for im in ims} for c in ("beta", "HR", "cv_percent")}
-    n_done = 0
-    quick = RecordStudySettings(ims=ims, n_boot=0)
-    for _ in range(n_boot):
-        pick = rng.integers(0, records.size, records.size)
-        sample = cases.iloc[np.concatenate([by_rec[records[i]] for i in pick])].reset_index(drop=True)
-        rows = pd.DataFrame([_im_row(sample, im, quick) for im in ims]).set_index("im")
-        if rows["beta"].notna().any():
-            n_done += 1
-            for c in wins:
-                if rows[c].notna().any():
-                    wins[c][rows[c].idxmin()] += 1
+    Each resample's criteria are those :func:`_im_row` gives on the resampled table (its MLE point fit
+    and hybrid strip; nothing else of the row is needed), computed on arrays.
+    """
+    freq = _Frequencies(cases, ims, n_boot, seed)
+    return freq.table(freq.criteria())
+
+
+def _block_plans(cases: pd.DataFrame, s: RecordStudySettings) -> list[tuple[dict, MLEPlan]]:
     out = []
-    for im in ims:
-        row = {"im": im, "n_resamples": n_done}
-        for c in wins:
-            k = wins[c][im]
-            lo, hi = wilson_interval(k, n_done)
-            row.update({f"wins_{c}": k, f"share_{c}": k / n_done if n_done else math.nan,
-                        f"share_{c}_lo": lo, f"share_{c}_hi": hi})
-        out.append(row)
-    return pd.DataFrame(out)
-
-
-def _block_fits(cases: pd.DataFrame, s: RecordStudySettings) -> pd.DataFrame:
-    rows = []
     for block, sub in cases.groupby("block", sort=False):
         for demand in EXPORT_DEMANDS:
             x = sub[demand].to_numpy(float)
             keep = np.isfinite(x) & (x > 0)
-            m = _fit(x[keep], sub["y"].to_numpy(bool)[keep], sub["record"].to_numpy()[keep], False, s)
-            rows.append({"block": block, "demand": demand, "unit": "m/s2" if demand == "pfa" else "m/s",
-                         "mu": m.mu, "beta": m.beta, "mu_lo": m.mu_lo, "mu_hi": m.mu_hi, "beta_lo": m.beta_lo,
-                         "beta_hi": m.beta_hi, "n_cases": int(keep.sum()), "success": m.success, "message": m.message})
-    return pd.DataFrame(rows)
+            plan = _plan(x[keep], sub["y"].to_numpy(bool)[keep], sub["record"].to_numpy()[keep], False, s)
+            out.append(({"block": block, "demand": demand, "unit": "m/s2" if demand == "pfa" else "m/s",
+                         "n_cases": int(keep.sum())}, plan))
+    return out
 
 
-def _measure_fits(raw: pd.DataFrame, s: RecordStudySettings) -> pd.DataFrame:
-    rows = []
+def _block_row(head: dict, m: MLEFit) -> dict:
+    return {"block": head["block"], "demand": head["demand"], "unit": head["unit"], "mu": m.mu, "beta": m.beta,
+            "mu_lo": m.mu_lo, "mu_hi": m.mu_hi, "beta_lo": m.beta_lo, "beta_hi": m.beta_hi,
+            "n_cases": head["n_cases"], "success": m.success, "message": m.message}
+
+
+def _block_fits(cases: pd.DataFrame, s: RecordStudySettings) -> pd.DataFrame:
+    return pd.DataFrame([_block_row(head, plan.finish(plan.draws())) for head, plan in _block_plans(cases, s)])
+
+
+def _measure_plans(raw: pd.DataFrame, s: RecordStudySettings) -> list[tuple[dict, MLEPlan]]:
+    out = []
     if "level_value" not in raw.columns or not np.isfinite(raw["level_value"]).any():
-        return pd.DataFrame(rows)
+        return out
     for conv in OUTCOMES:
         ok, _ = _prepare(raw, conv)
         sub = ok[np.isfinite(ok["level_value"]) & (ok["level_value"] > 0)]
-        m = _fit(sub["level_value"].to_numpy(float), sub["y"].to_numpy(bool), sub["record"].to_numpy(), False, s)
-        rows.append({"outcome": conv, "mu": m.mu, "beta": m.beta, "mu_lo": m.mu_lo, "mu_hi": m.mu_hi,
-                     "beta_lo": m.beta_lo, "beta_hi": m.beta_hi, "n_overturned": int(sub["y"].sum()),
-                     "n_cases": len(sub)})
-    return pd.DataFrame(rows)
+        plan = _plan(sub["level_value"].to_numpy(float), sub["y"].to_numpy(bool), sub["record"].to_numpy(), False, s)
+        out.append(({"outcome": conv, "n_overturned": int(sub["y"].sum()), "n_cases": len(sub)}, plan))
+    return out
+
+
+def _measure_row(head: dict, m: MLEFit) -> dict:
+    return {"outcome": head["outcome"], "mu": m.mu, "beta": m.beta, "mu_lo": m.mu_lo, "mu_hi": m.mu_hi,
+            "beta_lo": m.beta_lo, "beta_hi": m.beta_hi, "n_overturned": head["n_overturned"],
+            "n_cases": head["n_cases"]}
+
+
+def _measure_fits(raw: pd.DataFrame, s: RecordStudySettings) -> pd.DataFrame:
+    return pd.DataFrame([_measure_row(head, plan.finish(plan.draws())) for head, plan in _measure_plans(raw, s)])
 
 
 def _sufficiency(cases: pd.DataFrame, ims: tuple[str, ...]) -> pd.DataFrame:
@@ -233,7 +348,7 @@ def _sufficiency(cases: pd.DataFrame, ims: tuple[str, ...]) -> pd.DataFrame:
 
 
 def record_fragility(cases: pd.DataFrame, settings: RecordStudySettings | None = None,
-                     n_rank_boot: int | None = None) -> RecordStudy:
+                     n_rank_boot: int | None = None, workers: int = 1) -> RecordStudy:
     """Fit, rank and test every IM on a record campaign's cases.
 
     Parameters
@@ -244,18 +359,56 @@ def record_fragility(cases: pd.DataFrame, settings: RecordStudySettings | None =
         Defaults to ``RecordStudySettings()``.
     n_rank_boot : int, optional
         Record resamples for :func:`ranking_frequencies` (default ``settings.n_boot``).
+    workers : int, optional
+        Processes that share the bootstrap resamples (default 1: all in this process). The resamples are
+        drawn from the seed whatever the split and put back in order, so the result does not depend on
+        ``workers``.
 
     Returns
     -------
     RecordStudy
     """
     s = settings or RecordStudySettings()
+    workers = check_count("workers", workers)
     ok, n_failed = _prepare(cases, s.outcome)
-    ims = _rank(pd.DataFrame([_im_row(ok, im, s) for im in s.ims]))
-    res = resurrections(cases)
+    freq = _Frequencies(ok, s.ims, s.n_boot if n_rank_boot is None else n_rank_boot, s.seed)
+    parts = [_im_part(ok, im, s) for im in s.ims]
+    blocks = _block_plans(ok, s)
+    measures = _measure_plans(cases, s)
+    plans = [p.plan for p in parts] + [plan for _, plan in blocks] + [plan for _, plan in measures]
+    state = _StudyTasks(plans, freq)
+    tasks = state.tasks()
+    with TaskPool(state, tasks, workers) as pool:
+        res = resurrections(cases)  # the light work, while the workers fit the resamples
+        suff = _sufficiency(ok, s.ims)
+        fits, criteria = state.finish(tasks, pool.results())
+    ims = _rank(pd.DataFrame([p.row(m) for p, m in zip(parts, fits)]))
+    k = len(parts)
     return RecordStudy(
-        cases=ok, ims=ims, measure_fits=_measure_fits(cases, s), resurrections=res,
-        resurrection_summary=resurrection_summary(res), sufficiency=_sufficiency(ok, s.ims),
-        blocks=_block_fits(ok, s),
-        frequencies=ranking_frequencies(ok, s.ims, s.n_boot if n_rank_boot is None else n_rank_boot, s.seed),
-        settings=s, n_failed=n_failed)
+        cases=ok, ims=ims,
+        measure_fits=pd.DataFrame([_measure_row(h, m) for (h, _), m in zip(measures, fits[k + len(blocks):])]),
+        resurrections=res, resurrection_summary=resurrection_summary(res), sufficiency=suff,
+        blocks=pd.DataFrame([_block_row(h, m) for (h, _), m in zip(blocks, fits[k:k + len(blocks)])]),
+        frequencies=freq.table(criteria), settings=s, n_failed=n_failed)
+
+
+class _StudyTasks(_Plans):
+    """Task state of :func:`record_fragility` (:class:`~opsrock._pool.TaskPool`): the resamples of the
+    MLE plans (task ``(i, lo)``) and of the ranking frequencies (task ``(-1, lo)``), the latter first (they
+    cost the most: every IM of a resample is fitted from a cold start)."""
+
+    def __init__(self, plans: list[MLEPlan], freq: _Frequencies) -> None:
+        super().__init__(plans)
+        self.freq = freq
+
+    def tasks(self) -> list[tuple[int, int]]:
+        return [(-1, lo) for lo in range(0, self.freq.n_boot, CHUNK)] + super().tasks()
+
+    def run(self, i: int, lo: int):
+        return self.freq.criteria(lo, lo + CHUNK) if i < 0 else super().run(i, lo)
+
+    def finish(self, tasks: list[tuple[int, int]], results: list) -> tuple[list[MLEFit], np.ndarray]:
+        n = sum(1 for i, _ in tasks if i < 0)
+        parts = results[:n]
+        criteria = np.concatenate(parts) if parts else np.empty((0, len(self.freq.ims), len(self.freq.CRITERIA)))
+        return super().finish(tasks[n:], results[n:]), criteria

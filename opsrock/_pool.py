@@ -1,0 +1,103 @@
+"""Worker-process pools of the post-processing (bootstrap resamples, block sets, figures) and Ctrl-C.
+
+:class:`TaskPool` runs a list of tasks on one state, here or in a pool, the results in task order.
+
+A terminal's Ctrl-C sends SIGINT to the whole process group. The workers ignore it (:func:`ignore_interrupts`,
+their initialiser): the parent gets it, stops waiting and shuts its pool down, so the user sees one line,
+not a traceback per worker. While a pool forks its workers the parent only records a Ctrl-C
+(:func:`deferred_interrupts`): raised inside ``fork()``'s own handlers, the ``KeyboardInterrupt`` would be
+swallowed there ("Exception ignored in ... _releaseLock") and the run would go on; recorded, it is raised
+as soon as the workers exist.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+
+
+def ignore_interrupts() -> None:
+    """Worker initialiser: ignore SIGINT (the parent handles Ctrl-C and stops the pool)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+@contextlib.contextmanager
+def deferred_interrupts():
+    """Inside the block (where a pool forks its workers) a Ctrl-C is recorded, not raised; it is raised
+    as ``KeyboardInterrupt`` when the block ends. Outside the main thread (where Python delivers no
+    signal) the block runs as it is."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if caught:
+        if callable(previous):
+            previous(signal.SIGINT, None)  # the usual handler: KeyboardInterrupt
+        elif previous != signal.SIG_IGN:
+            raise KeyboardInterrupt
+
+
+class TaskPool:
+    """``[state.run(*task) for task in tasks]``, in this process (``workers`` 1) or in a pool of ``workers``
+    processes, each given ``state`` once; the results in the order of ``tasks`` whatever the split.
+
+    With a pool the tasks start at once and :meth:`results` waits for them, so the caller can do other
+    work in between. A context manager: leaving it shuts the pool down (Ctrl-C included; the workers
+    ignore it and the parent stops them).
+    """
+
+    def __init__(self, state, tasks: list[tuple], workers: int = 1) -> None:
+        self.state, self.tasks = state, list(tasks)
+        self.pool = self.futures = self._done = None
+        if workers > 1 and len(self.tasks) > 1:
+            self.pool = process_pool(min(workers, len(self.tasks)), _pool_init, (state,))
+            with deferred_interrupts():  # the workers are forked at the first submit
+                self.futures = [self.pool.submit(_pool_run, *t) for t in self.tasks]
+
+    def __enter__(self) -> TaskPool:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.pool is not None:
+            self.pool.shutdown(cancel_futures=True)
+
+    def results(self) -> list:
+        if self._done is None:
+            if self.futures is None:
+                self._done = [self.state.run(*t) for t in self.tasks]
+            else:
+                self._done = [f.result() for f in self.futures]
+        return self._done
+
+
+_POOL_STATE: list = []
+
+
+def _pool_init(state) -> None:
+    _POOL_STATE[:] = [state]
+
+
+def _pool_run(*task):
+    return _POOL_STATE[0].run(*task)
+
+
+def process_pool(workers: int, initializer=None, initargs: tuple = ()):
+    """A ``ProcessPoolExecutor`` of ``workers`` processes whose workers ignore SIGINT (then run ``initializer``).
+
+    Submit the first task inside :func:`deferred_interrupts`: that is where the workers are forked.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor(max_workers=workers, initializer=_init, initargs=(initializer, initargs))
+
+
+def _init(initializer, initargs: tuple) -> None:
+    ignore_interrupts()
+    if initializer is not None:
+        initializer(*initargs)

@@ -25,3 +25,12 @@ def save_figure(fig, path: str | Path) -> Path:
     finally:
         plt.close(fig)
     return path
+
+
+def figure_pool(workers: int):
+    """A pool of ``workers`` processes for independent figures (matplotlib draws in one thread). Its workers
+    ignore Ctrl-C: the parent gets it and shuts the pool down. Submit the first figure inside
+    :func:`opsrock.fragility._pool.deferred_interrupts` (the workers are forked there)."""
+    from opsrock._pool import process_pool
+
+    return process_pool(workers)

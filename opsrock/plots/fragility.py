@@ -404,8 +404,30 @@ def paper_figures(
         ``{"fig6a": path, "fig6b": ..., "fig8": ..., "fig9": ..., "fig10": ..., "fig11": ...,
         "fig12": ...}``.
     """
+    jobs = paper_figure_jobs(cases, analysis, out_dir, spectrum)
+    if workers <= 1:
+        return {name: fn(*args) for name, (fn, args) in jobs.items()}
+    from opsrock._pool import deferred_interrupts
+    from opsrock.plots import figure_pool
+
+    with figure_pool(workers) as pool:
+        with deferred_interrupts():
+            futures = {name: pool.submit(fn, *args) for name, (fn, args) in jobs.items()}
+        return {name: f.result() for name, f in futures.items()}
+
+
+#: Relative drawing cost of each figure of :func:`paper_figures` (for ordering the jobs of a pool,
+#: the longest first): the grids of nine panels cost the most.
+FIGURE_COST: dict[str, float] = {"fig12": 1.3, "fig8": 1.2, "fig10": 1.2, "fig6b": 0.6, "fig6a": 0.35,
+                                 "fig11": 0.3, "fig9": 0.25}
+
+
+def paper_figure_jobs(cases: pd.DataFrame, analysis: FragilityAnalysis, out_dir: str | Path,
+                      spectrum: pd.DataFrame | None = None) -> dict[str, tuple]:
+    """The figures of :func:`paper_figures` as independent jobs ``name -> (function, args)`` (each writes
+    one PNG and returns its path), for a caller that runs them in its own pool."""
     out = Path(out_dir)
-    jobs = {
+    return {
         "fig6a": (plot_case_distribution, (cases, out / "fig6a_cases.png")),
         "fig6b": (plot_overturning_spectrum, (cases, out / "fig6b_spectrum.png", spectrum)),
         "fig8": (plot_response_vs_im, (analysis, out / "fig8_response_vs_im.png")),
@@ -414,10 +436,3 @@ def paper_figures(
         "fig11": (plot_dispersion, (analysis, out / "fig11_cv_beta.png")),
         "fig12": (plot_strip_widths, (analysis, out / "fig12_strip_widths.png")),
     }
-    if workers <= 1:
-        return {name: fn(*args) for name, (fn, args) in jobs.items()}
-    from concurrent.futures import ProcessPoolExecutor
-
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        futures = {name: pool.submit(fn, *args) for name, (fn, args) in jobs.items()}
-        return {name: f.result() for name, f in futures.items()}

@@ -11,6 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
 
 from opsrock.fragility.lognormal import fragility_probability  # noqa: E402
 from opsrock.plots import save_figure  # noqa: E402
@@ -31,10 +32,10 @@ def plot_ida_curves(cases: pd.DataFrame, path: str | Path, measure_label: str = 
     colors = {f: c for f, c in zip(floors, plt.rcParams["axes.prop_cycle"].by_key()["color"] * 4)}
     for ax, block in zip(axes.ravel(), blocks):
         sub = cases[cases["block"] == block]
-        for (_, floor), g in sub.groupby(["record", "floor"], sort=False):
-            g = g.sort_values("level")
-            y = np.where(g["y"], OVERTURNED_Y, np.minimum(g["theta_max_over_alpha"], 1.0))
-            ax.plot(g["level_value"], y, "-", lw=0.5, alpha=0.45, color=colors[floor])
+        segments, segment_colors = _ida_segments(sub, colors)
+        # one collection of all the curves, in the order of the groups, each drawn as its own line
+        ax.add_collection(LineCollection(segments, colors=segment_colors, linewidths=0.5, alpha=0.45), autolim=True)
+        ax.autoscale_view()
         for f in floors:
             ax.plot([], [], "-", color=colors[f], label=f"floor {f}")
         ax.legend(fontsize=7, loc="center right")
@@ -48,6 +49,30 @@ def plot_ida_curves(cases: pd.DataFrame, path: str | Path, measure_label: str = 
     for ax in axes.ravel()[n:]:
         ax.set_visible(False)
     return save_figure(fig, path)
+
+
+def _ida_segments(sub: pd.DataFrame, colors: dict) -> tuple[list[np.ndarray], list]:
+    """The IDA curves of one block, one per (record, floor) in order of first appearance, each sorted by
+    level: the polylines (split where a value is missing, as a plotted line is) and their colours."""
+    keys = pd.MultiIndex.from_arrays([sub["record"], sub["floor"]])
+    code, uniq = pd.factorize(keys, sort=False)
+    level = sub["level"].to_numpy()
+    order = np.lexsort((level, code))  # by curve, then by level (levels are distinct along a curve)
+    x = sub["level_value"].to_numpy(float)[order]
+    y = np.where(sub["y"].to_numpy(bool), OVERTURNED_Y,
+                 np.minimum(sub["theta_max_over_alpha"].to_numpy(float), 1.0))[order]
+    code = code[order]
+    cuts = np.flatnonzero(np.diff(code)) + 1
+    segments, segment_colors = [], []
+    for k, (cx, cy) in enumerate(zip(np.split(x, cuts), np.split(y, cuts))):
+        color = colors[uniq[code[cuts[k - 1]] if k else code[0]][1]]
+        finite = np.isfinite(cx) & np.isfinite(cy)
+        runs = np.split(np.flatnonzero(finite), np.flatnonzero(np.diff(np.flatnonzero(finite)) > 1) + 1)
+        for run in runs:
+            if run.size:
+                segments.append(np.column_stack([cx[run], cy[run]]))
+                segment_colors.append(color)
+    return segments, segment_colors
 
 
 def plot_measure_fragility(cases: pd.DataFrame, measure_fits: pd.DataFrame, path: str | Path,

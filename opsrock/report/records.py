@@ -144,7 +144,7 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
 
     t0 = time.perf_counter()
     out.mkdir(parents=True, exist_ok=True)
-    study = record_fragility(cases, RecordStudySettings(n_boot=n_boot, seed=seed, outcome=outcome))
+    study = record_fragility(cases, RecordStudySettings(n_boot=n_boot, seed=seed, outcome=outcome), workers=workers)
     t_fit = time.perf_counter() - t0
     robust = None
     if robustness_sets:
@@ -157,10 +157,20 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
     comps, skipped = _exports(study.blocks)
     pel = write_pelicun_csv(comps, out / "fragility_pelicun.csv")
     fig = out / "figures"
-    figs = {"ida": rplots.plot_ida_curves(study.cases, fig / "ida_curves.png", "scene measure (level value)"),
-            "fragility": rplots.plot_measure_fragility(study.cases, study.measure_fits, fig / "fragility.png",
-                                                       "scene measure (level value)"),
-            "ranking": rplots.plot_im_ranking(study.ims, study.frequencies, fig / "im_ranking.png", robust)}
+    jobs = {"ida": (rplots.plot_ida_curves, (study.cases, fig / "ida_curves.png", "scene measure (level value)")),
+            "fragility": (rplots.plot_measure_fragility, (study.cases, study.measure_fits, fig / "fragility.png",
+                                                          "scene measure (level value)")),
+            "ranking": (rplots.plot_im_ranking, (study.ims, study.frequencies, fig / "im_ranking.png", robust))}
+    if workers > 1:  # independent figures: drawn at once
+        from opsrock._pool import deferred_interrupts
+        from opsrock.plots import figure_pool
+
+        with figure_pool(min(workers, len(jobs))) as pool:
+            with deferred_interrupts():
+                futures = {k: pool.submit(fn, *args) for k, (fn, args) in jobs.items()}
+            figs = {k: f.result() for k, f in futures.items()}
+    else:
+        figs = {k: fn(*args) for k, (fn, args) in jobs.items()}
     timings = {"fits_s": t_fit, "total_s": time.perf_counter() - t0}
     _write_markdown(out, study, robust, figs, skipped, timings, source, robustness_sets)
     return {"study": study, "pelicun": pel, "figures": figs, "timings": timings}

@@ -147,7 +147,7 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
         with timer("spectrum_s"):
             spectrum = _spectrum(out, spectrum_scene, workers)
     with timer("fragility_s"):
-        analysis, t2, t3, ranking = _fragility(out, cases, scene.pfv_convention)
+        analysis, t2, t3, ranking = _fragility(out, cases, scene.pfv_convention, workers)
     robustness = None
     if robustness_sets:
         with timer("robustness_s"):
@@ -207,11 +207,11 @@ def _spectrum(out: Path, spectrum_scene, workers) -> pd.DataFrame:
     return spectrum
 
 
-def _fragility(out: Path, cases: pd.DataFrame, pfv_convention: str):
+def _fragility(out: Path, cases: pd.DataFrame, pfv_convention: str, workers: int | None = None):
     """Step 4: hybrid strips, Table 2, strip fractions and fits, Table 3, the IM ranking."""
     from opsrock import fragility
 
-    analysis = fragility.analyse_fragility(cases)
+    analysis = fragility.analyse_fragility(cases, workers=workers or os.cpu_count() or 1)
     t2 = fragility.table2(analysis)
     t3 = fragility.table3(analysis)
     atomic_csv(out / "table2.csv", t2)
@@ -278,9 +278,47 @@ def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.D
     """Figures 3, 4, 6a, 6b, 8-12 into ``fig_dir``; returns name -> path.
 
     ``scene`` is the campaign's scene: Figures 3 and 4 re-run a few of its cases with full
-    histories (the campaign stores peaks and verdicts only).
+    histories (the campaign stores peaks and verdicts only). The figures are independent: with
+    ``workers`` > 1 the paper's figures and the threshold charts are drawn by a pool of processes
+    (the longest first) while this process re-runs and draws Figures 3 and 4.
     """
     from opsrock.plots import fragility as fplots
+    from opsrock.plots.thresholds import literature_threshold_figure
+
+    workers = workers or os.cpu_count() or 1
+    jobs = fplots.paper_figure_jobs(cases, analysis, fig_dir, spectrum)
+    # beyond the paper: the minimum-overturning charts of the rocking literature (validation case 7)
+    jobs["thresholds"] = (literature_threshold_figure, (fig_dir / "thresholds.png",))
+    order = sorted(jobs, key=lambda k: -THRESHOLDS_COST if k == "thresholds" else -fplots.FIGURE_COST.get(k, 1.0))
+    figs: dict[str, Path] = {}
+    pool = None
+    if workers > 1:
+        from opsrock.plots import figure_pool
+
+        pool = figure_pool(min(workers, len(jobs)))
+    try:
+        futures = {}
+        if pool is not None:
+            from opsrock._pool import deferred_interrupts
+
+            with deferred_interrupts():  # the workers are forked at the first submit
+                futures = {k: pool.submit(jobs[k][0], *jobs[k][1]) for k in order}
+        figs.update(_history_figures(cases, fig_dir, solver, scene))
+        for k in order:
+            figs[k] = futures[k].result() if pool is not None else jobs[k][0](*jobs[k][1])
+    finally:
+        if pool is not None:
+            pool.shutdown(cancel_futures=True)
+    keys = ("fig3", "fig4", "fig6a", "fig6b", "fig8", "fig9", "fig10", "fig11", "fig12", "thresholds")
+    return {k: figs[k] for k in keys if k in figs}
+
+
+#: Relative cost of the threshold-charts job (the charts are computed there: the longest job).
+THRESHOLDS_COST: float = 4.0
+
+
+def _history_figures(cases: pd.DataFrame, fig_dir: Path, solver: str, scene) -> dict[str, Path]:
+    """Figures 3 and 4: a few of the campaign's cases re-run with full histories."""
     from opsrock.plots.response import plot_histories, plot_response
     from opsrock.solvers import simulate
 
@@ -316,10 +354,4 @@ def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.D
             titles.append(f"{cid}  " + r"$\omega_p/p$" + f"={c.freq_ratio:.3g}, " + r"PFA/g tan$\alpha$" + f"={c.pfa_ratio:.3g}")
         figs["fig4"] = plot_histories(res_a, titles, fig_dir / "fig4_histories.png", references=res_b,
                                       reference_label="independent scipy SDOF")
-    figs.update(fplots.paper_figures(cases, analysis, fig_dir, spectrum=spectrum, workers=workers or os.cpu_count() or 1))
-    # beyond the paper: the minimum-overturning charts of the rocking literature (validation case 7)
-    from opsrock.analysis.charts import literature_charts
-    from opsrock.plots.thresholds import plot_threshold_charts
-
-    figs["thresholds"] = plot_threshold_charts(literature_charts(), fig_dir / "thresholds.png")
     return figs

@@ -30,6 +30,12 @@ test-fuzz: install
 
 # The FEMA P-58 / pelicun export loads in pelicun: pelicun 3.10 pins scipy < 1.16 and pandas < 3, so it
 # gets a venv of its own; opsrock writes a sample export and pelicun reads every parameter back.
+# The contents study (opsrock contents) writes damage models pelicun loads, and a real pelicun damage
+# assessment of its small inventory (3 of each FEMA P-58 unanchored item on each floor of the study, PFV
+# demands of the FEMA P695 far-field records as recorded, through the study's building) runs twice, with
+# FEMA P-58's E.20.22 fragilities and with opsrock's: first on a quick study made now from this checkout,
+# then on the committed study (studies/contents/pelicun/), whose expected numbers of overturned items
+# studies/contents/README.md quotes.
 test-pelicun: install
 	@test -x .pelicun-venv/bin/python || $(PYTHON) -m venv .pelicun-venv
 	.pelicun-venv/bin/python -m pip install --quiet 'pelicun==3.10.0'
@@ -37,6 +43,10 @@ test-pelicun: install
 	  w([C('opsrock.sample.PFA', 'pfa', 6.055398004958769, 0.6505432263063391), \
 	     C('opsrock.sample.PFV', 'pfv', 0.6115985322309946, 0.36682703654629484)], '.pelicun-venv/sample.csv')"
 	.pelicun-venv/bin/python tools/pelicun_load.py .pelicun-venv/sample.csv
+	$(BIN)/opsrock contents --quick --no-progress --force --out .pelicun-venv/contents
+	for f in .pelicun-venv/contents/pelicun/fragility_*.csv; do .pelicun-venv/bin/python tools/pelicun_load.py $$f || exit 1; done
+	.pelicun-venv/bin/python tools/pelicun_assess.py .pelicun-venv/contents/pelicun --repeat 20
+	.pelicun-venv/bin/python tools/pelicun_assess.py studies/contents/pelicun
 
 # A wheel built from this checkout, installed (not editable) into a fresh venv, runs `opsrock run tiny`,
 # `opsrock validate --quick` and `opsrock reproduce` from an empty folder elsewhere (.ci/run calls it).

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import math
 
 import numpy as np
@@ -63,3 +64,105 @@ def test_bad_arguments(kwargs, match):
 
 def test_component_id():
     assert sliding_component_id("bookcase", 0.05, "pfv") == "opsrock.bookcase.SLIDE50MM.PFV"
+
+
+# --- the sliding section of `opsrock fragility` ----------------------------------------------------------------
+
+FRICTION_BLOCKS = """
+[[block]]
+name = "crate"
+width = 0.9
+height = 1.2
+reason = "stocky: slides before it could rock"
+friction = 0.4
+
+[[block]]
+name = "shelf"
+width = 0.5
+height = 1.8
+reason = "slender: rocks, overturns and slides"
+friction = 0.4
+"""
+
+FRICTION_SCENE = """
+name = "friction-records"
+blocks = "blocks.toml"
+[solver]
+name = "friction"
+[records]
+glob = "rec/*.txt"
+units = "g"
+dt = 0.01
+ground = true
+[records.intensity]
+method = "ida"
+measure = "pfa_g"
+levels = [0.5, 0.8, 1.2, 1.8, 2.6]
+"""
+
+
+@pytest.fixture(scope="module")
+def friction_cases(tmp_path_factory) -> pd.DataFrame:
+    """A small record campaign solved with friction: two blocks, six synthetic ground motions (a noisy
+    sine of 1 to 3 Hz in a 6 s envelope), five levels of PFA: 60 cases, some sliding beyond 5 and 20 cm."""
+    from opsrock.campaign import run_campaign
+    from opsrock.report.records import read_cases
+
+    d = tmp_path_factory.mktemp("friction")
+    (d / "rec").mkdir()
+    rng = np.random.default_rng(0)
+    t = np.arange(0.0, 6.0, 0.01)
+    for k in range(6):
+        a = np.sin(np.pi * t / t[-1]) ** 2 * (np.sin(2 * np.pi * (1.0 + 0.4 * k) * t) + 0.3 * rng.normal(size=t.size))
+        np.savetxt(d / "rec" / f"r{k}.txt", a / np.abs(a).max())
+    (d / "blocks.toml").write_text(FRICTION_BLOCKS)
+    (d / "scene.toml").write_text(FRICTION_SCENE)
+    summary = run_campaign(d / "scene.toml", d / "out", workers=1, progress=False)
+    assert summary.n_failed == 0
+    return read_cases(d / "out")
+
+
+def _files(folder) -> set[str]:
+    return {str(p.relative_to(folder)) for p in folder.rglob("*") if p.is_file()}
+
+
+def test_fragility_report_of_a_friction_campaign_has_a_sliding_section(friction_cases, tmp_path):
+    from opsrock.campaign.cases import CONTACT_COLUMNS
+    from opsrock.report.records import SLIDE_DISTANCES, write_record_report
+
+    n_boot = 15
+    res = write_record_report(friction_cases, tmp_path / "with", n_boot=n_boot, seed=2)
+    assert res["sliding"] is not None
+    plain = write_record_report(friction_cases.drop(columns=list(CONTACT_COLUMNS)), tmp_path / "without",
+                                n_boot=n_boot, seed=2)
+    # without the contact columns: the files of any record campaign, nothing about sliding
+    assert plain["sliding"] is None
+    assert _files(tmp_path / "with") == _files(tmp_path / "without") | {"sliding.csv", "figures/sliding.png"}
+    assert "Sliding" not in (tmp_path / "without" / "report.md").read_text()
+    # the overturning study is the same either way
+    for name in ("ims", "measure_fits", "blocks", "frequencies", "sufficiency", "resurrections"):
+        assert (tmp_path / "with" / f"{name}.csv").read_bytes() == (tmp_path / "without" / f"{name}.csv").read_bytes()
+
+    # sliding.csv is sliding_table of the finished cases, every block x distance x demand
+    table = pd.read_csv(tmp_path / "with" / "sliding.csv")
+    expected = sliding_table(friction_cases, SLIDE_DISTANCES, n_boot=n_boot, seed=2)
+    assert len(table) == 2 * len(SLIDE_DISTANCES) * 2
+    pd.testing.assert_frame_equal(table, pd.read_csv(io.StringIO(expected.to_csv(index=False))))
+    fitted = table[table["success"] & (table["beta"] > 0)]
+    assert {"crate", "shelf"} <= set(fitted["block"]) and set(fitted["distance"]) >= {0.05, 0.2}
+    assert (fitted["median_lo"] <= fitted["median"]).all() and (fitted["median"] <= fitted["median_hi"]).all()
+
+    # the pelicun file: the overturning components as before, plus one SLIDE component per fitted row
+    with_comps = read_pelicun_csv(tmp_path / "with" / "fragility_pelicun.csv")
+    plain_comps = read_pelicun_csv(tmp_path / "without" / "fragility_pelicun.csv")
+    slides = [c for c in with_comps if ".SLIDE" in c.component_id]
+    assert [c for c in with_comps if ".SLIDE" not in c.component_id] == plain_comps
+    assert [c.component_id for c in slides] == [sliding_component_id(r.block, r.distance, r.demand)
+                                                for r in fitted.itertuples()]
+    assert [(c.median, c.beta) for c in slides] == list(zip(fitted["median"], fitted["beta"]))
+
+    # the report: a table per block and the figure
+    report = (tmp_path / "with" / "report.md").read_text()
+    section = report[report.index("## Sliding beyond a distance"):]
+    assert "### crate" in section and "### shelf" in section and "![Sliding](figures/sliding.png)" in section
+    assert (tmp_path / "with" / "figures" / "sliding.png").stat().st_size > 1000

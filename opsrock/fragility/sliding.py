@@ -76,29 +76,57 @@ def fit_sliding(cases: pd.DataFrame, block: str, distance: float, *, measure: st
                 demand: str = "pfa", n_boot: int = 200, seed: int = 0) -> SlidingFit:
     """The fragility of ``block`` sliding beyond ``distance`` (m) in ``demand`` (``pfa`` or ``pfv``
     column of ``cases``), from its finished cases."""
-    from opsrock.fragility.mle import fit_lognormal_mle
+    head, plan = _sliding_plan(cases, block, distance, measure, demand, n_boot, seed)
+    return _sliding_fit(head, plan.finish(plan.draws()) if plan is not None else None)
+
+
+def _sliding_plan(cases: pd.DataFrame, block: str, distance: float, measure: str, demand: str, n_boot: int,
+                  seed: int):
+    """The head of a :class:`SlidingFit` (what it is, the counts) and the MLE plan of its fit (None: no
+    transition, nothing to fit); :func:`_sliding_fit` finishes it."""
+    from opsrock.fragility.mle import plan_mle
 
     sel = cases[(cases["block"] == block) & (cases["status"] == "ok")]
     y = slid_beyond(sel, distance, measure)
     x = pd.to_numeric(sel[demand], errors="coerce").to_numpy(float)
-    nan = dict(median=math.nan, median_lo=math.nan, median_hi=math.nan, beta=math.nan, beta_lo=math.nan,
-               beta_hi=math.nan)
     head = dict(block=block, distance=float(distance), measure=measure, demand=demand, n_cases=int(len(sel)),
                 n_beyond=int(y.sum()))
     if y.sum() == 0 or y.all():
-        return SlidingFit(**head, **nan, success=False, message="no transition: every case on one side")
+        return head, None
     groups = sel["record"].to_numpy() if "record" in sel else None
-    fit = fit_lognormal_mle(x, y, n_boot=n_boot, seed=seed, groups=groups)
+    return head, plan_mle(x, y, n_boot=n_boot, seed=seed, groups=groups)
+
+
+def _sliding_fit(head: dict, fit) -> SlidingFit:
+    """The :class:`SlidingFit` of ``head`` from its MLE fit (None: no transition)."""
+    if fit is None:
+        nan = math.nan
+        return SlidingFit(**head, median=nan, median_lo=nan, median_hi=nan, beta=nan, beta_lo=nan, beta_hi=nan,
+                          success=False, message="no transition: every case on one side")
     return SlidingFit(**head, median=fit.mu, median_lo=fit.mu_lo, median_hi=fit.mu_hi, beta=fit.beta,
                       beta_lo=fit.beta_lo, beta_hi=fit.beta_hi, success=bool(fit.success), message=fit.message)
 
 
 def sliding_table(cases: pd.DataFrame, distances=DEFAULT_DISTANCES, *, measure: str = "slide_max",
-                  demands=("pfa", "pfv"), n_boot: int = 200, seed: int = 0) -> pd.DataFrame:
-    """Every block's sliding fragility at every distance and demand, one row each."""
-    rows = [fit_sliding(cases, b, d, measure=measure, demand=dem, n_boot=n_boot, seed=seed).row()
-            for b in sorted(cases["block"].unique()) for d in distances for dem in demands]
-    return pd.DataFrame(rows)
+                  demands=("pfa", "pfv"), n_boot: int = 200, seed: int = 0, workers: int = 1) -> pd.DataFrame:
+    """Every block's sliding fragility at every distance and demand, one row each (blocks sorted, then
+    distances, then demands): :func:`fit_sliding` of each, the bootstrap resamples of all of them shared
+    among ``workers`` processes (the same numbers whatever ``workers``)."""
+    from opsrock.fragility.mle import fit_plans
+
+    parts = [_sliding_plan(cases, b, d, measure, dem, n_boot, seed)
+             for b in sorted(cases["block"].unique()) for d in distances for dem in demands]
+    fits = iter(fit_plans([plan for _, plan in parts if plan is not None], workers))
+    rows = [_sliding_fit(head, next(fits) if plan is not None else None).row() for head, plan in parts]
+    return pd.DataFrame(rows, columns=list(SlidingFit.__dataclass_fields__))
+
+
+def has_slides(cases: pd.DataFrame) -> bool:
+    """True if ``cases`` is a table of a campaign solved with friction: it has every contact column
+    (:data:`opsrock.campaign.cases.CONTACT_COLUMNS`), the slides among them."""
+    from opsrock.campaign.cases import CONTACT_COLUMNS
+
+    return all(c in cases.columns for c in CONTACT_COLUMNS)
 
 
 def sliding_component_id(block: str, distance: float, demand: str) -> str:
@@ -121,5 +149,5 @@ def sliding_components(table: pd.DataFrame):
     return out, skipped
 
 
-__all__ = ["DEFAULT_DISTANCES", "SLIDE_MEASURES", "SlidingFit", "fit_sliding", "slid_beyond", "sliding_component_id",
-           "sliding_components", "sliding_table"]
+__all__ = ["DEFAULT_DISTANCES", "SLIDE_MEASURES", "SlidingFit", "fit_sliding", "has_slides", "slid_beyond",
+           "sliding_component_id", "sliding_components", "sliding_table"]

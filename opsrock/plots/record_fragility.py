@@ -103,6 +103,41 @@ def plot_measure_fragility(cases: pd.DataFrame, measure_fits: pd.DataFrame, path
     return save_figure(fig, path)
 
 
+def plot_sliding_fragility(cases: pd.DataFrame, sliding: pd.DataFrame, path: str | Path) -> Path:
+    """One panel per block: the fraction of its finished cases at each level that slid beyond each distance
+    (or overturned), at the level's median PFA (m/s²), and the MLE curve in PFA of each distance
+    (:func:`opsrock.fragility.sliding.sliding_table` rows of demand ``pfa``)."""
+    from opsrock.fragility.sliding import slid_beyond
+
+    pfa_rows = sliding[sliding["demand"] == "pfa"]
+    blocks = list(dict.fromkeys(pfa_rows["block"]))
+    fig, axes = plt.subplots(1, max(len(blocks), 1), figsize=(4.2 * max(len(blocks), 1), 3.6),
+                             constrained_layout=True, squeeze=False)
+    for ax, block in zip(axes.ravel(), blocks):
+        sel = cases[(cases["block"] == block) & (cases["status"] == "ok")]
+        pfa = sel["pfa"].to_numpy(float)
+        x = np.geomspace(max(np.nanmin(pfa) * 0.7, 1e-6), np.nanmax(pfa) * 1.4, 300) if len(sel) else np.array([])
+        for (_, r), color in zip(pfa_rows[pfa_rows["block"] == block].iterrows(), plt.rcParams["axes.prop_cycle"]):
+            d, c = r["distance"], color["color"]
+            by_level = pd.DataFrame({"level": sel["level"].to_numpy(), "pfa": pfa,
+                                     "beyond": slid_beyond(sel, d, r["measure"])}).groupby("level")
+            ax.plot(by_level["pfa"].median(), by_level["beyond"].mean(), "o", ms=3, color=c, alpha=0.7)
+            label = f"beyond {100 * d:g} cm"
+            if r["success"] and np.isfinite(r["median"]) and r["beta"] > 0:
+                ax.plot(x, fragility_probability(x, r["median"], r["beta"]), color=c, lw=1.4,
+                        label=f"{label}: median {r['median']:.3g} m/s², beta {r['beta']:.2f}")
+            else:  # the report's table says why
+                ax.plot([], [], "o", color=c, label=f"{label}: no lognormal fit")
+        ax.set_xscale("log")
+        ax.set_ylim(-0.02, 1.02)
+        ax.set_title(block, fontsize=9)
+        ax.set_xlabel("PFA (m/s²)")
+        ax.set_ylabel("P(slid beyond d or overturned)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6)
+    return save_figure(fig, path)
+
+
 def plot_im_ranking(ims: pd.DataFrame, frequencies: pd.DataFrame, path: str | Path,
                     robustness: pd.DataFrame | None = None) -> Path:
     """Three panels: MLE beta with its interval per IM; HR per IM; share of record resamples (and,

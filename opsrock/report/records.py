@@ -7,7 +7,10 @@ Reads the ``cases.csv`` of a record scene's run, fits every IM (:mod:`opsrock.fr
 and writes into ``DIR``: ``report.md``, ``ims.csv``, ``measure_fits.csv``, ``resurrections.csv``,
 ``sufficiency.csv``, ``frequencies.csv``, ``blocks.csv``, ``fragility_pelicun.csv`` (FEMA P-58 /
 pelicun damage model) and ``figures/``; with ``--robustness-sets N`` also the pulse study over N
-seeded block sets (``robustness.csv``).
+seeded block sets (``robustness.csv``). A campaign solved with friction (its table has the contact
+columns) also gets the fragility of sliding beyond :data:`SLIDE_DISTANCES` (:mod:`opsrock.fragility.sliding`):
+``sliding.csv``, ``figures/sliding.png``, a section of the report and the ``SLIDE`` components in
+``fragility_pelicun.csv``; any other campaign's outputs are as they were.
 """
 
 from __future__ import annotations
@@ -22,7 +25,11 @@ import pandas as pd
 
 from opsrock._files import atomic_csv, atomic_text
 from opsrock.errors import InputError
+from opsrock.fragility.sliding import DEFAULT_DISTANCES
 from opsrock.report.markdown import markdown_table
+
+#: Distances (m) of the sliding section: 5 cm (a cabinet against a wall), 20 cm and 50 cm.
+SLIDE_DISTANCES: tuple[float, ...] = DEFAULT_DISTANCES
 
 
 def read_cases(source: str | Path) -> pd.DataFrame:
@@ -54,6 +61,8 @@ _STUDY_COLUMNS = ("block", "record", "floor", "level", "level_value", "status", 
                   *(f"IM{k}" for k in range(1, 10)))
 _NUMBER_COLUMNS = ("level", "level_value", "theta_max_over_alpha", "pfa", "pfv", "magnitude", "distance_km",
                    "building_period", *(f"IM{k}" for k in range(1, 10)))
+#: Number columns of a campaign solved with friction that the sliding section reads (when present).
+_SLIDE_NUMBER_COLUMNS = ("slide_max", "slide_residual")
 
 
 def _check_table(csv_path: Path, cases: pd.DataFrame) -> None:
@@ -62,7 +71,7 @@ def _check_table(csv_path: Path, cases: pd.DataFrame) -> None:
         raise InputError(f"cases: {csv_path} lacks the column(s) {', '.join(missing)} of a record campaign's table")
     if cases.empty:
         raise InputError(f"cases: {csv_path} holds no cases (a header only)")
-    for col in _NUMBER_COLUMNS:
+    for col in (*_NUMBER_COLUMNS, *(c for c in _SLIDE_NUMBER_COLUMNS if c in cases.columns)):
         if not pd.api.types.is_numeric_dtype(cases[col]):
             bad = pd.to_numeric(cases[col], errors="coerce").isna() & cases[col].notna()
             row = int(bad.to_numpy().nonzero()[0][0]) if bad.any() else 0
@@ -155,12 +164,20 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
     for name in ("ims", "measure_fits", "resurrections", "sufficiency", "frequencies", "blocks"):
         atomic_csv(out / f"{name}.csv", getattr(study, name))
     comps, skipped = _exports(study.blocks)
+    sliding = _sliding(cases, out, n_boot, seed, workers)
+    if sliding is not None:
+        from opsrock.fragility.sliding import sliding_components
+
+        slide_comps, slide_skipped = sliding_components(sliding)
+        comps, skipped = comps + slide_comps, skipped + slide_skipped
     pel = write_pelicun_csv(comps, out / "fragility_pelicun.csv")
     fig = out / "figures"
     jobs = {"ida": (rplots.plot_ida_curves, (study.cases, fig / "ida_curves.png", "scene measure (level value)")),
             "fragility": (rplots.plot_measure_fragility, (study.cases, study.measure_fits, fig / "fragility.png",
                                                           "scene measure (level value)")),
             "ranking": (rplots.plot_im_ranking, (study.ims, study.frequencies, fig / "im_ranking.png", robust))}
+    if sliding is not None:
+        jobs["sliding"] = (rplots.plot_sliding_fragility, (cases, sliding, fig / "sliding.png"))
     if workers > 1:  # independent figures: drawn at once
         from opsrock._pool import deferred_interrupts
         from opsrock.plots import figure_pool
@@ -172,11 +189,44 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
     else:
         figs = {k: fn(*args) for k, (fn, args) in jobs.items()}
     timings = {"fits_s": t_fit, "total_s": time.perf_counter() - t0}
-    _write_markdown(out, study, robust, figs, skipped, timings, source, robustness_sets)
-    return {"study": study, "pelicun": pel, "figures": figs, "timings": timings}
+    _write_markdown(out, study, robust, figs, skipped, timings, source, robustness_sets, sliding)
+    return {"study": study, "pelicun": pel, "figures": figs, "timings": timings, "sliding": sliding}
 
 
-def _write_markdown(out, study, robust, figs, skipped, timings, source, n_sets) -> None:
+def _sliding(cases: pd.DataFrame, out: Path, n_boot: int, seed: int, workers: int) -> pd.DataFrame | None:
+    """The sliding fragilities of a campaign solved with friction (``sliding.csv``), None for another."""
+    from opsrock.fragility.sliding import has_slides, sliding_table
+
+    if not has_slides(cases):
+        return None
+    table = sliding_table(cases, SLIDE_DISTANCES, n_boot=n_boot, seed=seed, workers=workers)
+    atomic_csv(out / "sliding.csv", table)
+    return table
+
+
+def _sliding_lines(sliding: pd.DataFrame, figure: str) -> list[str]:
+    """The report's sliding section: one table per block, the figure."""
+    lines = ["## Sliding beyond a distance", "",
+             "The campaign was solved with friction: a case *slid beyond d* when its peak slide of the base on the "
+             "floor (`slide_max`) exceeds d, and an overturned case counts as beyond every distance. "
+             f"P(slid beyond d | demand) is fitted as a lognormal by MLE over every finished case of the block, for "
+             f"d = {', '.join(f'{100 * d:g}' for d in SLIDE_DISTANCES)} cm, in PFA (m/s²) and PFV (m/s), with the "
+             "same record-bootstrap intervals as above (`sliding.csv`); the fits are exported to "
+             "`fragility_pelicun.csv` as `opsrock.<block>.SLIDE<d in mm>MM.<PFA|PFV>`.", ""]
+    table = sliding.assign(distance_cm=100 * sliding["distance"],
+                           unit=sliding["demand"].map({"pfa": "m/s2", "pfv": "m/s"}))
+    cols = ["distance_cm", "demand", "unit", "median", "median_lo", "median_hi", "beta", "beta_lo", "beta_hi",
+            "n_beyond", "n_cases"]
+    for block, rows in table.groupby("block", sort=False):
+        lines += [f"### {block}", "", markdown_table(rows[cols], ".4g"), ""]
+        failed = rows[~rows["success"].astype(bool)]
+        if len(failed):
+            lines += ["No fit: " + "; ".join(f"{100 * r.distance:g} cm, {r.demand}: {r.message}"
+                                               for r in failed.itertuples()), ""]
+    return lines + [f"![Sliding]({figure})", ""]
+
+
+def _write_markdown(out, study, robust, figs, skipped, timings, source, n_sets, sliding=None) -> None:
     s, rs = study.settings, study.resurrection_summary
     ims = study.ims[["im", "n_cases", "n_overturned", "mu", "mu_lo", "mu_hi", "beta", "beta_lo", "beta_hi", "HR",
                      "cv_percent", "loglik_per_case", "logistic_mu", "logistic_beta_equivalent", "rank_beta"]]
@@ -224,4 +274,6 @@ def _write_markdown(out, study, robust, figs, skipped, timings, source, n_sets) 
               markdown_table(study.blocks[["block", "demand", "unit", "mu", "mu_lo", "mu_hi", "beta", "n_cases"]], ".4g"), ""]
     if skipped:
         lines += ["Not exported (no finite fit): " + "; ".join(skipped), ""]
+    if sliding is not None:
+        lines += _sliding_lines(sliding, os.path.relpath(figs["sliding"], out))
     atomic_text(out / "report.md", "\n".join(lines))

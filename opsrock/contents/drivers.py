@@ -137,11 +137,13 @@ def _claims(result: dict, design: ContentsDesign) -> list[str]:
     if d.empty:
         return out
     by_floor = d.groupby("floor_number")["median_pfv"]
-    ground, roof = d[d["floor_number"] == 0], d[d["floor_number"] == design.storeys]
-    if len(ground) and len(roof):
-        lo, hi = _span(roof.set_index("item")["median_pfv"] / ground.set_index("item")["median_pfv"])
-        out.append(f"- **Floor**: the same item's median differs between floors (roof over ground {lo:.2f}-{hi:.2f}); "
-                   "the database has one value for all floors.")
+    ground = d[d["floor_number"] == 0].set_index("item")["median_pfv"]
+    above = [(n, g.set_index("item")["median_pfv"]) for n, g in d[d["floor_number"] > 0].groupby("floor_number")]
+    if len(ground) and above:
+        spans = [(floor_name(int(n), design.storeys), *_span(m / ground)) for n, m in above]
+        out.append("- **Floor**: the same item's median differs between floors ("
+                   + ", ".join(f"{name} over ground {lo:.2f}-{hi:.2f}" for name, lo, hi in spans)
+                   + " over the items); the database has one value for all floors.")
     elif by_floor.ngroups > 1:
         out.append("- **Floor**: medians per floor below; the database has one value for all floors.")
     out += _period_claim(result)

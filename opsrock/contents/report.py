@@ -57,12 +57,18 @@ def pfa_matrix(ratios: pd.DataFrame, variant: str, design: ContentsDesign) -> pd
     return pd.DataFrame(rows)
 
 
+def _article(n: int) -> str:
+    """``an`` before a storey count read with a vowel sound (8, 11, 18, 80-89, 800...), else ``a``."""
+    return "an" if str(n).startswith("8") or n in (11, 18) else "a"
+
+
 def _head(design: ContentsDesign, summary: dict) -> list[str]:
     t = summary["timings"]
     lo, hi = summary["ratio_range"] or (math.nan, math.nan)
     floors = ", ".join(floor_name(n, design.storeys) for n in design.floor_numbers)
     return [
-        f"# Unanchored contents beside FEMA P-58: a {design.storeys}-storey building, T1 = {design.period:g} s",
+        (f"# Unanchored contents beside FEMA P-58: {_article(design.storeys)} {design.storeys}-storey building, "
+         f"T1 = {design.period:g} s"),
         "",
         f"The nine unanchored items of FEMA P-58 (`fema-p58-contents`) as rigid blocks (width = depth, height = "
         f"height) on the {floors} of a linear shear building (T1 = {design.period:g} s, {design.storeys} storeys, "

@@ -11,6 +11,12 @@ with its source and the tolerance a comparison may use and why. Validation case 
   locomotive example;
 * :mod:`~opsrock.published.makris_konstantinidis_2003`: one-cosine pulse, ``T_p = 2 s``, ``alpha = 15°``;
 * :mod:`~opsrock.published.liu_huang_liu_2023`: the reproduced paper's Tables 2 and 3;
+* :mod:`~opsrock.published.shenton_1996`: the initiation of rest, slide, rock and slide-rock of a block
+  with friction (validation case ``friction``);
+* :mod:`~opsrock.published.newmark_1965`: the rigid-plastic sliding block under rectangular and
+  half-sine pulses (validation case ``friction``);
+* :mod:`~opsrock.published.fema_p58`: FEMA P-58's overturning medians of unanchored contents in peak
+  floor velocity, and the rule we read behind them (the contents study, ``opsrock contents``);
 * :mod:`~opsrock.published.linearised`: the linearised equation under the harmonic pulses solved in
   closed form, independently of the solvers, which the papers' modules share.
 """

@@ -238,8 +238,11 @@ def numeric_cases(b: str) -> list[Case]:
 
 def file_cases(b: str) -> list[Case]:
     """Record files, scenes, folders and campaigns that must be refused, each naming what is wrong."""
+    return _simulate_file_cases(b) + _threshold_and_run_cases(b) + _report_cases(b)
+
+
+def _simulate_file_cases(b: str) -> list[Case]:
     rec = lambda f, *more: (*SIM, "--record", f"{b}/{f}", *more)  # noqa: E731
-    c = f"{b}/campaigns"
     return [
         # record files
         Case("zeros --pfa", rec("zeros.txt", "--units", "g", "--dt", "0.01", "--pfa", "0.5"), ("--pfa", "all zeros")),
@@ -277,6 +280,11 @@ def file_cases(b: str) -> list[Case]:
         Case("--pulse bogus", (*SIM, "--pulse", "square", *PULSE), ("--pulse", "square")),
         Case("--lever bogus", (*SIM, *PULSE, "--lever", "long"), ("--lever", "long")),
         Case("--equations with opensees", (*SIM, *PULSE, "--equations", "exact"), ("--equations",)),
+    ]
+
+
+def _threshold_and_run_cases(b: str) -> list[Case]:
+    return [
         # threshold
         Case("threshold --n-scan 1e9", (*THR, "--freq-ratio", "3", "--n-scan", "1000000000"), ("--n-scan",)),
         Case("threshold --n-scan 1e30", (*THR, "--freq-ratio", "3", "--n-scan", "1e30"), ("--n-scan",)),
@@ -309,6 +317,12 @@ def file_cases(b: str) -> list[Case]:
         Case("run one-level axis", ("run", f"{b}/levels.toml", "--out", "out"), ("levels.num",)),
         Case("run --solver bogus", ("run", f"{b}/good.toml", "--out", "out", "--solver", "bogus"), ("--solver",)),
         Case("run --workers with dask", ("run", f"{b}/good.toml", "--out", "out", "--workers", "2", "--dask-local", "2"), ("--workers",)),
+    ]
+
+
+def _report_cases(b: str) -> list[Case]:
+    c = f"{b}/campaigns"
+    return [
         # fragility
         Case("fragility header only", ("fragility", f"{c}/header.csv", "--out", "rep"), ("header.csv", "no cases")),
         Case("fragility missing columns", ("fragility", f"{c}/cols.csv", "--out", "rep"), ("cols.csv", "lacks")),

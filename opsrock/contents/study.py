@@ -95,10 +95,8 @@ def run_contents_study(
         The linear shear building: first period ``T_1`` (s), storeys, modal damping ratio (dimensionless).
     floors : sequence
         Floors of interest: ``"ground"``, numbers 1..storeys, ``"roof"``.
-    record_set : str
-        Library record set of the ground motions.
-    records : sequence of str
-        A subset of its records by name (empty: all).
+    record_set, records : str, sequence of str
+        Library record set of the ground motions, and a subset of its records by name (empty: all).
     levels : sequence of float
         IDA levels of ``PFA / (g tan alpha)`` (dimensionless).
     items : sequence of str
@@ -112,11 +110,9 @@ def run_contents_study(
         Also the roofs of :data:`opsrock.contents.design.SWEEP_BUILDINGS` (``T_1`` 0.2-2 s), default
         variant, for the chart of the medians against the period.
     n_boot, seed : int
-        Record-bootstrap resamples of each fit, and their seed.
-    workers : int, optional
-        Processes (default: all cores).
-    progress : bool
-        Progress on stderr.
+        Record-bootstrap resamples of each fit, and their seed (no unit).
+    workers, progress : int or None, bool
+        Processes (default: all cores); progress on stderr.
     quick : bool
         A small study (:func:`opsrock.contents.design.quick`: six records, eight levels, ground and roof).
     force : bool

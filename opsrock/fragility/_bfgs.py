@@ -177,6 +177,14 @@ class _Memo:
         return self.g_
 
 
+def _first_step(phi0: float, old_old_fval, derphi0: float) -> float:
+    """``scalar_search_wolfe1``'s first trial step (no unit): from the last two objective values, at most 1."""
+    if old_old_fval is not None and derphi0 != 0:
+        alpha1 = min(1.0, 1.01 * 2 * (phi0 - old_old_fval) / derphi0)
+        return 1.0 if alpha1 < 0 else alpha1
+    return 1.0
+
+
 def _line_search_wolfe1(memo: _Memo, xk, pk, gfk, old_fval, old_old_fval, c1: float, c2: float, amin: float,
                         amax: float):
     """``scipy.optimize._linesearch.line_search_wolfe1`` (``scalar_search_wolfe1`` and ``DCSRCH`` with
@@ -186,12 +194,7 @@ def _line_search_wolfe1(memo: _Memo, xk, pk, gfk, old_fval, old_old_fval, c1: fl
     n_f = n_g = 0
     derphi0 = np.dot(gfk, pk)
     phi0 = old_fval
-    if old_old_fval is not None and derphi0 != 0:
-        alpha1 = min(1.0, 1.01 * 2 * (phi0 - old_old_fval) / derphi0)
-        if alpha1 < 0:
-            alpha1 = 1.0
-    else:
-        alpha1 = 1.0
+    alpha1 = _first_step(phi0, old_old_fval, derphi0)
     ftol, gtol, xtol, stpmin, stpmax = c1, c2, 1e-14, amin, amax
     p5, p66, xtrapl, xtrapu = 0.5, 0.66, 1.1, 4.0
     stp, f, g = alpha1, phi0, derphi0

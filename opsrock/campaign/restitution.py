@@ -50,7 +50,7 @@ def colombo_limestone() -> tuple[float, float]:
     :data:`COLOMBO_IMPACTS` impacts of every distinct trial of the shipped limestone data (dimensionless)."""
     import numpy as np
 
-    from opsrock.validation.experiments import analysis_arrays, load_events
+    from opsrock.published.colombo_limestone import analysis_arrays, load_events
 
     a = analysis_arrays(load_events())
     q = a.q[a.event <= COLOMBO_IMPACTS]

@@ -15,6 +15,8 @@ with its source and the tolerance a comparison may use and why. Validation case 
   with friction (validation case ``friction``);
 * :mod:`~opsrock.published.newmark_1965`: the rigid-plastic sliding block under rectangular and
   half-sine pulses (validation case ``friction``);
+* :mod:`~opsrock.published.colombo_limestone`: Colombo et al.'s measured free rocking of limestone blocks
+  (the shipped tables; validation case ``experiments`` and the restitution law ``colombo-limestone``);
 * :mod:`~opsrock.published.fema_p58`: FEMA P-58's overturning medians of unanchored contents in peak
   floor velocity, and the rule we read behind them (the contents study, ``opsrock contents``);
 * :mod:`~opsrock.published.linearised`: the linearised equation under the harmonic pulses solved in

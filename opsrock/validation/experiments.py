@@ -27,11 +27,8 @@ the data's own consistency, the intervals containing their estimates, the rigid 
 
 from __future__ import annotations
 
-import hashlib
 import math
 import time
-from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 from typing import Callable, Iterator
 
@@ -40,16 +37,21 @@ import pandas as pd
 
 from opsrock.block import Block
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
+from opsrock.published.colombo_limestone import (
+    DATA_FILES,
+    DUPLICATE,
+    N_EVENT_ROWS,
+    N_GROUPS,
+    N_TRIALS,
+    N_UNIQUE_TRIALS,
+    EventArrays,
+    analysis_arrays,
+    data_file,
+    load_events,
+    load_trials,
+    sha256,
+)
 
-#: The shipped tables and their SHA-256 digests (opsrock/data/experiments/SOURCE.md).
-DATA_FILES: dict[str, tuple[str, str]] = {
-    "events": ("limestone-rocking-events.csv", "632e88d735f56ad661035dda7cb703869799cdf73d6e5a4fcbc3290b949cf668"),
-    "trials": ("limestone-rocking-trials.csv", "5c53c38e7ca4b92156f8e62a82edd77d6b271c324210685a74fa1e1e1a74fa57"),
-}
-#: Expected counts: impact rows, trials, distinct trials, geometries.
-N_EVENT_ROWS, N_TRIALS, N_UNIQUE_TRIALS, N_GROUPS = 7545, 135, 134, 12
-#: The duplicate trial (excluded) and the trial it copies.
-DUPLICATE: tuple[str, str] = ("BlockGroup_1_n13", "BlockGroup_1_n7")
 #: The paper's restitution factor ``e / e_R``.
 PAPER_FACTOR: float = DEFAULT_RESTITUTION_FACTOR
 #: The references the measured ratio is compared with: name -> factor on ``e_R``.
@@ -88,100 +90,7 @@ TOL_CLOSED_FORM: dict[str, float] = {"sdof": 1e-3, "opensees": 1e-2}
 CLOSED_FORM_IMPACTS: int = 10
 
 
-# --- data ------------------------------------------------------------------------------------------
-def data_file(kind: str) -> Path:
-    """Path of a shipped table: ``kind`` is ``"events"`` or ``"trials"`` (no unit)."""
-    return Path(str(resources.files("opsrock.data"))) / "experiments" / DATA_FILES[kind][0]
-
-
-def sha256(path: Path) -> str:
-    """SHA-256 hex digest of the file at ``path`` (a path)."""
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-
-
-def load_events(path: Path | None = None) -> pd.DataFrame:
-    """The per-impact table (every row, the duplicate trial included).
-
-    Parameters
-    ----------
-    path : pathlib.Path, optional
-        The CSV (default the shipped one).
-    """
-    return pd.read_csv(path or data_file("events"), dtype={"duplicate_of": str})
-
-
-def load_trials(path: Path | None = None) -> pd.DataFrame:
-    """The per-trial table (every row).
-
-    Parameters
-    ----------
-    path : pathlib.Path, optional
-        The CSV (default the shipped one).
-    """
-    return pd.read_csv(path or data_file("trials"), dtype={"duplicate_of": str})
-
-
-@dataclass(frozen=True)
-class EventArrays:
-    """The impacts of a set of trials as flat arrays, rows contiguous per trial and in impact order.
-
-    Parameters
-    ----------
-    group : ndarray of int
-        Geometry 1-12 (no unit).
-    trial : ndarray of int
-        Trial code, contiguous and non-decreasing (no unit); a resample numbers its draws afresh.
-    event : ndarray of int
-        Impact number within the trial, 1..n (no unit).
-    ratio : ndarray
-        Measured angular-velocity ratio after/before (dimensionless).
-    e_R : ndarray
-        Housner's ratio of the trial's geometry (dimensionless).
-    alpha : ndarray
-        Slenderness ``atan(B/H)`` (rad).
-    product : ndarray
-        Running product of ``ratio`` within the trial (dimensionless).
-    """
-
-    group: np.ndarray
-    trial: np.ndarray
-    event: np.ndarray
-    ratio: np.ndarray
-    e_R: np.ndarray
-    alpha: np.ndarray
-    product: np.ndarray
-
-    @property
-    def q(self) -> np.ndarray:
-        """``ratio / e_R`` per impact (dimensionless)."""
-        return self.ratio / self.e_R
-
-    def take(self, rows: np.ndarray, trial: np.ndarray) -> "EventArrays":
-        """The rows ``rows`` (indices, no unit) relabelled with trial codes ``trial`` (no unit)."""
-        return EventArrays(self.group[rows], trial, self.event[rows], self.ratio[rows], self.e_R[rows],
-                           self.alpha[rows], self.product[rows])
-
-
-def analysis_arrays(events: pd.DataFrame, keep_duplicate: bool = False) -> EventArrays:
-    """The impacts analysed: the duplicate trial dropped (unless ``keep_duplicate``), sorted.
-
-    Parameters
-    ----------
-    events : pandas.DataFrame
-        The per-impact table (:func:`load_events`).
-    keep_duplicate : bool
-        Keep the rows of the duplicate trial (only to show that dropping it changes nothing).
-    """
-    ev = events if keep_duplicate else events[events["duplicate_of"].isna()]
-    ev = ev.sort_values(["group", "trial", "event"], kind="stable")
-    code = pd.factorize(ev["source_id"])[0]
-    ratio = ev["measured_source_angular_ratio"].to_numpy(float)
-    product = ev.assign(r=ratio).groupby("source_id", sort=False)["r"].cumprod().to_numpy(float)
-    b, h = ev["B_m"].to_numpy(float), ev["H_m"].to_numpy(float)
-    return EventArrays(ev["group"].to_numpy(int), code, ev["event"].to_numpy(int), ratio,
-                       ev["predicted_ideal_angular_ratio"].to_numpy(float), np.arctan(b / h), product)
-
-
+# --- data ---------------------------------------------------------------------------------------------
 def data_checks(events: pd.DataFrame, trials: pd.DataFrame) -> list[dict]:
     """The data's own consistency: digests, counts, the duplicate, Housner's formula, the trial table.
 

@@ -124,7 +124,7 @@ def test_group_members_equal_the_label_by_label_search():
     rng = np.random.default_rng(0)
     for labels in (rng.integers(0, 7, 200), np.array([f"r{k}" for k in rng.integers(0, 30, 500)], dtype=object),
                    np.array([2.5, 1.0, 2.5, 3.0])):
-        fast = mle._group_members(labels, labels.shape)
+        fast = mle.group_members(labels, labels.shape)
         slow = [np.flatnonzero(labels == v) for v in dict.fromkeys(labels.tolist())]
         assert len(fast) == len(slow) and all(np.array_equal(a, b) for a, b in zip(fast, slow))
 

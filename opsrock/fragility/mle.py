@@ -177,7 +177,7 @@ class DistinctCases:
         return Table(self.u[base], self.y[base], row_of[ids], base)
 
 
-def _group_members(groups: np.ndarray | None, shape: tuple) -> list[np.ndarray] | None:
+def group_members(groups: np.ndarray | None, shape: tuple) -> list[np.ndarray] | None:
     """Indices of each group's cases, groups in order of first appearance (None: cases are independent)."""
     if groups is None:
         return None
@@ -335,7 +335,7 @@ def plan_mle(values: np.ndarray, overturned: np.ndarray, decreasing: bool = Fals
                   n_boot=n_boot, seed=seed)
     distinct = DistinctCases(x, y, u) if n else None
     point = point_fit(u, y, s, distinct.table() if n and distinct.n <= _TABLE_SHARE * n else None)
-    members = _group_members(groups, x.shape) if point.q is not None else None  # checks groups, as before
+    members = group_members(groups, x.shape) if point.q is not None else None  # checks groups, as before
     return MLEPlan(x, y, s, point, members, common, distinct)
 
 
@@ -385,7 +385,7 @@ def fit_lognormal_mle(
 CHUNK: int = 20
 
 
-class _Plans:
+class PlanTasks:
     """Task state of :func:`fit_plans`: task ``(i, lo)`` draws resamples ``lo`` to ``lo + CHUNK - 1`` of plan ``i``."""
 
     def __init__(self, plans: list[MLEPlan]) -> None:
@@ -407,7 +407,7 @@ class _Plans:
 def fit_plans(plans: list[MLEPlan], workers: int = 1) -> list[MLEFit]:
     """``[plan.finish(plan.draws()) for plan in plans]``, the resamples shared among ``workers`` processes
     (:class:`~opsrock._pool.TaskPool`): the same fits whatever ``workers``."""
-    state = _Plans(plans)
+    state = PlanTasks(plans)
     tasks = state.tasks()
     with TaskPool(state, tasks, workers) as pool:
         return state.finish(tasks, pool.results())

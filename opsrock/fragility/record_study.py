@@ -47,8 +47,8 @@ from opsrock.fragility.mle import (
     DistinctCases,
     MLEFit,
     MLEPlan,
-    _group_members,
-    _Plans,
+    PlanTasks,
+    group_members,
     plan_mle,
     point_fit,
     resample_indices,
@@ -238,7 +238,7 @@ class _Frequencies:
         self.ims, self.n_boot, self.seed = tuple(ims), n_boot, seed
         self.n_cases = len(cases)
         records = cases["record"].to_numpy()
-        self.members = _group_members(records, records.shape)  # records in order of first appearance
+        self.members = group_members(records, records.shape)  # records in order of first appearance
         self.by_im = [_RankIM(cases, im) for im in self.ims]
         self._resamples: list[np.ndarray] | None = None
 
@@ -392,7 +392,7 @@ def record_fragility(cases: pd.DataFrame, settings: RecordStudySettings | None =
         frequencies=freq.table(criteria), settings=s, n_failed=n_failed)
 
 
-class _StudyTasks(_Plans):
+class _StudyTasks(PlanTasks):
     """Task state of :func:`record_fragility` (:class:`~opsrock._pool.TaskPool`): the resamples of the
     MLE plans (task ``(i, lo)``) and of the ranking frequencies (task ``(-1, lo)``), the latter first (they
     cost the most: every IM of a resample is fitted from a cold start)."""

@@ -357,7 +357,18 @@ def test_paper_analysis_does_not_depend_on_workers():
     pd.testing.assert_frame_equal(table2(a), table2(b), check_exact=True)
 
 
-def test_ctrl_c_while_a_pool_forks_is_delivered_after_it():
+@pytest.fixture
+def sigint_as_in_a_terminal():
+    """Python's own Ctrl-C handler for the test, whatever this process inherited (a shell starts background
+    jobs with SIGINT ignored, and then Python installs no handler)."""
+    import signal
+
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
+def test_ctrl_c_while_a_pool_forks_is_delivered_after_it(sigint_as_in_a_terminal):
     import os
     import signal
     import time
@@ -373,3 +384,21 @@ def test_ctrl_c_while_a_pool_forks_is_delivered_after_it():
         pytest.fail("the recorded Ctrl-C was lost")  # ... and raised as the block ends
     assert reached
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_an_ignored_ctrl_c_stays_ignored_through_a_pool_start():
+    # nohup and a shell's background jobs ignore SIGINT: the block must not turn it into an interrupt
+    import os
+    import signal
+    import time
+
+    from opsrock._pool import deferred_interrupts
+
+    before = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        with deferred_interrupts():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)
+        assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN
+    finally:
+        signal.signal(signal.SIGINT, before)

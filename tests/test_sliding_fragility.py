@@ -101,14 +101,11 @@ levels = [0.5, 0.8, 1.2, 1.8, 2.6]
 """
 
 
-@pytest.fixture(scope="module")
-def friction_cases(tmp_path_factory) -> pd.DataFrame:
+def _friction_campaign(d, solver: str = "friction"):
     """A small record campaign solved with friction: two blocks, six synthetic ground motions (a noisy
     sine of 1 to 3 Hz in a 6 s envelope), five levels of PFA: 60 cases, some sliding beyond 5 and 20 cm."""
     from opsrock.campaign import run_campaign
-    from opsrock.report.records import read_cases
 
-    d = tmp_path_factory.mktemp("friction")
     (d / "rec").mkdir()
     rng = np.random.default_rng(0)
     t = np.arange(0.0, 6.0, 0.01)
@@ -116,10 +113,33 @@ def friction_cases(tmp_path_factory) -> pd.DataFrame:
         a = np.sin(np.pi * t / t[-1]) ** 2 * (np.sin(2 * np.pi * (1.0 + 0.4 * k) * t) + 0.3 * rng.normal(size=t.size))
         np.savetxt(d / "rec" / f"r{k}.txt", a / np.abs(a).max())
     (d / "blocks.toml").write_text(FRICTION_BLOCKS)
-    (d / "scene.toml").write_text(FRICTION_SCENE)
+    (d / "scene.toml").write_text(FRICTION_SCENE.replace('name = "friction"', f'name = "{solver}"'))
     summary = run_campaign(d / "scene.toml", d / "out", workers=1, progress=False)
     assert summary.n_failed == 0
-    return read_cases(d / "out")
+    return d / "out"
+
+
+@pytest.fixture(scope="module")
+def friction_cases(tmp_path_factory) -> pd.DataFrame:
+    from opsrock.report.records import read_cases
+
+    return read_cases(_friction_campaign(tmp_path_factory.mktemp("friction")))
+
+
+def test_the_report_says_which_solver_and_why_auto_chose_it(tmp_path):
+    # a scene with solver = "auto" and blocks with friction: the need is answered by the block with friction,
+    # and the report says so from the campaign's manifest; a table without its manifest names the solver only
+    from opsrock.report.records import read_cases, write_record_report
+
+    out = _friction_campaign(tmp_path, solver="auto")
+    write_record_report(read_cases(out), tmp_path / "rep", n_boot=5, seed=0, source=str(out))
+    text = (tmp_path / "rep" / "report.md").read_text()
+    assert 'Solver: `friction`, chosen by `solver = "auto"` for the scene\'s needs: ' in text
+    (tmp_path / "alone").mkdir()
+    (tmp_path / "alone" / "cases.csv").write_bytes((out / "cases.csv").read_bytes())
+    write_record_report(read_cases(tmp_path / "alone"), tmp_path / "rep2", n_boot=5, seed=0,
+                        source=str(tmp_path / "alone"))
+    assert "Solver: `friction`.\n" in (tmp_path / "rep2" / "report.md").read_text()
 
 
 def _files(folder) -> set[str]:

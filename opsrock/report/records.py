@@ -226,6 +226,22 @@ def _sliding_lines(sliding: pd.DataFrame, figure: str) -> list[str]:
     return lines + [f"![Sliding]({figure})", ""]
 
 
+def _solver_lines(source: str, cases: pd.DataFrame) -> list[str]:
+    """Which solver made the cases, and why when a scene's ``[needs]`` chose it (the campaign's
+    ``manifest.json`` beside ``cases.csv``, where there is one)."""
+    solvers = sorted(str(x) for x in cases["solver"].dropna().unique()) if "solver" in cases else []
+    line = f"Solver: {', '.join(f'`{x}`' for x in solvers) or 'not recorded'}"
+    p = Path(source) if source else None
+    manifest = (p if p is not None and p.is_dir() else (p.parent if p is not None else Path("."))) / "manifest.json"
+    try:
+        choice = json.loads(manifest.read_text()).get("choice") if source and manifest.is_file() else None
+    except (OSError, ValueError, AttributeError):
+        choice = None
+    if isinstance(choice, dict) and choice.get("reason"):
+        line += f", chosen by `solver = \"auto\"` for the scene's needs: {choice['reason']}"
+    return [line + ".", ""]
+
+
 def _write_markdown(out, study, robust, figs, skipped, timings, source, n_sets, sliding=None) -> None:
     s, rs = study.settings, study.resurrection_summary
     ims = study.ims[["im", "n_cases", "n_overturned", "mu", "mu_lo", "mu_hi", "beta", "beta_lo", "beta_hi", "HR",
@@ -236,6 +252,7 @@ def _write_markdown(out, study, robust, figs, skipped, timings, source, n_sets, 
         f"verdict), {int(study.cases['y'].sum())} overturned. Intervals: {s.n_boot} resamples of the records "
         f"(seed {s.seed}, {100 * s.confidence:.0f} %). Outcome convention of the fits: `{s.outcome}`. "
         f"Wall time {timings['total_s']:.1f} s.", "",
+        *_solver_lines(source, study.cases),
         "## Conclusion", "", *_conclusion(study.ims, study.frequencies, robust), "",
         "## Resurrection", "",
         f"{rs['n_curves']} IDA curves (block x record x floor), {rs['n_curves_overturning']} overturn at some level; "

@@ -14,6 +14,7 @@ import math
 from dataclasses import dataclass
 from numbers import Integral, Real
 
+from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.errors import InputError, InputTypeError
 
 
@@ -171,6 +172,33 @@ def real_number(name: str, value: object) -> float:
         raise InputError(f"{name} must be a finite number, got {shown(value)}") from None
 
 
+def initial_state(theta0: object, theta_dot0: object) -> tuple[float, float]:
+    """``(theta0, theta_dot0)`` as floats, or raise naming the one that is not a start of rocking:
+    ``theta0`` (rad) finite with ``|theta0| < pi/2``, ``theta_dot0`` (rad/s) finite."""
+    th0, thd0 = real_number("theta0", theta0), real_number("theta_dot0", theta_dot0)
+    if not (math.isfinite(th0) and abs(th0) < OVERTURNING_ANGLE):
+        raise InputError(f"theta0 must be finite with |theta0| < pi/2, got {theta0!r}")
+    if not math.isfinite(thd0):
+        raise InputError(f"theta_dot0 must be finite, got {theta_dot0!r}")
+    return th0, thd0
+
+
+def compiled_stepping(settings: object) -> None:
+    """Check the stepping fields the compiled event-driven solvers share (``housner_fast``, ``friction``):
+    ``max_dtau`` in (0, 0.5] (units of 1/p), ``steps_per_pulse`` >= 8, ``rest_velocity`` in (0, 1e-3]
+    (units of p), ``max_impacts`` and ``max_steps`` >= 1 (no unit)."""
+    s = settings
+    positive_finite("max_dtau", s.max_dtau)
+    if s.max_dtau > 0.5:
+        raise InputError(f"max_dtau must be <= 0.5 (units of 1/p), got {s.max_dtau!r}")
+    int_at_least("steps_per_pulse", s.steps_per_pulse, 8)
+    positive_finite("rest_velocity", s.rest_velocity)
+    if s.rest_velocity > 1e-3:
+        raise InputError(f"rest_velocity must be <= 1e-3 (units of p), got {s.rest_velocity!r}")
+    int_at_least("max_impacts", s.max_impacts, 1)
+    int_at_least("max_steps", s.max_steps, 1)
+
+
 def positive_finite(name: str, value: object) -> float:
     """Return ``value`` as a float, or raise ``ValueError`` naming ``name`` and the value.
 
@@ -221,5 +249,5 @@ def bool_fields(obj: object) -> None:
                 raise InputTypeError(f"{f.name} must be true or false (a bool), got {value!r}")
 
 
-__all__ = ["LIMITS", "Limit", "bool_fields", "check", "check_count", "in_open_interval", "int_at_least", "one_of",
+__all__ = ["LIMITS", "Limit", "bool_fields", "check", "check_count", "compiled_stepping", "in_open_interval", "initial_state", "int_at_least", "one_of",
            "positive_finite", "real_number", "scaled_input", "shown"]

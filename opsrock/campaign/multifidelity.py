@@ -45,11 +45,9 @@ from __future__ import annotations
 import csv
 import dataclasses
 import functools
-import hashlib
 import json
 import math
 import os
-import sys
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import asdict, dataclass, field
@@ -57,10 +55,18 @@ from pathlib import Path
 from typing import Any
 
 from opsrock._files import atomic_write
-from opsrock.campaign.cases import case_table, failed_row, write_cases_csv
+from opsrock.campaign.cases import case_table, write_cases_csv
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
 from opsrock.campaign.motions import cached_motions, compute_motions
-from opsrock.campaign.run import CASES_FILE, MANIFEST_FILE, run_campaign, solve_batch
+from opsrock.campaign.run import (
+    CASES_FILE,
+    MANIFEST_FILE,
+    campaign_identity,
+    lost_row,
+    progress_bar,
+    run_campaign,
+    solve_batch,
+)
 from opsrock.campaign.scene import Scene, load_scene
 from opsrock.campaign.store import STORE_FILE, ResultStore, read_rows
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
@@ -434,27 +440,6 @@ class MultiFidelitySummary:
 
 
 # --- the expensive solver's partial campaign ----------------------------------------------------------
-def _fn_name(fn: Callable) -> str:
-    if isinstance(fn, functools.partial):
-        return f"partial({_fn_name(fn.func)}, {fn.args!r}, {sorted(fn.keywords.items())!r})"
-    return f"{getattr(fn, '__module__', '?')}.{getattr(fn, '__qualname__', None) or type(fn).__qualname__}"
-
-
-def _identity(scene: Scene, solve_fn: Callable | None) -> tuple[str, dict[str, Any]]:
-    """Digest and manifest of a full campaign of ``scene`` (as :func:`run_campaign` writes them)."""
-    from opsrock import __version__
-
-    digest = scene.digest()
-    if solve_fn is not None:
-        digest = hashlib.sha256(f"{digest}|{_fn_name(solve_fn)}".encode()).hexdigest()
-    return digest, {
-        "digest": digest, "scene_name": scene.name, "scene_path": scene.path, "blocks_path": scene.blocks_path,
-        "solver": scene.solver, "solver_settings": dict(scene.solver_settings),
-        "solve_fn": None if solve_fn is None else _fn_name(solve_fn), "pfv_convention": scene.pfv_convention,
-        "n_cases": scene.n_cases, "opsrock_version": __version__,
-    }
-
-
 def _open_store(store: ResultStore, out: Path, manifest: dict, force: bool) -> None:
     old = store.manifest()
     if old and old.get("digest") != manifest["digest"] and not force:
@@ -465,17 +450,6 @@ def _open_store(store: ResultStore, out: Path, manifest: dict, force: bool) -> N
         store.clear()
         store.write_manifest(manifest)
     atomic_write(out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
-
-
-def _lost_row(case, reason: str, *, solver: str) -> dict[str, Any]:
-    return failed_row(case.case_id, solver, reason)
-
-
-def _progress_bar(total: int, description: str, progress: bool):
-    from tqdm import tqdm
-
-    return tqdm(total=total, desc=description, unit="case", file=sys.stderr,
-                disable=not (progress and sys.stderr.isatty()), dynamic_ncols=True)
 
 
 @dataclass
@@ -495,7 +469,7 @@ class _Expensive:
 
     def run(self, cases: Sequence, ids: set[str], force: bool) -> dict[str, dict[str, Any]]:
         """Solve the cases of ``ids`` the store lacks; return the stored rows of ``ids``."""
-        _, manifest = _identity(self.scene, self.solve_fn)
+        _, manifest = campaign_identity(self.scene, self.solve_fn)
         self.out.mkdir(parents=True, exist_ok=True)
         with ResultStore(self.out / STORE_FILE) as store:
             _open_store(store, self.out, manifest, force)
@@ -514,8 +488,8 @@ class _Expensive:
         executor = self.executor or LocalPool(self.workers, item_timeout=self.case_timeout)
         try:
             size = self.batch or batch_size(len(todo), executor.workers)
-            lost = functools.partial(_lost_row, solver=solver)
-            with _progress_bar(len(todo), f"{self.scene.name}: {solver} (escalated + audit)", self.progress) as bar:
+            lost = functools.partial(lost_row, solver=solver)
+            with progress_bar(len(todo), f"{self.scene.name}: {solver} (escalated + audit)", self.progress) as bar:
                 for _, rows in executor.map_batches(solve, make_batches(todo, size), lost):
                     store.append(rows)
                     self.n_computed += len(rows)

@@ -167,7 +167,8 @@ def _solve_one(case, fn: Callable, solver: str, settings: Mapping[str, Any], cas
         return failed_row(case.case_id, solver, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
 
 
-def _lost_row(case, reason: str, *, solver: str) -> dict[str, Any]:
+def lost_row(case, reason: str, *, solver: str) -> dict[str, Any]:
+    """The stored row of a case whose batch was lost (its worker died or hung), failed with ``reason``."""
     return failed_row(case.case_id, solver, reason)
 
 
@@ -216,7 +217,8 @@ def _conflict_message(out_dir: Path, old: Mapping[str, Any], new: Mapping[str, A
     )
 
 
-def _progress_bar(total: int, description: str, progress: bool):
+def progress_bar(total: int, description: str, progress: bool):
+    """A bar of ``total`` cases on stderr, shown only when ``progress`` and stderr is a terminal."""
     from tqdm import tqdm
 
     return tqdm(total=total, desc=description, unit="case", file=sys.stderr,
@@ -265,7 +267,7 @@ class _Run:
     def _compute_motions(self, items: list) -> list:
         results: list[Any] = [None] * len(items)
         size = max(1, math.ceil(len(items) / (4 * self.executor.workers)))
-        with _progress_bar(len(items), f"{self.scene.name}: floor motions", self.progress) as bar:
+        with progress_bar(len(items), f"{self.scene.name}: floor motions", self.progress) as bar:
             for k, res in self.executor.map_batches(compute_motions, make_batches(items, size), _lost_motion):
                 results[k * size : k * size + len(res)] = res
                 bar.update(len(res))
@@ -279,9 +281,9 @@ class _Run:
         if not todo:
             return
         size = batch or batch_size(len(todo), self.executor.workers)
-        lost = functools.partial(_lost_row, solver=self.scene.solver)
+        lost = functools.partial(lost_row, solver=self.scene.solver)
         name = self.scene.name
-        with _progress_bar(len(todo), f"{name} ({self.n_reused} reused)" if self.n_reused else name,
+        with progress_bar(len(todo), f"{name} ({self.n_reused} reused)" if self.n_reused else name,
                            self.progress) as bar:
             for _, rows in self.executor.map_batches(solve, make_batches(todo, size), lost):
                 store.append(rows)
@@ -289,7 +291,7 @@ class _Run:
                 bar.update(len(rows))
 
 
-def _identity(scene: Scene, solve_fn: Callable | None) -> tuple[str, dict[str, Any]]:
+def campaign_identity(scene: Scene, solve_fn: Callable | None) -> tuple[str, dict[str, Any]]:
     """The digest of what determines the results (a custom ``solve_fn`` included) and the manifest."""
     digest = scene.digest()
     if solve_fn is not None:
@@ -364,7 +366,7 @@ def run_campaign(
     scene = scene if isinstance(scene, Scene) else load_scene(scene)
     if solver is not None:
         scene = scene.with_solver(solver)
-    digest, manifest = _identity(scene, solve_fn)
+    digest, manifest = campaign_identity(scene, solve_fn)
     case_timeout = _case_budget(scene, case_timeout)
     out = Path(out_dir)
     solve = functools.partial(solve_batch, solver=scene.solver, settings=dict(scene.solver_settings),
@@ -385,4 +387,5 @@ def run_campaign(
     return run.summary(table, time.perf_counter() - t_start)
 
 
-__all__ = ["CASES_FILE", "CampaignSummary", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "run_campaign", "solve_batch"]
+__all__ = ["CASES_FILE", "CampaignSummary", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "campaign_identity", "lost_row",
+           "progress_bar", "run_campaign", "solve_batch"]

@@ -17,9 +17,9 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from opsrock.block import Block
-from opsrock.constants import OVERTURNING_ANGLE, G
+from opsrock.constants import G
 from opsrock.errors import InputError, InputTypeError, UnknownSettingError
-from opsrock.limits import bool_fields, int_at_least, one_of, positive_finite, real_number
+from opsrock.limits import bool_fields, initial_state, int_at_least, one_of, positive_finite, real_number
 from opsrock.result import ImpactLog, RockingResult, failed_result
 
 #: :func:`scipy.integrate.solve_ivp` methods the scipy solvers accept. Between events both equations are
@@ -189,10 +189,7 @@ class ScipySettings:
         positive_finite("max_free_time", self.max_free_time)
         if not (real_number("max_step", self.max_step) > 0.0):
             raise InputError(f"max_step must be positive, got {self.max_step!r}")
-        if not (math.isfinite(real_number("theta0", self.theta0)) and abs(self.theta0) < OVERTURNING_ANGLE):
-            raise InputError(f"theta0 must be finite with |theta0| < pi/2, got {self.theta0!r}")
-        if not math.isfinite(real_number("theta_dot0", self.theta_dot0)):
-            raise InputError(f"theta_dot0 must be finite, got {self.theta_dot0!r}")
+        initial_state(self.theta0, self.theta_dot0)
         int_at_least("max_impacts", self.max_impacts, 1)
         if self.scan_step is not None:
             positive_finite("scan_step", self.scan_step)

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from opsrock.errors import InputError
-from opsrock.limits import bool_fields, int_at_least, positive_finite
+from opsrock.limits import bool_fields, compiled_stepping, positive_finite
 
 
 @dataclass(frozen=True)
@@ -43,15 +42,7 @@ class FrictionSettings:
 
     def __post_init__(self) -> None:
         bool_fields(self)
-        positive_finite("max_dtau", self.max_dtau)
-        if self.max_dtau > 0.5:
-            raise InputError(f"max_dtau must be <= 0.5 (units of 1/p), got {self.max_dtau!r}")
-        int_at_least("steps_per_pulse", self.steps_per_pulse, 8)
-        positive_finite("rest_velocity", self.rest_velocity)
-        if self.rest_velocity > 1e-3:
-            raise InputError(f"rest_velocity must be <= 1e-3 (units of p), got {self.rest_velocity!r}")
-        int_at_least("max_impacts", self.max_impacts, 1)
-        int_at_least("max_steps", self.max_steps, 1)
+        compiled_stepping(self)
         positive_finite("max_tail", self.max_tail)
 
 

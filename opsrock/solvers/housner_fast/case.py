@@ -10,11 +10,11 @@ from typing import Any
 import numpy as np
 
 from opsrock.block import Block
-from opsrock.constants import OVERTURNING_ANGLE, G
-from opsrock.errors import InputError, InputTypeError
+from opsrock.constants import G
+from opsrock.errors import InputTypeError
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
-from opsrock.limits import positive_finite
+from opsrock.limits import initial_state, positive_finite
 from opsrock.result import RockingResult, failed_result
 from opsrock.solvers.common import make_settings
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, PULSE_ONE_SINE, pulse_forcing
@@ -146,13 +146,8 @@ def free_rocking(block: Block, theta0: float, duration: float, *, theta_dot0: fl
     settings = make_settings(HousnerFastSettings, settings, overrides)
     if not isinstance(block, Block):
         raise InputTypeError(f"block must be a Block, got {block!r}")
-    theta0 = float(theta0)
-    if not (math.isfinite(theta0) and abs(theta0) < OVERTURNING_ANGLE):
-        raise InputError(f"theta0 must be finite with |theta0| < pi/2, got {theta0!r}")
+    theta0, theta_dot0 = initial_state(theta0, theta_dot0)
     duration = positive_finite("duration", duration)
-    theta_dot0 = float(theta_dot0)
-    if not math.isfinite(theta_dot0):
-        raise InputError(f"theta_dot0 must be finite, got {theta_dot0!r}")
     nu = 2.0 * math.pi / (duration * block.p)  # so that the integrated span is `duration`
     return _run_one(block, 0.0, nu, theta0, theta_dot0 / block.p, settings)
 

@@ -13,7 +13,7 @@ from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE, G
 from opsrock.errors import InputError, InputTypeError
 from opsrock.excitations import Pulse, Record
-from opsrock.limits import positive_finite, real_number
+from opsrock.limits import initial_state, positive_finite
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
 from opsrock.solvers.common import make_settings, settings_record
 from opsrock.solvers.moreau_jean import kernel as kn
@@ -243,13 +243,8 @@ def free_rocking(block: Block, theta0: float, duration: float, *, theta_dot0: fl
     """
     settings = make_settings(MoreauJeanSettings, settings, overrides)
     block = _refuse_block(block)
-    theta0 = real_number("theta0", theta0)
-    if not (math.isfinite(theta0) and abs(theta0) < OVERTURNING_ANGLE):
-        raise InputError(f"theta0 must be finite with |theta0| < pi/2, got {theta0!r}")
+    theta0, theta_dot0 = initial_state(theta0, theta_dot0)
     duration = positive_finite("duration", duration)
-    theta_dot0 = real_number("theta_dot0", theta_dot0)
-    if not math.isfinite(theta_dot0):
-        raise InputError(f"theta_dot0 must be finite, got {theta_dot0!r}")
     forcing = _free_forcing(duration, settings.dtau / block.p)
     return _run(block, forcing, rocking_state(block, theta0, theta_dot0), settings, tail=False)
 

@@ -7,9 +7,8 @@ from dataclasses import asdict, dataclass, field
 from typing import Any
 
 from opsrock.block import Block
-from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.errors import InputError, InputTypeError
-from opsrock.limits import bool_fields, check, int_at_least, one_of, positive_finite
+from opsrock.limits import bool_fields, check, initial_state, int_at_least, one_of, positive_finite
 from opsrock.model import SDOFModel
 
 #: Time integrators offered. ``"newmark"``: average acceleration (gamma 1/2, beta 1/4), implicit,
@@ -187,11 +186,7 @@ class OpenSeesSettings:
         if not isinstance(self.stop_at_rest, bool):
             raise InputTypeError(f"stop_at_rest must be a bool, got {self.stop_at_rest!r}")
         int_at_least("record_every", self.record_every, 1)
-        th0 = float(self.theta0)
-        if not (math.isfinite(th0) and abs(th0) < OVERTURNING_ANGLE):
-            raise InputError(f"theta0 must be finite with |theta0| < pi/2, got {self.theta0!r}")
-        if not math.isfinite(float(self.theta_dot0)):
-            raise InputError(f"theta_dot0 must be finite, got {self.theta_dot0!r}")
+        initial_state(self.theta0, self.theta_dot0)
 
     def as_dict(self) -> dict[str, Any]:
         """All settings, the model's included, as a JSON-friendly dict."""

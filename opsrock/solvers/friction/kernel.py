@@ -130,6 +130,19 @@ def _event_after(ev, sgn, mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, m
 
 
 @numba.njit(cache=True)
+def _illinois(d, f, lo, hi, f_lo, f_hi, side):
+    """The bracket after a trial at ``d`` with value ``f``: ``(lo, hi, f_lo, f_hi, side)``, the end kept twice
+    in a row has its value halved (Illinois regula falsi)."""
+    if f <= 0.0:
+        if side == -1:
+            f_lo *= 0.5
+        return lo, d, f_lo, f, -1
+    if side == 1:
+        f_hi *= 0.5
+    return d, hi, f, f_hi, 1
+
+
+@numba.njit(cache=True)
 def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_s, mu_k):
     """Smallest step ``d`` in (0, h] after which event ``ev`` has happened (its value <= 0), to
     round-off, given ``f_lo > 0`` at 0 and ``f_hi <= 0`` at ``h``: Illinois regula falsi with a
@@ -147,16 +160,7 @@ def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, 
         f = _event_after(ev, sgn, mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k)
         if abs(f) <= flat:  # zero to round-off: the event is at d
             return d, True
-        if f <= 0.0:
-            hi, f_hi = d, f
-            if side == -1:
-                f_lo *= 0.5
-            side = -1
-        else:
-            lo, f_lo = d, f
-            if side == 1:
-                f_hi *= 0.5
-            side = 1
+        lo, hi, f_lo, f_hi, side = _illinois(d, f, lo, hi, f_lo, f_hi, side)
     return hi, hi - lo <= 1e3 * tol
 
 
@@ -270,16 +274,7 @@ def _locate_landing(c, f_lo, f_hi, th, om, x, vx, y, vy, tau, h, fc, sa, ca):
         if it % 4 == 3 or not (lo < d < hi):
             d = 0.5 * (lo + hi)
         f = _gap(c, th + d * om, _rk4_flight(x, vx, y, vy, tau, d, fc)[2], sa, ca)
-        if f <= 0.0:
-            hi, f_hi = d, f
-            if side == -1:
-                f_lo *= 0.5
-            side = -1
-        else:
-            lo, f_lo = d, f
-            if side == 1:
-                f_hi *= 0.5
-            side = 1
+        lo, hi, f_lo, f_hi, side = _illinois(d, f, lo, hi, f_lo, f_hi, side)
     return hi, hi - lo <= 1e3 * tol
 
 

@@ -5,16 +5,59 @@ the longest function and every function over 80 lines (compiled kernels, decorat
 ``jit``/``njit``, counted apart), import cycles between its modules (every ``import``, at module
 level or inside a function: a cycle is a cycle either way), imports of a private name of another
 module outside the importer's own method package (see ``_shares_method_package``), and lines of Python. Used for the before/after table of the restructuring.
+
+Also, for the contracts between the pieces: functions with more than 8 parameters (``self``/``cls`` not
+counted; compiled kernels apart), the lines and function-level imports of ``cli/``, function-level
+imports in the whole package, and imports of a private scipy name (``scipy.x._y`` or ``_name`` from
+scipy). With ``--tests DIR`` and ``--duplicates`` it adds the test files under DIR and the number of
+pairs the ``duplicates`` command reports for the package.
 """
 
 from __future__ import annotations
 
 import ast
 import json
+import re
+import shutil
+import subprocess
 import sys
 from pathlib import Path
 
 LONG = 80
+MANY_PARAMETERS = 8
+
+
+def _parameters(node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
+    a = node.args
+    names = [x.arg for x in a.posonlyargs + a.args + a.kwonlyargs]
+    names += [x.arg for x in (a.vararg, a.kwarg) if x is not None]
+    return len([n for n in names if n not in ("self", "cls")])
+
+
+def _function_level_imports(tree: ast.AST) -> int:
+    """Imports inside a function body (at any depth), each counted once."""
+    module_level = 0
+    stack = list(ast.iter_child_nodes(tree))
+    while stack:
+        node = stack.pop()
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            module_level += 1
+        elif not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            stack.extend(ast.iter_child_nodes(node))
+    return sum(isinstance(x, (ast.Import, ast.ImportFrom)) for x in ast.walk(tree)) - module_level
+
+
+def _private_scipy(tree: ast.AST) -> list[str]:
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("scipy"):
+            mods = (node.module or "").split(".")
+            out += [f"{node.module}.{a.name}" for a in node.names
+                    if any(m.startswith("_") for m in mods) or (a.name.startswith("_") and not a.name.startswith("__"))]
+        elif isinstance(node, ast.Import):
+            out += [a.name for a in node.names if a.name.startswith("scipy") and
+                    any(m.startswith("_") for m in a.name.split("."))]
+    return out
 
 
 def _module_name(root: Path, path: Path) -> str:
@@ -98,12 +141,19 @@ def metrics(root: Path) -> dict:
     modules = {_module_name(root, f): f for f in files}
     top = sorted(f.name for f in root.glob("*.py"))
     long_functions, kernels, private, lines = [], [], [], 0
+    many_parameters, scipy_private, cli_lines, cli_imports, local_imports = [], [], 0, 0, 0
     graph: dict[str, set[str]] = {m: set() for m in modules}
     longest = ("", 0)
     for name, f in modules.items():
         text = f.read_text()
         lines += len(text.splitlines())
         tree = ast.parse(text)
+        local = _function_level_imports(tree)
+        local_imports += local
+        scipy_private += [f"{f.relative_to(root.parent)}: {x}" for x in _private_scipy(tree)]
+        if name.split(".")[1:2] == ["cli"]:
+            cli_lines += len(text.splitlines())
+            cli_imports += local
         for node in ast.walk(tree):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 n = node.end_lineno - node.lineno + 1
@@ -112,6 +162,9 @@ def metrics(root: Path) -> dict:
                 if "jit" in deco:
                     kernels.append(where)
                     continue
+                if _parameters(node) > MANY_PARAMETERS:
+                    many_parameters.append(f"{f.relative_to(root.parent)}:{node.lineno} {node.name} "
+                                           f"({_parameters(node)} parameters)")
                 if n > longest[1]:
                     longest = (where, n)
                 if n > LONG:
@@ -145,9 +198,35 @@ def metrics(root: Path) -> dict:
         "import_cycles": _cycles(graph),
         "private_imports_across_packages": sorted(set(private)),
         "lines": lines,
+        "functions_over_8_parameters": many_parameters,
+        "cli_lines": cli_lines,
+        "cli_function_level_imports": cli_imports,
+        "function_level_imports": local_imports,
+        "private_scipy_imports": scipy_private,
     }
 
 
+def duplicate_pairs(root: Path) -> int | None:
+    """Pairs of places sharing six or more lines in ``root``, as the ``duplicates`` command counts them
+    (None where the command is not installed)."""
+    if shutil.which("duplicates") is None:
+        return None
+    out = subprocess.run(["duplicates", "--repo", str(root), "--seconds", "120"], capture_output=True,
+                         text=True, check=False).stdout
+    m = re.search(r"(\d+) pairs?", out)
+    return int(m.group(1)) if m else (0 if "no duplicates" in out else None)
+
+
 if __name__ == "__main__":
-    root = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).resolve().parents[1] / "opsrock")
-    print(json.dumps(metrics(root.resolve()), indent=2))
+    args = sys.argv[1:]
+    tests = args[args.index("--tests") + 1] if "--tests" in args else None
+    with_duplicates = "--duplicates" in args
+    rest = [a for i, a in enumerate(args) if a not in ("--tests", "--duplicates") and
+            (i == 0 or args[i - 1] != "--tests")]
+    root = Path(rest[0] if rest else Path(__file__).resolve().parents[1] / "opsrock").resolve()
+    result = metrics(root)
+    if tests is not None:
+        result["test_files"] = len(list(Path(tests).rglob("test_*.py")))
+    if with_duplicates:
+        result["duplicate_pairs"] = duplicate_pairs(root)
+    print(json.dumps(result, indent=2))

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from dataclasses import asdict
 from typing import Any
 
 import numpy as np
@@ -14,7 +13,7 @@ from opsrock.errors import InputError, InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
-from opsrock.solvers.common import SolverRun, check_block, check_start, make_settings
+from opsrock.solvers.common import SolverRun, check_block, check_start, make_settings, settings_record
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, pulse_forcing
 from opsrock.solvers.friction import kernel as K
 from opsrock.solvers.friction.settings import DEFAULT_TAIL_DTAU, FrictionSettings
@@ -109,7 +108,7 @@ class _FrictionRun(SolverRun):
 
     def _run_impl(self) -> RockingResult:
         block, settings = self.block, self.settings
-        settings_dict = {"solver": SOLVER_NAME, **asdict(settings)}
+        settings_dict = {"solver": SOLVER_NAME, **settings_record(settings)}
         alpha = block.alpha
         params, kvals, gvals = case_parameters(block, self.excitation, settings)
         cap = math.ceil(params[K.P_TAU_END] / params[K.P_H_NOM]) + _HISTORY_EXTRA if settings.record else 0

@@ -1,99 +1,130 @@
-"""One case with its history: :func:`solve` (a pulse or a record) and :func:`free_rocking`."""
+"""One case with its history: :func:`solve` (a pulse, a record, or free rocking on a still floor)."""
 
 from __future__ import annotations
 
 import math
-import time as _time
-from dataclasses import asdict
 from typing import Any
 
 import numpy as np
 
 from opsrock.block import Block
 from opsrock.constants import G
-from opsrock.errors import InputTypeError
+from opsrock.errors import InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
-from opsrock.limits import initial_state, positive_finite
 from opsrock.result import RockingResult, failed_result
-from opsrock.solvers.common import make_settings
+from opsrock.solvers.common import SolverRun, check_block, check_start, make_settings, settings_record
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, PULSE_ONE_SINE, pulse_forcing
-from opsrock.solvers.housner_fast.kernel import STATUS_OK, STATUS_REASONS, _solve_case
+from opsrock.solvers.housner_fast import kernel as K
 from opsrock.solvers.housner_fast.settings import HousnerFastSettings
+from opsrock.solvers.status import (
+    NONFINITE,
+    OK,
+    OUT_IMPACTS,
+    OUT_N_HIST,
+    OUT_OVERTURNED,
+    OUT_ROCKED,
+    OUT_STATUS,
+    OUT_STEPS,
+    OUT_THETA_MAX,
+    REASONS,
+    failure_of,
+)
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "housner_fast"
 
 #: History slots reserved beyond the nominal steps of a case in :func:`solve` and
-#: :func:`free_rocking` (two per impact, one per uplift and extra event step); a history
+#: free rocking (two per impact, one per uplift and extra event step); a history
 #: that fills up stops being recorded, the solution itself is unaffected.
 _HISTORY_EXTRA = 20_000
 
 
-def _run_one(block: Block, k: float, nu: float, theta0: float, omega0: float,
-             settings: HousnerFastSettings, record: Record | None = None,
-             pulse: int = PULSE_ONE_SINE) -> RockingResult:
-    """Solve one case with history; ``k = PFA/g``, ``nu = omega_p/p`` (dimensionless) for the
-    analytic pulse ``pulse`` (a kernel id), or the samples of ``record`` when it is given."""
-    settings_dict = {"solver": SOLVER_NAME, **asdict(settings)}
-    alpha = block.alpha
+def case_parameters(block: Block, excitation: Pulse | Record | None,
+                    settings: HousnerFastSettings) -> tuple[np.ndarray, np.ndarray]:
+    """The kernel's inputs ``(params, kvals)`` (slots ``P_*`` of :mod:`.kernel`) for one case.
+
+    ``excitation=None`` is a still floor integrated for ``end_time`` (s), after which the exact energy
+    verdict of a pulse's end applies (an analytic pulse of zero amplitude whose period is ``end_time``).
+    """
+    params = np.zeros(K.P_SIZE)
     p = block.p
-    if record is None:
+    if isinstance(excitation, Record):
+        check_sampling(excitation, block)
+        form, c0, c1, c2 = FORM_LINEAR, 0.0, 0.0, 0.0
+        kvals, dtau = excitation.values / G, excitation.dt * p
+        tau_end = excitation.duration * p
+        h_nom = min(settings.max_dtau, dtau)
+    else:
+        if excitation is None:
+            k, nu, pulse = 0.0, 2.0 * math.pi / (settings.end_time * p), PULSE_ONE_SINE
+        elif isinstance(excitation, Pulse) and excitation.shape in PULSE_IDS:
+            k, nu, pulse = excitation.pfa / G, excitation.omega_p / p, PULSE_IDS[excitation.shape]
+        else:
+            raise InputTypeError(
+                f"housner_fast solves the pulses of PULSE_SHAPES and records (Pulse, Record), got "
+                f"{type(excitation).__name__}; use solver='housner' for other excitations")
         form, c0, c1, c2, tau_end, kvals, dtau = pulse_forcing(pulse, k, nu)
         h_nom = min(settings.max_dtau, 2.0 * math.pi / nu / settings.steps_per_pulse)
-    else:
-        form, c0, c1, c2 = FORM_LINEAR, 0.0, 0.0, 0.0
-        kvals, dtau = record.values / G, record.dt * p
-        tau_end = record.duration * p
-        h_nom = min(settings.max_dtau, dtau)
-    cap = int(math.ceil(tau_end / h_nom)) + _HISTORY_EXTRA
-    hist = [np.zeros(cap) for _ in range(3)]
-    t0 = _time.perf_counter()
-    try:
-        tm, ov, rk, st, ni, ns, nh = _solve_case(
-            alpha, block.e, form, c0, c1, c2, tau_end, kvals, dtau, h_nom,
-            settings.equations == "linearised", float(settings.rest_velocity), int(settings.max_impacts), int(settings.max_steps),
-            float(theta0), float(omega0), *hist)
-    except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
-        return failed_result(SOLVER_NAME, settings_dict, alpha, f"{type(exc).__name__}: {exc}",
-                             wall_time_s=_time.perf_counter() - t0)
-    wall = _time.perf_counter() - t0
-    time_s = hist[0][:nh] / p
-    theta = hist[1][:nh]
-    theta_dot = hist[2][:nh] * p
-    if st != STATUS_OK or not math.isfinite(tm):
-        reason = STATUS_REASONS.get(int(st), "") or f"non-finite theta_max {tm!r}"
-        return failed_result(SOLVER_NAME, settings_dict, alpha, reason, time=time_s, theta=theta,
-                             theta_dot=theta_dot, n_steps=int(ns), wall_time_s=wall)
-    return RockingResult(
-        solver=SOLVER_NAME,
-        settings=settings_dict,
-        alpha=alpha,
-        time=time_s,
-        theta=theta,
-        theta_dot=theta_dot,
-        theta_max=float(tm),
-        overturned=bool(ov),
-        rocked=bool(rk),
-        n_steps=int(ns),
-        wall_time_s=wall,
-        n_impacts=int(ni),
-    )
+    values = {K.P_ALPHA: block.alpha, K.P_E: block.e, K.P_FORM: form, K.P_K: c0, K.P_NU: c1, K.P_PHASE: c2,
+              K.P_TAU_END: tau_end, K.P_DTAU: dtau, K.P_H_NOM: h_nom,
+              K.P_LINEQ: float(settings.equations == "linearised"), K.P_REST_VELOCITY: settings.rest_velocity,
+              K.P_MAX_IMPACTS: settings.max_impacts, K.P_MAX_STEPS: settings.step_limit,
+              K.P_THETA0: settings.theta0, K.P_OMEGA0: settings.theta_dot0 / p}
+    for slot, value in values.items():
+        params[slot] = value
+    return params, np.asarray(kvals, dtype=float)
 
 
-def solve(block: Block, excitation: Pulse | Record, *, settings: HousnerFastSettings | None = None,
+class _HousnerFastRun(SolverRun):
+    """One case through the compiled kernel, with its history."""
+
+    name = SOLVER_NAME
+
+    def _run_impl(self) -> RockingResult:
+        block, settings = self.block, self.settings
+        settings_dict = {"solver": SOLVER_NAME, **settings_record(settings)}
+        alpha, p = block.alpha, block.p
+        params, kvals = case_parameters(block, self.excitation, settings)
+        cap = int(math.ceil(params[K.P_TAU_END] / params[K.P_H_NOM])) + _HISTORY_EXTRA if settings.record else 0
+        hist = [np.zeros(cap) for _ in range(3)]
+        out = np.zeros(K.OUT_SIZE)
+        try:
+            K.solve_case(params, kvals, out, *hist)
+        except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
+            return failed_result(SOLVER_NAME, settings_dict, alpha, f"{type(exc).__name__}: {exc}",
+                                 wall_time_s=self.elapsed())
+        wall = self.elapsed()
+        nh, st, tm = int(out[OUT_N_HIST]), int(out[OUT_STATUS]), float(out[OUT_THETA_MAX])
+        time_s, theta, theta_dot = hist[0][:nh] / p, hist[1][:nh], hist[2][:nh] * p
+        if st != OK or not math.isfinite(tm):
+            reason = REASONS[st] if st != OK else f"non-finite theta_max {tm!r}"
+            return failed_result(SOLVER_NAME, settings_dict, alpha, reason, time=time_s, theta=theta,
+                                 theta_dot=theta_dot, n_steps=int(out[OUT_STEPS]), wall_time_s=wall,
+                                 failure=failure_of(st if st != OK else NONFINITE))
+        return RockingResult(
+            solver=SOLVER_NAME, settings=settings_dict, alpha=alpha, time=time_s, theta=theta, theta_dot=theta_dot,
+            theta_max=tm, overturned=bool(out[OUT_OVERTURNED]), rocked=bool(out[OUT_ROCKED]),
+            n_steps=int(out[OUT_STEPS]), wall_time_s=wall, n_impacts=int(out[OUT_IMPACTS]))
+
+
+def solve(block: Block, excitation: Pulse | Record | None, settings: HousnerFastSettings | None = None,
           **overrides: Any) -> RockingResult:
-    """Rocking response of one block, initially at rest, to an analytic pulse or a record
-    (rigid-body model, exact or linearised equations).
+    """Rocking response of one block to an analytic pulse or a record, or its free rocking from a start
+    state (rigid-body model, exact or linearised equations).
 
     Parameters
     ----------
     block : Block
         The block.
-    excitation : Pulse or Record
-        The floor motion: any pulse of :data:`opsrock.excitations.PULSE_SHAPES`, or a record. A record is integrated segment by segment (linear acceleration between
-        samples, every step ending on a sample), with the step also bounded by ``max_dtau``; it
-        must be sampled finely enough for the block (:func:`opsrock.excitations.records.check_sampling`).
+    excitation : Pulse or Record or None
+        The floor motion: any pulse of :data:`opsrock.excitations.PULSE_SHAPES`, or a record. A record is
+        integrated segment by segment (linear acceleration between samples, every step ending on a
+        sample), with the step also bounded by ``max_dtau``; it must be sampled finely enough for the
+        block (:func:`opsrock.excitations.records.check_sampling`). None: a still floor, integrated for
+        ``end_time`` (required) from ``theta0``, ``theta_dot0`` (used to check the integrator against
+        closed forms: first impact time, energy, ``e²`` per impact); the step is then
+        ``min(max_dtau, p end_time / steps_per_pulse)`` in units of ``1/p``.
     settings : HousnerFastSettings, optional
         Numerical settings; keyword ``overrides`` replace individual fields.
 
@@ -108,48 +139,12 @@ def solve(block: Block, excitation: Pulse | Record, *, settings: HousnerFastSett
         decay to rest after it is not simulated): the count of ``housner`` with ``tail="peak"``.
     """
     settings = make_settings(HousnerFastSettings, settings, overrides)
-    if not isinstance(block, Block):
-        raise InputTypeError(f"block must be a Block, got {block!r}")
-    if isinstance(excitation, Record):
-        check_sampling(excitation, block)
-        return _run_one(block, 0.0, 1.0, 0.0, 0.0, settings, record=excitation)
-    if not isinstance(excitation, Pulse) or excitation.shape not in PULSE_IDS:
-        raise InputTypeError(
-            f"housner_fast solves the pulses of PULSE_SHAPES and records (Pulse, Record), got "
-            f"{type(excitation).__name__}; use solver='housner' for other excitations")
-    return _run_one(block, excitation.pfa / G, excitation.omega_p / block.p, 0.0, 0.0, settings,
-                    pulse=PULSE_IDS[excitation.shape])
+    block = check_block(block)
+    check_start(SOLVER_NAME, excitation, settings, free_rocking=True)
+    if (excitation is None) != (settings.end_time is not None):
+        raise ModelNotSupported(f"solver {SOLVER_NAME!r} takes end_time (the span of free rocking) with "
+                                f"excitation None and only then, got end_time = {settings.end_time!r}")
+    return _HousnerFastRun(block, excitation, settings).run()
 
 
-def free_rocking(block: Block, theta0: float, duration: float, *, theta_dot0: float = 0.0,
-                 settings: HousnerFastSettings | None = None, **overrides: Any) -> RockingResult:
-    """Free rocking (no floor motion) from an initial state, integrated step by step.
-
-    Used to check the integrator against closed forms (first impact time, energy, ``e²`` per
-    impact). The motion is integrated for ``duration``; the verdict after that uses the same
-    exact energy argument as :func:`solve`.
-
-    Parameters
-    ----------
-    block : Block
-        The block.
-    theta0 : float
-        Initial rotation (rad), ``|theta0| < pi/2``.
-    duration : float
-        Integrated time (s), > 0.
-    theta_dot0 : float, optional
-        Initial angular velocity (rad/s). Default 0.
-    settings : HousnerFastSettings, optional
-        Numerical settings; keyword ``overrides`` replace individual fields. The step is
-        ``min(max_dtau, p duration / steps_per_pulse)`` in units of ``1/p``.
-    """
-    settings = make_settings(HousnerFastSettings, settings, overrides)
-    if not isinstance(block, Block):
-        raise InputTypeError(f"block must be a Block, got {block!r}")
-    theta0, theta_dot0 = initial_state(theta0, theta_dot0)
-    duration = positive_finite("duration", duration)
-    nu = 2.0 * math.pi / (duration * block.p)  # so that the integrated span is `duration`
-    return _run_one(block, 0.0, nu, theta0, theta_dot0 / block.p, settings)
-
-
-__all__ = ["SOLVER_NAME", "free_rocking", "solve"]
+__all__ = ["SOLVER_NAME", "case_parameters", "solve"]

@@ -65,6 +65,7 @@ from opsrock.constants import G
 from opsrock.errors import InputError, InputTypeError, ModelNotSupported, UnknownSettingError
 from opsrock.limits import bool_fields, initial_state, int_at_least, one_of, positive_finite, real_number
 from opsrock.result import ImpactLog, RockingResult, failed_result
+from opsrock.solvers.registry import check_model
 from opsrock.solvers.status import INTEGRATOR, MAX_IMPACTS, MAX_STEPS, REASONS, TIMEOUT, failure_of
 
 #: :func:`scipy.integrate.solve_ivp` methods the scipy solvers accept (``method``, ``stiff_method``). Between events both equations are
@@ -315,21 +316,21 @@ class ScipySettings(SolverSettings):
 
 
 # --- the run skeleton ----------------------------------------------------------------------------------
-def check_block(block: object) -> Block:
-    """``block`` if it is a :class:`Block`; else :class:`InputTypeError`."""
+def check_inputs(solver: str, block: object, excitation: object, settings: SolverSettings) -> Block:
+    """The prelude's checks, before any work: ``block`` a :class:`Block` (else :class:`InputTypeError`),
+    nothing the solver does not model (:func:`opsrock.solvers.registry.check_model`, from its registry
+    entry), and with ``excitation=None`` (a still floor) a start state that moves. Returns ``block``.
+
+    Raises
+    ------
+    InputTypeError, ModelNotSupported, InputError
+    """
     if not isinstance(block, Block):
         raise InputTypeError(f"block must be a Block, got {block!r}")
-    return block
-
-
-def check_start(solver: str, excitation: object, settings: SolverSettings, free_rocking: bool) -> None:
-    """Refuse ``excitation=None`` where it means nothing: a solver without free rocking, or a start from rest."""
-    if excitation is not None:
-        return
-    if not free_rocking:
-        raise ModelNotSupported(f"solver {solver!r} does not model free rocking (excitation None)")
-    if settings.seated_start:
+    check_model(solver, block, excitation)
+    if excitation is None and settings.seated_start:
         raise InputError("excitation None (a still floor) needs a start state: theta0 or theta_dot0 != 0")
+    return block
 
 
 def timed_out(result: RockingResult, settings: SolverSettings) -> RockingResult:
@@ -696,6 +697,6 @@ def _merged(a: tuple[np.ndarray, ...], b: tuple[np.ndarray, ...]) -> tuple[np.nd
 
 
 __all__ = ["EventDrivenSolver", "History", "IVP_METHODS", "SHARED_SETTINGS", "ScipySettings", "SolverRun",
-           "SolverSettings", "StopRun", "TAILS", "check_block", "check_start", "first_exceedance", "refuse_value",
+           "SolverSettings", "StopRun", "TAILS", "check_inputs", "first_exceedance", "refuse_value",
            "timed_out",
            "make_settings", "potential_energy", "rocking_energy", "setting_names", "settings_record"]

@@ -13,7 +13,7 @@ from opsrock.errors import InputError, InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
-from opsrock.solvers.common import SolverRun, check_block, check_start, make_settings, settings_record
+from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, pulse_forcing
 from opsrock.solvers.friction import kernel as K
 from opsrock.solvers.friction.settings import DEFAULT_TAIL_DTAU, FrictionSettings
@@ -162,8 +162,7 @@ def solve(block: Block, excitation: Pulse | Record | None, settings: FrictionSet
         sliding and energy balance.
     """
     settings = make_settings(FrictionSettings, settings, overrides)
-    block = check_block(block)
-    check_start(SOLVER_NAME, excitation, settings, free_rocking=True)
+    block = check_inputs(SOLVER_NAME, block, excitation, settings)
     if excitation is not None and settings.end_time is not None:
         raise ModelNotSupported(f"solver {SOLVER_NAME!r} follows the block to rest after the excitation: "
                                 f"end_time = {settings.end_time!r} only with excitation None")

@@ -14,8 +14,7 @@ from opsrock.result import RockingResult
 from opsrock.solvers.common import (
     EventDrivenSolver,
     StopRun,
-    check_block,
-    check_start,
+    check_inputs,
     first_exceedance,
     make_settings,
 )
@@ -45,8 +44,7 @@ def solve(block: Block, excitation: Any, settings: HousnerSettings | None = None
         An integrator failure or more than ``max_impacts`` impacts give ``status="failed"``.
     """
     settings = make_settings(HousnerSettings, settings, overrides)
-    check_start(SOLVER_NAME, excitation, settings, free_rocking=True)
-    return _Housner(check_block(block), excitation, settings).run()
+    return _Housner(check_inputs(SOLVER_NAME, block, excitation, settings), excitation, settings).run()
 
 
 class _Housner(EventDrivenSolver):

@@ -13,7 +13,7 @@ from opsrock.errors import InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
 from opsrock.result import RockingResult, failed_result
-from opsrock.solvers.common import SolverRun, check_block, check_start, make_settings, settings_record
+from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, PULSE_ONE_SINE, pulse_forcing
 from opsrock.solvers.housner_fast import kernel as K
 from opsrock.solvers.housner_fast.settings import HousnerFastSettings
@@ -139,8 +139,7 @@ def solve(block: Block, excitation: Pulse | Record | None, settings: HousnerFast
         decay to rest after it is not simulated): the count of ``housner`` with ``tail="peak"``.
     """
     settings = make_settings(HousnerFastSettings, settings, overrides)
-    block = check_block(block)
-    check_start(SOLVER_NAME, excitation, settings, free_rocking=True)
+    block = check_inputs(SOLVER_NAME, block, excitation, settings)
     if (excitation is None) != (settings.end_time is not None):
         raise ModelNotSupported(f"solver {SOLVER_NAME!r} takes end_time (the span of free rocking) with "
                                 f"excitation None and only then, got end_time = {settings.end_time!r}")

@@ -10,10 +10,10 @@ import numpy as np
 
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE, G
-from opsrock.errors import InputError, InputTypeError, ModelNotSupported
+from opsrock.errors import InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
-from opsrock.solvers.common import SolverRun, check_start, make_settings, settings_record
+from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
 from opsrock.solvers.moreau_jean import kernel as kn
 from opsrock.solvers.moreau_jean.settings import DEFAULT_TAIL_DTAU, MoreauJeanSettings
 from opsrock.solvers.status import REASONS, failure_of
@@ -34,19 +34,6 @@ class _Forcing:
     tail_av: float
     dt: float
     peak: float  # max |a_h| + max |a_v| (m/s²), for the contact gap
-
-
-def _refuse_block(block: object) -> Block:
-    """The block, if Moreau-Jean can model it: its impact law must be Housner's (``e = e_H``)."""
-    if not isinstance(block, Block):
-        raise InputTypeError(f"block must be a Block, got {block!r}")
-    if block.restitution is not None or block.restitution_factor != 1.0:
-        given = (f"restitution = {block.restitution!r}" if block.restitution is not None
-                 else f"restitution_factor = {block.restitution_factor!r}")
-        raise InputError(
-            f"solver 'moreau_jean' reproduces Housner's impact (e = e_H = {block.e_R:.6g}) and no other: block "
-            f"{block.name or '<unnamed>'} has {given}; build it with restitution_factor=1.0 and no restitution")
-    return block
 
 
 def _refuse_excitation(excitation: object) -> None:
@@ -202,8 +189,7 @@ def solve(block: Block, excitation: Pulse | Record | None, settings: MoreauJeanS
         A block that is not a :class:`Block`, or an excitation that is neither a pulse nor a record.
     """
     settings = make_settings(MoreauJeanSettings, settings, overrides)
-    block = _refuse_block(block)
-    check_start(SOLVER_NAME, excitation, settings, free_rocking=True)
+    block = check_inputs(SOLVER_NAME, block, excitation, settings)
     if (excitation is None) != (settings.end_time is not None):
         raise ModelNotSupported(f"solver {SOLVER_NAME!r} takes end_time (the span of free motion) with "
                                 f"excitation None and only then, got end_time = {settings.end_time!r}")

@@ -16,7 +16,7 @@ from opsrock.limits import one_of
 from opsrock.model import can_uplift
 from opsrock.opensees_session import CONSOLE, console_to_log, count_messages, fresh_model, log_size
 from opsrock.result import RockingResult, failed_result, seated_result
-from opsrock.solvers.common import SolverRun, check_block, check_start, make_settings
+from opsrock.solvers.common import SolverRun, check_inputs, make_settings
 from opsrock.solvers.opensees.build import build_lumped, build_sdof, define_analysis, set_initial_state
 from opsrock.solvers.opensees.settings import (
     ROCKED_THETA_E_MULTIPLE,
@@ -57,8 +57,8 @@ def solve(
         the run blew up numerically ("unstable: ..."), or the end time came before rest.
     """
     settings = make_settings(OpenSeesSettings, settings, overrides)
-    check_start(SOLVER_NAME, excitation, settings, free_rocking=True)
-    return _OpenSeesRun(check_block(block), STILL_FLOOR if excitation is None else excitation, settings).run()
+    block = check_inputs(SOLVER_NAME, block, excitation, settings)
+    return _OpenSeesRun(block, STILL_FLOOR if excitation is None else excitation, settings).run()
 
 
 def solve_lumped_mass(
@@ -89,7 +89,8 @@ def solve_lumped_mass(
         not offered.
     """
     one_of("geometry", geometry, ("linear",))
-    run = _OpenSeesRun(check_block(block), excitation, make_settings(OpenSeesSettings, settings, overrides))
+    settings = make_settings(OpenSeesSettings, settings, overrides)
+    run = _OpenSeesRun(check_inputs(SOLVER_NAME, block, excitation, settings), excitation, settings)
     run.geometry = geometry
     return run.run()
 

@@ -17,8 +17,7 @@ from opsrock.result import RockingResult, seated_result
 from opsrock.solvers.common import (
     EventDrivenSolver,
     StopRun,
-    check_block,
-    check_start,
+    check_inputs,
     first_exceedance,
     make_settings,
 )
@@ -80,8 +79,7 @@ def solve(block: Block, excitation: Any, settings: SDOFSettings | None = None, *
         ``status="failed"`` with the reason.
     """
     settings = make_settings(SDOFSettings, settings, overrides)
-    check_start(SOLVER_NAME, excitation, settings, free_rocking=True)
-    run = _SDOF(check_block(block), excitation, settings)
+    run = _SDOF(check_inputs(SOLVER_NAME, block, excitation, settings), excitation, settings)
     s = run.settings
     if s.uplift_check and run.seated and not can_uplift(block, s.model, excitation.pfa):
         return seated_result(SOLVER_NAME, run.settings_dict, block.alpha, excitation.duration, run.elapsed())

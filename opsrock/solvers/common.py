@@ -66,7 +66,7 @@ from opsrock.errors import InputError, InputTypeError, ModelNotSupported, Unknow
 from opsrock.limits import bool_fields, initial_state, int_at_least, one_of, positive_finite, real_number
 from opsrock.result import ImpactLog, RockingResult, failed_result
 from opsrock.solvers.registry import check_model
-from opsrock.solvers.status import INTEGRATOR, MAX_IMPACTS, MAX_STEPS, REASONS, TIMEOUT, failure_of
+from opsrock.solvers.status import INTEGRATOR, MAX_IMPACTS, MAX_STEPS, NONFINITE, REASONS, TIMEOUT, failure_of
 
 #: :func:`scipy.integrate.solve_ivp` methods the scipy solvers accept (``method``, ``stiff_method``). Between events both equations are
 #: smooth and non-stiff (rates ``p`` and ``c_D / I_O``), so explicit high-order methods are the efficient
@@ -477,11 +477,17 @@ class EventDrivenSolver(SolverRun):
     def count_steps(self, sol: Any) -> None:
         """Add a segment's accepted steps; a failed integration stops the run with scipy's message."""
         self.n_steps += max(len(sol.t) - 1, 0)
+        t_end = float(sol.t[-1])
+        if not np.all(np.isfinite(sol.y[:, -1])):
+            raise StopRun(f"{REASONS[NONFINITE]} at t = {t_end:.6g} s", failure_of(NONFINITE))
         if sol.status == -1:
+            # a floor acceleration that turns non-finite makes the step control fail just before it
+            probe = np.asarray(self.acc(t_end + np.linspace(0.0, 1e-6 * max(1.0, t_end), 5)), dtype=float)
+            if not np.all(np.isfinite(probe)):
+                raise StopRun(f"{REASONS[NONFINITE]}: the floor acceleration at t = {t_end:.6g} s",
+                              failure_of(NONFINITE))
             raise StopRun(f"solve_ivp ({self.segment_method}) failed at t = {self.t:.6g} s: {sol.message}",
                           failure_of(INTEGRATOR))
-        if not np.all(np.isfinite(sol.y[:, -1])):
-            raise StopRun(f"non-finite state at t = {self.t:.6g} s", "nonfinite")
 
     def track_peak(self, sol: Any, turning_event: int) -> None:
         """Raise ``theta_max`` to the segment's largest ``|theta|``, its turning points included."""

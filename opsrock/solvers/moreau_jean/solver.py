@@ -213,8 +213,8 @@ class _MoreauJeanRun(SolverRun):
             forcing = _record_forcing(excitation, dt_nom)
         else:
             forcing = _pulse_forcing(excitation, dt_nom, s.theta_mj)
-        state = np.array([0.0, block.h, 0.0, 0.0, 0.0, 0.0])
-        return _run(self, forcing, state, tail=True)
+        # from rest: theta = 0 gives (0, h, 0, 0, 0, 0) exactly
+        return _run(self, forcing, rocking_state(block, s.theta0, s.theta_dot0), tail=True)
 
 
 def rocking_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndarray:

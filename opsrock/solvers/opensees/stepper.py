@@ -303,8 +303,9 @@ class Stepper:
             try:
                 self.n_steps += recover(self.s, h)
             except StepFailure as exc:
-                raise StepFailure(f"step at t = {t:.6g} s (dt = {h:.3g} s) did not converge: {exc}",
-                                  exc.failure) from None
+                # a floor acceleration that turns non-finite makes the step fail to converge
+                kind = exc.failure if isfinite(float(self.excitation.acceleration(t + h))) else "nonfinite"
+                raise StepFailure(f"step at t = {t:.6g} s (dt = {h:.3g} s) did not converge: {exc}", kind) from None
         if h >= self.dt_cr and abs(self.th) <= self.theta_e:
             raise StepFailure(
                 f"unstable: explicit central difference stepped {h:.4g} s from inside the stiff branch "

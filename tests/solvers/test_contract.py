@@ -172,20 +172,21 @@ def test_free_rocking_from_a_start_state_meets_the_closed_form(name):
     ``m g R [cos(alpha - theta0) - cos(alpha)]``; the impact keeps ``e²`` of it, so the first return peak
     theta1 solves ``cos(alpha - theta1) - cos(alpha) = e² [cos(alpha - theta0) - cos(alpha)]``.
 
-    Tolerances on theta1 / alpha, per method (each measured well inside): the event-driven and
-    compiled rigid solvers locate the impact and the peak on their own integrator (1e-6 housner, the
-    peak of housner_fast's recorded steps ``h = 0.02/p`` apart: (h p)² / 8 ~ 5e-5); the friction solver
-    the same; Moreau-Jean's impact carries an O(dt) energy error (3e-3 at dtau = 1e-3, docstring of
-    moreau_jean) and its history is sampled every 0.01/p: 5e-3; the SDOF models replace the impact by
-    the damper band tuned to keep e² of the energy over a free passage, but their spring is the tabulated
-    M_s (0.1-0.2 % of m g R sin alpha) and the lever is cos(alpha): 1e-2.
+    Tolerances on |d theta1| / alpha, per method, about ten times the error measured on this block (in
+    brackets): the event-driven housner solves the exact equation with the impact as an event (2e-11):
+    1e-8; housner_fast and friction take the peak from steps recorded ``h = 0.02/p`` apart (1.3e-5,
+    1.8e-5): 1e-4; Moreau-Jean's impact carries an O(dt) energy error (3e-3 at dtau = 1e-3, the
+    moreau_jean docstring; 1.6e-5 at the default 1e-4) and its history is sampled every 0.01/p: 1e-3; the
+    SDOF models replace the impact by the damper band tuned to keep e² of the energy over a free passage,
+    with the tabulated spring (sdof 1.4e-5; OpenSees adds its adaptive Newmark steps, 1.4e-4): 1e-3.
+    Every solver but friction stops at ``end_time``, after 3 impacts; friction follows the block to rest.
     """
-    tolerance = {"housner": 1e-6, "housner_fast": 1e-4, "friction": 1e-4, "moreau_jean": 5e-3,
-                 "sdof": 1e-2, "opensees": 1e-2}[name]
+    tolerance = {"housner": 1e-8, "housner_fast": 1e-4, "friction": 1e-4, "moreau_jean": 1e-3,
+                 "sdof": 1e-3, "opensees": 1e-3}[name]
     r = _free(name)
     assert r.ok and r.failure is None, r.reason
-    assert r.theta_max == pytest.approx(THETA0, rel=1e-9)
-    assert r.rocked and r.n_impacts >= 1
+    assert r.theta_max == pytest.approx(THETA0, rel=1e-12)  # released from rest: the first peak is theta0
+    assert r.rocked and (r.n_impacts > 3 if name == "friction" else r.n_impacts == 3)
     a, e = BLOCK.alpha, BLOCK.e
     theta1 = a - math.acos(math.cos(a) + e * e * (math.cos(a - THETA0) - math.cos(a)))
     assert abs(_first_return_peak(r) - theta1) / a < tolerance, (_first_return_peak(r) / a, theta1 / a)

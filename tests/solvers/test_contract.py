@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -191,3 +193,18 @@ def test_free_rocking_from_a_start_state_meets_the_closed_form(name):
     theta1 = a - math.acos(math.cos(a) + e * e * (math.cos(a - THETA0) - math.cos(a)))
     assert abs(_first_return_peak(r) - theta1) / a < tolerance, (_first_return_peak(r) / a, theta1 / a)
     assert abs(r.theta[-1]) < THETA0  # it decays
+
+
+def test_opensees_is_loaded_only_when_first_used():
+    """``import opsrock.solvers``, the registry, every settings class and every solver but OpenSees run
+    without importing OpenSeesPy (whose wheel needs the system BLAS)."""
+    code = ("import sys\n"
+            "from opsrock import Block, OneSinePulse\n"
+            "from opsrock.solvers import SOLVERS, settings_class, simulate, solver_names\n"
+            "b = Block(0.3, 1.2, restitution_factor=1.0)\n"
+            "[settings_class(n)() for n in SOLVERS]\n"
+            "for n in solver_names(needs_opensees=False):\n"
+            "    assert simulate(b, OneSinePulse.from_ratios(b, 1.35, 3.0), solver=n).ok, n\n"
+            "assert not any(m.startswith('openseespy') or m == 'opsrock.opensees_session' for m in sys.modules)\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]

@@ -30,6 +30,11 @@ class InputTypeError(OpsrockError, TypeError):
     """A value of the wrong type (text where a number is needed, a number where a bool is)."""
 
 
+class ModelNotSupported(InputError):
+    """A solver asked for what its model does not include (friction, vertical floor motion, free rocking,
+    a restitution law, a value of a shared setting): the registry declares what each solver models."""
+
+
 class UsageError(InputError):
     """Command-line arguments that do not go together or do not apply."""
 
@@ -112,6 +117,6 @@ class CaseTimeout(OpsrockError):
 
 __all__ = [
     "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError", "InputError", "InputTypeError",
-    "LibraryUnavailableError", "MISSING", "MissingBlasError", "OpsrockError", "RecordFileError", "SceneError",
+    "LibraryUnavailableError", "MISSING", "MissingBlasError", "ModelNotSupported", "OpsrockError", "RecordFileError", "SceneError",
     "StoreError", "UnknownRecordError", "UnknownSettingError", "UsageError",
 ]

@@ -186,7 +186,7 @@ def initial_state(theta0: object, theta_dot0: object) -> tuple[float, float]:
 def compiled_stepping(settings: object) -> None:
     """Check the stepping fields the compiled event-driven solvers share (``housner_fast``, ``friction``):
     ``max_dtau`` in (0, 0.5] (units of 1/p), ``steps_per_pulse`` >= 8, ``rest_velocity`` in (0, 1e-3]
-    (units of p), ``max_impacts`` and ``max_steps`` >= 1 (no unit)."""
+    (units of p), ``max_impacts`` and ``max_steps`` >= 1 (no unit; None: the solver's default)."""
     s = settings
     positive_finite("max_dtau", s.max_dtau)
     if s.max_dtau > 0.5:
@@ -196,7 +196,8 @@ def compiled_stepping(settings: object) -> None:
     if s.rest_velocity > 1e-3:
         raise InputError(f"rest_velocity must be <= 1e-3 (units of p), got {s.rest_velocity!r}")
     int_at_least("max_impacts", s.max_impacts, 1)
-    int_at_least("max_steps", s.max_steps, 1)
+    if s.max_steps is not None:
+        int_at_least("max_steps", s.max_steps, 1)
 
 
 def positive_finite(name: str, value: object) -> float:

@@ -163,6 +163,11 @@ class RockingResult:
         ``"ok"`` or ``"failed"`` (see :data:`STATUSES`).
     reason : str
         Why a run failed (empty when ``status == "ok"``).
+    failure : str or None
+        What kind of failure, machine-readable (one of
+        :data:`opsrock.solvers.status.FAILURE_KINDS`: ``"nonfinite"``, ``"max_steps"``, ``"max_impacts"``,
+        ``"timeout"``, ...); None when ``status == "ok"``. A failed result built without a kind is
+        ``"error"``.
     n_steps : int
         Steps taken (time steps, or accepted integrator steps).
     wall_time_s : float
@@ -207,8 +212,13 @@ class RockingResult:
     diagnostics: Mapping[str, Any] = field(default_factory=dict)
     slide: np.ndarray | None = field(default=None, repr=False)
     contact: ContactSummary | None = None
+    failure: str | None = None
 
     def __post_init__(self) -> None:
+        if self.status == "failed" and self.failure is None:
+            object.__setattr__(self, "failure", "error")
+        if self.status == "ok" and self.failure is not None:
+            raise InputError(f"an ok result carries no failure, got failure={self.failure!r}")
         if self.status not in STATUSES:
             raise InputError(f"status must be one of {STATUSES}, got {self.status!r}")
         if self.status == "failed" and not self.reason:
@@ -264,6 +274,7 @@ class RockingResult:
             "solver": self.solver,
             "status": self.status,
             "reason": self.reason,
+            "failure": self.failure,
             "verdict": self.verdict,
             "theta_max": float(self.theta_max),
             "theta_max_over_alpha": float(self.theta_max_over_alpha),
@@ -290,8 +301,10 @@ def failed_result(
     theta_dot: np.ndarray | None = None,
     n_steps: int = 0,
     wall_time_s: float = 0.0,
+    failure: str = "error",
 ) -> RockingResult:
-    """Build a ``status="failed"`` result that keeps whatever history was computed.
+    """Build a ``status="failed"`` result that keeps whatever history was computed; ``failure`` is its
+    kind (:data:`opsrock.solvers.status.FAILURE_KINDS`).
 
     ``theta_max`` is the largest finite ``|theta|`` reached before the failure (NaN if none);
     ``overturned`` and ``rocked`` are False: a failed case carries no verdict.
@@ -313,6 +326,7 @@ def failed_result(
         reason=reason,
         n_steps=n_steps,
         wall_time_s=wall_time_s,
+        failure=failure,
     )
 
 

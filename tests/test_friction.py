@@ -297,7 +297,7 @@ def test_free_rocking_keeps_e_squared_per_impact():
     """A block with friction enough to stick rocks freely as the rigid block: each impact keeps e² of
     the energy; followed to rest."""
     block = Block(0.5, 1.5, friction=0.8)
-    r = friction.free_rocking(block, 0.5 * block.alpha, 1.0)
+    r = friction.solve(block, None, theta0=0.5 * block.alpha, end_time=1.0)
     assert r.ok and r.response == "rocked" and r.n_impacts > 10
     e = r.contact.energy
     assert e["kinetic"] == 0.0 and e["potential"] == 0.0

@@ -90,7 +90,7 @@ def test_free_rocking_first_impact_time(block):
     energy integral. Tolerance 1e-7 relative: RK4 at the default step is accurate to about
     1e-9 here (the impact is located on the RK map itself), the quadrature to 1e-13."""
     theta0 = 0.5 * block.alpha
-    res = hf.free_rocking(block, theta0, 3.0)
+    res = hf.solve(block, None, theta0=theta0, end_time=3.0)
     assert res.ok and not res.overturned
     t_impact = res.time[_impact_rows(res)[0]]
     assert t_impact == pytest.approx(_first_impact_time_quadrature(block.alpha, block.p, theta0), rel=1e-7)
@@ -103,7 +103,7 @@ def test_free_rocking_first_impact_linearised_slender():
     checked to 1e-7 above)."""
     block = BLOCKS[0]
     theta0 = 0.5 * block.alpha
-    res = hf.free_rocking(block, theta0, 3.0)
+    res = hf.solve(block, None, theta0=theta0, end_time=3.0)
     t_impact = res.time[_impact_rows(res)[0]]
     assert t_impact == pytest.approx(math.acosh(1.0 / (1.0 - theta0 / block.alpha)) / block.p, rel=1e-2)
 
@@ -112,7 +112,7 @@ def test_free_rocking_first_impact_linearised_slender():
 def test_energy_ratio_e_squared_per_impact(block):
     """Kinetic (= total, at theta = 0) energy falls by e² at every impact (Housner). The
     before/after velocities are stored exactly; tolerance 1e-12 is round-off."""
-    res = hf.free_rocking(block, 0.6 * block.alpha, 4.0)
+    res = hf.solve(block, None, theta0=0.6 * block.alpha, end_time=4.0)
     rows = _impact_rows(res)
     assert rows.size >= 3
     for i in rows[:5]:
@@ -127,7 +127,7 @@ def test_energy_conserved_between_impacts(block):
     start and the first impact, and between the first two impacts, it must stay within
     1e-9 of its value (relative to the barrier 1 - cos alpha): RK4's energy drift at the
     default step is about 1e-11 here, so a wrong sign or lever would fail by orders."""
-    res = hf.free_rocking(block, 0.5 * block.alpha, 4.0)
+    res = hf.solve(block, None, theta0=0.5 * block.alpha, end_time=4.0)
     rows = _impact_rows(res)
     E = _energy(block.alpha, block.p, res.theta, res.theta_dot)
     barrier = 1.0 - math.cos(block.alpha)

@@ -57,7 +57,7 @@ def test_refuses_a_restitution_other_than_housners():
     with pytest.raises(InputError, match=r"restitution = 0\.9"):
         mj.solve(Block(0.6, 2.0, restitution=0.9), pulse)
     with pytest.raises(InputError, match="restitution_factor"):
-        mj.free_rocking(Block(0.6, 2.0), 0.1, 1.0)
+        mj.solve(Block(0.6, 2.0), None, theta0=0.1, end_time=1.0)
 
 
 def test_refuses_other_excitations_and_bad_settings():
@@ -147,10 +147,11 @@ def test_static_friction_above_kinetic():
 
 
 def test_frictionless_base_never_stops():
-    """mu = 0: after the pulse the base slides on for ever, so the tail ends at max_tail as a failure
+    """mu = 0: after the pulse the base slides on for ever, so the tail ends at max_free_time as a failure
     with its reason (and no verdict)."""
-    r = mj.solve(_block(0.5, 1.0, mu=0.0), RectangularPulse.from_duration(0.3 * G, 0.2), max_tail=5.0)
-    assert not r.ok and "max_tail" in r.reason and r.verdict == "failed"
+    r = mj.solve(_block(0.5, 1.0, mu=0.0), RectangularPulse.from_duration(0.3 * G, 0.2),
+                 max_free_time=5.0 / _block(0.5, 1.0, mu=0.0).p)
+    assert not r.ok and "max_free_time" in r.reason and r.failure == "max_free_time" and r.verdict == "failed"
     assert r.slide is not None and r.slide.size == r.time.size
 
 
@@ -312,7 +313,7 @@ def _one_impact(block: Block) -> tuple[float, object]:
     4e-6 to 1.25e-5 for the blocks below)."""
     p = block.p
     dtau = 1e-5
-    r = mj.free_rocking(block, 1e-6, 2 * dtau / p, theta_dot0=-p, dtau=dtau, history_dtau=dtau)
+    r = mj.solve(block, None, theta0=1e-6, theta_dot0=-p, end_time=2 * dtau / p, dtau=dtau, history_dtau=dtau)
     return r.theta_dot[-1] / -p, r
 
 
@@ -411,7 +412,7 @@ def test_free_rocking_to_rest_loses_its_energy_in_impacts():
     form, to round-off) is all lost in impacts, up to the first-order residual (measured 0.18 % at the
     default step, 1.75 % at dtau = 1e-3): tolerance 0.5 %."""
     block = _block()
-    r = mj.free_rocking(block, 0.5 * block.alpha, 12.0)
+    r = mj.solve(block, None, theta0=0.5 * block.alpha, end_time=12.0)
     e = r.contact.energy
     initial = block.mass * G * block.R * (math.cos(0.5 * block.alpha) - math.cos(block.alpha))
     assert e["initial"] == pytest.approx(initial, rel=1e-12)

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from opsrock import Block, OneSinePulse, Record
+from opsrock import Block, OneSinePulse
 from opsrock.model import SDOFModel, restoring_moment
 from opsrock.solvers import opensees as osr
 from opsrock.solvers import simulate
@@ -19,13 +19,10 @@ pytestmark = pytest.mark.opensees
 SLENDER = Block(width=0.20, height=2.00)
 #: One of the paper-grid blocks (opsrock.bench.opensees), alpha = 0.180 rad.
 CABINET = Block(width=0.40, height=2.20)
-#: No excitation at all (a zero record), for free rocking from an initial rotation.
-NO_MOTION = Record(dt=0.01, values=np.zeros(2))
-
-
 def _free_rocking(block: Block, theta0_ratio: float, **kw) -> "osr.RockingResult":
+    """Free rocking from an initial rotation: no excitation (a still floor)."""
     return osr.solve(
-        block, NO_MOTION, theta0=theta0_ratio * block.alpha, adaptive=False, step=1e-5, stop_at_rest=False,
+        block, None, theta0=theta0_ratio * block.alpha, adaptive=False, step=1e-5, stop_at_rest=False,
         end_time=kw.pop("end_time", 1.2), **kw,
     )
 

@@ -366,7 +366,7 @@ def test_dense_output_lies_on_the_solution(solver):
     # the energy is conserved between impacts, so every dense sample before the first impact must
     # carry the initial energy (closed form: E = m g R [cos(alpha - theta0) - cos(alpha)]); the
     # samples are the integrator's own interpolant (DOP853, 7th order), 1e-7 relative is generous
-    from opsrock.solvers.housner import rocking_energy
+    from opsrock.solvers.common import rocking_energy
 
     theta0 = 0.6 * BLOCK.alpha
     t_first = math.acosh(1.0 / (1.0 - theta0 / BLOCK.alpha)) / BLOCK.p  # linearised estimate of the impact

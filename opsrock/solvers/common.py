@@ -1,5 +1,49 @@
-"""What the solvers share: the one settings merge, the block's energy, the uplift search and the
-recorded history.
+"""What the solvers share: the contract, the settings base, the one settings merge, the run skeleton,
+the block's energy, the uplift search and the recorded history.
+
+The contract (every solver registered in :data:`opsrock.solvers.SOLVERS` keeps it; tests/solvers/
+test_contract.py checks it)
+-----------------------------------------------------------------------------------------------------
+Every solver is a package ``opsrock.solvers.<name>`` with ``settings.py`` (its frozen settings dataclass,
+derived from :class:`SolverSettings`), ``solver.py`` (its :func:`solve` and the run) and, where compiled,
+``kernel.py``. Its one entry is::
+
+    solve(block, excitation, settings=None, **overrides) -> RockingResult
+
+* ``block`` is a :class:`~opsrock.block.Block`; ``excitation`` an
+  :class:`~opsrock.excitations.Excitation` the solver takes, or None: a still floor (free rocking from
+  the start state ``theta0``, ``theta_dot0`` of the settings, for ``end_time`` or until rest by the
+  solver's tail rule). ``settings`` is the solver's settings object (None: its defaults); keyword
+  ``overrides`` replace single fields (:func:`make_settings`, the one merge).
+* Every settings class derives from :class:`SolverSettings` and so accepts its fields with the same
+  names and units: start state (``theta0`` rad, ``theta_dot0`` rad/s), end (``end_time`` s, ``tail``,
+  ``max_free_time`` s, ``stop_at_rest``), ``record`` (keep the histories), the step limit ``max_steps``
+  (a count of steps; None: the solver's own default) and the wall-clock limit ``max_wall_time`` (s). A
+  solver that does not model a value of a shared field refuses it when the settings are made
+  (:class:`~opsrock.errors.InputError` naming the field), never ignores it.
+* It returns a :class:`~opsrock.result.RockingResult` with the fields every solver fills (``solver``,
+  ``settings``, ``alpha``, ``time``, ``theta``, ``theta_dot``, ``theta_max``, ``overturned``, ``rocked``,
+  ``status``, ``reason``, ``failure``, ``n_steps``, ``n_impacts``, ``wall_time_s``). A run that cannot
+  give a verdict is *returned*, not raised: ``status="failed"``, ``failure`` one of
+  :data:`opsrock.solvers.status.FAILURE_KINDS` (``"nonfinite"``, ``"max_steps"``, ``"timeout"``, ...)
+  and a ``reason`` in words; ``failure`` is None when ``status="ok"``.
+* It raises only for bad input, before any work: :class:`~opsrock.errors.InputTypeError` (a block,
+  excitation or settings of the wrong type), :class:`~opsrock.errors.InputError` (a value out of range)
+  and its subclass :class:`~opsrock.errors.ModelNotSupported` for what the solver does not model
+  (friction on a no-slip solver, vertical floor motion, free rocking, a restitution law), as the
+  registry declares it (:class:`opsrock.solvers.SolverInfo`).
+* Statuses are shared (:mod:`opsrock.solvers.status`): the compiled kernels return its integer codes
+  and write the one output layout (``OUT_*``) defined there.
+* Limits: ``max_steps`` counts the solver's steps (integrator steps, time steps, departures from rest);
+  ``max_wall_time`` is checked by the Python solvers between steps (scipy segments, OpenSees steps); a
+  compiled kernel cannot be interrupted and is bounded by ``max_steps``, so its run is reported
+  ``"timeout"`` when it returns past ``max_wall_time``, as the campaign reports a case past its process
+  timeout: the same failure kind either way.
+
+The run skeleton is written once (:class:`SolverRun`, as scipy's ``OdeSolver.step`` around
+``_step_impl``): the prelude (types, start state, wall clock), the solver's own stepping
+(:meth:`SolverRun._run_impl`), then the result with the shared timeout rule; :class:`EventDrivenSolver`
+is its event-driven specialisation for the scipy solvers.
 
 Nothing here knows a particular solver; each solver module imports from here and from nowhere
 else among the solvers (as scipy's ``_ivp`` solvers share ``common.py``).
@@ -18,14 +62,16 @@ from scipy.optimize import brentq, minimize_scalar
 
 from opsrock.block import Block
 from opsrock.constants import G
-from opsrock.errors import InputError, InputTypeError, UnknownSettingError
+from opsrock.errors import InputError, InputTypeError, ModelNotSupported, UnknownSettingError
 from opsrock.limits import bool_fields, initial_state, int_at_least, one_of, positive_finite, real_number
 from opsrock.result import ImpactLog, RockingResult, failed_result
+from opsrock.solvers.registry import check_model
+from opsrock.solvers.status import INTEGRATOR, MAX_IMPACTS, MAX_STEPS, NONFINITE, REASONS, TIMEOUT, failure_of
 
-#: :func:`scipy.integrate.solve_ivp` methods the scipy solvers accept. Between events both equations are
+#: :func:`scipy.integrate.solve_ivp` methods the scipy solvers accept (``method``, ``stiff_method``). Between events both equations are
 #: smooth and non-stiff (rates ``p`` and ``c_D / I_O``), so explicit high-order methods are the efficient
 #: choice; the implicit ones are there for cross-checks and for the SDOF model's stiff branch.
-METHODS: tuple[str, ...] = ("DOP853", "RK45", "RK23", "Radau", "LSODA", "BDF")
+IVP_METHODS: tuple[str, ...] = ("DOP853", "RK45", "RK23", "Radau", "LSODA", "BDF")
 
 #: What happens after the excitation ends when ``end_time`` is None: ``"rest"`` integrates the free
 #: rocking until the block is at rest again (or the cap ``max_free_time`` is reached); ``"peak"`` stops at
@@ -121,23 +167,106 @@ def settings_record(settings: Any) -> dict[str, Any]:
 
 
 @dataclass(frozen=True)
-class ScipySettings:
-    """Numerical settings shared by the two scipy solvers (``housner``, ``sdof``): the settings base.
+class SolverSettings:
+    """The settings every solver shares: the base of every solver's settings dataclass.
+
+    A solver states its own defaults for these fields by redeclaring them (``HousnerFastSettings``:
+    ``tail = "peak"``) and refuses, in its ``__post_init__``, a value it does not model
+    (:func:`refuse_value`).
+
+    Parameters
+    ----------
+    theta0 : float
+        Initial rotation (rad), ``|theta0| < pi/2``. Default 0 (seated). With ``excitation=None`` this is
+        free rocking from a start state.
+    theta_dot0 : float
+        Initial angular velocity (rad/s). Default 0.
+    end_time : float or None
+        Hard end of the run (s). None: the excitation's duration and then the free-rocking tail
+        (``tail``, ``max_free_time``). With ``excitation=None`` (a still floor) the span of free rocking.
+    tail : str
+        What follows the excitation when ``end_time`` is None, one of :data:`TAILS`: ``"rest"`` (until
+        the block is at rest, at most ``max_free_time``) or ``"peak"`` (until the first turning point
+        below ``alpha``: ``theta_max`` and the verdict are then final).
+    max_free_time : float or None
+        Longest tail after the excitation (s). None: the solver's default (its settings class says it).
+    stop_at_rest : bool
+        Stop once the block is at rest after the excitation (True, default); False: run to the end time.
+    record : bool
+        Keep the time histories (default True); False keeps the peaks and counts only.
+    max_steps : int or None
+        Largest number of steps of the run (a count: integrator steps, time steps, departures from rest;
+        the one unit of every solver's step limit), past which it fails with ``failure="max_steps"``.
+        None: the solver's default (unlimited for the scipy and OpenSees solvers).
+    max_wall_time : float
+        Largest wall-clock time of the run (s), past which it fails with ``failure="timeout"``. Default
+        ``inf``. See the contract (:mod:`opsrock.solvers.common`) for how compiled kernels honour it.
+    """
+
+    theta0: float = 0.0
+    theta_dot0: float = 0.0
+    end_time: float | None = None
+    tail: str = "rest"
+    max_free_time: float | None = None
+    stop_at_rest: bool = True
+    record: bool = True
+    max_steps: int | None = None
+    max_wall_time: float = math.inf
+
+    def __post_init__(self) -> None:
+        bool_fields(self)
+        initial_state(self.theta0, self.theta_dot0)
+        if self.end_time is not None:
+            positive_finite("end_time", self.end_time)
+        one_of("tail", self.tail, TAILS)
+        if self.max_free_time is not None:
+            positive_finite("max_free_time", self.max_free_time)
+        for name in ("stop_at_rest", "record"):
+            if not isinstance(getattr(self, name), bool):
+                raise InputTypeError(f"{name} must be a bool, got {getattr(self, name)!r}")
+        if self.max_steps is not None:
+            int_at_least("max_steps", self.max_steps, 1)
+        if not real_number("max_wall_time", self.max_wall_time) > 0.0:
+            raise InputError(f"max_wall_time must be positive, got {self.max_wall_time!r}")
+
+    @property
+    def seated_start(self) -> bool:
+        """True if the run starts from rest (``theta0 = theta_dot0 = 0``)."""
+        return self.theta0 == 0.0 and self.theta_dot0 == 0.0
+
+
+#: The shared fields (:class:`SolverSettings`), by name.
+SHARED_SETTINGS: tuple[str, ...] = tuple(f.name for f in dataclasses.fields(SolverSettings))
+
+
+def refuse_value(solver: str, settings: SolverSettings, name: str, allowed: tuple) -> None:
+    """Refuse a shared setting ``name`` whose value the solver does not model (only ``allowed`` ones).
+
+    Raises
+    ------
+    ModelNotSupported
+        Naming the solver, the setting and its value.
+    """
+    value = getattr(settings, name)
+    if value not in allowed:
+        raise ModelNotSupported(f"solver {solver!r} does not model {name} = {value!r}; it takes "
+                                f"{' or '.join(map(repr, allowed))}")
+
+
+@dataclass(frozen=True)
+class ScipySettings(SolverSettings):
+    """Numerical settings shared by the two scipy solvers (``housner``, ``sdof``): those of
+    :class:`SolverSettings` and
 
     Parameters
     ----------
     method : str
-        :func:`scipy.integrate.solve_ivp` method, one of :data:`METHODS`. Default ``"DOP853"``.
+        :func:`scipy.integrate.solve_ivp` method, one of :data:`IVP_METHODS`. Default ``"DOP853"``.
     rtol : float
         Relative tolerance of the integrator (dimensionless), in (0, 1). Default 1e-10: the closed-form
         tests compare to 1e-7, and these solvers are the references of the others.
     atol : float
         Absolute tolerance on ``theta`` (rad); ``atol · p`` is used on ``theta'`` (rad/s).
-    end_time : float or None
-        Time at which to stop (s). None: the excitation's duration plus a free-rocking tail chosen by
-        ``tail``, capped at ``max_free_time``.
-    tail : str
-        Free-rocking tail when ``end_time`` is None, one of :data:`TAILS`. Default ``"rest"``.
     max_free_time : float
         Cap on the free-rocking tail after the excitation ends (s). Default 60 s: a slender block of
         R = 1 m rocks down from alpha to rest in a few seconds; a block still rocking after the cap has
@@ -145,12 +274,6 @@ class ScipySettings:
     max_step : float
         Largest integrator step (s). Default ``inf`` (the error control decides; excitation breakpoints
         are always stepped on exactly).
-    theta0 : float
-        Initial rotation (rad), ``|theta0| < pi/2``. Default 0 (seated).
-    theta_dot0 : float
-        Initial angular velocity (rad/s). Default 0.
-    record : bool
-        Keep the time histories. Default True.
     max_impacts : int
         Largest number of impacts before the run is reported as failed. Default 10 000 (free rocking
         from alpha to rest takes 100-300).
@@ -163,83 +286,150 @@ class ScipySettings:
         straight chords of large steps. None (default): accepted steps and events only.
     """
 
+    max_free_time: float | None = 60.0
     method: str = "DOP853"
     rtol: float = 1e-10
     atol: float = 1e-12
-    end_time: float | None = None
-    tail: str = "rest"
-    max_free_time: float = 60.0
     max_step: float = math.inf
-    theta0: float = 0.0
-    theta_dot0: float = 0.0
-    record: bool = True
     max_impacts: int = 10_000
     scan_step: float | None = None
     dense_step: float | None = None
 
     def __post_init__(self) -> None:
-        bool_fields(self)
-        one_of("method", self.method, METHODS)
-        one_of("tail", self.tail, TAILS)
+        super().__post_init__()
+        one_of("method", self.method, IVP_METHODS)
         if not 0.0 < real_number("rtol", self.rtol) < 1.0:
             raise InputError(f"rtol must lie in (0, 1), got {self.rtol!r}")
         positive_finite("atol", self.atol)
-        if self.end_time is not None:
-            positive_finite("end_time", self.end_time)
-        positive_finite("max_free_time", self.max_free_time)
         if not (real_number("max_step", self.max_step) > 0.0):
             raise InputError(f"max_step must be positive, got {self.max_step!r}")
-        initial_state(self.theta0, self.theta_dot0)
         int_at_least("max_impacts", self.max_impacts, 1)
         if self.scan_step is not None:
             positive_finite("scan_step", self.scan_step)
         if self.dense_step is not None:
             positive_finite("dense_step", self.dense_step)
 
+    @property
+    def free_time(self) -> float:
+        """The tail's cap (s): ``max_free_time``, 60 s when None."""
+        return 60.0 if self.max_free_time is None else float(self.max_free_time)
+
+
+# --- the run skeleton ----------------------------------------------------------------------------------
+def check_inputs(solver: str, block: object, excitation: object, settings: SolverSettings) -> Block:
+    """The prelude's checks, before any work: ``block`` a :class:`Block` (else :class:`InputTypeError`),
+    nothing the solver does not model (:func:`opsrock.solvers.registry.check_model`, from its registry
+    entry), and with ``excitation=None`` (a still floor) a start state that moves. Returns ``block``.
+
+    Raises
+    ------
+    InputTypeError, ModelNotSupported, InputError
+    """
+    if not isinstance(block, Block):
+        raise InputTypeError(f"block must be a Block, got {block!r}")
+    check_model(solver, block, excitation)
+    if excitation is None and settings.seated_start:
+        raise InputError("excitation None (a still floor) needs a start state: theta0 or theta_dot0 != 0")
+    return block
+
+
+def timed_out(result: RockingResult, settings: SolverSettings) -> RockingResult:
+    """``result``, failed with ``failure="timeout"`` if its run took longer than ``max_wall_time``."""
+    limit = settings.max_wall_time
+    if result.status != "ok" or not result.wall_time_s > limit:
+        return result
+    return dataclasses.replace(
+        result, status="failed", failure="timeout", overturned=False, rocked=False,
+        reason=f"{REASONS[TIMEOUT]} ({result.wall_time_s:.3g} s > {limit:g} s)")
+
+
+class SolverRun:
+    """The run skeleton of every solver, written once (as scipy's ``OdeSolver.step`` around ``_step_impl``).
+
+    :meth:`run`: the prelude (done in ``__init__``: the settings are already merged and checked by
+    :func:`make_settings`; the wall clock starts), the solver's own :meth:`_run_impl`, then the shared
+    timeout rule (:func:`timed_out`). A subclass gives :attr:`name` and :meth:`_run_impl`.
+
+    Parameters
+    ----------
+    block : Block
+    excitation : Excitation or None
+        Floor acceleration (m/s²) as a function of time (s); None: a still floor.
+    settings : SolverSettings
+        The solver's settings (merged).
+    """
+
+    #: Name written into :attr:`RockingResult.solver`.
+    name: ClassVar[str] = ""
+
+    def __init__(self, block: Block, excitation: Any, settings: SolverSettings) -> None:
+        self.settings = settings
+        self.block, self.excitation = block, excitation
+        self.t_wall = _time.perf_counter()
+
+    def elapsed(self) -> float:
+        """Wall-clock time since the solve started (s)."""
+        return _time.perf_counter() - self.t_wall
+
+    def run(self) -> RockingResult:
+        """Solve and return the result (failed, with its ``failure`` kind, where the run could not finish)."""
+        return timed_out(self._run_impl(), self.settings)
+
+    def _run_impl(self) -> RockingResult:
+        """The solver's own run."""
+        raise NotImplementedError
+
 
 class StopRun(Exception):
-    """Raised by a step of :class:`EventDrivenSolver` to end the run: with a reason, the run failed."""
+    """Raised by a step of :class:`EventDrivenSolver` to end the run: with a reason, the run failed
+    (``failure``: its kind, :data:`opsrock.solvers.status.FAILURE_KINDS`)."""
 
-    def __init__(self, reason: str = "") -> None:
+    def __init__(self, reason: str = "", failure: str = "error") -> None:
         super().__init__(reason)
         self.reason = reason
+        self.failure = failure
 
 
-class EventDrivenSolver:
-    """The skeleton of the scipy solvers, written once (as scipy's ``OdeSolver.step`` around ``_step_impl``).
+def _still(t: Any) -> Any:
+    """The acceleration of a still floor (m/s²) at ``t`` (s): zero, scalar or array as ``t``."""
+    return 0.0 * np.asarray(t, dtype=float) if np.ndim(t) else 0.0
+
+
+class EventDrivenSolver(SolverRun):
+    """The event-driven specialisation of :class:`SolverRun`: the skeleton of the scipy solvers.
 
     The prelude (settings, times, breakpoints, history, impact log), then a loop that alternates two
     phases until the end time: :meth:`_seated_step` (a block at rest: find when the floor lifts it) and
     :meth:`_flight_step` (a rocking block: one segment between events), and the result. A subclass gives
     :attr:`name`, the two phases, :meth:`_start` and :meth:`_finish`; a phase ends the run by raising
-    :class:`StopRun` (with a reason: a failed result that keeps the history computed so far).
+    :class:`StopRun` (with a reason: a failed result that keeps the history computed so far). The shared
+    limits (``max_steps``, ``max_wall_time``, ``max_impacts``) are checked here.
 
     Parameters
     ----------
     block : Block
-    excitation : Excitation
-        Floor acceleration (m/s²) as a function of time (s).
+    excitation : Excitation or None
+        Floor acceleration (m/s²) as a function of time (s); None: a still floor.
     settings : ScipySettings
         The solver's settings (already merged, :func:`make_settings`).
     """
 
-    #: Name written into :attr:`RockingResult.solver`.
-    name: ClassVar[str] = ""
     #: Whether the history keeps the damper coefficient of each state (the SDOF model).
     with_damping: ClassVar[bool] = False
 
     def __init__(self, block: Block, excitation: Any, settings: ScipySettings) -> None:
-        s = self.settings = settings
+        super().__init__(block, excitation, settings)
+        s = settings
         self.settings_dict = settings_record(s)
-        self.t_wall = _time.perf_counter()
-        self.block, self.excitation = block, excitation
         self.alpha, self.p = block.alpha, block.p
-        self.duration = float(excitation.duration)
-        self.t_final = s.end_time if s.end_time is not None else self.duration + s.max_free_time
+        self.duration = 0.0 if excitation is None else float(excitation.duration)
+        #: The run may end before ``t_final`` (rest, a final peak): no hard end time, ``stop_at_rest``.
+        self.open_end = s.end_time is None and s.stop_at_rest
+        self.t_final = s.end_time if s.end_time is not None else self.duration + s.free_time
         self.scan = s.scan_step if s.scan_step is not None else max(self.duration, 1e-9) / 2000.0
         self.atol = np.array([s.atol, s.atol * self.p])
-        self.acc = excitation.acceleration
-        bps = np.asarray(excitation.breakpoints(), dtype=float)
+        self.acc = _still if excitation is None else excitation.acceleration
+        bps = np.zeros(0) if excitation is None else np.asarray(excitation.breakpoints(), dtype=float)
         end = self.duration if self.duration < self.t_final else self.t_final
         self.breakpoints = np.unique(np.append(bps[(bps > 0.0) & (bps < self.t_final)], end))
         self.history = History(s.record, self.with_damping)
@@ -249,25 +439,35 @@ class EventDrivenSolver:
         self.t = 0.0
         self.y = np.array([float(s.theta0), float(s.theta_dot0)])
         self.theta_max = abs(s.theta0)
-        self.seated = s.theta0 == 0.0 and s.theta_dot0 == 0.0
+        self.seated = s.seated_start
         self.rocked = not self.seated
 
-    def run(self) -> RockingResult:
+    def _run_impl(self) -> RockingResult:
         """Solve and return the result (``status="failed"`` with the reason where a phase stopped it)."""
         self._start()
         try:
             while self.t < self.t_final:
+                self._check_limits()
                 self.each_iteration()
                 if self.seated:
-                    if self.settings.end_time is None and self.t >= self.duration:
+                    if self.open_end and self.t >= self.duration:
                         break  # a = 0 from here on: the block stays seated
                     self._seated_step()
                 else:
                     self._flight_step()
         except StopRun as stop:
             if stop.reason:
-                return self._failed(stop.reason)
+                return self._failed(stop.reason, stop.failure)
         return self._finish()
+
+    def _check_limits(self) -> None:
+        """The shared limits, between segments: ``max_steps`` and ``max_wall_time``."""
+        s = self.settings
+        if s.max_steps is not None and self.n_steps >= s.max_steps:
+            raise StopRun(f"{REASONS[MAX_STEPS]} (max_steps = {s.max_steps}, t = {self.t:.6g} s)", "max_steps")
+        if self.elapsed() > s.max_wall_time:
+            raise StopRun(f"{REASONS[TIMEOUT]} (max_wall_time = {s.max_wall_time:g} s, t = {self.t:.6g} s)",
+                          "timeout")
 
     def next_breakpoint(self) -> float:
         """End of the current segment (s): the next excitation breakpoint after ``t``, else the end time."""
@@ -277,8 +477,17 @@ class EventDrivenSolver:
     def count_steps(self, sol: Any) -> None:
         """Add a segment's accepted steps; a failed integration stops the run with scipy's message."""
         self.n_steps += max(len(sol.t) - 1, 0)
+        t_end = float(sol.t[-1])
+        if not np.all(np.isfinite(sol.y[:, -1])):
+            raise StopRun(f"{REASONS[NONFINITE]} at t = {t_end:.6g} s", failure_of(NONFINITE))
         if sol.status == -1:
-            raise StopRun(f"solve_ivp ({self.segment_method}) failed at t = {self.t:.6g} s: {sol.message}")
+            # a floor acceleration that turns non-finite makes the step control fail just before it
+            probe = np.asarray(self.acc(t_end + np.linspace(0.0, 1e-6 * max(1.0, t_end), 5)), dtype=float)
+            if not np.all(np.isfinite(probe)):
+                raise StopRun(f"{REASONS[NONFINITE]}: the floor acceleration at t = {t_end:.6g} s",
+                              failure_of(NONFINITE))
+            raise StopRun(f"solve_ivp ({self.segment_method}) failed at t = {self.t:.6g} s: {sol.message}",
+                          failure_of(INTEGRATOR))
 
     def track_peak(self, sol: Any, turning_event: int) -> None:
         """Raise ``theta_max`` to the segment's largest ``|theta|``, its turning points included."""
@@ -289,18 +498,16 @@ class EventDrivenSolver:
     def log_impact(self, time: float, before: float, after: float) -> None:
         """Log an impact; past ``max_impacts`` the run stops failed."""
         if len(self.impacts) + 1 > self.settings.max_impacts:
-            raise StopRun(f"more than max_impacts = {self.settings.max_impacts} impacts by t = {self.t:.6g} s")
+            raise StopRun(f"more than max_impacts = {self.settings.max_impacts} impacts by t = {self.t:.6g} s",
+                          failure_of(MAX_IMPACTS))
         self.impacts.add(time, before, after)
 
-    def elapsed(self) -> float:
-        """Wall-clock time since the solve started (s)."""
-        return _time.perf_counter() - self.t_wall
-
-    def _failed(self, reason: str) -> RockingResult:
+    def _failed(self, reason: str, failure: str = "error") -> RockingResult:
         t, th, td = self.history.arrays()
         return failed_result(self.name, self.settings_dict, self.alpha, reason,
                              time=t if t.size else None, theta=th if th.size else None,
-                             theta_dot=td if td.size else None, n_steps=self.n_steps, wall_time_s=self.elapsed())
+                             theta_dot=td if td.size else None, n_steps=self.n_steps, wall_time_s=self.elapsed(),
+                             failure=failure)
 
     def result(self, **extra: Any) -> RockingResult:
         """The finished run's :class:`RockingResult` (``extra``: the SDOF model's moment histories)."""
@@ -495,5 +702,7 @@ def _merged(a: tuple[np.ndarray, ...], b: tuple[np.ndarray, ...]) -> tuple[np.nd
     return tuple(np.concatenate([x, y])[order] for x, y in zip(a, b))
 
 
-__all__ = ["EventDrivenSolver", "History", "METHODS", "ScipySettings", "StopRun", "TAILS", "first_exceedance",
+__all__ = ["EventDrivenSolver", "History", "IVP_METHODS", "SHARED_SETTINGS", "ScipySettings", "SolverRun",
+           "SolverSettings", "StopRun", "TAILS", "check_inputs", "first_exceedance", "refuse_value",
+           "timed_out",
            "make_settings", "potential_energy", "rocking_energy", "setting_names", "settings_record"]

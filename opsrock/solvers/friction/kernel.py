@@ -17,6 +17,7 @@ import numba
 import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.solvers import status as ST
 from opsrock.solvers.forcing import forcing, next_exceedance, next_exceedance_scaled, segment
 from opsrock.solvers.friction.impacts import impact, landing
 from opsrock.solvers.friction.modes import (
@@ -33,34 +34,36 @@ from opsrock.solvers.friction.modes import (
     start_mode,
 )
 
-# --- status codes ------------------------------------------------------------------------------
-STATUS_OK = 0
-STATUS_MAX_IMPACTS = 1
-STATUS_NONFINITE = 2
-STATUS_MAX_STEPS = 3
-STATUS_EVENT_FAILED = 4
-STATUS_IMPACT_LAW = 5
-STATUS_TAIL = 6
+# --- status codes: the shared ones (:mod:`opsrock.solvers.status`) --------------------------------
+STATUS_OK = ST.OK
+STATUS_MAX_IMPACTS = ST.MAX_IMPACTS
+STATUS_NONFINITE = ST.NONFINITE
+STATUS_MAX_STEPS = ST.MAX_STEPS
+STATUS_EVENT_FAILED = ST.EVENT_FAILED
+STATUS_IMPACT_LAW = ST.IMPACT_LAW
+STATUS_TAIL = ST.MAX_FREE_TIME
 
-#: Why a case failed, per status code (the time of the failure is appended by the caller).
-STATUS_REASONS: dict[int, str] = {
-    STATUS_OK: "",
-    STATUS_MAX_IMPACTS: "max_impacts reached without the block coming to rest",
-    STATUS_NONFINITE: "non-finite state",
-    STATUS_MAX_STEPS: "max_steps reached before the block came to rest",
-    STATUS_EVENT_FAILED: "event location did not converge",
-    STATUS_IMPACT_LAW: "the impact law has no solution with compressive impulses (a landing corner of a block "
-                       "without friction would need a pulling impulse to stick: give the block a finite friction)",
-    STATUS_TAIL: "the block was still moving max_tail after the end of the excitation",
-}
+# --- slots of the output array of :func:`solve_case`: the shared ones, then this kernel's own -------
+OUT_THETA_MAX, OUT_OVERTURNED, OUT_ROCKED, OUT_STATUS = ST.OUT_THETA_MAX, ST.OUT_OVERTURNED, ST.OUT_ROCKED, ST.OUT_STATUS
+OUT_IMPACTS, OUT_STEPS, OUT_N_HIST, OUT_EVENT_TIME = ST.OUT_IMPACTS, ST.OUT_STEPS, ST.OUT_N_HIST, ST.OUT_EVENT_TIME
+OUT_FIRST_MODE, OUT_TIME_SLIDING, OUT_TIME_ROCKING, OUT_SLIDE_MAX, OUT_SLIDE_END = range(ST.OUT_COMMON, ST.OUT_COMMON + 5)
+OUT_INPUT_WORK, OUT_KINETIC, OUT_POTENTIAL, OUT_FRICTION_WORK, OUT_IMPACT_LOSS, OUT_ENERGY_START = range(
+    ST.OUT_COMMON + 5, ST.OUT_COMMON + 11)
+OUT_TIME_FLIGHT = ST.OUT_COMMON + 11
+OUT_SIZE = ST.OUT_COMMON + 12
 
-# --- slots of the output array of :func:`solve_case` --------------------------------------------
-OUT_THETA_MAX, OUT_OVERTURNED, OUT_ROCKED, OUT_STATUS, OUT_IMPACTS, OUT_STEPS, OUT_HIST = 0, 1, 2, 3, 4, 5, 6
-OUT_FIRST_MODE, OUT_TIME_SLIDING, OUT_TIME_ROCKING, OUT_SLIDE_MAX, OUT_SLIDE_END = 7, 8, 9, 10, 11
-OUT_INPUT_WORK, OUT_KINETIC, OUT_POTENTIAL, OUT_FRICTION_WORK, OUT_IMPACT_LOSS, OUT_ENERGY_START = (
-    12, 13, 14, 15, 16, 17)
-OUT_EVENT_TAU, OUT_TIME_FLIGHT = 18, 19
-OUT_SIZE = 20
+# --- slots of the parameter vector of :func:`solve_case` (written by the solver, read once here) ----
+#: The block: ``alpha`` (rad), ``e / e_H``, static and kinetic friction (``inf``: no slip).
+P_ALPHA, P_F_REST, P_MU_S, P_MU_K = 0, 1, 2, 3
+#: The horizontal forcing ``(form, k, nu, phase)`` of :func:`opsrock.solvers.forcing.forcing` up to ``tau_end``.
+P_FORM, P_K, P_NU, P_PHASE, P_TAU_END = 4, 5, 6, 7, 8
+#: The vertical ``1 + a_v/g`` without samples and after the excitation; the sample interval (units of 1/p).
+P_G_CONST, P_G_TAIL, P_DTAU = 9, 10, 11
+#: Steps (units of 1/p) during and after the excitation, rest velocity (units of p), limits.
+P_H_NOM, P_H_TAIL, P_REST_VELOCITY, P_MAX_IMPACTS, P_MAX_STEPS, P_MAX_TAIL = 12, 13, 14, 15, 16, 17
+#: The start state: ``theta0`` (rad) and ``omega0`` (units of p), rocking on a stuck pivot.
+P_THETA0, P_OMEGA0 = 18, 19
+P_SIZE = 20
 
 # --- slots of the forcing context: a_h/g of the segment, 1 + a_v/g = g0 + g1 (tau - gt0), tail flag
 _FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL = 0, 1, 2, 3, 4, 5, 6, 7
@@ -356,12 +359,10 @@ def _energy(mode, s, th, om, w, fy, fvy, alpha, ca):
 
 
 @numba.njit(cache=True)
-def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gvals, g_const, g_tail, dtau,
-               h_nom, h_tail, rest_velocity, max_impacts, max_steps, max_tail, theta0, omega0,
-               out, hist_tau, hist_theta, hist_omega, hist_u, hist_mode):
-    """Solve one case from rest (or from ``theta0``, ``omega0`` rocking without slip); results in ``out``
-    (slots ``OUT_*``), the history (``tau``, ``theta``, ``omega``, ``u``, mode) in the arrays given
-    (length 0: none).
+def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist_u, hist_mode):
+    """Solve one case from rest (or from ``theta0``, ``omega0`` rocking without slip); ``params`` holds
+    the scalars (slots ``P_*``), results go in ``out`` (slots ``OUT_*``), the history (``tau``, ``theta``,
+    ``omega``, ``u``, mode) in the arrays given (length 0: none).
 
     Excitation: ``(form, k, nu, phase)`` of :func:`opsrock.solvers.forcing.forcing` up to ``tau_end``
     for an analytic pulse; for ``form == FORM_LINEAR`` the samples ``kvals`` (``a_h/g`` at
@@ -371,6 +372,12 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
     ``1/p``), followed for at most ``max_tail``. In flight ``u`` and ``w`` hold the centre of mass's
     horizontal position and velocity, ``fy`` and ``fvy`` its height and vertical velocity.
     """
+    alpha, f_rest, mu_s, mu_k = params[P_ALPHA], params[P_F_REST], params[P_MU_S], params[P_MU_K]
+    form, k, nu, phase, tau_end = int(params[P_FORM]), params[P_K], params[P_NU], params[P_PHASE], params[P_TAU_END]
+    g_const, g_tail, dtau = params[P_G_CONST], params[P_G_TAIL], params[P_DTAU]
+    h_nom, h_tail, rest_velocity = params[P_H_NOM], params[P_H_TAIL], params[P_REST_VELOCITY]
+    max_impacts, max_steps, max_tail = int(params[P_MAX_IMPACTS]), int(params[P_MAX_STEPS]), params[P_MAX_TAIL]
+    theta0, omega0 = params[P_THETA0], params[P_OMEGA0]
     sa, ca, beta = math.sin(alpha), math.cos(alpha), math.tan(alpha)
     level = min(mu_s, beta)
     fc = np.zeros(8)
@@ -598,11 +605,11 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
             takeoff = True
             continue
         n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
-    out[OUT_EVENT_TAU] = tau
+    out[OUT_EVENT_TIME] = tau
     if out[OUT_OVERTURNED] > 0.0:
         theta_max = max(theta_max, OVERTURNING_ANGLE)
     out[OUT_THETA_MAX], out[OUT_STATUS], out[OUT_IMPACTS], out[OUT_STEPS] = theta_max, status, n_imp, n_steps
-    out[OUT_HIST], out[OUT_FIRST_MODE] = n_hist, max(first_mode, REST)
+    out[OUT_N_HIST], out[OUT_FIRST_MODE] = n_hist, max(first_mode, REST)
     out[OUT_TIME_SLIDING], out[OUT_TIME_ROCKING], out[OUT_SLIDE_MAX], out[OUT_SLIDE_END] = t_slide, t_rock, u_max, u
     out[OUT_TIME_FLIGHT] = t_fly
     out[OUT_INPUT_WORK], out[OUT_FRICTION_WORK], out[OUT_IMPACT_LOSS] = win, wfr, eimp
@@ -611,4 +618,4 @@ def solve_case(alpha, f_rest, mu_s, mu_k, form, k, nu, phase, tau_end, kvals, gv
     out[OUT_KINETIC] = total - out[OUT_POTENTIAL]
 
 
-__all__ = ["OUT_SIZE", "STATUS_OK", "STATUS_REASONS", "solve_case"]
+__all__ = ["OUT_SIZE", "P_SIZE", "STATUS_OK", "solve_case"]

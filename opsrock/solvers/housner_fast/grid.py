@@ -140,7 +140,7 @@ def solve_grid(
             np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64))
     args = (a_, e_, r_ * np.tan(a_), f_, PULSE_IDS[pulse], settings.equations == "linearised",  # PFA / g
             float(settings.max_dtau), int(settings.steps_per_pulse),
-            float(settings.rest_velocity), int(settings.max_impacts), int(settings.max_steps))
+            float(settings.rest_velocity), int(settings.max_impacts), settings.step_limit)
     t0 = _time.perf_counter()
     _run_chunks(args, outs, n, threads)
     wall = _time.perf_counter() - t0

@@ -15,28 +15,33 @@ import numba
 import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.solvers import status as ST
 from opsrock.solvers.forcing import forcing, next_exceedance, pulse_forcing, segment
 
-# --- status codes of the compiled kernel (one per case in :class:`GridResult`) ---------------
+# --- status codes: the shared ones (:mod:`opsrock.solvers.status`), one per case in :class:`GridResult` --
 #: Finished: verdict (no uplift, safe or overturned) is valid.
-STATUS_OK = 0
+STATUS_OK = ST.OK
 #: More impacts than ``max_impacts`` without coming to rest: no verdict.
-STATUS_MAX_IMPACTS = 1
+STATUS_MAX_IMPACTS = ST.MAX_IMPACTS
 #: A non-finite state appeared: no verdict.
-STATUS_NONFINITE = 2
+STATUS_NONFINITE = ST.NONFINITE
 #: More integrator steps than ``max_steps``: no verdict.
-STATUS_MAX_STEPS = 3
+STATUS_MAX_STEPS = ST.MAX_STEPS
 #: Event location (impact or peak) did not converge: no verdict.
-STATUS_EVENT_FAILED = 4
+STATUS_EVENT_FAILED = ST.EVENT_FAILED
 
-#: Human-readable reason for every failure code.
-STATUS_REASONS: dict[int, str] = {
-    STATUS_OK: "",
-    STATUS_MAX_IMPACTS: "max_impacts reached without the block coming to rest",
-    STATUS_NONFINITE: "non-finite rotation or angular velocity",
-    STATUS_MAX_STEPS: "max_steps reached before the end of the excitation",
-    STATUS_EVENT_FAILED: "impact/peak location did not converge",
-}
+#: Human-readable reason for every failure code (the shared ones).
+STATUS_REASONS: dict[int, str] = ST.REASONS
+
+# --- slots of the parameter vector of :func:`solve_case` ---------------------------------------------
+#: The block (``alpha`` rad, ``e``); the forcing ``(form, k, nu, phase)`` up to ``tau_end``, the sample
+#: interval and the nominal step (units of 1/p); 1.0 for the linearised equation; the rest velocity
+#: (units of p) and the limits; the start state (``theta0`` rad, ``omega0`` units of p).
+P_ALPHA, P_E, P_FORM, P_K, P_NU, P_PHASE, P_TAU_END, P_DTAU, P_H_NOM = 0, 1, 2, 3, 4, 5, 6, 7, 8
+P_LINEQ, P_REST_VELOCITY, P_MAX_IMPACTS, P_MAX_STEPS, P_THETA0, P_OMEGA0 = 9, 10, 11, 12, 13, 14
+P_SIZE = 15
+#: Length of the output vector: the shared slots only (:mod:`opsrock.solvers.status`).
+OUT_SIZE = ST.OUT_COMMON
 
 #: Iterations allowed to the safeguarded Newton event location (it converges in 2-4; 60
 #: bisection halvings alone would shrink any bracket below double precision).
@@ -314,6 +319,21 @@ def _solve_case(alpha, e, form, k, nu, phase, tau_end, kvals, dtau, h_nom, lineq
     if not ok:
         return theta_max, False, rocked, STATUS_EVENT_FAILED, n_imp + extra, n_steps, n_hist
     return max(theta_max, peak), ov, rocked, STATUS_OK, n_imp + extra, n_steps, n_hist
+
+
+@numba.njit(cache=True)
+def solve_case(params, kvals, out, hist_tau, hist_theta, hist_omega):
+    """One case with its history: the scalars in ``params`` (slots ``P_*``), the samples ``kvals`` (record:
+    ``a/g`` every ``dtau``), the answer in ``out`` (the shared slots of :mod:`opsrock.solvers.status`),
+    the history in the arrays given (length 0: none). See :func:`_solve_case`."""
+    tm, ov, rk, st, ni, ns, nh = _solve_case(
+        params[P_ALPHA], params[P_E], int(params[P_FORM]), params[P_K], params[P_NU], params[P_PHASE],
+        params[P_TAU_END], kvals, params[P_DTAU], params[P_H_NOM], params[P_LINEQ] > 0.0,
+        params[P_REST_VELOCITY], int(params[P_MAX_IMPACTS]), int(params[P_MAX_STEPS]), params[P_THETA0],
+        params[P_OMEGA0], hist_tau, hist_theta, hist_omega)
+    out[:] = 0.0
+    out[ST.OUT_STATUS], out[ST.OUT_THETA_MAX], out[ST.OUT_OVERTURNED], out[ST.OUT_ROCKED] = st, tm, ov, rk
+    out[ST.OUT_IMPACTS], out[ST.OUT_STEPS], out[ST.OUT_N_HIST] = ni, ns, nh
 
 
 @numba.njit(cache=True, nogil=True)

@@ -5,12 +5,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from opsrock.constants import EQUATIONS
-from opsrock.limits import bool_fields, compiled_stepping, one_of
+from opsrock.limits import compiled_stepping, one_of
+from opsrock.solvers.common import SolverSettings, refuse_value
 
 
 @dataclass(frozen=True)
-class HousnerFastSettings:
-    """Numerical settings of the fast rigid-body solver (all dimensionless).
+class HousnerFastSettings(SolverSettings):
+    """Numerical settings of the fast rigid-body solver: those of
+    :class:`~opsrock.solvers.common.SolverSettings` (its tail is ``"peak"``, decided exactly by the energy
+    after the excitation, so ``max_free_time`` stays None and ``stop_at_rest`` True; ``end_time`` only with
+    ``excitation=None``, the span integrated before the same verdict) and (all dimensionless)
 
     Parameters
     ----------
@@ -35,25 +39,34 @@ class HousnerFastSettings:
         chattering sequence from ``theta' ~ p`` down to ``rest_velocity`` takes
         ``ln(1e-7)/ln(e)`` impacts: about 170 for ``e = 0.91`` (slender block) and 55 for
         ``e = 0.74`` (alpha = 0.42 rad).
-    max_steps : int
-        Integrator steps allowed per case before it is reported as failed. Default 10**7.
+    max_steps : int or None
+        Integrator steps allowed per case before it is reported as failed. Default (and None) 10**7.
     equations : str
         Form of the equation of motion, one of :data:`opsrock.constants.EQUATIONS`. Default
         ``"exact"``; ``"linearised"``: ``d²theta/dtau² = -[(alpha s - theta) + a/g]`` with uplift when
         ``|a| > g alpha`` and the free-rocking verdict from the linearised energy.
     """
 
+    tail: str = "peak"
+    max_steps: int | None = 10_000_000
     max_dtau: float = 0.02
     steps_per_pulse: int = 200
     rest_velocity: float = 1e-7
     max_impacts: int = 100_000
-    max_steps: int = 10_000_000
     equations: str = "exact"
 
     def __post_init__(self) -> None:
-        bool_fields(self)
+        super().__post_init__()
+        refuse_value("housner_fast", self, "tail", ("peak",))
+        refuse_value("housner_fast", self, "stop_at_rest", (True,))
+        refuse_value("housner_fast", self, "max_free_time", (None,))
         one_of("equations", self.equations, EQUATIONS)
         compiled_stepping(self)
+
+    @property
+    def step_limit(self) -> int:
+        """``max_steps``, 10**7 when None."""
+        return 10_000_000 if self.max_steps is None else int(self.max_steps)
 
 
 __all__ = ["HousnerFastSettings"]

@@ -104,8 +104,7 @@ statuses at both corners, are the dearer). The kernel is compiled once and cache
 12 s for a cold compile, 0.3 s to load the cache in a new process.
 """
 
-from opsrock.solvers.moreau_jean.kernel import STATUS_REASONS
 from opsrock.solvers.moreau_jean.settings import MoreauJeanSettings
-from opsrock.solvers.moreau_jean.solver import SOLVER_NAME, free_rocking, rocking_state, solve
+from opsrock.solvers.moreau_jean.solver import SOLVER_NAME, rocking_state, solve
 
-__all__ = ["SOLVER_NAME", "STATUS_REASONS", "MoreauJeanSettings", "free_rocking", "rocking_state", "solve"]
+__all__ = ["SOLVER_NAME", "MoreauJeanSettings", "rocking_state", "solve"]

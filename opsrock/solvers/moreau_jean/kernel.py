@@ -22,29 +22,20 @@ import numba
 import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.solvers import status as ST
 
-# --- status codes ----------------------------------------------------------------------------------
+# --- status codes: the shared ones (:mod:`opsrock.solvers.status`) ------------------------------------
 #: Finished: the block came to rest after the excitation, overturned, or (free rocking) the span ended.
-STATUS_OK = 0
+STATUS_OK = ST.OK
 #: A non-finite state appeared.
-STATUS_NONFINITE = 1
+STATUS_NONFINITE = ST.NONFINITE
 #: ``max_steps`` steps taken before the end of the run.
-STATUS_MAX_STEPS = 2
-#: The block was still moving when the tail after the excitation reached ``max_tail``.
-STATUS_TAIL = 3
+STATUS_MAX_STEPS = ST.MAX_STEPS
+#: The block was still moving when the tail after the excitation reached ``max_free_time``.
+STATUS_TAIL = ST.MAX_FREE_TIME
 #: The contact problem of a step had no solution among the statuses tried (never met in testing; a
 #: Painlevé case needs ``mu_k`` above 4/3, which blocks refuse).
-STATUS_LOCAL = 4
-
-#: Human-readable reason of every failure code.
-STATUS_REASONS: dict[int, str] = {
-    STATUS_OK: "",
-    STATUS_NONFINITE: "non-finite state (position or velocity)",
-    STATUS_MAX_STEPS: "max_steps reached before the end of the run",
-    STATUS_TAIL: "max_tail reached after the excitation without the block coming to rest (a frictionless base "
-                 "never stops sliding)",
-    STATUS_LOCAL: "the contact problem of a step had no solution (open, stick or slip at each corner)",
-}
+STATUS_LOCAL = ST.NO_CONTACT_SOLUTION
 
 # --- contact modes, indices into opsrock.result.MODES ----------------------------------------------
 MODE_REST = 0
@@ -59,28 +50,23 @@ FORCING_STEPWISE = 0
 #: Samples, linear between them, ``sub`` steps per sample interval (records).
 FORCING_LINEAR = 1
 
-# --- layout of the kernel's output vector ----------------------------------------------------------
-OUT_STATUS = 0
-OUT_STEPS = 1
-OUT_THETA_MAX = 2
-OUT_OVERTURNED = 3
-OUT_ROCKED = 4
-OUT_IMPACTS = 5
-OUT_FIRST_MODE = 6
-OUT_TIME_SLIDING = 7
-OUT_TIME_ROCKING = 8
-OUT_SLIDE_MAX = 9
-OUT_INPUT_WORK = 10
-OUT_FRICTION_WORK = 11
-OUT_IMPACT_LOSS = 12
-OUT_X = 13  # final state: x, y, theta, x', y', theta' (13..18)
-OUT_N_HIST = 19
-OUT_LIMIT_STEPS = 20
-OUT_MAX_PENETRATION = 21
-OUT_MAX_FLICKER_GAP = 22
-OUT_TIME = 23
-OUT_FLICKER_STEPS = 24
-OUT_SIZE = 25
+# --- layout of the kernel's output vector: the shared slots, then this kernel's own -----------------
+OUT_STATUS, OUT_THETA_MAX, OUT_OVERTURNED, OUT_ROCKED = ST.OUT_STATUS, ST.OUT_THETA_MAX, ST.OUT_OVERTURNED, ST.OUT_ROCKED
+OUT_IMPACTS, OUT_STEPS, OUT_N_HIST, OUT_EVENT_TIME = ST.OUT_IMPACTS, ST.OUT_STEPS, ST.OUT_N_HIST, ST.OUT_EVENT_TIME
+OUT_FIRST_MODE = ST.OUT_COMMON
+OUT_TIME_SLIDING = ST.OUT_COMMON + 1
+OUT_TIME_ROCKING = ST.OUT_COMMON + 2
+OUT_SLIDE_MAX = ST.OUT_COMMON + 3
+OUT_INPUT_WORK = ST.OUT_COMMON + 4
+OUT_FRICTION_WORK = ST.OUT_COMMON + 5
+OUT_IMPACT_LOSS = ST.OUT_COMMON + 6
+OUT_X = ST.OUT_COMMON + 7  # final state: x, y, theta, x', y', theta' (6 slots)
+OUT_LIMIT_STEPS = ST.OUT_COMMON + 13
+OUT_MAX_PENETRATION = ST.OUT_COMMON + 14
+OUT_MAX_FLICKER_GAP = ST.OUT_COMMON + 15
+OUT_TIME = ST.OUT_COMMON + 16  # end of the run (s)
+OUT_FLICKER_STEPS = ST.OUT_COMMON + 17
+OUT_SIZE = ST.OUT_COMMON + 18
 
 
 @numba.njit(cache=True)
@@ -580,4 +566,5 @@ def run(geom, fric, num, form, ah, av, sub, n_exc, tail_av, state, limits, hist_
     out[OUT_X:OUT_X + 6] = state
     out[OUT_N_HIST] = j
     out[OUT_TIME] = k * dt
+    out[OUT_EVENT_TIME] = k * dt * math.sqrt(0.75 * geom[3] / R)  # in units of 1/p, p = sqrt(3 g / 4 R)
     return status

@@ -5,7 +5,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from opsrock.errors import InputError
-from opsrock.limits import int_at_least, positive_finite, real_number
+from opsrock.limits import positive_finite, real_number
+from opsrock.solvers.common import SolverSettings, refuse_value
+
+#: Longest tail after the excitation when ``max_free_time`` is None, in units of ``1/p``.
+DEFAULT_TAIL_DTAU: float = 2000.0
 
 
 def _at_most(name: str, value: object, high: float, unit: str) -> float:
@@ -17,8 +21,11 @@ def _at_most(name: str, value: object, high: float, unit: str) -> float:
 
 
 @dataclass(frozen=True)
-class MoreauJeanSettings:
-    """Numerical settings of :mod:`opsrock.solvers.moreau_jean`.
+class MoreauJeanSettings(SolverSettings):
+    """Numerical settings of :mod:`opsrock.solvers.moreau_jean`: those of
+    :class:`~opsrock.solvers.common.SolverSettings` (the block is followed to rest after the excitation:
+    ``tail="rest"``, ``stop_at_rest=True``; ``end_time`` only with ``excitation=None``, the span of free
+    motion, with no tail) and the following.
 
     Times are in units of ``1/p`` (``tau = p t``, ``p = sqrt(3 g / 4 R)``), velocities in units of
     ``p R`` (m/s per m/s), so one setting suits every block.
@@ -52,12 +59,12 @@ class MoreauJeanSettings:
         (the impulses cancel the step's gravity), so any small value works.
     rest_duration : float
         How long (units of ``1/p``) the block must stay at rest for the run to end. Default 1.0.
-    max_tail : float
-        Longest tail after the excitation (units of ``1/p``): a block still moving then is a failed
-        run with its reason. Default 2000 (a block of R = 1 m: 740 s; measured: free rocking from
-        0.5 alpha comes to rest within 15/p, a record's block within a few 1/p of its end).
-    max_steps : int
-        Steps allowed per run (excitation and tail) before it fails. Default 200_000_000.
+    max_free_time : float or None
+        Longest tail after the excitation (s): a block still moving then is a failed run with its
+        reason. None (default): :data:`DEFAULT_TAIL_DTAU` ``/ p`` (a block of R = 1 m: 740 s; measured: free
+        rocking from 0.5 alpha comes to rest within 15/p, a record's block within a few 1/p of its end).
+    max_steps : int or None
+        Steps allowed per run (excitation and tail) before it fails. Default (and None) 200_000_000.
     history_dtau : float
         Spacing of the recorded history (units of ``1/p``); a row every ``max(1, round(history_dtau /
         dtau))`` steps and the last state. Default 0.01. Peaks, ``slide_max`` and the contact summary
@@ -78,19 +85,26 @@ class MoreauJeanSettings:
         block keeps ``|theta|`` at round-off level (below 1e-14), one that lifts exceeds it at once.
     """
 
+    max_steps: int | None = 200_000_000
     dtau: float = 1e-4
     theta_mj: float = 0.5
     local_tol: float = 1e-10
     rest_velocity: float = 1e-6
     rest_duration: float = 1.0
-    max_tail: float = 2000.0
-    max_steps: int = 200_000_000
     history_dtau: float = 0.01
     velocity_tol: float = 1e-8
     contact_gap: float = 20.0
     rocked_theta: float = 1e-9
 
+    @property
+    def step_limit(self) -> int:
+        """``max_steps``, 200_000_000 when None."""
+        return 200_000_000 if self.max_steps is None else int(self.max_steps)
+
     def __post_init__(self) -> None:
+        super().__post_init__()
+        refuse_value("moreau_jean", self, "tail", ("rest",))
+        refuse_value("moreau_jean", self, "stop_at_rest", (True,))
         _at_most("dtau", self.dtau, 0.05, " (units of 1/p)")
         theta = real_number("theta_mj", self.theta_mj)
         if not 0.5 <= theta <= 1.0:
@@ -98,8 +112,6 @@ class MoreauJeanSettings:
         _at_most("local_tol", self.local_tol, 1e-6, "")
         _at_most("rest_velocity", self.rest_velocity, 1e-3, " (units of p R)")
         _at_most("rest_duration", self.rest_duration, 1e3, " (units of 1/p)")
-        _at_most("max_tail", self.max_tail, 1e6, " (units of 1/p)")
-        int_at_least("max_steps", self.max_steps, 1)
         _at_most("history_dtau", self.history_dtau, 10.0, " (units of 1/p)")
         _at_most("velocity_tol", self.velocity_tol, 1e-3, " (units of p R)")
         c = positive_finite("contact_gap", self.contact_gap)
@@ -108,4 +120,4 @@ class MoreauJeanSettings:
         _at_most("rocked_theta", self.rocked_theta, 1e-3, " rad")
 
 
-__all__ = ["MoreauJeanSettings"]
+__all__ = ["DEFAULT_TAIL_DTAU", "MoreauJeanSettings"]

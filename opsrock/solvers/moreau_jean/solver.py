@@ -1,9 +1,8 @@
-"""One case: :func:`solve` (a pulse or a record) and :func:`free_rocking` (from a rotated state)."""
+"""One case: :func:`solve` (a pulse, a record, or free motion from a rotated state)."""
 
 from __future__ import annotations
 
 import math
-import time as _time
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -11,13 +10,13 @@ import numpy as np
 
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE, G
-from opsrock.errors import InputError, InputTypeError
+from opsrock.errors import InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
-from opsrock.limits import initial_state, positive_finite
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
-from opsrock.solvers.common import make_settings, settings_record
+from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
 from opsrock.solvers.moreau_jean import kernel as kn
-from opsrock.solvers.moreau_jean.settings import MoreauJeanSettings
+from opsrock.solvers.moreau_jean.settings import DEFAULT_TAIL_DTAU, MoreauJeanSettings
+from opsrock.solvers.status import REASONS, failure_of
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "moreau_jean"
@@ -35,19 +34,6 @@ class _Forcing:
     tail_av: float
     dt: float
     peak: float  # max |a_h| + max |a_v| (m/s²), for the contact gap
-
-
-def _refuse_block(block: object) -> Block:
-    """The block, if Moreau-Jean can model it: its impact law must be Housner's (``e = e_H``)."""
-    if not isinstance(block, Block):
-        raise InputTypeError(f"block must be a Block, got {block!r}")
-    if block.restitution is not None or block.restitution_factor != 1.0:
-        given = (f"restitution = {block.restitution!r}" if block.restitution is not None
-                 else f"restitution_factor = {block.restitution_factor!r}")
-        raise InputError(
-            f"solver 'moreau_jean' reproduces Housner's impact (e = e_H = {block.e_R:.6g}) and no other: block "
-            f"{block.name or '<unnamed>'} has {given}; build it with restitution_factor=1.0 and no restitution")
-    return block
 
 
 def _refuse_excitation(excitation: object) -> None:
@@ -86,32 +72,31 @@ def _free_forcing(duration: float, dt_nom: float) -> _Forcing:
     return _Forcing(kn.FORCING_STEPWISE, z, z.copy(), 1, n, 0.0, duration / n, 0.0)
 
 
-def _run(block: Block, forcing: _Forcing, state: np.ndarray, settings: MoreauJeanSettings,
-         tail: bool) -> RockingResult:
+def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> RockingResult:
     """Run the kernel on one case and build the result."""
+    block, settings = run.block, run.settings
     p, R, dt = block.p, block.R, forcing.dt
     mu_inf = block.friction is None
     fric = np.array([0.0 if mu_inf else block.friction, 0.0 if mu_inf else block.friction_kinetic,
                      1.0 if mu_inf else 0.0])
     num = np.array([dt, settings.theta_mj, settings.local_tol, settings.rocked_theta])
-    max_tail = math.ceil(settings.max_tail / (p * dt)) if tail else -1
-    limits = np.array([settings.max_steps, max_tail, settings.rest_velocity * p * R,
+    tail_dtau = DEFAULT_TAIL_DTAU if settings.max_free_time is None else settings.max_free_time * p
+    max_tail = math.ceil(tail_dtau / (p * dt)) if tail else -1
+    limits = np.array([settings.step_limit, max_tail, settings.rest_velocity * p * R,
                        max(1, math.ceil(settings.rest_duration / (p * dt))), settings.velocity_tol * p * R,
                        settings.contact_gap * (G + forcing.peak) * dt * dt])
     every = max(1, round(settings.history_dtau / (p * dt)))
-    cap = min(forcing.n_exc + max(max_tail, 0), settings.max_steps) // every + 3
+    cap = min(forcing.n_exc + max(max_tail, 0), settings.step_limit) // every + 3 if settings.record else 0
     hist = [np.zeros(cap) for _ in range(4)]
     out = np.zeros(kn.OUT_SIZE)
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": dt}
-    t0 = _time.perf_counter()
     try:
         kn.run(np.array([block.b, block.h, R, G]), fric, num, forcing.form, forcing.ah, forcing.av, forcing.sub,
                forcing.n_exc, forcing.tail_av, state.copy(), limits, every, *hist, out)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, block.alpha, f"{type(exc).__name__}: {exc}",
-                             wall_time_s=_time.perf_counter() - t0)
-    wall = _time.perf_counter() - t0
-    return _result(block, out, hist, record, wall, state)
+                             wall_time_s=run.elapsed())
+    return _result(block, out, hist, record, run.elapsed(), state)
 
 
 def _mechanical(block: Block, state: np.ndarray) -> tuple[float, float]:
@@ -143,14 +128,16 @@ def _result(block: Block, out: np.ndarray, hist: list[np.ndarray], record: dict[
                    "flicker_steps": int(out[kn.OUT_FLICKER_STEPS]),
                    "max_flicker_gap": float(out[kn.OUT_MAX_FLICKER_GAP]), "limit_steps": int(out[kn.OUT_LIMIT_STEPS])}
     if status != kn.STATUS_OK:
-        failed = failed_result(SOLVER_NAME, record, block.alpha, kn.STATUS_REASONS[status], time=time_s,
-                               theta=theta, theta_dot=theta_dot, n_steps=steps, wall_time_s=wall)
+        failed = failed_result(SOLVER_NAME, record, block.alpha, REASONS[status], time=time_s,
+                               theta=theta, theta_dot=theta_dot, n_steps=steps, wall_time_s=wall,
+                               failure=failure_of(status))
         return replace(failed, slide=slide, diagnostics=diagnostics)
     first = int(out[kn.OUT_FIRST_MODE])
     contact = ContactSummary(
         first_mode=MODES[first] if first >= 0 else "rest", time_sliding=float(out[kn.OUT_TIME_SLIDING]),
         time_rocking=float(out[kn.OUT_TIME_ROCKING]), slide_max=float(out[kn.OUT_SLIDE_MAX]),
-        slide_residual=float(slide[-1]) if n else 0.0, energy=_energy(block, out, state0))
+        slide_residual=float(kn._slide_of(block.b, block.h, out[kn.OUT_X], out[kn.OUT_X + 2])),
+        energy=_energy(block, out, state0))
     theta_max = float(out[kn.OUT_THETA_MAX])
     return RockingResult(
         solver=SOLVER_NAME, settings=record, alpha=block.alpha, time=time_s, theta=theta, theta_dot=theta_dot,
@@ -159,7 +146,7 @@ def _result(block: Block, out: np.ndarray, hist: list[np.ndarray], record: dict[
         slide=slide, contact=contact)
 
 
-def solve(block: Block, excitation: Pulse | Record, *, settings: MoreauJeanSettings | None = None,
+def solve(block: Block, excitation: Pulse | Record | None, settings: MoreauJeanSettings | None = None,
           **overrides: Any) -> RockingResult:
     """Response of a block on a floor with Coulomb friction, initially at rest, to a floor motion with
     horizontal and vertical components, by Moreau-Jean time stepping.
@@ -171,9 +158,12 @@ def solve(block: Block, excitation: Pulse | Record, *, settings: MoreauJeanSetti
         ``friction_kinetic`` (``mu_k <= mu``, used while a corner slips). Its impact law must be
         Housner's: ``restitution_factor = 1`` and no ``restitution`` (Moreau-Jean with ``e_n = 0`` at the
         corners gives exactly ``e_H``, and no impulses at the corners can give less).
-    excitation : Pulse or Record
+    excitation : Pulse or Record or None
         Any analytic pulse (its constant ``vertical`` acts during the pulse and after it) or a record
-        (its ``vertical`` samples, if any; nothing after its last sample).
+        (its ``vertical`` samples, if any; nothing after its last sample). None: a still floor for
+        ``end_time`` (required; no tail), from rocking at ``theta0`` (rad) with ``theta_dot0`` (rad/s) on
+        the stuck corner ``sgn(theta0)`` (:func:`rocking_state`): used to check the impact law against
+        closed forms (Housner's ``e_H``, the slipping impact).
     settings : MoreauJeanSettings, optional
         Numerical settings; keyword ``overrides`` replace individual fields.
 
@@ -199,15 +189,32 @@ def solve(block: Block, excitation: Pulse | Record, *, settings: MoreauJeanSetti
         A block that is not a :class:`Block`, or an excitation that is neither a pulse nor a record.
     """
     settings = make_settings(MoreauJeanSettings, settings, overrides)
-    block = _refuse_block(block)
-    _refuse_excitation(excitation)
-    dt_nom = settings.dtau / block.p
-    if isinstance(excitation, Record):
-        forcing = _record_forcing(excitation, dt_nom)
-    else:
-        forcing = _pulse_forcing(excitation, dt_nom, settings.theta_mj)
-    state = np.array([0.0, block.h, 0.0, 0.0, 0.0, 0.0])
-    return _run(block, forcing, state, settings, tail=True)
+    block = check_inputs(SOLVER_NAME, block, excitation, settings)
+    if (excitation is None) != (settings.end_time is not None):
+        raise ModelNotSupported(f"solver {SOLVER_NAME!r} takes end_time (the span of free motion) with "
+                                f"excitation None and only then, got end_time = {settings.end_time!r}")
+    if excitation is not None:
+        _refuse_excitation(excitation)
+    return _MoreauJeanRun(block, excitation, settings).run()
+
+
+class _MoreauJeanRun(SolverRun):
+    """One case through the kernel: from rest under the floor motion, or free from a start state."""
+
+    name = SOLVER_NAME
+
+    def _run_impl(self) -> RockingResult:
+        block, s, excitation = self.block, self.settings, self.excitation
+        dt_nom = s.dtau / block.p
+        if excitation is None:
+            forcing = _free_forcing(s.end_time, dt_nom)
+            return _run(self, forcing, rocking_state(block, s.theta0, s.theta_dot0), tail=False)
+        if isinstance(excitation, Record):
+            forcing = _record_forcing(excitation, dt_nom)
+        else:
+            forcing = _pulse_forcing(excitation, dt_nom, s.theta_mj)
+        # from rest: theta = 0 gives (0, h, 0, 0, 0, 0) exactly
+        return _run(self, forcing, rocking_state(block, s.theta0, s.theta_dot0), tail=True)
 
 
 def rocking_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndarray:
@@ -222,31 +229,4 @@ def rocking_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndar
                      theta_dot])
 
 
-def free_rocking(block: Block, theta0: float, duration: float, *, theta_dot0: float = 0.0,
-                 settings: MoreauJeanSettings | None = None, **overrides: Any) -> RockingResult:
-    """Motion on a still floor from a rotated state, integrated for ``duration`` (no tail).
-
-    Used to check the impact law against closed forms (Housner's ``e_H``, the slipping impact).
-
-    Parameters
-    ----------
-    block : Block
-        The block (as for :func:`solve`).
-    theta0 : float
-        Initial rotation (rad), ``|theta0| < pi/2``, on the corner ``sgn(theta0)``.
-    duration : float
-        Integrated time (s), > 0.
-    theta_dot0 : float, optional
-        Initial angular velocity (rad/s), with the pivot stuck. Default 0.
-    settings : MoreauJeanSettings, optional
-        Numerical settings; keyword ``overrides`` replace individual fields.
-    """
-    settings = make_settings(MoreauJeanSettings, settings, overrides)
-    block = _refuse_block(block)
-    theta0, theta_dot0 = initial_state(theta0, theta_dot0)
-    duration = positive_finite("duration", duration)
-    forcing = _free_forcing(duration, settings.dtau / block.p)
-    return _run(block, forcing, rocking_state(block, theta0, theta_dot0), settings, tail=False)
-
-
-__all__ = ["SOLVER_NAME", "free_rocking", "rocking_state", "solve"]
+__all__ = ["SOLVER_NAME", "rocking_state", "solve"]

@@ -43,15 +43,31 @@ transient loop: step policy, guards, the seat, damper switching, stopping) and
 :mod:`~opsrock.solvers.opensees.solver` (the entry points).
 """
 
-from opsrock.opensees_session import opensees_log_path
+import importlib
+
 from opsrock.solvers.opensees.settings import (
     ALGORITHMS,
     INTEGRATORS,
     ROCKED_THETA_E_MULTIPLE,
+    SOLVER_NAME,
     OpenSeesSettings,
     critical_time_step,
 )
-from opsrock.solvers.opensees.solver import SOLVER_NAME, solve, solve_lumped_mass
+
+#: Names whose modules import OpenSeesPy, loaded when first used (PEP 562): ``import opsrock.solvers`` and
+#: this package's settings work without OpenSeesPy's system BLAS; the first ``solve`` loads it.
+_LAZY: dict[str, str] = {
+    "solve": "opsrock.solvers.opensees.solver",
+    "solve_lumped_mass": "opsrock.solvers.opensees.solver",
+    "opensees_log_path": "opsrock.opensees_session",
+}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = ["ALGORITHMS", "INTEGRATORS", "OpenSeesSettings", "ROCKED_THETA_E_MULTIPLE", "SOLVER_NAME",
            "critical_time_step", "opensees_log_path", "solve", "solve_lumped_mass"]

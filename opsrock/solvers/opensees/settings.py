@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from typing import Any
 
 from opsrock.block import Block
 from opsrock.errors import InputError, InputTypeError
-from opsrock.limits import bool_fields, check, initial_state, int_at_least, one_of, positive_finite
+from opsrock.limits import check, int_at_least, one_of, positive_finite
 from opsrock.model import SDOFModel
+from opsrock.solvers.common import SolverSettings, refuse_value, settings_record
+
+#: Name this solver writes into :attr:`RockingResult.solver`.
+SOLVER_NAME = "opensees"
 
 #: Time integrators offered. ``"newmark"``: average acceleration (gamma 1/2, beta 1/4), implicit,
 #: unconditionally stable, no numerical damping; ``"hht"`` and ``"generalized_alpha"``: implicit
@@ -33,8 +37,11 @@ ROCKED_THETA_E_MULTIPLE: float = 10.0
 
 
 @dataclass(frozen=True)
-class OpenSeesSettings:
-    """Settings of the OpenSees solver: the SDOF model and every numerical choice.
+class OpenSeesSettings(SolverSettings):
+    """Settings of the OpenSees solver: the SDOF model and every numerical choice; those of
+    :class:`~opsrock.solvers.common.SolverSettings` (``tail="rest"`` only: the run stops at rest or at the
+    end time; ``max_free_time`` None: :data:`~opsrock.solvers.opensees.stepper.DEFAULT_TAIL`; ``max_steps``
+    counts OpenSees steps, the retried halves included; ``record=False`` returns empty histories) and
 
     Parameters
     ----------
@@ -85,8 +92,9 @@ class OpenSeesSettings:
     max_halvings : int
         How many times a failed step is halved before trying the fallback algorithms (-).
     end_time : float or None
-        Hard end time (s). None: excitation duration + :data:`DEFAULT_TAIL`. A run that reaches
-        it before the block overturned or came to rest is *failed* (its peak is not known).
+        Hard end time (s). None: excitation duration + ``max_free_time`` (default
+        :data:`~opsrock.solvers.opensees.stepper.DEFAULT_TAIL`). A run that reaches it before the block
+        overturned or came to rest is *failed* (its peak is not known).
     rest_tolerance : float
         Rest test after the excitation ended, as a fraction of ``alpha`` (-): the run stops once
         the largest rotation the remaining energy can reach is below ``theta_max +
@@ -120,10 +128,6 @@ class OpenSeesSettings:
         returned seated without integration. At exactly the threshold the finite stiff branch is
         at neutral equilibrium and tips numerically (up to 0.03 alpha on the paper grid's
         ``PFA = g tan(alpha)`` row); False runs the model anyway.
-    theta0 : float
-        Initial rotation (rad), ``|theta0| < pi/2``.
-    theta_dot0 : float
-        Initial angular velocity (rad/s).
     """
 
     model: SDOFModel = field(default_factory=SDOFModel)
@@ -139,19 +143,16 @@ class OpenSeesSettings:
     tol: float = 1e-10
     max_iter: int = 50
     max_halvings: int = 8
-    end_time: float | None = None
     rest_tolerance: float = 1e-4
-    stop_at_rest: bool = True
     record_every: int = 1
     element_forces: bool = False
     explicit_step_check: bool = True
     stiff_branch_check: bool = True
     uplift_check: bool = True
-    theta0: float = 0.0
-    theta_dot0: float = 0.0
 
     def __post_init__(self) -> None:
-        bool_fields(self)
+        super().__post_init__()
+        refuse_value(SOLVER_NAME, self, "tail", ("rest",))
         if not isinstance(self.model, SDOFModel):
             raise InputTypeError(f"model must be an SDOFModel, got {self.model!r}")
         check("step", self.step)
@@ -176,23 +177,16 @@ class OpenSeesSettings:
         positive_finite("tol", self.tol)
         int_at_least("max_iter", self.max_iter, 1)
         int_at_least("max_halvings", self.max_halvings, 0)
-        if self.end_time is not None:
-            positive_finite("end_time", self.end_time)
         positive_finite("rest_tolerance", self.rest_tolerance)
         if not isinstance(self.element_forces, bool):
             raise InputTypeError(f"element_forces must be a bool, got {self.element_forces!r}")
         if not isinstance(self.uplift_check, bool):
             raise InputTypeError(f"uplift_check must be a bool, got {self.uplift_check!r}")
-        if not isinstance(self.stop_at_rest, bool):
-            raise InputTypeError(f"stop_at_rest must be a bool, got {self.stop_at_rest!r}")
         int_at_least("record_every", self.record_every, 1)
-        initial_state(self.theta0, self.theta_dot0)
 
     def as_dict(self) -> dict[str, Any]:
         """All settings, the model's included, as a JSON-friendly dict."""
-        d = asdict(self)
-        d["fallback_algorithms"] = list(self.fallback_algorithms)
-        return d
+        return settings_record(self)
 
 
 def critical_time_step(block: Block, model: SDOFModel | None = None) -> float:
@@ -207,4 +201,4 @@ def critical_time_step(block: Block, model: SDOFModel | None = None) -> float:
     return 2.0 * math.sqrt(block.I_O / k_e)
 
 
-__all__ = ["ALGORITHMS", "INTEGRATORS", "OpenSeesSettings", "ROCKED_THETA_E_MULTIPLE", "critical_time_step"]
+__all__ = ["ALGORITHMS", "INTEGRATORS", "OpenSeesSettings", "ROCKED_THETA_E_MULTIPLE", "SOLVER_NAME", "critical_time_step"]

@@ -7,23 +7,32 @@ import dataclasses
 import time as _time
 from typing import Any
 
+import numpy as np
+
 from opsrock.block import Block
 from opsrock.errors import InputTypeError
-from opsrock.excitations import Excitation
+from opsrock.excitations import Excitation, Record
 from opsrock.limits import one_of
 from opsrock.model import can_uplift
 from opsrock.opensees_session import CONSOLE, console_to_log, count_messages, fresh_model, log_size
 from opsrock.result import RockingResult, failed_result, seated_result
-from opsrock.solvers.common import make_settings
+from opsrock.solvers.common import SolverRun, check_inputs, make_settings
 from opsrock.solvers.opensees.build import build_lumped, build_sdof, define_analysis, set_initial_state
-from opsrock.solvers.opensees.settings import ROCKED_THETA_E_MULTIPLE, OpenSeesSettings, critical_time_step
+from opsrock.solvers.opensees.settings import (
+    ROCKED_THETA_E_MULTIPLE,
+    SOLVER_NAME,
+    OpenSeesSettings,
+    critical_time_step,
+)
 from opsrock.solvers.opensees.stepper import StepFailure, Stepper
 
-SOLVER_NAME = "opensees"
+#: The still floor of free rocking: a zero record (the model needs a time series; only its length, 0.01 s,
+#: enters the run, as the end of the excitation after which the rest test applies).
+STILL_FLOOR = Record(dt=0.01, values=np.zeros(2), name="no motion")
 
 
 def solve(
-    block: Block, excitation: Excitation, *, settings: OpenSeesSettings | None = None, **overrides: Any
+    block: Block, excitation: Excitation | None, settings: OpenSeesSettings | None = None, **overrides: Any
 ) -> RockingResult:
     """Rocking response of ``block`` to ``excitation`` with the paper's OpenSees SDOF model.
 
@@ -31,8 +40,9 @@ def solve(
     ----------
     block : Block
         The block.
-    excitation : Excitation
-        Floor acceleration (m/s^2): a one-sine pulse, a record, or any :class:`Excitation`.
+    excitation : Excitation or None
+        Floor acceleration (m/s^2): a one-sine pulse, a record, or any :class:`Excitation`. None: a still
+        floor (:data:`STILL_FLOOR`, a zero record), free rocking from ``theta0``, ``theta_dot0``.
     settings : OpenSeesSettings, optional
         Model and numerics; defaults to ``OpenSeesSettings()``.
     **overrides
@@ -46,7 +56,9 @@ def solve(
         ``solver="opensees"``. ``status="failed"`` with a reason if a step could not be recovered,
         the run blew up numerically ("unstable: ..."), or the end time came before rest.
     """
-    return _run(block, excitation, make_settings(OpenSeesSettings, settings, overrides), geometry=None)
+    settings = make_settings(OpenSeesSettings, settings, overrides)
+    block = check_inputs(SOLVER_NAME, block, excitation, settings)
+    return _OpenSeesRun(block, STILL_FLOOR if excitation is None else excitation, settings).run()
 
 
 def solve_lumped_mass(
@@ -77,7 +89,10 @@ def solve_lumped_mass(
         not offered.
     """
     one_of("geometry", geometry, ("linear",))
-    return _run(block, excitation, make_settings(OpenSeesSettings, settings, overrides), geometry=geometry)
+    settings = make_settings(OpenSeesSettings, settings, overrides)
+    run = _OpenSeesRun(check_inputs(SOLVER_NAME, block, excitation, settings), excitation, settings)
+    run.geometry = geometry
+    return run.run()
 
 
 def _refused(block: Block, excitation: Excitation, s: OpenSeesSettings, settings_dict: dict, geometry: str | None,
@@ -90,7 +105,7 @@ def _refused(block: Block, excitation: Excitation, s: OpenSeesSettings, settings
             return failed_result(
                 SOLVER_NAME, settings_dict, block.alpha,
                 f"unstable: explicit central difference with step = {s.step:.4g} s >= its critical step "
-                f"dt_cr = 2 sqrt(I_O theta_e / (m g R sin alpha)) = {dt_cr:.4g} s",
+                f"dt_cr = 2 sqrt(I_O theta_e / (m g R sin alpha)) = {dt_cr:.4g} s", failure="unstable",
             )
     # Eq. 4 after the settings checks: bad settings are refused whatever the pulse
     if (s.uplift_check and geometry is None and s.theta0 == 0.0 and s.theta_dot0 == 0.0
@@ -100,9 +115,23 @@ def _refused(block: Block, excitation: Excitation, s: OpenSeesSettings, settings
     return None
 
 
+class _OpenSeesRun(SolverRun):
+    """One run of the OpenSees model (the rotational SDOF, or the lumped-mass form with ``geometry``)."""
+
+    name = SOLVER_NAME
+    geometry: str | None = None
+
+    def _run_impl(self) -> RockingResult:
+        result = _run(self.block, self.excitation, self.settings, self.geometry)
+        if self.settings.record:
+            return result
+        empty = np.zeros(0)
+        return dataclasses.replace(result, time=empty, theta=empty, theta_dot=empty,
+                                   spring_moment=None if result.spring_moment is None else empty,
+                                   damper_force=None if result.damper_force is None else empty)
+
+
 def _run(block: Block, excitation: Excitation, s: OpenSeesSettings, geometry: str | None) -> RockingResult:
-    if not isinstance(block, Block):
-        raise InputTypeError(f"block must be a Block, got {block!r}")
     if not isinstance(excitation, Excitation):
         raise InputTypeError(f"excitation must be an Excitation, got {excitation!r}")
     settings_dict = s.as_dict()
@@ -148,7 +177,7 @@ def _build_and_integrate(block: Block, excitation: Excitation, s: OpenSeesSettin
             time, theta, theta_dot = stepper.history()
             return failed_result(SOLVER_NAME, settings_dict, block.alpha, str(exc), time=time, theta=theta,
                                  theta_dot=theta_dot, n_steps=stepper.n_steps,
-                                 wall_time_s=_time.perf_counter() - t_wall)
+                                 wall_time_s=_time.perf_counter() - t_wall, failure=exc.failure)
     time, theta, theta_dot = stepper.history()
     spring, damper = stepper.moments()
     return RockingResult(
@@ -159,4 +188,4 @@ def _build_and_integrate(block: Block, excitation: Excitation, s: OpenSeesSettin
         damper_force=damper, n_impacts=len(stepper.impacts), impacts=stepper.impacts.freeze())
 
 
-__all__ = ["SOLVER_NAME", "solve", "solve_lumped_mass"]
+__all__ = ["SOLVER_NAME", "STILL_FLOOR", "solve", "solve_lumped_mass"]

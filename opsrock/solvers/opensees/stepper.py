@@ -21,6 +21,7 @@
 from __future__ import annotations
 
 import math
+import time as _time
 from itertools import repeat
 from math import cos, isfinite
 
@@ -36,6 +37,7 @@ from opsrock.result import ImpactLog
 from opsrock.solvers.common import potential_energy
 from opsrock.solvers.opensees.build import DAMPER_ELE, DAMPER_PARAM, SPRING_ELE, set_algorithm
 from opsrock.solvers.opensees.settings import OpenSeesSettings, critical_time_step
+from opsrock.solvers.status import MAX_STEPS, REASONS, TIMEOUT
 
 #: Energy-growth test for numerical instability: a run is "unstable" when its mechanical energy
 #: exceeds ``UNSTABLE_ENERGY_FACTOR * (E_0 + W_in) + UNSTABLE_ENERGY_FLOOR * m g R (1 - cos alpha)``,
@@ -82,7 +84,12 @@ MIN_PASSAGE_STEP_RATIO: float = 10.0
 
 
 class StepFailure(OpsrockError):
-    """A step that could not be recovered, or a numerical blow-up: the run is failed with this reason."""
+    """A step that could not be recovered, or a numerical blow-up: the run is failed with this reason;
+    ``failure`` is its kind (:data:`opsrock.solvers.status.FAILURE_KINDS`)."""
+
+    def __init__(self, reason: str, failure: str = "integrator") -> None:
+        super().__init__(reason)
+        self.failure = failure
 
 
 def passage_step(h_band: float, distance: float, band_steps: int, theta_e: float) -> float:
@@ -120,7 +127,9 @@ class Stepper:
         self.barrier = self.mgR * (1.0 - self.cos_a)
         self.lam_pfa = abs(model.lever_arm(block)) * excitation.pfa
         self.duration = float(excitation.duration)
-        self.t_end = self.duration + DEFAULT_TAIL if s.end_time is None else float(s.end_time)
+        tail = DEFAULT_TAIL if s.max_free_time is None else float(s.max_free_time)
+        self.t_end = self.duration + tail if s.end_time is None else float(s.end_time)
+        self.max_steps, self.max_wall_time, self.t_wall = s.max_steps, s.max_wall_time, _time.perf_counter()
         self.rest_margin = s.rest_tolerance * self.alpha
         self.h_band_num = 2.0 * self.band / s.band_steps
         # rotation per step inside the band: a passage that starts at a turning point inside the band
@@ -294,11 +303,14 @@ class Stepper:
             try:
                 self.n_steps += recover(self.s, h)
             except StepFailure as exc:
-                raise StepFailure(f"step at t = {t:.6g} s (dt = {h:.3g} s) did not converge: {exc}") from None
+                # a floor acceleration that turns non-finite makes the step fail to converge
+                kind = exc.failure if isfinite(float(self.excitation.acceleration(t + h))) else "nonfinite"
+                raise StepFailure(f"step at t = {t:.6g} s (dt = {h:.3g} s) did not converge: {exc}", kind) from None
         if h >= self.dt_cr and abs(self.th) <= self.theta_e:
             raise StepFailure(
                 f"unstable: explicit central difference stepped {h:.4g} s from inside the stiff branch "
-                f"(|theta| <= theta_e) at t = {t:.6g} s, above its critical step dt_cr = {self.dt_cr:.4g} s")
+                f"(|theta| <= theta_e) at t = {t:.6g} s, above its critical step dt_cr = {self.dt_cr:.4g} s",
+                "unstable")
         self.t = t + h
         self.th_prev, self.thd_prev = self.th, self.thd
         self.th = ops.nodeDisp(self.node, self.dof)
@@ -308,7 +320,8 @@ class Stepper:
         """The guards: a finite state, no sign sawtooth, no energy the floor did not give."""
         t, th, thd, th_prev = self.t, self.th, self.thd, self.th_prev
         if not (isfinite(th) and isfinite(thd)):
-            raise StepFailure(f"unstable: non-finite state at t = {t:.6g} s (theta = {th!r}, theta_dot = {thd!r})")
+            raise StepFailure(f"unstable: non-finite state at t = {t:.6g} s (theta = {th!r}, theta_dot = {thd!r})",
+                              "nonfinite")
         ath = abs(th)
         if ath > self.theta_max:
             self.theta_max = ath
@@ -317,7 +330,7 @@ class Stepper:
             if self.n_alt >= SAWTOOTH_STEPS:
                 raise StepFailure(
                     f"unstable: theta changed sign at {self.n_alt} consecutive steps up to t = {t:.6g} s "
-                    f"(dt = {h:.3g} s): a numerical sawtooth, not rocking")
+                    f"(dt = {h:.3g} s): a numerical sawtooth, not rocking", "unstable")
         else:
             self.n_alt = 0
         # physical plausibility: energy can only come from the floor
@@ -327,7 +340,8 @@ class Stepper:
         if energy > UNSTABLE_ENERGY_FACTOR * (self.e_0 + self.w_in) + UNSTABLE_ENERGY_FLOOR * self.barrier:
             raise StepFailure(
                 f"unstable: mechanical energy {energy:.4g} J at t = {t:.6g} s exceeds the initial energy "
-                f"plus the floor's work ({self.e_0 + self.w_in:.4g} J); numerical blow-up (theta = {th:.4g} rad)")
+                f"plus the floor's work ({self.e_0 + self.w_in:.4g} J); numerical blow-up (theta = {th:.4g} rad)",
+                "unstable")
 
     def seat(self) -> None:
         """Seated: drop the stiff branch's free oscillation, as the scipy solver does.
@@ -490,7 +504,12 @@ class Stepper:
                 return "end_time"
             raise StepFailure(
                 f"end_time = {self.t_end:.6g} s reached before the block overturned or came to rest "
-                f"(theta = {self.th:.4g} rad, theta_dot = {self.thd:.4g} rad/s); raise end_time")
+                f"(theta = {self.th:.4g} rad, theta_dot = {self.thd:.4g} rad/s); raise end_time", "max_free_time")
+        if self.max_steps is not None and self.n_steps >= self.max_steps:
+            raise StepFailure(f"{REASONS[MAX_STEPS]} (max_steps = {self.max_steps}, t = {t:.6g} s)", "max_steps")
+        if _time.perf_counter() - self.t_wall > self.max_wall_time:
+            raise StepFailure(f"{REASONS[TIMEOUT]} (max_wall_time = {self.max_wall_time:g} s, t = {t:.6g} s)",
+                              "timeout")
         return ""
 
     def record(self) -> None:

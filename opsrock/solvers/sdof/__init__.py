@@ -30,6 +30,6 @@ solved with the same model as the OpenSees solver (:class:`opsrock.model.SDOFMod
 """
 
 from opsrock.solvers.sdof.settings import SDOFSettings
-from opsrock.solvers.sdof.solver import solve, table_potential
+from opsrock.solvers.sdof.solver import SOLVER_NAME, solve, table_potential
 
-__all__ = ["SDOFSettings", "solve", "table_potential"]
+__all__ = ["SDOFSettings", "SOLVER_NAME", "solve", "table_potential"]

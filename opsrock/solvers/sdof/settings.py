@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from opsrock.errors import InputTypeError
 from opsrock.limits import int_at_least, one_of
 from opsrock.model import SDOFModel
-from opsrock.solvers.common import METHODS, ScipySettings
+from opsrock.solvers.common import IVP_METHODS, ScipySettings
 
 
 @dataclass(frozen=True)
@@ -63,7 +63,7 @@ class SDOFSettings(ScipySettings):
         super().__post_init__()
         if not isinstance(self.model, SDOFModel):
             raise InputTypeError(f"model must be an SDOFModel, got {self.model!r}")
-        one_of("stiff_method", self.stiff_method, METHODS)
+        one_of("stiff_method", self.stiff_method, IVP_METHODS)
         int_at_least("max_segments", self.max_segments, 1)
 
 

@@ -14,9 +14,19 @@ from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.excitations.records import Record
 from opsrock.model import Seat, can_uplift
 from opsrock.result import RockingResult, seated_result
-from opsrock.solvers.common import EventDrivenSolver, StopRun, first_exceedance, make_settings
+from opsrock.solvers.common import (
+    EventDrivenSolver,
+    StopRun,
+    check_inputs,
+    first_exceedance,
+    make_settings,
+)
 from opsrock.solvers.sdof.closed_form import ClosedFormSegment, closed_form_solve
 from opsrock.solvers.sdof.settings import SDOFSettings
+
+
+#: Name this solver writes into :attr:`RockingResult.solver`.
+SOLVER_NAME = "sdof"
 
 
 def table_potential(theta_tab: np.ndarray, moment_tab: np.ndarray):
@@ -45,15 +55,16 @@ def table_potential(theta_tab: np.ndarray, moment_tab: np.ndarray):
 
 
 
-def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None, **overrides: Any) -> RockingResult:
+def solve(block: Block, excitation: Any, settings: SDOFSettings | None = None, **overrides: Any) -> RockingResult:
     """Rocking response of the paper's equivalent SDOF model, integrated by scipy.
 
     Parameters
     ----------
     block : Block
         The block.
-    excitation : Excitation
-        Floor acceleration (m/s²) as a function of time (s).
+    excitation : Excitation or None
+        Floor acceleration (m/s²) as a function of time (s); None: a still floor (free rocking from
+        ``theta0``, ``theta_dot0``).
     settings : SDOFSettings, optional
         Model and numerical settings; keyword ``overrides`` replace single fields (the model's too:
         ``delta=0.01``).
@@ -67,17 +78,18 @@ def solve(block: Block, excitation: Any, *, settings: SDOFSettings | None = None
         ``|theta|`` leaves the stiff branch. Integrator failures and exceeded caps give
         ``status="failed"`` with the reason.
     """
-    run = _SDOF(block, excitation, make_settings(SDOFSettings, settings, overrides))
+    settings = make_settings(SDOFSettings, settings, overrides)
+    run = _SDOF(check_inputs(SOLVER_NAME, block, excitation, settings), excitation, settings)
     s = run.settings
     if s.uplift_check and run.seated and not can_uplift(block, s.model, excitation.pfa):
-        return seated_result("sdof", run.settings_dict, block.alpha, excitation.duration, run.elapsed())
+        return seated_result(SOLVER_NAME, run.settings_dict, block.alpha, excitation.duration, run.elapsed())
     return run.run()
 
 
 class _SDOF(EventDrivenSolver):
     """The SDOF model region by region: seated in the stiff branch, or in flight across the table's regions."""
 
-    name = "sdof"
+    name = SOLVER_NAME
     with_damping = True
 
     def _start(self) -> None:
@@ -121,13 +133,14 @@ class _SDOF(EventDrivenSolver):
     def each_iteration(self) -> None:
         self.n_segments += 1
         if self.n_segments > self.settings.max_segments:
-            raise StopRun(f"more than max_segments = {self.settings.max_segments} segments by t = {self.t:.6g} s")
+            raise StopRun(f"more than max_segments = {self.settings.max_segments} segments by t = {self.t:.6g} s",
+                          "max_steps")
 
     def _seated_step(self) -> None:
         """Follow the quasi-static deflection of the stiff branch until the floor lifts the block."""
         s, t, lam, k_e, theta_e = self.settings, self.t, self.lam, self.k_e, self.theta_e
         t_up = first_exceedance(self.excitation, self.m_e / lam, t, min(self.t_final, self.duration), self.scan)
-        t_stop = t_up if t_up is not None else (self.t_final if s.end_time is not None else min(self.t_final, self.duration))
+        t_stop = t_up if t_up is not None else (min(self.t_final, self.duration) if self.open_end else self.t_final)
         if t_stop > t:
             bps = self.breakpoints
             grid = np.union1d(np.linspace(t, t_stop, 201), bps[(bps > t) & (bps < t_stop)])
@@ -150,7 +163,7 @@ class _SDOF(EventDrivenSolver):
     def _after_excitation_at_rest(self) -> bool:
         """With ``tail="rest"``, after the excitation: True once the block is trapped in the damper band."""
         s, y = self.settings, self.y
-        if not (s.end_time is None and s.tail == "rest" and self.t >= self.duration and abs(y[0]) <= self.band):
+        if not (self.open_end and s.tail == "rest" and self.t >= self.duration and abs(y[0]) <= self.band):
             return False
         # trapped only *inside* the band: beyond alpha the table's potential falls below
         # U(delta alpha) too, and a block out there is falling over, not at rest
@@ -264,13 +277,13 @@ class _Segment:
             return [yy[1], (-lam * float(acc(tt)) - c_i * yy[1] - (k_i * yy[0] + m_i)) / inertia]
 
         self.rhs = rhs
-        self.stop_at_peak = bool(s.end_time is None and s.tail == "peak" and t >= run.duration)
+        self.stop_at_peak = bool(run.open_end and s.tail == "peak" and t >= run.duration)
         # a turning point inside the band starts a new passage: the damper is re-armed there
         self.rearm = run.model.tracks_passages() and bool(run.in_band[region]) and not self.is_stiff
         self.events = self._edges(lo, hi) + [self._turning(t if was_at_turn else -math.inf)]
         if self.is_stiff:
             self.events.append(_capture(run.seat))
-        if s.end_time is None and s.tail == "rest" and t >= run.duration and run.in_band[region]:
+        if run.open_end and s.tail == "rest" and t >= run.duration and run.in_band[region]:
             self.events.append(_trapped(run))
 
     @staticmethod
@@ -334,4 +347,4 @@ def _region_of(kinks: np.ndarray, theta: float, direction: float) -> int:
     return int(np.clip(i, 0, kinks.size - 2))
 
 
-__all__ = ["solve", "table_potential"]
+__all__ = ["SOLVER_NAME", "solve", "table_potential"]

@@ -120,7 +120,7 @@ def energy_cases() -> list:
         for a_v in (0.0, 0.2 * G, -0.2 * G):
             out.append(friction.solve(Block(0.6, 2.0, friction=mu), OneSinePulse(0.8 * G, 2.0 * math.pi * 1.5,
                                                                                  vertical=a_v)))
-    out.append(friction.free_rocking(Block(0.5, 1.5, friction=0.8), 0.5 * math.atan(1 / 3), 1.0))
+    out.append(friction.solve(Block(0.5, 1.5, friction=0.8), None, theta0=0.5 * math.atan(1 / 3), end_time=1.0))
     return out
 
 

@@ -1,93 +1,39 @@
-"""The exact rigid-body rocking equation with instantaneous impacts (paper Eq. 1-4, 9-11).
-
-Between impacts the block pivots about one base corner (``s = sgn(theta)``)::
-
-    theta'' = -p² [ sin(alpha s - theta) + a(t)/g cos(alpha s - theta) ]
-
-with a positive floor acceleration ``a`` tipping the block towards negative ``theta``. The
-solver is event-driven:
-
-* **seated** while ``|a(t)| <= g tan(alpha)`` (Eq. 4); the first time ``|a|`` exceeds that
-  level the block uplifts about the corner set by the sign of ``a`` (``s = -sgn(a)``);
-* **impact** when ``theta`` returns to zero: ``theta' -> e theta'`` (Housner's instantaneous
-  impact, ``e = block.e``) and the block goes on about the other corner;
-* **rest** when the velocity after an impact falls below ``rest_velocity_ratio · p · alpha``:
-  the remaining bounces ("chattering") form a geometric series ``e, e², ...`` of vanishing
-  duration (at most ``2 |theta'| / ((1 - e) p² alpha)`` in free rocking), so the block is
-  set down as seated; it lifts off again if ``|a|`` still exceeds ``g tan(alpha)``;
-* **overturning** when ``|theta|`` reaches ``pi/2`` (Eq. 11), a terminal event.
-
-With ``equations="linearised"`` the small-angle form of the classical rocking papers is solved
-instead, ``theta'' = -p² [(alpha s - theta) + a/g]`` with uplift when ``|a| > g alpha``
-(:data:`opsrock.constants.EQUATIONS`); overturning is still ``|theta| = pi/2``.
-
-The lever here is the exact ``cos(alpha s - theta)`` of Eq. 1; the SDOF model of Eq. 6 keeps
-it constant at ``cos(alpha)`` (see :mod:`opsrock.solvers.sdof`): one of the model-form
-differences measured by ``validation/model_form``.
-"""
+"""The event-driven rigid-body run (:func:`solve`); the equations are in the package docstring."""
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
 from opsrock.block import Block
-from opsrock.constants import EQUATIONS, OVERTURNING_ANGLE, G
-from opsrock.limits import one_of, positive_finite
+from opsrock.constants import OVERTURNING_ANGLE, G
 from opsrock.result import RockingResult
 from opsrock.solvers.common import (
-    METHODS,
-    TAILS,
     EventDrivenSolver,
-    ScipySettings,
     StopRun,
+    check_inputs,
     first_exceedance,
     make_settings,
-    rocking_energy,
 )
+from opsrock.solvers.housner.settings import HousnerSettings
+
+#: Name this solver writes into :attr:`RockingResult.solver`.
+SOLVER_NAME = "housner"
 
 
-@dataclass(frozen=True)
-class HousnerSettings(ScipySettings):
-    """Numerical settings of the rigid-body solver (the model has no free parameter): those of
-    :class:`~opsrock.solvers.common.ScipySettings` and
-
-    Parameters
-    ----------
-    atol : float
-        Absolute tolerance on ``theta`` (rad). Default 1e-12 rad, far below any rotation of interest
-        (alpha is 0.1-0.5 rad).
-    rest_velocity_ratio : float
-        After an impact the block is set down as seated if ``|theta'| < rest_velocity_ratio · p · alpha``
-        (dimensionless). Default 1e-6: the bounces left would rise to ``~(1e-6)² alpha / 2`` at most.
-    equations : str
-        Form of the equation of motion, one of :data:`opsrock.constants.EQUATIONS`. Default ``"exact"``
-        (Eq. 1); ``"linearised"`` for the small-angle form of the classical papers.
-    """
-
-    atol: float = 1e-12
-    rest_velocity_ratio: float = 1e-6
-    equations: str = "exact"
-
-    def __post_init__(self) -> None:
-        super().__post_init__()
-        one_of("equations", self.equations, EQUATIONS)
-        positive_finite("rest_velocity_ratio", self.rest_velocity_ratio)
-
-
-def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = None, **overrides: Any) -> RockingResult:
+def solve(block: Block, excitation: Any, settings: HousnerSettings | None = None, **overrides: Any) -> RockingResult:
     """Rocking response of the rigid block by the exact equation with instantaneous impacts.
 
     Parameters
     ----------
     block : Block
         The block (geometry, restitution ``e``).
-    excitation : Excitation
-        Floor acceleration (m/s²) as a function of time (s).
+    excitation : Excitation or None
+        Floor acceleration (m/s²) as a function of time (s); None: a still floor (free rocking from
+        ``theta0``, ``theta_dot0``).
     settings : HousnerSettings, optional
         Numerical settings; keyword ``overrides`` replace single fields.
 
@@ -97,13 +43,14 @@ def solve(block: Block, excitation: Any, *, settings: HousnerSettings | None = N
         ``solver="housner"``; ``n_impacts`` counts impacts; ``n_steps`` accepted steps.
         An integrator failure or more than ``max_impacts`` impacts give ``status="failed"``.
     """
-    return _Housner(block, excitation, make_settings(HousnerSettings, settings, overrides)).run()
+    settings = make_settings(HousnerSettings, settings, overrides)
+    return _Housner(check_inputs(SOLVER_NAME, block, excitation, settings), excitation, settings).run()
 
 
 class _Housner(EventDrivenSolver):
     """The rigid block, event by event: uplift, flight about one corner, impact, rest, overturning."""
 
-    name = "housner"
+    name = SOLVER_NAME
 
     def _start(self) -> None:
         s = self.settings
@@ -121,7 +68,7 @@ class _Housner(EventDrivenSolver):
         s, t = self.settings, self.t
         t_up = first_exceedance(self.excitation, self.level, t, min(self.t_final, self.duration), self.scan)
         if t_up is None:
-            t_stop = self.t_final if s.end_time is not None else min(self.t_final, self.duration)
+            t_stop = min(self.t_final, self.duration) if self.open_end else self.t_final
             self.history.add(np.array(t_stop), 0.0, 0.0)
             self.t = t_stop
             return
@@ -156,7 +103,7 @@ class _Housner(EventDrivenSolver):
             return sd * yy[1]
 
         s = self.settings
-        turning.terminal = bool(self.t >= self.duration and s.end_time is None and s.tail == "peak")
+        turning.terminal = bool(self.t >= self.duration and self.open_end and s.tail == "peak")
         turning.direction = -1
         return rhs, (impact, overturn, turning)
 
@@ -199,4 +146,4 @@ class _Housner(EventDrivenSolver):
         self.y = np.array([0.0, v])
 
 
-__all__ = ["HousnerSettings", "METHODS", "TAILS", "rocking_energy", "solve"]
+__all__ = ["SOLVER_NAME", "solve"]

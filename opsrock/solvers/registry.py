@@ -1,0 +1,177 @@
+"""The solver registry: every solver by name, with what it models declared (as OpenQuake's ground-motion
+models declare their inputs), and the checks that read those declarations.
+
+A solver package is imported when first used (OpenSeesPy and numba are costly to import), so an entry
+names its module and settings class instead of holding them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib
+from dataclasses import dataclass
+from typing import Any
+
+from opsrock.block import Block
+from opsrock.errors import InputError, ModelNotSupported
+from opsrock.excitations.base import has_vertical
+from opsrock.limits import one_of
+
+#: The models a solver may solve (:attr:`SolverInfo.model`).
+MODELS: tuple[str, ...] = ("rigid", "sdof", "friction")
+
+#: What a solver takes as excitation (:attr:`SolverInfo.excitations`): any :class:`Excitation`, or the
+#: analytic pulses of ``PULSE_SHAPES`` and records only (the compiled kernels).
+EXCITATION_KINDS: tuple[str, ...] = ("any", "pulses_records")
+
+
+@dataclass(frozen=True)
+class SolverInfo:
+    """One entry of the registry: where the solver lives and what it models.
+
+    Parameters
+    ----------
+    name : str
+        The solver's name (``--solver``, ``[solver] name``).
+    module : str
+        Package whose ``solve`` runs it.
+    settings : str
+        ``"module:Class"`` of its frozen settings dataclass.
+    model : str
+        What it solves, one of :data:`MODELS`: ``"rigid"`` (the rigid-body equation, Eq. 1-3),
+        ``"sdof"`` (the paper's equivalent SDOF model, Eq. 5-8) or ``"friction"`` (the rigid block with
+        Coulomb friction under horizontal and vertical floor motion, docs/friction.md).
+    friction : bool
+        Models a base that slips (``Block.friction``); False: a block with friction is refused.
+    vertical : bool
+        Models vertical floor motion; False: an excitation with a vertical component is refused.
+    free_rocking : bool
+        Takes ``excitation=None`` (a still floor) with a start state ``theta0``, ``theta_dot0``.
+    histories : bool
+        Returns time histories (``time``, ``theta``, ``theta_dot``) when ``record`` is True.
+    restitution : bool
+        Takes any restitution of the block (``restitution``, ``restitution_factor``, so the campaign's
+        restitution laws and distributions); False: Housner's ``e_H`` only.
+    excitations : str
+        What it takes as excitation, one of :data:`EXCITATION_KINDS`.
+    compiled : bool
+        Runs a numba kernel (compiled once and cached on first use).
+    needs_opensees : bool
+        Needs OpenSeesPy (and its system BLAS), loaded when first used.
+    """
+
+    name: str
+    module: str
+    settings: str
+    model: str
+    friction: bool = False
+    vertical: bool = False
+    free_rocking: bool = True
+    histories: bool = True
+    restitution: bool = True
+    excitations: str = "any"
+    compiled: bool = False
+    needs_opensees: bool = False
+
+    def __post_init__(self) -> None:
+        one_of("model", self.model, MODELS)
+        one_of("excitations", self.excitations, EXCITATION_KINDS)
+
+    def load(self):
+        """The solver package."""
+        return importlib.import_module(self.module)
+
+    def settings_class(self) -> type:
+        """The solver's settings dataclass."""
+        module, _, attr = self.settings.partition(":")
+        return getattr(importlib.import_module(module), attr)
+
+    def capabilities(self) -> dict[str, Any]:
+        """The declarations (every field but where the solver lives), by name."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+                if f.name not in ("name", "module", "settings")}
+
+
+def _entry(name: str, settings: str, model: str, **declared: Any) -> SolverInfo:
+    return SolverInfo(name, f"opsrock.solvers.{name}", f"opsrock.solvers.{name}.settings:{settings}", model, **declared)
+
+
+#: The registry: every solver by name (as scipy's ``solve_ivp`` keeps its ``METHODS``).
+METHODS: dict[str, SolverInfo] = {
+    "opensees": _entry("opensees", "OpenSeesSettings", "sdof", needs_opensees=True),
+    "sdof": _entry("sdof", "SDOFSettings", "sdof"),
+    "housner": _entry("housner", "HousnerSettings", "rigid"),
+    "housner_fast": _entry("housner_fast", "HousnerFastSettings", "rigid", excitations="pulses_records",
+                           compiled=True),
+    "friction": _entry("friction", "FrictionSettings", "friction", friction=True, vertical=True,
+                       excitations="pulses_records", compiled=True),
+    "moreau_jean": _entry("moreau_jean", "MoreauJeanSettings", "friction", friction=True, vertical=True,
+                          restitution=False, excitations="pulses_records", compiled=True),
+}
+
+#: Solver names accepted by :func:`opsrock.solvers.simulate` and the command line.
+SOLVERS: tuple[str, ...] = tuple(METHODS)
+
+
+def info(name: str) -> SolverInfo:
+    """The registry entry of the solver ``name`` (one of :data:`SOLVERS`)."""
+    return METHODS[one_of("solver", name, SOLVERS)]
+
+
+def capabilities(name: str) -> dict[str, Any]:
+    """What the solver ``name`` models and needs (:class:`SolverInfo`'s declarations)."""
+    return info(name).capabilities()
+
+
+def solver_names(**declared: Any) -> tuple[str, ...]:
+    """The registered solvers whose declarations match every ``declared`` one, in registry order
+    (``solver_names(friction=True)``, ``solver_names(model="sdof", compiled=False)``).
+
+    Raises
+    ------
+    InputError
+        A declaration :class:`SolverInfo` does not have.
+    """
+    known = SolverInfo.__dataclass_fields__.keys() - {"name", "module", "settings"}
+    unknown = sorted(set(declared) - known)
+    if unknown:
+        raise InputError(f"unknown solver capability {unknown[0]!r}; known: {', '.join(sorted(known))}")
+    return tuple(n for n, e in METHODS.items() if all(getattr(e, k) == v for k, v in declared.items()))
+
+
+def check_model(name: str, block: Block, excitation: object) -> None:
+    """Refuse what the solver ``name`` does not model, as its registry entry declares it: a block whose
+    base slips, a vertical floor motion, free rocking (``excitation=None``), a restitution other than
+    Housner's.
+
+    Raises
+    ------
+    ModelNotSupported
+        Naming the solver and what it cannot model.
+    """
+    entry = info(name)
+    if block.slips and not entry.friction:
+        raise ModelNotSupported(
+            f"solver {name!r} models no-slip rocking; block {block.name or '<unnamed>'} has friction = "
+            f"{block.friction!r}: use solver {_alternative('friction')} (or drop friction)")
+    if excitation is not None and has_vertical(excitation) and not entry.vertical:
+        raise ModelNotSupported(
+            f"solver {name!r} takes horizontal floor motion only; the excitation has a vertical component: "
+            f"use solver {_alternative('vertical')} (or drop the vertical motion)")
+    if excitation is None and not entry.free_rocking:
+        raise ModelNotSupported(f"solver {name!r} does not model free rocking (excitation None)")
+    if not entry.restitution and (block.restitution is not None or block.restitution_factor != 1.0):
+        given = (f"restitution = {block.restitution!r}" if block.restitution is not None
+                 else f"restitution_factor = {block.restitution_factor!r}")
+        raise ModelNotSupported(
+            f"solver {name!r} reproduces Housner's impact (e = e_H = {block.e_R:.6g}) and no other: block "
+            f"{block.name or '<unnamed>'} has {given}; build it with restitution_factor=1.0 and no restitution")
+
+
+def _alternative(capability: str) -> str:
+    """The first solver that has ``capability``, quoted, for a message."""
+    return repr(solver_names(**{capability: True})[0])
+
+
+__all__ = ["EXCITATION_KINDS", "METHODS", "MODELS", "SOLVERS", "SolverInfo", "capabilities", "check_model", "info",
+           "solver_names"]

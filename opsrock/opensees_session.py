@@ -17,7 +17,12 @@ import sys
 import tempfile
 from typing import Any, Iterator
 
-import openseespy.opensees as ops
+from opsrock._blas import require_blas
+
+# OpenSeesPy's Linux wheel needs libblas.so.3: say so plainly, before its bare RuntimeError
+require_blas()
+
+import openseespy.opensees as ops  # noqa: E402
 
 # --- OpenSees' console output: to a log file, never to the user's terminal -------------------
 #: Per process: the log file OpenSees writes to (``logFile -noEcho``) and the failed steps

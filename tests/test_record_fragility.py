@@ -18,7 +18,8 @@ import pandas as pd
 import pytest
 from scipy import special, stats
 
-from opsrock.analysis.robustness import draw_block_sets, ranking_robustness, wilson_interval
+from opsrock.analysis.robustness import draw_block_sets, ranking_robustness
+from opsrock.stats import wilson_interval
 from opsrock.fragility import fit_lognormal_mle
 from opsrock.fragility.ida import outcomes, resurrection_summary, resurrections
 from opsrock.fragility.logistic import fit_logistic

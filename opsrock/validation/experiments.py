@@ -36,6 +36,7 @@ import numpy as np
 import pandas as pd
 
 from opsrock.block import Block
+from opsrock.stats import cluster_resamples, percentile_interval
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.published.colombo_limestone import (
     DATA_FILES,
@@ -294,12 +295,10 @@ def trial_resamples(a: EventArrays, n_boot: int, seed: int) -> Iterator[EventArr
     seed : int
         Seed of :func:`numpy.random.default_rng` (no unit).
     """
-    rng = np.random.default_rng(seed)
     starts = np.concatenate([[0], np.flatnonzero(np.diff(a.trial)) + 1])
     lengths = np.diff(np.concatenate([starts, [a.trial.size]]))
     by_group = [np.flatnonzero(a.group[starts] == g) for g in range(1, N_GROUPS + 1)]
-    for _ in range(n_boot):
-        chosen = np.concatenate([rng.choice(ids, ids.size, replace=True) for ids in by_group])
+    for chosen in cluster_resamples(by_group, n_boot, seed):
         n = lengths[chosen]
         offsets = np.repeat(starts[chosen] - (np.cumsum(n) - n), n)
         yield a.take(offsets + np.arange(n.sum()), np.repeat(np.arange(chosen.size), n))
@@ -326,8 +325,7 @@ def bootstrap(a: EventArrays, stat: Callable[[EventArrays], dict], n_boot: int, 
     """
     point = stat(a)
     draws = np.array([[s[k] for k in point] for s in map(stat, trial_resamples(a, n_boot, seed))], dtype=float)
-    q = 50.0 * (1.0 - LEVEL)
-    lo, hi = np.nanpercentile(draws, [q, 100.0 - q], axis=0) if n_boot else (np.full(len(point), math.nan),) * 2
+    lo, hi = percentile_interval(draws, LEVEL, len(point))
     return {k: (float(point[k]), float(l), float(h)) for k, l, h in zip(point, lo, hi)}
 
 

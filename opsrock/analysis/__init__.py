@@ -7,5 +7,7 @@
 * :mod:`~opsrock.analysis.robustness`: is an IM ranking a property of the IMs or of the blocks?
   The paper's pulse study repeated over many seeded block sets;
 * :mod:`~opsrock.analysis.reproduce`: ``opsrock reproduce``, the paper's workflow from the validation
-  gate to the figures and the report.
+  gate to the figures and the report;
+* :mod:`~opsrock.analysis.record_report`: ``opsrock fragility``, the record fragility workflow of a record
+  campaign, from its ``cases.csv`` to the figures and the report.
 """

@@ -495,10 +495,10 @@ def _run_multifidelity(scene, args: argparse.Namespace, executor) -> int:
 
 
 def fragility(args: argparse.Namespace) -> int:
-    """``opsrock fragility``: :func:`opsrock.report.records.write_record_report` on a record campaign."""
+    """``opsrock fragility``: :func:`opsrock.analysis.record_report.write_record_report` on a record campaign."""
     from opsrock._files import output_dir, staged_folder
     from opsrock.fragility.ida import OUTCOMES
-    from opsrock.report.records import read_cases, write_record_report
+    from opsrock.analysis.record_report import read_cases, write_record_report
 
     if args.outcome not in OUTCOMES:
         raise UsageError(f"--outcome must be one of {', '.join(OUTCOMES)}; got {args.outcome!r}")
@@ -507,7 +507,7 @@ def fragility(args: argparse.Namespace) -> int:
     with staged_folder(out) as stage:  # all of the report, or nothing
         res = write_record_report(cases, stage, n_boot=args.n_boot, seed=args.seed, outcome=args.outcome,
                                   robustness_sets=args.robustness_sets, workers=args.workers, source=str(args.cases))
-    print(f"opsrock fragility: {len(res['study'].cases)} cases in {res['timings']['total_s']:.1f} s: see {out}/report.md")
+    print(f"opsrock fragility: {len(res.study.cases)} cases in {res.timings['total_s']:.1f} s: see {out}/report.md")
     return 0
 
 

@@ -3,6 +3,7 @@ it is given what the workflow (:mod:`opsrock.analysis.reproduce`) computed, and 
 
 * :mod:`~opsrock.report.paper`: ``opsrock reproduce``'s ``report.md`` and ``validation_gate.md``, the
   paper's conclusions checked one by one;
-* :mod:`~opsrock.report.records`: ``opsrock fragility``, the record fragility report;
+* :mod:`~opsrock.report.records`: ``opsrock fragility``'s ``report.md`` (the workflow:
+  :mod:`opsrock.analysis.record_report`);
 * :mod:`~opsrock.report.markdown`: Markdown tables.
 """

@@ -49,7 +49,7 @@ from opsrock.validation.experiments.constants import (
     RELEASE_RATIOS,
     SEED,
 )
-from opsrock.validation.experiments.runs import free_rocking, predict_decay
+from opsrock.validation.experiments.runs import DecayRun, free_rocking, predict_decay
 from opsrock.validation.experiments.statistics import (
     FACTOR_VARIANTS,
     Headline,
@@ -64,7 +64,7 @@ from opsrock.validation.experiments.statistics import (
 from opsrock.validation.experiments.summary import run, summarise
 
 __all__ = ["DATA_FILES", "FACTOR_VARIANTS", "MODELS", "N_BOOT", "N_BOOT_QUICK", "PAPER_FACTOR", "QUICK_GROUPS",
-           "RELEASE_RATIOS", "SEED", "EventArrays", "Headline", "analysis_arrays", "bootstrap", "data_checks",
+           "RELEASE_RATIOS", "SEED", "DecayRun", "EventArrays", "Headline", "analysis_arrays", "bootstrap", "data_checks",
            "data_file", "decay_errors", "free_rocking", "headline", "headline_stats", "interval_checks",
            "load_events", "load_trials", "measured_decay", "model_checks", "predict_decay", "run",
            "sdof_closed_form", "statistics", "summarise", "trial_resamples"]

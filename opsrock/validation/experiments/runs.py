@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -12,6 +13,38 @@ from opsrock.block import Block
 from opsrock.excitations import Record
 from opsrock.solvers import simulate
 from opsrock.validation.experiments.constants import DECAY_IMPACTS, MODELS
+
+@dataclass(frozen=True)
+class DecayRun:
+    """The free rocking of one model from rest (:func:`predict_decay`).
+
+    Parameters
+    ----------
+    ratio : numpy.ndarray
+        Angular-velocity ratio after/before of each logged impact, the first ``n_impacts`` (dimensionless);
+        empty when the run failed.
+    time : numpy.ndarray
+        Times of every logged impact of the run (s); empty when it failed.
+    e : float
+        The model's restitution ``e`` (dimensionless).
+    end_time : float
+        End of the run (s).
+    ok : bool
+        The run finished with its impacts logged.
+    reason : str
+        The solver's reason for its end.
+    wall_s : float
+        Wall time of the run (s).
+    """
+
+    ratio: np.ndarray
+    time: np.ndarray
+    e: float
+    end_time: float
+    ok: bool
+    reason: str
+    wall_s: float
+
 
 #: Sample step of the all-zero floor motion that stands for "no excitation" (s): only its length 2 dt matters.
 FREE_MOTION_DT: float = 1e-3
@@ -77,7 +110,7 @@ def model_blocks(width: float, height: float, factor: float) -> dict[str, Block]
 
 
 def predict_decay(width: float, height: float, factor: float, release_ratio: float,
-                  n_impacts: int = DECAY_IMPACTS, models: tuple[str, ...] = tuple(MODELS)) -> dict[str, dict]:
+                  n_impacts: int = DECAY_IMPACTS, models: tuple[str, ...] = tuple(MODELS)) -> dict[str, DecayRun]:
     """Free rocking of each model from rest at ``release_ratio`` alpha: the logged impacts' ratios.
 
     The SDOF runs end after about ``n_impacts`` impacts: ``sdof`` at 1.1 times the rigid body's time of
@@ -101,12 +134,12 @@ def predict_decay(width: float, height: float, factor: float, release_ratio: flo
 
     Returns
     -------
-    dict
-        ``{model: {"ratio": ndarray, "e": float, "end_time": s, "ok": bool, "reason": str, "wall_s": s}}``.
+    dict of str to DecayRun
+        The run of each model, by name.
     """
     blocks = model_blocks(width, height, factor)
     theta0 = release_ratio * blocks["sdof"].alpha
-    out: dict[str, dict] = {}
+    out: dict[str, DecayRun] = {}
     for name in models:
         solver, block = MODELS[name][0], blocks[name]
         t0 = time.perf_counter()
@@ -115,16 +148,16 @@ def predict_decay(width: float, height: float, factor: float, release_ratio: flo
             end = float(r.time[-1]) if r.ok else math.nan
         else:
             twin = next(k for k, (s, f) in MODELS.items() if s == "housner" and f == MODELS[name][1])
-            t_rigid = out[twin]["time"] if twin in out else _rigid_run(block, theta0, n_impacts).impacts.time
-            if solver == "sdof" or "sdof" not in out or not out["sdof"]["ok"]:
+            t_rigid = out[twin].time if twin in out else _rigid_run(block, theta0, n_impacts).impacts.time
+            if solver == "sdof" or "sdof" not in out or not out["sdof"].ok:
                 end = 1.1 * float(t_rigid[min(n_impacts, t_rigid.size) - 1]) + 0.5
             else:
-                t = out["sdof"]["time"]
+                t = out["sdof"].time
                 k = min(t.size, n_impacts + 1)
                 end = float(t[k - 1] + 0.5 * (t[k - 1] - t[k - 2]))
             r = free_rocking(block, solver, theta0, end)
         ok = bool(r.ok and r.impacts is not None)
-        out[name] = {"ratio": r.impacts.velocity_ratio[:n_impacts] if ok else np.array([]),
-                     "time": r.impacts.time if ok else np.array([]), "e": block.e, "end_time": end,
-                     "ok": ok, "reason": r.reason, "wall_s": time.perf_counter() - t0}
+        out[name] = DecayRun(ratio=r.impacts.velocity_ratio[:n_impacts] if ok else np.array([]),
+                             time=r.impacts.time if ok else np.array([]), e=block.e, end_time=end, ok=ok,
+                             reason=r.reason, wall_s=time.perf_counter() - t0)
     return out

@@ -121,8 +121,8 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     est = bootstrap(a, statistics, N_BOOT_QUICK if quick else N_BOOT)
     checks += interval_checks(est)
     tables = restitution_outputs(a, est)
-    tables.update(decay_outputs(a, events, est[("factor", "median all impacts")][0], quick))
-    geometry = tables.pop("_geometry")
+    decay, geometry = decay_outputs(a, events, est[("factor", "median all impacts")][0], quick)
+    tables.update(decay)
     checks += model_checks(tables["decay_predicted"], tables["decay_runs"])
     for name in ("decay_predicted", "decay_errors"):  # the rigid body's rows repeat at every release angle
         t = tables[name]

@@ -80,18 +80,18 @@ def predicted_table(preds: dict, geometry: dict[int, tuple[float, float]]) -> tu
     for (g, rel), models in preds.items():
         b, h = geometry[g]
         for name, p in models.items():
-            block = Block(b, h, restitution=p["e"])
-            n = p["ratio"].size
+            block = Block(b, h, restitution=p.e)
+            n = p.ratio.size
             if MODELS[name][0] == "housner":
-                cf = p["e"] ** np.arange(1, n + 1)
+                cf = p.e ** np.arange(1, n + 1)
             else:
                 cf = sdof_closed_form(block, rel * block.alpha, n)
-            prod = np.cumprod(p["ratio"])
-            rows += [{"group": g, "H_m": h, "model": name, "release_ratio": rel, "e": p["e"], "impact": k + 1,
-                      "ratio": p["ratio"][k], "product": prod[k], "closed_form": cf[k]} for k in range(n)]
-            runs.append({"group": g, "H_m": h, "model": name, "release_ratio": rel, "e": p["e"], "ok": p["ok"],
-                         "reason": p["reason"], "end_time_s": p["end_time"], "n_impacts": n,
-                         "n_impacts_run": int(p["time"].size), "wall_s": p["wall_s"]})
+            prod = np.cumprod(p.ratio)
+            rows += [{"group": g, "H_m": h, "model": name, "release_ratio": rel, "e": p.e, "impact": k + 1,
+                      "ratio": p.ratio[k], "product": prod[k], "closed_form": cf[k]} for k in range(n)]
+            runs.append({"group": g, "H_m": h, "model": name, "release_ratio": rel, "e": p.e, "ok": p.ok,
+                         "reason": p.reason, "end_time_s": p.end_time, "n_impacts": n,
+                         "n_impacts_run": int(p.time.size), "wall_s": p.wall_s})
     return pd.DataFrame(rows), pd.DataFrame(runs)
 
 
@@ -114,8 +114,10 @@ def restitution_outputs(a: EventArrays, est: dict) -> dict[str, pd.DataFrame]:
             "factor": interval_table(est, "factor", FACTOR_VARIANTS), "drift": interval_table(est, "drift")}
 
 
-def decay_outputs(a: EventArrays, events: pd.DataFrame, factor: float, quick: bool) -> dict[str, pd.DataFrame]:
-    """The tables of part 2: measured and predicted decay, the runs, the errors.
+def decay_outputs(a: EventArrays, events: pd.DataFrame, factor: float,
+                  quick: bool) -> tuple[dict[str, pd.DataFrame], dict[int, tuple[float, float]]]:
+    """The tables of part 2: measured and predicted decay, the runs, the errors; and the geometry
+    ``{group: (B, H)}`` (m).
 
     Parameters
     ----------
@@ -134,5 +136,5 @@ def decay_outputs(a: EventArrays, events: pd.DataFrame, factor: float, quick: bo
     preds = {(g, rel): predict_decay(*geometry[g], factor, rel) for g in groups for rel in releases}
     predicted, runs = predicted_table(preds, geometry)
     measured = measured_decay(a)
-    return {"decay_measured": measured, "decay_predicted": predicted, "decay_runs": runs,
-            "decay_errors": decay_errors(measured, predicted), "_geometry": geometry}
+    return ({"decay_measured": measured, "decay_predicted": predicted, "decay_runs": runs,
+             "decay_errors": decay_errors(measured, predicted)}, geometry)

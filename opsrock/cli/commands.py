@@ -416,6 +416,7 @@ def _records_plot(args) -> int:
     from opsrock._files import output_file
     from opsrock.errors import OpsrockError
     from opsrock.excitations.readers import read_record
+    from opsrock.analysis.record_curves import record_curves
     from opsrock.plots.records import plot_record
 
     out = output_file("--out", args.out, ".png")
@@ -430,7 +431,7 @@ def _records_plot(args) -> int:
             floor = floor_motion(rec, ShearBuilding("building", args.building_period, args.storeys))
         except OpsrockError as exc:
             raise UsageError(f"building filter: {exc}") from None
-    plot_record(rec, out, floor=floor)
+    plot_record(record_curves(rec), out, floor=None if floor is None else record_curves(floor))
     print(f"wrote {out}")
     return 0
 

@@ -20,7 +20,8 @@ FIGURES = ["fig3", "fig4", "fig6a", "fig6b", "fig8", "fig9", "fig10", "fig11", "
 @pytest.mark.opensees
 def test_reproduce_end_to_end_on_tiny_scene(tmp_path):
     out = tmp_path / "results"
-    res = rp.reproduce(out, paper_scene=TINY, spectrum_scene=TINY, workers=2, progress=False, robustness_sets=4)
+    res = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=TINY, robustness_sets=4), workers=2,
+                       progress=False)
     assert not res.stopped and res.gate.passed
     cases = pd.read_csv(out / "cases.csv")
     # tiny scene: 2 blocks x 3 x 3 pulses; its PFA/(g tan alpha) = 0.8 row cannot uplift (Eq. 4)
@@ -50,7 +51,8 @@ def test_reproduce_end_to_end_on_tiny_scene(tmp_path):
     # no temporary files left behind
     assert not list(out.rglob("*.tmp*"))
     # a second run reuses every stored case
-    again = rp.reproduce(out, paper_scene=TINY, spectrum_scene=None, workers=1, progress=False, robustness_sets=0)
+    again = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=None, robustness_sets=0), workers=1,
+                         progress=False)
     assert again.campaign.n_reused == 18 and again.campaign.n_computed == 0
 
 
@@ -65,7 +67,8 @@ def _failing_gate(ignore: bool = False, workers=None) -> rp.GateReport:
 def test_failed_gate_stops_before_any_fragility_output(tmp_path, monkeypatch):
     monkeypatch.setattr(rp, "validation_gate", _failing_gate)
     out = tmp_path / "results"
-    res = rp.reproduce(out, paper_scene=TINY, spectrum_scene=None, progress=False, robustness_sets=0)
+    res = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=None, robustness_sets=0),
+                       progress=False)
     assert res.stopped
     text = (out / "validation_gate.md").read_text()
     assert text.splitlines()[0].startswith("Validation gate FAILED")
@@ -78,8 +81,8 @@ def test_overridden_gate_is_stated_on_the_first_line_of_the_report(tmp_path, mon
     monkeypatch.setattr(rp, "validation_gate", _failing_gate)
     monkeypatch.setattr(rp, "make_figures", lambda *a, **k: {})  # figures are the end-to-end test's job
     out = tmp_path / "results"
-    res = rp.reproduce(out, paper_scene=TINY, spectrum_scene=None, ignore_gate=True, progress=False, workers=1,
-                       robustness_sets=0)
+    res = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=None, ignore_gate=True,
+                                                 robustness_sets=0), progress=False, workers=1)
     assert not res.stopped
     first = (out / "report.md").read_text().splitlines()[0]
     assert first.startswith("WARNING: validation gate FAILED and was OVERRIDDEN")

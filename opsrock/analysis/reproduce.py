@@ -111,11 +111,37 @@ def validation_gate(ignore: bool = False, workers: int | None = None) -> GateRep
                       summary=agreement, disagreements=bad)
 
 
-def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: int | None = None,
-              ignore_gate: bool = False, force: bool = False, progress: bool = True,
-              paper_scene: str | os.PathLike = PAPER_SCENE,
-              spectrum_scene: str | os.PathLike | None = SPECTRUM_SCENE,
-              robustness_sets: int = ROBUSTNESS_SETS, seed: int = 0) -> Reproduction:
+@dataclass(frozen=True)
+class ReproduceSettings:
+    """What :func:`reproduce` runs.
+
+    Parameters
+    ----------
+    solver : str
+        Solver of the campaign (default the OpenSees model, as in the paper).
+    ignore_gate : bool
+        Go on when the validation gate fails (the report says so on its first line).
+    force : bool
+        Discard stored campaign results of other settings in the output folder.
+    paper_scene, spectrum_scene : path
+        Scenes of the campaign and of the dense spectrum (None skips the spectrum).
+    robustness_sets : int
+        Block sets of the ranking-robustness study (count; 0 skips it); ``robustness.csv``.
+    seed : int
+        Seed of the block-set draws (no unit).
+    """
+
+    solver: str = "opensees"
+    ignore_gate: bool = False
+    force: bool = False
+    paper_scene: str | os.PathLike = PAPER_SCENE
+    spectrum_scene: str | os.PathLike | None = SPECTRUM_SCENE
+    robustness_sets: int = ROBUSTNESS_SETS
+    seed: int = 0
+
+
+def reproduce(out_dir: str | os.PathLike, settings: ReproduceSettings | None = None, *, workers: int | None = None,
+              progress: bool = True) -> Reproduction:
     """Run the whole pipeline into ``out_dir``; return what was computed and written.
 
     Parameters
@@ -123,49 +149,41 @@ def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: 
     out_dir : path
         Output folder (created): ``cases.csv``, ``table2.csv/.md``, ``table3.csv/.md``,
         ``figures/``, ``report.md``, ``validation_gate.md``.
-    solver : str
-        Solver of the campaign (default the OpenSees model, as in the paper).
+    settings : ReproduceSettings, optional
+        What to run (default: the paper's workflow with the OpenSees model).
     workers : int, optional
         Local worker processes (default all cores).
-    ignore_gate : bool
-        Go on when the validation gate fails (the report says so on its first line).
-    force : bool
-        Discard stored campaign results of other settings in ``out_dir``.
     progress : bool
         Progress bars on stderr.
-    paper_scene, spectrum_scene : path
-        Scenes of the campaign and of the dense spectrum (None skips the spectrum).
-    robustness_sets : int
-        Block sets of the ranking-robustness study (0 skips it); ``robustness.csv``.
-    seed : int
-        Seed of the block-set draws.
     """
     # pandas, scipy and the solvers only when the pipeline runs (the command line's parser reads this module)
     from opsrock.report.paper import PaperReport, gate_text, write_report
     from opsrock.validation.experiments import headline
 
     t_start = time.perf_counter()
+    st = settings or ReproduceSettings()
+    solver = st.solver
     out = Path(out_dir)
     (out / "figures").mkdir(parents=True, exist_ok=True)
     timer = _Timings()
     with timer("validation_gate_s"):
-        gate = validation_gate(ignore=ignore_gate, workers=workers) if solver == "opensees" else None
+        gate = validation_gate(ignore=st.ignore_gate, workers=workers) if solver == "opensees" else None
     if gate is not None:
         atomic_text(out / "validation_gate.md", gate_text(gate))
-        if not gate.passed and not ignore_gate:
+        if not gate.passed and not st.ignore_gate:
             return Reproduction(gate=gate, stopped=True, timings=timer.seconds)
     with timer("campaign_s"):
-        scene, summary, cases = _campaign(out, paper_scene, solver, workers, force, progress)
+        scene, summary, cases = _campaign(out, st.paper_scene, solver, workers, st.force, progress)
     spectrum = None
-    if spectrum_scene is not None:
+    if st.spectrum_scene is not None:
         with timer("spectrum_s"):
-            spectrum = _spectrum(out, spectrum_scene, workers)
+            spectrum = _spectrum(out, st.spectrum_scene, workers)
     with timer("fragility_s"):
         analysis, t2, t3, ranking = _fragility(out, cases, scene.pfv_convention, workers)
     robustness = None
-    if robustness_sets:
+    if st.robustness_sets:
         with timer("robustness_s"):
-            robustness = _robustness(out, robustness_sets, seed, workers, progress)
+            robustness = _robustness(out, st.robustness_sets, st.seed, workers, progress)
     with timer("figures_s"):
         figures = make_figures(cases, analysis, out / "figures", spectrum=spectrum, solver=solver, scene=scene,
                                workers=workers)

@@ -515,6 +515,7 @@ def fragility(args: argparse.Namespace) -> int:
 def reproduce(args: argparse.Namespace) -> int:
     """``opsrock reproduce``: :func:`opsrock.analysis.reproduce.reproduce`, the paper's workflow."""
     from opsrock._files import output_dir
+    from opsrock.analysis.reproduce import ReproduceSettings
     from opsrock.analysis.reproduce import reproduce as run_pipeline
     from opsrock.report.paper import gate_text
     from opsrock.solvers import SOLVERS
@@ -522,8 +523,9 @@ def reproduce(args: argparse.Namespace) -> int:
     if args.solver not in SOLVERS:
         raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
     output_dir("--out", args.out)
-    result = run_pipeline(args.out, solver=args.solver, workers=args.workers, ignore_gate=args.ignore_gate,
-                          force=args.force, progress=not args.no_progress, robustness_sets=args.robustness_sets)
+    settings = ReproduceSettings(solver=args.solver, ignore_gate=args.ignore_gate, force=args.force,
+                                 robustness_sets=args.robustness_sets)
+    result = run_pipeline(args.out, settings, workers=args.workers, progress=not args.no_progress)
     if result.stopped:
         print(gate_text(result.gate).splitlines()[0] + f" (see {Path(args.out) / 'validation_gate.md'})", file=sys.stderr)
         print(gate_text(result.gate), file=sys.stderr)

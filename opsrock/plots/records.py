@@ -3,15 +3,18 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from opsrock.analysis.record_curves import RecordCurves  # noqa: E402
 from opsrock.constants import G  # noqa: E402
 from opsrock.plots import save_figure  # noqa: E402
+
+if TYPE_CHECKING:
+    from opsrock.analysis.record_curves import RecordCurves
 
 
 def plot_record(record: RecordCurves, path: str | Path, *, floor: RecordCurves | None = None) -> Path:

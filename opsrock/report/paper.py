@@ -7,15 +7,17 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import pandas as pd
 
 from opsrock._files import atomic_text
+from opsrock.constants import DEFAULT_RESTITUTION_FACTOR as PAPER_FACTOR
 from opsrock.published.liu_huang_liu_2023 import TABLE2, TABLE3
 from opsrock.report.markdown import markdown_table
-from opsrock.validation.experiments.constants import PAPER_FACTOR
-from opsrock.validation.experiments.statistics import Headline
+
+if TYPE_CHECKING:
+    from opsrock.validation.experiments import Headline
 
 #: IMs whose overturning threshold is nearly geometry-free, so their dimensionless medians can
 #: be compared with the paper's even though its blocks are not listed (docs/modelling.md section 3).

@@ -77,9 +77,9 @@ def run(quick: bool = False) -> dict:
     """Time the campaign, the record report and (unless ``quick``) the reproduction, in one run."""
     import os
 
-    from opsrock.campaign import run_campaign
     from opsrock.analysis.record_report import read_cases, write_record_report
     from opsrock.analysis.reproduce import reproduce
+    from opsrock.campaign import run_campaign
 
     with tempfile.TemporaryDirectory(prefix="opsrock-bench-") as tmp:
         tmp = Path(tmp)

@@ -414,9 +414,9 @@ def _records_show(args) -> int:
 
 def _records_plot(args) -> int:
     from opsrock._files import output_file
+    from opsrock.analysis.record_curves import record_curves
     from opsrock.errors import OpsrockError
     from opsrock.excitations.readers import read_record
-    from opsrock.analysis.record_curves import record_curves
     from opsrock.plots.records import plot_record
 
     out = output_file("--out", args.out, ".png")
@@ -498,8 +498,8 @@ def _run_multifidelity(scene, args: argparse.Namespace, executor) -> int:
 def fragility(args: argparse.Namespace) -> int:
     """``opsrock fragility``: :func:`opsrock.analysis.record_report.write_record_report` on a record campaign."""
     from opsrock._files import output_dir, staged_folder
-    from opsrock.fragility.ida import OUTCOMES
     from opsrock.analysis.record_report import read_cases, write_record_report
+    from opsrock.fragility.ida import OUTCOMES
 
     if args.outcome not in OUTCOMES:
         raise UsageError(f"--outcome must be one of {', '.join(OUTCOMES)}; got {args.outcome!r}")
@@ -577,7 +577,7 @@ def sliding_map(args: argparse.Namespace) -> int:
     return 0
 
 
-#: Keyword arguments of :func:`opsrock.contents.run_contents_study` -> the option that gives them.
+#: Fields of :class:`opsrock.contents.ContentsDesign` (and ``records``, named by the study's check) -> the option.
 _CONTENTS_OPTIONS = {"period": "--period", "storeys": "--storeys", "damping": "--damping", "floors": "--floors",
                      "record_set": "--record-set", "records": "--records", "items": "--items",
                      "variants": "--variants", "friction": "--friction"}

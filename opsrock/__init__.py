@@ -3,19 +3,17 @@
 Reproduces the OpenSees workflow of Liu, Huang & Liu (2023), *Seismic Overturning Fragility
 Analysis for Rigid Blocks Subjected to Floor Motions*, Sustainability 15, 4945, and checks it
 against independent scipy solvers and closed forms.
+
+OpenSeesPy (and the system BLAS its Linux wheel links against) is loaded when the OpenSees model is
+first used (:mod:`opsrock.opensees_session`), so everything else works on a machine without it.
 """
 
-from opsrock._blas import require_blas as _require_blas
-
-# OpenSeesPy's Linux wheel needs libblas.so.3; say so plainly instead of its bare RuntimeError.
-_require_blas()
-
-from opsrock.block import Block  # noqa: E402
-from opsrock.constants import G  # noqa: E402
-from opsrock.excitations import OneSinePulse, Record  # noqa: E402
-from opsrock.model import SDOFModel  # noqa: E402
-from opsrock.result import RockingResult  # noqa: E402
-from opsrock.solvers import SOLVERS, simulate  # noqa: E402
+from opsrock.block import Block
+from opsrock.constants import G
+from opsrock.excitations import OneSinePulse, Record
+from opsrock.model import SDOFModel
+from opsrock.result import RockingResult
+from opsrock.solvers import SOLVERS, simulate
 
 __all__ = [
     "Block",

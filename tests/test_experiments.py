@@ -91,8 +91,8 @@ def test_rigid_body_decay_is_e_to_the_n():
     out = ex.predict_decay(b, h, 0.99, 0.5, n_impacts=20, models=("rigid e_R", "rigid fitted"))
     for name, e in (("rigid e_R", e_r), ("rigid fitted", 0.99 * e_r)):
         p = out[name]
-        assert p["ok"] and p["ratio"].size == 20
-        assert np.allclose(np.cumprod(p["ratio"]), e ** np.arange(1, 21), rtol=1e-9, atol=0)
+        assert p.ok and p.ratio.size == 20, p.reason
+        assert np.allclose(np.cumprod(p.ratio), e ** np.arange(1, 21), rtol=1e-9, atol=0)
 
 
 @pytest.mark.opensees

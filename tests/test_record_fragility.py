@@ -18,13 +18,14 @@ import pandas as pd
 import pytest
 from scipy import special, stats
 
-from opsrock.analysis.robustness import draw_block_sets, ranking_robustness, wilson_interval
+from opsrock.analysis.robustness import draw_block_sets, ranking_robustness
 from opsrock.fragility import fit_lognormal_mle
 from opsrock.fragility.ida import outcomes, resurrection_summary, resurrections
 from opsrock.fragility.logistic import fit_logistic
 from opsrock.fragility.pelicun_export import ComponentFragility, read_pelicun_csv, write_pelicun_csv
 from opsrock.fragility.record_study import RecordStudySettings, record_fragility
 from opsrock.fragility.sufficiency import sufficiency
+from opsrock.stats import wilson_interval
 
 OPSROCK = Path(sys.executable).parent / "opsrock"
 

@@ -7,7 +7,9 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from opsrock.report import reproduce as rp
+from opsrock.analysis import reproduce as rp
+from opsrock.report.paper import gate_text
+from opsrock.validation.sdof_agreement import Agreement
 
 TINY = Path(__file__).resolve().parents[1] / "opsrock" / "data" / "scenes" / "tiny.toml"
 
@@ -18,8 +20,9 @@ FIGURES = ["fig3", "fig4", "fig6a", "fig6b", "fig8", "fig9", "fig10", "fig11", "
 @pytest.mark.opensees
 def test_reproduce_end_to_end_on_tiny_scene(tmp_path):
     out = tmp_path / "results"
-    res = rp.reproduce(out, paper_scene=TINY, spectrum_scene=TINY, workers=2, progress=False, robustness_sets=4)
-    assert not res["stopped"] and res["gate"].passed
+    res = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=TINY, robustness_sets=4), workers=2,
+                       progress=False)
+    assert not res.stopped and res.gate.passed
     cases = pd.read_csv(out / "cases.csv")
     # tiny scene: 2 blocks x 3 x 3 pulses; its PFA/(g tan alpha) = 0.8 row cannot uplift (Eq. 4)
     assert len(cases) == 18
@@ -31,7 +34,7 @@ def test_reproduce_end_to_end_on_tiny_scene(tmp_path):
     assert {"im", "strip_factor", "mu", "beta", "cv_percent", "mle_mu", "mle_beta"} <= set(t3.columns)
     assert sorted(t3["strip_factor"].unique()) == [0.5, 1.0, 2.0]
     for key in FIGURES:
-        path = res["figures"][key]
+        path = res.figures[key]
         assert path.exists() and path.stat().st_size > 5_000, key
     report = (out / "report.md").read_text()
     assert report.startswith("# Reproduction")
@@ -48,13 +51,14 @@ def test_reproduce_end_to_end_on_tiny_scene(tmp_path):
     # no temporary files left behind
     assert not list(out.rglob("*.tmp*"))
     # a second run reuses every stored case
-    again = rp.reproduce(out, paper_scene=TINY, spectrum_scene=None, workers=1, progress=False, robustness_sets=0)
-    assert again["campaign"].n_reused == 18 and again["campaign"].n_computed == 0
+    again = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=None, robustness_sets=0), workers=1,
+                         progress=False)
+    assert again.campaign.n_reused == 18 and again.campaign.n_computed == 0
 
 
 def _failing_gate(ignore: bool = False, workers=None) -> rp.GateReport:
-    summary = {"n_cases": 24, "n_failed": 0, "n_safe_both": 12, "theta_within_rate": 0.5, "verdict_rate": 0.9,
-               "max_dtheta": 0.2, "p99_dtheta": 0.2, "passed": False}
+    summary = Agreement(n_cases=24, n_failed=0, n_safe_both=12, theta_within_rate=0.5, verdict_rate=0.9,
+                        max_dtheta=0.2, p99_dtheta=0.2, passed=False)
     bad = pd.DataFrame([{"case_id": "bookcase/f02/a04", "theta_max_over_alpha_a": 1.2, "theta_max_over_alpha_b": 8.7,
                          "verdict_a": "safe", "verdict_b": "overturned", "pfa_change_to_flip_reference": -0.01}])
     return rp.GateReport(passed=False, overridden=ignore, summary=summary, disagreements=bad)
@@ -63,8 +67,9 @@ def _failing_gate(ignore: bool = False, workers=None) -> rp.GateReport:
 def test_failed_gate_stops_before_any_fragility_output(tmp_path, monkeypatch):
     monkeypatch.setattr(rp, "validation_gate", _failing_gate)
     out = tmp_path / "results"
-    res = rp.reproduce(out, paper_scene=TINY, spectrum_scene=None, progress=False, robustness_sets=0)
-    assert res["stopped"]
+    res = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=None, robustness_sets=0),
+                       progress=False)
+    assert res.stopped
     text = (out / "validation_gate.md").read_text()
     assert text.splitlines()[0].startswith("Validation gate FAILED")
     assert "bookcase/f02/a04" in text
@@ -76,9 +81,9 @@ def test_overridden_gate_is_stated_on_the_first_line_of_the_report(tmp_path, mon
     monkeypatch.setattr(rp, "validation_gate", _failing_gate)
     monkeypatch.setattr(rp, "make_figures", lambda *a, **k: {})  # figures are the end-to-end test's job
     out = tmp_path / "results"
-    res = rp.reproduce(out, paper_scene=TINY, spectrum_scene=None, ignore_gate=True, progress=False, workers=1,
-                       robustness_sets=0)
-    assert not res["stopped"]
+    res = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=None, ignore_gate=True,
+                                                 robustness_sets=0), progress=False, workers=1)
+    assert not res.stopped
     first = (out / "report.md").read_text().splitlines()[0]
     assert first.startswith("WARNING: validation gate FAILED and was OVERRIDDEN")
 

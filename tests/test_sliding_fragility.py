@@ -121,7 +121,7 @@ def _friction_campaign(d, solver: str = "friction"):
 
 @pytest.fixture(scope="module")
 def friction_cases(tmp_path_factory) -> pd.DataFrame:
-    from opsrock.report.records import read_cases
+    from opsrock.analysis.record_report import read_cases
 
     return read_cases(_friction_campaign(tmp_path_factory.mktemp("friction")))
 
@@ -129,7 +129,7 @@ def friction_cases(tmp_path_factory) -> pd.DataFrame:
 def test_the_report_says_which_solver_and_why_auto_chose_it(tmp_path):
     # a scene with solver = "auto" and blocks with friction: the need is answered by the block with friction,
     # and the report says so from the campaign's manifest; a table without its manifest names the solver only
-    from opsrock.report.records import read_cases, write_record_report
+    from opsrock.analysis.record_report import read_cases, write_record_report
 
     out = _friction_campaign(tmp_path, solver="auto")
     write_record_report(read_cases(out), tmp_path / "rep", n_boot=5, seed=0, source=str(out))
@@ -148,15 +148,15 @@ def _files(folder) -> set[str]:
 
 def test_fragility_report_of_a_friction_campaign_has_a_sliding_section(friction_cases, tmp_path):
     from opsrock.campaign.cases import CONTACT_COLUMNS
-    from opsrock.report.records import SLIDE_DISTANCES, write_record_report
+    from opsrock.analysis.record_report import SLIDE_DISTANCES, write_record_report
 
     n_boot = 15
     res = write_record_report(friction_cases, tmp_path / "with", n_boot=n_boot, seed=2)
-    assert res["sliding"] is not None
+    assert res.sliding is not None
     plain = write_record_report(friction_cases.drop(columns=list(CONTACT_COLUMNS)), tmp_path / "without",
                                 n_boot=n_boot, seed=2)
     # without the contact columns: the files of any record campaign, nothing about sliding
-    assert plain["sliding"] is None
+    assert plain.sliding is None
     assert _files(tmp_path / "with") == _files(tmp_path / "without") | {"sliding.csv", "figures/sliding.png"}
     assert "Sliding" not in (tmp_path / "without" / "report.md").read_text()
     # the overturning study is the same either way

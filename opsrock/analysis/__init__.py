@@ -5,5 +5,9 @@
 * :mod:`~opsrock.analysis.sensitivity`: how far the answer moves when the floor motion or the
   numerics move a little (the test for hypersensitive, ill-conditioned cases);
 * :mod:`~opsrock.analysis.robustness`: is an IM ranking a property of the IMs or of the blocks?
-  The paper's pulse study repeated over many seeded block sets.
+  The paper's pulse study repeated over many seeded block sets;
+* :mod:`~opsrock.analysis.reproduce`: ``opsrock reproduce``, the paper's workflow from the validation
+  gate to the figures and the report;
+* :mod:`~opsrock.analysis.record_report`: ``opsrock fragility``, the record fragility workflow of a record
+  campaign, from its ``cases.csv`` to the figures and the report.
 """

@@ -24,6 +24,7 @@ import pandas as pd
 from opsrock.block import Block
 from opsrock.intensity import IM_NAMES
 from opsrock.limits import check_count, int_at_least
+from opsrock.stats import wilson_interval
 
 #: Slenderness of freestanding furniture and equipment (rad): a tall bookcase (about 0.15) to a
 #: squat cabinet (about 0.45).
@@ -35,18 +36,6 @@ FREQ_RATIOS: tuple[float, ...] = tuple(np.linspace(0.5, 10.0, 10))
 PFA_RATIOS: tuple[float, ...] = tuple(np.linspace(1.0, 10.5, 10))
 #: Ranking criteria: column of :func:`opsrock.fragility.analysis.rank_ims` (smaller is better).
 CRITERIA: tuple[str, ...] = ("HR", "cv_percent", "beta")
-
-
-def wilson_interval(k: int, n: int, z: float = 1.959963984540054) -> tuple[float, float]:
-    """95 % (default ``z``) Wilson score interval of a proportion ``k / n``."""
-    if n <= 0:
-        return math.nan, math.nan
-    p = k / n
-    d = 1.0 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    # exact ends: at k = 0 (k = n) the lower (upper) bound is 0 (1), not a round-off residue of it
-    return (0.0 if k == 0 else max(0.0, c - h)), (1.0 if k == n else min(1.0, c + h))
 
 
 def draw_block_sets(n_sets: int, seed: int, per_set: int = 4) -> list[list[Block]]:

@@ -3,8 +3,8 @@
 A record campaign of the shipped blocks (``opsrock/data/blocks.toml``) x the 44 FEMA P695 far-field
 components x six floors (floors 2 and roof of a 3-storey building, T_1 = 0.45 s; floors 2, 4, 6 and roof of
 an 8-storey one, T_1 = 1.0 s) x 12 IDA levels = 12,672 cases, solved by ``housner_fast``; then
-:func:`opsrock.report.records.write_record_report` on it with the command's defaults (200 record resamples,
-seed 0), and :func:`opsrock.report.reproduce.reproduce` (``make reproduce``'s work) into a fresh folder.
+:func:`opsrock.analysis.record_report.write_record_report` on it with the command's defaults (200 record resamples,
+seed 0), and :func:`opsrock.analysis.reproduce.reproduce` (``make reproduce``'s work) into a fresh folder.
 
 The ratio that does not depend on the machine's load is measured in this run: the report's wall time over
 the campaign's (the solving). For scale, the numbers measured before the post-processing was reworked, on
@@ -77,9 +77,9 @@ def run(quick: bool = False) -> dict:
     """Time the campaign, the record report and (unless ``quick``) the reproduction, in one run."""
     import os
 
+    from opsrock.analysis.record_report import read_cases, write_record_report
+    from opsrock.analysis.reproduce import reproduce
     from opsrock.campaign import run_campaign
-    from opsrock.report.records import read_cases, write_record_report
-    from opsrock.report.reproduce import reproduce
 
     with tempfile.TemporaryDirectory(prefix="opsrock-bench-") as tmp:
         tmp = Path(tmp)

@@ -626,7 +626,7 @@ def run_multifidelity(
 
 def _summary(selection: Selection, rule: EscalationRule, screen, runner: _Expensive, table: list,
              audit: tuple[int, int, tuple[str, ...]], out: Path, times: tuple[float, float, float]):
-    from opsrock.analysis.robustness import wilson_interval
+    from opsrock.stats import wilson_interval
 
     compared, agree, differ = audit
     n_esc, n_aud = len(selection.escalated), len(selection.audited)

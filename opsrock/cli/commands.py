@@ -414,6 +414,7 @@ def _records_show(args) -> int:
 
 def _records_plot(args) -> int:
     from opsrock._files import output_file
+    from opsrock.analysis.record_curves import record_curves
     from opsrock.errors import OpsrockError
     from opsrock.excitations.readers import read_record
     from opsrock.plots.records import plot_record
@@ -430,7 +431,7 @@ def _records_plot(args) -> int:
             floor = floor_motion(rec, ShearBuilding("building", args.building_period, args.storeys))
         except OpsrockError as exc:
             raise UsageError(f"building filter: {exc}") from None
-    plot_record(rec, out, floor=floor)
+    plot_record(record_curves(rec), out, floor=None if floor is None else record_curves(floor))
     print(f"wrote {out}")
     return 0
 
@@ -495,10 +496,10 @@ def _run_multifidelity(scene, args: argparse.Namespace, executor) -> int:
 
 
 def fragility(args: argparse.Namespace) -> int:
-    """``opsrock fragility``: :func:`opsrock.report.records.write_record_report` on a record campaign."""
+    """``opsrock fragility``: :func:`opsrock.analysis.record_report.write_record_report` on a record campaign."""
     from opsrock._files import output_dir, staged_folder
+    from opsrock.analysis.record_report import read_cases, write_record_report
     from opsrock.fragility.ida import OUTCOMES
-    from opsrock.report.records import read_cases, write_record_report
 
     if args.outcome not in OUTCOMES:
         raise UsageError(f"--outcome must be one of {', '.join(OUTCOMES)}; got {args.outcome!r}")
@@ -507,26 +508,29 @@ def fragility(args: argparse.Namespace) -> int:
     with staged_folder(out) as stage:  # all of the report, or nothing
         res = write_record_report(cases, stage, n_boot=args.n_boot, seed=args.seed, outcome=args.outcome,
                                   robustness_sets=args.robustness_sets, workers=args.workers, source=str(args.cases))
-    print(f"opsrock fragility: {len(res['study'].cases)} cases in {res['timings']['total_s']:.1f} s: see {out}/report.md")
+    print(f"opsrock fragility: {len(res.study.cases)} cases in {res.timings['total_s']:.1f} s: see {out}/report.md")
     return 0
 
 
 def reproduce(args: argparse.Namespace) -> int:
-    """``opsrock reproduce``: :func:`opsrock.report.reproduce.reproduce`, the paper's workflow."""
+    """``opsrock reproduce``: :func:`opsrock.analysis.reproduce.reproduce`, the paper's workflow."""
     from opsrock._files import output_dir
-    from opsrock.report.reproduce import reproduce as run_pipeline
+    from opsrock.analysis.reproduce import ReproduceSettings
+    from opsrock.analysis.reproduce import reproduce as run_pipeline
+    from opsrock.report.paper import gate_text
     from opsrock.solvers import SOLVERS
 
     if args.solver not in SOLVERS:
         raise UsageError(f"--solver must be one of {', '.join(SOLVERS)}; got {args.solver!r}")
     output_dir("--out", args.out)
-    result = run_pipeline(args.out, solver=args.solver, workers=args.workers, ignore_gate=args.ignore_gate,
-                          force=args.force, progress=not args.no_progress, robustness_sets=args.robustness_sets)
-    if result["stopped"]:
-        print(result["gate"].text().splitlines()[0] + f" (see {Path(args.out) / 'validation_gate.md'})", file=sys.stderr)
-        print(result["gate"].text(), file=sys.stderr)
+    settings = ReproduceSettings(solver=args.solver, ignore_gate=args.ignore_gate, force=args.force,
+                                 robustness_sets=args.robustness_sets)
+    result = run_pipeline(args.out, settings, workers=args.workers, progress=not args.no_progress)
+    if result.stopped:
+        print(gate_text(result.gate).splitlines()[0] + f" (see {Path(args.out) / 'validation_gate.md'})", file=sys.stderr)
+        print(gate_text(result.gate), file=sys.stderr)
         return EXIT_FAILED
-    t = result["timings"]
+    t = result.timings
     print(f"reproduced into {args.out}/ in {t['total_s']:.1f} s (gate {t['validation_gate_s']:.1f} s, "
           f"campaign {t['campaign_s']:.1f} s, spectrum {t.get('spectrum_s', 0):.1f} s, "
           f"fragility {t['fragility_s']:.1f} s, robustness {t.get('robustness_s', 0):.1f} s, "
@@ -573,7 +577,7 @@ def sliding_map(args: argparse.Namespace) -> int:
     return 0
 
 
-#: Keyword arguments of :func:`opsrock.contents.run_contents_study` -> the option that gives them.
+#: Fields of :class:`opsrock.contents.ContentsDesign` (and ``records``, named by the study's check) -> the option.
 _CONTENTS_OPTIONS = {"period": "--period", "storeys": "--storeys", "damping": "--damping", "floors": "--floors",
                      "record_set": "--record-set", "records": "--records", "items": "--items",
                      "variants": "--variants", "friction": "--friction"}
@@ -593,15 +597,16 @@ def contents(args: argparse.Namespace) -> int:
     if args.store is not None:
         output_dir("--store", args.store)
     floors = tuple(int(f) if f.isdigit() else f for f in _comma_list(args.floors))
-    from opsrock.contents import run_contents_study
+    from opsrock.contents import SWEEP_BUILDINGS, ContentsDesign, run_contents_study
 
     try:
-        res = run_contents_study(args.out, period=args.period, storeys=args.storeys, damping=args.damping,
-                                 floors=floors, record_set=args.record_set, records=_comma_list(args.records),
-                                 items=_comma_list(args.items), variants=_comma_list(args.variants),
-                                 friction=args.friction, sweep=not args.no_sweep, n_boot=args.n_boot, seed=args.seed,
-                                 quick=args.quick, workers=args.workers, progress=not args.no_progress,
-                                 force=args.force, store_dir=args.store)
+        design = ContentsDesign(period=args.period, storeys=args.storeys, damping=args.damping, floors=floors,
+                                record_set=args.record_set, names=_comma_list(args.records),
+                                items=_comma_list(args.items), variants=_comma_list(args.variants),
+                                friction=args.friction, sweep=() if args.no_sweep else SWEEP_BUILDINGS,
+                                n_boot=args.n_boot, seed=args.seed)
+        res = run_contents_study(design, args.out, quick=args.quick, workers=args.workers,
+                                 progress=not args.no_progress, force=args.force, store_dir=args.store)
     except InputError as exc:  # the library names its keyword argument first: name the option instead
         text = str(exc)
         key = next((k for k in sorted(_CONTENTS_OPTIONS, key=len, reverse=True) if text.startswith(k)), None)
@@ -610,9 +615,9 @@ def contents(args: argparse.Namespace) -> int:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)
         return 130
-    t, (lo, hi) = res["timings"], res["ratio_range"] or (math.nan, math.nan)
-    print(f"opsrock contents: {res['n_cases']} cases ({res['n_failed']} failed) in {t['total_s']:.1f} s; "
-          f"opsrock's no-slip median PFV over FEMA P-58's: {lo:.2f} to {hi:.2f}; see {res['report']}")
+    t, (lo, hi) = res.summary.timings, res.summary.ratio_range or (math.nan, math.nan)
+    print(f"opsrock contents: {res.summary.n_cases} cases ({res.summary.n_failed} failed) in {t['total_s']:.1f} s; "
+          f"opsrock's no-slip median PFV over FEMA P-58's: {lo:.2f} to {hi:.2f}; see {res.report}")
     return 0
 
 

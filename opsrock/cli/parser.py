@@ -219,7 +219,7 @@ def _run(sub) -> None:
 
 
 def _reproduce(sub) -> None:
-    from opsrock.report.reproduce import ROBUSTNESS_SETS
+    from opsrock.analysis.reproduce import ROBUSTNESS_SETS
 
     p = sub.add_parser("reproduce", help="every figure and table of the paper",
                        description="Every figure and table of Liu, Huang & Liu (2023) from one command.")

@@ -11,7 +11,7 @@ fits, :mod:`~opsrock.contents.tables` and :mod:`~opsrock.contents.drivers` measu
 """
 
 from opsrock.contents.design import DEFAULT_FRICTION, DEFAULT_LEVELS, SWEEP_BUILDINGS, VARIANTS, ContentsDesign
-from opsrock.contents.study import TABLES, run_contents_study
+from opsrock.contents.study import TABLES, ContentsStudy, StudySummary, run_contents_study
 
 __all__ = ["DEFAULT_FRICTION", "DEFAULT_LEVELS", "SWEEP_BUILDINGS", "TABLES", "VARIANTS", "ContentsDesign",
-           "run_contents_study"]
+           "run_contents_study", "ContentsStudy", "StudySummary"]

@@ -5,11 +5,11 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any
 
 import pandas as pd
 
 from opsrock.contents.design import ContentsDesign, floor_name
+from opsrock.contents.study import StudySummary
 from opsrock.published import fema_p58
 from opsrock.report.markdown import markdown_table
 
@@ -62,9 +62,9 @@ def _article(n: int) -> str:
     return "an" if str(n).startswith("8") or n in (11, 18) else "a"
 
 
-def _head(design: ContentsDesign, summary: dict) -> list[str]:
-    t = summary["timings"]
-    lo, hi = summary["ratio_range"] or (math.nan, math.nan)
+def _head(design: ContentsDesign, summary: StudySummary) -> list[str]:
+    t = summary.timings
+    lo, hi = summary.ratio_range or (math.nan, math.nan)
     floors = ", ".join(floor_name(n, design.storeys) for n in design.floor_numbers)
     return [
         (f"# Unanchored contents beside FEMA P-58: {_article(design.storeys)} {design.storeys}-storey building, "
@@ -78,7 +78,7 @@ def _head(design: ContentsDesign, summary: dict) -> list[str]:
         f"{max(design.levels):.3g} (IDA). Variants: "
         + "; ".join(f"`{v}` ({design.variant(v).label})" for v in design.variants) + ".",
         "",
-        f"{summary['n_cases']} cases ({summary['n_failed']} failed, {summary['n_overturned']} overturned). "
+        f"{summary.n_cases} cases ({summary.n_failed} failed, {summary.n_overturned} overturned). "
         "Fragilities: lognormal maximum likelihood on every finished case, 95 % intervals from "
         f"{design.n_boot} resamples of whole records (seed {design.seed}). PFV is the peak absolute floor "
         "velocity (m/s), PFA the peak absolute floor acceleration (g). Wall time "
@@ -87,9 +87,9 @@ def _head(design: ContentsDesign, summary: dict) -> list[str]:
         "",
         (f"**opsrock's no-slip median over FEMA P-58's database median: {lo:.2f} to {hi:.2f}** "
         "(default restitution, every item and floor)"
-         + (f"; {summary['sweep_ratio_range'][0]:.2f} to {summary['sweep_ratio_range'][1]:.2f} on the roofs of the "
+         + (f"; {summary.sweep_ratio_range[0]:.2f} to {summary.sweep_ratio_range[1]:.2f} on the roofs of the "
             f"buildings of T1 = {min(t for t, _ in design.sweep):g}-{max(t for t, _ in design.sweep):g} s."
-            if summary.get("sweep_ratio_range") else ".")),
+            if summary.sweep_ratio_range else ".")),
     ]
 
 
@@ -133,7 +133,7 @@ def _rule_section(result: dict) -> list[str]:
             "![FEMA's rule against T and b/h beside opsrock](figures/fema_rule.png)"]
 
 
-def write_report(path: Path, design: ContentsDesign, result: dict, summary: dict[str, Any]) -> Path:
+def write_report(path: Path, design: ContentsDesign, result: dict, summary: StudySummary) -> Path:
     """Write ``report.md``."""
     from opsrock._files import atomic_write
     from opsrock.contents.drivers import drivers_section

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import sys
 import time
-from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 
-from opsrock.contents.design import DEFAULT_LEVELS, SWEEP_BUILDINGS, VARIANTS, ContentsDesign
+from opsrock.contents.design import ContentsDesign
 from opsrock.contents.design import quick as quick_design
 
 #: Files the study writes into its folder (besides ``campaigns/``, ``figures/`` and ``pelicun/``).
@@ -61,56 +61,77 @@ def _figures(out: Path, fits: pd.DataFrame, cases: pd.DataFrame, result: dict, d
     return paths
 
 
-def run_contents_study(
-    out_dir: str | Path,
-    *,
-    period: float,
-    storeys: int,
-    damping: float = 0.05,
-    floors: Sequence = ("ground", "roof"),
-    record_set: str = "fema-p695:far-field",
-    records: Sequence[str] = (),
-    levels: Sequence[float] = DEFAULT_LEVELS,
-    items: Sequence[str] = (),
-    variants: Sequence[str] = tuple(VARIANTS),
-    friction: float | None = None,
-    sweep: bool = False,
-    n_boot: int = 100,
-    seed: int = 0,
-    workers: int | None = None,
-    progress: bool = True,
-    quick: bool = False,
-    force: bool = False,
-    store_dir: str | Path | None = None,
-) -> dict[str, Any]:
+@dataclass(frozen=True)
+class StudySummary:
+    """The counts and headline ratios of a contents study (what its report states first).
+
+    Parameters
+    ----------
+    n_cases, n_failed, n_overturned : int
+        Cases run, failed (excluded, never a verdict) and overturned (counts).
+    timings : dict
+        Wall time per phase (s, keys ending ``_s``, and ``total_s``) and the campaigns' case counts.
+    ratio_range : tuple of float or None
+        Min and max of opsrock's default PFV median over FEMA's database median on the study's floors
+        (dimensionless); None without a default variant fit.
+    sweep_ratio_range : tuple of float or None
+        The same on the sweep's roofs (dimensionless); None without a sweep.
+    """
+
+    n_cases: int
+    n_failed: int
+    n_overturned: int
+    timings: dict[str, Any]
+    ratio_range: tuple[float, float] | None
+    sweep_ratio_range: tuple[float, float] | None
+
+
+@dataclass(frozen=True)
+class ContentsStudy:
+    """What :func:`run_contents_study` computed and wrote.
+
+    Parameters
+    ----------
+    design : ContentsDesign
+        The study as run (after :func:`opsrock.contents.design.quick` when asked).
+    summary : StudySummary
+        Counts, timings and headline ratios.
+    out_dir : str
+        The output folder.
+    report : str
+        ``report.md``.
+    tables : dict of str to str
+        Table key of :data:`TABLES` -> CSV path.
+    figures : list of str
+        PNG paths.
+    pelicun : dict of str to str
+        pelicun file key -> path.
+    """
+
+    design: ContentsDesign
+    summary: StudySummary
+    out_dir: str
+    report: str
+    tables: dict[str, str]
+    figures: list[str]
+    pelicun: dict[str, str]
+
+
+def run_contents_study(design: ContentsDesign, out_dir: str | Path, *, workers: int | None = None,
+                       progress: bool = True, quick: bool = False, force: bool = False,
+                       store_dir: str | Path | None = None) -> ContentsStudy:
     """Each FEMA P-58 unanchored item's overturning fragility on the floors of one building, beside
     FEMA P-58's, written into ``out_dir`` (resumable: a second call reuses every stored case).
 
     Parameters
     ----------
+    design : ContentsDesign
+        The building (period s, storeys, damping), floors, record set and records, IDA levels, items,
+        variants, friction, record-bootstrap resamples and seed, and the sweep's buildings
+        (:data:`opsrock.contents.design.SWEEP_BUILDINGS` for the chart of the medians against the period).
     out_dir : str or Path
         Output folder: ``report.md``, the tables (:data:`TABLES`), ``figures/``, ``pelicun/`` (and the
         campaigns, unless ``store_dir`` is given).
-    period, storeys, damping : float, int, float
-        The linear shear building: first period ``T_1`` (s), storeys, modal damping ratio (dimensionless).
-    floors : sequence
-        Floors of interest: ``"ground"``, numbers 1..storeys, ``"roof"``.
-    record_set, records : str, sequence of str
-        Library record set of the ground motions, and a subset of its records by name (empty: all).
-    levels : sequence of float
-        IDA levels of ``PFA / (g tan alpha)`` (dimensionless).
-    items : sequence of str
-        FEMA IDs (empty: the nine).
-    variants : sequence of str
-        Keys of :data:`opsrock.contents.design.VARIANTS`: ``default``, ``housner``, ``friction``.
-    friction : float, optional
-        Friction coefficient of the ``friction`` variant, static = kinetic (dimensionless); default: the
-        library's (:func:`opsrock.contents.design.library_friction`, an assumption).
-    sweep : bool
-        Also the roofs of :data:`opsrock.contents.design.SWEEP_BUILDINGS` (``T_1`` 0.2-2 s), default
-        variant, for the chart of the medians against the period.
-    n_boot, seed : int
-        Record-bootstrap resamples of each fit, and their seed (no unit).
     workers, progress : int or None, bool
         Processes (default: all cores); progress on stderr.
     quick : bool
@@ -123,16 +144,10 @@ def run_contents_study(
 
     Returns
     -------
-    dict
-        ``out_dir``, ``report``, ``tables`` and ``figures`` (paths), ``pelicun`` (paths), ``n_cases``,
-        ``n_failed``, ``timings`` (s, per phase, and ``total_s``), ``ratio_range`` (min and max of opsrock's
-        default PFV median over FEMA's database median on the study's floors), ``sweep_ratio_range`` (the
-        same on the sweep's roofs; None without a sweep).
+    ContentsStudy
+        The design run, the summary (counts, timings in s, headline ratios) and the paths written.
     """
     t_start = time.perf_counter()
-    design = ContentsDesign(period=period, storeys=storeys, damping=damping, floors=tuple(floors), record_set=record_set,
-                            names=tuple(records), levels=tuple(levels), items=tuple(items), variants=tuple(variants),
-                            friction=friction, n_boot=n_boot, seed=seed, sweep=SWEEP_BUILDINGS if sweep else ())
     if quick:
         design = quick_design(design)
     from opsrock.contents.design import campaign_scenes
@@ -144,7 +159,7 @@ def run_contents_study(
 
 
 def _run(design: ContentsDesign, scenes: dict, out: Path, store: Path, *, workers: int | None, progress: bool,
-         force: bool, t_start: float) -> dict[str, Any]:
+         force: bool, t_start: float) -> ContentsStudy:
     from opsrock.contents.campaigns import floor_velocities, run_campaigns
     from opsrock.contents.fits import fit_table, fit_tasks
 
@@ -162,12 +177,12 @@ def _run(design: ContentsDesign, scenes: dict, out: Path, store: Path, *, worker
     timings["fits_s"] = time.perf_counter() - t0
     _say(progress, f"tables, figures, pelicun files and report into {out}")
     written = _outputs(design, out, fits, cases, velocities, timings, t_start)
-    _say(progress, f"done in {timings['total_s']:.1f} s: {written['report']}")
+    _say(progress, f"done in {timings['total_s']:.1f} s: {written.report}")
     return written
 
 
 def _outputs(design: ContentsDesign, out: Path, fits: pd.DataFrame, cases: pd.DataFrame, velocities: pd.DataFrame,
-             timings: dict, t_start: float) -> dict[str, Any]:
+             timings: dict, t_start: float) -> ContentsStudy:
     """Write every output file through a staging folder: all of them replace their namesakes in ``out``
     together, or (on any failure or Ctrl-C) none does."""
     from opsrock._files import staged_folder
@@ -183,26 +198,22 @@ def _outputs(design: ContentsDesign, out: Path, fits: pd.DataFrame, cases: pd.Da
                                       stage / "pelicun")
         timings["outputs_s"] = time.perf_counter() - t0
         timings["total_s"] = time.perf_counter() - t_start
-        summary = _summary(design, cases, result, timings)
+        summary = _summary(cases, result, timings)
         report = write_report(stage / "report.md", design, result, summary)
         final = {p: out / Path(p).relative_to(stage) for p in [report, *paths.values(), *figures, *pelicun.values()]}
-    return {**summary, "out_dir": str(out), "report": str(final[report]),
-            "tables": {k: str(final[p]) for k, p in paths.items()}, "figures": [str(final[p]) for p in figures],
-            "pelicun": {k: str(final[p]) for k, p in pelicun.items()}}
+    return ContentsStudy(design=design, summary=summary, out_dir=str(out), report=str(final[report]),
+                         tables={k: str(final[p]) for k, p in paths.items()}, figures=[str(final[p]) for p in figures],
+                         pelicun={k: str(final[p]) for k, p in pelicun.items()})
 
 
-def _summary(design: ContentsDesign, cases: pd.DataFrame, result: dict, timings: dict) -> dict[str, Any]:
+def _summary(cases: pd.DataFrame, result: dict, timings: dict) -> StudySummary:
     ratios = result["ratios"]
     default = ratios[ratios["variant"] == "default"]["ratio_fema"].dropna()
     sweep = result["sweep"]["ratio_fema"].dropna() if not result["sweep"].empty else pd.Series(dtype=float)
-    return {"n_cases": len(cases), "n_failed": int((cases["status"] != "ok").sum()),
-            "n_overturned": int(cases["overturned"].sum()), "timings": timings,
-            "ratio_range": (float(default.min()), float(default.max())) if len(default) else None,
-            "sweep_ratio_range": ((float(sweep.min()), float(sweep.max())) if len(sweep) else None),
-            "design": {"period": design.period, "storeys": design.storeys, "damping": design.damping,
-                       "floors": list(design.floors), "record_set": design.record_set, "records": list(design.names),
-                       "levels": list(design.levels), "variants": list(design.variants), "friction": list(design.friction_pair),
-                       "n_boot": design.n_boot, "seed": design.seed, "sweep": [list(s) for s in design.sweep]}}
+    return StudySummary(n_cases=len(cases), n_failed=int((cases["status"] != "ok").sum()),
+                        n_overturned=int(cases["overturned"].sum()), timings=timings,
+                        ratio_range=(float(default.min()), float(default.max())) if len(default) else None,
+                        sweep_ratio_range=(float(sweep.min()), float(sweep.max())) if len(sweep) else None)
 
 
-__all__ = ["TABLES", "run_contents_study"]
+__all__ = ["TABLES", "ContentsStudy", "StudySummary", "run_contents_study"]

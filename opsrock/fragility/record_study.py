@@ -257,7 +257,7 @@ class _Frequencies:
 
     def table(self, values: np.ndarray) -> pd.DataFrame:
         """Wins and shares of each IM over the resamples (``values`` of all of them, in order)."""
-        from opsrock.analysis.robustness import wilson_interval
+        from opsrock.stats import wilson_interval
 
         wins = {c: {im: 0 for im in self.ims} for c in self.CRITERIA}
         n_done = 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import matplotlib
 
@@ -10,22 +11,23 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from opsrock.constants import G  # noqa: E402
-from opsrock.excitations.records import Record  # noqa: E402
-from opsrock.intensity.records import response_spectrum, velocity_displacement  # noqa: E402
 from opsrock.plots import save_figure  # noqa: E402
 
+if TYPE_CHECKING:
+    from opsrock.analysis.record_curves import RecordCurves
 
-def plot_record(record: Record, path: str | Path, *, floor: Record | None = None) -> Path:
+
+def plot_record(record: RecordCurves, path: str | Path, *, floor: RecordCurves | None = None) -> Path:
     """Four panels of ``record`` (and of a floor motion filtered from it, if given).
 
     Parameters
     ----------
-    record : Record
-        The (ground) motion, m/s².
+    record : RecordCurves
+        The (ground) motion's curves (:func:`opsrock.analysis.record_curves.record_curves`).
     path : str or Path
         Output PNG.
-    floor : Record, optional
-        A floor motion of the same record (drawn over it).
+    floor : RecordCurves, optional
+        The curves of a floor motion of the same record (drawn over it).
 
     Returns
     -------
@@ -36,12 +38,10 @@ def plot_record(record: Record, path: str | Path, *, floor: Record | None = None
     if floor is not None:
         series.append((floor, f"{floor.name} ({floor.info.floor})", "tab:red"))
     for rec, label, color in series:
-        v, d = velocity_displacement(rec)
-        axes[0].plot(rec.time, rec.values / G, color=color, lw=0.7, label=label)
-        axes[1].plot(rec.time, v, color=color, lw=0.8)
-        axes[2].plot(rec.time, d, color=color, lw=0.8)
-        spec = response_spectrum(rec)
-        axes[3].loglog(spec["period"], spec["psa"] / G, color=color, lw=1.0)
+        axes[0].plot(rec.time, rec.acceleration / G, color=color, lw=0.7, label=label)
+        axes[1].plot(rec.time, rec.velocity, color=color, lw=0.8)
+        axes[2].plot(rec.time, rec.displacement, color=color, lw=0.8)
+        axes[3].loglog(rec.period, rec.psa / G, color=color, lw=1.0)
     for ax, ylabel in zip(axes, ("acceleration (g)", "velocity (m/s)", "displacement (m)", "PSA, 5 % (g)")):
         ax.set_ylabel(ylabel)
         ax.grid(True, alpha=0.3)

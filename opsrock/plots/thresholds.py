@@ -72,10 +72,3 @@ def plot_threshold_charts(data: dict[str, ChartData], path: str | Path) -> Path:
         ax.legend(fontsize=7, loc="upper left")
     return save_figure(fig, path)
 
-
-def literature_threshold_figure(path: str | Path) -> Path:
-    """Compute :func:`opsrock.analysis.charts.literature_charts` and draw them into ``path`` (one job:
-    :func:`opsrock.report.reproduce.make_figures` runs it beside the other figures)."""
-    from opsrock.analysis.charts import literature_charts
-
-    return plot_threshold_charts(literature_charts(), path)

@@ -5,14 +5,19 @@ from __future__ import annotations
 
 import math
 import os
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import pandas as pd
 
 from opsrock._files import atomic_text
+from opsrock.constants import DEFAULT_RESTITUTION_FACTOR as PAPER_FACTOR
 from opsrock.published.liu_huang_liu_2023 import TABLE2, TABLE3
 from opsrock.report.markdown import markdown_table
+
+if TYPE_CHECKING:
+    from opsrock.validation.experiments import Headline
 
 #: IMs whose overturning threshold is nearly geometry-free, so their dimensionless medians can
 #: be compared with the paper's even though its blocks are not listed (docs/modelling.md section 3).
@@ -60,21 +65,73 @@ def _robustness_lines(robustness, ranking: pd.DataFrame) -> list[str]:
     return lines
 
 
-def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.DataFrame, table3: pd.DataFrame,
-                 ranking: pd.DataFrame, gate, figures: Mapping[str, Path], timings: Mapping[str, float],
-                 solver: str, campaign, pfv_convention: str, robustness=None) -> Path:
-    """Write ``out_dir/report.md`` atomically and return its path, section by section."""
-    out_dir = Path(out_dir)
-    lines = [*_header(gate, solver, pfv_convention, timings, campaign),
-             *_validation(gate, solver),
-             *_cases(cases, analysis.split.counts(), figures, out_dir),
+@dataclass(frozen=True)
+class PaperReport:
+    """Everything ``report.md`` shows, computed beforehand by :func:`opsrock.analysis.reproduce.reproduce`.
+
+    Parameters
+    ----------
+    cases : pandas.DataFrame
+        The campaign's ``cases.csv``.
+    analysis : FragilityAnalysis
+        :func:`opsrock.fragility.analyse_fragility` of the cases.
+    table3 : pandas.DataFrame
+        Table 3 (lognormal fits for three strip widths).
+    ranking : pandas.DataFrame
+        :func:`opsrock.fragility.rank_ims`.
+    gate : GateReport or None
+        The validation gate (None: the campaign solver is not the OpenSees model).
+    figures : mapping of str to pathlib.Path
+        Figure name -> PNG.
+    timings : mapping of str to float
+        Wall time of each step (s).
+    solver : str
+        The campaign's solver.
+    campaign : CampaignSummary
+        The campaign's summary (cases computed and reused).
+    pfv_convention : str
+        PFV convention of IM3 and IM8.
+    robustness : RobustnessResult or None
+        The ranking-robustness study over seeded block sets (None: skipped).
+    restitution : Headline
+        :func:`opsrock.validation.experiments.headline`: the restitution fitted on measured free rocking.
+    """
+
+    cases: pd.DataFrame
+    analysis: Any
+    table3: pd.DataFrame
+    ranking: pd.DataFrame
+    gate: Any
+    figures: Mapping[str, Path]
+    timings: Mapping[str, float]
+    solver: str
+    campaign: Any
+    pfv_convention: str
+    robustness: Any
+    restitution: Headline
+
+
+def write_report(out_dir: Path, report: PaperReport) -> Path:
+    """Write ``out_dir/report.md`` atomically and return its path, section by section.
+
+    Parameters
+    ----------
+    out_dir : pathlib.Path
+        The run's folder (it holds ``table2.md`` and ``table3.md``, included as written).
+    report : PaperReport
+        What the report shows.
+    """
+    out_dir, r = Path(out_dir), report
+    lines = [*_header(r.gate, r.solver, r.pfv_convention, r.timings, r.campaign),
+             *_validation(r.gate, r.solver),
+             *_cases(r.cases, r.analysis.split.counts(), r.figures, out_dir),
              "## 3. Table 2: hybrid strips", "", (out_dir / "table2.md").read_text().strip(), "",
              "## 4. Table 3: lognormal fits for three strip widths", "", (out_dir / "table3.md").read_text().strip(), "",
-             *_conclusions(ranking, table3),
-             *_differences(cases),
-             *_robustness_lines(robustness, ranking),
-             *_thresholds(figures, out_dir),
-             *_experiments(),
+             *_conclusions(r.ranking, r.table3),
+             *_differences(r.cases),
+             *_robustness_lines(r.robustness, r.ranking),
+             *_thresholds(r.figures, out_dir),
+             *_experiments(r.restitution),
              "## 8. Files", "",
              "`cases.csv` (one row a case), `table2.csv/.md`, `table3.csv/.md`, `im_ranking.csv`, `figures/`, "
              "`spectrum/spectrum.csv` (dense spectrum, rigid-body equation), `validation_gate.md`, `timings.json`.",
@@ -84,8 +141,38 @@ def write_report(out_dir: Path, *, cases: pd.DataFrame, analysis, table2: pd.Dat
     return path
 
 
+def gate_text(gate) -> str:
+    """The validation gate's short report (``validation_gate.md``): its first line states pass, fail or override.
+
+    Parameters
+    ----------
+    gate : GateReport
+        :func:`opsrock.analysis.reproduce.validation_gate`.
+    """
+    s = gate.summary
+    if gate.passed:
+        head = "Validation gate PASSED"
+    elif gate.overridden:
+        head = "WARNING: validation gate FAILED and was OVERRIDDEN (--ignore-gate): results below are not validated"
+    else:
+        head = "Validation gate FAILED: fragility not computed (re-run with --ignore-gate to go on anyway)"
+    lines = [
+        head,
+        "",
+        f"OpenSees model against the scipy SDOF solver on {s.n_cases} fixed paper pulses: "
+        f"{100 * s.theta_within_rate:.1f} % of the {s.n_safe_both} safe cases within 1 % of alpha "
+        f"(target 99 %), max |d theta_max|/alpha = {s.max_dtheta:.2e}; "
+        f"same verdict {100 * s.verdict_rate:.1f} % (target 99 %); failed runs {s.n_failed}.",
+    ]
+    if len(gate.disagreements):
+        lines += ["", "Disagreeing cases:", "", markdown_table(gate.disagreements[
+            ["case_id", "theta_max_over_alpha_a", "theta_max_over_alpha_b", "verdict_a", "verdict_b",
+             "pfa_change_to_flip_reference"]])]
+    return "\n".join(lines) + "\n"
+
+
 def _header(gate, solver: str, pfv_convention: str, timings: Mapping[str, float], campaign) -> list[str]:
-    lines = [gate.text().splitlines()[0], ""] if gate is not None and gate.overridden else []
+    lines = [gate_text(gate).splitlines()[0], ""] if gate is not None and gate.overridden else []
     return lines + [
         "# Reproduction of Liu, Huang & Liu (2023): overturning fragility of rigid blocks",
         "",
@@ -107,7 +194,7 @@ def _header(gate, solver: str, pfv_convention: str, timings: Mapping[str, float]
 def _validation(gate, solver: str) -> list[str]:
     lines = ["## 1. Validation before fragility", ""]
     if gate is not None:
-        return lines + [gate.text().strip(), ""]
+        return lines + [gate_text(gate).strip(), ""]
     return lines + [f"No gate: the campaign solver is `{solver}`, not the OpenSees model.", ""]
 
 
@@ -267,13 +354,10 @@ def _thresholds(figures: Mapping[str, Path], out_dir: Path) -> list[str]:
     ]
 
 
-def _experiments() -> list[str]:
+def _experiments(h: Headline) -> list[str]:
     """Section 7b: the restitution of this run against measured free rocking (the shipped data of
-    validation case ``experiments``, refitted here with 200 trial resamples)."""
-    from opsrock.validation.experiments import PAPER_FACTOR, headline
-
-    h = headline()
-    f, rmse_e, rmse_p = h["factor"], h["rmse_first_e_R"], h["rmse_first_paper"]
+    validation case ``experiments``, refitted with 200 trial resamples: ``h``)."""
+    f, rmse_e, rmse_p = h.factor, h.rmse_first_e_R, h.rmse_first_paper
     verdict = "inside" if f[1] <= PAPER_FACTOR <= f[2] else "outside"
     return [
         "## 7b. Restitution against measured free rocking",
@@ -281,9 +365,9 @@ def _experiments() -> list[str]:
         f"This run's blocks keep `{PAPER_FACTOR:g} e_R` of their angular velocity at each impact (the paper's "
         "factor on Housner's `e_R`). Measured free rocking of limestone blocks (Colombo et al., University of "
         "Minho, doi:10.60756/uminho-jh25, CC BY 4.0; shipped in `opsrock/data/experiments/`): "
-        f"{h['n_impacts']:,} impacts of {h['n_trials']} trials of 12 geometries. The factor fitted on them "
+        f"{h.n_impacts:,} impacts of {h.n_trials} trials of 12 geometries. The factor fitted on them "
         f"(median of measured / `e_R`) is **{f[0]:.4f} [{f[1]:.4f}, {f[2]:.4f}]** (95 % interval, "
-        f"{h['n_boot']} resamples of whole trials): the paper's {PAPER_FACTOR:g} lies {verdict} it. On the "
+        f"{h.n_boot} resamples of whole trials): the paper's {PAPER_FACTOR:g} lies {verdict} it. On the "
         f"first impacts, Housner's `e_R` errs by an RMSE of {rmse_e[0]:.3f} [{rmse_e[1]:.3f}, {rmse_e[2]:.3f}] "
         f"and `{PAPER_FACTOR:g} e_R` by {rmse_p[0]:.3f} [{rmse_p[1]:.3f}, {rmse_p[2]:.3f}].",
         "",

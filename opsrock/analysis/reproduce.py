@@ -22,12 +22,14 @@ import contextlib
 import json
 import os
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     import pandas as pd
+
+    from opsrock.validation.sdof_agreement import Agreement
 
 from opsrock._files import atomic_csv, atomic_text
 from opsrock.data import scene_file
@@ -39,7 +41,7 @@ SPECTRUM_SCENE = scene_file("spectrum")
 
 @dataclass(frozen=True)
 class GateReport:
-    """Outcome of the validation gate.
+    """Outcome of the validation gate (:func:`opsrock.report.paper.gate_text` writes it out).
 
     Parameters
     ----------
@@ -47,7 +49,7 @@ class GateReport:
         Agreement targets of validation case 2 met on the subset.
     overridden : bool
         The gate failed and ``--ignore-gate`` let the run go on.
-    summary : dict
+    summary : Agreement
         The agreement figures (:class:`opsrock.validation.sdof_agreement.Agreement`).
     disagreements : pandas.DataFrame
         Disagreeing cases with their distance to the overturning boundary.
@@ -55,33 +57,41 @@ class GateReport:
 
     passed: bool
     overridden: bool
-    summary: dict
+    summary: Agreement
     disagreements: pd.DataFrame
 
-    def text(self) -> str:
-        """The short report: first line states pass, fail or override."""
-        s = self.summary
-        if self.passed:
-            head = "Validation gate PASSED"
-        elif self.overridden:
-            head = "WARNING: validation gate FAILED and was OVERRIDDEN (--ignore-gate): results below are not validated"
-        else:
-            head = "Validation gate FAILED: fragility not computed (re-run with --ignore-gate to go on anyway)"
-        lines = [
-            head,
-            "",
-            f"OpenSees model against the scipy SDOF solver on {s['n_cases']} fixed paper pulses: "
-            f"{100 * s['theta_within_rate']:.1f} % of the {s['n_safe_both']} safe cases within 1 % of alpha "
-            f"(target 99 %), max |d theta_max|/alpha = {s['max_dtheta']:.2e}; "
-            f"same verdict {100 * s['verdict_rate']:.1f} % (target 99 %); failed runs {s['n_failed']}.",
-        ]
-        if len(self.disagreements):
-            from opsrock.report.markdown import markdown_table
 
-            lines += ["", "Disagreeing cases:", "", markdown_table(self.disagreements[
-                ["case_id", "theta_max_over_alpha_a", "theta_max_over_alpha_b", "verdict_a", "verdict_b",
-                 "pfa_change_to_flip_reference"]])]
-        return "\n".join(lines) + "\n"
+@dataclass(frozen=True)
+class Reproduction:
+    """What :func:`reproduce` computed and wrote.
+
+    Parameters
+    ----------
+    gate : GateReport or None
+        The validation gate (None when the campaign solver is not the OpenSees model).
+    stopped : bool
+        The gate failed and the run stopped before the campaign; the fields below are then empty.
+    timings : dict of str to float
+        Wall time of each step (s), by name (``validation_gate_s``, ``campaign_s``, ..., ``total_s``).
+    campaign : CampaignSummary or None
+        The campaign's summary (:func:`opsrock.campaign.run_campaign`).
+    figures : dict of str to pathlib.Path
+        Figure name -> PNG.
+    report : pathlib.Path or None
+        ``report.md``.
+    table2, table3, ranking : pandas.DataFrame or None
+        Table 2, Table 3 and the IM ranking.
+    """
+
+    gate: GateReport | None
+    stopped: bool
+    timings: dict[str, float]
+    campaign: Any = None
+    figures: dict[str, Path] = field(default_factory=dict)
+    report: Path | None = None
+    table2: pd.DataFrame | None = None
+    table3: pd.DataFrame | None = None
+    ranking: pd.DataFrame | None = None
 
 
 #: Block sets of the ranking-robustness study in the report (seeded; issue: the paper's blocks are
@@ -98,73 +108,95 @@ def validation_gate(ignore: bool = False, workers: int | None = None) -> GateRep
     agreement = summarize(df)
     bad = disagreements(df, cases)
     return GateReport(passed=agreement.passed, overridden=ignore and not agreement.passed,
-                      summary=dict(agreement.__dict__), disagreements=bad)
+                      summary=agreement, disagreements=bad)
 
 
-def reproduce(out_dir: str | os.PathLike, *, solver: str = "opensees", workers: int | None = None,
-              ignore_gate: bool = False, force: bool = False, progress: bool = True,
-              paper_scene: str | os.PathLike = PAPER_SCENE,
-              spectrum_scene: str | os.PathLike | None = SPECTRUM_SCENE,
-              robustness_sets: int = ROBUSTNESS_SETS, seed: int = 0) -> dict[str, Any]:
-    """Run the whole pipeline into ``out_dir``; return what was written and measured.
+@dataclass(frozen=True)
+class ReproduceSettings:
+    """What :func:`reproduce` runs.
+
+    Parameters
+    ----------
+    solver : str
+        Solver of the campaign (default the OpenSees model, as in the paper).
+    ignore_gate : bool
+        Go on when the validation gate fails (the report says so on its first line).
+    force : bool
+        Discard stored campaign results of other settings in the output folder.
+    paper_scene, spectrum_scene : path
+        Scenes of the campaign and of the dense spectrum (None skips the spectrum).
+    robustness_sets : int
+        Block sets of the ranking-robustness study (count; 0 skips it); ``robustness.csv``.
+    seed : int
+        Seed of the block-set draws (no unit).
+    """
+
+    solver: str = "opensees"
+    ignore_gate: bool = False
+    force: bool = False
+    paper_scene: str | os.PathLike = PAPER_SCENE
+    spectrum_scene: str | os.PathLike | None = SPECTRUM_SCENE
+    robustness_sets: int = ROBUSTNESS_SETS
+    seed: int = 0
+
+
+def reproduce(out_dir: str | os.PathLike, settings: ReproduceSettings | None = None, *, workers: int | None = None,
+              progress: bool = True) -> Reproduction:
+    """Run the whole pipeline into ``out_dir``; return what was computed and written.
 
     Parameters
     ----------
     out_dir : path
         Output folder (created): ``cases.csv``, ``table2.csv/.md``, ``table3.csv/.md``,
         ``figures/``, ``report.md``, ``validation_gate.md``.
-    solver : str
-        Solver of the campaign (default the OpenSees model, as in the paper).
+    settings : ReproduceSettings, optional
+        What to run (default: the paper's workflow with the OpenSees model).
     workers : int, optional
         Local worker processes (default all cores).
-    ignore_gate : bool
-        Go on when the validation gate fails (the report says so on its first line).
-    force : bool
-        Discard stored campaign results of other settings in ``out_dir``.
     progress : bool
         Progress bars on stderr.
-    paper_scene, spectrum_scene : path
-        Scenes of the campaign and of the dense spectrum (None skips the spectrum).
-    robustness_sets : int
-        Block sets of the ranking-robustness study (0 skips it); ``robustness.csv``.
-    seed : int
-        Seed of the block-set draws.
     """
+    # pandas, scipy and the solvers only when the pipeline runs (the command line's parser reads this module)
+    from opsrock.report.paper import PaperReport, gate_text, write_report
+    from opsrock.validation.experiments import headline
+
     t_start = time.perf_counter()
+    st = settings or ReproduceSettings()
+    solver = st.solver
     out = Path(out_dir)
     (out / "figures").mkdir(parents=True, exist_ok=True)
     timer = _Timings()
     with timer("validation_gate_s"):
-        gate = validation_gate(ignore=ignore_gate, workers=workers) if solver == "opensees" else None
+        gate = validation_gate(ignore=st.ignore_gate, workers=workers) if solver == "opensees" else None
     if gate is not None:
-        atomic_text(out / "validation_gate.md", gate.text())
-        if not gate.passed and not ignore_gate:
-            return {"gate": gate, "stopped": True, "timings": timer.seconds}
+        atomic_text(out / "validation_gate.md", gate_text(gate))
+        if not gate.passed and not st.ignore_gate:
+            return Reproduction(gate=gate, stopped=True, timings=timer.seconds)
     with timer("campaign_s"):
-        scene, summary, cases = _campaign(out, paper_scene, solver, workers, force, progress)
+        scene, summary, cases = _campaign(out, st.paper_scene, solver, workers, st.force, progress)
     spectrum = None
-    if spectrum_scene is not None:
+    if st.spectrum_scene is not None:
         with timer("spectrum_s"):
-            spectrum = _spectrum(out, spectrum_scene, workers)
+            spectrum = _spectrum(out, st.spectrum_scene, workers)
     with timer("fragility_s"):
         analysis, t2, t3, ranking = _fragility(out, cases, scene.pfv_convention, workers)
     robustness = None
-    if robustness_sets:
+    if st.robustness_sets:
         with timer("robustness_s"):
-            robustness = _robustness(out, robustness_sets, seed, workers, progress)
+            robustness = _robustness(out, st.robustness_sets, st.seed, workers, progress)
     with timer("figures_s"):
         figures = make_figures(cases, analysis, out / "figures", spectrum=spectrum, solver=solver, scene=scene,
                                workers=workers)
+    restitution = headline()  # section 7b: the shipped free-rocking data, 200 trial resamples
     timings = timer.seconds
     timings["total_s"] = time.perf_counter() - t_start
-    from opsrock.report.paper import write_report
-
-    report = write_report(out, cases=cases, analysis=analysis, table2=t2, table3=t3, ranking=ranking,
-                          gate=gate, figures=figures, timings=timings, solver=solver,
-                          campaign=summary, pfv_convention=scene.pfv_convention, robustness=robustness)
+    report = write_report(out, PaperReport(cases=cases, analysis=analysis, table3=t3, ranking=ranking, gate=gate,
+                                           figures=figures, timings=timings, solver=solver, campaign=summary,
+                                           pfv_convention=scene.pfv_convention, robustness=robustness,
+                                           restitution=restitution))
     atomic_text(out / "timings.json", json.dumps(timings, indent=2) + "\n")
-    return {"gate": gate, "stopped": False, "campaign": summary, "figures": figures, "report": report,
-            "timings": timings, "table2": t2, "table3": t3, "ranking": ranking}
+    return Reproduction(gate=gate, stopped=False, timings=timings, campaign=summary, figures=figures, report=report,
+                        table2=t2, table3=t3, ranking=ranking)
 
 
 class _Timings:
@@ -283,12 +315,11 @@ def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.D
     (the longest first) while this process re-runs and draws Figures 3 and 4.
     """
     from opsrock.plots import fragility as fplots
-    from opsrock.plots.thresholds import literature_threshold_figure
 
     workers = workers or os.cpu_count() or 1
     jobs = fplots.paper_figure_jobs(cases, analysis, fig_dir, spectrum)
     # beyond the paper: the minimum-overturning charts of the rocking literature (validation case 7)
-    jobs["thresholds"] = (literature_threshold_figure, (fig_dir / "thresholds.png",))
+    jobs["thresholds"] = (threshold_charts_figure, (fig_dir / "thresholds.png",))
     order = sorted(jobs, key=lambda k: -THRESHOLDS_COST if k == "thresholds" else -fplots.FIGURE_COST.get(k, 1.0))
     figs: dict[str, Path] = {}
     pool = None
@@ -315,6 +346,15 @@ def make_figures(cases: pd.DataFrame, analysis, fig_dir: Path, *, spectrum: pd.D
 
 #: Relative cost of the threshold-charts job (the charts are computed there: the longest job).
 THRESHOLDS_COST: float = 4.0
+
+
+def threshold_charts_figure(path: str | os.PathLike) -> Path:
+    """One job of :func:`make_figures`: compute :func:`opsrock.analysis.charts.literature_charts` and draw them
+    with :func:`opsrock.plots.thresholds.plot_threshold_charts` into ``path`` (PNG); returns its path."""
+    from opsrock.analysis.charts import literature_charts
+    from opsrock.plots.thresholds import plot_threshold_charts  # matplotlib: only when figures are drawn
+
+    return plot_threshold_charts(literature_charts(), path)
 
 
 def _history_figures(cases: pd.DataFrame, fig_dir: Path, solver: str, scene) -> dict[str, Path]:

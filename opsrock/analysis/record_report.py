@@ -1,0 +1,241 @@
+"""``opsrock fragility``: the record fragility workflow of a record campaign.
+
+    opsrock fragility RUN_DIR|cases.csv --out DIR [--n-boot N] [--seed S] [--outcome as_simulated|first_exceedance]
+                      [--robustness-sets N] [--workers N]
+
+Reads the ``cases.csv`` of a record scene's run (:func:`read_cases`), fits every IM
+(:mod:`opsrock.fragility.record_study`), and writes into ``DIR``: ``ims.csv``, ``measure_fits.csv``,
+``resurrections.csv``, ``sufficiency.csv``, ``frequencies.csv``, ``blocks.csv``, ``fragility_pelicun.csv``
+(FEMA P-58 / pelicun damage model), ``figures/`` (:mod:`opsrock.plots.record_fragility`) and ``report.md``
+(:func:`opsrock.report.records.write_markdown`, given what was computed here); with ``--robustness-sets N``
+also the pulse study over N seeded block sets (``robustness.csv``). A campaign solved with friction (its
+table has the contact columns) also gets the fragility of sliding beyond :data:`SLIDE_DISTANCES`
+(:mod:`opsrock.fragility.sliding`): ``sliding.csv``, ``figures/sliding.png``, a section of the report and
+the ``SLIDE`` components in ``fragility_pelicun.csv``; any other campaign's outputs are as they were.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from opsrock._files import atomic_csv
+from opsrock.errors import InputError
+from opsrock.fragility.sliding import DEFAULT_DISTANCES
+from opsrock.report.records import write_markdown
+
+#: Distances (m) of the sliding section: 5 cm (a cabinet against a wall), 20 cm and 50 cm.
+SLIDE_DISTANCES: tuple[float, ...] = DEFAULT_DISTANCES
+
+
+def read_cases(source: str | Path) -> pd.DataFrame:
+    """The ``cases.csv`` of a record campaign, checked: ``source`` is the campaign's folder or the file.
+
+    Refused, with the file and the reason (:class:`~opsrock.errors.InputError`): a file that is not a
+    table, a table of a pulse campaign, missing columns, text in a number column, no rows, and a table
+    shorter than the campaign it came from (its ``manifest.json`` beside it says how many cases).
+    """
+    p = Path(source)
+    csv_path = p / "cases.csv" if p.is_dir() else p
+    if not csv_path.is_file():
+        raise InputError(f"cases: no cases.csv at {source!s} (give the --out folder of `opsrock run` or a cases.csv)")
+    try:
+        cases = pd.read_csv(csv_path)
+    except (ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
+        raise InputError(f"cases: {csv_path} cannot be read as a table: {str(exc).splitlines()[0]}") from None
+    if "record" not in cases.columns:
+        raise InputError(f"cases: {csv_path} is not from a record scene (no 'record' column); "
+                         "pulse campaigns go through `opsrock reproduce`")
+    _check_table(csv_path, cases)
+    _check_complete(csv_path, len(cases))
+    return cases
+
+
+#: Columns of a record campaign's table the study reads, and those of them that must hold numbers.
+_STUDY_COLUMNS = ("block", "record", "floor", "level", "level_value", "status", "overturned", "rocked",
+                  "theta_max_over_alpha", "pfa", "pfv", "magnitude", "distance_km", "building_period",
+                  *(f"IM{k}" for k in range(1, 10)))
+_NUMBER_COLUMNS = ("level", "level_value", "theta_max_over_alpha", "pfa", "pfv", "magnitude", "distance_km",
+                   "building_period", *(f"IM{k}" for k in range(1, 10)))
+#: Number columns of a campaign solved with friction that the sliding section reads (when present).
+_SLIDE_NUMBER_COLUMNS = ("slide_max", "slide_residual")
+
+
+def _check_table(csv_path: Path, cases: pd.DataFrame) -> None:
+    missing = [c for c in _STUDY_COLUMNS if c not in cases.columns]
+    if missing:
+        raise InputError(f"cases: {csv_path} lacks the column(s) {', '.join(missing)} of a record campaign's table")
+    if cases.empty:
+        raise InputError(f"cases: {csv_path} holds no cases (a header only)")
+    for col in (*_NUMBER_COLUMNS, *(c for c in _SLIDE_NUMBER_COLUMNS if c in cases.columns)):
+        if not pd.api.types.is_numeric_dtype(cases[col]):
+            bad = pd.to_numeric(cases[col], errors="coerce").isna() & cases[col].notna()
+            row = int(bad.to_numpy().nonzero()[0][0]) if bad.any() else 0
+            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + 2}: "
+                             f"{str(cases[col].iloc[row])!r} is not a number")
+    if not cases["status"].isin(("ok", "failed")).all():
+        bad = cases.loc[~cases["status"].isin(("ok", "failed")), "status"].iloc[0]
+        raise InputError(f"cases: {csv_path}, column 'status': {bad!r} is neither 'ok' nor 'failed'")
+
+
+def _check_complete(csv_path: Path, n_rows: int) -> None:
+    """A ``cases.csv`` beside its campaign's manifest must hold every case of the campaign."""
+    manifest = csv_path.parent / "manifest.json"
+    if not manifest.is_file():
+        return
+    try:
+        n_cases = int(json.loads(manifest.read_text())["n_cases"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return
+    if n_rows != n_cases:
+        raise InputError(f"cases: {csv_path} holds {n_rows} of the {n_cases} cases of its campaign "
+                         f"({manifest}); re-run `opsrock run` on the campaign to rebuild it")
+
+
+def _exports(blocks: pd.DataFrame):
+    from opsrock.fragility.pelicun_export import ComponentFragility, component_id
+
+    out, skipped = [], []
+    for _, r in blocks.iterrows():
+        if r["success"] and math.isfinite(r["mu"]) and r["beta"] > 0:
+            out.append(ComponentFragility(component_id(r["block"], r["demand"]), r["demand"], float(r["mu"]), float(r["beta"])))
+        else:
+            skipped.append(f"{r['block']}/{r['demand']}: {r['message']}")
+    return out, skipped
+
+
+@dataclass(frozen=True)
+class RecordReport:
+    """What :func:`write_record_report` computed and wrote (``report.md`` is written from it).
+
+    Parameters
+    ----------
+    study : RecordStudy
+        :func:`opsrock.fragility.record_study.record_fragility` of the cases.
+    robustness : pandas.DataFrame or None
+        Shares of the pulse study over seeded block sets (``robustness.csv``); None: not run.
+    robustness_sets : int
+        Block sets of that study (count; 0: not run).
+    sliding : pandas.DataFrame or None
+        The sliding fragilities (``sliding.csv``) of a campaign solved with friction; None for another.
+    slide_distances : tuple of float
+        Distances of the sliding section (m).
+    pelicun : pathlib.Path
+        ``fragility_pelicun.csv``.
+    skipped : list of str
+        Blocks and demands not exported (no finite fit), with the reason.
+    figures : dict of str to pathlib.Path
+        Figure name -> PNG.
+    timings : dict of str to float
+        ``fits_s`` and ``total_s`` (s).
+    source : str
+        Where the cases came from (a campaign folder or a ``cases.csv``).
+    """
+
+    study: Any
+    robustness: pd.DataFrame | None
+    robustness_sets: int
+    sliding: pd.DataFrame | None
+    slide_distances: tuple[float, ...]
+    pelicun: Path
+    skipped: list[str]
+    figures: dict[str, Path]
+    timings: dict[str, float]
+    source: str
+
+
+def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, seed: int = 0,
+                        outcome: str = "as_simulated", robustness_sets: int = 0, workers: int = 1,
+                        source: str = "") -> RecordReport:
+    """Run the study on ``cases`` and write every output into ``out``.
+
+    Parameters
+    ----------
+    cases : pandas.DataFrame
+        :func:`read_cases`.
+    out : pathlib.Path
+        Output folder (created).
+    n_boot, seed : int
+        Record resamples of every interval, and their seed (no unit).
+    outcome : str
+        Outcome convention of the fits (:data:`opsrock.fragility.ida.OUTCOMES`).
+    robustness_sets : int
+        Block sets of the pulse study (0: not run).
+    workers : int
+        Processes.
+    source : str
+        Where the cases came from (named in the report).
+    """
+    from opsrock.fragility.pelicun_export import write_pelicun_csv
+    from opsrock.fragility.record_study import RecordStudySettings, record_fragility
+
+    t0 = time.perf_counter()
+    out.mkdir(parents=True, exist_ok=True)
+    study = record_fragility(cases, RecordStudySettings(n_boot=n_boot, seed=seed, outcome=outcome), workers=workers)
+    t_fit = time.perf_counter() - t0
+    robust = None
+    if robustness_sets:
+        from opsrock.analysis.robustness import ranking_robustness
+
+        robust = ranking_robustness(robustness_sets, seed=seed, workers=workers).shares
+        atomic_csv(out / "robustness.csv", robust)
+    for name in ("ims", "measure_fits", "resurrections", "sufficiency", "frequencies", "blocks"):
+        atomic_csv(out / f"{name}.csv", getattr(study, name))
+    comps, skipped = _exports(study.blocks)
+    sliding = _sliding(cases, out, n_boot, seed, workers)
+    if sliding is not None:
+        from opsrock.fragility.sliding import sliding_components
+
+        slide_comps, slide_skipped = sliding_components(sliding)
+        comps, skipped = comps + slide_comps, skipped + slide_skipped
+    pel = write_pelicun_csv(comps, out / "fragility_pelicun.csv")
+    figs = _figures(cases, study, robust, sliding, out / "figures", workers)
+    report = RecordReport(study=study, robustness=robust, robustness_sets=robustness_sets, sliding=sliding,
+                          slide_distances=SLIDE_DISTANCES, pelicun=pel, skipped=skipped, figures=figs,
+                          timings={"fits_s": t_fit, "total_s": time.perf_counter() - t0}, source=source)
+    write_markdown(out, report)
+    return report
+
+
+def _figures(cases: pd.DataFrame, study, robust: pd.DataFrame | None, sliding: pd.DataFrame | None, fig: Path,
+             workers: int) -> dict[str, Path]:
+    """The report's figures from the computed study (independent: drawn at once with ``workers`` > 1)."""
+    from opsrock.plots import record_fragility as rplots
+
+    jobs = {"ida": (rplots.plot_ida_curves, (study.cases, fig / "ida_curves.png", "scene measure (level value)")),
+            "fragility": (rplots.plot_measure_fragility, (study.cases, study.measure_fits, fig / "fragility.png",
+                                                          "scene measure (level value)")),
+            "ranking": (rplots.plot_im_ranking, (study.ims, study.frequencies, fig / "im_ranking.png", robust))}
+    if sliding is not None:
+        jobs["sliding"] = (rplots.plot_sliding_fragility, (cases, sliding, fig / "sliding.png"))
+    if workers > 1:
+        from opsrock._pool import deferred_interrupts
+        from opsrock.plots import figure_pool
+
+        with figure_pool(min(workers, len(jobs))) as pool:
+            with deferred_interrupts():
+                futures = {k: pool.submit(fn, *args) for k, (fn, args) in jobs.items()}
+            return {k: f.result() for k, f in futures.items()}
+    return {k: fn(*args) for k, (fn, args) in jobs.items()}
+
+
+def _sliding(cases: pd.DataFrame, out: Path, n_boot: int, seed: int, workers: int) -> pd.DataFrame | None:
+    """The sliding fragilities of a campaign solved with friction (``sliding.csv``), None for another."""
+    from opsrock.fragility.sliding import has_slides, sliding_table
+
+    if not has_slides(cases):
+        return None
+    table = sliding_table(cases, SLIDE_DISTANCES, n_boot=n_boot, seed=seed, workers=workers)
+    atomic_csv(out / "sliding.csv", table)
+    return table
+
+
+
+
+__all__ = ["SLIDE_DISTANCES", "RecordReport", "read_cases", "write_record_report"]

@@ -10,7 +10,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from opsrock.block import Block
-from opsrock.excitations import Record
 from opsrock.solvers import simulate
 from opsrock.validation.experiments.constants import DECAY_IMPACTS, MODELS
 
@@ -46,16 +45,12 @@ class DecayRun:
     wall_s: float
 
 
-#: Sample step of the all-zero floor motion that stands for "no excitation" (s): only its length 2 dt matters.
-FREE_MOTION_DT: float = 1e-3
-
-
 def free_rocking(block: Block, solver: str, theta0: float, end_time: float):
     """Free rocking of ``block`` from rest at ``theta0``; the :class:`~opsrock.result.RockingResult`.
 
-    The one place of the case that runs a solver without excitation: today through a two-sample
-    all-zero :class:`~opsrock.excitations.Record` and the ``theta0`` setting (the solvers have no
-    common way to start from a state yet); every free-rocking run of the case goes through here.
+    The one place of the case that runs a solver without excitation: the solver contract's start
+    state (``theta0``) on a still floor (excitation None); every free-rocking run of the case goes
+    through here.
 
     Parameters
     ----------
@@ -70,8 +65,7 @@ def free_rocking(block: Block, solver: str, theta0: float, end_time: float):
         free-rocking run at once.
     """
     extra = {"stop_at_rest": False} if solver == "opensees" else {}
-    return simulate(block, Record(FREE_MOTION_DT, np.zeros(2)), solver=solver, theta0=theta0,
-                    end_time=end_time, **extra)
+    return simulate(block, None, solver=solver, theta0=theta0, end_time=end_time, **extra)
 
 
 def _rigid_run(block: Block, theta0: float, n_impacts: int):

@@ -25,8 +25,8 @@ test-slow: install
 # Property tests with fresh random seeds and ten times the examples (make test is derandomised), and
 # fresh random option values through the console script.
 test-fuzz: install
-	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest tests/test_input_properties.py \
-	    tests/test_hostile_inputs.py::test_random_option_values_are_refused_or_answered
+	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest tests/inputs/test_input_properties.py \
+	    tests/inputs/test_hostile_inputs.py::test_random_option_values_are_refused_or_answered
 
 # The FEMA P-58 / pelicun export loads in pelicun: pelicun 3.10 pins scipy < 1.16 and pandas < 3, so it
 # gets a venv of its own; opsrock writes a sample export and pelicun reads every parameter back.

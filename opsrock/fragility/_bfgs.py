@@ -7,7 +7,7 @@ _minimize_bfgs`` with scipy's own Wolfe line searches, on the same numpy operati
 order, so its result is the same to the last bit; only the wrappers are gone.
 
 It is used only with a scipy release it was checked against (:data:`CHECKED_SCIPY`, the version of
-the lock file; ``tests/test_speed_postprocessing.py`` compares it bit for bit with
+the lock file; ``tests/fragility/test_speed_postprocessing.py`` compares it bit for bit with
 ``scipy.optimize.minimize``). With any other scipy, :func:`minimize_bfgs` calls
 ``scipy.optimize.minimize`` itself: the same numbers as before, at the old speed.
 """

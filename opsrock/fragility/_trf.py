@@ -8,7 +8,7 @@ linear loss) with scipy's own helpers and the same LAPACK SVD, on the same opera
 order, so its result is the same to the last bit; only the wrappers are gone.
 
 As :mod:`opsrock.fragility._bfgs`: used only with a scipy release it was checked against
-(:data:`~opsrock.fragility._bfgs.CHECKED_SCIPY`; ``tests/test_speed_postprocessing.py`` compares it bit
+(:data:`~opsrock.fragility._bfgs.CHECKED_SCIPY`; ``tests/fragility/test_speed_postprocessing.py`` compares it bit
 for bit with ``scipy.optimize.least_squares``); with any other, ``scipy.optimize.least_squares`` runs.
 """
 

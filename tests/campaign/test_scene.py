@@ -9,8 +9,9 @@ import pytest
 
 from opsrock.campaign.scene import MAX_AXIS_POINTS, Scene, SceneError, load_blocks, load_scene
 from opsrock.constants import G
+from _support import DATA
 
-MODELS = Path(__file__).resolve().parents[1] / "opsrock" / "data"
+MODELS = DATA
 
 BLOCKS_TOML = """\
 [[block]]

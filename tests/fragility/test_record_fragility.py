@@ -26,8 +26,8 @@ from opsrock.fragility.pelicun_export import ComponentFragility, read_pelicun_cs
 from opsrock.fragility.record_study import RecordStudySettings, record_fragility
 from opsrock.fragility.sufficiency import sufficiency
 from opsrock.stats import wilson_interval
+from _support import OPSROCK
 
-OPSROCK = Path(sys.executable).parent / "opsrock"
 
 
 def synthetic_ida(n_records=40, levels=(1.25, 1.5, 2, 2.5, 3, 3.5, 4, 5, 6, 8), mu=3.0, beta=0.4, seed=1):

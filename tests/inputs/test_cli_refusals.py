@@ -16,10 +16,8 @@ import time
 from pathlib import Path
 
 import pytest
+from _support import BLOCKS, OPSROCK
 
-ROOT = Path(__file__).resolve().parents[1]
-OPSROCK = Path(sys.executable).parent / "opsrock"
-BLOCKS = ROOT / "opsrock" / "data" / "blocks.toml"
 SIM = ["simulate", "--width", "0.4", "--height", "2.2", "--pfa", "1", "--freq", "1"]
 
 

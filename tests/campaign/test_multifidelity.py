@@ -29,9 +29,8 @@ from opsrock.campaign.multifidelity import (
 )
 from opsrock.campaign.scene import load_scene
 from opsrock.errors import CampaignConflictError, InputError
+from _support import ROOT, BLOCKS
 
-ROOT = Path(__file__).resolve().parents[1]
-BLOCKS = ROOT / "opsrock" / "data" / "blocks.toml"
 
 SCENE = """
 name = "mf"

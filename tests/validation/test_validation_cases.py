@@ -1,4 +1,4 @@
-"""The fast part of validation cases 2-4, 7 and 8 (case 1 runs in tests/test_closed_forms.py).
+"""The fast part of validation cases 2-4, 7 and 8 (case 1 runs in tests/validation/test_closed_forms.py).
 
 Each case's ``run(out_dir, quick=True)`` regenerates its outputs into a temporary folder (once per module)
 and reports ``passed`` against the relation and tolerance its README derives. Cases 2, 4, 7 and 8 are

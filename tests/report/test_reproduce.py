@@ -10,8 +10,9 @@ import pytest
 from opsrock.analysis import reproduce as rp
 from opsrock.report.paper import gate_text
 from opsrock.validation.sdof_agreement import Agreement
+from _support import SCENES
 
-TINY = Path(__file__).resolve().parents[1] / "opsrock" / "data" / "scenes" / "tiny.toml"
+TINY = SCENES / "tiny.toml"
 
 TABLE2_COLUMNS = ["im", "W_HS", "R_S", "R_O", "W_HS_over_R_S", "W_HS_over_R_O", "HR", "W_SAS"]
 FIGURES = ["fig3", "fig4", "fig6a", "fig6b", "fig8", "fig9", "fig10", "fig11", "fig12", "thresholds"]

@@ -23,8 +23,8 @@ from opsrock.campaign.store import read_rows
 from opsrock.cli import main as cli_main
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.result import RockingResult, failed_result
+from _support import ROOT, TEST_DATA
 
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def main(args: list[str]) -> int:
@@ -32,7 +32,7 @@ def main(args: list[str]) -> int:
     return cli_main(["run", *args])
 
 
-RUNNER = Path(__file__).parent / "data" / "campaign_runner.py"
+RUNNER = TEST_DATA / "campaign_runner.py"
 
 # A small scene of cases the rigid-body solver finishes in milliseconds each (checked: each
 # under 0.2 s): one stocky block, 3 x 3 pulses, one row below the uplift threshold.

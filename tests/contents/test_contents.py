@@ -1,6 +1,6 @@
 """The FEMA P-58 contents: the shipped blocks library, the study's design checks, a quick study end to end
 (its files, the resume, the pelicun export's round trip), and ``opsrock contents``: its refusals of bad
-input (the promise of tests/test_hostile_inputs.py: exit status 2, one line naming the argument, no
+input (the promise of tests/inputs/test_hostile_inputs.py: exit status 2, one line naming the argument, no
 traceback, nothing written) and an interruption that loses nothing."""
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from opsrock.data import block_library, block_library_names
 from opsrock.errors import InputError
 from opsrock.fragility.pelicun_export import read_pelicun_csv
 from opsrock.published import fema_p58
+from _support import OPSROCK
 
 LIBRARY = "fema-p58-contents"
 
@@ -182,7 +183,6 @@ def test_pelicun_export_round_trips(study):
 
 
 # --- opsrock contents on the command line ------------------------------------------------------------------
-OPSROCK = Path(sys.executable).parent / "opsrock"
 QUICK = ("contents", "--quick", "--no-progress", "--out", "out")
 
 #: Bad input and the words its one line must hold (the first: the option's name).

@@ -15,8 +15,8 @@ from opsrock.campaign.needs import Needs, check, choose, evidence
 from opsrock.campaign.scene import load_scene
 from opsrock.errors import InputError, SceneError
 from opsrock.solvers import SOLVERS
+from _support import ROOT, BLOCKS
 
-ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_the_shipped_evidence_is_what_the_validation_outputs_give():

@@ -20,6 +20,7 @@ from opsrock.block import Block
 from opsrock.campaign.scene import SceneError, load_scene
 from opsrock.excitations import OneSinePulse
 from opsrock.model import LEVERS, SDOFModel
+from _support import BLOCKS
 
 # Anything a caller might pass: numbers of every size and sign, NaN, infinities, bools,
 # strings, None, containers.
@@ -111,7 +112,6 @@ def test_sdof_model_accepts_or_raises_documented_errors(delta, theta_e_ratio, ta
 
 
 # --- scene files ------------------------------------------------------------------------------
-BLOCKS = Path(__file__).resolve().parents[1] / "opsrock" / "data" / "blocks.toml"
 
 VALID = {
     "name": "p",

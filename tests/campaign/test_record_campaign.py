@@ -15,10 +15,8 @@ import pytest
 from opsrock.campaign import run_campaign
 from opsrock.campaign.cases import RECORD_COLUMNS as RECORD_CASES_COLUMNS
 from opsrock.campaign.scene import SceneError, load_scene
+from _support import ROOT, BLOCKS, OPSROCK
 
-ROOT = Path(__file__).resolve().parents[1]
-BLOCKS = ROOT / "opsrock" / "data" / "blocks.toml"
-OPSROCK = Path(sys.executable).parent / "opsrock"
 
 
 def write_records(folder: Path, n: int = 2) -> None:

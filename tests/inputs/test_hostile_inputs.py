@@ -27,10 +27,8 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
+from _support import BLOCKS, OPSROCK
 
-ROOT = Path(__file__).resolve().parents[1]
-OPSROCK = Path(sys.executable).parent / "opsrock"
-BLOCKS = ROOT / "opsrock" / "data" / "blocks.toml"
 
 #: The values every numeric option is tried with (each kept only where it is bad for that option).
 BAD_VALUES: tuple[str, ...] = ("0", "-1", "nan", "inf", "-inf", "1e308", "1e-320", "1" + "0" * 40, "abc", "")

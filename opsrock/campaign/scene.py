@@ -33,7 +33,7 @@ Scene file layout (see ``docs/scenes.md``)::
 Blocks file layout: an array of tables ``[[block]]`` with ``name``, ``width`` (2b, m),
 ``height`` (2h, m), ``reason`` (one line), and optionally ``mass`` (kg), either
 ``restitution_factor`` (``e / e_R``, or a distribution of it sampled per case) or ``restitution`` (``e``
-itself, or a named law: :mod:`opsrock.campaign.restitution`), and ``friction`` (the static
+itself, or a named law: :mod:`opsrock.restitution`), and ``friction`` (the static
 Coulomb coefficient on the floor) with ``friction_kinetic``; a block with friction needs a solver of
 the ``friction`` model.
 """
@@ -55,7 +55,7 @@ from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.campaign.cases import CONTACT_COLUMNS
 from opsrock.campaign.needs import Choice, Needs, check, choose
-from opsrock.campaign.restitution import RestitutionDistribution, distribution_from_table, law_factor
+from opsrock.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import METHODS, SOLVERS, check_settings
 
 if TYPE_CHECKING:

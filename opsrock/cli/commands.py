@@ -73,7 +73,7 @@ def make_block(args: argparse.Namespace):
         raise UsageError(f"--friction {args.friction:g} needs --friction-kinetic (at most 1.3)")
     factor = {}
     if args.restitution_law is not None:
-        from opsrock.campaign.restitution import LAWS, law_factor
+        from opsrock.restitution import LAWS, law_factor
 
         if args.restitution_law not in LAWS:
             raise UsageError(f"--restitution-law must be one of {', '.join(LAWS)}; got {args.restitution_law!r}")

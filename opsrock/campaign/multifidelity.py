@@ -1,11 +1,12 @@
 """Multi-fidelity campaigns: the rigid body screens every case, the paper's SDOF model runs only where
 its verdict can differ from the screen's, plus a seeded random audit of the rest.
 
-:func:`run_multifidelity` is the workflow, built from the campaign machinery
-(:mod:`opsrock.campaign.run`), resumable in the same way:
+:class:`MultiFidelity` is the workflow, a policy over the one campaign engine
+(:class:`opsrock.campaign.run.Stage`): :func:`~opsrock.campaign.run.run_campaign` runs it when the scene's
+``[needs]`` chose it (or when given as ``policy=``), resumable in the same way:
 
-1. **Screen.** The whole scene is a campaign of the screen solver (default ``housner_fast``, the rigid
-   body) in ``out_dir/screen`` (:func:`~opsrock.campaign.run.run_campaign`).
+1. **Screen.** The whole scene is a stage of the screen solver (default ``housner_fast``, the rigid
+   body) in ``out_dir/screen``.
 2. **Escalation.** Each screened case is kept or sent to the expensive solver (default ``opensees``)
    by an :class:`EscalationRule` (:func:`escalation_reason`):
 
@@ -28,9 +29,10 @@ its verdict can differ from the screen's, plus a seeded random audit of the rest
 3. **Audit.** A seeded random ``audit_fraction`` of the kept cases also runs with the expensive solver;
    its agreement with the screen's verdict, with a Wilson interval, measures what the rule lets
    through.
-4. The escalated and audited cases are solved in ``out_dir/escalated``, a partial campaign of the scene
-   with the expensive solver: same store, same manifest (digest) as a full campaign of it, so its rows
-   are reused whatever the margin or the audit of a later run, and ``run_campaign`` could complete it.
+4. The escalated and audited cases are solved in ``out_dir/escalated``, a stage of the same engine with
+   the expensive solver on those case ids only (``only=``): same store, same manifest (digest) as a full
+   campaign of it, so its rows are reused whatever the margin or the audit of a later run, and
+   ``run_campaign`` could complete it; its ``cases.csv`` holds those cases.
 5. ``out_dir/cases.csv``: one row per case, in the scene's order, with the columns of a normal campaign
    of the scene with the expensive solver, plus ``source`` (``screen``, ``escalated`` or ``audit``);
    the ``solver`` column names the solver that produced the row. ``out_dir/manifest.json`` holds the
@@ -600,10 +602,10 @@ __all__ = [
     "SOURCES",
     "EscalationRule",
     "ModelFormEvidence",
+    "MultiFidelity",
     "MultiFidelitySummary",
     "Selection",
     "derive_rule",
     "escalation_reason",
-    "run_multifidelity",
     "select_cases",
 ]

@@ -1,6 +1,6 @@
 """The ``opsrock`` argument parser: every command and option, in one place.
 
-Each command's parser sets ``handler`` to its function in :mod:`opsrock.cli.commands`. Parsing
+Each command's handler is named in :data:`opsrock.cli.HANDLERS`. Parsing
 errors raise :class:`~opsrock.errors.UsageError` (one line, exit status 2) instead of argparse's
 usage dump.
 """
@@ -11,10 +11,18 @@ import argparse
 import math
 import os
 
+from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
+from opsrock.bench import BENCHMARKS
+from opsrock.campaign.registry import solver_names
+from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
 from opsrock.errors import OpsrockError, UsageError
+from opsrock.excitations import PULSE_SHAPES
+from opsrock.limits import check, check_count
+from opsrock.report.reproduce import ROBUSTNESS_SETS
+from opsrock.validation import CASES
 
-#: Solver names of the command line (the registry's, :data:`opsrock.solvers.SOLVERS`).
-SOLVER_NAMES = ("opensees", "sdof", "housner", "housner_fast", "friction", "moreau_jean")
+#: Solver names of the command line: the registry's (:mod:`opsrock.campaign.registry`).
+SOLVER_NAMES: tuple[str, ...] = solver_names()
 
 
 class _Parser(argparse.ArgumentParser):
@@ -58,8 +66,6 @@ def limited(kind: str, limit: str):
     """argparse type: a number within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
 
     def convert(text: str) -> float:
-        from opsrock.limits import check
-
         try:
             value = float(text)
         except ValueError:
@@ -76,8 +82,6 @@ def count(kind: str, limit: str):
     """argparse type: an integer within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
 
     def convert(text: str) -> int:
-        from opsrock.limits import check_count
-
         try:
             value = int(text)
         except ValueError:
@@ -107,8 +111,6 @@ def _block(p: argparse.ArgumentParser) -> None:
 
 
 def _pulse(p: argparse.ArgumentParser) -> None:
-    from opsrock.excitations import PULSE_SHAPES
-
     p.add_argument("--pulse", default="one-sine", help=f"pulse shape: {', '.join(PULSE_SHAPES)} (default one-sine)")
     f = p.add_mutually_exclusive_group()
     f.add_argument("--freq", type=positive("--freq"), help="pulse frequency omega_p / 2 pi (Hz)")
@@ -161,8 +163,6 @@ def _simulate(sub) -> None:
 
 
 def _threshold(sub) -> None:
-    from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
-
     p = sub.add_parser("threshold", help="overturning intervals along the amplitude axis of a pulse",
                        description="Every amplitude interval in which one block overturns under one pulse.")
     _block(p)
@@ -198,8 +198,6 @@ def _records(sub) -> None:
 
 
 def _run(sub) -> None:
-    from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
-
     p = sub.add_parser("run", help="run every case of a scene",
                        description="Run (or resume) every case of a scene into a folder.")
     p.add_argument("scene", help="scene file (TOML), or the name of a shipped scene (paper, spectrum, tiny, "
@@ -219,8 +217,6 @@ def _run(sub) -> None:
 
 
 def _reproduce(sub) -> None:
-    from opsrock.report.reproduce import ROBUSTNESS_SETS
-
     p = sub.add_parser("reproduce", help="every figure and table of the paper",
                        description="Every figure and table of Liu, Huang & Liu (2023) from one command.")
     p.add_argument("--out", default="results", help="output folder (default results/)")
@@ -235,8 +231,6 @@ def _reproduce(sub) -> None:
 
 
 def _validate(sub) -> None:
-    from opsrock.validation import CASES
-
     p = sub.add_parser("validate", help="regenerate the validation cases",
                        description="Regenerate the validation cases, a summary line each.")
     p.add_argument("--case", action="append", choices=CASES, help="run only this case (repeatable)")
@@ -245,8 +239,6 @@ def _validate(sub) -> None:
 
 
 def _bench(sub) -> None:
-    from opsrock.bench import BENCHMARKS
-
     p = sub.add_parser("bench", help="benchmarks: ratios measured in one run",
                        description="Benchmarks that measure ratios in one run.")
     p.add_argument("--quick", action="store_true", help="small problem sizes (a minute in all)")

@@ -52,7 +52,7 @@ import time
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from opsrock import __version__
 from opsrock._files import atomic_write
@@ -62,6 +62,9 @@ from opsrock.campaign.store import MANIFEST_FILE, read_rows
 from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.errors import InputError
 from opsrock.solvers import check_settings
+
+if TYPE_CHECKING:  # the engine imports this module: its type only, for the annotations
+    from opsrock.campaign.run import Stage
 
 #: Sub-folders of a multi-fidelity run: the screen's campaign and the expensive solver's partial one.
 SCREEN_DIR: str = "screen"
@@ -512,7 +515,7 @@ class MultiFidelity:
                            margin=self.margin, percentile=self.percentile,
                            escalate_overturned=self.escalate_overturned)
 
-    def run(self, scene: Scene, out: Path, stage) -> MultiFidelitySummary:
+    def run(self, scene: Scene, out: Path, stage: Stage) -> MultiFidelitySummary:
         """Screen, select, solve the selection, merge (see the class); ``stage`` is the campaign engine
         (:class:`opsrock.campaign.run.Stage`), whose ``solve_fn`` serves the expensive solver only.
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+from typing import Any, Callable
 
 from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
 from opsrock.bench import BENCHMARKS
@@ -32,66 +33,52 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: {message}")
 
 
-def positive(kind: str):
-    """argparse type: a positive, finite float; the message names ``kind`` (the option)."""
+def _typed(kind: str, parse: Callable[[str], Any], what: str, accept: Callable[[Any, str], Any]):
+    """argparse type: ``parse`` the text (else "must be ``what``"), then ``accept(value, text)`` (returns the
+    value, or raises :class:`~opsrock.errors.OpsrockError`); every message names ``kind`` (the option)."""
 
-    def convert(text: str) -> float:
+    def convert(text: str):
         try:
-            value = float(text)
+            value = parse(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
-        if not math.isfinite(value) or value <= 0:
-            raise argparse.ArgumentTypeError(f"{kind} must be positive and finite, got {text!r}")
-        return value
+            raise argparse.ArgumentTypeError(f"{kind} must be {what}, got {text!r}") from None
+        try:
+            return accept(value, text)
+        except OpsrockError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
 
     return convert
+
+
+def _finite(kind: str, positive_only: bool) -> Callable[[float, str], float]:
+    what = "positive and finite" if positive_only else "finite"
+
+    def accept(value: float, text: str) -> float:
+        if not math.isfinite(value) or (positive_only and value <= 0):
+            raise UsageError(f"{kind} must be {what}, got {text!r}")
+        return value
+
+    return accept
+
+
+def positive(kind: str):
+    """argparse type: a positive, finite float; the message names ``kind`` (the option)."""
+    return _typed(kind, float, "a number", _finite(kind, positive_only=True))
 
 
 def finite(kind: str):
     """argparse type: a finite float of either sign; the message names ``kind`` (the option)."""
-
-    def convert(text: str) -> float:
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
-        if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{kind} must be finite, got {text!r}")
-        return value
-
-    return convert
+    return _typed(kind, float, "a number", _finite(kind, positive_only=False))
 
 
 def limited(kind: str, limit: str):
     """argparse type: a number within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
-
-    def convert(text: str) -> float:
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
-        try:
-            return check(limit, value, shown_as=kind)
-        except OpsrockError as exc:
-            raise argparse.ArgumentTypeError(str(exc)) from None
-
-    return convert
+    return _typed(kind, float, "a number", lambda value, _: check(limit, value, shown_as=kind))
 
 
 def count(kind: str, limit: str):
     """argparse type: an integer within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
-
-    def convert(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be an integer, got {text!r}") from None
-        try:
-            return check_count(limit, value, shown_as=kind)
-        except OpsrockError as exc:
-            raise argparse.ArgumentTypeError(str(exc)) from None
-
-    return convert
+    return _typed(kind, int, "an integer", lambda value, _: check_count(limit, value, shown_as=kind))
 
 
 # --- option groups shared by several commands ------------------------------------------------------

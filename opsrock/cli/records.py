@@ -11,7 +11,6 @@ from opsrock.errors import UnknownRecordError, UsageError
 from opsrock.excitations import library
 from opsrock.excitations.building import ShearBuilding, floor_motion
 from opsrock.excitations.readers import read_record
-from opsrock.intensity.records import motion_measures
 
 
 def records(args: argparse.Namespace) -> int:
@@ -45,6 +44,8 @@ def _records_list(args: argparse.Namespace) -> int:
 
 
 def _records_show(args: argparse.Namespace) -> int:
+    from opsrock.intensity.records import motion_measures  # lazy: scipy.integrate (0.45 s), for show only
+
     e = library.entry(args.name)
     m = motion_measures(library.load(args.name))
     out = {**_entry_json(e), "pfa": m.pfa, "pfv": m.pfv, "pfd": m.pfd, "T_m": m.mean_period,

@@ -539,17 +539,19 @@ class MultiFidelity:
         rows = {k: v for k, v in read_rows(out / ESCALATED_DIR).items() if k in selection.ids}
         table = _write_table(out, scene_x, cases, selection, screen_rows, rows)
         audit = _audit(selection, screen_rows, rows)
-        summary = _summary(selection, rule, screen, expensive, table, audit, out,
+        summary = _summary(selection, rule, (screen, expensive), table, audit, out,
                            (screen.wall_time_s, expensive.wall_time_s, time.perf_counter() - t0), choice)
         _write_manifest(summary, scene, scene_x, screen, rule, self)
         return summary
 
 
-def _summary(selection: Selection, rule: EscalationRule, screen, expensive, table: list,
+def _summary(selection: Selection, rule: EscalationRule, stages: tuple, table: list,
              audit: tuple[int, int, tuple[str, ...]], out: Path, times: tuple[float, float, float],
              choice: str) -> MultiFidelitySummary:
+    """The summary of a run; ``stages`` are the screen's and the expensive solver's stage summaries."""
     from opsrock.analysis.robustness import wilson_interval  # lazy: that module imports pandas
 
+    screen, expensive = stages
     compared, agree, differ = audit
     n_esc, n_aud = len(selection.escalated), len(selection.audited)
     by_reason = {r: sum(v == r for v in selection.escalated.values()) for r in REASONS}

@@ -72,20 +72,20 @@ class Block:
         if self.restitution is not None:
             e = real_number("restitution", self.restitution)
             if not (math.isfinite(e) and 0.0 < e <= 1.0):
-                raise InputError(f"restitution must lie in (0, 1], got {self.restitution!r}")
+                raise InputError(f"restitution must lie in (0, 1], got {self.restitution!r}", argument="restitution")
             object.__setattr__(self, "restitution", e)
             if f != DEFAULT_RESTITUTION_FACTOR:
                 raise InputError(f"give restitution or restitution_factor, not both (restitution = {e!r}, "
-                                 f"restitution_factor = {f!r})")
+                                 f"restitution_factor = {f!r})", argument="restitution")
             return
         if self.e_R > 0.0 and f * self.e_R > 1.0 + 1e-12:
             raise InputError(f"restitution_factor must lie in (0, 1/e_R] = (0, {1.0 / self.e_R:.6g}] for this block "
-                             f"(e = restitution_factor · e_R <= 1), got {f!r}")
+                             f"(e = restitution_factor · e_R <= 1), got {f!r}", argument="restitution_factor")
         if self.e_R <= 0.0:
             raise InputError(
                 f"width/height = {self.width:g}/{self.height:g} gives alpha = {self.alpha:.4f} rad and "
                 f"e_R = 1 - 1.5 sin²(alpha) = {self.e_R:.4f} <= 0: the block is too stocky for "
-                "Housner's rocking model (needs alpha < 0.9553 rad, width/height < 1.414)"
+                "Housner's rocking model (needs alpha < 0.9553 rad, width/height < 1.414)", argument="width"
             )
 
     def _check_friction(self) -> None:
@@ -93,20 +93,21 @@ class Block:
         if self.friction is None:
             if self.friction_kinetic is not None:
                 raise InputError(f"friction_kinetic = {self.friction_kinetic!r} needs friction (the static "
-                                 "coefficient) too")
+                                 "coefficient) too", argument="friction_kinetic")
             return
         mu = check("friction", self.friction)
         object.__setattr__(self, "friction", mu)
         if self.friction_kinetic is None:
             mu_k = mu if mu <= LIMITS["friction_kinetic"].high else None
             if mu_k is None:
-                raise InputError(f"friction = {mu!r} needs friction_kinetic (< 4/3, the slide-rock "
-                                 "equations' bound); give it explicitly")
+                raise InputError(f"friction = {mu!r} needs friction_kinetic (at most "
+                                 f"{LIMITS['friction_kinetic'].high:g}, the slide-rock equations' bound); give it "
+                                 "explicitly", argument="friction")
         else:
             mu_k = check("friction_kinetic", self.friction_kinetic)
             if mu_k > mu:
                 raise InputError(f"friction_kinetic = {mu_k!r} exceeds friction = {mu!r}: the kinetic "
-                                 "coefficient must not exceed the static one")
+                                 "coefficient must not exceed the static one", argument="friction_kinetic")
         object.__setattr__(self, "friction_kinetic", mu_k)
 
     @property

@@ -18,7 +18,20 @@ from typing import Any
 
 
 class OpsrockError(Exception):
-    """Base of every error opsrock raises for its users."""
+    """Base of every error opsrock raises for its users.
+
+    Parameters
+    ----------
+    *args
+        The message (one line), as for :class:`Exception`.
+    argument : str, optional
+        Name of the argument at fault when one is (``"friction_kinetic"``, ``"floor"``): a caller that took
+        the value under another name (a command-line option) names it from this, never from the text.
+    """
+
+    def __init__(self, *args: object, argument: str | None = None) -> None:
+        super().__init__(*args)
+        self.argument = argument
 
 
 class InputError(OpsrockError, ValueError):
@@ -72,7 +85,7 @@ class UnknownSettingError(InputTypeError):
     """A setting the solver does not know; ``key`` is its name."""
 
     def __init__(self, key: str, message: str) -> None:
-        super().__init__(message)
+        super().__init__(message, argument=key)
         self.key = key
 
 
@@ -111,12 +124,17 @@ class CampaignConflictError(OpsrockError, RuntimeError):
     """The output folder holds results of other settings (use another folder or ``force=True``)."""
 
 
+class AnalysisError(OpsrockError, RuntimeError):
+    """An analysis opsrock runs for the user failed (the shear building's OpenSees analysis)."""
+
+
 class CaseTimeout(OpsrockError):
     """A case ran past its wall-clock budget (a campaign stores it failed, with this message)."""
 
 
 __all__ = [
-    "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError", "InputError", "InputTypeError",
-    "LibraryUnavailableError", "MISSING", "MissingBlasError", "ModelNotSupported", "OpsrockError", "RecordFileError", "SceneError",
+    "AnalysisError", "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError", "InputError",
+    "InputTypeError", "LibraryUnavailableError", "MISSING", "MissingBlasError", "ModelNotSupported", "OpsrockError",
+    "RecordFileError", "SceneError",
     "StoreError", "UnknownRecordError", "UnknownSettingError", "UsageError",
 ]

@@ -1,4 +1,4 @@
-"""Restitution as a choice: named laws and a distribution drawn per case (opsrock.campaign.restitution)."""
+"""Restitution as a choice: named laws and a distribution drawn per case (opsrock.restitution)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import pytest
 
 from opsrock.block import Block
 from opsrock.campaign import run_campaign
-from opsrock.campaign.restitution import (
+from opsrock.restitution import (
     RestitutionDistribution,
     colombo_limestone,
     distribution_from_table,

@@ -7,7 +7,7 @@ three times, identical but for the blocks' restitution:
 * ``fixed``: the factor fitted on the limestone experiments (``restitution = "colombo-limestone"``);
 * ``uncertain``: the same factor drawn per case from the data's spread
   (``restitution_factor = { distribution = "colombo-limestone", seed = SEED }``,
-  :mod:`opsrock.campaign.restitution`);
+  :mod:`opsrock.restitution`);
 * ``paper``: the paper's fixed 0.95, for scale.
 
 Per block and floor, the overturning fragility in the scene's measure is fitted by maximum likelihood
@@ -38,7 +38,7 @@ VARIANTS: dict[str, tuple[str | None, dict | None]] = {
 
 def variant_scene(name: str, scene=None):
     """The scene of variant ``name`` (a key of :data:`VARIANTS`), from the shipped scene or ``scene``."""
-    from opsrock.campaign.restitution import distribution_from_table, law_factor
+    from opsrock.restitution import distribution_from_table, law_factor
     from opsrock.campaign.scene import load_scene
 
     base = load_scene(SCENE) if scene is None else scene

@@ -32,15 +32,14 @@ def _motions(quick: bool):
     from opsrock.block import Block
     from opsrock.excitations import library
     from opsrock.excitations.building import ShearBuilding, floor_motion
-    from opsrock.excitations.vertical import padded, synthetic_vertical
+    from opsrock.excitations.vertical import synthetic_vertical
 
     block = Block(0.5, 1.15)
     building = ShearBuilding("b3", 0.45, 3)
     out = []
     for e in library.entries("far-field")[: 1 if quick else 4]:
         ground = synthetic_vertical(e.reference)
-        roof = floor_motion(ground, building)
-        roof = roof.with_vertical(padded(ground.vertical, roof.values.size))
+        roof = floor_motion(ground, building)  # moves vertically with the ground
         out.append(roof.scaled(2.5 * block.uplift_acceleration / roof.pfa))
     return out
 

@@ -10,7 +10,8 @@ The flow, one module a step:
 * :mod:`~opsrock.campaign.run`: :func:`run_campaign`, every case solved in batches by an executor
   (:mod:`~opsrock.campaign.executors`: local processes or Dask), each under a wall-clock budget
   (:mod:`~opsrock.campaign.timeout`), each batch committed to the store
-  (:mod:`~opsrock.campaign.store`) as it returns, then ``cases.csv``.
+  (:mod:`~opsrock.campaign.store`) as it returns, then ``cases.csv``: one engine (``Stage``), and the
+  workflow the scene's ``[needs]`` chose as a policy over it (:mod:`~opsrock.campaign.multifidelity`).
 """
 
 import importlib
@@ -20,6 +21,7 @@ import importlib
 _EXPORTS = {
     "CASES_FILE": "opsrock.campaign.run", "MANIFEST_FILE": "opsrock.campaign.run",
     "CampaignSummary": "opsrock.campaign.run", "run_campaign": "opsrock.campaign.run",
+    "MultiFidelity": "opsrock.campaign.multifidelity", "MultiFidelitySummary": "opsrock.campaign.multifidelity",
     "BlockSpec": "opsrock.campaign.scene", "Scene": "opsrock.campaign.scene", "load_blocks": "opsrock.campaign.scene",
     "load_scene": "opsrock.campaign.scene", "CampaignConflictError": "opsrock.errors", "SceneError": "opsrock.errors",
     "StoreError": "opsrock.errors",

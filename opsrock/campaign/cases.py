@@ -20,6 +20,9 @@ from opsrock.block import Block
 from opsrock.excitations import Pulse, Record
 from opsrock.result import RockingResult
 
+#: Name of the assembled table in a campaign's folder.
+CASES_FILE: str = "cases.csv"
+
 #: The solver's columns of ``cases.csv``, after the scene's (units: rad; ``wall_time_s`` in s).
 RESULT_COLUMNS: tuple[str, ...] = (
     "theta_max", "theta_max_over_alpha", "overturned", "rocked", "status", "reason", "verdict", "solver",
@@ -259,5 +262,5 @@ def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], column
     atomic_write(Path(path), write)
 
 
-__all__ = ["BLOCK_COLUMNS", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
+__all__ = ["BLOCK_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
            "RESULT_COLUMNS", "RecordCase", "case_table", "failed_row", "result_row", "write_cases_csv"]

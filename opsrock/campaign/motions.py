@@ -10,16 +10,15 @@ from __future__ import annotations
 
 import math
 import pickle
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable
 
 import numpy as np
 
 from opsrock._files import atomic_write
-from opsrock.excitations.building import ShearBuilding, floor_motions
+from opsrock.excitations.building import ShearBuilding, floor_motions, floor_record
 from opsrock.excitations.records import Record
-from opsrock.excitations.vertical import padded
 from opsrock.intensity.records import MotionMeasures, motion_measures
 
 #: Floor label of an unfiltered ground motion.
@@ -89,8 +88,7 @@ def assemble_motions(items: list[Item], results: list[Any]) -> dict[tuple[str, s
                 motions[(ground.name, label)] = res
                 continue
             values, measures = res[j]
-            rec = Record(dt=ground.dt, values=values, name=ground.name, info=replace(ground.info, floor=label),
-                         vertical=padded(ground.vertical, len(values)))  # floors move with the ground
+            rec = floor_record(ground, values, label)  # the ground itself too, labelled as its floor
             motions[(ground.name, label)] = Motion(record=rec, measures=measures, floor=label, ground=ground.name,
                                                    building_period=math.nan if building is None else building.period)
     return motions

@@ -1,11 +1,12 @@
 """Multi-fidelity campaigns: the rigid body screens every case, the paper's SDOF model runs only where
 its verdict can differ from the screen's, plus a seeded random audit of the rest.
 
-:func:`run_multifidelity` is the workflow, built from the campaign machinery
-(:mod:`opsrock.campaign.run`), resumable in the same way:
+:class:`MultiFidelity` is the workflow, a policy over the one campaign engine
+(:class:`opsrock.campaign.run.Stage`): :func:`~opsrock.campaign.run.run_campaign` runs it when the scene's
+``[needs]`` chose it (or when given as ``policy=``), resumable in the same way:
 
-1. **Screen.** The whole scene is a campaign of the screen solver (default ``housner_fast``, the rigid
-   body) in ``out_dir/screen`` (:func:`~opsrock.campaign.run.run_campaign`).
+1. **Screen.** The whole scene is a stage of the screen solver (default ``housner_fast``, the rigid
+   body) in ``out_dir/screen``.
 2. **Escalation.** Each screened case is kept or sent to the expensive solver (default ``opensees``)
    by an :class:`EscalationRule` (:func:`escalation_reason`):
 
@@ -28,9 +29,10 @@ its verdict can differ from the screen's, plus a seeded random audit of the rest
 3. **Audit.** A seeded random ``audit_fraction`` of the kept cases also runs with the expensive solver;
    its agreement with the screen's verdict, with a Wilson interval, measures what the rule lets
    through.
-4. The escalated and audited cases are solved in ``out_dir/escalated``, a partial campaign of the scene
-   with the expensive solver: same store, same manifest (digest) as a full campaign of it, so its rows
-   are reused whatever the margin or the audit of a later run, and ``run_campaign`` could complete it.
+4. The escalated and audited cases are solved in ``out_dir/escalated``, a stage of the same engine with
+   the expensive solver on those case ids only (``only=``): same store, same manifest (digest) as a full
+   campaign of it, so its rows are reused whatever the margin or the audit of a later run, and
+   ``run_campaign`` could complete it; its ``cases.csv`` holds those cases.
 5. ``out_dir/cases.csv``: one row per case, in the scene's order, with the columns of a normal campaign
    of the scene with the expensive solver, plus ``source`` (``screen``, ``escalated`` or ``audit``);
    the ``solver`` column names the solver that produced the row. ``out_dir/manifest.json`` holds the
@@ -44,36 +46,25 @@ from __future__ import annotations
 
 import csv
 import dataclasses
-import functools
 import json
 import math
-import os
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
+from opsrock import __version__
 from opsrock._files import atomic_write
-from opsrock.campaign.cases import case_table, write_cases_csv
-from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
-from opsrock.campaign.motions import cached_motions, compute_motions
-from opsrock.campaign.run import (
-    CASES_FILE,
-    MANIFEST_FILE,
-    campaign_identity,
-    lost_row,
-    progress_bar,
-    run_campaign,
-    solve_batch,
-)
-from opsrock.campaign.scene import Scene, load_scene
-from opsrock.campaign.store import STORE_FILE, ResultStore, read_rows
-from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
-from opsrock.errors import CampaignConflictError, InputError
-from opsrock.limits import check
-from opsrock.result import RockingResult
-from opsrock.solvers import METHODS, SOLVERS, check_settings
+from opsrock.campaign.cases import CASES_FILE, case_table, write_cases_csv
+from opsrock.campaign.scene import Scene
+from opsrock.campaign.store import MANIFEST_FILE, read_rows
+from opsrock.campaign.registry import solver_info, solver_names
+from opsrock.errors import InputError
+from opsrock.solvers import check_settings
+
+if TYPE_CHECKING:  # the engine imports this module: its type only, for the annotations
+    from opsrock.campaign.run import Stage
 
 #: Sub-folders of a multi-fidelity run: the screen's campaign and the expensive solver's partial one.
 SCREEN_DIR: str = "screen"
@@ -232,7 +223,7 @@ def escalation_reason(rule: EscalationRule, row: Mapping[str, Any]) -> str:
 
 def _sdof_model(solver: str, settings: Mapping[str, Any]):
     """The SDOF model the expensive solver runs (None for a solver of another model)."""
-    if METHODS[solver].model != "sdof":
+    if solver_info(solver).model != "sdof":
         return None
     return check_settings(solver, dict(settings)).model
 
@@ -263,9 +254,9 @@ def derive_rule(solver: str, screen_solver: str, settings: Mapping[str, Any] | N
         expensive solver's model when its settings change it); a percentile the evidence lacks.
     """
     for name in (solver, screen_solver):
-        if name not in SOLVERS:
-            raise InputError(f"unknown solver {name!r} (known: {', '.join(SOLVERS)})")
-    if METHODS[screen_solver].model != "rigid":
+        if solver_info(name) is None:
+            raise InputError(f"unknown solver {name!r} (known: {', '.join(solver_names())})")
+    if solver_info(screen_solver).model != "rigid":
         raise InputError(f"screen_solver must solve the rigid body ({', '.join(_RIGID)}), got {screen_solver!r}")
     model = _sdof_model(solver, settings or {})
     uplift_q = 0.0
@@ -386,6 +377,10 @@ class MultiFidelitySummary:
         Wall-clock time of the screen, of the expensive solves, of the whole call (s).
     out_dir, cases_csv, manifest_path, screen_dir, escalated_dir : str
         Output paths.
+    warnings : tuple of str
+        Where the no-slip model may not hold (the screen's, :func:`opsrock.campaign.advice.sliding_warnings`).
+    choice : str
+        Why the scene's ``[needs]`` chose this workflow; empty when the policy was given.
     """
 
     n_cases: int
@@ -417,6 +412,7 @@ class MultiFidelitySummary:
     screen_dir: str
     escalated_dir: str
     warnings: tuple[str, ...] = field(default=())
+    choice: str = ""
 
     def lines(self) -> list[str]:
         """The report a command line prints, one line each."""
@@ -436,82 +432,13 @@ class MultiFidelitySummary:
              f"in {self.expensive_wall_time_s:.1f} s; {self.n_solves_saved} saved ({ratio:.2f}x fewer)"),
             (f"{self.n_cases} cases ({self.n_screened} screen, {self.n_escalated} escalated, {self.n_audited} audit) "
              f"in {self.wall_time_s:.1f} s -> {self.cases_csv}"),
-        ]
+        ] + ([f"solver chosen for the scene's needs: {self.choice}"] if self.choice else [])
 
 
-# --- the expensive solver's partial campaign ----------------------------------------------------------
-def _open_store(store: ResultStore, out: Path, manifest: dict, force: bool) -> None:
-    old = store.manifest()
-    if old and old.get("digest") != manifest["digest"] and not force:
-        raise CampaignConflictError(
-            f"{out} holds {old.get('solver')!r} results of other settings or another scene; refusing to mix them. "
-            "Use another out_dir, or force=True to delete the old results and start over.")
-    if force or not old:
-        store.clear()
-        store.write_manifest(manifest)
-    atomic_write(out / MANIFEST_FILE, lambda fh: json.dump(manifest, fh, indent=2, sort_keys=True))
-
-
-@dataclass
-class _Expensive:
-    """The expensive solver's runs: where, how, and what they did."""
-
-    scene: Scene
-    out: Path
-    executor: Executor | None
-    workers: int | None
-    progress: bool
-    solve_fn: Callable | None
-    batch: int | None
-    case_timeout: float
-    n_computed: int = 0
-    n_reused: int = 0
-
-    def run(self, cases: Sequence, ids: set[str], force: bool) -> dict[str, dict[str, Any]]:
-        """Solve the cases of ``ids`` the store lacks; return the stored rows of ``ids``."""
-        _, manifest = campaign_identity(self.scene, self.solve_fn)
-        self.out.mkdir(parents=True, exist_ok=True)
-        with ResultStore(self.out / STORE_FILE) as store:
-            _open_store(store, self.out, manifest, force)
-            done = store.done_ids()
-            todo = [c for c in cases if c.case_id in ids and c.case_id not in done]
-            self.n_reused = len(ids) - len(todo)
-            if todo:
-                self._solve(store, todo)
-            rows = store.rows()
-        return {k: rows[k] for k in ids}
-
-    def _solve(self, store: ResultStore, todo: list) -> None:
-        solver = self.scene.solver
-        solve = functools.partial(solve_batch, solver=solver, settings=dict(self.scene.solver_settings),
-                                  solve_fn=self.solve_fn, case_timeout=self.case_timeout)
-        executor = self.executor or LocalPool(self.workers, item_timeout=self.case_timeout)
-        try:
-            size = self.batch or batch_size(len(todo), executor.workers)
-            lost = functools.partial(lost_row, solver=solver)
-            with progress_bar(len(todo), f"{self.scene.name}: {solver} (escalated + audit)", self.progress) as bar:
-                for _, rows in executor.map_batches(solve, make_batches(todo, size), lost):
-                    store.append(rows)
-                    self.n_computed += len(rows)
-                    bar.update(len(rows))
-        finally:
-            if self.executor is None:
-                executor.close()
-
-
-# --- the workflow ---------------------------------------------------------------------------------
+# --- the policy ----------------------------------------------------------------------------------
 def _read_table(path: str | Path) -> list[dict[str, str]]:
     with open(path, newline="") as fh:
         return list(csv.DictReader(fh))
-
-
-def _cases(screen_scene: Scene, screen_dir: Path) -> list:
-    """The scene's cases; a record scene's floor motions from the screen's cache (computed here if gone)."""
-    if screen_scene.records is None:
-        return screen_scene.cases()
-    items = screen_scene.records.motion_items()
-    motions = cached_motions(screen_dir, screen_scene.digest(), items, compute_motions)
-    return screen_scene.cases(motions)
 
 
 def _audit(selection: Selection, screen_rows: Mapping, rows: Mapping) -> tuple[int, int, tuple[str, ...]]:
@@ -539,95 +466,92 @@ def _write_table(out: Path, scene_x: Scene, cases: Sequence, selection: Selectio
     return table
 
 
-def _check_args(scene: Scene, solver: str, screen_solver: str, case_timeout: float | None) -> float:
-    if METHODS.get(solver) is None or METHODS[solver].model == "friction" or screen_solver == solver:
-        raise InputError(f"solver must be a no-slip solver other than the screen ({screen_solver!r}), got {solver!r}")
-    if case_timeout is None:
-        case_timeout = scene.case_timeout if scene.case_timeout is not None else DEFAULT_CASE_TIMEOUT
-    return check("case_timeout", case_timeout)
+@dataclass(frozen=True)
+class MultiFidelity:
+    """The multi-fidelity policy over the campaign engine (:func:`opsrock.campaign.run.run_campaign`).
 
-
-def run_multifidelity(
-    scene: Scene | str | os.PathLike,
-    out_dir: str | os.PathLike,
-    *,
-    screen_solver: str = "housner_fast",
-    solver: str = "opensees",
-    margin: float | None = None,
-    percentile: int = DEFAULT_PERCENTILE,
-    escalate_overturned: bool | None = None,
-    audit_fraction: float = DEFAULT_AUDIT_FRACTION,
-    seed: int = 0,
-    workers: int | None = None,
-    executor: Executor | None = None,
-    force: bool = False,
-    progress: bool = True,
-    solve_fn: Callable[..., RockingResult] | None = None,
-    batch: int | None = None,
-    case_timeout: float | None = None,
-) -> MultiFidelitySummary:
-    """Run (or resume) a scene screened by the rigid body, with ``solver`` where its verdict can differ.
+    The screen runs as one stage on every case in ``out_dir/screen``; the escalated and audited cases run as
+    a second stage of the same engine, the expensive solver on those case ids only, in ``out_dir/escalated``
+    (a partial campaign of the scene: same store and manifest as a full one, so its rows are reused whatever
+    the margin or the audit of a later run); then ``out_dir/cases.csv`` and ``out_dir/manifest.json``.
 
     Parameters
     ----------
-    scene : Scene or path
-        The scene, its TOML file or a shipped scene's name; its own solver is not used.
-    out_dir : str or Path
-        Output folder: ``screen/`` and ``escalated/`` (two campaign folders), ``cases.csv``,
-        ``manifest.json``.
     screen_solver, solver : str
         The screen (a rigid-body solver) and the expensive solver. A solver that is the scene's own keeps
         the scene's settings; another runs with its defaults (:meth:`Scene.with_solver`).
-    margin, percentile, escalate_overturned
-        The rule (:func:`derive_rule`): by default the margin is the 95th percentile of the measured
-        model-form error (:data:`EVIDENCE`).
+    margin : float or None
+        Margin on ``theta_max / alpha`` (dimensionless); None: the ``percentile`` of :data:`EVIDENCE`
+        (:func:`derive_rule`).
+    percentile : int
+        Which measured percentile sets the margin (%).
+    escalate_overturned : bool or None
+        Escalate every case the screen overturned (None: as the evidence says, :func:`derive_rule`).
     audit_fraction : float
-        Share of the kept cases also run by ``solver`` (default 0.02), drawn with ``seed``.
-    workers, executor, force, progress, batch, case_timeout
-        As for :func:`~opsrock.campaign.run.run_campaign`, for both stages; ``force`` clears both stores.
-    solve_fn : callable, optional
-        Replaces :func:`opsrock.solvers.simulate` for the expensive solver only (tests).
-
-    Returns
-    -------
-    MultiFidelitySummary
-
-    Raises
-    ------
-    SceneError, InputError, CampaignConflictError, StoreError
-        An invalid scene, solver pair or rule (nothing written); a folder holding results of other
-        settings without ``force``; another run holding the folder.
+        Share of the kept cases also run by ``solver`` (dimensionless, default 0.02), drawn with ``seed``.
+    seed : int
+        Seed of the audit.
     """
-    t0 = time.perf_counter()
-    scene = scene if isinstance(scene, Scene) else load_scene(scene)
-    # the scene's [needs] chose this strategy; its two stages run named solvers
-    scene = dataclasses.replace(scene, needs=None, choice=None)
-    scene_x = scene.with_solver(solver)
-    case_timeout = _check_args(scene, solver, screen_solver, case_timeout)
-    rule = derive_rule(solver, screen_solver, scene_x.solver_settings, margin=margin, percentile=percentile,
-                       escalate_overturned=escalate_overturned)
-    out = Path(out_dir)
-    screen = run_campaign(scene, out / SCREEN_DIR, solver=screen_solver, workers=workers, executor=executor,
-                          force=force, progress=progress, batch=batch, case_timeout=case_timeout)
-    selection = select_cases(_read_table(screen.cases_csv), rule, audit_fraction=audit_fraction, seed=seed)
-    t1 = time.perf_counter()
-    cases = _cases(scene.with_solver(screen_solver), out / SCREEN_DIR)
-    runner = _Expensive(scene_x, out / ESCALATED_DIR, executor, workers, progress, solve_fn, batch, case_timeout)
-    rows = runner.run(cases, selection.ids, force)
-    t_x = time.perf_counter() - t1
-    screen_rows = read_rows(out / SCREEN_DIR)
-    table = _write_table(out, scene_x, cases, selection, screen_rows, rows)
-    compared, agree, differ = _audit(selection, screen_rows, rows)
-    summary = _summary(selection, rule, screen, runner, table, (compared, agree, differ), out,
-                       (screen.wall_time_s, t_x, time.perf_counter() - t0))
-    _write_manifest(summary, scene, scene_x, screen, rule, audit_fraction, seed, percentile)
-    return summary
+
+    screen_solver: str = "housner_fast"
+    solver: str = "opensees"
+    margin: float | None = None
+    percentile: int = DEFAULT_PERCENTILE
+    escalate_overturned: bool | None = None
+    audit_fraction: float = DEFAULT_AUDIT_FRACTION
+    seed: int = 0
+
+    @classmethod
+    def from_choice(cls, choice) -> MultiFidelity:
+        """The policy of a scene whose ``[needs]`` chose it (:class:`opsrock.campaign.needs.Choice`)."""
+        return cls(screen_solver=choice.screen, solver=choice.solver)
+
+    def _check(self, scene: Scene) -> EscalationRule:
+        info = solver_info(self.solver)
+        if info is None or info.model == "friction" or self.screen_solver == self.solver:
+            raise InputError(f"solver must be a no-slip solver other than the screen ({self.screen_solver!r}), "
+                             f"got {self.solver!r}")
+        return derive_rule(self.solver, self.screen_solver, scene.with_solver(self.solver).solver_settings,
+                           margin=self.margin, percentile=self.percentile,
+                           escalate_overturned=self.escalate_overturned)
+
+    def run(self, scene: Scene, out: Path, stage: Stage) -> MultiFidelitySummary:
+        """Screen, select, solve the selection, merge (see the class); ``stage`` is the campaign engine
+        (:class:`opsrock.campaign.run.Stage`), whose ``solve_fn`` serves the expensive solver only.
+
+        Raises
+        ------
+        InputError
+            An invalid solver pair or rule (nothing written).
+        """
+        t0 = time.perf_counter()
+        choice = scene.choice.reason if scene.choice is not None else ""
+        # the scene's [needs] chose this strategy; its two stages run named solvers
+        scene = dataclasses.replace(scene, needs=None, choice=None)
+        rule = self._check(scene)
+        scene_x = scene.with_solver(self.solver)
+        screen, cases = dataclasses.replace(stage, solve_fn=None)(scene.with_solver(self.screen_solver),
+                                                                   out / SCREEN_DIR)
+        selection = select_cases(_read_table(screen.cases_csv), rule, audit_fraction=self.audit_fraction,
+                                 seed=self.seed)
+        expensive, _ = stage(scene_x, out / ESCALATED_DIR, only=selection.ids, cases=cases)
+        screen_rows = read_rows(out / SCREEN_DIR)
+        rows = {k: v for k, v in read_rows(out / ESCALATED_DIR).items() if k in selection.ids}
+        table = _write_table(out, scene_x, cases, selection, screen_rows, rows)
+        audit = _audit(selection, screen_rows, rows)
+        summary = _summary(selection, rule, (screen, expensive), table, audit, out,
+                           (screen.wall_time_s, expensive.wall_time_s, time.perf_counter() - t0), choice)
+        _write_manifest(summary, scene, scene_x, screen, rule, self)
+        return summary
 
 
-def _summary(selection: Selection, rule: EscalationRule, screen, runner: _Expensive, table: list,
-             audit: tuple[int, int, tuple[str, ...]], out: Path, times: tuple[float, float, float]):
+def _summary(selection: Selection, rule: EscalationRule, stages: tuple, table: list,
+             audit: tuple[int, int, tuple[str, ...]], out: Path, times: tuple[float, float, float],
+             choice: str) -> MultiFidelitySummary:
+    """The summary of a run; ``stages`` are the screen's and the expensive solver's stage summaries."""
     from opsrock.stats import wilson_interval
 
+    screen, expensive = stages
     compared, agree, differ = audit
     n_esc, n_aud = len(selection.escalated), len(selection.audited)
     by_reason = {r: sum(v == r for v in selection.escalated.values()) for r in REASONS}
@@ -637,11 +561,11 @@ def _summary(selection: Selection, rule: EscalationRule, screen, runner: _Expens
         audited=selection.audited,
         n_audit_compared=compared, n_audit_agree=agree, audit_agreement=agree / compared if compared else math.nan,
         audit_interval=wilson_interval(agree, compared), audit_disagreements=differ, margin=rule.margin,
-        margin_source=rule.margin_source, rule=rule, screen_solver=screen.solver, solver=runner.scene.solver,
-        n_computed=runner.n_computed, n_reused=runner.n_reused, n_failed=sum(r["status"] == "failed" for r in table),
+        margin_source=rule.margin_source, rule=rule, screen_solver=screen.solver, solver=expensive.solver,
+        n_computed=expensive.n_computed, n_reused=expensive.n_reused, n_failed=sum(r["status"] == "failed" for r in table),
         screen_wall_time_s=times[0], expensive_wall_time_s=times[1], wall_time_s=times[2], out_dir=str(out),
         cases_csv=str(out / CASES_FILE), manifest_path=str(out / MANIFEST_FILE), screen_dir=str(out / SCREEN_DIR),
-        escalated_dir=str(out / ESCALATED_DIR), warnings=screen.warnings)
+        escalated_dir=str(out / ESCALATED_DIR), warnings=screen.warnings, choice=choice)
 
 
 def _json_safe(value: Any) -> Any:
@@ -656,15 +580,13 @@ def _json_safe(value: Any) -> Any:
 
 
 def _write_manifest(s: MultiFidelitySummary, scene: Scene, scene_x: Scene, screen, rule: EscalationRule,
-                    audit_fraction: float, seed: int, percentile: int) -> None:
-    from opsrock import __version__
-
+                    policy: MultiFidelity) -> None:
     manifest = {
         "kind": "multifidelity", "scene_name": scene.name, "scene_path": scene.path, "n_cases": s.n_cases,
         "solver": s.solver, "solver_settings": dict(scene_x.solver_settings), "digest": scene_x.digest(),
         "screen_solver": s.screen_solver, "screen_digest": screen.digest,
-        "rule": {**asdict(rule), "percentile": percentile},
-        "audit": {"fraction": audit_fraction, "seed": seed, "n": s.n_audited, "compared": s.n_audit_compared,
+        "rule": {**asdict(rule), "percentile": policy.percentile},
+        "audit": {"fraction": policy.audit_fraction, "seed": policy.seed, "n": s.n_audited, "compared": s.n_audit_compared,
                   "agree": s.n_audit_agree, "agreement": s.audit_agreement, "wilson_95": s.audit_interval,
                   "disagreements": s.audit_disagreements, "cases": s.audited},
         "counts": {"cases": s.n_cases, "screen": s.n_screened, "escalated": s.n_escalated, "audited": s.n_audited,
@@ -685,10 +607,10 @@ __all__ = [
     "SOURCES",
     "EscalationRule",
     "ModelFormEvidence",
+    "MultiFidelity",
     "MultiFidelitySummary",
     "Selection",
     "derive_rule",
     "escalation_reason",
-    "run_multifidelity",
     "select_cases",
 ]

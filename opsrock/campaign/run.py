@@ -1,6 +1,10 @@
 """Campaigns: run every case of a scene, store each result as it finishes, resume after a stop.
 
-:func:`run_campaign` is the whole workflow:
+:func:`run_campaign` is the whole workflow. Its engine, :class:`Stage`, is written once; a workflow the
+scene's ``[needs]`` chose is a policy over it (:data:`POLICIES`: the multi-fidelity campaign of
+:mod:`opsrock.campaign.multifidelity` runs the screen as one stage on every case and the expensive
+solver as another on the selected case ids), so ``run_campaign`` and ``opsrock run`` do the same thing.
+A stage:
 
 1. the scene is validated (:func:`opsrock.campaign.scene.load_scene`) before anything is written;
 2. the output folder's store (:mod:`opsrock.campaign.store`) is opened and locked; its manifest must
@@ -37,26 +41,23 @@ import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Mapping, Sequence
+from typing import Any, Callable, Collection, Mapping, Sequence
 
+from opsrock import __version__
 from opsrock._files import atomic_write
 from opsrock.campaign.advice import sliding_warnings
-from opsrock.campaign.cases import IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
+from opsrock.campaign.cases import CASES_FILE, IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
 from opsrock.campaign.motions import cached_motions, compute_motions
+from opsrock.campaign.multifidelity import MultiFidelity, MultiFidelitySummary
+from opsrock.campaign.registry import solver_info
 from opsrock.campaign.scene import Scene, load_scene
-from opsrock.campaign.store import STORE_FILE, ResultStore
+from opsrock.campaign.store import MANIFEST_FILE, STORE_FILE, ResultStore
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
 from opsrock.errors import CampaignConflictError, CaseTimeout, InputTypeError
 from opsrock.limits import check
 from opsrock.result import RockingResult
-from opsrock.solvers import SOLVERS, get_solver, simulate
-
-#: Name of the assembled table in the output folder.
-CASES_FILE: str = "cases.csv"
-
-#: Name of the human-readable copy of the run manifest.
-MANIFEST_FILE: str = "manifest.json"
+from opsrock.solvers import get_solver, simulate
 
 #: One solve at a time per process: OpenSeesPy keeps one global model per interpreter, and a
 #: Dask worker may run several threads.
@@ -111,6 +112,12 @@ class CampaignSummary:
     warnings: tuple[str, ...] = ()
     choice: str = ""
 
+    def lines(self) -> list[str]:
+        """The report a command line prints, one line each."""
+        head = (f"{self.n_cases} cases ({self.n_computed} computed, {self.n_reused} reused) with {self.solver} in "
+                f"{self.wall_time_s:.1f} s -> {self.cases_csv}")
+        return [head] + ([f"solver chosen for the scene's needs: {self.choice}"] if self.choice else [])
+
 
 # --- work done in the workers -------------------------------------------------------------------
 def solve_batch(
@@ -144,7 +151,7 @@ def solve_batch(
         exception (type and message) if the solve raised or returned something else.
     """
     fn = simulate if solve_fn is None else solve_fn
-    if solve_fn is None and solver in SOLVERS:
+    if solve_fn is None and solver_info(solver) is not None:
         get_solver(solver)  # import the solver module (and compile it, in a fresh clone) outside the budget
     with _SOLVE_LOCK:
         return [_solve_one(case, fn, solver, settings, case_timeout) for case in cases]
@@ -178,8 +185,6 @@ def _lost_motion(item: Any, reason: str) -> str:
 
 # --- the campaign ------------------------------------------------------------------------------
 def _manifest(scene: Scene, digest: str, solve_fn: Callable | None) -> dict[str, Any]:
-    from opsrock import __version__
-
     return {
         "digest": digest,
         "scene_name": scene.name,
@@ -305,6 +310,95 @@ def _case_budget(scene: Scene, case_timeout: float | None) -> float:
     return check("case_timeout", case_timeout)
 
 
+@dataclass(frozen=True)
+class Execution:
+    """Where and how a campaign's cases run: the same for every stage of a policy.
+
+    Parameters
+    ----------
+    workers : int or None
+        Processes of the default :class:`~opsrock.campaign.executors.LocalPool` (None: all cores);
+        ignored when ``executor`` is given.
+    executor : Executor or None
+        Where to run; the caller closes it. None: each stage makes a local pool and closes it.
+    force : bool
+        Delete a stage folder's stored results first, even of other settings.
+    progress : bool
+        Progress bars on stderr (only when stderr is a terminal).
+    batch : int or None
+        Cases per batch (None: :func:`opsrock.campaign.executors.batch_size`).
+    case_timeout : float
+        Wall-clock budget of one case (s), already checked.
+    """
+
+    workers: int | None
+    executor: Executor | None
+    force: bool
+    progress: bool
+    batch: int | None
+    case_timeout: float
+
+
+@dataclass(frozen=True)
+class Stage:
+    """The campaign engine, written once: one store, one solve loop, one case budget for every workflow.
+
+    A stage runs (or resumes) cases of a scene into one folder: it opens and locks the folder's store
+    (refusing other settings unless ``force``), computes or reads the floor motions, solves the cases the
+    store lacks in batches, commits each batch as it returns, and writes ``cases.csv`` and
+    ``manifest.json``. A policy (:data:`POLICIES`) runs its stages through it.
+
+    Parameters
+    ----------
+    how : Execution
+        Where and how the cases run.
+    solve_fn : callable or None
+        Replaces :func:`opsrock.solvers.simulate` (see :func:`run_campaign`).
+    """
+
+    how: Execution
+    solve_fn: Callable[..., RockingResult] | None = None
+
+    def __call__(self, scene: Scene, out_dir: str | os.PathLike, *, only: Collection[str] | None = None,
+                 cases: list | None = None) -> tuple[CampaignSummary, list]:
+        """Run the cases of ``scene`` (only those of ``only``, by case id, if given) into ``out_dir``.
+
+        ``cases`` are the scene's cases when the caller has them already (their floor motions computed
+        by an earlier stage). Returns the summary and the scene's cases (all of them, in its order).
+        """
+        t_start = time.perf_counter()
+        how, out = self.how, Path(out_dir)
+        digest, manifest = campaign_identity(scene, self.solve_fn)
+        solve = functools.partial(solve_batch, solver=scene.solver, settings=dict(scene.solver_settings),
+                                  solve_fn=self.solve_fn, case_timeout=how.case_timeout)
+        with ResultStore(out / STORE_FILE) as store:
+            run = _Run(scene, out, digest, how.executor, how.progress)
+            run.open(store, manifest, how.force)
+            if how.executor is None:  # made once the folder is known to be ours
+                run.executor = LocalPool(how.workers, item_timeout=how.case_timeout)
+            try:
+                cases = run.cases() if cases is None else cases
+                chosen = cases if only is None else [c for c in cases if c.case_id in only]
+                run.solve(store, chosen, solve, how.batch)
+            finally:
+                if how.executor is None:
+                    run.executor.close()
+            table = case_table(chosen, store.rows())
+            write_cases_csv(out / CASES_FILE, table, scene.columns)
+        return run.summary(table, time.perf_counter() - t_start), cases
+
+
+#: Workflows a scene's ``[needs]`` may choose (:attr:`opsrock.campaign.needs.Choice.strategy`), each the
+#: policy that runs it from the choice; ``"single"`` (one solver on every case) is the engine itself.
+POLICIES: dict[str, Callable[[Any], Any]] = {"multifidelity": MultiFidelity.from_choice}
+
+
+def policy_for(scene: Scene):
+    """The policy the scene's ``[needs]`` chose (:data:`POLICIES`), or None: one solver on every case."""
+    strategy = "single" if scene.choice is None else scene.choice.strategy
+    return None if strategy == "single" else POLICIES[strategy](scene.choice)
+
+
 def run_campaign(
     scene: Scene | str | os.PathLike,
     out_dir: str | os.PathLike,
@@ -317,8 +411,9 @@ def run_campaign(
     solve_fn: Callable[..., RockingResult] | None = None,
     batch: int | None = None,
     case_timeout: float | None = None,
-) -> CampaignSummary:
-    """Run (or resume) every case of a scene into ``out_dir``.
+    policy: MultiFidelity | None = None,
+) -> CampaignSummary | MultiFidelitySummary:
+    """Run (or resume) every case of a scene into ``out_dir``, by the workflow its ``[needs]`` chose.
 
     Parameters
     ----------
@@ -328,7 +423,7 @@ def run_campaign(
         Output folder: ``results.sqlite`` (the store), ``cases.csv``, ``manifest.json``.
     solver : str, optional
         Run with this solver instead of the scene's (:meth:`Scene.with_solver`: the scene's settings
-        are dropped if they belong to another solver).
+        are dropped if they belong to another solver); a named solver runs every case.
     workers : int, optional
         Processes of the default :class:`~opsrock.campaign.executors.LocalPool` (default: all cores);
         ignored when ``executor`` is given.
@@ -343,7 +438,8 @@ def run_campaign(
     solve_fn : callable, optional
         Replace :func:`opsrock.solvers.simulate` (tests, custom solvers), picklable:
         ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``. Its name enters the
-        manifest, so its results never mix with a real solver's.
+        manifest, so its results never mix with a real solver's. A multi-fidelity policy uses it for
+        the expensive solver only.
     batch : int, optional
         Cases per batch. Default :func:`opsrock.campaign.executors.batch_size`.
     case_timeout : float, optional
@@ -351,41 +447,30 @@ def run_campaign(
         :data:`opsrock.campaign.timeout.DEFAULT_CASE_TIMEOUT`. A case past it is stored failed with a
         reason starting ``"timeout"`` and the campaign goes on (the local executor also kills a worker
         stuck in native code).
+    policy : MultiFidelity, optional
+        The workflow. Default: the one the scene's ``[needs]`` chose (:func:`policy_for`), else one
+        solver on every case (:class:`Stage`).
 
     Returns
     -------
-    CampaignSummary
+    CampaignSummary or MultiFidelitySummary
+        The latter when a multi-fidelity policy ran.
 
     Raises
     ------
-    SceneError, CampaignConflictError, StoreError
-        Invalid scene or settings (nothing written); ``out_dir`` holds results of other settings and
-        ``force`` is False; another run holds ``out_dir``.
+    SceneError, InputError, CampaignConflictError, StoreError
+        Invalid scene, settings or policy (nothing written); ``out_dir`` holds results of other settings
+        and ``force`` is False; another run holds ``out_dir``.
     """
-    t_start = time.perf_counter()
     scene = scene if isinstance(scene, Scene) else load_scene(scene)
     if solver is not None:
         scene = scene.with_solver(solver)
-    digest, manifest = campaign_identity(scene, solve_fn)
-    case_timeout = _case_budget(scene, case_timeout)
-    out = Path(out_dir)
-    solve = functools.partial(solve_batch, solver=scene.solver, settings=dict(scene.solver_settings),
-                              solve_fn=solve_fn, case_timeout=case_timeout)
-    with ResultStore(out / STORE_FILE) as store:
-        run = _Run(scene, out, digest, executor, progress)
-        run.open(store, manifest, force)
-        if executor is None:  # made once the folder is known to be ours
-            run.executor = LocalPool(workers, item_timeout=case_timeout)
-        try:
-            cases = run.cases()
-            run.solve(store, cases, solve, batch)
-        finally:
-            if executor is None:
-                run.executor.close()
-        table = case_table(cases, store.rows())
-        write_cases_csv(out / CASES_FILE, table, scene.columns)
-    return run.summary(table, time.perf_counter() - t_start)
+    policy = policy_for(scene) if policy is None else policy
+    how = Execution(workers, executor, force, progress, batch, _case_budget(scene, case_timeout))
+    if policy is None:
+        return Stage(how, solve_fn)(scene, out_dir)[0]
+    return policy.run(scene, Path(out_dir), Stage(how, solve_fn))
 
 
-__all__ = ["CASES_FILE", "CampaignSummary", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "campaign_identity", "lost_row",
-           "progress_bar", "run_campaign", "solve_batch"]
+__all__ = ["CASES_FILE", "POLICIES", "CampaignSummary", "Execution", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "Stage",
+           "campaign_identity", "lost_row", "policy_for", "progress_bar", "run_campaign", "solve_batch"]

@@ -33,7 +33,7 @@ Scene file layout (see ``docs/scenes.md``)::
 Blocks file layout: an array of tables ``[[block]]`` with ``name``, ``width`` (2b, m),
 ``height`` (2h, m), ``reason`` (one line), and optionally ``mass`` (kg), either
 ``restitution_factor`` (``e / e_R``, or a distribution of it sampled per case) or ``restitution`` (``e``
-itself, or a named law: :mod:`opsrock.campaign.restitution`), and ``friction`` (the static
+itself, or a named law: :mod:`opsrock.restitution`), and ``friction`` (the static
 Coulomb coefficient on the floor) with ``friction_kinetic``; a block with friction needs a solver of
 the ``friction`` model.
 """
@@ -55,8 +55,9 @@ from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.campaign.cases import CONTACT_COLUMNS
 from opsrock.campaign.needs import Choice, Needs, check, choose
-from opsrock.campaign.restitution import RestitutionDistribution, distribution_from_table, law_factor
-from opsrock.solvers import METHODS, SOLVERS, check_settings
+from opsrock.campaign.registry import solver_info, solver_names
+from opsrock.restitution import RestitutionDistribution, distribution_from_table, law_factor
+from opsrock.solvers import check_settings
 
 if TYPE_CHECKING:
     from opsrock.campaign.records import RecordSet
@@ -199,7 +200,7 @@ class Scene:
                              "a scene needs exactly one of [grid] (pulses) or [records] (floor motions)")
         object.__setattr__(self, "solver_settings", _check_solver(TomlFile(self.path or "<scene>"), self.solver,
                                                                   dict(self.solver_settings)))
-        if METHODS[self.solver].model != "friction":
+        if solver_info(self.solver).model != "friction":
             for b in self.blocks:
                 if b.friction is not None:
                     raise SceneError(self.path or "<scene>", "solver.name", self.solver,
@@ -215,7 +216,7 @@ class Scene:
     def columns(self) -> tuple[str, ...]:
         """Columns of the scene's ``cases.csv``: with the contact columns for a solver of the ``friction``
         model (:data:`opsrock.campaign.cases.CONTACT_COLUMNS`)."""
-        if METHODS[self.solver].model == "friction":
+        if solver_info(self.solver).model == "friction":
             return (*self.design.columns, *CONTACT_COLUMNS)
         return self.design.columns
 
@@ -528,8 +529,8 @@ def _check_solver(f: TomlFile, solver: Any, settings: dict) -> dict:
     built (:func:`opsrock.solvers.check_settings`), so a bad name or value is refused now."""
     if solver == AUTO:
         raise f.error("solver.name", solver, "'auto' is resolved from [needs] when the scene loads")
-    if solver not in SOLVERS:
-        raise f.error("solver.name", solver, f"unknown solver (known: {', '.join(SOLVERS)})")
+    if solver_info(solver) is None:
+        raise f.error("solver.name", solver, f"unknown solver (known: {', '.join(solver_names())})")
     for key, value in settings.items():
         f.setting(f"solver.settings.{key}", value)
     try:

@@ -32,6 +32,9 @@ from opsrock.errors import StoreError
 #: File name of the store inside a campaign's output folder.
 STORE_FILE: str = "results.sqlite"
 
+#: Name of the human-readable copy of a campaign's manifest, beside the store.
+MANIFEST_FILE: str = "manifest.json"
+
 #: File locked by the campaign that writes to a folder.
 LOCK_FILE: str = ".lock"
 
@@ -292,4 +295,4 @@ def read_rows(out_dir: str | Path) -> dict[str, dict[str, Any]]:
     return {rec[0]: {**missing, **{n: _from_sql(n, v) for n, v in zip(names, rec[1:])}} for rec in records}
 
 
-__all__ = ["LOCK_FILE", "RESULT_COLUMNS", "STORE_FILE", "ResultStore", "StoreError", "read_rows"]
+__all__ = ["LOCK_FILE", "MANIFEST_FILE", "RESULT_COLUMNS", "STORE_FILE", "ResultStore", "StoreError", "read_rows"]

@@ -14,23 +14,44 @@
     opsrock sliding-map [--quick] --out DIR [--workers N]
     opsrock contents [--period T --storeys N --floors ground,roof ...] [--quick] --out DIR
 
-The parser is :mod:`opsrock.cli.parser`, the handlers :mod:`opsrock.cli.commands`. One error path:
-every :class:`~opsrock.errors.OpsrockError` (bad arguments, scene files, record files, output
-folders) becomes one line on stderr and exit status 2; no traceback, no half-written output.
+The parser is :mod:`opsrock.cli.parser`; each command's handler is a module of this package
+(:data:`HANDLERS`), imported once the command line is parsed, so that ``opsrock --help`` and each command
+load only what they use. A handler only translates: options into the arguments of one library call, its
+result into lines, and exceptions into exit statuses (:mod:`opsrock.cli.common`). One error path: every
+:class:`~opsrock.errors.OpsrockError` (bad arguments, scene files, record files, output folders) becomes
+one line on stderr and exit status 2; no traceback, no half-written output.
 """
 
 from __future__ import annotations
 
+import argparse
+import importlib
 import os
 import sys
-from typing import Sequence
+from typing import Callable, Sequence
 
 from opsrock.errors import OpsrockError
 
+#: Exit status when the work ran but did not pass (a failed solve, gate or validation case).
+EXIT_FAILED = 1
 #: Exit status for bad input (argparse's convention).
 EXIT_USAGE = 2
 #: Exit status after Ctrl-C (128 + SIGINT).
 EXIT_INTERRUPTED = 130
+
+#: Each command's handler, ``"module:function"`` in this package.
+HANDLERS: dict[str, str] = {
+    "simulate": "simulate:simulate", "threshold": "threshold:threshold", "records": "records:records",
+    "run": "run:run", "fragility": "fragility:fragility", "reproduce": "reproduce:reproduce",
+    "validate": "validate:validate", "bench": "bench:bench", "sliding-map": "sliding_map:sliding_map",
+    "contents": "contents:contents",
+}
+
+
+def handler(command: str) -> Callable[[argparse.Namespace], int]:
+    """The handler of ``command`` (:data:`HANDLERS`), its module imported now: the one import site."""
+    module, _, name = HANDLERS[command].partition(":")
+    return getattr(importlib.import_module(f"opsrock.cli.{module}"), name)
 
 
 def _one_line(command: str | None, exc: BaseException) -> str:
@@ -45,12 +66,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     command = None
     try:
         # imported inside the try: a Ctrl-C while a slow machine still imports is an interruption too
-        from opsrock.cli import commands
         from opsrock.cli.parser import build_parser
 
         args = build_parser().parse_args(argv)
         command = args.command
-        return int(getattr(commands, command.replace("-", "_"))(args) or 0)
+        return int(handler(command)(args) or 0)
     except OpsrockError as exc:
         print(_one_line(command, exc), file=sys.stderr)
         return EXIT_USAGE
@@ -62,4 +82,4 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_INTERRUPTED
 
 
-__all__ = ["EXIT_INTERRUPTED", "EXIT_USAGE", "main"]
+__all__ = ["EXIT_FAILED", "EXIT_INTERRUPTED", "EXIT_USAGE", "HANDLERS", "handler", "main"]

@@ -1,6 +1,6 @@
 """The ``opsrock`` argument parser: every command and option, in one place.
 
-Each command's parser sets ``handler`` to its function in :mod:`opsrock.cli.commands`. Parsing
+Each command's handler is named in :data:`opsrock.cli.HANDLERS`. Parsing
 errors raise :class:`~opsrock.errors.UsageError` (one line, exit status 2) instead of argparse's
 usage dump.
 """
@@ -10,11 +10,20 @@ from __future__ import annotations
 import argparse
 import math
 import os
+from typing import Any, Callable
 
+from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
+from opsrock.bench import BENCHMARKS
+from opsrock.campaign.registry import solver_names
+from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
 from opsrock.errors import OpsrockError, UsageError
+from opsrock.excitations import PULSE_SHAPES
+from opsrock.limits import check, check_count
+from opsrock.analysis.reproduce import ROBUSTNESS_SETS
+from opsrock.validation import CASES
 
-#: Solver names of the command line (the registry's, :data:`opsrock.solvers.SOLVERS`).
-SOLVER_NAMES = ("opensees", "sdof", "housner", "housner_fast", "friction", "moreau_jean")
+#: Solver names of the command line: the registry's (:mod:`opsrock.campaign.registry`).
+SOLVER_NAMES: tuple[str, ...] = solver_names()
 
 
 class _Parser(argparse.ArgumentParser):
@@ -24,70 +33,52 @@ class _Parser(argparse.ArgumentParser):
         raise UsageError(f"{self.prog}: {message}")
 
 
-def positive(kind: str):
-    """argparse type: a positive, finite float; the message names ``kind`` (the option)."""
+def _typed(kind: str, parse: Callable[[str], Any], what: str, accept: Callable[[Any, str], Any]):
+    """argparse type: ``parse`` the text (else "must be ``what``"), then ``accept(value, text)`` (returns the
+    value, or raises :class:`~opsrock.errors.OpsrockError`); every message names ``kind`` (the option)."""
 
-    def convert(text: str) -> float:
+    def convert(text: str):
         try:
-            value = float(text)
+            value = parse(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
-        if not math.isfinite(value) or value <= 0:
-            raise argparse.ArgumentTypeError(f"{kind} must be positive and finite, got {text!r}")
-        return value
+            raise argparse.ArgumentTypeError(f"{kind} must be {what}, got {text!r}") from None
+        try:
+            return accept(value, text)
+        except OpsrockError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
 
     return convert
+
+
+def _finite(kind: str, positive_only: bool) -> Callable[[float, str], float]:
+    what = "positive and finite" if positive_only else "finite"
+
+    def accept(value: float, text: str) -> float:
+        if not math.isfinite(value) or (positive_only and value <= 0):
+            raise UsageError(f"{kind} must be {what}, got {text!r}")
+        return value
+
+    return accept
+
+
+def positive(kind: str):
+    """argparse type: a positive, finite float; the message names ``kind`` (the option)."""
+    return _typed(kind, float, "a number", _finite(kind, positive_only=True))
 
 
 def finite(kind: str):
     """argparse type: a finite float of either sign; the message names ``kind`` (the option)."""
-
-    def convert(text: str) -> float:
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
-        if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{kind} must be finite, got {text!r}")
-        return value
-
-    return convert
+    return _typed(kind, float, "a number", _finite(kind, positive_only=False))
 
 
 def limited(kind: str, limit: str):
     """argparse type: a number within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
-
-    def convert(text: str) -> float:
-        from opsrock.limits import check
-
-        try:
-            value = float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be a number, got {text!r}") from None
-        try:
-            return check(limit, value, shown_as=kind)
-        except OpsrockError as exc:
-            raise argparse.ArgumentTypeError(str(exc)) from None
-
-    return convert
+    return _typed(kind, float, "a number", lambda value, _: check(limit, value, shown_as=kind))
 
 
 def count(kind: str, limit: str):
     """argparse type: an integer within ``opsrock.limits.LIMITS[limit]``; the message names ``kind``."""
-
-    def convert(text: str) -> int:
-        from opsrock.limits import check_count
-
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{kind} must be an integer, got {text!r}") from None
-        try:
-            return check_count(limit, value, shown_as=kind)
-        except OpsrockError as exc:
-            raise argparse.ArgumentTypeError(str(exc)) from None
-
-    return convert
+    return _typed(kind, int, "an integer", lambda value, _: check_count(limit, value, shown_as=kind))
 
 
 # --- option groups shared by several commands ------------------------------------------------------
@@ -107,8 +98,6 @@ def _block(p: argparse.ArgumentParser) -> None:
 
 
 def _pulse(p: argparse.ArgumentParser) -> None:
-    from opsrock.excitations import PULSE_SHAPES
-
     p.add_argument("--pulse", default="one-sine", help=f"pulse shape: {', '.join(PULSE_SHAPES)} (default one-sine)")
     f = p.add_mutually_exclusive_group()
     f.add_argument("--freq", type=positive("--freq"), help="pulse frequency omega_p / 2 pi (Hz)")
@@ -161,8 +150,6 @@ def _simulate(sub) -> None:
 
 
 def _threshold(sub) -> None:
-    from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
-
     p = sub.add_parser("threshold", help="overturning intervals along the amplitude axis of a pulse",
                        description="Every amplitude interval in which one block overturns under one pulse.")
     _block(p)
@@ -198,8 +185,6 @@ def _records(sub) -> None:
 
 
 def _run(sub) -> None:
-    from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
-
     p = sub.add_parser("run", help="run every case of a scene",
                        description="Run (or resume) every case of a scene into a folder.")
     p.add_argument("scene", help="scene file (TOML), or the name of a shipped scene (paper, spectrum, tiny, "
@@ -219,8 +204,6 @@ def _run(sub) -> None:
 
 
 def _reproduce(sub) -> None:
-    from opsrock.analysis.reproduce import ROBUSTNESS_SETS
-
     p = sub.add_parser("reproduce", help="every figure and table of the paper",
                        description="Every figure and table of Liu, Huang & Liu (2023) from one command.")
     p.add_argument("--out", default="results", help="output folder (default results/)")
@@ -235,8 +218,6 @@ def _reproduce(sub) -> None:
 
 
 def _validate(sub) -> None:
-    from opsrock.validation import CASES
-
     p = sub.add_parser("validate", help="regenerate the validation cases",
                        description="Regenerate the validation cases, a summary line each.")
     p.add_argument("--case", action="append", choices=CASES, help="run only this case (repeatable)")
@@ -245,8 +226,6 @@ def _validate(sub) -> None:
 
 
 def _bench(sub) -> None:
-    from opsrock.bench import BENCHMARKS
-
     p = sub.add_parser("bench", help="benchmarks: ratios measured in one run",
                        description="Benchmarks that measure ratios in one run.")
     p.add_argument("--quick", action="store_true", help="small problem sizes (a minute in all)")

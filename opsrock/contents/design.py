@@ -159,30 +159,30 @@ class ContentsDesign:
     sweep: tuple[tuple[float, int], ...] = ()
 
     def __post_init__(self) -> None:
-        # every message starts with the field's name (the command line turns it into its option)
+        # every error carries the field at fault (OpsrockError.argument: the command line names its option)
         from opsrock.errors import OpsrockError
         from opsrock.excitations.building import ShearBuilding
 
         self.building  # noqa: B018  (checks period, storeys, damping)
         bad = [v for v in self.variants if v not in VARIANTS]
         if bad or not self.variants:
-            raise InputError(f"variants must be a non-empty subset of {', '.join(VARIANTS)}; got {self.variants!r}")
+            raise InputError(f"variants must be a non-empty subset of {', '.join(VARIANTS)}; got {self.variants!r}", argument="variants")
         if not self.floors:
-            raise InputError("floors must name at least one floor ('ground', a number or 'roof')")
+            raise InputError("floors must name at least one floor ('ground', a number or 'roof')", argument="floors")
         for f in self.floors:
             if f != "ground":
                 try:
                     self.building.floor_index(f)
                 except OpsrockError:
-                    raise InputError(f"floors: {f!r} is not 'ground', 'roof' or a floor 1..{self.storeys}") from None
+                    raise InputError(f"floors: {f!r} is not 'ground', 'roof' or a floor 1..{self.storeys}", argument="floors") from None
         if len(set(self.floor_numbers)) != len(self.floors):
-            raise InputError(f"floors name the same floor twice: {self.floors!r}")
+            raise InputError(f"floors name the same floor twice: {self.floors!r}", argument="floors")
         if not self.levels or any(isinstance(x, bool) or not (isinstance(x, (int, float)) and math.isfinite(x)
                                                               and x > 0) for x in self.levels):
             raise InputError(f"levels must be positive numbers (PFA / g tan alpha), got {self.levels!r}")
         if self.friction is not None and (isinstance(self.friction, bool) or not isinstance(self.friction, (int, float))
                                           or not 0.0 < self.friction <= 1.3):
-            raise InputError(f"friction must lie in (0, 1.3] (static = kinetic), got {self.friction!r}")
+            raise InputError(f"friction must lie in (0, 1.3] (static = kinetic), got {self.friction!r}", argument="friction")
         for t, n in self.sweep:
             ShearBuilding(sweep_name(t), t, n, self.damping)
 
@@ -245,9 +245,9 @@ def item_specs(design: ContentsDesign) -> tuple[Any, ...]:
     names = design.items or tuple(specs)
     bad = [n for n in names if n not in specs]
     if bad:
-        raise InputError(f"items {bad!r} are not in the {LIBRARY} library (has: {', '.join(specs)})")
+        raise InputError(f"items {bad!r} are not in the {LIBRARY} library (has: {', '.join(specs)})", argument="items")
     if len(set(names)) != len(names):
-        raise InputError(f"items name an item twice: {list(names)!r}")
+        raise InputError(f"items name an item twice: {list(names)!r}", argument="items")
     return tuple(specs[n] for n in names)
 
 
@@ -271,14 +271,14 @@ def _grounds(design: ContentsDesign):
         if one is not None:
             raise InputError("names one record; give a set (fema-p695:far-field) and --records for a subset")
     except OpsrockError as exc:
-        raise InputError(f"record_set {design.record_set!r}: {exc}") from None
+        raise InputError(f"record_set {design.record_set!r}: {exc}", argument="record_set") from None
     entries = [e for e in library.entries(set_name) if not design.names or e.name in design.names]
     found = {e.name for e in entries}
     missing = [n for n in design.names if n not in found]
     if missing:
-        raise InputError(f"records {missing!r} are not in {design.record_set}")
+        raise InputError(f"records {missing!r} are not in {design.record_set}", argument="records")
     if len(set(design.names)) != len(design.names):
-        raise InputError(f"records name a record twice: {list(design.names)!r}")
+        raise InputError(f"records name a record twice: {list(design.names)!r}", argument="records")
     return tuple(library.load(e.reference) for e in entries)
 
 

@@ -29,8 +29,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from opsrock.errors import InputError
+from opsrock.errors import AnalysisError, InputError
 from opsrock.excitations.records import Record
+from opsrock.excitations.vertical import padded
 from opsrock.limits import LIMITS, check, check_count, positive_finite
 
 #: Newmark steps per period of the highest mode (see the module docstring).
@@ -129,7 +130,7 @@ class ShearBuilding:
             return self.storeys
         if isinstance(floor, bool) or not isinstance(floor, int) or not 1 <= floor <= self.storeys:
             raise InputError(f"floor must be 'roof' or an integer in 1..{self.storeys} for building "
-                             f"{self.name!r}, got {floor!r}")
+                             f"{self.name!r}, got {floor!r}", argument="floor")
         return floor
 
     def floor_label(self, floor: int | str | None) -> str:
@@ -182,9 +183,28 @@ def floor_motion(ground: Record, building: ShearBuilding, floor: int | str | Non
     Record
         The floor's absolute acceleration (m/s²) at the ground record's sample times, followed by
         the building's free vibration (:func:`free_vibration_samples`), named like the ground
-        record, with ``info.floor`` set to ``"<building>.f<n>"``.
+        record, with ``info.floor`` set to ``"<building>.f<n>"``; its vertical motion is the ground's
+        (:func:`floor_record`).
+
+    Raises
+    ------
+    InputError
+        A floor the building does not have (``argument`` ``"floor"``).
+    AnalysisError
+        The building's OpenSees analysis failed.
     """
     return floor_motions(ground, building, [floor])[0]
+
+
+def floor_record(ground: Record, values: np.ndarray, label: str) -> Record:
+    """The floor motion of ``ground`` whose horizontal acceleration is ``values`` (m/s²), at floor ``label``.
+
+    The one place a floor record is made (:func:`floor_motions`, the campaign's cached floor motions): named
+    like the ground record, with ``info.floor = label``, and moving vertically with the ground (the ground's
+    vertical acceleration, m/s², zero over the free-vibration tail: a shear building has no vertical modes).
+    """
+    return Record(dt=ground.dt, values=values, name=ground.name, info=replace(ground.info, floor=label),
+                  vertical=padded(ground.vertical, len(values)))
 
 
 def floor_motions(ground: Record, building: ShearBuilding, floors) -> list[Record]:
@@ -219,12 +239,11 @@ def floor_motions(ground: Record, building: ShearBuilding, floors) -> list[Recor
         h = ground.dt / nsub
         for j in range(1, ag.size):
             if ops.analyze(nsub, h) != 0:
-                raise RuntimeError(f"OpenSees failed on the shear building {building.name!r} at t = {j * ground.dt:g} s")
+                raise AnalysisError(f"OpenSees failed on the shear building {building.name!r} at t = {j * ground.dt:g} s")
             for r, fl in enumerate(index):
                 out[r, j] = ops.nodeAccel(fl, 1) + ag[j]
     out[:, 0] = ag[0]  # at rest at t = 0: the floor moves with the ground
-    return [Record(dt=ground.dt, values=out[r], name=ground.name,
-                   info=replace(ground.info, floor=building.floor_label(fl))) for r, fl in enumerate(index)]
+    return [floor_record(ground, out[r], building.floor_label(fl)) for r, fl in enumerate(index)]
 
 
 def modal_floor_motion(ground: Record, building: ShearBuilding, floor: int | str | None = None) -> np.ndarray:
@@ -254,5 +273,5 @@ def modal_floor_motion(ground: Record, building: ShearBuilding, floor: int | str
     return acc
 
 
-__all__ = ["MAX_STOREYS", "STEPS_PER_PERIOD", "ShearBuilding", "floor_motion", "floor_motions",
+__all__ = ["MAX_STOREYS", "STEPS_PER_PERIOD", "ShearBuilding", "floor_motion", "floor_motions", "floor_record",
            "modal_floor_motion", "substeps"]

@@ -216,8 +216,18 @@ class Record:
         return pfa / self.pfa
 
     def scaled_to_pfa(self, pfa: float) -> "Record":
-        """The record scaled so that its peak is ``pfa`` (m/s²), the factor within ``LIMITS["scale"]``."""
-        return self.scaled(self.scale_to(pfa))
+        """The record scaled so that its peak is ``pfa`` (m/s²), the factor within ``LIMITS["scale"]``.
+
+        Raises
+        ------
+        InputError
+            If the record is all zeros, or the factor lies outside the limit (naming the factor).
+        """
+        factor, lim = self.scale_to(pfa), LIMITS["scale"]
+        if not lim.low <= factor <= lim.high:
+            raise InputError(f"record {self.name or '<unnamed>'} needs a scale factor of {factor:.4g} to reach "
+                             f"PFA = {pfa:.4g} m/s², outside [{lim.low:g}, {lim.high:g}]")
+        return self.scaled(factor)
 
     def with_name(self, name: str, **info_changes) -> "Record":
         """A copy under another name, with fields of :attr:`info` replaced."""

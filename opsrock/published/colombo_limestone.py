@@ -6,7 +6,7 @@ University of Minho, DOI 10.60756/uminho-jh25, CC BY 4.0; shipped in ``opsrock/d
 (its ``SOURCE.md`` gives the attribution, the licence and how the tables were derived). 12 geometries
 (B = 0.05 m, H = 0.20-0.75 m), 134 distinct trials, 7,519 impacts, each with its measured
 angular-velocity ratio after/before. Validation case ``experiments`` (:mod:`opsrock.validation.experiments`)
-analyses them; the restitution law ``colombo-limestone`` (:mod:`opsrock.campaign.restitution`) is
+analyses them; the restitution law ``colombo-limestone`` (:mod:`opsrock.restitution`) is
 fitted on them.
 """
 

@@ -3,7 +3,7 @@
     .venv/bin/python studies/multifidelity/run_study.py [--work DIR] [--reuse]
 
 In one run, one after the other on the same machine: the full campaign (``opsrock run fema-far-field-ida-b3
---solver opensees``), the multi-fidelity campaign (:func:`opsrock.campaign.multifidelity.run_multifidelity`,
+--solver opensees``), the multi-fidelity campaign (:func:`opsrock.campaign.run_campaign` with the ``MultiFidelity`` policy,
 defaults: screen ``housner_fast``, margin the p95 of the measured model-form error, overturned cases
 escalated, 2 % audit, seed 0), then ``opsrock fragility`` (200 record resamples, seed 0) on the full
 campaign, the multi-fidelity one and the screen alone. Each stage runs in a child process; its wall time
@@ -59,9 +59,10 @@ def complete(folder: Path) -> bool:
 
 def run_mf(out: str) -> None:
     """The multi-fidelity campaign, in this (child) process; its summary as JSON beside it."""
-    from opsrock.campaign.multifidelity import run_multifidelity
+    from opsrock.campaign import run_campaign
+    from opsrock.campaign.multifidelity import MultiFidelity
 
-    s = run_multifidelity(SCENE, out, force=True, progress=False)
+    s = run_campaign(SCENE, out, policy=MultiFidelity(), force=True, progress=False)
     print("\n".join(s.lines()), flush=True)
     d = asdict(s)
     Path(out, "summary.json").write_text(json.dumps(d, indent=2, default=str))
@@ -75,7 +76,7 @@ def campaigns(work: Path, reuse: bool) -> list[dict]:
               [str(BIN / "opsrock"), "run", SCENE, "--solver", "opensees", "--out", str(full), "--force",
                "--no-progress"], rows)
     if not (reuse and complete(mf)):
-        timed("multi-fidelity campaign (run_multifidelity, defaults)",
+        timed("multi-fidelity campaign (run_campaign, MultiFidelity defaults)",
               [sys.executable, __file__, "--mf-only", str(mf)], rows)
     for name, src in (("full", full), ("mf", mf), ("screen", mf / "screen")):
         dest = work / f"fragility_{name}"

@@ -228,8 +228,10 @@ def test_simulate_with_friction_and_vertical_motion():
 
 @pytest.mark.parametrize("args, message", [
     (["--friction", "0.3", "--solver", "housner_fast"], "--friction needs --solver friction"),
-    (["--friction-kinetic", "0.3"], "--friction-kinetic 0.3 needs --friction"),
-    (["--friction", "0.3", "--friction-kinetic", "0.4"], "--friction-kinetic 0.4 exceeds --friction 0.3"),
+    # the block's own rules (opsrock.block.Block), told under the option that gave the value
+    (["--friction-kinetic", "0.3"], "--friction-kinetic: friction_kinetic = 0.3 needs friction"),
+    (["--friction", "0.3", "--friction-kinetic", "0.4"], "--friction-kinetic: friction_kinetic = 0.4 exceeds friction = 0.3"),
+    (["--friction", "2"], "--friction: friction = 2.0 needs friction_kinetic (at most 1.3"),
     (["--friction", "-1"], "--friction must lie in"),
     (["--vertical", "-1.5"], "--vertical"),
     (["--vertical", "nan"], "--vertical must be finite"),

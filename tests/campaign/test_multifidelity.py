@@ -9,6 +9,7 @@ screen, run in this process, so the suite stays fast; the paper's pairing (``ope
 from __future__ import annotations
 
 import csv
+import dataclasses
 import json
 import math
 import shutil
@@ -23,8 +24,8 @@ from opsrock.campaign.multifidelity import (
     EVIDENCE,
     EscalationRule,
     derive_rule,
+    MultiFidelity,
     escalation_reason,
-    run_multifidelity,
     select_cases,
 )
 from opsrock.campaign.scene import load_scene
@@ -54,8 +55,12 @@ levels = [1.5, 3.0, 6.0]
 #: overturned cases are escalated too (the evidence for housner would trust the screen's: 29/29 agree).
 MARGIN = 0.5
 AUDIT = 0.2
-RUN = {"solver": "housner", "margin": MARGIN, "escalate_overturned": True, "audit_fraction": AUDIT, "seed": 3,
-       "progress": False}
+POLICY = MultiFidelity(solver="housner", margin=MARGIN, escalate_overturned=True, audit_fraction=AUDIT, seed=3)
+
+
+def run_multifidelity(scene, out, *, policy=POLICY, progress=False, **how):
+    """The multi-fidelity policy over ``run_campaign`` (the one engine), quietly."""
+    return run_campaign(scene, out, policy=policy, progress=progress, **how)
 
 
 class InProcess:
@@ -115,7 +120,7 @@ def full(scene_path, tmp_path_factory) -> dict[str, dict[str, str]]:
 @pytest.fixture(scope="module")
 def mf(scene_path, tmp_path_factory):
     out = tmp_path_factory.mktemp("mf") / "run"
-    summary = run_multifidelity(scene_path, out, executor=InProcess(), **RUN)
+    summary = run_multifidelity(scene_path, out, executor=InProcess())
     return summary, out
 
 
@@ -285,10 +290,10 @@ def test_same_seed_same_table_other_seed_other_audit(mf, scene_path, tmp_path):
     summary, out = mf
     run = tmp_path / "run"
     shutil.copytree(out, run)
-    again = run_multifidelity(scene_path, run, executor=InProcess(), **RUN)
+    again = run_multifidelity(scene_path, run, executor=InProcess())
     assert (again.n_computed, again.n_reused, again.audited) == (0, summary.n_computed, summary.audited)
     assert without_time(read_csv(run / "cases.csv")) == without_time(read_csv(out / "cases.csv"))
-    other = run_multifidelity(scene_path, run, executor=InProcess(), **{**RUN, "seed": 4})
+    other = run_multifidelity(scene_path, run, executor=InProcess(), policy=dataclasses.replace(POLICY, seed=4))
     assert other.audited != summary.audited and len(other.audited) == len(summary.audited)
     assert other.n_escalated == summary.n_escalated
     # the escalated store keeps every expensive row: only the newly audited cases are solved
@@ -300,19 +305,19 @@ def test_an_interrupted_run_resumes_and_ends_with_the_same_table(mf, scene_path,
     summary, out = mf
     run = tmp_path / "run"
     with pytest.raises(KeyboardInterrupt):  # the screen completes, the expensive solver stops after 1 batch
-        run_multifidelity(scene_path, run, executor=StopAfter(1), batch=2, **RUN)
+        run_multifidelity(scene_path, run, executor=StopAfter(1), batch=2)
     with sqlite3.connect(run / "escalated" / "results.sqlite") as db:
         (kept,) = db.execute("SELECT COUNT(*) FROM results").fetchone()
     assert kept == 2  # the one committed batch, nothing else
     assert not (run / "cases.csv").exists()
-    resumed = run_multifidelity(scene_path, run, executor=InProcess(), **RUN)
+    resumed = run_multifidelity(scene_path, run, executor=InProcess())
     assert (resumed.n_reused, resumed.n_computed) == (2, summary.n_escalated + summary.n_audited - 2)
     assert without_time(read_csv(run / "cases.csv")) == without_time(read_csv(out / "cases.csv"))
     # a case lost in flight (its row never committed) is computed again, and only it
     with sqlite3.connect(run / "escalated" / "results.sqlite") as db:
         lost = db.execute("SELECT case_id FROM results ORDER BY case_id LIMIT 1").fetchone()[0]
         db.execute("DELETE FROM results WHERE case_id = ?", (lost,))
-    again = run_multifidelity(scene_path, run, executor=InProcess(), **RUN)
+    again = run_multifidelity(scene_path, run, executor=InProcess())
     assert again.n_computed == 1 and again.n_reused == summary.n_escalated + summary.n_audited - 1
     assert without_time(read_csv(run / "cases.csv")) == without_time(read_csv(out / "cases.csv"))
 
@@ -323,10 +328,10 @@ def test_a_folder_of_other_settings_is_refused_unless_forced(mf, scene_path, tmp
     shutil.copytree(out, run)
     other = load_scene(scene_path).with_solver("housner", {"tail": "rest"})
     with pytest.raises(CampaignConflictError, match="refusing to mix"):
-        run_multifidelity(other, run, executor=InProcess(), **RUN)
+        run_multifidelity(other, run, executor=InProcess())
     assert without_time(read_csv(run / "cases.csv")) == without_time(read_csv(out / "cases.csv"))
-    cheap = {**RUN, "margin": 0.0, "escalate_overturned": False, "audit_fraction": 0.0}
-    forced = run_multifidelity(other, run, executor=InProcess(), force=True, **cheap)
+    cheap = dataclasses.replace(POLICY, margin=0.0, escalate_overturned=False, audit_fraction=0.0)
+    forced = run_multifidelity(other, run, executor=InProcess(), force=True, policy=cheap)
     assert forced.n_reused == 0 and forced.n_computed == forced.n_escalated + forced.n_audited
     with sqlite3.connect(run / "escalated" / "results.sqlite") as db:
         (n_rows,) = db.execute("SELECT COUNT(*) FROM results").fetchone()
@@ -339,5 +344,5 @@ def test_bad_arguments_write_nothing(scene_path, tmp_path):
                           ({"solver": "opensees", "percentile": 99}, "percentile"),
                           ({"solver": "housner", "margin": -0.1}, "margin")):
         with pytest.raises(InputError, match=match):
-            run_multifidelity(scene_path, tmp_path / "bad", executor=InProcess(), progress=False, **kwargs)
+            run_multifidelity(scene_path, tmp_path / "bad", executor=InProcess(), policy=MultiFidelity(**kwargs))
     assert not (tmp_path / "bad").exists()

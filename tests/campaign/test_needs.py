@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import csv
 import json
 import subprocess
 import sys
@@ -121,7 +122,6 @@ def test_command_line_solver_names_are_the_registry():
 def test_sdof_verdicts_at_scale_run_as_a_multifidelity_campaign(tmp_path, monkeypatch, capsys):
     """With model 'sdof' and answer 'verdicts' for enough cases, `opsrock run` screens with the rigid body and
     runs OpenSees only where the verdict can differ (the threshold lowered here to keep the test small)."""
-    import csv
 
     from opsrock.campaign import needs as needs_module
     from opsrock.cli import main
@@ -135,3 +135,40 @@ def test_sdof_verdicts_at_scale_run_as_a_multifidelity_campaign(tmp_path, monkey
     with open(tmp_path / "out" / "cases.csv") as fh:
         rows = list(csv.DictReader(fh))
     assert len(rows) == 2 and {r["source"] for r in rows} <= {"screen", "escalated", "audit"}
+
+
+def test_run_campaign_and_opsrock_run_take_the_same_multifidelity_workflow(tmp_path, monkeypatch, capsys):
+    """The library, not the command line, picks the workflow from [needs]: run_campaign on a scene whose needs
+    chose multi-fidelity screens every case and runs the expensive solver only on the selected ones, and
+    `opsrock run` on the same scene writes the same stores and the same table."""
+    from opsrock.campaign import needs as needs_module
+    from opsrock.campaign.multifidelity import MultiFidelitySummary
+    from opsrock.campaign.store import read_rows
+    from opsrock.cli import main
+
+    monkeypatch.setattr(needs_module, "MULTIFIDELITY_MIN_CASES", 2)
+    path = _scene(tmp_path, needs='[needs]\nmodel = "sdof"\nanswer = "verdicts"\ntolerance = 0.01')
+    lib = run_campaign(path, tmp_path / "lib", workers=1, progress=False)
+    assert isinstance(lib, MultiFidelitySummary), "run_campaign ignored the workflow the scene's needs chose"
+    assert (lib.screen_solver, lib.solver) == ("housner_fast", load_scene(path).choice.solver)
+    assert main(["run", str(path), "--out", str(tmp_path / "cli"), "--no-progress", "--workers", "1"]) == 0
+    assert "screened with housner_fast" in capsys.readouterr().out
+
+    def stored(folder: Path) -> dict:
+        return {k: {c: v for c, v in row.items() if c != "wall_time_s"} for k, row in read_rows(folder).items()}
+
+    for stage in ("screen", "escalated"):
+        assert stored(tmp_path / "lib" / stage) == stored(tmp_path / "cli" / stage), stage
+    assert len(stored(tmp_path / "lib" / "screen")) == lib.n_cases == 2
+
+    def table(folder: Path) -> list[dict]:
+        with open(folder / "cases.csv", newline="") as fh:
+            return [{c: v for c, v in row.items() if c != "wall_time_s"} for row in csv.DictReader(fh)]
+
+    assert table(tmp_path / "lib") == table(tmp_path / "cli")
+    # the expensive solver's store holds the selected cases only, the ones the table takes from it
+    selected = {r["case_id"] for r in table(tmp_path / "lib") if r["source"] != "screen"}
+    assert set(stored(tmp_path / "lib" / "escalated")) == selected
+    assert len(selected) == lib.n_escalated + lib.n_audited
+    manifests = [json.loads((tmp_path / d / "manifest.json").read_text()) for d in ("lib", "cli")]
+    assert manifests[0]["kind"] == "multifidelity" and manifests[0] == manifests[1]

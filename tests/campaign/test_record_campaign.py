@@ -170,7 +170,7 @@ def test_simulate_a_record_file_from_the_command_line(tmp_path):
 @pytest.mark.parametrize("args, needle", [
     (["--record", "nope.csv", "--units", "g"], "nope.csv: no such file"),
     (["--record", "recs/rec0.csv"], "units missing"),
-    (["--record", "recs/rec0.csv", "--units", "g", "--pfa-ratio", "1e6"], "--pfa-ratio = 1000000.0 needs a scale factor"),
+    (["--record", "recs/rec0.csv", "--units", "g", "--pfa-ratio", "1e6"], "--pfa-ratio: record rec0 needs a scale factor"),
     (["--record", "recs/rec0.csv", "--units", "g", "--freq", "2"], "--freq, --freq-ratio and --duration apply to pulses"),
     (["--record", "recs/rec0.csv", "--units", "g", "--building-period", "0"], "--building-period must lie in [0.01, 10] s, got 0.0"),
     (["--record", "recs/rec0.csv", "--units", "g", "--building-period", "20", "--storeys", "3"], "--building-period must lie in"),

@@ -287,7 +287,7 @@ def test_cli_threshold_reproduces_housner_1963():
     (["--pulse", "half-sine", "--duration", "1", "--pfa", "1"], "--duration applies to --pulse rectangular"),
     (["--freq", "1", "--pfa", "1", "--equations", "linearised", "--solver", "opensees"], "--equations applies"),
     (["--freq", "1", "--pfa", "1", "--equations", "small", "--solver", "housner"], "--equations must be one of"),
-    (["--freq", "1", "--pfa", "1", "--restitution", "1.5"], "--restitution must lie in (0, 1]"),
+    (["--freq", "1", "--pfa", "1", "--restitution", "1.5"], "--restitution: restitution must lie in (0, 1]"),
     (["--pulse", "rectangular", "--pfa", "1"], "or --duration"),
 ])
 def test_cli_bad_pulse_arguments_exit_2_with_one_line(args, needle):

@@ -66,7 +66,7 @@ def law_factor(name: str) -> float:
         return DEFAULT_RESTITUTION_FACTOR
     if name == "colombo-limestone":
         return colombo_limestone()[0]
-    raise InputError(f"restitution law must be one of {', '.join(LAWS)}, got {name!r}")
+    raise InputError(f"restitution law must be one of {', '.join(LAWS)}, got {name!r}", argument="restitution_law")
 
 
 def _unit_draw(seed: int, case_id: str) -> float:

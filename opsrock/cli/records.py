@@ -1,0 +1,77 @@
+"""``opsrock records list|show|plot``: the record library (:mod:`opsrock.excitations.library`)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from opsrock._files import output_file
+from opsrock.cli.common import given_by
+from opsrock.errors import UnknownRecordError, UsageError
+from opsrock.excitations import library
+from opsrock.excitations.building import ShearBuilding, floor_motion
+from opsrock.excitations.readers import read_record
+
+
+def records(args: argparse.Namespace) -> int:
+    """``opsrock records list|show|plot``: the record library (:mod:`opsrock.excitations.library`)."""
+    with given_by(f"records {args.records_command}"):
+        return {"list": _records_list, "show": _records_show, "plot": _records_plot}[args.records_command](args)
+
+
+def _entry_json(e) -> dict:
+    i = e.info
+    return {"name": e.name, "reference": e.reference, "event": i.event, "year": i.year, "magnitude": i.magnitude,
+            "station": i.station, "component": i.component, "distance_km": i.distance_km, "vs30": i.vs30,
+            "dt": e.dt, "npts": e.npts, "duration": e.duration, "pga_g": e.pga_g}
+
+
+def _records_list(args: argparse.Namespace) -> int:
+    if args.set not in library.SETS:
+        raise UnknownRecordError(f"unknown record set {args.set!r}; the sets are {', '.join(library.SETS)}")
+    entries = library.entries(args.set)
+    if args.json:
+        for e in entries:
+            print(json.dumps(_entry_json(e)))
+        return 0
+    print(f"{'name':<22} {'event':<24} {'year':>4} {'M':>4} {'station':<28} {'dt s':>6} {'dur s':>6} {'PGA g':>6}")
+    for e in entries:
+        i = e.info
+        print(f"{e.name:<22} {i.event[:24]:<24} {i.year:>4} {i.magnitude:>4.1f} {i.station[:28]:<28} "
+              f"{e.dt:>6g} {e.duration:>6.1f} {e.pga_g:>6.3f}")
+    print(f"{len(entries)} records in {library.LIBRARY}:{args.set} (name them as {library.LIBRARY}:{args.set}/NAME)")
+    return 0
+
+
+def _records_show(args: argparse.Namespace) -> int:
+    from opsrock.intensity.records import motion_measures  # lazy: scipy.integrate (0.45 s), for show only
+
+    e = library.entry(args.name)
+    m = motion_measures(library.load(args.name))
+    out = {**_entry_json(e), "pfa": m.pfa, "pfv": m.pfv, "pfd": m.pfd, "T_m": m.mean_period,
+           "T_pred": m.predominant_period}
+    if args.json:
+        print(json.dumps(out))
+    else:
+        for k, v in out.items():
+            print(f"{k:>12}: {v}")
+        print("       units: pfa m/s², pfv m/s, pfd m, T_m and T_pred s (see opsrock.intensity.records)")
+    return 0
+
+
+def _records_plot(args: argparse.Namespace) -> int:
+    from opsrock.analysis.record_curves import record_curves  # lazy: scipy.integrate, for plot only
+    from opsrock.plots.records import plot_record  # lazy: matplotlib, only for this subcommand
+
+    out = output_file("--out", args.out, ".png")
+    if (args.building_period is None) != (args.storeys is None):
+        raise UsageError("--building-period and --storeys go together")
+    rec = read_record(args.name, units=args.units, dt=args.dt)
+    floor = None if args.building_period is None else floor_motion(
+        rec, ShearBuilding("building", args.building_period, args.storeys))
+    plot_record(record_curves(rec), out, floor=None if floor is None else record_curves(floor))
+    print(f"wrote {out}")
+    return 0
+
+
+__all__ = ["records"]

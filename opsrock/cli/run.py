@@ -1,0 +1,49 @@
+"""``opsrock run``: :func:`opsrock.campaign.run.run_campaign` on a scene file or a shipped scene, by the
+workflow the scene's ``[needs]`` chose (the library picks it)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from opsrock._files import output_dir
+from opsrock.campaign.executors import DaskExecutor
+from opsrock.campaign.run import run_campaign
+from opsrock.campaign.scene import load_scene
+from opsrock.cli import EXIT_INTERRUPTED
+from opsrock.errors import UsageError
+
+
+def run(args: argparse.Namespace) -> int:
+    """``opsrock run``: :func:`opsrock.campaign.run.run_campaign` on a scene file or a shipped scene."""
+    scene = load_scene(args.scene)  # checked before anything is written or started
+    if args.solver is not None:
+        scene = scene.with_solver(args.solver)
+    output_dir("--out", args.out)
+    dask = args.scheduler is not None or args.dask_local is not None
+    if dask and args.workers is not None:
+        raise UsageError("--workers sets local processes; with Dask use --dask-local N or the cluster's workers")
+    try:
+        executor = DaskExecutor(args.scheduler, local_workers=args.dask_local) if dask else None
+    except OSError as exc:  # no scheduler at that address
+        raise UsageError(" ".join(str(exc).split())) from None
+    try:
+        summary = run_campaign(scene, args.out, workers=args.workers, executor=executor, force=args.force,
+                               progress=not args.no_progress, batch=args.batch, case_timeout=args.case_timeout)
+    except KeyboardInterrupt:
+        print(f"opsrock run: interrupted; finished cases are stored in {args.out}: "
+              "run the same command again to compute only the missing ones", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    finally:
+        if executor is not None:
+            executor.close()
+    print("\n".join(summary.lines()))
+    if summary.n_failed:
+        print(f"opsrock run: {summary.n_failed} case(s) failed (status=failed, reason in {summary.cases_csv})",
+              file=sys.stderr)
+    for line in summary.warnings:
+        print(f"opsrock run: warning: {line}", file=sys.stderr)
+    return 0
+
+
+__all__ = ["run"]

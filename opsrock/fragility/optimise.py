@@ -13,9 +13,11 @@ not go through a general-purpose optimiser and its wrappers:
 Rules both keep:
 
 * **Converged means at the optimum to rounding.** Newton converges quadratically: a run stops when its
-  step is below ``xtol`` relative to the point (then the point is the optimum to about ``xtol²``), or
-  when no step can lower the objective any further and the last step was already below ``1e-8``
-  relative (the objective is flat to rounding there). Either is ``status`` 0.
+  step is below ``xtol`` relative to the point (then the point is the optimum to about ``xtol²``); when
+  no step can lower the objective any further and the last step was already below :data:`FLAT_STEP`
+  relative (the objective is flat to rounding there); or, for the least squares, when an accepted step
+  lowers the cost by at most :data:`FTOL` of it (at the optimum, or on the floor of a flat valley, where
+  strip fractions of 0 and 1 leave the curve free between two strips). Each is ``status`` 0.
 * **A run that cannot get there says so**: ``status`` 1 when the evaluations run out (``max_nfev``),
   ``status`` 2 when the line search cannot lower the objective from a point that is not yet converged.
 * **Work is counted in the result** (:attr:`Optimum.nfev`), never in a module-level counter.
@@ -119,7 +121,12 @@ def newton(model: Callable[[np.ndarray], tuple[float, np.ndarray, np.ndarray]], 
     Returns
     -------
     Optimum
-        Where the steepest-descent direction is used when ``h`` is not positive definite.
+
+    Notes
+    -----
+    Where ``h`` is not positive definite the step is the steepest descent ``-g``; the step is halved
+    until the value falls by the Armijo share of the predicted decrease (or, equal to rounding, the
+    gradient falls).
     """
     x = np.array(x0, dtype=float)
     f, g, h = model(x)
@@ -186,6 +193,17 @@ def _held(x: np.ndarray, g: np.ndarray, lb: np.ndarray, ub: np.ndarray) -> np.nd
     return ((x - lb <= near) & (g > 0.0)) | ((ub - x <= near) & (g < 0.0))
 
 
+def _held_step(g: np.ndarray, jtj: np.ndarray, held: np.ndarray, damping: float) -> np.ndarray:
+    """The Levenberg-Marquardt step of the parameter not held on its bound (none if both are)."""
+    step = np.zeros(2)
+    if held.all():
+        return step
+    i = int(np.flatnonzero(~held)[0])
+    curvature = jtj[i, i] * (1.0 + damping)
+    step[i] = -g[i] / curvature if curvature > 0.0 else -g[i]
+    return step
+
+
 def least_squares_box(model: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray]], x0, lb, ub,
                       max_nfev: int, xtol: float = 1e-12) -> Optimum:
     """Minimise ``0.5 sum r(x)²`` over two parameters inside the box ``lb < x < ub``.
@@ -221,15 +239,8 @@ def least_squares_box(model: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray
     while nfev < max_nfev:
         g, jtj = jac.T @ r, jac.T @ jac
         held = _held(x, g, lb, ub)
-        if held.any():  # a parameter against its bound, pushed outwards: the other one alone
-            step = np.zeros(2)
-            i = int(np.flatnonzero(~held)[0]) if not held.all() else None
-            if i is not None:
-                curv = jtj[i, i] * (1.0 + damping)
-                step[i] = -g[i] / curv if curv > 0.0 else -g[i]
-            step = _inside(x, step, lb, ub)
-        else:
-            step = _inside(x, _box_step(g, jtj + s, jtj, damping), lb, ub)
+        step = _held_step(g, jtj, held, damping) if held.any() else _box_step(g, jtj + s, jtj, damping)
+        step = _inside(x, step, lb, ub)
         if _small(step, x, xtol):
             return Optimum(x, cost, 0, MESSAGES[0], nfev)
         r_new, jac_new, s_new = model(x + step)

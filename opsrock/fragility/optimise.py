@@ -26,6 +26,7 @@ Rules both keep:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -90,17 +91,22 @@ def _solve2(h: np.ndarray, g: np.ndarray) -> np.ndarray | None:
 
 def _small(step: np.ndarray, x: np.ndarray, tol: float) -> bool:
     """Whether ``step`` is below ``tol`` relative to ``x`` (absolute below 1)."""
-    return float(np.max(np.abs(step))) <= tol * max(1.0, float(np.max(np.abs(x))))
+    s0, s1 = step.tolist()
+    x0, x1 = x.tolist()
+    return max(abs(s0), abs(s1)) <= tol * max(1.0, abs(x0), abs(x1))
 
 
 def _accept(f_new: float, g_new: np.ndarray, f: float, g: np.ndarray, decrease: float) -> bool:
     """Sufficient decrease, or a value equal to rounding with a smaller gradient (at the optimum the
     objective's value no longer separates the points; its gradient still does)."""
-    if not np.isfinite(f_new):
+    if not math.isfinite(f_new):
         return False
     if f_new <= f + decrease:
         return True
-    return f_new <= f + ROUNDING * abs(f) and float(np.max(np.abs(g_new))) < float(np.max(np.abs(g)))
+    if f_new > f + ROUNDING * abs(f):
+        return False
+    (a0, a1), (b0, b1) = g_new.tolist(), g.tolist()
+    return max(abs(a0), abs(a1)) < max(abs(b0), abs(b1))
 
 
 def newton(model: Callable[[np.ndarray], tuple[float, np.ndarray, np.ndarray]], x0: np.ndarray,
@@ -162,35 +168,46 @@ FTOL: float = 1e-15
 POLISH: float = 1e-4
 
 
+def _damped(jtj: np.ndarray, damping: float) -> np.ndarray:
+    """``jtj`` with ``damping`` times its diagonal added to the diagonal (Marquardt's scaling)."""
+    out = jtj.copy()
+    out[0, 0] *= 1.0 + damping
+    out[1, 1] *= 1.0 + damping
+    return out
+
+
 def _box_step(g: np.ndarray, h: np.ndarray, jtj: np.ndarray, damping: float) -> np.ndarray:
     """The step of :func:`least_squares_box` before the box: Levenberg-Marquardt on ``jtj`` (``damping``
     relative to its diagonal; Gauss-Newton at 0), or Newton on the full Hessian ``h`` once the
     Gauss-Newton step is short and ``h`` positive definite (quadratic convergence at a non-zero residual)."""
-    dj = np.maximum(np.diag(jtj), 1e-300)
-    p = _solve2(jtj + np.diag(damping * dj), g) if damping > 0.0 else _solve2(jtj, g)
+    p = _solve2(_damped(jtj, damping), g) if damping > 0.0 else _solve2(jtj, g)
     if p is None:
-        p = _solve2(jtj + np.diag(max(damping, 1e-8) * dj), g)
+        p = _solve2(_damped(jtj, max(damping, 1e-8)), g)
     if p is None:
         return -g
     if damping == 0.0:
         newton_step = _solve2(h, g)
-        if newton_step is not None and float(np.max(np.abs(p))) <= POLISH:
+        if newton_step is not None and max(abs(p[0]), abs(p[1])) <= POLISH:
             return newton_step
     return p
 
 
 def _inside(x: np.ndarray, step: np.ndarray, lb: np.ndarray, ub: np.ndarray) -> np.ndarray:
     """``step`` with each component shortened to :data:`TO_BOUND` of the way to the bound it would cross."""
-    room = np.where(step < 0.0, x - lb, ub - x)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        t = np.where(np.abs(step) > room, TO_BOUND * room / np.abs(step), 1.0)
-    return step * t
+    out = []
+    for si, xi, li, ui in zip(step.tolist(), x.tolist(), lb.tolist(), ub.tolist()):
+        room = xi - li if si < 0.0 else ui - xi
+        out.append(si * TO_BOUND * room / abs(si) if abs(si) > room else si)
+    return np.array(out)
 
 
 def _held(x: np.ndarray, g: np.ndarray, lb: np.ndarray, ub: np.ndarray) -> np.ndarray:
     """Parameters within ``1e-9`` (relative) of a bound with the gradient pushing them out of the box."""
-    near = 1e-9 * np.maximum(1.0, np.abs(x))
-    return ((x - lb <= near) & (g > 0.0)) | ((ub - x <= near) & (g < 0.0))
+    held = []
+    for xi, gi, li, ui in zip(x.tolist(), g.tolist(), lb.tolist(), ub.tolist()):
+        near = 1e-9 * max(1.0, abs(xi))
+        held.append((xi - li <= near and gi > 0.0) or (ui - xi <= near and gi < 0.0))
+    return np.array(held)
 
 
 def _held_step(g: np.ndarray, jtj: np.ndarray, held: np.ndarray, damping: float) -> np.ndarray:

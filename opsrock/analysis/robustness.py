@@ -10,7 +10,7 @@ of sets each IM wins is reported with its 95 % Wilson interval.
 Computed in tasks of :data:`SETS_PER_TASK` sets: one ``housner_fast`` solve and one evaluation of the IMs
 for all the sets of a task (the cases are independent: the same numbers as set by set), then per set only
 what the criteria read (the hybrid strip and the least-squares fit at ``W_SAS``; not the MLE); the
-least-squares fits are scipy's own, without its wrappers (:mod:`opsrock.fragility._trf`).
+least-squares fits run on the fragility layer's own two-parameter solver (:mod:`opsrock.fragility.optimise`).
 """
 
 from __future__ import annotations

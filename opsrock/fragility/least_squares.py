@@ -8,8 +8,8 @@ import numpy as np
 from scipy import special
 
 from opsrock.errors import InputError
-from opsrock.fragility._trf import least_squares_trf
 from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit, failed_fit
+from opsrock.fragility.optimise import least_squares_box
 
 #: crawls towards the ``beta`` bound for hundreds of iterations).
 LS_MAX_EVALUATIONS: int = 300
@@ -57,16 +57,19 @@ def fit_lognormal_least_squares(
     s = -1.0 if decreasing else 1.0
     lx = np.log(x)
 
-    def residual(q: np.ndarray) -> np.ndarray:
-        return f - special.ndtr(s * (lx - q[0]) / q[1])
-
-    def jacobian(q: np.ndarray) -> np.ndarray:
+    def model(q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        # the residuals r = f - Phi(z), z = s (ln x - m) / beta, their Jacobian in (m, beta), and sum r ∇²r
         z = s * (lx - q[0]) / q[1]
         phi = np.exp(-0.5 * z**2) / math.sqrt(2.0 * math.pi)
-        out = np.empty((lx.size, 2))  # np.stack([...], axis=1), without its checks
-        out[:, 0] = phi * s / q[1]
-        out[:, 1] = phi * z / q[1]
-        return out
+        r = f - special.ndtr(z)
+        jac = np.empty((lx.size, 2))  # np.stack([...], axis=1), without its checks
+        jac[:, 0] = phi * s / q[1]
+        jac[:, 1] = phi * z / q[1]
+        w = r * phi / q[1] ** 2  # ∇²Phi(z) = phi (∇²z - z ∇z ∇zᵀ), ∇z = -(s, z) / beta
+        wz, wz2 = w * z, w * z**2
+        total = np.add.reduce  # np.sum of a 1-D array, without its wrapper
+        off = -s * (total(w) - total(wz2))
+        return r, jac, np.array([[total(wz), off], [off, total(wz2 * z) - 2.0 * total(wz)]])
 
     # start the median where the fractions cross 1/2 (nearest strip), beta from the spread
     m0 = float(lx[np.argmin(np.abs(f - 0.5))])
@@ -76,14 +79,12 @@ def fit_lognormal_least_squares(
     best = None
     for b0 in (0.05, 0.2, 0.5, 1.5):
         q0 = [m0, float(np.clip(b0 * max(spread, 0.1), *BETA_BOUNDS))]
-        # scipy.optimize.least_squares(method="trf") with these settings, bit for bit, without its overhead
-        res = least_squares_trf(residual, jacobian, q0, lo, hi, [1.0, 0.1], xtol=1e-10, ftol=1e-12, gtol=1e-12,
-                                max_nfev=LS_MAX_EVALUATIONS)
-        if best is None or res.cost < best.cost:
+        res = least_squares_box(model, q0, lo, hi, LS_MAX_EVALUATIONS)
+        if best is None or res.fun < best.fun:
             best = res
     mu, beta = math.exp(best.x[0]), float(best.x[1])
     ok, msg = _judge(best, mu, beta, lo, hi, x)
-    return LognormalFit(mu, beta, 100.0 * beta / mu, method, int(x.size), decreasing, ok, msg, 2.0 * float(best.cost))
+    return LognormalFit(mu, beta, 100.0 * beta / mu, method, int(x.size), decreasing, ok, msg, 2.0 * best.fun)
 
 
 def _judge(best, mu: float, beta: float, lo: list, hi: list, x: np.ndarray) -> tuple[bool, str]:

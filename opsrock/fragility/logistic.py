@@ -14,7 +14,7 @@ import numpy as np
 from scipy import special
 
 from opsrock.errors import InputError
-from opsrock.fragility._bfgs import minimize_bfgs
+from opsrock.fragility.optimise import newton
 
 
 @dataclass(frozen=True)
@@ -88,9 +88,12 @@ def fit_logistic(values: np.ndarray, overturned: np.ndarray, decreasing: bool = 
         z = q[0] + q[1] * v
         val = np.sum(np.logaddexp(0.0, z) - yf * z)
         p = special.expit(z)
-        return val, np.array([np.sum(p - yf), np.sum((p - yf) * v)])
+        w = p * (1.0 - p)
+        wv = w * v
+        h01 = np.sum(wv)
+        return val, np.array([np.sum(p - yf), np.sum((p - yf) * v)]), np.array([[np.sum(w), h01], [h01, np.sum(wv * v)]])
 
-    res = minimize_bfgs(nll, np.array([0.0, 1.0]), 1e-10)  # scipy's BFGS, bit for bit
+    res = newton(nll, np.array([0.0, 1.0]))
     a, b = res.x
     if not (res.success or res.status == 2) or b <= 0:
         return LogisticFit(math.nan, math.nan, math.nan, n, decreasing, False, f"optimiser: {res.message}")

@@ -1,12 +1,13 @@
 """Maximum-likelihood lognormal fit on 0/1 outcomes (Bernoulli likelihood, probit on ln IM), with
 seeded percentile-bootstrap intervals. On IDA/MSA levels it is the binomial MLE of Baker (2015).
 
-How the bootstrap is computed (a record campaign fits thousands of resamples), without changing a
-number against the textbook evaluation (``tests/fragility/test_speed_postprocessing.py``):
+How the bootstrap is computed (a record campaign fits thousands of resamples), with the same numbers as
+the textbook evaluation (``tests/fragility/test_speed_postprocessing.py``):
 
 * the resamples are drawn up front from the seed (:func:`resample_indices`, the same generator calls in
   the same order), so any range of them can be fitted anywhere (:class:`MLEPlan`, :class:`opsrock._pool.TaskPool`);
-* each fit is scipy's BFGS without its wrappers (:mod:`opsrock.fragility._bfgs`), the same iterations;
+* each fit is damped Newton on the analytic gradient and Hessian (:func:`opsrock.fragility.optimise.newton`),
+  converged to rounding: a few evaluations, no general-purpose optimiser and its wrappers;
 * the likelihood is evaluated once per *distinct* case of a resample (a resample repeats whole records;
   a scene's measure takes a few values) with one ``log_ndtr`` per case instead of two, then gathered back
   so that every sum runs over the same values in the same order (:class:`_ProbitNLL`).
@@ -23,8 +24,8 @@ from scipy import special
 
 from opsrock._pool import TaskPool
 from opsrock.errors import InputError
-from opsrock.fragility._bfgs import minimize_bfgs
 from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit
+from opsrock.fragility.optimise import newton
 from opsrock.limits import int_at_least
 
 
@@ -71,7 +72,7 @@ _HALF_LN_2PI = 0.5 * math.log(2 * math.pi)
 
 
 class _ProbitNLL:
-    """``-log-likelihood`` of ``P = Phi(a + b v)`` on 0/1 outcomes and its gradient in ``(a, b)``.
+    """``-log-likelihood`` of ``P = Phi(a + b v)`` on 0/1 outcomes, its gradient and Hessian in ``(a, b)``.
 
     Every per-case quantity is computed once per *distinct* case (``v``, ``y`` of the table) and
     gathered back to all cases (``inverse``, one table row per case, in case order) before each sum:
@@ -79,7 +80,8 @@ class _ProbitNLL:
     sums run over the same values in the same order as over the cases themselves, and one
     ``log_ndtr`` of ``+-z`` gives ``log Phi(z)`` for an overturned case and ``log Phi(-z)`` for a safe
     one, exactly the two terms of the likelihood: the value and the gradient are those of the
-    textbook per-case evaluation to the last bit.
+    textbook per-case evaluation to the last bit. The second derivative in ``z`` is
+    ``lambda (lambda + sign z)`` with ``lambda`` the inverse Mills ratio ``phi(z) / Phi(sign z)``.
     """
 
     __slots__ = ("inverse", "neg_sign", "sign", "v", "v_cases")
@@ -91,16 +93,22 @@ class _ProbitNLL:
         self.inverse = inverse
         self.v_cases = v if inverse is None else np.take(v, inverse)
 
-    def __call__(self, ab: np.ndarray) -> tuple[float, np.ndarray]:
+    def __call__(self, ab: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
+        """The value, the gradient and the Hessian in ``(a, b)`` at ``ab``."""
         z = ab[0] + ab[1] * self.v
         lp = special.log_ndtr(self.sign * z)  # log Phi(z) if overturned, log Phi(-z) if safe
         log_phi = -0.5 * z**2 - _HALF_LN_2PI
-        # d(-loglik)/dz: -phi/Phi(z) for y = 1, +phi/Phi(-z) for y = 0
-        dz = self.neg_sign * np.exp(log_phi - lp)
+        ratio = np.exp(log_phi - lp)  # the inverse Mills ratio phi(z) / Phi(sign z)
+        dz = self.neg_sign * ratio  # d(-loglik)/dz: -phi/Phi(z) for y = 1, +phi/Phi(-z) for y = 0
+        d2z = ratio * (ratio + self.sign * z)  # d²(-loglik)/dz² > 0
         if self.inverse is not None:
-            lp, dz = np.take(lp, self.inverse), np.take(dz, self.inverse)
+            lp, dz, d2z = np.take(lp, self.inverse), np.take(dz, self.inverse), np.take(d2z, self.inverse)
         total = np.add.reduce  # np.sum of a 1-D array, without its wrapper
-        return -float(total(lp)), np.array([total(dz), total(dz * self.v_cases)])
+        v = self.v_cases
+        d2z_v = d2z * v
+        h01 = total(d2z_v)
+        hess = np.array([[total(d2z), h01], [h01, total(d2z_v * v)]])
+        return -float(total(lp)), np.array([total(dz), total(dz * v)]), hess
 
 
 class Table(NamedTuple):
@@ -133,9 +141,9 @@ def _mle_core(u: np.ndarray, y: np.ndarray | None, q0: np.ndarray | None = None,
         nll = _ProbitNLL((u - centre) / sd, y)
     else:
         nll = _ProbitNLL((table.u - centre) / sd, table.y, table.inverse)
-    res = minimize_bfgs(nll, start, 1e-8)
+    res = newton(nll, start)
     a, b = res.x
-    ok = bool(res.success) or res.status == 2  # status 2: precision loss at the optimum
+    ok = res.success or res.status == 2  # status 2: flat to rounding before the step tolerance
     msg = str(res.message)
     if not b > 0:
         return np.array([math.nan, math.nan]), float(res.fun), False, (

@@ -25,8 +25,7 @@ test: install
 # `make test-lowest LOWEST_TESTS=` runs the whole suite there.
 LOWEST_VENV  := .venv-lowest
 LOWEST       := requirements-lowest.txt
-LOWEST_TESTS ?= tests/test_speed_postprocessing.py tests/test_fragility.py tests/test_record_fragility.py \
-                tests/test_sliding_fragility.py tests/test_fragility_plots.py
+LOWEST_TESTS ?= tests/fragility tests/plots
 
 test-lowest: blas $(LOWEST_VENV)/.opsrock-installed
 	$(LOWEST_VENV)/bin/python -m pytest $(LOWEST_TESTS)

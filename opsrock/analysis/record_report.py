@@ -25,7 +25,7 @@ from typing import Any
 
 import pandas as pd
 
-from opsrock._files import atomic_csv
+from opsrock._files import atomic_csv, read_table
 from opsrock.errors import InputError
 from opsrock.fragility.sliding import DEFAULT_DISTANCES
 from opsrock.report.records import write_markdown
@@ -46,7 +46,7 @@ def read_cases(source: str | Path) -> pd.DataFrame:
     if not csv_path.is_file():
         raise InputError(f"cases: no cases.csv at {source!s} (give the --out folder of `opsrock run` or a cases.csv)")
     try:
-        cases = pd.read_csv(csv_path)
+        cases = read_table(csv_path)
     except (ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
         raise InputError(f"cases: {csv_path} cannot be read as a table: {str(exc).splitlines()[0]}") from None
     if "record" not in cases.columns:

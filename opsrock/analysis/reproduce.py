@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 
     from opsrock.validation.sdof_agreement import Agreement
 
-from opsrock._files import atomic_csv, atomic_text
+from opsrock._files import atomic_csv, atomic_text, read_table
 from opsrock.data import scene_file
 
 #: The shipped scenes of the campaign and of the dense spectrum.
@@ -226,7 +226,7 @@ def _campaign(out: Path, paper_scene, solver: str, workers, force: bool, progres
     summary = run_campaign(scene, out, workers=workers, force=force, progress=progress)
     import pandas as pd
 
-    return scene, summary, pd.read_csv(summary.cases_csv)
+    return scene, summary, read_table(summary.cases_csv)
 
 
 def _spectrum(out: Path, spectrum_scene, workers) -> pd.DataFrame:

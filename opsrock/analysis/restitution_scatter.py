@@ -24,6 +24,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from opsrock._files import read_table
+
 #: The scene compared.
 SCENE: str = "fema-far-field-ida"
 #: Seed of the per-case draws; bootstrap resamples and seed of the fits.
@@ -74,7 +76,7 @@ def compare(out_dir: str | Path, *, workers: int | None = None, progress: bool =
     rows = []
     for name in VARIANTS:
         summary = run_campaign(variant_scene(name, scene), Path(out_dir) / name, workers=workers, progress=progress)
-        cases = pd.read_csv(summary.cases_csv)
+        cases = read_table(summary.cases_csv)
         for (block, floor), group in cases.groupby(["block", "floor"], sort=True):
             rows.append({"variant": name, "block": block, "floor": floor, "measure": "level_value",
                          "mean_e": float(group["e"].mean()), "std_e": float(group["e"].std()),

@@ -134,7 +134,7 @@ def run_map(design: SlidingMapDesign, out_dir: str | Path, *, workers: int | Non
     frames = []
     for part, (_, vertical) in CAMPAIGNS.items():
         summary = run_campaign(map_scene(design, part), Path(out_dir) / part, workers=workers, progress=progress)
-        df = pd.read_csv(summary.cases_csv)
+        df = read_table(summary.cases_csv)
         df["part"], df["vertical"] = part, vertical
         if "friction" not in df:
             df["friction"], df["response"] = math.nan, np.where(df["overturned"], "overturned", "rocked")
@@ -271,7 +271,7 @@ def write_map(design: SlidingMapDesign, out_dir: str | Path, *, workers: int | N
               progress: bool = True) -> dict:
     """Run the study into ``out_dir`` and write ``sliding_map.csv`` and ``sliding_map.png``; returns a
     summary (counts of each verdict, by vertical motion)."""
-    from opsrock._files import atomic_write
+    from opsrock._files import atomic_write, read_table
 
     out = Path(out_dir)
     cases = run_map(design, out, workers=workers, progress=progress)

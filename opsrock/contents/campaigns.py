@@ -18,6 +18,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from opsrock._files import read_table
+
 from opsrock.contents.design import split_block_name
 
 #: Columns of ``cases.csv`` the study reads.
@@ -85,7 +87,7 @@ def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, p
 
 def _read_cases(path: str, campaign: str, scene) -> pd.DataFrame:
     cols = list(CASE_COLUMNS) + (["response"] if campaign == "friction" else [])
-    df = pd.read_csv(path, usecols=cols)
+    df = read_table(path, usecols=cols)
     df["campaign"] = campaign
     parts = df["block"].map(split_block_name)
     df["item"] = [p[0] for p in parts]

@@ -343,6 +343,22 @@ def timed_out(result: RockingResult, settings: SolverSettings) -> RockingResult:
         reason=f"{REASONS[TIMEOUT]} ({result.wall_time_s:.3g} s > {limit:g} s)")
 
 
+def first_nonfinite_sample(excitation: Any) -> float | None:
+    """Time (s) of the first non-finite sample of a sampled floor motion (its ``values`` and, where given,
+    ``vertical``, m/s², every ``dt`` s), or None: finite, not sampled (a pulse's closed form), or absent."""
+    values, dt = getattr(excitation, "values", None), getattr(excitation, "dt", None)
+    if values is None or dt is None:
+        return None
+    first = None
+    for samples in (values, getattr(excitation, "vertical", None)):
+        if samples is None:
+            continue
+        bad = np.flatnonzero(~np.isfinite(np.asarray(samples, dtype=float)))
+        if bad.size:
+            first = bad[0] if first is None else min(first, bad[0])
+    return None if first is None else float(first) * float(dt)
+
+
 class SolverRun:
     """The run skeleton of every solver, written once (as scipy's ``OdeSolver.step`` around ``_step_impl``).
 
@@ -372,7 +388,16 @@ class SolverRun:
         return _time.perf_counter() - self.t_wall
 
     def run(self) -> RockingResult:
-        """Solve and return the result (failed, with its ``failure`` kind, where the run could not finish)."""
+        """Solve and return the result (failed, with its ``failure`` kind, where the run could not finish).
+
+        A floor motion with a non-finite sample fails at once with ``failure="nonfinite"``, in every
+        solver alike: a seated block compares the floor's acceleration with its uplift level, and a NaN
+        compares false, so without this check it would sit out the NaN and report a verdict."""
+        bad = first_nonfinite_sample(self.excitation)
+        if bad is not None:
+            return failed_result(self.name, {"solver": self.name, **settings_record(self.settings)}, self.block.alpha,
+                                 f"{REASONS[NONFINITE]}: the floor motion is not finite at t = {bad:.6g} s",
+                                 wall_time_s=self.elapsed(), failure=failure_of(NONFINITE))
         return timed_out(self._run_impl(), self.settings)
 
     def _run_impl(self) -> RockingResult:
@@ -703,6 +728,6 @@ def _merged(a: tuple[np.ndarray, ...], b: tuple[np.ndarray, ...]) -> tuple[np.nd
 
 
 __all__ = ["EventDrivenSolver", "History", "IVP_METHODS", "SHARED_SETTINGS", "ScipySettings", "SolverRun",
-           "SolverSettings", "StopRun", "TAILS", "check_inputs", "first_exceedance", "refuse_value",
-           "timed_out",
+           "SolverSettings", "StopRun", "TAILS", "check_inputs", "first_exceedance",
+           "first_nonfinite_sample", "refuse_value", "timed_out",
            "make_settings", "potential_energy", "rocking_energy", "setting_names", "settings_record"]

@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from opsrock._files import read_table
 from opsrock.campaign.cases import PulseCase
 from opsrock.solvers import simulate
 from opsrock.validation.sdof_agreement import paper_cases
@@ -157,7 +158,7 @@ def plot(df: pd.DataFrame, path: Path) -> Path:
 
 def replot(csv: Path) -> Path:
     """Redraw the chart from a saved ``speed_accuracy.csv`` (no solving)."""
-    df = pd.read_csv(csv)
+    df = read_table(csv)
     return plot(df, Path(csv).with_suffix(".png"))
 
 

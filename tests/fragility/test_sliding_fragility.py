@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 from scipy.stats import norm
 
+from opsrock._files import read_table
 from opsrock.errors import InputError
 from opsrock.fragility.pelicun_export import read_pelicun_csv, write_pelicun_csv
 from opsrock.fragility.sliding import fit_sliding, slid_beyond, sliding_component_id, sliding_components, sliding_table
@@ -164,13 +165,11 @@ def test_fragility_report_of_a_friction_campaign_has_a_sliding_section(friction_
         assert (tmp_path / "with" / f"{name}.csv").read_bytes() == (tmp_path / "without" / f"{name}.csv").read_bytes()
 
     # sliding.csv is sliding_table of the finished cases, every block x distance x demand
-    # round-trip parsing: pandas before 3 reads the last digit of some floats differently by default (pandas 3
-    # parses round-trip and deprecates the option)
-    exact = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
-    table = pd.read_csv(tmp_path / "with" / "sliding.csv", **exact)
+    # read_table parses round-trip: pandas before 3 reads the last digit of some floats differently by default
+    table = read_table(tmp_path / "with" / "sliding.csv")
     expected = sliding_table(friction_cases, SLIDE_DISTANCES, n_boot=n_boot, seed=2)
     assert len(table) == 2 * len(SLIDE_DISTANCES) * 2
-    pd.testing.assert_frame_equal(table, pd.read_csv(io.StringIO(expected.to_csv(index=False)), **exact))
+    pd.testing.assert_frame_equal(table, read_table(io.StringIO(expected.to_csv(index=False))))
     fitted = table[table["success"] & (table["beta"] > 0)]
     assert {"crate", "shelf"} <= set(fitted["block"]) and set(fitted["distance"]) >= {0.05, 0.2}
     assert (fitted["median_lo"] <= fitted["median"]).all() and (fitted["median"] <= fitted["median_hi"]).all()

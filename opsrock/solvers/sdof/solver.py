@@ -79,11 +79,7 @@ def solve(block: Block, excitation: Any, settings: SDOFSettings | None = None, *
         ``status="failed"`` with the reason.
     """
     settings = make_settings(SDOFSettings, settings, overrides)
-    run = _SDOF(check_inputs(SOLVER_NAME, block, excitation, settings), excitation, settings)
-    s = run.settings
-    if s.uplift_check and run.seated and not can_uplift(block, s.model, excitation.pfa):
-        return seated_result(SOLVER_NAME, run.settings_dict, block.alpha, excitation.duration, run.elapsed())
-    return run.run()
+    return _SDOF(check_inputs(SOLVER_NAME, block, excitation, settings), excitation, settings).run()
 
 
 class _SDOF(EventDrivenSolver):
@@ -91,6 +87,14 @@ class _SDOF(EventDrivenSolver):
 
     name = SOLVER_NAME
     with_damping = True
+
+    def _run_impl(self) -> RockingResult:
+        """A seated block that the floor's peak cannot lift stays seated (``uplift_check``); else the run."""
+        s = self.settings
+        if s.uplift_check and self.seated and not can_uplift(self.block, s.model, self.excitation.pfa):
+            return seated_result(SOLVER_NAME, self.settings_dict, self.block.alpha, self.excitation.duration,
+                                 self.elapsed())
+        return super()._run_impl()
 
     def _start(self) -> None:
         s, block = self.settings, self.block

@@ -19,16 +19,14 @@ from __future__ import annotations
 import json
 import math
 import time
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 import pandas as pd
 
 from opsrock._files import atomic_csv, read_table
 from opsrock.errors import InputError
 from opsrock.fragility.sliding import DEFAULT_DISTANCES
-from opsrock.report.records import write_markdown
+from opsrock.report.records import RecordReport, write_markdown
 
 #: Distances (m) of the sliding section: 5 cm (a cabinet against a wall), 20 cm and 50 cm.
 SLIDE_DISTANCES: tuple[float, ...] = DEFAULT_DISTANCES
@@ -108,46 +106,6 @@ def _exports(blocks: pd.DataFrame):
         else:
             skipped.append(f"{r['block']}/{r['demand']}: {r['message']}")
     return out, skipped
-
-
-@dataclass(frozen=True)
-class RecordReport:
-    """What :func:`write_record_report` computed and wrote (``report.md`` is written from it).
-
-    Parameters
-    ----------
-    study : RecordStudy
-        :func:`opsrock.fragility.record_study.record_fragility` of the cases.
-    robustness : pandas.DataFrame or None
-        Shares of the pulse study over seeded block sets (``robustness.csv``); None: not run.
-    robustness_sets : int
-        Block sets of that study (count; 0: not run).
-    sliding : pandas.DataFrame or None
-        The sliding fragilities (``sliding.csv``) of a campaign solved with friction; None for another.
-    slide_distances : tuple of float
-        Distances of the sliding section (m).
-    pelicun : pathlib.Path
-        ``fragility_pelicun.csv``.
-    skipped : list of str
-        Blocks and demands not exported (no finite fit), with the reason.
-    figures : dict of str to pathlib.Path
-        Figure name -> PNG.
-    timings : dict of str to float
-        ``fits_s`` and ``total_s`` (s).
-    source : str
-        Where the cases came from (a campaign folder or a ``cases.csv``).
-    """
-
-    study: Any
-    robustness: pd.DataFrame | None
-    robustness_sets: int
-    sliding: pd.DataFrame | None
-    slide_distances: tuple[float, ...]
-    pelicun: Path
-    skipped: list[str]
-    figures: dict[str, Path]
-    timings: dict[str, float]
-    source: str
 
 
 def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, seed: int = 0,
@@ -238,4 +196,4 @@ def _sliding(cases: pd.DataFrame, out: Path, n_boot: int, seed: int, workers: in
 
 
 
-__all__ = ["SLIDE_DISTANCES", "RecordReport", "read_cases", "write_record_report"]
+__all__ = ["SLIDE_DISTANCES", "read_cases", "write_record_report"]

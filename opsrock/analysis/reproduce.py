@@ -224,8 +224,6 @@ def _campaign(out: Path, paper_scene, solver: str, workers, force: bool, progres
     if solver != scene.solver:
         scene = scene.with_solver(solver)
     summary = run_campaign(scene, out, workers=workers, force=force, progress=progress)
-    import pandas as pd
-
     return scene, summary, read_table(summary.cases_csv)
 
 

@@ -40,8 +40,8 @@ VARIANTS: dict[str, tuple[str | None, dict | None]] = {
 
 def variant_scene(name: str, scene=None):
     """The scene of variant ``name`` (a key of :data:`VARIANTS`), from the shipped scene or ``scene``."""
-    from opsrock.restitution import distribution_from_table, law_factor
     from opsrock.campaign.scene import load_scene
+    from opsrock.restitution import distribution_from_table, law_factor
 
     base = load_scene(SCENE) if scene is None else scene
     law, table = VARIANTS[name]

@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from opsrock._files import read_table
 from opsrock.constants import G
 
 #: Reference friction label: the no-slip block.
@@ -271,7 +272,7 @@ def write_map(design: SlidingMapDesign, out_dir: str | Path, *, workers: int | N
               progress: bool = True) -> dict:
     """Run the study into ``out_dir`` and write ``sliding_map.csv`` and ``sliding_map.png``; returns a
     summary (counts of each verdict, by vertical motion)."""
-    from opsrock._files import atomic_write, read_table
+    from opsrock._files import atomic_write
 
     out = Path(out_dir)
     cases = run_map(design, out, workers=workers, progress=progress)

@@ -2,7 +2,7 @@
 its verdict can differ from the screen's, plus a seeded random audit of the rest.
 
 :class:`MultiFidelity` is the workflow, a policy over the one campaign engine
-(:class:`opsrock.campaign.run.Stage`): :func:`~opsrock.campaign.run.run_campaign` runs it when the scene's
+(:class:`opsrock.campaign.run.Stage`): :func:`~opsrock.campaign.workflow.run_campaign` runs it when the scene's
 ``[needs]`` chose it (or when given as ``policy=``), resumable in the same way:
 
 1. **Screen.** The whole scene is a stage of the screen solver (default ``housner_fast``, the rigid
@@ -52,19 +52,17 @@ import time
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from opsrock import __version__
 from opsrock._files import atomic_write
 from opsrock.campaign.cases import CASES_FILE, case_table, write_cases_csv
+from opsrock.campaign.registry import solver_info, solver_names
+from opsrock.campaign.run import Stage
 from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import MANIFEST_FILE, read_rows
-from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.errors import InputError
 from opsrock.solvers import check_settings
-
-if TYPE_CHECKING:  # the engine imports this module: its type only, for the annotations
-    from opsrock.campaign.run import Stage
 
 #: Sub-folders of a multi-fidelity run: the screen's campaign and the expensive solver's partial one.
 SCREEN_DIR: str = "screen"
@@ -468,7 +466,7 @@ def _write_table(out: Path, scene_x: Scene, cases: Sequence, selection: Selectio
 
 @dataclass(frozen=True)
 class MultiFidelity:
-    """The multi-fidelity policy over the campaign engine (:func:`opsrock.campaign.run.run_campaign`).
+    """The multi-fidelity policy over the campaign engine (:func:`opsrock.campaign.workflow.run_campaign`).
 
     The screen runs as one stage on every case in ``out_dir/screen``; the escalated and audited cases run as
     a second stage of the same engine, the expensive solver on those case ids only, in ``out_dir/escalated``

@@ -74,7 +74,7 @@ MULTIFIDELITY_MIN_CASES: int = 500
 class Choice:
     """The solver chosen for a need, and why; ``strategy`` ``"multifidelity"``: screen with ``screen`` and
     run ``solver`` only where the answer can differ (:class:`opsrock.campaign.multifidelity.MultiFidelity`, which
-    :func:`opsrock.campaign.run.run_campaign` runs for it)."""
+    :func:`opsrock.campaign.workflow.run_campaign` runs for it)."""
 
     solver: str
     reason: str

@@ -1,10 +1,9 @@
-"""Campaigns: run every case of a scene, store each result as it finishes, resume after a stop.
+"""The campaign engine: run every case of a scene, store each result as it finishes, resume after a stop.
 
-:func:`run_campaign` is the whole workflow. Its engine, :class:`Stage`, is written once; a workflow the
-scene's ``[needs]`` chose is a policy over it (:data:`POLICIES`: the multi-fidelity campaign of
+:class:`Stage` is the engine, written once; :func:`opsrock.campaign.workflow.run_campaign` runs it, or a
+policy over it that the scene's ``[needs]`` chose (the multi-fidelity campaign of
 :mod:`opsrock.campaign.multifidelity` runs the screen as one stage on every case and the expensive
-solver as another on the selected case ids), so ``run_campaign`` and ``opsrock run`` do the same thing.
-A stage:
+solver as another on the selected case ids). A stage:
 
 1. the scene is validated (:func:`opsrock.campaign.scene.load_scene`) before anything is written;
 2. the output folder's store (:mod:`opsrock.campaign.store`) is opened and locked; its manifest must
@@ -49,9 +48,8 @@ from opsrock.campaign.advice import sliding_warnings
 from opsrock.campaign.cases import CASES_FILE, IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
 from opsrock.campaign.motions import cached_motions, compute_motions
-from opsrock.campaign.multifidelity import MultiFidelity, MultiFidelitySummary
 from opsrock.campaign.registry import solver_info
-from opsrock.campaign.scene import Scene, load_scene
+from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import MANIFEST_FILE, STORE_FILE, ResultStore
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
 from opsrock.errors import CampaignConflictError, CaseTimeout, InputTypeError
@@ -304,7 +302,7 @@ def campaign_identity(scene: Scene, solve_fn: Callable | None) -> tuple[str, dic
     return digest, _manifest(scene, digest, solve_fn)
 
 
-def _case_budget(scene: Scene, case_timeout: float | None) -> float:
+def case_budget(scene: Scene, case_timeout: float | None) -> float:
     if case_timeout is None:
         case_timeout = scene.case_timeout if scene.case_timeout is not None else DEFAULT_CASE_TIMEOUT
     return check("case_timeout", case_timeout)
@@ -346,14 +344,14 @@ class Stage:
     A stage runs (or resumes) cases of a scene into one folder: it opens and locks the folder's store
     (refusing other settings unless ``force``), computes or reads the floor motions, solves the cases the
     store lacks in batches, commits each batch as it returns, and writes ``cases.csv`` and
-    ``manifest.json``. A policy (:data:`POLICIES`) runs its stages through it.
+    ``manifest.json``. A policy (:data:`opsrock.campaign.workflow.POLICIES`) runs its stages through it.
 
     Parameters
     ----------
     how : Execution
         Where and how the cases run.
     solve_fn : callable or None
-        Replaces :func:`opsrock.solvers.simulate` (see :func:`run_campaign`).
+        Replaces :func:`opsrock.solvers.simulate` (see :func:`opsrock.campaign.workflow.run_campaign`).
     """
 
     how: Execution
@@ -388,89 +386,5 @@ class Stage:
         return run.summary(table, time.perf_counter() - t_start), cases
 
 
-#: Workflows a scene's ``[needs]`` may choose (:attr:`opsrock.campaign.needs.Choice.strategy`), each the
-#: policy that runs it from the choice; ``"single"`` (one solver on every case) is the engine itself.
-POLICIES: dict[str, Callable[[Any], Any]] = {"multifidelity": MultiFidelity.from_choice}
-
-
-def policy_for(scene: Scene):
-    """The policy the scene's ``[needs]`` chose (:data:`POLICIES`), or None: one solver on every case."""
-    strategy = "single" if scene.choice is None else scene.choice.strategy
-    return None if strategy == "single" else POLICIES[strategy](scene.choice)
-
-
-def run_campaign(
-    scene: Scene | str | os.PathLike,
-    out_dir: str | os.PathLike,
-    *,
-    solver: str | None = None,
-    workers: int | None = None,
-    executor: Executor | None = None,
-    force: bool = False,
-    progress: bool = True,
-    solve_fn: Callable[..., RockingResult] | None = None,
-    batch: int | None = None,
-    case_timeout: float | None = None,
-    policy: MultiFidelity | None = None,
-) -> CampaignSummary | MultiFidelitySummary:
-    """Run (or resume) every case of a scene into ``out_dir``, by the workflow its ``[needs]`` chose.
-
-    Parameters
-    ----------
-    scene : Scene or path
-        The scene, or its TOML file or shipped name (validated before anything is written).
-    out_dir : str or Path
-        Output folder: ``results.sqlite`` (the store), ``cases.csv``, ``manifest.json``.
-    solver : str, optional
-        Run with this solver instead of the scene's (:meth:`Scene.with_solver`: the scene's settings
-        are dropped if they belong to another solver); a named solver runs every case.
-    workers : int, optional
-        Processes of the default :class:`~opsrock.campaign.executors.LocalPool` (default: all cores);
-        ignored when ``executor`` is given.
-    executor : Executor, optional
-        Where to run (:class:`~opsrock.campaign.executors.LocalPool`,
-        :class:`~opsrock.campaign.executors.DaskExecutor`); the caller closes it.
-    force : bool, optional
-        Delete the folder's stored results first, even of other settings. Default False: resume, and
-        refuse a folder of other settings.
-    progress : bool, optional
-        A progress bar on stderr (only when stderr is a terminal). Default True.
-    solve_fn : callable, optional
-        Replace :func:`opsrock.solvers.simulate` (tests, custom solvers), picklable:
-        ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``. Its name enters the
-        manifest, so its results never mix with a real solver's. A multi-fidelity policy uses it for
-        the expensive solver only.
-    batch : int, optional
-        Cases per batch. Default :func:`opsrock.campaign.executors.batch_size`.
-    case_timeout : float, optional
-        Wall-clock budget of one case (s). Default: the scene's ``[solver] case_timeout``, else
-        :data:`opsrock.campaign.timeout.DEFAULT_CASE_TIMEOUT`. A case past it is stored failed with a
-        reason starting ``"timeout"`` and the campaign goes on (the local executor also kills a worker
-        stuck in native code).
-    policy : MultiFidelity, optional
-        The workflow. Default: the one the scene's ``[needs]`` chose (:func:`policy_for`), else one
-        solver on every case (:class:`Stage`).
-
-    Returns
-    -------
-    CampaignSummary or MultiFidelitySummary
-        The latter when a multi-fidelity policy ran.
-
-    Raises
-    ------
-    SceneError, InputError, CampaignConflictError, StoreError
-        Invalid scene, settings or policy (nothing written); ``out_dir`` holds results of other settings
-        and ``force`` is False; another run holds ``out_dir``.
-    """
-    scene = scene if isinstance(scene, Scene) else load_scene(scene)
-    if solver is not None:
-        scene = scene.with_solver(solver)
-    policy = policy_for(scene) if policy is None else policy
-    how = Execution(workers, executor, force, progress, batch, _case_budget(scene, case_timeout))
-    if policy is None:
-        return Stage(how, solve_fn)(scene, out_dir)[0]
-    return policy.run(scene, Path(out_dir), Stage(how, solve_fn))
-
-
-__all__ = ["CASES_FILE", "POLICIES", "CampaignSummary", "Execution", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "Stage",
-           "campaign_identity", "lost_row", "policy_for", "progress_bar", "run_campaign", "solve_batch"]
+__all__ = ["CASES_FILE", "CampaignSummary", "Execution", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "Stage",
+           "campaign_identity", "case_budget", "lost_row", "progress_bar", "solve_batch"]

@@ -48,14 +48,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping
 
 from opsrock.block import Block
+from opsrock.campaign.cases import CONTACT_COLUMNS
 from opsrock.campaign.grid import Grid, parse_grid
+from opsrock.campaign.needs import Choice, Needs, check, choose
+from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.campaign.toml import MAX_AXIS_POINTS, TomlFile, canonical
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS
-from opsrock.campaign.cases import CONTACT_COLUMNS
-from opsrock.campaign.needs import Choice, Needs, check, choose
-from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import check_settings
 

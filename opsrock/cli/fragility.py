@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 
 from opsrock._files import output_dir, staged_folder
-from opsrock.errors import UsageError
 from opsrock.analysis.record_report import read_cases, write_record_report
+from opsrock.errors import UsageError
 from opsrock.fragility.ida import OUTCOMES
 
 

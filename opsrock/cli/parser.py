@@ -12,6 +12,7 @@ import math
 import os
 from typing import Any, Callable
 
+from opsrock.analysis.reproduce import ROBUSTNESS_SETS
 from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
 from opsrock.bench import BENCHMARKS
 from opsrock.campaign.registry import solver_names
@@ -19,7 +20,6 @@ from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
 from opsrock.errors import OpsrockError, UsageError
 from opsrock.excitations import PULSE_SHAPES
 from opsrock.limits import check, check_count
-from opsrock.analysis.reproduce import ROBUSTNESS_SETS
 from opsrock.validation import CASES
 
 #: Solver names of the command line: the registry's (:mod:`opsrock.campaign.registry`).

@@ -7,11 +7,11 @@ import sys
 from pathlib import Path
 
 from opsrock._files import output_dir
+from opsrock.analysis.reproduce import ReproduceSettings
+from opsrock.analysis.reproduce import reproduce as run_pipeline
 from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.cli import EXIT_FAILED
 from opsrock.errors import UsageError
-from opsrock.analysis.reproduce import ReproduceSettings
-from opsrock.analysis.reproduce import reproduce as run_pipeline
 from opsrock.report.paper import gate_text
 
 

@@ -1,4 +1,4 @@
-"""``opsrock run``: :func:`opsrock.campaign.run.run_campaign` on a scene file or a shipped scene, by the
+"""``opsrock run``: :func:`opsrock.campaign.workflow.run_campaign` on a scene file or a shipped scene, by the
 workflow the scene's ``[needs]`` chose (the library picks it)."""
 
 from __future__ import annotations
@@ -8,14 +8,14 @@ import sys
 
 from opsrock._files import output_dir
 from opsrock.campaign.executors import DaskExecutor
-from opsrock.campaign.run import run_campaign
 from opsrock.campaign.scene import load_scene
+from opsrock.campaign.workflow import run_campaign
 from opsrock.cli import EXIT_INTERRUPTED
 from opsrock.errors import UsageError
 
 
 def run(args: argparse.Namespace) -> int:
-    """``opsrock run``: :func:`opsrock.campaign.run.run_campaign` on a scene file or a shipped scene."""
+    """``opsrock run``: :func:`opsrock.campaign.workflow.run_campaign` on a scene file or a shipped scene."""
     scene = load_scene(args.scene)  # checked before anything is written or started
     if args.solver is not None:
         scene = scene.with_solver(args.solver)

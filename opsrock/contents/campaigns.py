@@ -19,7 +19,6 @@ import numpy as np
 import pandas as pd
 
 from opsrock._files import read_table
-
 from opsrock.contents.design import split_block_name
 
 #: Columns of ``cases.csv`` the study reads.

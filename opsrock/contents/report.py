@@ -4,14 +4,40 @@ each claim with the measurement behind it (numbers taken from the study's own ta
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import pandas as pd
 
 from opsrock.contents.design import ContentsDesign, floor_name
-from opsrock.contents.study import StudySummary
 from opsrock.published import fema_p58
 from opsrock.report.markdown import markdown_table
+
+
+@dataclass(frozen=True)
+class StudySummary:
+    """The counts and headline ratios of a contents study (what its report states first).
+
+    Parameters
+    ----------
+    n_cases, n_failed, n_overturned : int
+        Cases run, failed (excluded, never a verdict) and overturned (counts).
+    timings : dict
+        Wall time per phase (s, keys ending ``_s``, and ``total_s``) and the campaigns' case counts.
+    ratio_range : tuple of float or None
+        Min and max of opsrock's default PFV median over FEMA's database median on the study's floors
+        (dimensionless); None without a default variant fit.
+    sweep_ratio_range : tuple of float or None
+        The same on the sweep's roofs (dimensionless); None without a sweep.
+    """
+
+    n_cases: int
+    n_failed: int
+    n_overturned: int
+    timings: dict[str, Any]
+    ratio_range: tuple[float, float] | None
+    sweep_ratio_range: tuple[float, float] | None
 
 
 def _rng(s: pd.Series, fmt: str = ".2f") -> str:
@@ -155,4 +181,4 @@ def _pelicun_section(design: ContentsDesign) -> list[str]:
             "fragilities and with opsrock's, and reports the expected number of overturned items each way.")]
 
 
-__all__ = ["ratio_matrix", "write_report"]
+__all__ = ["ratio_matrix", "write_report", "StudySummary"]

@@ -12,6 +12,7 @@ import pandas as pd
 
 from opsrock.contents.design import ContentsDesign
 from opsrock.contents.design import quick as quick_design
+from opsrock.contents.report import StudySummary, write_report
 
 #: Files the study writes into its folder (besides ``campaigns/``, ``figures/`` and ``pelicun/``).
 TABLES: dict[str, str] = {
@@ -59,31 +60,6 @@ def _figures(out: Path, fits: pd.DataFrame, cases: pd.DataFrame, result: dict, d
     if "default" in design.variants:
         paths.append(plot_rule(result["ratios"], result["sweep"], design, folder / "fema_rule.png"))
     return paths
-
-
-@dataclass(frozen=True)
-class StudySummary:
-    """The counts and headline ratios of a contents study (what its report states first).
-
-    Parameters
-    ----------
-    n_cases, n_failed, n_overturned : int
-        Cases run, failed (excluded, never a verdict) and overturned (counts).
-    timings : dict
-        Wall time per phase (s, keys ending ``_s``, and ``total_s``) and the campaigns' case counts.
-    ratio_range : tuple of float or None
-        Min and max of opsrock's default PFV median over FEMA's database median on the study's floors
-        (dimensionless); None without a default variant fit.
-    sweep_ratio_range : tuple of float or None
-        The same on the sweep's roofs (dimensionless); None without a sweep.
-    """
-
-    n_cases: int
-    n_failed: int
-    n_overturned: int
-    timings: dict[str, Any]
-    ratio_range: tuple[float, float] | None
-    sweep_ratio_range: tuple[float, float] | None
 
 
 @dataclass(frozen=True)
@@ -187,7 +163,6 @@ def _outputs(design: ContentsDesign, out: Path, fits: pd.DataFrame, cases: pd.Da
     together, or (on any failure or Ctrl-C) none does."""
     from opsrock._files import staged_folder
     from opsrock.contents.pelicun import write_pelicun_files
-    from opsrock.contents.report import write_report
 
     t0 = time.perf_counter()
     with staged_folder(out) as stage:

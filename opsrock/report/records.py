@@ -6,16 +6,55 @@ from __future__ import annotations
 import json
 import math
 import os
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Any
 
 import pandas as pd
 
 from opsrock._files import atomic_text
 from opsrock.report.markdown import markdown_table
 
-if TYPE_CHECKING:
-    from opsrock.analysis.record_report import RecordReport
+
+@dataclass(frozen=True)
+class RecordReport:
+    """What :func:`opsrock.analysis.record_report.write_record_report` computed and wrote (``report.md`` is
+    written from it).
+
+    Parameters
+    ----------
+    study : RecordStudy
+        :func:`opsrock.fragility.record_study.record_fragility` of the cases.
+    robustness : pandas.DataFrame or None
+        Shares of the pulse study over seeded block sets (``robustness.csv``); None: not run.
+    robustness_sets : int
+        Block sets of that study (count; 0: not run).
+    sliding : pandas.DataFrame or None
+        The sliding fragilities (``sliding.csv``) of a campaign solved with friction; None for another.
+    slide_distances : tuple of float
+        Distances of the sliding section (m).
+    pelicun : pathlib.Path
+        ``fragility_pelicun.csv``.
+    skipped : list of str
+        Blocks and demands not exported (no finite fit), with the reason.
+    figures : dict of str to pathlib.Path
+        Figure name -> PNG.
+    timings : dict of str to float
+        ``fits_s`` and ``total_s`` (s).
+    source : str
+        Where the cases came from (a campaign folder or a ``cases.csv``).
+    """
+
+    study: Any
+    robustness: pd.DataFrame | None
+    robustness_sets: int
+    sliding: pd.DataFrame | None
+    slide_distances: tuple[float, ...]
+    pelicun: Path
+    skipped: list[str]
+    figures: dict[str, Path]
+    timings: dict[str, float]
+    source: str
 
 
 def _percent(share: float) -> str:
@@ -155,4 +194,4 @@ def write_markdown(out: Path, report: RecordReport) -> None:
     atomic_text(out / "report.md", "\n".join(lines))
 
 
-__all__ = ["write_markdown"]
+__all__ = ["RecordReport", "write_markdown"]

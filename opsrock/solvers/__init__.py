@@ -29,15 +29,7 @@ from opsrock.block import Block
 from opsrock.errors import InputTypeError
 from opsrock.excitations import Excitation
 from opsrock.result import RockingResult
-from opsrock.solvers.registry import (
-    METHODS,
-    SOLVERS,
-    SolverInfo,
-    capabilities,
-    check_model,
-    info,
-    solver_names,
-)
+from opsrock.solvers.registry import METHODS, SOLVERS, SolverInfo, capabilities, check_model, info, solver_names
 
 
 def get_solver(name: str):

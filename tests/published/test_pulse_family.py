@@ -13,7 +13,6 @@ import json
 import math
 import subprocess
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -25,7 +24,7 @@ from opsrock.constants import G
 from opsrock.excitations import PULSE_SHAPES, HalfSinePulse, OneSinePulse, RectangularPulse, pulse_class
 from opsrock.published import housner_1963, linearised, makris_roussos_2000, zhang_makris_2001
 from opsrock.solvers import housner, housner_fast, simulate
-from _support import BLOCKS, OPSROCK
+from _support import OPSROCK
 
 BLOCK = Block(0.5, 2.0, restitution=0.9)  # alpha = 0.245 rad, p = 2.67 rad/s
 

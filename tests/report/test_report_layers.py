@@ -30,7 +30,6 @@ FORBIDDEN_NAMES: frozenset[str] = frozenset({"simulate", "solve", "record_fragil
 #: What a writer may import from those: result types and the constants of a chart.
 ALLOWED: dict[str, set[str]] = {"opsrock.analysis.charts": {"ChartData", "Y_MAX"},
                                 "opsrock.analysis.record_curves": {"RecordCurves"},
-                                "opsrock.analysis.record_report": {"RecordReport"},
                                 "opsrock.validation.experiments": {"Headline"}}
 
 

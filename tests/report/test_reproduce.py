@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import pandas as pd
 import pytest
 
 from opsrock.analysis import reproduce as rp
-from opsrock.report.paper import gate_text
 from opsrock.validation.sdof_agreement import Agreement
 from _support import SCENES
 

@@ -20,8 +20,8 @@ Without ``friction`` the base never slips and the solver is the no-slip rigid bl
 :mod:`opsrock.solvers.moreau_jean`.
 """
 
-from opsrock.solvers.friction.solver import SOLVER_NAME, solve
 from opsrock.solvers.friction.kernel import STATUS_OK
 from opsrock.solvers.friction.settings import FrictionSettings
+from opsrock.solvers.friction.solver import SOLVER_NAME, solve
 
 __all__ = ["SOLVER_NAME", "STATUS_OK", "FrictionSettings", "solve"]

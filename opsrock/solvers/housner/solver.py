@@ -11,13 +11,7 @@ from scipy.integrate import solve_ivp
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE, G
 from opsrock.result import RockingResult
-from opsrock.solvers.common import (
-    EventDrivenSolver,
-    StopRun,
-    check_inputs,
-    first_exceedance,
-    make_settings,
-)
+from opsrock.solvers.common import EventDrivenSolver, StopRun, check_inputs, first_exceedance, make_settings
 from opsrock.solvers.housner.settings import HousnerSettings
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
@@ -65,7 +59,7 @@ class _Housner(EventDrivenSolver):
         self.side = 0.0 if self.seated else (math.copysign(1.0, y[0]) if y[0] != 0.0 else math.copysign(1.0, y[1]))
 
     def _seated_step(self) -> None:
-        s, t = self.settings, self.t
+        t = self.t
         t_up = first_exceedance(self.excitation, self.level, t, min(self.t_final, self.duration), self.scan)
         if t_up is None:
             t_stop = min(self.t_final, self.duration) if self.open_end else self.t_final

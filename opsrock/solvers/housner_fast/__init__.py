@@ -58,7 +58,6 @@ case for a per-case ``solve_ivp`` loop (x250-x2000), with ``|d theta_max| / alph
 cache in a new process.
 """
 
-from opsrock.solvers.housner_fast.solver import SOLVER_NAME, solve
 from opsrock.solvers.housner_fast.grid import GridResult, solve_grid, solve_pulses
 from opsrock.solvers.housner_fast.kernel import (
     STATUS_EVENT_FAILED,
@@ -69,6 +68,7 @@ from opsrock.solvers.housner_fast.kernel import (
     STATUS_REASONS,
 )
 from opsrock.solvers.housner_fast.settings import HousnerFastSettings
+from opsrock.solvers.housner_fast.solver import SOLVER_NAME, solve
 
 __all__ = ["GridResult", "HousnerFastSettings", "SOLVER_NAME", "STATUS_EVENT_FAILED", "STATUS_MAX_IMPACTS",
            "STATUS_MAX_STEPS", "STATUS_NONFINITE", "STATUS_OK", "STATUS_REASONS", "solve",

@@ -18,12 +18,7 @@ from opsrock.opensees_session import CONSOLE, console_to_log, count_messages, fr
 from opsrock.result import RockingResult, failed_result, seated_result
 from opsrock.solvers.common import SolverRun, check_inputs, make_settings
 from opsrock.solvers.opensees.build import build_lumped, build_sdof, define_analysis, set_initial_state
-from opsrock.solvers.opensees.settings import (
-    ROCKED_THETA_E_MULTIPLE,
-    SOLVER_NAME,
-    OpenSeesSettings,
-    critical_time_step,
-)
+from opsrock.solvers.opensees.settings import ROCKED_THETA_E_MULTIPLE, SOLVER_NAME, OpenSeesSettings, critical_time_step
 from opsrock.solvers.opensees.stepper import StepFailure, Stepper
 
 #: The still floor of free rocking: a zero record (the model needs a time series; only its length, 0.01 s,

@@ -14,16 +14,9 @@ from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.excitations.records import Record
 from opsrock.model import Seat, can_uplift
 from opsrock.result import RockingResult, seated_result
-from opsrock.solvers.common import (
-    EventDrivenSolver,
-    StopRun,
-    check_inputs,
-    first_exceedance,
-    make_settings,
-)
+from opsrock.solvers.common import EventDrivenSolver, StopRun, check_inputs, first_exceedance, make_settings
 from opsrock.solvers.sdof.closed_form import ClosedFormSegment, closed_form_solve
 from opsrock.solvers.sdof.settings import SDOFSettings
-
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "sdof"
@@ -142,7 +135,7 @@ class _SDOF(EventDrivenSolver):
 
     def _seated_step(self) -> None:
         """Follow the quasi-static deflection of the stiff branch until the floor lifts the block."""
-        s, t, lam, k_e, theta_e = self.settings, self.t, self.lam, self.k_e, self.theta_e
+        t, lam, k_e, theta_e = self.t, self.lam, self.k_e, self.theta_e
         t_up = first_exceedance(self.excitation, self.m_e / lam, t, min(self.t_final, self.duration), self.scan)
         t_stop = t_up if t_up is not None else (min(self.t_final, self.duration) if self.open_end else self.t_final)
         if t_stop > t:

@@ -13,6 +13,7 @@ from opsrock.block import Block
 from opsrock.solvers import simulate
 from opsrock.validation.experiments.constants import DECAY_IMPACTS, MODELS
 
+
 @dataclass(frozen=True)
 class DecayRun:
     """The free rocking of one model from rest (:func:`predict_decay`).

@@ -142,6 +142,4 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     return m
 
 
-__all__ = ["DATA_FILES", "FACTOR_VARIANTS", "MODELS", "EventArrays", "analysis_arrays", "bootstrap", "data_checks",
-           "data_file", "decay_errors", "headline", "headline_stats", "load_events", "load_trials", "measured_decay", "predict_decay", "run",
-           "sdof_closed_form", "statistics", "trial_resamples"]
+__all__ = ["run", "scatter_outputs", "summarise"]

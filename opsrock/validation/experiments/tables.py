@@ -15,7 +15,6 @@ from opsrock.validation.experiments.constants import GROUP_SUBSETS, IMPACT_ROWS,
 from opsrock.validation.experiments.runs import predict_decay
 from opsrock.validation.experiments.statistics import FACTOR_VARIANTS, _label, decay_errors, measured_decay
 
-
 #: Statistics of the restitution tables (each with its interval ``_lo``, ``_hi``).
 RESTITUTION_COLUMNS: tuple[str, ...] = ("factor", "share_above_1", "share_above_e_R", "share_above_paper",
                                         "bias_e_R", "rmse_e_R",

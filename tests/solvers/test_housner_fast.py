@@ -219,14 +219,17 @@ def test_every_post_pulse_branch_matches_reference():
 
 
 def test_solve_matches_solve_grid():
-    """The one-case entry point and the batch entry point run the same kernel: identical
-    theta_max and verdicts (exact equality: same arithmetic)."""
+    """The one-case entry point and the batch entry point run the same kernel: the same verdicts, and
+    theta_max equal to rounding. Not bit for bit on every numpy: the pulse's ratios reach the kernel
+    through ``OneSinePulse.from_ratios`` (physical units and back, numpy's trigonometry) in one path and
+    directly in the other, and numpy 1.24's vectorised tan/sin differ from 2.x's by an ulp (measured:
+    1.4e-15 relative in theta_max); 1e-13 is a hundred times that and far below any physical meaning."""
     block = BLOCKS[3]
     for r, f in [(1.3, 0.7), (4.0, 2.0), (9.0, 8.0)]:
         one = hf.solve(block, OneSinePulse.from_ratios(block, r, f))
         many = hf.solve_grid(block.alpha, block.e, r, f)
         assert one.solver == "housner_fast" and one.ok
-        assert one.theta_max == float(many.theta_max)
+        assert one.theta_max == pytest.approx(float(many.theta_max), rel=1e-13, abs=0.0)
         assert one.overturned == bool(many.overturned)
         assert one.verdict == many.verdict.item()
 

@@ -50,9 +50,11 @@ def plot_restitution(a: EventArrays, by_group: pd.DataFrame, by_impact: pd.DataF
         x = t["alpha_rad"] + (k - 1) * 0.003
         ax[1].errorbar(x, t["factor"], yerr=[t["factor"] - t["factor_lo"], t["factor_hi"] - t["factor"]],
                        fmt=mk, ms=4, capsize=2, label=f"impacts {label}")
-    ax[2].fill_between(by_impact["n"], by_impact["factor_lo"], by_impact["factor_hi"], color="C0", alpha=0.25,
+    n = by_impact["n"].to_numpy(float)  # arrays, not Series: matplotlib 3.7 masks a Series' values as objects
+    ax[2].fill_between(n, by_impact["factor_lo"].to_numpy(float), by_impact["factor_hi"].to_numpy(float), color="C0",
+                       alpha=0.25,
                        label="95 % interval (trial bootstrap)")
-    ax[2].plot(by_impact["n"], by_impact["factor"], "o-", ms=3, color="C0", label="median")
+    ax[2].plot(n, by_impact["factor"].to_numpy(float), "o-", ms=3, color="C0", label="median")
     for axis in ax[1:]:
         axis.axhline(1.0, color="C0", lw=0.8)
         axis.axhline(PAPER_FACTOR, color="C3", ls="--", lw=0.8, label="paper 0.95")
@@ -99,8 +101,9 @@ def plot_decay(measured: pd.DataFrame, predicted: pd.DataFrame, geometry: dict, 
                              constrained_layout=True)
     for axis, g in zip(axes.flat, groups):
         m = measured[measured["group"] == g]
-        axis.fill_between(m["impact"], m["p10"], m["p90"], color="0.85", label="measured 10-90 %")
-        axis.fill_between(m["impact"], m["p25"], m["p75"], color="0.65", label="measured 25-75 %")
+        x, col = m["impact"].to_numpy(float), (lambda name: m[name].to_numpy(float))
+        axis.fill_between(x, col("p10"), col("p90"), color="0.85", label="measured 10-90 %")
+        axis.fill_between(x, col("p25"), col("p75"), color="0.65", label="measured 25-75 %")
         axis.plot(m["impact"], m["median"], "k.-", ms=3, lw=1.2, label="measured median")
         for (model, rel), s in predicted[predicted["group"] == g].groupby(["model", "release_ratio"], sort=False):
             color, ls = _STYLE[model]

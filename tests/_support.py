@@ -11,6 +11,7 @@ import os
 import subprocess
 import sys
 from pathlib import Path
+from typing import Mapping, Sequence
 
 #: The checkout (the folder that holds ``opsrock/`` and ``tests/``), wherever it was cloned.
 ROOT = Path(__file__).resolve().parents[1]
@@ -26,16 +27,17 @@ TEST_DATA = ROOT / "tests" / "data"
 OPSROCK = Path(sys.executable).parent / "opsrock"
 
 
-def opsrock_command(*args: str) -> list[str]:
-    """The command line that runs ``opsrock ARGS`` through the installed console script."""
+def opsrock_command(args: Sequence[str], user: int | None = None) -> list[str]:
+    """The command line that runs ``opsrock ARGS`` through the installed console script; with ``user``, as
+    that uid and gid (util-linux ``setpriv``, to drop root for one command)."""
     head = [str(OPSROCK)] if OPSROCK.exists() else [sys.executable, "-m", "opsrock.cli"]
-    return [*head, *map(str, args)]
+    cmd = [*head, *map(str, args)]
+    return cmd if user is None else ["setpriv", f"--reuid={user}", f"--regid={user}", "--clear-groups", *cmd]
 
 
-def run_opsrock(*args: str, cwd: Path | None = None, timeout: float = 120,
-                env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
-    """Run ``opsrock ARGS`` (text output captured, no standard input); ``env`` entries are added to the
-    current environment."""
-    full_env = None if env is None else {**os.environ, **env}
-    return subprocess.run(opsrock_command(*args), cwd=cwd, capture_output=True, text=True, timeout=timeout,
-                          stdin=subprocess.DEVNULL, env=full_env)
+def run_opsrock(args: Sequence[str], cwd: str | os.PathLike | None = None, *, timeout: float = 120,
+                env: Mapping[str, str] | None = None, user: int | None = None) -> subprocess.CompletedProcess:
+    """Run ``opsrock ARGS`` in ``cwd``, text output captured, no standard input; ``env`` is the whole
+    environment (None: this one), ``user`` a uid to run as (:func:`opsrock_command`)."""
+    return subprocess.run(opsrock_command(args, user), cwd=cwd, capture_output=True, text=True, timeout=timeout,
+                          stdin=subprocess.DEVNULL, env=None if env is None else dict(env))

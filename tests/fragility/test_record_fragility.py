@@ -9,8 +9,6 @@ Wilson's interval formula (Wilson 1927) and pelicun's own loader (optional extra
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pandas as pd
@@ -25,7 +23,7 @@ from opsrock.fragility.pelicun_export import ComponentFragility, read_pelicun_cs
 from opsrock.fragility.record_study import RecordStudySettings, record_fragility
 from opsrock.fragility.sufficiency import sufficiency
 from opsrock.stats import wilson_interval
-from _support import OPSROCK
+from _support import run_opsrock
 
 
 
@@ -174,8 +172,7 @@ def test_pelicun_loads_the_export(tmp_path):
 
 
 def _cli(*args, cwd=None):
-    cmd = [str(OPSROCK), *args] if OPSROCK.exists() else [sys.executable, "-m", "opsrock.cli", *args]
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=600, cwd=cwd)
+    return run_opsrock(args, cwd, timeout=600)
 
 
 def test_cli_fragility_report(tmp_path):

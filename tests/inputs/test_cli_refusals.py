@@ -16,16 +16,9 @@ import time
 from pathlib import Path
 
 import pytest
-from _support import BLOCKS, OPSROCK
+from _support import BLOCKS, run_opsrock
 
 SIM = ["simulate", "--width", "0.4", "--height", "2.2", "--pfa", "1", "--freq", "1"]
-
-
-def run(args: list[str], cwd: Path, user: int | None = None) -> subprocess.CompletedProcess:
-    cmd = [str(OPSROCK), *args] if OPSROCK.exists() else [sys.executable, "-m", "opsrock.cli", *args]
-    if user is not None:  # util-linux setpriv: drop root for this one command
-        cmd = ["setpriv", f"--reuid={user}", f"--regid={user}", "--clear-groups", *cmd]
-    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=120)
 
 
 def assert_one_line_usage_error(proc: subprocess.CompletedProcess, *needles: str) -> str:
@@ -80,33 +73,33 @@ SIMULATE_CASES = [
 @pytest.mark.parametrize(("args", "needles"), [c[1:] for c in SIMULATE_CASES], ids=[c[0] for c in SIMULATE_CASES])
 def test_simulate_refuses_bad_input_in_one_line(tmp_path, args, needles):
     before = listing(tmp_path)
-    assert_one_line_usage_error(run(args, tmp_path), *needles)
+    assert_one_line_usage_error(run_opsrock(args, tmp_path), *needles)
     assert listing(tmp_path) == before  # no folder created, no temporary file left
 
 
 def test_plot_naming_an_existing_folder_is_refused_and_leaves_nothing(tmp_path):
     (tmp_path / "fig.png").mkdir()
-    assert_one_line_usage_error(run([*SIM, "--plot", "fig.png"], tmp_path), "--plot", "fig.png", "folder")
+    assert_one_line_usage_error(run_opsrock([*SIM, "--plot", "fig.png"], tmp_path), "--plot", "fig.png", "folder")
     assert listing(tmp_path) == ["fig.png"]  # no fig.tmp.png
 
 
 def test_run_out_that_is_a_file(tmp_path):
     (tmp_path / "out").write_text("not a folder")
-    proc = run(["run", str(scene(tmp_path)), "--out", "out"], tmp_path)
+    proc = run_opsrock(["run", str(scene(tmp_path)), "--out", "out"], tmp_path)
     assert_one_line_usage_error(proc, "--out", "'out'", "is a file")
     assert (tmp_path / "out").read_text() == "not a folder"
 
 
 def test_reproduce_out_that_is_a_file(tmp_path):
     (tmp_path / "results").write_text("not a folder")
-    assert_one_line_usage_error(run(["reproduce", "--out", "results"], tmp_path), "--out", "is a file")
+    assert_one_line_usage_error(run_opsrock(["reproduce", "--out", "results"], tmp_path), "--out", "is a file")
 
 
 def test_run_on_a_corrupt_store(tmp_path):
     out = tmp_path / "out"
     out.mkdir()
     (out / "results.sqlite").write_bytes(b"this is not an SQLite database, it is a text file" * 4)
-    proc = run(["run", str(scene(tmp_path)), "--out", "out", "--no-progress"], tmp_path)
+    proc = run_opsrock(["run", str(scene(tmp_path)), "--out", "out", "--no-progress"], tmp_path)
     assert_one_line_usage_error(proc, "results.sqlite", "not a usable opsrock store")
     assert not (out / "cases.csv").exists()
 
@@ -148,7 +141,7 @@ def test_run_out_not_writable(open_tmp, where):
     tmp_path.chmod(0o755)
     locked.chmod(0o555)
     try:
-        proc = run(["run", str(scene_file), "--out", str(target), "--no-progress"], tmp_path, user=user)
+        proc = run_opsrock(["run", str(scene_file), "--out", str(target), "--no-progress"], tmp_path, user=user)
     finally:
         locked.chmod(0o755)
     assert_one_line_usage_error(proc, "--out", "cannot write", "locked")
@@ -161,7 +154,7 @@ def test_unreadable_scene_file(open_tmp):
     path.chmod(0o000)
     if user is None and os.access(path, os.R_OK):
         pytest.skip("this user reads files whatever their mode")
-    proc = run(["run", str(path), "--out", str(open_tmp / "out")], open_tmp, user=user)
+    proc = run_opsrock(["run", str(path), "--out", str(open_tmp / "out")], open_tmp, user=user)
     assert_one_line_usage_error(proc, "scene.toml", "cannot be read")
     assert not (open_tmp / "out").exists()
 
@@ -175,7 +168,7 @@ def test_oversized_grid_is_refused_at_once(tmp_path):
         "[grid.pfa_ratio]\nstart = 1.0\nstop = 10.0\nnum = 10000\n"
     )
     t0 = time.monotonic()
-    proc = run(["run", str(path), "--out", "out"], tmp_path)
+    proc = run_opsrock(["run", str(path), "--out", "out"], tmp_path)
     assert time.monotonic() - t0 < 30
     assert_one_line_usage_error(proc, "grid", "400000000 cases", "MAX_CASES")
     assert not (tmp_path / "out").exists()
@@ -184,7 +177,7 @@ def test_oversized_grid_is_refused_at_once(tmp_path):
 @pytest.mark.parametrize("value", ['"no"', "0", '"false"'])
 def test_a_bool_setting_given_as_anything_else_is_refused(tmp_path, value):
     path = scene(tmp_path, solver="opensees", settings=f"[solver.settings]\nexplicit_step_check = {value}")
-    proc = run(["run", str(path), "--out", "out"], tmp_path)
+    proc = run_opsrock(["run", str(path), "--out", "out"], tmp_path)
     assert_one_line_usage_error(proc, "explicit_step_check", "bool")
     assert not (tmp_path / "out").exists()
 

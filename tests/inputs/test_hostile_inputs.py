@@ -18,7 +18,6 @@ import csv
 import os
 import shutil
 import subprocess
-import sys
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -27,7 +26,7 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from _support import BLOCKS, OPSROCK
+from _support import BLOCKS, OPSROCK, run_opsrock
 
 
 #: The values every numeric option is tried with (each kept only where it is bad for that option).
@@ -43,11 +42,6 @@ class Case:
     needles: tuple[str, ...]
     status: int = 2
     expect_files: tuple[str, ...] = field(default=())  # files the command may write (valid inputs only)
-
-
-def _run(args, cwd: Path, timeout: float = 120, env: dict | None = None) -> subprocess.CompletedProcess:
-    cmd = [str(OPSROCK), *args] if OPSROCK.exists() else [sys.executable, "-m", "opsrock.cli", *args]
-    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
 
 
 # --- fixtures: files, scenes and campaigns, made once -----------------------------------------------
@@ -146,7 +140,7 @@ def _write_campaigns(base: Path) -> None:
         (camp / f"r{k}.txt").write_text("\n".join(f"{x:.6f}" for x in 0.1 * rng.standard_normal(600)) + "\n")
     for name, levels in (("weak", [0.5, 0.8]), ("strong", [30.0, 40.0]), ("mixed", [0.8, 2.0, 4.0, 8.0])):
         (camp / f"{name}.toml").write_text(RECORD_SCENE.format(name=name, blocks=BLOCKS, levels=levels))
-        proc = _run(["run", f"{name}.toml", "--out", f"run_{name}", "--no-progress", "--workers", "1"], camp)
+        proc = run_opsrock(["run", f"{name}.toml", "--out", f"run_{name}", "--no-progress", "--workers", "1"], camp)
         assert proc.returncode == 0, proc.stderr
     full = (camp / "run_mixed" / "cases.csv").read_text().splitlines(keepends=True)
     (camp / "one.csv").write_text("".join(full[:2]))
@@ -370,7 +364,7 @@ def _check(case: Case, base: Path, work: Path) -> str | None:
     cwd = work / str(abs(hash(case.name)))
     cwd.mkdir()
     try:
-        proc = _run(case.args, cwd, timeout=90)
+        proc = run_opsrock(case.args, cwd, timeout=90)
     except subprocess.TimeoutExpired:
         return "no answer within 90 s"
     problems = []
@@ -415,7 +409,7 @@ def test_harness_counts_per_command(base):
 # --- valid edge inputs, answered -------------------------------------------------------------------------
 @pytest.mark.parametrize("campaign", ["weak", "strong"])
 def test_a_campaign_where_nothing_or_everything_overturns_is_a_result(base, tmp_path, campaign):
-    proc = _run(["fragility", f"{base}/campaigns/run_{campaign}", "--out", "rep", "--n-boot", "10"], tmp_path)
+    proc = run_opsrock(["fragility", f"{base}/campaigns/run_{campaign}", "--out", "rep", "--n-boot", "10"], tmp_path)
     assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
     report = (tmp_path / "rep" / "report.md").read_text()
     n_over = "0 overturned" if campaign == "weak" else "12 overturned"
@@ -424,7 +418,7 @@ def test_a_campaign_where_nothing_or_everything_overturns_is_a_result(base, tmp_
 
 
 def test_a_one_row_campaign_is_answered(base, tmp_path):
-    proc = _run(["fragility", f"{base}/campaigns/one.csv", "--out", "rep", "--n-boot", "5"], tmp_path)
+    proc = run_opsrock(["fragility", f"{base}/campaigns/one.csv", "--out", "rep", "--n-boot", "5"], tmp_path)
     assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
     assert "No fragility curve can be fitted" in (tmp_path / "rep" / "report.md").read_text()
 
@@ -531,7 +525,7 @@ def test_random_option_values_are_refused_or_answered(option, value):
             base = ["simulate", "--solver", "housner_fast", *(("--height", "2.2") if name == "--width" else ("--width", "0.4"))]
         if name == "--step":
             base = ["simulate", "--width", "0.4", "--height", "2.2", "--solver", "opensees"]
-        proc = _run([*base, name, str(value), *rest], Path(tmp), timeout=120)
+        proc = run_opsrock([*base, name, str(value), *rest], Path(tmp), timeout=120)
         assert "Traceback" not in proc.stderr, proc.stderr
         if proc.returncode == 2:
             assert len(proc.stderr.splitlines()) == 1 and name in proc.stderr, proc.stderr
@@ -564,7 +558,7 @@ def test_ctrl_c_at_any_moment_gives_one_line_and_resumes(base, tmp_path, delay):
     assert proc.returncode == 130, (proc.returncode, err)
     assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
     assert len(err.splitlines()) == 1 and "interrupted" in err, err
-    again = _run(cmd[1:], tmp_path, timeout=300)
+    again = run_opsrock(cmd[1:], tmp_path, timeout=300)
     assert again.returncode == 0, again.stderr
     assert len((tmp_path / "out" / "cases.csv").read_text().splitlines()) == 1 + 2 * 12 * 6
 
@@ -577,7 +571,7 @@ def test_the_documented_maximum_of_storeys_finishes(base, tmp_path):
     import time
 
     t0 = time.monotonic()
-    proc = _run([*SIM, "--record", f"{base}/rec.txt", "--units", "g", "--dt", "0.01", "--building-period", "10",
+    proc = run_opsrock([*SIM, "--record", f"{base}/rec.txt", "--units", "g", "--dt", "0.01", "--building-period", "10",
                  "--storeys", "200", "--solver", "housner_fast", "--json"], tmp_path, timeout=300)
     assert proc.returncode == 0, proc.stderr
     assert time.monotonic() - t0 < 120

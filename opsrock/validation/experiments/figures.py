@@ -50,7 +50,7 @@ def plot_restitution(a: EventArrays, by_group: pd.DataFrame, by_impact: pd.DataF
         x = t["alpha_rad"] + (k - 1) * 0.003
         ax[1].errorbar(x, t["factor"], yerr=[t["factor"] - t["factor_lo"], t["factor_hi"] - t["factor"]],
                        fmt=mk, ms=4, capsize=2, label=f"impacts {label}")
-    n = by_impact["n"].to_numpy(float)  # arrays, not Series: matplotlib 3.7 masks a Series' values as objects
+    n = by_impact["n"].to_numpy(float)  # arrays, not Series: with numpy 1.24 and pandas 2 the mask test fails
     ax[2].fill_between(n, by_impact["factor_lo"].to_numpy(float), by_impact["factor_hi"].to_numpy(float), color="C0",
                        alpha=0.25,
                        label="95 % interval (trial bootstrap)")

@@ -57,12 +57,12 @@ from typing import Any
 from opsrock import __version__
 from opsrock._files import atomic_write
 from opsrock.campaign.cases import CASES_FILE, case_table, write_cases_csv
-from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.campaign.run import Stage
 from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import MANIFEST_FILE, read_rows
 from opsrock.errors import InputError
 from opsrock.solvers import check_settings
+from opsrock.solvers.registry import METHODS, solver_names
 
 #: Sub-folders of a multi-fidelity run: the screen's campaign and the expensive solver's partial one.
 SCREEN_DIR: str = "screen"
@@ -221,7 +221,7 @@ def escalation_reason(rule: EscalationRule, row: Mapping[str, Any]) -> str:
 
 def _sdof_model(solver: str, settings: Mapping[str, Any]):
     """The SDOF model the expensive solver runs (None for a solver of another model)."""
-    if solver_info(solver).model != "sdof":
+    if METHODS.get(solver).model != "sdof":
         return None
     return check_settings(solver, dict(settings)).model
 
@@ -252,9 +252,9 @@ def derive_rule(solver: str, screen_solver: str, settings: Mapping[str, Any] | N
         expensive solver's model when its settings change it); a percentile the evidence lacks.
     """
     for name in (solver, screen_solver):
-        if solver_info(name) is None:
+        if METHODS.get(name) is None:
             raise InputError(f"unknown solver {name!r} (known: {', '.join(solver_names())})")
-    if solver_info(screen_solver).model != "rigid":
+    if METHODS.get(screen_solver).model != "rigid":
         raise InputError(f"screen_solver must solve the rigid body ({', '.join(_RIGID)}), got {screen_solver!r}")
     model = _sdof_model(solver, settings or {})
     uplift_q = 0.0
@@ -505,7 +505,7 @@ class MultiFidelity:
         return cls(screen_solver=choice.screen, solver=choice.solver)
 
     def _check(self, scene: Scene) -> EscalationRule:
-        info = solver_info(self.solver)
+        info = METHODS.get(self.solver)
         if info is None or info.model == "friction" or self.screen_solver == self.solver:
             raise InputError(f"solver must be a no-slip solver other than the screen ({self.screen_solver!r}), "
                              f"got {self.solver!r}")

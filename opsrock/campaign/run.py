@@ -48,7 +48,6 @@ from opsrock.campaign.advice import sliding_warnings
 from opsrock.campaign.cases import CASES_FILE, IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
 from opsrock.campaign.motions import cached_motions, compute_motions
-from opsrock.campaign.registry import solver_info
 from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import MANIFEST_FILE, STORE_FILE, ResultStore
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
@@ -56,6 +55,7 @@ from opsrock.errors import CampaignConflictError, CaseTimeout, InputTypeError
 from opsrock.limits import check
 from opsrock.result import RockingResult
 from opsrock.solvers import get_solver, simulate
+from opsrock.solvers.registry import METHODS
 
 #: One solve at a time per process: OpenSeesPy keeps one global model per interpreter, and a
 #: Dask worker may run several threads.
@@ -149,7 +149,7 @@ def solve_batch(
         exception (type and message) if the solve raised or returned something else.
     """
     fn = simulate if solve_fn is None else solve_fn
-    if solve_fn is None and solver_info(solver) is not None:
+    if solve_fn is None and METHODS.get(solver) is not None:
         get_solver(solver)  # import the solver module (and compile it, in a fresh clone) outside the budget
     with _SOLVE_LOCK:
         return [_solve_one(case, fn, solver, settings, case_timeout) for case in cases]

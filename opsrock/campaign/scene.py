@@ -51,13 +51,13 @@ from opsrock.block import Block
 from opsrock.campaign.cases import CONTACT_COLUMNS
 from opsrock.campaign.grid import Grid, parse_grid
 from opsrock.campaign.needs import Choice, Needs, check, choose
-from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.campaign.toml import MAX_AXIS_POINTS, TomlFile, canonical
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS
 from opsrock.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import check_settings
+from opsrock.solvers.registry import METHODS, solver_names
 
 if TYPE_CHECKING:
     from opsrock.campaign.records import RecordSet
@@ -200,7 +200,7 @@ class Scene:
                              "a scene needs exactly one of [grid] (pulses) or [records] (floor motions)")
         object.__setattr__(self, "solver_settings", _check_solver(TomlFile(self.path or "<scene>"), self.solver,
                                                                   dict(self.solver_settings)))
-        if solver_info(self.solver).model != "friction":
+        if METHODS.get(self.solver).model != "friction":
             for b in self.blocks:
                 if b.friction is not None:
                     raise SceneError(self.path or "<scene>", "solver.name", self.solver,
@@ -216,7 +216,7 @@ class Scene:
     def columns(self) -> tuple[str, ...]:
         """Columns of the scene's ``cases.csv``: with the contact columns for a solver of the ``friction``
         model (:data:`opsrock.campaign.cases.CONTACT_COLUMNS`)."""
-        if solver_info(self.solver).model == "friction":
+        if METHODS.get(self.solver).model == "friction":
             return (*self.design.columns, *CONTACT_COLUMNS)
         return self.design.columns
 
@@ -529,7 +529,7 @@ def _check_solver(f: TomlFile, solver: Any, settings: dict) -> dict:
     built (:func:`opsrock.solvers.check_settings`), so a bad name or value is refused now."""
     if solver == AUTO:
         raise f.error("solver.name", solver, "'auto' is resolved from [needs] when the scene loads")
-    if solver_info(solver) is None:
+    if METHODS.get(solver) is None:
         raise f.error("solver.name", solver, f"unknown solver (known: {', '.join(solver_names())})")
     for key, value in settings.items():
         f.setting(f"solver.settings.{key}", value)

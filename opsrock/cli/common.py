@@ -15,13 +15,13 @@ from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 
 from opsrock.block import Block
-from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.constants import EQUATIONS, G
 from opsrock.errors import OpsrockError, UsageError
 from opsrock.excitations import PULSE_SHAPES
 from opsrock.limits import check, scaled_input
 from opsrock.model import DAMPER_LAWS, LEVERS, SDOFModel
 from opsrock.restitution import law_factor
+from opsrock.solvers.registry import METHODS, solver_names
 
 #: Arguments of :class:`~opsrock.block.Block`, the solvers' settings and the restitution laws -> the option
 #: that gives each.
@@ -58,7 +58,7 @@ def given_by(option: str) -> Iterator[None]:
 
 
 def _models(model: str) -> str:
-    return ", ".join(n for n in solver_names() if solver_info(n).model == model)
+    return ", ".join(n for n in solver_names() if METHODS.get(n).model == model)
 
 
 def check_model_args(args: argparse.Namespace) -> None:
@@ -68,7 +68,7 @@ def check_model_args(args: argparse.Namespace) -> None:
     if args.solver is None:
         slides = args.friction is not None or args.friction_kinetic is not None
         args.solver = "friction" if (slides or moves_vertically) else args.default_solver
-    info = solver_info(args.solver)
+    info = METHODS.get(args.solver)
     if info is None:
         raise UsageError(f"--solver must be one of {', '.join(solver_names())}; got {args.solver!r}")
     if args.pulse not in PULSE_SHAPES:

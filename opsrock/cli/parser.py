@@ -15,14 +15,14 @@ from typing import Any, Callable
 from opsrock.analysis.reproduce import ROBUSTNESS_SETS
 from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
 from opsrock.bench import BENCHMARKS
-from opsrock.campaign.registry import solver_names
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
 from opsrock.errors import OpsrockError, UsageError
 from opsrock.excitations import PULSE_SHAPES
 from opsrock.limits import check, check_count
+from opsrock.solvers.registry import solver_names
 from opsrock.validation import CASES
 
-#: Solver names of the command line: the registry's (:mod:`opsrock.campaign.registry`).
+#: Solver names of the command line: the registry's (:mod:`opsrock.solvers.registry`).
 SOLVER_NAMES: tuple[str, ...] = solver_names()
 
 

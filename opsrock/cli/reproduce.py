@@ -9,15 +9,15 @@ from pathlib import Path
 from opsrock._files import output_dir
 from opsrock.analysis.reproduce import ReproduceSettings
 from opsrock.analysis.reproduce import reproduce as run_pipeline
-from opsrock.campaign.registry import solver_info, solver_names
 from opsrock.cli import EXIT_FAILED
 from opsrock.errors import UsageError
 from opsrock.report.paper import gate_text
+from opsrock.solvers.registry import METHODS, solver_names
 
 
 def reproduce(args: argparse.Namespace) -> int:
     """``opsrock reproduce``: :func:`opsrock.analysis.reproduce.reproduce`, the paper's workflow."""
-    if solver_info(args.solver) is None:
+    if METHODS.get(args.solver) is None:
         raise UsageError(f"--solver must be one of {', '.join(solver_names())}; got {args.solver!r}")
     output_dir("--out", args.out)
     settings = ReproduceSettings(solver=args.solver, ignore_gate=args.ignore_gate, force=args.force,

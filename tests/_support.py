@@ -8,6 +8,7 @@ module-level tables (parametrised cases) can use them too.
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -27,17 +28,33 @@ TEST_DATA = ROOT / "tests" / "data"
 OPSROCK = Path(sys.executable).parent / "opsrock"
 
 
-def opsrock_command(args: Sequence[str], user: int | None = None) -> list[str]:
-    """The command line that runs ``opsrock ARGS`` through the installed console script; with ``user``, as
-    that uid and gid (util-linux ``setpriv``, to drop root for one command)."""
+#: Root reads and writes whatever the permission bits say (CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH); a test of
+#: a read-only or unreadable path runs opsrock without those two capabilities (util-linux ``setpriv``), as
+#: the same user: so the checkout and its venv stay reachable wherever the clone sits (a 0700 folder too),
+#: where running as another user ('nobody') could not even start the interpreter.
+WITHOUT_DAC = ["setpriv", "--inh-caps=-dac_override,-dac_read_search",
+               "--bounding-set=-dac_override,-dac_read_search", "--"]
+
+
+def permissions_bind_root() -> bool:
+    """Whether :func:`opsrock_command` can make permission bits bind this user: not root, or root with
+    ``setpriv`` to drop the capabilities that ignore them."""
+    return os.geteuid() != 0 or shutil.which("setpriv") is not None
+
+
+def opsrock_command(args: Sequence[str], bound_by_permissions: bool = False) -> list[str]:
+    """The command line that runs ``opsrock ARGS`` through the installed console script; with
+    ``bound_by_permissions``, under root without the capabilities that ignore permission bits
+    (:data:`WITHOUT_DAC`; other users are bound anyway)."""
     head = [str(OPSROCK)] if OPSROCK.exists() else [sys.executable, "-m", "opsrock.cli"]
     cmd = [*head, *map(str, args)]
-    return cmd if user is None else ["setpriv", f"--reuid={user}", f"--regid={user}", "--clear-groups", *cmd]
+    return [*WITHOUT_DAC, *cmd] if bound_by_permissions and os.geteuid() == 0 else cmd
 
 
 def run_opsrock(args: Sequence[str], cwd: str | os.PathLike | None = None, *, timeout: float = 120,
-                env: Mapping[str, str] | None = None, user: int | None = None) -> subprocess.CompletedProcess:
+                env: Mapping[str, str] | None = None, bound_by_permissions: bool = False
+                ) -> subprocess.CompletedProcess:
     """Run ``opsrock ARGS`` in ``cwd``, text output captured, no standard input; ``env`` is the whole
-    environment (None: this one), ``user`` a uid to run as (:func:`opsrock_command`)."""
-    return subprocess.run(opsrock_command(args, user), cwd=cwd, capture_output=True, text=True, timeout=timeout,
-                          stdin=subprocess.DEVNULL, env=None if env is None else dict(env))
+    environment (None: this one); ``bound_by_permissions``: see :func:`opsrock_command`."""
+    return subprocess.run(opsrock_command(args, bound_by_permissions), cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout, stdin=subprocess.DEVNULL, env=None if env is None else dict(env))

@@ -8,15 +8,13 @@ project's record of what a user sees.
 
 from __future__ import annotations
 
-import os
-import shutil
 import subprocess
 import sys
 import time
 from pathlib import Path
 
 import pytest
-from _support import BLOCKS, run_opsrock
+from _support import BLOCKS, permissions_bind_root, run_opsrock
 
 SIM = ["simulate", "--width", "0.4", "--height", "2.2", "--pfa", "1", "--freq", "1"]
 
@@ -104,59 +102,32 @@ def test_run_on_a_corrupt_store(tmp_path):
     assert not (out / "cases.csv").exists()
 
 
-NOBODY = 65534
-
-
-def _as_unprivileged() -> int | None:
-    """Root writes into read-only folders, so the read-only cases run as 'nobody' when root."""
-    if os.geteuid() != 0:
-        return None
-    if shutil.which("setpriv") is None:
-        pytest.skip("running as root without util-linux setpriv: cannot test a read-only folder")
-    return NOBODY
-
-
-@pytest.fixture
-def open_tmp():
-    """A temporary folder that an unprivileged user can reach (pytest's own is root-only)."""
-    import tempfile
-
-    path = Path(tempfile.mkdtemp(prefix="opsrock-test-"))
-    path.chmod(0o755)
-    yield path
-    shutil.rmtree(path, ignore_errors=True)
-
-
 @pytest.mark.parametrize("where", ["out", "parent"])
-def test_run_out_not_writable(open_tmp, where):
-    tmp_path = open_tmp
-    user = _as_unprivileged()
+def test_run_out_not_writable(tmp_path, where):
+    if not permissions_bind_root():
+        pytest.skip("running as root without util-linux setpriv: cannot test a read-only folder")
     locked = tmp_path / "locked"
     locked.mkdir()
     target = locked if where == "out" else locked / "new"
     scene_file = scene(tmp_path)
-    if user is not None:
-        for p in (tmp_path, scene_file):
-            shutil.chown(p, user, user)
-    tmp_path.chmod(0o755)
     locked.chmod(0o555)
     try:
-        proc = run_opsrock(["run", str(scene_file), "--out", str(target), "--no-progress"], tmp_path, user=user)
+        proc = run_opsrock(["run", str(scene_file), "--out", str(target), "--no-progress"], tmp_path,
+                           bound_by_permissions=True)
     finally:
         locked.chmod(0o755)
     assert_one_line_usage_error(proc, "--out", "cannot write", "locked")
     assert listing(locked) == []
 
 
-def test_unreadable_scene_file(open_tmp):
-    user = _as_unprivileged()
-    path = scene(open_tmp)
+def test_unreadable_scene_file(tmp_path):
+    if not permissions_bind_root():
+        pytest.skip("running as root without util-linux setpriv: cannot test an unreadable file")
+    path = scene(tmp_path)
     path.chmod(0o000)
-    if user is None and os.access(path, os.R_OK):
-        pytest.skip("this user reads files whatever their mode")
-    proc = run_opsrock(["run", str(path), "--out", str(open_tmp / "out")], open_tmp, user=user)
+    proc = run_opsrock(["run", str(path), "--out", str(tmp_path / "out")], tmp_path, bound_by_permissions=True)
     assert_one_line_usage_error(proc, "scene.toml", "cannot be read")
-    assert not (open_tmp / "out").exists()
+    assert not (tmp_path / "out").exists()
 
 
 def test_oversized_grid_is_refused_at_once(tmp_path):

@@ -26,7 +26,7 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from _support import BLOCKS, OPSROCK, run_opsrock
+from _support import BLOCKS, OPSROCK, permissions_bind_root, run_opsrock
 
 
 #: The values every numeric option is tried with (each kept only where it is bad for that option).
@@ -453,29 +453,21 @@ def test_a_byte_order_mark_keeps_the_first_sample(tmp_path):
     assert rec.values.tolist() == [0.25, 0.5, -0.75]  # the first sample is not taken for a header
 
 
-def test_a_read_only_out_folder_is_refused_before_any_work(base):
-    # as an unprivileged user when root (root writes anywhere), in a folder that user can reach
-    import tempfile
-
-    if os.geteuid() == 0 and shutil.which("setpriv") is None:
+def test_a_read_only_out_folder_is_refused_before_any_work(base, tmp_path):
+    # root writes anywhere: opsrock runs without the capabilities that ignore permission bits
+    if not permissions_bind_root():
         pytest.skip("root without setpriv cannot test a read-only folder")
-    tmp_path = Path(tempfile.mkdtemp(prefix="opsrock-test-"))
+    work = Path(shutil.copytree(base / "campaigns" / "run_mixed", tmp_path / "camp"))
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    locked.chmod(0o555)
     try:
-        work = Path(shutil.copytree(base / "campaigns" / "run_mixed", tmp_path / "camp"))
-        locked = tmp_path / "locked"
-        locked.mkdir()
-        for p in (tmp_path, work, *work.rglob("*")):
-            p.chmod(0o777 if p.is_dir() else 0o666)
-        locked.chmod(0o555)
-        cmd = [str(OPSROCK), "fragility", str(work), "--out", str(locked / "rep")]
-        if os.geteuid() == 0:
-            cmd = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups", *cmd]
-        proc = subprocess.run(cmd, cwd=tmp_path, capture_output=True, text=True, timeout=60)
-        locked.chmod(0o755)
-        assert proc.returncode == 2 and "cannot write" in proc.stderr and "Traceback" not in proc.stderr, proc.stderr
-        assert list(locked.iterdir()) == []
+        proc = run_opsrock(["fragility", str(work), "--out", str(locked / "rep")], tmp_path, timeout=60,
+                           bound_by_permissions=True)
     finally:
-        shutil.rmtree(tmp_path, ignore_errors=True)
+        locked.chmod(0o755)
+    assert proc.returncode == 2 and "cannot write" in proc.stderr and "Traceback" not in proc.stderr, proc.stderr
+    assert list(locked.iterdir()) == []
 
 
 def test_stale_opensees_logs_do_not_pile_up(tmp_path, monkeypatch):

@@ -8,6 +8,7 @@ contents and the lookups in seconds, on every `make test`.
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -19,10 +20,22 @@ ROOT = Path(__file__).resolve().parents[1]
 SCENES = {"paper", "spectrum", "tiny", "fema-far-field-ida", "fema-far-field-ida-b3"}
 
 
+def _tracked(*paths: str) -> list[str]:
+    """The files git tracks (and the new ones it does not ignore) under ``paths`` of the checkout."""
+    return subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard", *paths], cwd=ROOT,
+                          capture_output=True, text=True, check=True).stdout.split()
+
+
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("dist")
-    subprocess.run([sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps", "-w", str(out), str(ROOT)],
+    # built from a copy of the checkout's files, as a fresh clone holds them: a build/ folder left by an
+    # earlier build in the checkout would otherwise lend the wheel files its configuration does not ship
+    src, out = tmp_path_factory.mktemp("src"), tmp_path_factory.mktemp("dist")
+    for name in _tracked():
+        if (ROOT / name).is_file():
+            (src / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / name, src / name)
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--quiet", "--no-deps", "-w", str(out), str(src)],
                    check=True, capture_output=True, text=True, timeout=300)
     (whl,) = out.glob("opsrock-*.whl")
     return whl
@@ -33,6 +46,10 @@ def test_wheel_ships_the_data_and_nothing_of_the_repository(wheel):
     assert "opsrock/data/blocks.toml" in names
     assert {f"opsrock/data/scenes/{s}.toml" for s in SCENES} <= names
     assert "opsrock/cli/__main__.py" in names
+    # every data file the checkout tracks under opsrock/data is shipped (the solvers' evidence was not,
+    # and the multi-fidelity policy reads it when the campaign workflow is imported)
+    data = {n for n in _tracked("opsrock/data") if not n.endswith(".py")}
+    assert data and data <= names, sorted(data - names)
     # the repository's folders are not packages: no tests, case folders or studies in the wheel
     assert not any(n.split("/")[0] in {"tests", "validation", "studies", "docs", "tools", "bench"} for n in names)
 

@@ -43,3 +43,16 @@ def opsrock_cli(tmp_path):
         return run_opsrock(args, tmp_path, timeout=timeout)
 
     return run
+
+
+@pytest.fixture(autouse=True)
+def _environment_as_it_was():
+    """Every test leaves the process environment as it found it. Dask's nanny sets ``OMP_NUM_THREADS=1``
+    (and the other thread counts) in the parent process's ``os.environ``; every later subprocess then ran
+    single-threaded BLAS, and one behaviour digest (model_form's mean signed error, 1e-14 apart: a
+    threaded sum) differed whenever a Dask test ran earlier in the session."""
+    saved = dict(os.environ)
+    yield
+    if os.environ != saved:
+        os.environ.clear()
+        os.environ.update(saved)

@@ -18,30 +18,18 @@ import csv
 import os
 import shutil
 import subprocess
-from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
+from _hostile import Case, listing, sweep
 from _support import BLOCKS, OPSROCK, permissions_bind_root, run_opsrock
 
 
 #: The values every numeric option is tried with (each kept only where it is bad for that option).
 BAD_VALUES: tuple[str, ...] = ("0", "-1", "nan", "inf", "-inf", "1e308", "1e-320", "1" + "0" * 40, "abc", "")
-
-
-@dataclass(frozen=True)
-class Case:
-    """One hostile input: the arguments, the words the one line must hold, the expected status."""
-
-    name: str
-    args: tuple[str, ...]
-    needles: tuple[str, ...]
-    status: int = 2
-    expect_files: tuple[str, ...] = field(default=())  # files the command may write (valid inputs only)
 
 
 # --- fixtures: files, scenes and campaigns, made once -----------------------------------------------
@@ -355,44 +343,13 @@ def _report_cases(b: str) -> list[Case]:
     ]
 
 
-def _listing(folder: Path) -> dict[str, tuple[int, float]]:
-    return {str(p.relative_to(folder)): (p.lstat().st_size, p.lstat().st_mtime) for p in folder.rglob("*")}
-
-
-def _check(case: Case, base: Path, work: Path) -> str | None:
-    """Run one case in its own empty folder; return what broke the promise (None: kept)."""
-    cwd = work / str(abs(hash(case.name)))
-    cwd.mkdir()
-    try:
-        proc = run_opsrock(case.args, cwd, timeout=90)
-    except subprocess.TimeoutExpired:
-        return "no answer within 90 s"
-    problems = []
-    lines = proc.stderr.splitlines()
-    if proc.returncode != case.status:
-        problems.append(f"exit {proc.returncode}")
-    if "Traceback" in proc.stderr or len(lines) > 2 or not lines:
-        problems.append(f"{len(lines)} stderr lines")
-    if proc.stdout:
-        problems.append("stdout not empty")
-    if list(cwd.iterdir()):
-        problems.append(f"wrote {sorted(p.name for p in cwd.iterdir())}")
-    if "np.float64" in proc.stderr:
-        problems.append("numpy repr in the message")
-    missing = [n for n in case.needles if n not in (lines[0] if lines else "")]
-    if missing:
-        problems.append(f"message lacks {missing}")
-    return f"{case.name}: {'; '.join(problems)} | {proc.stderr.strip()[:300]}" if problems else None
-
-
 def test_every_command_refuses_hostile_input(base, tmp_path):
     cases = numeric_cases(str(base)) + file_cases(str(base))
     assert len(cases) >= 300
-    before = _listing(base)
-    with ThreadPoolExecutor(max_workers=4) as pool:
-        broken = [r for r in pool.map(lambda c: _check(c, base, tmp_path), cases) if r]
+    before = listing(base)
+    broken = sweep(cases, tmp_path)
     assert not broken, f"{len(broken)} of {len(cases)} broke the promise:\n" + "\n".join(broken)
-    assert _listing(base) == before  # no input file was touched
+    assert listing(base) == before  # no input file was touched
 
 
 def test_harness_counts_per_command(base):

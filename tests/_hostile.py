@@ -1,0 +1,66 @@
+"""The hostile-input harness every ``tests/inputs/test_hostile_*.py`` module shares: one case is a command
+line and the promise it must keep, checked through the real console script in a folder of its own.
+
+The promise (README): for bad input, exit status 2, one line on stderr (at most two), no traceback, nothing
+on stdout, nothing written in the working folder, and the line names the argument. A case may expect
+another status (an environment fault, an answered edge input) or files (valid input only).
+"""
+
+from __future__ import annotations
+
+import subprocess
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterable, Mapping
+
+from _support import run_opsrock
+
+
+@dataclass(frozen=True)
+class Case:
+    """One hostile input: the arguments, the words the one line must hold, the expected status."""
+
+    name: str
+    args: tuple[str, ...]
+    needles: tuple[str, ...]
+    status: int = 2
+    expect_files: tuple[str, ...] = field(default=())  # files the command may write (valid inputs only)
+
+
+def listing(folder: Path) -> dict[str, tuple[int, float]]:
+    """Every path under ``folder`` with its size and modification time (to show nothing was touched)."""
+    return {str(p.relative_to(folder)): (p.lstat().st_size, p.lstat().st_mtime) for p in folder.rglob("*")}
+
+
+def check_case(case: Case, work: Path, *, timeout: float = 90, env: Mapping[str, str] | None = None) -> str | None:
+    """Run one case in its own empty folder under ``work``; return what broke the promise (None: kept)."""
+    cwd = work / str(abs(hash(case.name)))
+    cwd.mkdir()
+    try:
+        proc = run_opsrock(case.args, cwd, timeout=timeout, env=env)
+    except subprocess.TimeoutExpired:
+        return f"{case.name}: no answer within {timeout:g} s"
+    problems = []
+    lines = proc.stderr.splitlines()
+    if proc.returncode != case.status:
+        problems.append(f"exit {proc.returncode}")
+    if "Traceback" in proc.stderr or len(lines) > 2 or not lines:
+        problems.append(f"{len(lines)} stderr lines")
+    if proc.stdout:
+        problems.append("stdout not empty")
+    written = sorted(p.name for p in cwd.iterdir() if p.name not in case.expect_files)
+    if written:
+        problems.append(f"wrote {written}")
+    if "np.float64" in proc.stderr:
+        problems.append("numpy repr in the message")
+    missing = [n for n in case.needles if n not in (lines[0] if lines else "")]
+    if missing:
+        problems.append(f"message lacks {missing}")
+    return f"{case.name}: {'; '.join(problems)} | {proc.stderr.strip()[:300]}" if problems else None
+
+
+def sweep(cases: Iterable[Case], work: Path, *, workers: int = 4, timeout: float = 90) -> list[str]:
+    """Check every case (in parallel threads, each its own subprocess); the broken promises, one line each."""
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        return [r for r in pool.map(lambda c: check_case(c, work, timeout=timeout), cases) if r]

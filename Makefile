@@ -82,7 +82,8 @@ blas:
 	@sh tools/ensure-blas.sh
 
 # Installs the exact versions of the lock file (see its header); pyproject.toml keeps the ranges.
-$(STAMP): pyproject.toml $(LOCK)
+# opsrock/__init__.py holds the version, which the installed metadata repeats: a new version reinstalls.
+$(STAMP): pyproject.toml opsrock/__init__.py $(LOCK)
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet -c $(LOCK) pip
 	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test,dask,records]'

@@ -12,6 +12,7 @@ import math
 import os
 from typing import Any, Callable
 
+from opsrock import __version__
 from opsrock.analysis.reproduce import ROBUSTNESS_SETS
 from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
 from opsrock.bench import BENCHMARKS
@@ -303,6 +304,7 @@ COMMANDS = {"simulate": _simulate, "threshold": _threshold, "records": _records,
 def build_parser() -> argparse.ArgumentParser:
     """The ``opsrock`` parser; each command's namespace has ``command`` set to its name."""
     parser = _Parser(prog="opsrock", description="Rocking and overturning of freestanding rigid blocks.")
+    parser.add_argument("--version", action="version", version=f"opsrock {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     for add in COMMANDS.values():
         add(sub)

@@ -78,21 +78,26 @@ def worker_start(parent: int) -> None:
 @contextlib.contextmanager
 def deferred_interrupts():
     """Inside the block (where a pool forks its workers) a Ctrl-C is recorded, not raised; it is raised
-    as ``KeyboardInterrupt`` when the block ends. Outside the main thread (where Python delivers no
-    signal) the block runs as it is."""
+    as ``KeyboardInterrupt`` when the block ends. So are SIGTERM and SIGHUP where a Python handler takes
+    them (the command line's, which stops like Ctrl-C): recorded, then given to that handler. Outside the
+    main thread (where Python delivers no signal) the block runs as it is."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    caught = []
-    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    caught: list[int] = []
+    stops = [s for s in (getattr(signal, "SIGTERM", None), getattr(signal, "SIGHUP", None))
+             if s is not None and callable(signal.getsignal(s))]
+    previous = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in (signal.SIGINT, *stops)}
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for s, handler in previous.items():
+            signal.signal(s, handler)
     if caught:
-        if callable(previous):
-            previous(signal.SIGINT, None)  # the usual handler: KeyboardInterrupt
-        elif previous != signal.SIG_IGN:
+        first = caught[0]
+        if callable(previous[first]):
+            previous[first](first, None)  # the usual handler: KeyboardInterrupt (or the command line's stop)
+        elif previous[first] != signal.SIG_IGN:
             raise KeyboardInterrupt
 
 

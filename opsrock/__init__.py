@@ -6,14 +6,36 @@ against independent scipy solvers and closed forms.
 
 OpenSeesPy (and the system BLAS its Linux wheel links against) is loaded when the OpenSees model is
 first used (:mod:`opsrock.opensees_session`), so everything else works on a machine without it.
+
+The names below are imported when first used (PEP 562): ``import opsrock`` itself is light, so that the
+command line (:mod:`opsrock.cli`) starts its handling of Ctrl-C and of the environment's faults before
+numpy and the solvers load. ``from opsrock import Block`` works as before.
 """
 
-from opsrock.block import Block
-from opsrock.constants import G
-from opsrock.excitations import OneSinePulse, Record
-from opsrock.model import SDOFModel
-from opsrock.result import RockingResult
-from opsrock.solvers import SOLVERS, simulate
+from __future__ import annotations
+
+import importlib
+
+#: Each public name -> the module that defines it.
+_EXPORTS: dict[str, str] = {
+    "Block": "opsrock.block", "G": "opsrock.constants", "OneSinePulse": "opsrock.excitations",
+    "Record": "opsrock.excitations", "SDOFModel": "opsrock.model", "RockingResult": "opsrock.result",
+    "SOLVERS": "opsrock.solvers", "simulate": "opsrock.solvers",
+}
+
+
+def __getattr__(name: str):
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'opsrock' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_EXPORTS})
+
 
 __all__ = [
     "Block",

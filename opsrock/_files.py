@@ -9,6 +9,9 @@
 * :func:`atomic_write`, :func:`atomic_text`, :func:`atomic_csv`: every output goes through a
   temporary file in the same folder and a rename, so an interrupted run never leaves a
   half-written file. Data files keep full precision.
+* :func:`not_a_file`, :func:`input_file`: the check every file opsrock reads passes first (records, scenes,
+  blocks files): a regular file, never a device, a FIFO, a socket or a folder. A character device reports
+  size 0 (``/dev/zero`` would pass a size limit and then fill the memory) and a FIFO blocks the reader.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ from __future__ import annotations
 import contextlib
 import os
 import shutil
+import stat
 import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Callable, Iterator
@@ -24,6 +28,35 @@ if TYPE_CHECKING:
     import pandas as pd
 
 from opsrock.errors import InputError
+
+
+#: What a path that is not a regular file is, by its ``stat`` type.
+_KINDS: tuple[tuple[Callable[[int], bool], str], ...] = (
+    (stat.S_ISDIR, "a folder"), (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
+    (stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISSOCK, "a socket"))
+
+
+def not_a_file(path: str | os.PathLike) -> str | None:
+    """What ``path`` is when it exists and is not a regular file (``"a character device"``, ``"a folder"``,
+    ...); None for a regular file (symbolic links followed) or a path that cannot be looked at (the reader
+    then says why: missing, permission denied). Never opens the path (opening a FIFO would block)."""
+    try:
+        mode = os.stat(path).st_mode
+    except (OSError, ValueError):
+        return None
+    if stat.S_ISREG(mode):
+        return None
+    return next((kind for test, kind in _KINDS if test(mode)), "not a regular file")
+
+
+def input_file(name: str, path: str | os.PathLike) -> Path:
+    """Check that ``path``, given as ``name`` (an option, ``"--record"``), is not a device, a FIFO, a socket
+    or a folder; return it. Raises ``InputError`` ``"<name> '<path>': is a character device, not a file"``.
+    A missing or unreadable path passes: the reader names that itself."""
+    kind = not_a_file(path)
+    if kind is not None:
+        raise InputError(f"{name} {str(path)!r}: is {kind}, not a file")
+    return Path(path)
 
 
 def _probe_writable(name: str, shown: str, folder: Path) -> None:
@@ -186,4 +219,5 @@ def read_table(path: str | os.PathLike, **options: Any) -> "pd.DataFrame":
     return pd.read_csv(path, float_precision="round_trip", **options)
 
 
-__all__ = ["atomic_csv", "atomic_text", "atomic_write", "output_dir", "output_file", "read_table", "staged_folder"]
+__all__ = ["atomic_csv", "atomic_text", "atomic_write", "input_file", "not_a_file", "output_dir", "output_file",
+           "read_table", "staged_folder"]

@@ -8,13 +8,28 @@ not a traceback per worker. While a pool forks its workers the parent only recor
 (:func:`deferred_interrupts`): raised inside ``fork()``'s own handlers, the ``KeyboardInterrupt`` would be
 swallowed there ("Exception ignored in ... _releaseLock") and the run would go on; recorded, it is raised
 as soon as the workers exist.
+
+No worker outlives its parent, whatever stops the parent (SIGTERM, ``kill -9``, a crash): every worker of
+opsrock's pools (these, and the campaign's :class:`~opsrock.campaign.executors.LocalPool`) runs
+:func:`die_with_parent` first, so multiprocessing's ``resource_tracker`` (which ends once every process
+that holds its pipe has ended) goes too.
 """
 
 from __future__ import annotations
 
 import contextlib
+import ctypes
+import os
 import signal
+import sys
 import threading
+import time
+
+#: ``prctl`` option of Linux: the signal the kernel sends a process when the thread that made it ends.
+PR_SET_PDEATHSIG: int = 1
+
+#: Seconds between two looks at the parent's pid where ``prctl`` is not available (macOS, Windows).
+PARENT_POLL_S: float = 1.0
 
 
 def ignore_interrupts() -> None:
@@ -22,24 +37,67 @@ def ignore_interrupts() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
+def die_with_parent(parent: int) -> None:
+    """Worker initialiser: end this process when its parent ``parent`` (a pid) ends, however it ends.
+
+    On Linux the kernel kills the worker (``prctl(PR_SET_PDEATHSIG, SIGKILL)``); elsewhere a daemon thread
+    looks at the parent's pid every :data:`PARENT_POLL_S` seconds. A parent already gone when this runs
+    (stopped while the worker started) ends the worker at once.
+    """
+    armed = False
+    if sys.platform.startswith("linux"):
+        try:
+            armed = ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0) == 0
+        except (OSError, AttributeError):
+            armed = False
+    if os.getppid() != parent:
+        os._exit(1)
+    if not armed:
+        threading.Thread(target=_watch_parent, args=(parent,), daemon=True, name="opsrock-parent-watch").start()
+
+
+def _watch_parent(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(PARENT_POLL_S)
+    os._exit(1)
+
+
+def worker_start(parent: int) -> None:
+    """What every worker of opsrock's pools runs first: die with ``parent``, leave Ctrl-C to it, and take the
+    default action of SIGTERM and SIGHUP (a worker spawned while the parent held them back inherits them
+    blocked)."""
+    die_with_parent(parent)
+    ignore_interrupts()
+    stops = {s for s in (getattr(signal, "SIGTERM", None), getattr(signal, "SIGHUP", None)) if s is not None}
+    for s in stops:
+        signal.signal(s, signal.SIG_DFL)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, stops)
+
+
 @contextlib.contextmanager
 def deferred_interrupts():
     """Inside the block (where a pool forks its workers) a Ctrl-C is recorded, not raised; it is raised
-    as ``KeyboardInterrupt`` when the block ends. Outside the main thread (where Python delivers no
-    signal) the block runs as it is."""
+    as ``KeyboardInterrupt`` when the block ends. So are SIGTERM and SIGHUP where a Python handler takes
+    them (the command line's, which stops like Ctrl-C): recorded, then given to that handler. Outside the
+    main thread (where Python delivers no signal) the block runs as it is."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    caught = []
-    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    caught: list[int] = []
+    stops = [s for s in (getattr(signal, "SIGTERM", None), getattr(signal, "SIGHUP", None))
+             if s is not None and callable(signal.getsignal(s))]
+    previous = {s: signal.signal(s, lambda signum, frame: caught.append(signum)) for s in (signal.SIGINT, *stops)}
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        for s, handler in previous.items():
+            signal.signal(s, handler)
     if caught:
-        if callable(previous):
-            previous(signal.SIGINT, None)  # the usual handler: KeyboardInterrupt
-        elif previous != signal.SIG_IGN:
+        first = caught[0]
+        if callable(previous[first]):
+            previous[first](first, None)  # the usual handler: KeyboardInterrupt (or the command line's stop)
+        elif previous[first] != signal.SIG_IGN:
             raise KeyboardInterrupt
 
 
@@ -88,16 +146,17 @@ def _pool_run(*task):
 
 
 def process_pool(workers: int, initializer=None, initargs: tuple = ()):
-    """A ``ProcessPoolExecutor`` of ``workers`` processes whose workers ignore SIGINT (then run ``initializer``).
+    """A ``ProcessPoolExecutor`` of ``workers`` processes whose workers die with this process and ignore SIGINT
+    (:func:`worker_start`), then run ``initializer``.
 
     Submit the first task inside :func:`deferred_interrupts`: that is where the workers are forked.
     """
     from concurrent.futures import ProcessPoolExecutor
 
-    return ProcessPoolExecutor(max_workers=workers, initializer=_init, initargs=(initializer, initargs))
+    return ProcessPoolExecutor(max_workers=workers, initializer=_init, initargs=(os.getpid(), initializer, initargs))
 
 
-def _init(initializer, initargs: tuple) -> None:
-    ignore_interrupts()
+def _init(parent: int, initializer, initargs: tuple) -> None:
+    worker_start(parent)
     if initializer is not None:
         initializer(*initargs)

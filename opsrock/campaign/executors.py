@@ -36,6 +36,7 @@ from concurrent.futures import TimeoutError as FutureTimeout
 from concurrent.futures.process import BrokenProcessPool
 from typing import Callable, Iterator, Protocol, Sequence, TypeVar, runtime_checkable
 
+from opsrock._pool import worker_start
 from opsrock.errors import ExecutorUnavailableError, InputError
 from opsrock.limits import check_count
 
@@ -170,7 +171,7 @@ class LocalPool(_Closing):
     def _new_pool(self, workers: int) -> ProcessPoolExecutor:
         self._shutdown_pool()
         self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context(self.mp_context),
-                                         initializer=_ignore_interrupts)
+                                         initializer=worker_start, initargs=(os.getpid(),))
         return self._pool
 
     def _kill_pool(self) -> None:
@@ -272,15 +273,20 @@ class LocalPool(_Closing):
                               "of grace); its worker process was killed")
 
 
+#: Signals held back while workers are spawned: Ctrl-C, and the stops the command line treats like it.
+_HELD = {s for s in (getattr(signal, n, None) for n in ("SIGINT", "SIGTERM", "SIGHUP")) if s is not None}
+
+
 @contextlib.contextmanager
 def _interrupts_held():
-    """Hold SIGINT back while worker processes are spawned (``submit`` spawns them on demand): a child
-    inherits the blocked signal mask, so a Ctrl-C during its start-up, before :func:`_ignore_interrupts`
-    runs, cannot make it print a traceback; the parent gets the held Ctrl-C as soon as the spawn is over."""
+    """Hold SIGINT (and SIGTERM, SIGHUP) back while worker processes are spawned (``submit`` spawns them on
+    demand): a child inherits the blocked signal mask, so a Ctrl-C during its start-up, before
+    :func:`opsrock._pool.worker_start` runs, cannot make it print a traceback, and a stop cannot cut a spawn
+    in half; the parent gets the held signal as soon as the spawn is over."""
     if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
         yield
         return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
     try:
         yield
     finally:
@@ -288,14 +294,6 @@ def _interrupts_held():
 
 
 # --- Dask ------------------------------------------------------------------------------------
-def _ignore_interrupts() -> None:
-    """In a worker: leave Ctrl-C to the main process, which stops the pool (a worker interrupted on
-    its own would print a ``KeyboardInterrupt`` traceback of its own)."""
-    import signal
-
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
 def _import_distributed():
     try:
         import distributed

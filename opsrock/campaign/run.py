@@ -220,12 +220,89 @@ def _conflict_message(out_dir: Path, old: Mapping[str, Any], new: Mapping[str, A
     )
 
 
+#: Environment variable: seconds between two plain progress lines when stderr is not a terminal.
+PROGRESS_INTERVAL_ENV: str = "OPSROCK_PROGRESS_INTERVAL"
+#: Default of :data:`PROGRESS_INTERVAL_ENV` (s): a run shorter than this prints no progress line.
+PROGRESS_INTERVAL: float = 30.0
+
+
 def progress_bar(total: int, description: str, progress: bool):
-    """A bar of ``total`` cases on stderr, shown only when ``progress`` and stderr is a terminal."""
+    """The progress of ``total`` cases on stderr when ``progress``: a bar on a terminal, else (a pipe, a
+    file, CI, ``nohup``) a plain line every :data:`PROGRESS_INTERVAL` seconds (cases done, rate, time
+    left: :class:`PlainProgress`). Either has ``update(n)`` and is a context manager."""
+    if progress and not sys.stderr.isatty():
+        return PlainProgress(total, description, progress_interval())
     from tqdm import tqdm
 
     return tqdm(total=total, desc=description, unit="case", file=sys.stderr,
                 disable=not (progress and sys.stderr.isatty()), dynamic_ncols=True)
+
+
+def progress_interval() -> float:
+    """Seconds between plain progress lines: :data:`PROGRESS_INTERVAL_ENV` if set to a positive number,
+    else :data:`PROGRESS_INTERVAL`."""
+    try:
+        value = float(os.environ.get(PROGRESS_INTERVAL_ENV, ""))
+    except ValueError:
+        return PROGRESS_INTERVAL
+    return value if math.isfinite(value) and value > 0 else PROGRESS_INTERVAL
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    return f"{seconds / 60:.1f} min" if seconds < 7200 else f"{seconds / 3600:.1f} h"
+
+
+class PlainProgress:
+    """Progress as plain lines on stderr, for a stderr that is not a terminal: every ``interval`` seconds
+    (from a daemon thread, so a long batch is told too) one line ``"<description>: 120/250000 cases (0.0 %)
+    in 30 s, 4.0 cases/s; about 17.4 h left"``; nothing for a run shorter than ``interval``.
+
+    Parameters
+    ----------
+    total : int
+        Cases to do.
+    description : str
+        What they are (the scene's name).
+    interval : float
+        Seconds between two lines (> 0).
+    """
+
+    def __init__(self, total: int, description: str, interval: float) -> None:
+        self.total, self.description, self.interval = total, description, interval
+        self.done, self.t0 = 0, time.monotonic()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._tick, daemon=True, name="opsrock-progress")
+
+    def __enter__(self) -> PlainProgress:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._stop.set()
+
+    def update(self, n: int) -> None:
+        """``n`` more cases done."""
+        self.done += n
+
+    def line(self) -> str:
+        """The progress line now."""
+        elapsed = time.monotonic() - self.t0
+        head = f"opsrock: {self.description}: {self.done}/{self.total} cases"
+        if not self.done:
+            return f"{head} in {_duration(elapsed)}; no case finished yet (the estimate comes with the first batch)"
+        rate = self.done / elapsed
+        left = (self.total - self.done) / rate
+        return (f"{head} ({100 * self.done / max(self.total, 1):.1f} %) in {_duration(elapsed)}, {rate:.3g} cases/s; "
+                f"about {_duration(left)} left")
+
+    def _tick(self) -> None:
+        while not self._stop.wait(self.interval):
+            try:
+                print(self.line(), file=sys.stderr, flush=True)
+            except (OSError, ValueError):  # stderr closed or full: progress is not worth a failure
+                return
 
 
 @dataclass
@@ -386,5 +463,6 @@ class Stage:
         return run.summary(table, time.perf_counter() - t_start), cases
 
 
-__all__ = ["CASES_FILE", "CampaignSummary", "Execution", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "Stage",
-           "campaign_identity", "case_budget", "lost_row", "progress_bar", "solve_batch"]
+__all__ = ["CASES_FILE", "CampaignSummary", "Execution", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "PROGRESS_INTERVAL",
+           "PROGRESS_INTERVAL_ENV", "PlainProgress", "Stage",
+           "campaign_identity", "case_budget", "lost_row", "progress_bar", "progress_interval", "solve_batch"]

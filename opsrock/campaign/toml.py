@@ -17,6 +17,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from opsrock._files import not_a_file
 from opsrock.errors import MISSING, SceneError
 
 #: Largest number of values on one axis (a pulse grid's ratios, a record scene's intensity levels): a
@@ -52,6 +53,9 @@ class TomlFile:
     def read(self) -> dict:
         """The file's top-level table."""
         path = self.path
+        kind = not_a_file(path)  # a device never ends, a FIFO blocks: neither is opened
+        if kind is not None:
+            raise self.error("(file)", str(path), f"is {kind}, not a TOML file")
         try:
             with open(path, "rb") as fh:
                 return tomllib.load(fh)

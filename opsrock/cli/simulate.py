@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 
 from opsrock._files import output_file
 from opsrock.block import Block
@@ -28,6 +29,8 @@ from opsrock.excitations.records import Record, check_sampling
 from opsrock.excitations.vertical import synthetic_vertical, with_vertical
 from opsrock.limits import scaled_input
 from opsrock.solvers import simulate as solve
+from opsrock.solvers.common import LONG_SOLVE_S, event_driven_estimate
+from opsrock.solvers.registry import METHODS
 
 #: Options of ``--record`` that mean nothing without it.
 RECORD_ONLY = ("units", "dt", "building_period", "storeys", "damping", "floor", "vertical_record")
@@ -112,6 +115,7 @@ def simulate(args: argparse.Namespace) -> int:
     _check_args(args)
     block = make_block(args)
     excitation, scale = (_pulse(args, block), None) if args.record is None else _record(args, block)
+    _announce_long_solve(args.solver, excitation)
     # the solvers check their settings before any work and raise only for bad settings;
     # a solver failure is a failed result, never an exception
     with named_options(BLOCK_OPTIONS):
@@ -123,6 +127,23 @@ def simulate(args: argparse.Namespace) -> int:
         plot_response(result, block, excitation, args.plot)
     print(json.dumps(out, default=str) if args.json else _text(result, block, excitation, out))
     return 0 if result.ok else EXIT_FAILED
+
+
+def _announce_long_solve(solver: str, excitation) -> None:
+    """One line on stderr before a solve of an event-driven solver (housner, sdof) expected to run past
+    :data:`~opsrock.solvers.common.LONG_SOLVE_S`: how long, and the solver of the same model that is fast."""
+    info = METHODS[solver]
+    if info.compiled or info.needs_opensees:
+        return
+    estimate = event_driven_estimate(excitation)
+    if estimate <= LONG_SOLVE_S:
+        return
+    faster = next(n for n, i in METHODS.items() if i.model == info.model and (i.compiled or i.needs_opensees))
+    minutes = f"{estimate / 60:.0f} min" if estimate < 7200 else f"{estimate / 3600:.1f} h"
+    print(f"opsrock simulate: {solver} integrates the {len(excitation.breakpoints()):,} sample intervals of the "
+          f"record one by one while the block rocks: up to about {minutes}; --solver {faster} solves the same model "
+          "in seconds",
+          file=sys.stderr, flush=True)
 
 
 def _summary(result, block: Block, excitation, scale: float | None) -> dict:

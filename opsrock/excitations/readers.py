@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from opsrock._files import not_a_file
 from opsrock.constants import G
 from opsrock.errors import InputError, RecordFileError, UnknownRecordError
 from opsrock.excitations.records import Record, RecordInfo, safe_name
@@ -89,6 +90,9 @@ def read_record(path: str | Path, *, units: str | None = None, dt: float | None 
 
 def _read_lines(path: Path) -> list[str]:
     limit = LIMITS["record_file_bytes"]
+    kind = not_a_file(path)  # a device reports size 0 and never ends; a FIFO blocks: neither is opened
+    if kind is not None:
+        raise RecordFileError(path, None, f"is {kind}, not a record file")
     try:
         size = path.stat().st_size
     except FileNotFoundError:
@@ -96,12 +100,15 @@ def _read_lines(path: Path) -> list[str]:
     except OSError as exc:
         raise RecordFileError(path, None, f"cannot be read: {exc.strerror or exc}") from None
     if size > limit.high:
-        raise RecordFileError(path, None, f"{size / 1e6:.1f} MB is more than the {limit.high / 1e6:.0f} MB a record "
-                                          "file may hold (4 million samples); not read")
+        raise RecordFileError(path, None, _too_big(size, limit.high))
     try:
+        with open(path, "rb") as fh:
+            data = fh.read(int(limit.high) + 1)  # a hard cap: the file may have grown since stat
+        if len(data) > limit.high:
+            raise RecordFileError(path, None, _too_big(len(data), limit.high))
         # utf-8-sig: a byte-order mark is not part of the first line (a one-column file would lose its
         # first sample to a "header")
-        text = path.read_text(encoding="utf-8-sig", errors="strict")
+        text = data.decode("utf-8-sig", errors="strict")
     except IsADirectoryError:
         raise RecordFileError(path, None, "is a folder, not a record file") from None
     except PermissionError:
@@ -114,6 +121,10 @@ def _read_lines(path: Path) -> list[str]:
     if not any(line.strip() for line in lines):
         raise RecordFileError(path, None, "empty file: no samples")
     return lines
+
+
+def _too_big(size: float, high: float) -> str:
+    return f"{size / 1e6:.1f} MB is more than the {high / 1e6:.0f} MB a record file may hold (4 million samples); not read"
 
 
 def _numbers(path: Path, lineno: int, tokens: list[str]) -> list[float]:

@@ -118,6 +118,7 @@ class RecordSet:
     floors: tuple[Floor, ...]
     intensity: Intensity
     source: str
+    vertical: str = "none"
 
     #: Columns of the scene's ``cases.csv``.
     columns = RECORD_COLUMNS
@@ -226,7 +227,8 @@ def parse_records(f: TomlFile, raw: Any, blocks: Sequence[Block]) -> RecordSet:
     if not floors:
         raise f.error("records.ground", ground, "no floor motions: give a building or ground = true")
     intensity = _intensity(f, raw.get("intensity", {"method": "cloud"}), {r.name for r in grounds})
-    return RecordSet(grounds=tuple(grounds), floors=tuple(floors), intensity=intensity, source=source)
+    return RecordSet(grounds=tuple(grounds), floors=tuple(floors), intensity=intensity, source=source,
+                     vertical=raw.get("vertical", "none"))
 
 
 def _grounds(f: TomlFile, raw: dict) -> tuple[list[Record], str]:

@@ -45,6 +45,7 @@ from pathlib import Path
 from typing import Any, Iterable, Iterator, Mapping
 
 from opsrock.errors import StoreError, StoreUnavailableError
+from opsrock.result import STATUSES, VERDICTS
 
 #: File name of the store inside a campaign's output folder.
 STORE_FILE: str = "results.sqlite"
@@ -312,6 +313,9 @@ def _declared(kind: str) -> tuple[str, bool, bool]:
 #: number it is given as REAL, but an older SQLite may keep it INTEGER).
 _STORAGE = {"TEXT": ("text",), "REAL": ("real", "integer"), "INTEGER": ("integer",)}
 
+#: The only values some columns may hold.
+_VALUES: dict[str, tuple] = {"status": STATUSES, "verdict": VERDICTS, "overturned": (0, 1), "rocked": (0, 1)}
+
 
 def check_layout(path: Path, db: sqlite3.Connection) -> int:
     """Check an existing store's whole layout and return its schema version (1: to migrate, or 2).
@@ -319,7 +323,7 @@ def check_layout(path: Path, db: sqlite3.Connection) -> int:
     Checked: the tables ``manifest`` and ``results``; every column of each, with its declared type, NOT
     NULL and key; the ``schema_version`` (JSON, a whole number, not newer than :data:`SCHEMA_VERSION`); every
     manifest value JSON, and ``digest`` a string when the manifest is not empty; every stored value of
-    its column's storage class.
+    its column's storage class, and ``status``, ``verdict``, ``overturned``, ``rocked`` among their values.
 
     Raises
     ------
@@ -389,15 +393,18 @@ def _check_values(path: Path, db: sqlite3.Connection, expected: dict[str, tuple[
     tests = []
     for name, (kind, not_null, key) in expected.items():
         allowed = ", ".join(f"'{s}'" for s in _STORAGE[kind] + (() if not_null or key else ("null",)))
-        tests.append(f"typeof({name}) NOT IN ({allowed})")
+        values = _VALUES.get(name)
+        tests.append(f"(typeof({name}) NOT IN ({allowed})"
+                     + (f" OR {name} NOT IN ({', '.join(map(repr, values))}))" if values else ")"))
     names = list(expected)
     bad = db.execute(f"SELECT {', '.join(names)} FROM results WHERE {' OR '.join(tests)} LIMIT 1").fetchone()
     if bad is None:
         return
     for name, value, test in zip(names, bad, tests):
         if db.execute(f"SELECT {test} FROM (SELECT ? AS {name})", (value,)).fetchone()[0]:
-            raise damaged(path, f"a row of table 'results' (case_id {bad[0]!r}) holds {name} = {value!r}, "
-                                f"not a {expected[name][0]} value")
+            what = (f"one of {', '.join(map(repr, _VALUES[name]))}" if name in _VALUES
+                    else f"a {expected[name][0]} value")
+            raise damaged(path, f"a row of table 'results' (case_id {bad[0]!r}) holds {name} = {value!r}, not {what}")
     raise damaged(path, f"a row of table 'results' (case_id {bad[0]!r}) holds a value of the wrong type")
 
 

@@ -112,7 +112,9 @@ class Intensity:
 @dataclass(frozen=True)
 class RecordSet:
     """The ``[records]`` table, validated: ground records, floors and intensity axis; the design of a
-    record scene (the pulse scene's is :class:`opsrock.campaign.grid.Grid`)."""
+    record scene (the pulse scene's is :class:`opsrock.campaign.grid.Grid`). ``vertical`` is ``[records]
+    vertical`` as written (``"none"`` or ``"synthetic"``), for messages; the motions themselves are in
+    ``grounds``."""
 
     grounds: tuple[Record, ...] = field(repr=False)
     floors: tuple[Floor, ...]

@@ -224,7 +224,8 @@ class Scene:
                              "for free rocking (no floor motion), and every case of a scene moves the floor: drop it")
         motion = self._floor_motion()
         if has_vertical(motion) and not caps["vertical"]:
-            raise SceneError(where, "records.vertical", self.records.vertical, f"solver {solver!r} takes "
+            shown = self.records.vertical if self.records.vertical != "none" else f"<in record {motion.name}>"
+            raise SceneError(where, "records.vertical", shown, f"solver {solver!r} takes "
                              f"horizontal floor motion only (registry: vertical = False); use one of "
                              f"{_having('vertical')}, or drop the vertical motion")
         for spec in self.blocks:

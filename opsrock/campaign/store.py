@@ -440,7 +440,7 @@ def store_fault(path: str | Path, exc: sqlite3.Error) -> StoreError:
             f"cannot write {path}: {what} (sqlite: {cause}); the cases it holds are kept: free some space (or "
             "fix the file system) and run the same command again to resume")
     if code in _DAMAGE_CODES or "not a database" in cause or "malformed" in cause:
-        return damaged(path, f"not an opsrock store (sqlite: {cause})")
+        return damaged(path, f"SQLite cannot read it ({cause})")
     return StoreError(f"cannot use the store {path} (sqlite: {cause})")
 
 
@@ -483,7 +483,9 @@ def read_rows(out_dir: str | Path) -> dict[str, dict[str, Any]]:
         except sqlite3.OperationalError as exc:  # created but its tables not yet committed
             if "no such table" in str(exc):
                 return {}
-            raise
+            raise store_fault(path, exc) from None
+        except sqlite3.Error as exc:
+            raise store_fault(path, exc) from None
     finally:
         db.close()
     missing = {n: _from_sql(n, None) for n in RESULT_COLUMNS if n not in names}

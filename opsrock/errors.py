@@ -120,6 +120,12 @@ class StoreError(OpsrockError, RuntimeError):
     """A campaign store cannot be used as asked (another run holds it, wrong schema, bad row)."""
 
 
+class StoreUnavailableError(StoreError):
+    """A sound campaign store that cannot be used now: another process holds it, or the file system refuses
+    to write it (disk full, I/O error, read-only). An environment fault, not bad input: ``opsrock run``
+    exits with status 1, and the advice keeps the finished cases (wait, free space, re-run to resume)."""
+
+
 class CampaignConflictError(OpsrockError, RuntimeError):
     """The output folder holds results of other settings (use another folder or ``force=True``)."""
 
@@ -136,5 +142,5 @@ __all__ = [
     "AnalysisError", "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError", "InputError",
     "InputTypeError", "LibraryUnavailableError", "MISSING", "MissingBlasError", "ModelNotSupported", "OpsrockError",
     "RecordFileError", "SceneError",
-    "StoreError", "UnknownRecordError", "UnknownSettingError", "UsageError",
+    "StoreError", "StoreUnavailableError", "UnknownRecordError", "UnknownSettingError", "UsageError",
 ]

@@ -25,7 +25,7 @@ _EXPORTS = {
     "MultiFidelity": "opsrock.campaign.multifidelity", "MultiFidelitySummary": "opsrock.campaign.multifidelity",
     "BlockSpec": "opsrock.campaign.scene", "Scene": "opsrock.campaign.scene", "load_blocks": "opsrock.campaign.scene",
     "load_scene": "opsrock.campaign.scene", "CampaignConflictError": "opsrock.errors", "SceneError": "opsrock.errors",
-    "StoreError": "opsrock.errors",
+    "StoreError": "opsrock.errors", "StoreUnavailableError": "opsrock.errors",
 }
 
 

@@ -31,6 +31,8 @@ from opsrock.errors import InputError
 
 #: What a scene may ask for.
 ANSWERS: tuple[str, ...] = ("verdicts", "theta_max", "histories", "hysteresis")
+#: The answers that need the solver's time histories (its registry entry's ``histories``).
+HISTORY_ANSWERS: tuple[str, ...] = ("histories", "hysteresis")
 #: The models an answer may come from.
 NEEDED_MODELS: tuple[str, ...] = ("rigid", "sdof", "either")
 #: The evidence table shipped in the package.
@@ -163,5 +165,5 @@ def check(solver: str, needs: Needs, *, friction: bool = False) -> Choice:
                           f"{needs.tolerance:g}", r)
 
 
-__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "MULTIFIDELITY_MIN_CASES", "NEEDED_MODELS", "Needs", "check", "choose",
+__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "HISTORY_ANSWERS", "MULTIFIDELITY_MIN_CASES", "NEEDED_MODELS", "Needs", "check", "choose",
            "evidence"]

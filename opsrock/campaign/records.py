@@ -112,12 +112,15 @@ class Intensity:
 @dataclass(frozen=True)
 class RecordSet:
     """The ``[records]`` table, validated: ground records, floors and intensity axis; the design of a
-    record scene (the pulse scene's is :class:`opsrock.campaign.grid.Grid`)."""
+    record scene (the pulse scene's is :class:`opsrock.campaign.grid.Grid`). ``vertical`` is ``[records]
+    vertical`` as written (``"none"`` or ``"synthetic"``), for messages; the motions themselves are in
+    ``grounds``."""
 
     grounds: tuple[Record, ...] = field(repr=False)
     floors: tuple[Floor, ...]
     intensity: Intensity
     source: str
+    vertical: str = "none"
 
     #: Columns of the scene's ``cases.csv``.
     columns = RECORD_COLUMNS
@@ -226,7 +229,8 @@ def parse_records(f: TomlFile, raw: Any, blocks: Sequence[Block]) -> RecordSet:
     if not floors:
         raise f.error("records.ground", ground, "no floor motions: give a building or ground = true")
     intensity = _intensity(f, raw.get("intensity", {"method": "cloud"}), {r.name for r in grounds})
-    return RecordSet(grounds=tuple(grounds), floors=tuple(floors), intensity=intensity, source=source)
+    return RecordSet(grounds=tuple(grounds), floors=tuple(floors), intensity=intensity, source=source,
+                     vertical=raw.get("vertical", "none"))
 
 
 def _grounds(f: TomlFile, raw: dict) -> tuple[list[Record], str]:

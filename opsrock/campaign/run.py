@@ -29,6 +29,7 @@ use ``force=True`` to recompute everything. The command line is ``opsrock run`` 
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import functools
 import hashlib
@@ -40,7 +41,7 @@ import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Collection, Mapping, Sequence
+from typing import Any, Callable, Collection, Iterator, Mapping, Sequence
 
 from opsrock import __version__
 from opsrock._files import atomic_write
@@ -49,7 +50,7 @@ from opsrock.campaign.cases import CASES_FILE, IDENTITY_EXCLUDED, case_table, fa
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
 from opsrock.campaign.motions import cached_motions, compute_motions
 from opsrock.campaign.scene import Scene
-from opsrock.campaign.store import MANIFEST_FILE, STORE_FILE, ResultStore
+from opsrock.campaign.store import DISK_ERRNOS, MANIFEST_FILE, STORE_FILE, ResultStore, disk_fault
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
 from opsrock.errors import CampaignConflictError, CaseTimeout, InputTypeError
 from opsrock.limits import check
@@ -446,7 +447,7 @@ class Stage:
         digest, manifest = campaign_identity(scene, self.solve_fn)
         solve = functools.partial(solve_batch, solver=scene.solver, settings=dict(scene.solver_settings),
                                   solve_fn=self.solve_fn, case_timeout=how.case_timeout)
-        with ResultStore(out / STORE_FILE) as store:
+        with ResultStore(out / STORE_FILE) as store, _disk_faults(out):
             run = _Run(scene, out, digest, how.executor, how.progress)
             run.open(store, manifest, how.force)
             if how.executor is None:  # made once the folder is known to be ours
@@ -461,6 +462,18 @@ class Stage:
             table = case_table(chosen, store.rows())
             write_cases_csv(out / CASES_FILE, table, scene.columns)
         return run.summary(table, time.perf_counter() - t_start), cases
+
+
+@contextlib.contextmanager
+def _disk_faults(out: Path) -> Iterator[None]:
+    """A campaign file (``manifest.json``, ``cases.csv``, the motion cache) the file system would not write:
+    :func:`opsrock.campaign.store.disk_fault`, naming the file (the store itself tells its own faults)."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.errno not in DISK_ERRNOS:
+            raise
+        raise disk_fault(exc.filename or out, exc) from None
 
 
 __all__ = ["CASES_FILE", "CampaignSummary", "Execution", "IDENTITY_EXCLUDED", "MANIFEST_FILE", "PROGRESS_INTERVAL",

@@ -50,14 +50,15 @@ from typing import TYPE_CHECKING, Any, Mapping
 from opsrock.block import Block
 from opsrock.campaign.cases import CONTACT_COLUMNS
 from opsrock.campaign.grid import Grid, parse_grid
-from opsrock.campaign.needs import Choice, Needs, check, choose
+from opsrock.campaign.needs import HISTORY_ANSWERS, Choice, Needs, check, choose
 from opsrock.campaign.toml import MAX_AXIS_POINTS, TomlFile, canonical
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
-from opsrock.errors import OpsrockError, SceneError, UnknownSettingError
-from opsrock.excitations import PFV_CONVENTIONS
+from opsrock.errors import ModelNotSupported, OpsrockError, SceneError, UnknownSettingError
+from opsrock.excitations import PFV_CONVENTIONS, pulse_class
+from opsrock.excitations.base import has_vertical
 from opsrock.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import check_settings
-from opsrock.solvers.registry import METHODS, solver_names
+from opsrock.solvers.registry import METHODS, capabilities, check_model, solver_names
 
 if TYPE_CHECKING:
     from opsrock.campaign.records import RecordSet
@@ -200,12 +201,53 @@ class Scene:
                              "a scene needs exactly one of [grid] (pulses) or [records] (floor motions)")
         object.__setattr__(self, "solver_settings", _check_solver(TomlFile(self.path or "<scene>"), self.solver,
                                                                   dict(self.solver_settings)))
-        if METHODS.get(self.solver).model != "friction":
-            for b in self.blocks:
-                if b.friction is not None:
-                    raise SceneError(self.path or "<scene>", "solver.name", self.solver,
-                                     f"block {b.name!r} has friction = {b.friction!r}, and solver {self.solver!r} "
-                                     "models no-slip rocking: use solver 'friction' (or drop the block's friction)")
+        self._refuse_unmodelled()
+
+    def _refuse_unmodelled(self) -> None:
+        """Refuse now what the solver does not model, as its registry entry declares it
+        (:func:`opsrock.solvers.registry.capabilities`), so that no case is stored failed for it later.
+
+        Every need a scene can have, in one place: the time histories its ``[needs] answer`` asks for;
+        ``end_time`` (a span of free rocking) in its settings, with a solver that takes it only without a
+        floor motion; a vertical floor motion (``[records] vertical``); and for each block a restitution
+        drawn per case, then what :func:`~opsrock.solvers.registry.check_model` refuses for ``simulate`` too
+        (a base that slips, a restitution other than Housner's) under the scene's floor motion. Free rocking
+        (no floor motion) is no need of a scene: every case moves the floor.
+        """
+        where, solver, caps = self.path or "<scene>", self.solver, capabilities(self.solver)
+        if self.needs is not None and self.needs.answer in HISTORY_ANSWERS and not caps["histories"]:
+            raise SceneError(where, "needs.answer", self.needs.answer, f"solver {solver!r} returns no time "
+                             f"histories (registry: histories = False); use one of {_having('histories')}")
+        end_time = self.solver_settings.get("end_time")
+        if end_time is not None and not caps["end_time_under_motion"]:
+            raise SceneError(where, "solver.settings.end_time", end_time, f"solver {solver!r} takes end_time only "
+                             "for free rocking (no floor motion), and every case of a scene moves the floor: drop it")
+        motion = self._floor_motion()
+        if has_vertical(motion) and not caps["vertical"]:
+            shown = self.records.vertical if self.records.vertical != "none" else f"<in record {motion.name}>"
+            raise SceneError(where, "records.vertical", shown, f"solver {solver!r} takes "
+                             f"horizontal floor motion only (registry: vertical = False); use one of "
+                             f"{_having('vertical')}, or drop the vertical motion")
+        for spec in self.blocks:
+            if spec.restitution_distribution is not None and not caps["restitution"]:
+                raise SceneError(where, "solver.name", solver, f"block {spec.name!r} draws its restitution_factor "
+                                 f"from a distribution, and solver {solver!r} reproduces Housner's impact only "
+                                 f"(registry: restitution = False); use one of {_having('restitution')}")
+            try:
+                check_model(solver, spec.block, motion if motion is not None else self._pulse(spec))
+            except ModelNotSupported as exc:
+                raise SceneError(where, "solver.name", solver, str(exc)) from None
+
+    def _floor_motion(self) -> Any:
+        """A ground record of a record scene, one with a vertical motion if any has one; None for a pulse scene."""
+        if self.records is None:
+            return None
+        return next((r for r in self.records.grounds if has_vertical(r)), self.records.grounds[0])
+
+    def _pulse(self, spec: BlockSpec) -> Any:
+        """The first pulse of the grid for ``spec``'s block (a pulse has no vertical motion)."""
+        return pulse_class(self.grid.shape).from_ratios(spec.block, freq_ratio=self.grid.freq_ratio[0],
+                                                        pfa_ratio=self.grid.pfa_ratio[0])
 
     @property
     def design(self) -> Grid | RecordSet:
@@ -290,6 +332,11 @@ class Scene:
         """SHA-256 (hex) of :meth:`fingerprint` as canonical JSON: equal digests, equal results."""
         text = json.dumps(self.fingerprint(), sort_keys=True, separators=(",", ":"), allow_nan=False)
         return hashlib.sha256(text.encode()).hexdigest()
+
+
+def _having(capability: str) -> str:
+    """The solvers that declare ``capability``, quoted, for a message."""
+    return ", ".join(map(repr, solver_names(**{capability: True})))
 
 
 # --- loading ------------------------------------------------------------------------------------

@@ -1,5 +1,10 @@
 """``opsrock run``: :func:`opsrock.campaign.workflow.run_campaign` on a scene file or a shipped scene, by the
-workflow the scene's ``[needs]`` chose (the library picks it)."""
+workflow the scene's ``[needs]`` chose (the library picks it).
+
+Exit status: 0 when every case is stored (failed cases included: they are results), 2 for bad input (the
+scene, the options, a damaged store), 1 for a fault of the environment (the store in use by another
+process, a full disk: :class:`~opsrock.errors.StoreUnavailableError`, whose advice keeps the finished cases),
+130 after Ctrl-C."""
 
 from __future__ import annotations
 
@@ -10,15 +15,19 @@ from opsrock._files import output_dir
 from opsrock.campaign.executors import DaskExecutor
 from opsrock.campaign.scene import load_scene
 from opsrock.campaign.workflow import run_campaign
-from opsrock.cli import EXIT_INTERRUPTED
-from opsrock.errors import UsageError
+from opsrock.cli import EXIT_FAILED, EXIT_INTERRUPTED
+from opsrock.errors import InputError, SceneError, StoreUnavailableError, UsageError
 
 
 def run(args: argparse.Namespace) -> int:
     """``opsrock run``: :func:`opsrock.campaign.workflow.run_campaign` on a scene file or a shipped scene."""
     scene = load_scene(args.scene)  # checked before anything is written or started
     if args.solver is not None:
-        scene = scene.with_solver(args.solver)
+        try:  # the scene's needs are checked against the solver now, before anything is written
+            scene = scene.with_solver(args.solver)
+        except InputError as exc:  # a SceneError, or the scene's [needs] the solver cannot answer
+            told = exc.problem if isinstance(exc, SceneError) and exc.field == "solver.name" else str(exc)
+            raise UsageError(f"--solver {args.solver}: {told}") from None
     output_dir("--out", args.out)
     dask = args.scheduler is not None or args.dask_local is not None
     if dask and args.workers is not None:
@@ -30,6 +39,9 @@ def run(args: argparse.Namespace) -> int:
     try:
         summary = run_campaign(scene, args.out, workers=args.workers, executor=executor, force=args.force,
                                progress=not args.no_progress, batch=args.batch, case_timeout=args.case_timeout)
+    except StoreUnavailableError as exc:  # the environment, not the input: status 1, nothing to delete
+        print(f"opsrock run: {' '.join(str(exc).split())}", file=sys.stderr)
+        return EXIT_FAILED
     except KeyboardInterrupt:
         print(f"opsrock run: interrupted; finished cases are stored in {args.out}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)

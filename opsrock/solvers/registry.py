@@ -47,6 +47,9 @@ class SolverInfo:
         Models vertical floor motion; False: an excitation with a vertical component is refused.
     free_rocking : bool
         Takes ``excitation=None`` (a still floor) with a start state ``theta0``, ``theta_dot0``.
+    end_time_under_motion : bool
+        Takes the setting ``end_time`` (a hard end of the run, s) under a floor motion; False: only with
+        ``excitation=None``, as the span of free rocking (a campaign, whose cases all move the floor, refuses it).
     histories : bool
         Returns time histories (``time``, ``theta``, ``theta_dot``) when ``record`` is True.
     restitution : bool
@@ -67,6 +70,7 @@ class SolverInfo:
     friction: bool = False
     vertical: bool = False
     free_rocking: bool = True
+    end_time_under_motion: bool = True
     histories: bool = True
     restitution: bool = True
     excitations: str = "any"
@@ -102,11 +106,11 @@ METHODS: dict[str, SolverInfo] = {
     "sdof": _entry("sdof", "SDOFSettings", "sdof"),
     "housner": _entry("housner", "HousnerSettings", "rigid"),
     "housner_fast": _entry("housner_fast", "HousnerFastSettings", "rigid", excitations="pulses_records",
-                           compiled=True),
+                           compiled=True, end_time_under_motion=False),
     "friction": _entry("friction", "FrictionSettings", "friction", friction=True, vertical=True,
-                       excitations="pulses_records", compiled=True),
+                       excitations="pulses_records", compiled=True, end_time_under_motion=False),
     "moreau_jean": _entry("moreau_jean", "MoreauJeanSettings", "friction", friction=True, vertical=True,
-                          restitution=False, excitations="pulses_records", compiled=True),
+                          restitution=False, excitations="pulses_records", compiled=True, end_time_under_motion=False),
 }
 
 #: Solver names accepted by :func:`opsrock.solvers.simulate` and the command line.

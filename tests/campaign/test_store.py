@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from opsrock.campaign.store import RESULT_COLUMNS, STORE_FILE, ResultStore, StoreError, read_rows
+from opsrock.campaign.store import RESULT_COLUMNS, STORE_FILE, ResultStore, StoreError, StoreUnavailableError, read_rows, store_fault
 
 
 def row(case_id: str, theta_max: float = 0.1, **over) -> dict:
@@ -131,3 +131,87 @@ def test_other_schema_version_is_refused(tmp_path):
     db.close()
     with pytest.raises(StoreError, match="schema version 999"):
         ResultStore(path)
+
+
+def _version_1_store(path):
+    """A store as opsrock wrote it before the contact columns (schema version 1), with one row."""
+    with ResultStore(path) as store:
+        store.append([row("old", 0.5)])
+    db = sqlite3.connect(path)
+    for name in ("response", "first_mode", "time_sliding", "time_rocking", "time_flight", "slide_max",
+                 "slide_residual"):
+        db.execute(f"ALTER TABLE results DROP COLUMN {name}")
+    db.execute("UPDATE manifest SET value = '1' WHERE key = 'schema_version'")
+    db.commit()
+    db.close()
+
+
+def test_a_version_1_store_is_migrated_and_keeps_its_rows(tmp_path):
+    path = tmp_path / STORE_FILE
+    _version_1_store(path)
+    with ResultStore(path) as store:
+        assert store.rows()["old"]["theta_max"] == 0.5
+        store.append([row("new", 0.25)])
+        assert len(store) == 2
+    db = sqlite3.connect(path)
+    assert db.execute("SELECT value FROM manifest WHERE key = 'schema_version'").fetchone()[0] == "2"
+    db.close()
+
+
+@pytest.mark.parametrize(("statement", "words"), [
+    ("UPDATE manifest SET value = 'two' WHERE key = 'schema_version'", "schema_version = 'two' is not JSON"),
+    ("ALTER TABLE results DROP COLUMN slide_max", "lacks column 'slide_max'"),
+    ("UPDATE results SET theta_max = 'x'", "theta_max = 'x'"),
+    ("INSERT INTO manifest VALUES ('digest', 'abc')", "manifest digest = 'abc' is not JSON"),
+])
+def test_a_damaged_store_is_refused_in_one_line_and_left_as_it_is(tmp_path, statement, words):
+    path = tmp_path / STORE_FILE
+    with ResultStore(path) as store:
+        store.append([row("a")])
+    db = sqlite3.connect(path)
+    db.execute(statement)
+    db.commit()
+    db.close()
+    data = path.read_bytes()
+    with pytest.raises(StoreError, match="damaged") as info:
+        ResultStore(path)
+    assert words in str(info.value) and "move it aside" in str(info.value) and "delete" not in str(info.value)
+    assert not isinstance(info.value, StoreUnavailableError)
+    assert path.read_bytes() == data
+
+
+@pytest.mark.parametrize(("message", "kind", "words"), [
+    ("database is locked", StoreUnavailableError, "in use by another process"),
+    ("database or disk is full", StoreUnavailableError, "the disk is full"),
+    ("disk I/O error", StoreUnavailableError, "an I/O error"),
+    ("file is not a database", StoreError, "damaged"),
+    ("database disk image is malformed", StoreError, "damaged"),
+])
+def test_a_fault_is_told_by_its_cause(message, kind, words):
+    exc = store_fault("out/results.sqlite", sqlite3.OperationalError(message))
+    assert type(exc) is kind and words in str(exc) and "out/results.sqlite" in str(exc) and "delete" not in str(exc)
+
+
+def test_a_full_disk_during_a_commit_names_the_cause_not_the_rollback(tmp_path, monkeypatch):
+    with ResultStore(tmp_path / STORE_FILE) as store:
+        real = store._db
+
+        class Full:  # SQLite rolls the transaction back itself on SQLITE_FULL: the ROLLBACK then fails
+            in_transaction = False
+            total_changes = 0
+
+            def execute(self, sql, *args):
+                if sql == "COMMIT":
+                    real.execute("ROLLBACK")
+                    raise sqlite3.OperationalError("database or disk is full")
+                return real.execute(sql, *args)
+
+            def executemany(self, sql, values):
+                return real.executemany(sql, values)
+
+        monkeypatch.setattr(store, "_db", Full())
+        with pytest.raises(StoreUnavailableError, match="disk is full") as info:
+            store.append([row("a")])
+        assert "rollback" not in str(info.value)
+        monkeypatch.setattr(store, "_db", real)
+        assert len(store) == 0

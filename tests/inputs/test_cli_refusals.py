@@ -98,7 +98,7 @@ def test_run_on_a_corrupt_store(tmp_path):
     out.mkdir()
     (out / "results.sqlite").write_bytes(b"this is not an SQLite database, it is a text file" * 4)
     proc = run_opsrock(["run", str(scene(tmp_path)), "--out", "out", "--no-progress"], tmp_path)
-    assert_one_line_usage_error(proc, "results.sqlite", "not a usable opsrock store")
+    assert_one_line_usage_error(proc, "results.sqlite", "is damaged", "move it aside")
     assert not (out / "cases.csv").exists()
 
 

@@ -425,7 +425,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     seg, seg_end = _set_segment(fc, 0.0, 0, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
     sig = _start_slip(mode, s, th, om, tau, fc, alpha, mu_s)
     if sig != 0.0:  # the pivot cannot hold (e.g. a frictionless floor): the block starts slide-rocking
-        mode, fresh_w = SLIDE_ROCK, True
+        mode, first_mode, fresh_w = SLIDE_ROCK, SLIDE_ROCK, True
     n_hist = _record(0, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
     status = STATUS_OK
     tail = False

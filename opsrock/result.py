@@ -47,6 +47,11 @@ class ContactSummary:
         (positive along the floor's positive acceleration).
     time_flight : float
         Time during which no corner touched the floor (s): mode ``flight``.
+    slip_velocity_end : float
+        The base's velocity relative to the floor (m/s, signed as ``slide_residual``) when the run ended;
+        0 for a block at rest. Non-zero only for a block still sliding on the still floor after the
+        excitation with a friction too small to stop it within ``max_free_time`` (none at all on a
+        frictionless floor): the run ends there with this velocity (docs/friction.md, the ending rule).
     energy : Mapping
         Energy balance of the run in J (per the block's mass): ``input_work`` (work of the floor's
         inertial forces), ``kinetic`` and ``potential`` at the end, ``friction_work`` (dissipated by
@@ -61,10 +66,16 @@ class ContactSummary:
     slide_residual: float
     time_flight: float = 0.0
     energy: Mapping[str, float] = field(default_factory=dict)
+    slip_velocity_end: float = 0.0
 
     def __post_init__(self) -> None:
         if self.first_mode not in MODES:
             raise InputError(f"first_mode must be one of {MODES}, got {self.first_mode!r}")
+
+    @property
+    def still_sliding(self) -> bool:
+        """Whether the block was still sliding when the run ended (``slip_velocity_end != 0``)."""
+        return self.slip_velocity_end != 0.0
 
     def columns(self) -> dict[str, Any]:
         """The summary as flat table columns (SI units), without the energy balance."""

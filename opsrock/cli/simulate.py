@@ -163,7 +163,8 @@ def _summary(result, block: Block, excitation, scale: float | None) -> dict:
         out.update(friction=block.friction, friction_kinetic=block.friction_kinetic,
                    pfa_vertical=abs(excitation.vertical) if scale is None else excitation.pfa_vertical)
     if result.contact is not None:
-        out.update(response=result.response, **result.contact.columns(), energy=dict(result.contact.energy))
+        out.update(response=result.response, **result.contact.columns(),
+                   slip_velocity_end=result.contact.slip_velocity_end, energy=dict(result.contact.energy))
     return out
 
 
@@ -191,7 +192,9 @@ def _contact_text(result, out) -> str:
     mu = "no slip" if out["friction"] is None else f"mu = {out['friction']:g}, mu_k = {out['friction_kinetic']:g}"
     return (f"\n{mu}, peak vertical {out['pfa_vertical']:.4g} m/s²: {result.response}; first mode {c.first_mode}; "
             f"rocking {c.time_rocking:.3g} s, sliding {c.time_sliding:.3g} s; slide peak {c.slide_max:.4g} m, "
-            f"residual {c.slide_residual:.4g} m")
+            f"residual {c.slide_residual:.4g} m"
+            + (f"; still sliding at {c.slip_velocity_end:.4g} m/s when the run ended (friction too small to stop "
+               "it within max_free_time; docs/friction.md)" if c.still_sliding else ""))
 
 
 __all__ = ["simulate"]

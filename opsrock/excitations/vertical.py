@@ -14,18 +14,29 @@ builds a synthetic one from the recording's *other* horizontal component, scaled
 
 Inside a building the vertical motion of every floor is taken as the ground's: buildings are axially
 stiff (vertical periods of a few hundredths of a second), so their floors follow the ground vertically.
+
+A floor's downward acceleration beyond ``g`` (``a_v < -g``: the block leaves the floor) lasts a fraction
+of a second in the strongest recorded motions (a vertical half-cycle of a few hundredths to a tenth of a
+second); :func:`check_free_fall` refuses a vertical motion that keeps it up longer than
+:data:`MAX_FREE_FALL` (a floor falling faster than gravity for 1 s would drop more than 4.9 m).
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from opsrock.constants import G
 from opsrock.errors import InputError
 from opsrock.excitations import library
 from opsrock.excitations.records import Record
 
 #: Vertical-to-horizontal ratio of a synthetic vertical motion (dimensionless).
 VERTICAL_TO_HORIZONTAL: float = 2.0 / 3.0
+
+#: Longest stretch (s) a floor may accelerate downward faster than gravity (``a_v < -g``) on end.
+MAX_FREE_FALL: float = 1.0
 
 #: What a record's vertical motion can come from (scene key ``[records] vertical``).
 VERTICAL_SOURCES: tuple[str, ...] = ("none", "synthetic")
@@ -62,6 +73,43 @@ def padded(vertical: np.ndarray | None, n: int) -> np.ndarray | None:
     return out
 
 
+def longest_free_fall(record: Record) -> tuple[float, float]:
+    """``(duration, start)`` (s) of the longest stretch in which ``record``'s floor accelerates downward faster
+    than gravity (``a_v < -g``, the samples read piecewise linear); ``(0, nan)`` if none or no vertical."""
+    if record.vertical is None:
+        return 0.0, math.nan
+    below = np.concatenate(([False], record.vertical < -G, [False]))
+    edges = np.flatnonzero(np.diff(below.astype(np.int8)))
+    if edges.size == 0:
+        return 0.0, math.nan
+    v, dt, n = record.vertical, record.dt, record.vertical.size
+    starts, ends = edges[::2], edges[1::2]  # samples [start, end) are below -g; the crossings in between
+    before, after = np.maximum(starts - 1, 0), np.minimum(ends, n - 1)  # the neighbours above -g, if any
+    with np.errstate(divide="ignore", invalid="ignore"):  # the branches np.where discards divide by zero
+        t0 = np.where(starts > 0, (before + (v[before] + G) / (v[before] - v[starts])) * dt, 0.0)
+        t1 = np.where(ends < n, (ends - 1 + (v[ends - 1] + G) / (v[ends - 1] - v[after])) * dt, (n - 1) * dt)
+    k = int(np.argmax(t1 - t0))
+    return float(t1[k] - t0[k]), float(t0[k])
+
+
+def check_free_fall(record: Record) -> None:
+    """Refuse a vertical floor motion no floor makes: downward acceleration beyond ``g`` for longer than
+    :data:`MAX_FREE_FALL` on end.
+
+    Raises
+    ------
+    InputError
+        Naming ``vertical``, the record, the stretch and the likely cause.
+    """
+    duration, start = longest_free_fall(record)
+    if duration > MAX_FREE_FALL:
+        raise InputError(f"vertical: the floor of record {record.name or '<unnamed>'} accelerates downward faster "
+                         f"than g (a_v < -g) for {duration:.4g} s on end from t = {start:.4g} s; no floor does that "
+                         f"for more than {MAX_FREE_FALL:g} s (it would drop more than {G * MAX_FREE_FALL ** 2 / 2:.3g} "
+                         "m): likely a vertical record in the wrong units or scaled far beyond any recorded motion",
+                         argument="vertical")
+
+
 def partner(ref: str) -> str:
     """The library reference of the other horizontal component of the recording ``ref`` belongs to.
 
@@ -87,5 +135,5 @@ def synthetic_vertical(ref: str, ratio: float = VERTICAL_TO_HORIZONTAL) -> Recor
     return with_vertical(library.load(ref), library.load(partner(ref)), ratio)
 
 
-__all__ = ["VERTICAL_SOURCES", "VERTICAL_TO_HORIZONTAL", "on_grid", "padded", "partner", "synthetic_vertical",
-           "with_vertical"]
+__all__ = ["MAX_FREE_FALL", "VERTICAL_SOURCES", "VERTICAL_TO_HORIZONTAL", "check_free_fall", "longest_free_fall",
+           "on_grid", "padded", "partner", "synthetic_vertical", "with_vertical"]

@@ -11,9 +11,15 @@ docs/friction.md; :mod:`.modes` and :mod:`.impacts` hold them, :mod:`.kernel` st
 
 Method: as :mod:`opsrock.solvers.housner_fast`, fixed-step RK4 inside each forcing segment with every
 event located on the Runge-Kutta map; the block at rest jumps in closed form to the next time the
-floor overcomes it. Free flight is not modelled: a block that would leave the floor is reported as
-failed with that reason, except one already beyond its hump and turning outwards, which overturns.
-After the excitation the block is followed until it is at rest.
+floor overcomes it. A block whose contact force would turn negative flies: its centre of mass moves
+ballistically under gravity (relative to the floor: ``g + a_v``, and ``-a_h``), it turns at a constant
+rate, and it lands by the impact law in the landing corner's position (one already beyond its hump and
+turning outwards overturns). A record whose floor accelerates downward faster than ``g`` for more than
+:data:`opsrock.excitations.vertical.MAX_FREE_FALL` on end is refused. After the excitation the block is
+followed until it is at rest, except a pure slide that friction cannot stop within ``max_free_time``
+(always on a frictionless floor): the run ends there, with status ok and the slip velocity
+(``ContactSummary.slip_velocity_end``); the rest of that slide is a closed form (docs/friction.md, the
+ending rule). On a frictionless floor the block slides flat: ``u = -x_g`` (plus initial terms).
 
 Without ``friction`` the base never slips and the solver is the no-slip rigid block of
 ``housner_fast`` (plus the vertical motion); the reference of a different formulation is

@@ -5,8 +5,11 @@ Runge-Kutta with a fixed step inside each forcing segment (:mod:`opsrock.solvers
 step ending on a segment end; the events of the current mode (impact ``theta = 0``, stick-slip,
 loss of contact, and peaks of ``theta``) located on the Runge-Kutta map itself, so an event's time
 is consistent with the integrator to round-off; a block at rest jumps in closed form to the next
-time the floor overcomes it. After the excitation the block is followed (``a_h = 0``, the vertical
-acceleration of the pulse kept) until it is at rest or has overturned.
+time the floor overcomes it; a block leaving the floor flies ballistically (:func:`_fly`) until a
+corner lands. After the excitation the block is followed (``a_h = 0``, the vertical acceleration of
+the pulse kept) until it is at rest or has overturned, or, in a pure slide its friction cannot stop
+within ``max_tail`` (:func:`_unstoppable`), until that is known: the case then ends with its slip
+velocity in ``OUT_SLIP_END`` (docs/friction.md, the ending rule).
 """
 
 from __future__ import annotations
@@ -50,7 +53,10 @@ OUT_FIRST_MODE, OUT_TIME_SLIDING, OUT_TIME_ROCKING, OUT_SLIDE_MAX, OUT_SLIDE_END
 OUT_INPUT_WORK, OUT_KINETIC, OUT_POTENTIAL, OUT_FRICTION_WORK, OUT_IMPACT_LOSS, OUT_ENERGY_START = range(
     ST.OUT_COMMON + 5, ST.OUT_COMMON + 11)
 OUT_TIME_FLIGHT = ST.OUT_COMMON + 11
-OUT_SIZE = ST.OUT_COMMON + 12
+#: The base's slip velocity (units of ``R p``) of a block still sliding when it is followed no further: a pure
+#: slide on the still floor after the excitation whose friction cannot stop it within ``max_tail`` (0 otherwise).
+OUT_SLIP_END = ST.OUT_COMMON + 12
+OUT_SIZE = ST.OUT_COMMON + 13
 
 # --- slots of the parameter vector of :func:`solve_case` (written by the solver, read once here) ----
 #: The block: ``alpha`` (rad), ``e / e_H``, static and kinetic friction (``inf``: no slip).
@@ -359,6 +365,27 @@ def _energy(mode, s, th, om, w, fy, fvy, alpha, ca):
 
 
 @numba.njit(cache=True)
+def _unstoppable(w, mu_k, g_tail, time_left):
+    """Whether a pure slide at slip velocity ``w`` on the still floor after the excitation (closed form:
+    uniform deceleration ``4/3 mu_k g_tail``, units of ``R p²``) cannot stop within ``time_left`` (units of
+    ``1/p``): always with ``mu_k = 0`` and ``w != 0``."""
+    return 4.0 / 3.0 * mu_k * g_tail * time_left < abs(w)
+
+
+@numba.njit(cache=True)
+def _start_slip(mode, s, th, om, tau, fc, alpha, mu_s):
+    """The slip direction ``sig`` of a block started rocking on a stuck pivot (``theta0``, ``omega0``): 0 if
+    the pivot holds (``|F| <= mu_s N``), else ``-sgn(F)`` (it starts slide-rocking)."""
+    if mode != ROCK or mu_s == math.inf:
+        return 0.0
+    ah, gv = _floor(tau, fc)
+    f, n = rock_forces(s, th, om, ah, gv, alpha)
+    if abs(f) <= mu_s * n:
+        return 0.0
+    return -1.0 if f > 0.0 else 1.0
+
+
+@numba.njit(cache=True)
 def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist_u, hist_mode):
     """Solve one case from rest (or from ``theta0``, ``omega0`` rocking without slip); ``params`` holds
     the scalars (slots ``P_*``), results go in ``out`` (slots ``OUT_*``), the history (``tau``, ``theta``,
@@ -396,6 +423,9 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     win = wfr = eimp = t_slide = t_rock = t_fly = 0.0
     n_imp = n_steps = 0
     seg, seg_end = _set_segment(fc, 0.0, 0, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+    sig = _start_slip(mode, s, th, om, tau, fc, alpha, mu_s)
+    if sig != 0.0:  # the pivot cannot hold (e.g. a frictionless floor): the block starts slide-rocking
+        mode, first_mode, fresh_w = SLIDE_ROCK, SLIDE_ROCK, True
     n_hist = _record(0, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
     status = STATUS_OK
     tail = False
@@ -440,6 +470,14 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
                 out[OUT_ROCKED] = 1.0
             n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
             continue
+        if tail and mode == SLIDE and _unstoppable(w, mu_k, g_tail, max_tail - (tau - tau_end)):
+            # a pure slide on the still floor stops only after max_tail, or never: the case ends here
+            # (docs/friction.md, the ending rule); a slip slower than rest_velocity is seated
+            if abs(w) < rest_velocity:
+                eimp += 0.375 * w * w
+                mode, w, sig = REST, 0.0, 0.0
+            out[OUT_SLIP_END] = w
+            break
         if tail and tau - tau_end > max_tail:
             status = STATUS_TAIL
             break
@@ -498,6 +536,8 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
                 h, last = abs(om) / abs(thdd0), False
         y1 = _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k)
         n_steps += 1
+        if fresh_w and mu_k == 0.0 and y1[3] != 0.0:
+            sig = 1.0 if y1[3] > 0.0 else -1.0  # no friction force: the slip takes the direction it develops in
         undeveloped = False
         while (fresh_th and s * y1[0] <= 0.0) or (fresh_w and sig * y1[3] <= 0.0):
             h, last = 0.5 * h, False

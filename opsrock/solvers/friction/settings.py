@@ -38,7 +38,9 @@ class FrictionSettings(SolverSettings):
         failed. Default (and None) 10**7.
     max_free_time : float or None
         How long (s) the block is followed after the excitation ends before a case still moving is
-        reported as failed. None (default): :data:`DEFAULT_TAIL_DTAU` ``/ p``.
+        reported as failed; a pure slide whose friction cannot stop it within this time (none on a
+        frictionless floor) ends at once with status ok and its slip velocity (docs/friction.md, the
+        ending rule). None (default): :data:`DEFAULT_TAIL_DTAU` ``/ p``.
     """
 
     max_steps: int | None = 10_000_000

@@ -12,6 +12,7 @@ from opsrock.constants import G
 from opsrock.errors import InputError, InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
+from opsrock.excitations.vertical import check_free_fall
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
 from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, pulse_forcing
@@ -56,6 +57,7 @@ def excitation_parameters(block: Block, excitation: Pulse | Record | None, setti
         excitation = Record(dt=duration / (n - 1), values=np.zeros(n), name="no motion")
     if isinstance(excitation, Record):
         check_sampling(excitation, block)
+        check_free_fall(excitation)
         kvals, dtau = excitation.values / G, excitation.dt * p
         gvals = np.zeros(0) if excitation.vertical is None else 1.0 + excitation.vertical / G
         forcing = (FORM_LINEAR, 0.0, 0.0, 0.0, excitation.duration * p, 1.0, 1.0, dtau, min(settings.max_dtau, dtau))
@@ -98,7 +100,8 @@ def _contact(out: np.ndarray, block: Block, tau: np.ndarray) -> ContactSummary:
     return ContactSummary(first_mode=MODES[int(out[K.OUT_FIRST_MODE])], time_sliding=float(out[K.OUT_TIME_SLIDING]) / p,
                           time_rocking=float(out[K.OUT_TIME_ROCKING]) / p, slide_max=float(out[K.OUT_SLIDE_MAX]) * R,
                           slide_residual=float(out[K.OUT_SLIDE_END]) * R,
-                          time_flight=float(out[K.OUT_TIME_FLIGHT]) / p, energy=energy)
+                          time_flight=float(out[K.OUT_TIME_FLIGHT]) / p, energy=energy,
+                          slip_velocity_end=float(out[K.OUT_SLIP_END]) * R * p)
 
 
 class _FrictionRun(SolverRun):

@@ -1,0 +1,140 @@
+"""The friction solver on frictionless and near-frictionless floors, its ending rule, and free flight,
+against closed forms (docs/friction.md: the ending rule, frictionless floors, the flight rule)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from opsrock.block import Block
+from opsrock.constants import G
+from opsrock.errors import InputError
+from opsrock.excitations import OneSinePulse, RectangularPulse, Record
+from opsrock.excitations.vertical import MAX_FREE_FALL, check_free_fall, longest_free_fall
+from opsrock.published import newmark_1965
+from opsrock.solvers import friction
+
+
+def _one_sine_floor(t: np.ndarray, a: float, omega: float) -> np.ndarray:
+    """Displacement (m) of a floor under the one-sine pulse ``a sin(omega t)`` from rest, and after it."""
+    t_end = 2.0 * math.pi / omega
+    tc = np.minimum(t, t_end)
+    return a / omega * tc - a / omega**2 * np.sin(omega * tc)
+
+
+def _record_floor(rec: Record) -> tuple[float, float]:
+    """Velocity (m/s) and displacement (m) of a floor at the end of ``rec`` (piecewise linear), exactly."""
+    a, dt = rec.values, rec.dt
+    v = np.concatenate(([0.0], np.cumsum(0.5 * dt * (a[:-1] + a[1:]))))
+    x = np.sum(v[:-1] * dt + dt**2 * (2.0 * a[:-1] + a[1:]) / 6.0)
+    return float(v[-1]), float(x)
+
+
+STEP = Record(dt=0.01, values=np.r_[np.full(100, 0.1 * G), np.zeros(100)], name="step")
+
+
+@pytest.mark.parametrize("mu", [0.0, 1e-320])
+@pytest.mark.parametrize("a_v", [0.0, 0.5 * G, -0.4 * G])
+def test_frictionless_slide_is_minus_the_floor_displacement(mu, a_v):
+    """No horizontal force: u(t) = -x_g(t) at every recorded time; the one-sine floor ends at rest, so does
+    the block (at -x_g(T)), whatever the vertical acceleration."""
+    a, omega = 1.0 * G, 2.0 * math.pi
+    r = friction.solve(Block(0.4, 2.2, friction=mu), OneSinePulse(a, omega, vertical=a_v))
+    assert r.ok and r.response == "slid" and r.contact.first_mode == "slide"
+    assert r.theta_max == 0.0 and not r.rocked
+    assert np.max(np.abs(r.slide + _one_sine_floor(r.time, a, omega))) < 1e-8
+    assert r.contact.slide_residual == pytest.approx(-a / omega * 2.0 * math.pi / omega, rel=1e-9)
+    assert r.contact.slip_velocity_end == 0.0 and not r.contact.still_sliding
+    assert r.n_steps < 1000 and r.time[-1] == pytest.approx(1.0)
+    assert abs(r.contact.energy["residual"]) < 1e-8 * G * 1.118  # J/kg, against m g R
+
+
+@pytest.mark.parametrize("mu", [0.0, 1e-320, 1e-6])
+def test_a_slide_friction_cannot_stop_ends_with_its_velocity(mu):
+    """A floor that ends moving: the frictionless block slides on for ever at -v_g(end); the case ends at
+    the end of the record with status ok, the slide so far, and that slip velocity."""
+    v_end, x_end = _record_floor(STEP)
+    t = STEP.duration  # the block slips backwards from t = 0 on: friction mu g acts forwards throughout
+    r = friction.solve(Block(0.4, 2.2, friction=mu), STEP)
+    assert r.ok and r.response == "slid"
+    assert r.contact.still_sliding
+    assert r.contact.slip_velocity_end == pytest.approx(-v_end + mu * G * t, rel=1e-12)
+    assert r.contact.slide_residual == pytest.approx(-x_end + mu * G * t**2 / 2.0, rel=1e-12)
+    assert r.time[-1] == pytest.approx(STEP.duration)
+    e = r.contact.energy
+    assert e["kinetic"] == pytest.approx(0.5 * r.contact.slip_velocity_end**2, rel=1e-12)  # J/kg: the slide's
+    assert abs(e["residual"]) < 1e-8 * e["input_work"]
+
+
+@pytest.mark.parametrize("a_g, t1, mu", [(0.5, 0.3, 0.02), (0.1, 1.0, 0.01)])
+def test_the_ending_rule_follows_the_closed_form_stop(a_g, t1, mu):
+    """Newmark's rectangular pulse with a small friction: the slide stops after t1 + v1 / (mu g). With a
+    follow-up longer than that the slide is Newmark's to round-off; shorter, the case ends after the pulse
+    with the slide (a - mu g) t1² / 2 and the slip velocity v1 = (a - mu g) t1, still status ok."""
+    block, pulse = Block(1.0, 2.0, friction=mu), RectangularPulse(a_g * G, math.pi / t1)
+    a_rel = a_g * G - mu * G
+    v1, stop = a_rel * t1, a_rel * t1 / (mu * G)
+    long = friction.solve(block, pulse, max_free_time=stop * 1.01)
+    assert long.ok and not long.contact.still_sliding
+    assert long.contact.slide_residual == pytest.approx(-newmark_1965.rectangular_slide(a_g * G, t1, mu), rel=1e-12)
+    short = friction.solve(block, pulse, max_free_time=stop * 0.99)
+    assert short.ok and short.contact.still_sliding
+    assert short.contact.slip_velocity_end == pytest.approx(-v1, rel=1e-12)
+    assert short.contact.slide_residual == pytest.approx(-a_rel * t1**2 / 2.0, rel=1e-12)
+    assert short.time[-1] == pytest.approx(t1, rel=1e-12)
+
+
+def test_a_frictionless_free_rocking_block_keeps_its_centre_of_mass_on_its_vertical():
+    """Set rocking on a frictionless floor the pivot cannot hold: the block slide-rocks; with f = 1 (no
+    loss beyond the rigid impact law) no horizontal force acts and x_cm stays put; it comes to rest."""
+    block = Block(0.4, 2.2, friction=0.0, restitution_factor=1.0)
+    r = friction.solve(block, None, theta0=0.5 * block.alpha, end_time=1.0)
+    assert r.ok and r.contact.first_mode == "slide_rock" and r.n_impacts > 10
+    s = np.sign(r.theta)
+    x_cm = s * block.b + r.slide - block.R * np.sin(s * block.alpha - r.theta)
+    assert np.ptp(x_cm) < 1e-8
+    assert abs(r.contact.energy["residual"]) < 1e-6 * r.contact.energy["initial"]
+
+
+def _drop(a_over_g: float, n_drop: int, dt: float = 0.01, n: int = 400) -> Record:
+    """A still floor horizontally whose vertical acceleration is -a for ``n_drop`` samples, then 0."""
+    v = np.zeros(n)
+    v[:n_drop] = -a_over_g * G
+    return Record(dt=dt, values=np.zeros(n), vertical=v, name="drop")
+
+
+@pytest.mark.parametrize("a_over_g, n_drop", [(3.0, 10), (1.5, 30), (2.0, 1)])
+def test_free_flight_of_a_block_thrown_by_a_falling_floor(a_over_g, n_drop):
+    """Closed form: the gap grows at (a - g) while the floor falls at a (then along the linear ramp to 0 over
+    one sample), and closes under g; the block lands flat, and the landing takes all the kinetic energy."""
+    rec = _drop(a_over_g, n_drop)
+    dt, a = rec.dt, a_over_g * G
+    t_drop = (n_drop - 1) * dt
+    v, h = (a - G) * t_drop, (a - G) * t_drop**2 / 2.0
+    a0, a1 = a - G, -G  # the relative acceleration over the ramp, linear from a0 to a1
+    v, h = v + dt * (a0 + a1) / 2.0, h + v * dt + dt**2 * (2.0 * a0 + a1) / 6.0
+    land = math.sqrt(v * v + 2.0 * G * h)
+    flight = t_drop + dt + (v + land) / G
+    r = friction.solve(Block(0.4, 2.2, friction=0.5), rec)
+    assert r.ok and r.contact.first_mode == "flight" and r.n_impacts == 1
+    assert r.contact.time_flight == pytest.approx(flight, rel=1e-8)
+    assert r.contact.energy["impact_loss"] == pytest.approx(0.5 * land**2, rel=1e-8)
+    assert r.contact.energy["input_work"] == pytest.approx(0.5 * land**2, rel=1e-8)
+    assert r.theta_max == 0.0 and r.contact.slide_max == 0.0 and r.response == "at_rest"
+
+
+def test_a_floor_falling_faster_than_g_for_long_is_refused():
+    """-3 g for 9.99 s (the floor would fall 1.5 km) is no floor motion: refused naming vertical, before any
+    work; a stretch just under MAX_FREE_FALL is followed."""
+    long = _drop(3.0, 1000, n=1000)
+    assert longest_free_fall(long) == pytest.approx((9.99, 0.0))
+    with pytest.raises(InputError, match=r"vertical: .*for 9\.99 s on end from t = 0 s") as err:
+        friction.solve(Block(0.4, 2.2, friction=0.5), long)
+    assert err.value.argument == "vertical"
+    n_ok = int(MAX_FREE_FALL / 0.01) - 1
+    check_free_fall(_drop(3.0, n_ok, n=400))
+    assert friction.solve(Block(0.4, 2.2, friction=0.5), _drop(1.2, n_ok, n=400)).ok
+    with pytest.raises(InputError, match="vertical"):
+        check_free_fall(_drop(3.0, n_ok + 2, n=400))

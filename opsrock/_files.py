@@ -12,6 +12,9 @@
 * :func:`not_a_file`, :func:`input_file`: the check every file opsrock reads passes first (records, scenes,
   blocks files): a regular file, never a device, a FIFO, a socket or a folder. A character device reports
   size 0 (``/dev/zero`` would pass a size limit and then fill the memory) and a FIFO blocks the reader.
+* :func:`staged_folder`: a report folder written whole or not at all, that holds only the new run's
+  outputs afterwards (:func:`remove_stale` removes an earlier run's outputs that the new run does not
+  write, and only those: files a writer does not own are kept).
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ import shutil
 import stat
 import tempfile
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Callable, Iterator
+from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -162,13 +165,26 @@ def atomic_write(path: Path, write: Callable[[Any], None], *, binary: bool = Fal
 
 
 @contextlib.contextmanager
-def staged_folder(out: str | os.PathLike) -> Iterator[Path]:
-    """A folder of outputs written whole or not at all.
+def staged_folder(out: str | os.PathLike, owned: Sequence[str] = ()) -> Iterator[Path]:
+    """A folder of outputs written whole or not at all, holding only this run's outputs.
 
     Yields a new temporary folder beside ``out``; when the block ends normally, every file in it
-    replaces its namesake in ``out`` (created if missing), each by an atomic rename. When the block
-    raises (a failure, Ctrl-C), the temporary folder and any folder made for it are removed and
-    ``out`` is left as it was: a failed command leaves nothing half-written.
+    replaces its namesake in ``out`` (created if missing), each by an atomic rename, and then every
+    file of ``out`` that matches one of the ``owned`` patterns but was not written now is removed (an
+    earlier run's output that this run does not write: the figure of an item no longer studied, the
+    table of a variant left out), with the folders that leaves empty. Files that match no pattern (a
+    campaign's store, the user's own files) are never touched, and nothing is removed through a
+    symbolic link out of ``out``. When the block raises (a failure, Ctrl-C), the temporary folder and
+    any folder made for it are removed and ``out`` is left as it was: a failed command leaves nothing
+    half-written.
+
+    Parameters
+    ----------
+    out : str or path-like
+        The output folder.
+    owned : sequence of str
+        Glob patterns, relative to ``out`` (``"report.md"``, ``"figures/*.png"``), of every output the
+        writer owns; empty: nothing is removed.
     """
     out = Path(out)
     made = [d for d in (out, *out.parents) if not d.exists()][::-1][:-1]  # missing ancestors of out
@@ -178,11 +194,14 @@ def staged_folder(out: str | os.PathLike) -> Iterator[Path]:
     try:
         yield stage
         out.mkdir(exist_ok=True)
+        written = set()
         for f in sorted(stage.rglob("*")):
             if f.is_file():
-                dest = out / f.relative_to(stage)
+                rel = f.relative_to(stage)
+                dest = out / rel
                 dest.parent.mkdir(parents=True, exist_ok=True)
                 os.replace(f, dest)
+                written.add(rel)
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)
         for d in reversed(made):
@@ -190,6 +209,27 @@ def staged_folder(out: str | os.PathLike) -> Iterator[Path]:
                 d.rmdir()
         raise
     shutil.rmtree(stage, ignore_errors=True)
+    remove_stale(out, owned, written)
+
+
+def remove_stale(out: Path, owned: Sequence[str], keep: set[Path]) -> list[Path]:
+    """Remove the files of ``out`` that match a pattern of ``owned`` (globs relative to ``out``) and are
+    not in ``keep`` (paths relative to ``out``), then the folders of ``out`` that this leaves empty;
+    returns the removed files. Only regular files and symbolic links found inside ``out`` itself are
+    removed (a link is removed, never what it points to; a folder reached through a link is skipped)."""
+    root = out.resolve()
+    removed = []
+    for pattern in owned:
+        for p in sorted(out.glob(pattern)):
+            rel = p.relative_to(out)
+            if rel in keep or not (p.is_symlink() or p.is_file()) or p.parent.resolve() != root / rel.parent:
+                continue
+            p.unlink()
+            removed.append(rel)
+    for folder in sorted({r.parent for r in removed if r.parent != Path(".")}, key=lambda r: -len(r.parts)):
+        with contextlib.suppress(OSError):  # not empty (a file the user keeps there): leave it
+            (out / folder).rmdir()
+    return [out / r for r in removed]
 
 
 def atomic_text(path: Path, text: str) -> None:
@@ -220,4 +260,4 @@ def read_table(path: str | os.PathLike, **options: Any) -> "pd.DataFrame":
 
 
 __all__ = ["atomic_csv", "atomic_text", "atomic_write", "input_file", "not_a_file", "output_dir", "output_file",
-           "read_table", "staged_folder"]
+           "read_table", "remove_stale", "staged_folder"]

@@ -21,6 +21,7 @@ import math
 import time
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from opsrock._files import atomic_csv, read_table
@@ -31,13 +32,27 @@ from opsrock.report.records import RecordReport, write_markdown
 #: Distances (m) of the sliding section: 5 cm (a cabinet against a wall), 20 cm and 50 cm.
 SLIDE_DISTANCES: tuple[float, ...] = DEFAULT_DISTANCES
 
+#: Tables of the study (:class:`opsrock.fragility.record_study.RecordStudy` fields), each ``<name>.csv``.
+STUDY_TABLES: tuple[str, ...] = ("ims", "measure_fits", "resurrections", "sufficiency", "frequencies", "blocks")
+#: Every table the report may write: the study's, ``robustness`` and ``sliding`` (only when computed) and
+#: the pelicun file.
+TABLES: tuple[str, ...] = (*STUDY_TABLES, "robustness", "sliding", "fragility_pelicun")
+
+#: Every output the report owns in its folder (globs relative to it): ``opsrock fragility`` replaces them
+#: all and removes those a new report does not write (:func:`opsrock._files.staged_folder`: the sliding
+#: table and figure of an earlier report on a campaign solved with friction, its ``robustness.csv``); any
+#: other file in the folder (a campaign's store, the user's files) is kept.
+OUTPUTS: tuple[str, ...] = ("report.md", *(f"{t}.csv" for t in TABLES), "figures/*.png")
+
 
 def read_cases(source: str | Path) -> pd.DataFrame:
     """The ``cases.csv`` of a record campaign, checked: ``source`` is the campaign's folder or the file.
 
     Refused, with the file and the reason (:class:`~opsrock.errors.InputError`): a file that is not a
-    table, a table of a pulse campaign, missing columns, text in a number column, no rows, and a table
-    shorter than the campaign it came from (its ``manifest.json`` beside it says how many cases).
+    table, a table of a pulse campaign, missing columns, text in a number column, no rows, a finished case
+    without a finite demand, peak rotation or slide (NaN, inf) or with a negative peak or peak slide (the
+    file, the column and the row with its case id), and a table shorter than the campaign it came from
+    (its ``manifest.json`` beside it says how many cases).
     """
     p = Path(source)
     csv_path = p / "cases.csv" if p.is_dir() else p
@@ -63,6 +78,10 @@ _NUMBER_COLUMNS = ("level", "level_value", "theta_max_over_alpha", "pfa", "pfv",
                    "building_period", *(f"IM{k}" for k in range(1, 10)))
 #: Number columns of a campaign solved with friction that the sliding section reads (when present).
 _SLIDE_NUMBER_COLUMNS = ("slide_max", "slide_residual")
+#: Columns every finished case (status ok) must give as a finite number, and those of them that are peaks
+#: or distances, never negative (the fits take their logarithms or compare them with distances).
+_FINISHED_FINITE = ("level_value", "pfa", "pfv", "theta_max_over_alpha", "slide_max", "slide_residual")
+_NOT_NEGATIVE = ("pfa", "pfv", "theta_max_over_alpha", "slide_max")
 
 
 def _check_table(csv_path: Path, cases: pd.DataFrame) -> None:
@@ -80,6 +99,23 @@ def _check_table(csv_path: Path, cases: pd.DataFrame) -> None:
     if not cases["status"].isin(("ok", "failed")).all():
         bad = cases.loc[~cases["status"].isin(("ok", "failed")), "status"].iloc[0]
         raise InputError(f"cases: {csv_path}, column 'status': {bad!r} is neither 'ok' nor 'failed'")
+    _check_finished(csv_path, cases)
+
+
+def _check_finished(csv_path: Path, cases: pd.DataFrame) -> None:
+    """Every finished case gives its demands, peak rotation and slides as finite numbers, the peaks and the
+    peak slide never negative: else the file, the column and the row (line of the file, and case id)."""
+    finished = cases["status"].eq("ok").to_numpy()
+    for col in (c for c in _FINISHED_FINITE if c in cases.columns):
+        values = cases[col].to_numpy(float)
+        bad = finished & ~np.isfinite(values)
+        what = "is not a finite number (a finished case needs one)"
+        if not bad.any() and col in _NOT_NEGATIVE:
+            bad, what = finished & (values < 0), "is negative (a peak or a distance cannot be)"
+        if bad.any():
+            row = int(np.flatnonzero(bad)[0])
+            case = f" (case {cases['case_id'].iloc[row]})" if "case_id" in cases.columns else ""
+            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + 2}{case}: {float(values[row])!r} {what}")
 
 
 def _check_complete(csv_path: Path, n_rows: int) -> None:
@@ -143,7 +179,7 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
 
         robust = ranking_robustness(robustness_sets, seed=seed, workers=workers).shares
         atomic_csv(out / "robustness.csv", robust)
-    for name in ("ims", "measure_fits", "resurrections", "sufficiency", "frequencies", "blocks"):
+    for name in STUDY_TABLES:
         atomic_csv(out / f"{name}.csv", getattr(study, name))
     comps, skipped = _exports(study.blocks)
     sliding = _sliding(cases, out, n_boot, seed, workers)
@@ -196,4 +232,4 @@ def _sliding(cases: pd.DataFrame, out: Path, n_boot: int, seed: int, workers: in
 
 
 
-__all__ = ["SLIDE_DISTANCES", "read_cases", "write_record_report"]
+__all__ = ["OUTPUTS", "SLIDE_DISTANCES", "STUDY_TABLES", "TABLES", "read_cases", "write_record_report"]

@@ -40,6 +40,9 @@ NO_SLIP = math.inf
 #: Share of failed cases above which a cell's label is starred in the figure (dimensionless).
 FAILED_MARK = 0.01
 
+#: The map's outputs in its folder (beside the campaigns' folders of :data:`CAMPAIGNS`).
+OUTPUTS: tuple[str, ...] = ("sliding_map.csv", "sliding_map.png")
+
 #: Verdicts of a map cell.
 VERDICTS: tuple[str, ...] = ("same", "differs", "never overturns", "no fit")
 
@@ -270,15 +273,18 @@ def plot_map(table: pd.DataFrame, path: str | Path) -> Path:
 
 def write_map(design: SlidingMapDesign, out_dir: str | Path, *, workers: int | None = None,
               progress: bool = True) -> dict:
-    """Run the study into ``out_dir`` and write ``sliding_map.csv`` and ``sliding_map.png``; returns a
-    summary (counts of each verdict, by vertical motion)."""
-    from opsrock._files import atomic_write
+    """Run the study into ``out_dir`` and write ``sliding_map.csv`` and ``sliding_map.png`` (:data:`OUTPUTS`:
+    both replace an earlier map's together, or on a failure neither does; the campaigns' folders and any
+    other file are kept); returns a summary (counts of each verdict, by vertical motion)."""
+    from opsrock._files import atomic_write, staged_folder
 
     out = Path(out_dir)
     cases = run_map(design, out, workers=workers, progress=progress)
     table = compare(cases, design)
-    atomic_write(out / "sliding_map.csv", lambda fh: table.to_csv(fh, index=False, float_format="%.17g"))
-    plot_map(table, out / "sliding_map.png")
+    with staged_folder(out, OUTPUTS) as stage:
+        atomic_write(stage / "sliding_map.csv", lambda fh: table.to_csv(fh, index=False, float_format="%.17g"),
+                     durable=False)
+        plot_map(table, stage / "sliding_map.png")
     summary = {"n_cases": int(len(cases)), "n_failed": int((cases["status"] != "ok").sum())}
     for vertical in (False, True):
         part = table[table["vertical"] == vertical]
@@ -288,5 +294,5 @@ def write_map(design: SlidingMapDesign, out_dir: str | Path, *, workers: int | N
     return summary
 
 
-__all__ = ["CAMPAIGNS", "NO_SLIP", "QUICK", "SlidingMapDesign", "VERDICTS", "block_name", "compare", "map_scene", "plot_map",
+__all__ = ["CAMPAIGNS", "NO_SLIP", "OUTPUTS", "QUICK", "SlidingMapDesign", "VERDICTS", "block_name", "compare", "map_scene", "plot_map",
            "run_map", "write_map"]

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 
@@ -11,6 +10,7 @@ from opsrock._files import output_dir
 from opsrock.cli import EXIT_INTERRUPTED
 from opsrock.cli.common import named_options
 from opsrock.contents import SWEEP_BUILDINGS, ContentsDesign, run_contents_study
+from opsrock.errors import UsageError
 
 #: Fields of :class:`opsrock.contents.ContentsDesign` (``records``: its ``names``, as the design's check
 #: calls them) -> the option that gives them.
@@ -21,9 +21,22 @@ CONTENTS_OPTIONS: dict[str, str] = {
 }
 
 
-def _comma_list(text: str | None) -> tuple[str, ...]:
-    """``"a,b"`` -> ``("a", "b")`` (an empty item stays, for the library to refuse by name); None -> ()."""
-    return () if text is None else tuple(part.strip() for part in text.split(","))
+def _comma_list(option: str, text: str | None) -> tuple[str, ...]:
+    """``"a, b"`` -> ``("a", "b")`` (spaces around a name are dropped); None -> (). An empty entry
+    (``""``, ``"a,"``, ``",,"``) is refused naming ``option``; names given twice are refused by the
+    library (:class:`opsrock.contents.ContentsDesign`), under the option's name."""
+    if text is None:
+        return ()
+    parts = tuple(part.strip() for part in text.split(","))
+    if not all(parts):
+        raise UsageError(f"{option} needs comma-separated names without an empty one; got {text!r}")
+    return parts
+
+
+def _floors(text: str) -> tuple:
+    """``--floors``: ASCII digits -> the floor number, anything else stays a name for the design to check
+    (``"ground"``, ``"roof"``; ``"²"`` or ``"٣"`` are refused there, not read as numbers)."""
+    return tuple(int(f) if f.isascii() and f.isdigit() else f for f in _comma_list("--floors", text))
 
 
 def contents(args: argparse.Namespace) -> int:
@@ -31,12 +44,13 @@ def contents(args: argparse.Namespace) -> int:
     output_dir("--out", args.out)
     if args.store is not None:
         output_dir("--store", args.store)
-    floors = tuple(int(f) if f.isdigit() else f for f in _comma_list(args.floors))
     try:
         with named_options(CONTENTS_OPTIONS):
-            design = ContentsDesign(period=args.period, storeys=args.storeys, damping=args.damping, floors=floors,
-                                    record_set=args.record_set, names=_comma_list(args.records),
-                                    items=_comma_list(args.items), variants=_comma_list(args.variants),
+            design = ContentsDesign(period=args.period, storeys=args.storeys, damping=args.damping,
+                                    floors=_floors(args.floors), record_set=args.record_set,
+                                    names=_comma_list("--records", args.records),
+                                    items=_comma_list("--items", args.items),
+                                    variants=_comma_list("--variants", args.variants),
                                     friction=args.friction, sweep=() if args.no_sweep else SWEEP_BUILDINGS,
                                     n_boot=args.n_boot, seed=args.seed)
             res = run_contents_study(design, args.out, quick=args.quick, workers=args.workers,
@@ -45,9 +59,12 @@ def contents(args: argparse.Namespace) -> int:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)
         return EXIT_INTERRUPTED
-    t, (lo, hi) = res.summary.timings, res.summary.ratio_range or (math.nan, math.nan)
-    print(f"opsrock contents: {res.summary.n_cases} cases ({res.summary.n_failed} failed) in {t['total_s']:.1f} s; "
-          f"opsrock's no-slip median PFV over FEMA P-58's: {lo:.2f} to {hi:.2f}; see {res.report}")
+    s = res.summary
+    ratio = ("no headline ratio (no default variant)" if "default" not in res.design.variants
+             else "no headline ratio (no finite default median)" if s.ratio_range is None
+             else f"opsrock's no-slip median PFV over FEMA P-58's: {s.ratio_range[0]:.2f} to {s.ratio_range[1]:.2f}")
+    print(f"opsrock contents: {s.n_cases} cases ({s.n_failed} failed) in {s.timings['total_s']:.1f} s; {ratio}; "
+          f"see {res.report}")
     return 0
 
 

@@ -131,7 +131,8 @@ class ContentsDesign:
     items : tuple of str
         FEMA IDs of the items (empty: all nine).
     variants : tuple of str
-        Keys of :data:`VARIANTS`.
+        Keys of :data:`VARIANTS`, each once (any non-empty subset: the tables and the report hold what the
+        variants given allow; the comparisons with ``default`` need it).
     friction : float or None
         Friction coefficient of the ``friction`` variant, static = kinetic (dimensionless, in (0, 1.3]);
         None: the library's default (:func:`library_friction`).
@@ -167,6 +168,8 @@ class ContentsDesign:
         bad = [v for v in self.variants if v not in VARIANTS]
         if bad or not self.variants:
             raise InputError(f"variants must be a non-empty subset of {', '.join(VARIANTS)}; got {self.variants!r}", argument="variants")
+        if len(set(self.variants)) != len(self.variants):
+            raise InputError(f"variants name a variant twice: {list(self.variants)!r}", argument="variants")
         if not self.floors:
             raise InputError("floors must name at least one floor ('ground', a number or 'roof')", argument="floors")
         for f in self.floors:
@@ -241,13 +244,13 @@ def item_specs(design: ContentsDesign) -> tuple[Any, ...]:
     from opsrock.campaign.scene import load_blocks
     from opsrock.data import block_library
 
+    if len(set(design.items)) != len(design.items):
+        raise InputError(f"items name an item twice: {list(design.items)!r}", argument="items")
     specs = {b.name: b for b in load_blocks(block_library(LIBRARY))}
     names = design.items or tuple(specs)
     bad = [n for n in names if n not in specs]
     if bad:
         raise InputError(f"items {bad!r} are not in the {LIBRARY} library (has: {', '.join(specs)})", argument="items")
-    if len(set(names)) != len(names):
-        raise InputError(f"items name an item twice: {list(names)!r}", argument="items")
     return tuple(specs[n] for n in names)
 
 
@@ -266,6 +269,8 @@ def _grounds(design: ContentsDesign):
     from opsrock.errors import OpsrockError
     from opsrock.excitations import library
 
+    if len(set(design.names)) != len(design.names):  # before the set is read (seconds)
+        raise InputError(f"records name a record twice: {list(design.names)!r}", argument="records")
     try:
         set_name, one = library.parse_reference(design.record_set)
         if one is not None:
@@ -277,8 +282,6 @@ def _grounds(design: ContentsDesign):
     missing = [n for n in design.names if n not in found]
     if missing:
         raise InputError(f"records {missing!r} are not in {design.record_set}", argument="records")
-    if len(set(design.names)) != len(design.names):
-        raise InputError(f"records name a record twice: {list(design.names)!r}", argument="records")
     return tuple(library.load(e.reference) for e in entries)
 
 
@@ -297,7 +300,8 @@ def campaign_scenes(design: ContentsDesign) -> dict[str, Any]:
     from opsrock.campaign.scene import Scene
     from opsrock.excitations.building import ShearBuilding
 
-    grounds, specs = _grounds(design), item_specs(design)
+    specs = item_specs(design)  # first: a wrong item is refused before any record is read
+    grounds = _grounds(design)
     building = design.building
     floors = tuple(Floor(None, 0) if n == 0 else Floor(building, n) for n in design.floor_numbers)
     intensity = Intensity("ida", "pfa_ratio", tuple(float(x) for x in design.levels))

@@ -90,7 +90,6 @@ def _article(n: int) -> str:
 
 def _head(design: ContentsDesign, summary: StudySummary) -> list[str]:
     t = summary.timings
-    lo, hi = summary.ratio_range or (math.nan, math.nan)
     floors = ", ".join(floor_name(n, design.storeys) for n in design.floor_numbers)
     return [
         (f"# Unanchored contents beside FEMA P-58: {_article(design.storeys)} {design.storeys}-storey building, "
@@ -105,18 +104,31 @@ def _head(design: ContentsDesign, summary: StudySummary) -> list[str]:
         + "; ".join(f"`{v}` ({design.variant(v).label})" for v in design.variants) + ".",
         "",
         f"{summary.n_cases} cases ({summary.n_failed} failed, {summary.n_overturned} overturned). "
-        "Fragilities: lognormal maximum likelihood on every finished case, 95 % intervals from "
-        f"{design.n_boot} resamples of whole records (seed {design.seed}). PFV is the peak absolute floor "
+        "Fragilities: lognormal maximum likelihood on every finished case, "
+        + (f"95 % intervals from {design.n_boot} resamples of whole records (seed {design.seed})" if design.n_boot
+           else "no intervals (no record resamples: n_boot = 0)")
+        + ". PFV is the peak absolute floor "
         "velocity (m/s), PFA the peak absolute floor acceleration (g). Wall time "
         f"{t['total_s']:.1f} s (campaigns " + ", ".join(f"{k[:-2]} {v:.1f} s" for k, v in t.items()
                                                         if k.endswith("_s") and k != "total_s") + ").",
         "",
-        (f"**opsrock's no-slip median over FEMA P-58's database median: {lo:.2f} to {hi:.2f}** "
-        "(default restitution, every item and floor)"
-         + (f"; {summary.sweep_ratio_range[0]:.2f} to {summary.sweep_ratio_range[1]:.2f} on the roofs of the "
-            f"buildings of T1 = {min(t for t, _ in design.sweep):g}-{max(t for t, _ in design.sweep):g} s."
-            if summary.sweep_ratio_range else ".")),
+        headline(design, summary),
     ]
+
+
+def headline(design: ContentsDesign, summary: StudySummary) -> str:
+    """The report's headline: the range of opsrock's no-slip median over FEMA P-58's database median, or
+    why there is none (a study without the ``default`` variant, or no finite default median)."""
+    if summary.ratio_range is None:
+        why = ("the study has no `default` variant" if "default" not in design.variants
+               else "no default-variant fit has a finite median (too few records or overturned cases)")
+        return f"**No headline ratio of opsrock's no-slip median over FEMA P-58's**: {why}."
+    lo, hi = summary.ratio_range
+    return (f"**opsrock's no-slip median over FEMA P-58's database median: {lo:.2f} to {hi:.2f}** "
+            "(default restitution, every item and floor)"
+            + (f"; {summary.sweep_ratio_range[0]:.2f} to {summary.sweep_ratio_range[1]:.2f} on the roofs of the "
+               f"buildings of T1 = {min(t for t, _ in design.sweep):g}-{max(t for t, _ in design.sweep):g} s."
+               if summary.sweep_ratio_range else "."))
 
 
 def _ratio_section(result: dict, design: ContentsDesign) -> list[str]:
@@ -135,7 +147,9 @@ def _ratio_section(result: dict, design: ContentsDesign) -> list[str]:
     return out
 
 
-def _rule_section(result: dict) -> list[str]:
+def _rule_section(result: dict, with_figure: bool) -> list[str]:
+    """FEMA's rule and how well it reproduces the database; the figure (``figures/fema_rule.png``, drawn
+    only with the default variant, whose medians it shows) when ``with_figure``."""
     rule = result["rule"].copy()
     rule = rule[["fema_id", "aspect_ratio", "database", "rule", "ratio", "rounding", "implied_period", "implied_lo",
                  "implied_hi"]]
@@ -155,8 +169,8 @@ def _rule_section(result: dict) -> list[str]:
             f"{cabinets['implied_period'].min():.2f}-{cabinets['implied_period'].max():.2f} s): with one period for "
             "all nine the rule does not reproduce the database, and we could not find the further input (another "
             "period, other dimensions, a lower centre of mass) that would."), "",
-            markdown_table(rule, ".4g"), "",
-            "![FEMA's rule against T and b/h beside opsrock](figures/fema_rule.png)"]
+            markdown_table(rule, ".4g"),
+            *(["", "![FEMA's rule against T and b/h beside opsrock](figures/fema_rule.png)"] if with_figure else [])]
 
 
 def write_report(path: Path, design: ContentsDesign, result: dict, summary: StudySummary) -> Path:
@@ -164,7 +178,7 @@ def write_report(path: Path, design: ContentsDesign, result: dict, summary: Stud
     from opsrock._files import atomic_write
     from opsrock.contents.drivers import drivers_section
 
-    lines = [*_head(design, summary), *_ratio_section(result, design), *_rule_section(result),
+    lines = [*_head(design, summary), *_ratio_section(result, design), *_rule_section(result, "default" in design.variants),
              *drivers_section(result, design), *_pelicun_section(design)]
     atomic_write(Path(path), lambda fh: fh.write("\n".join(lines) + "\n"), durable=False)
     return Path(path)
@@ -181,4 +195,4 @@ def _pelicun_section(design: ContentsDesign) -> list[str]:
             "fragilities and with opsrock's, and reports the expected number of overturned items each way.")]
 
 
-__all__ = ["ratio_matrix", "write_report", "StudySummary"]
+__all__ = ["StudySummary", "headline", "ratio_matrix", "write_report"]

@@ -22,6 +22,12 @@ TABLES: dict[str, str] = {
 }
 
 
+#: Every output the study owns in its folder (globs relative to it): a new study replaces them all, and
+#: removes those it does not write again (:func:`opsrock._files.staged_folder`); anything else in the folder
+#: (the campaigns' stores, files of the user's) is kept.
+OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pelicun/*.csv")
+
+
 def _say(progress: bool, text: str) -> None:
     if progress:
         print(f"contents: {text}", file=sys.stderr, flush=True)
@@ -160,12 +166,13 @@ def _run(design: ContentsDesign, scenes: dict, out: Path, store: Path, *, worker
 def _outputs(design: ContentsDesign, out: Path, fits: pd.DataFrame, cases: pd.DataFrame, velocities: pd.DataFrame,
              timings: dict, t_start: float) -> ContentsStudy:
     """Write every output file through a staging folder: all of them replace their namesakes in ``out``
-    together, or (on any failure or Ctrl-C) none does."""
+    together, and the outputs of an earlier study that this one does not write (:data:`OUTPUTS`) are
+    removed, or (on any failure or Ctrl-C) nothing changes."""
     from opsrock._files import staged_folder
     from opsrock.contents.pelicun import write_pelicun_files
 
     t0 = time.perf_counter()
-    with staged_folder(out) as stage:
+    with staged_folder(out, OUTPUTS) as stage:
         result = _tables(fits, cases, velocities, design)
         paths = {k: _write_csv(df, stage / TABLES[k]) for k, df in result.items() if not df.empty}
         figures = _figures(stage, fits, cases, result, design)
@@ -191,4 +198,4 @@ def _summary(cases: pd.DataFrame, result: dict, timings: dict) -> StudySummary:
                         sweep_ratio_range=(float(sweep.min()), float(sweep.max())) if len(sweep) else None)
 
 
-__all__ = ["TABLES", "ContentsStudy", "StudySummary", "run_contents_study"]
+__all__ = ["OUTPUTS", "TABLES", "ContentsStudy", "StudySummary", "run_contents_study"]

@@ -83,24 +83,25 @@ def paired_ratio(ratios: pd.DataFrame, variant: str, reference: str = "default")
 
 
 def velocity_definition(fits: pd.DataFrame, velocities: pd.DataFrame, design: ContentsDesign) -> pd.DataFrame:
-    """What the PFV definition does, per floor (default variant):
+    """What the PFV definition does, per floor:
 
     * ``rel_over_abs``: the median in the peak velocity relative to the ground over the median in the
-      absolute one (range over the items);
+      absolute one (range over the items; default variant, NaN without it);
     * ``harmonic``: the median over the records of ``PFV / (PFA T / 2 pi)`` of the unscaled floor
       motions, with ``T = T_1`` (building floors) or the rule's reference period (ground): 1 for a
       harmonic motion at ``T``, the rule's assumption.
     """
+    numbers = fits[fits["campaign"] != "sweep"].drop_duplicates("floor").set_index("floor")["floor_number"]
     rocking = fits[(fits["campaign"] == "rocking") & (fits["variant"] == "default")]
     absolute = rocking[rocking["demand"] == "pfv"].set_index(["item", "floor"])["median"]
     relative = rocking[rocking["demand"] == "pfv_rel"].set_index(["item", "floor"])["median"]
     rows = []
     for flabel, v in velocities.groupby("floor"):
-        number = int(rocking.loc[rocking["floor"] == flabel, "floor_number"].iloc[0])
+        number = int(numbers[flabel])  # from any variant's fits: the study may have no default variant
         period = design.period if number > 0 else fema_p58.REFERENCE_PERIOD
         harmonic = v["pfv"] / (v["pfa"] * period / (2.0 * math.pi))
         ratio = (relative.xs(flabel, level="floor") / absolute.xs(flabel, level="floor")).dropna() \
-            if number > 0 else pd.Series(dtype=float)
+            if number > 0 and flabel in set(relative.index.get_level_values("floor")) else pd.Series(dtype=float)
         rows.append({"floor": floor_label(number, design.storeys), "floor_number": number, "period": period,
                      "harmonic_median": float(harmonic.median()), "harmonic_p16": float(harmonic.quantile(0.16)),
                      "harmonic_p84": float(harmonic.quantile(0.84)),

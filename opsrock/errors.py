@@ -122,7 +122,7 @@ class StoreError(OpsrockError, RuntimeError):
 
 class StoreUnavailableError(StoreError):
     """A sound campaign store that cannot be used now: another process holds it, or the file system refuses
-    to write it (disk full, I/O error, read-only). An environment fault, not bad input: ``opsrock run``
+    to write it (disk full, I/O error, read-only). An environment fault, not bad input: every command
     exits with status 1, and the advice keeps the finished cases (wait, free space, re-run to resume)."""
 
 

@@ -41,7 +41,7 @@ import sys
 import threading
 from typing import Callable, Sequence
 
-from opsrock.errors import OpsrockError
+from opsrock.errors import OpsrockError, StoreUnavailableError
 
 #: Exit status when the work ran but did not pass (a failed solve, gate or validation case).
 EXIT_FAILED = 1
@@ -241,6 +241,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         status = _run(argv, state)
         # a handler that caught the stop itself (run, contents: "finished cases are stored") gives 130
         return status if _RECEIVED["signum"] is None else 128 + _RECEIVED["signum"]
+    except StoreUnavailableError as exc:  # a sound store in use or on a full disk: the environment, not the input
+        _say(_one_line(state["command"], exc))
+        return EXIT_ENVIRONMENT
     except OpsrockError as exc:
         _say(_one_line(state["command"], exc))
         return EXIT_USAGE

@@ -39,6 +39,8 @@ def _typed(kind: str, parse: Callable[[str], Any], what: str, accept: Callable[[
     value, or raises :class:`~opsrock.errors.OpsrockError`); every message names ``kind`` (the option)."""
 
     def convert(text: str):
+        if not text.isascii():  # int() and float() read '３' and '٣' as 3: a number is written in ASCII digits
+            raise argparse.ArgumentTypeError(f"{kind} must be {what} in ASCII digits, got {text!r}")
         try:
             value = parse(text)
         except ValueError:

@@ -15,8 +15,8 @@ from opsrock._files import output_dir
 from opsrock.campaign.executors import DaskExecutor
 from opsrock.campaign.scene import load_scene
 from opsrock.campaign.workflow import run_campaign
-from opsrock.cli import EXIT_FAILED, EXIT_INTERRUPTED
-from opsrock.errors import InputError, SceneError, StoreUnavailableError, UsageError
+from opsrock.cli import EXIT_INTERRUPTED
+from opsrock.errors import InputError, SceneError, UsageError
 
 
 def run(args: argparse.Namespace) -> int:
@@ -39,9 +39,6 @@ def run(args: argparse.Namespace) -> int:
     try:
         summary = run_campaign(scene, args.out, workers=args.workers, executor=executor, force=args.force,
                                progress=not args.no_progress, batch=args.batch, case_timeout=args.case_timeout)
-    except StoreUnavailableError as exc:  # the environment, not the input: status 1, nothing to delete
-        print(f"opsrock run: {' '.join(str(exc).split())}", file=sys.stderr)
-        return EXIT_FAILED
     except KeyboardInterrupt:
         print(f"opsrock run: interrupted; finished cases are stored in {args.out}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)

@@ -29,7 +29,8 @@ from _support import BLOCKS, OPSROCK, permissions_bind_root, run_opsrock
 
 
 #: The values every numeric option is tried with (each kept only where it is bad for that option).
-BAD_VALUES: tuple[str, ...] = ("0", "-1", "nan", "inf", "-inf", "1e308", "1e-320", "1" + "0" * 40, "abc", "")
+#: "\uff13" is a fullwidth 3, which int() and float() would read as 3.
+BAD_VALUES: tuple[str, ...] = ("0", "-1", "nan", "inf", "-inf", "1e308", "1e-320", "1" + "0" * 40, "abc", "", "\uff13")
 
 
 # --- fixtures: files, scenes and campaigns, made once -----------------------------------------------

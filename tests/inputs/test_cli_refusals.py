@@ -65,6 +65,11 @@ SIMULATE_CASES = [
      ["--freq-ratio", "1e-06", "omega_p"]),
     ("plot not png", [*SIM, "--plot", "x.txt"], ["--plot", "x.txt"]),
     ("plot in missing folder", [*SIM, "--plot", "no/such/dir/x.png"], ["--plot", "no/such/dir"]),
+    # int() and float() read a fullwidth or an Arabic-Indic digit as 3; every numeric option goes through one
+    # converter (cli.parser._typed), tried here on a float option and an integer one
+    ("fullwidth digit", ["simulate", "--width", "\uff13", "--height", "2.2", "--pfa", "1", "--freq", "1"],
+     ["--width", "ASCII digits", "'\uff13'"]),
+    ("arabic-indic digit", [*SIM, "--building-period", "1", "--storeys", "\u0663"], ["--storeys", "ASCII digits"]),
 ]
 
 

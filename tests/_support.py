@@ -58,3 +58,74 @@ def run_opsrock(args: Sequence[str], cwd: str | os.PathLike | None = None, *, ti
     environment (None: this one); ``bound_by_permissions``: see :func:`opsrock_command`."""
     return subprocess.run(opsrock_command(args, bound_by_permissions), cwd=cwd, capture_output=True, text=True,
                           timeout=timeout, stdin=subprocess.DEVNULL, env=None if env is None else dict(env))
+
+
+#: A record scene of the shipped bookcase and wardrobe with housner_fast, records in g at 0.01 s: format it
+#: with ``name``, ``blocks`` (a blocks file), ``files`` (a TOML list of record paths) and ``levels`` (the IDA levels
+#: of pfa_ratio, a TOML list or table).
+RECORD_SCENE = """name = "{name}"
+blocks = "{blocks}"
+select = ["bookcase", "wardrobe"]
+[solver]
+name = "housner_fast"
+[records]
+files = {files}
+units = "g"
+dt = 0.01
+ground = true
+[records.intensity]
+method = "ida"
+measure = "pfa_ratio"
+levels = {levels}
+"""
+
+#: Two blocks on a floor with friction 0.4: a stocky crate that slides, a slender shelf that rocks and slides.
+FRICTION_BLOCKS = """
+[[block]]
+name = "crate"
+width = 0.9
+height = 1.2
+reason = "stocky: slides before it could rock"
+friction = 0.4
+
+[[block]]
+name = "shelf"
+width = 0.5
+height = 1.8
+reason = "slender: rocks, overturns and slides"
+friction = 0.4
+"""
+
+FRICTION_SCENE = """
+name = "friction-records"
+blocks = "blocks.toml"
+[solver]
+name = "{solver}"
+[records]
+glob = "rec/*.txt"
+units = "g"
+dt = 0.01
+ground = true
+[records.intensity]
+method = "ida"
+measure = "pfa_g"
+levels = [0.5, 0.8, 1.2, 1.8, 2.6]
+"""
+
+
+def write_friction_campaign(folder: Path, solver: str = "friction") -> Path:
+    """Write the inputs of a small record campaign with friction into ``folder``: ``rec/`` (six synthetic
+    ground motions, a noisy sine of 1 to 3 Hz in a 6-s envelope, peak 1 g), ``blocks.toml``
+    (:data:`FRICTION_BLOCKS`) and ``scene.toml`` (five PFA levels, 60 cases, solver ``solver``); the scene's path."""
+    import numpy as np
+
+    (folder / "rec").mkdir()
+    rng = np.random.default_rng(0)
+    t = np.arange(0.0, 6.0, 0.01)
+    for k in range(6):
+        a = np.sin(np.pi * t / t[-1]) ** 2 * (np.sin(2 * np.pi * (1.0 + 0.4 * k) * t) + 0.3 * rng.normal(size=t.size))
+        np.savetxt(folder / "rec" / f"r{k}.txt", a / np.abs(a).max())
+    (folder / "blocks.toml").write_text(FRICTION_BLOCKS)
+    scene = folder / "scene.toml"
+    scene.write_text(FRICTION_SCENE.format(solver=solver))
+    return scene

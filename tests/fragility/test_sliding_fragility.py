@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 from scipy.stats import norm
 
+from _support import write_friction_campaign
 from opsrock._files import read_table
 from opsrock.errors import InputError
 from opsrock.fragility.pelicun_export import read_pelicun_csv, write_pelicun_csv
@@ -68,54 +69,12 @@ def test_component_id():
 
 
 # --- the sliding section of `opsrock fragility` ----------------------------------------------------------------
-
-FRICTION_BLOCKS = """
-[[block]]
-name = "crate"
-width = 0.9
-height = 1.2
-reason = "stocky: slides before it could rock"
-friction = 0.4
-
-[[block]]
-name = "shelf"
-width = 0.5
-height = 1.8
-reason = "slender: rocks, overturns and slides"
-friction = 0.4
-"""
-
-FRICTION_SCENE = """
-name = "friction-records"
-blocks = "blocks.toml"
-[solver]
-name = "friction"
-[records]
-glob = "rec/*.txt"
-units = "g"
-dt = 0.01
-ground = true
-[records.intensity]
-method = "ida"
-measure = "pfa_g"
-levels = [0.5, 0.8, 1.2, 1.8, 2.6]
-"""
-
-
 def _friction_campaign(d, solver: str = "friction"):
     """A small record campaign solved with friction: two blocks, six synthetic ground motions (a noisy
     sine of 1 to 3 Hz in a 6 s envelope), five levels of PFA: 60 cases, some sliding beyond 5 and 20 cm."""
     from opsrock.campaign import run_campaign
 
-    (d / "rec").mkdir()
-    rng = np.random.default_rng(0)
-    t = np.arange(0.0, 6.0, 0.01)
-    for k in range(6):
-        a = np.sin(np.pi * t / t[-1]) ** 2 * (np.sin(2 * np.pi * (1.0 + 0.4 * k) * t) + 0.3 * rng.normal(size=t.size))
-        np.savetxt(d / "rec" / f"r{k}.txt", a / np.abs(a).max())
-    (d / "blocks.toml").write_text(FRICTION_BLOCKS)
-    (d / "scene.toml").write_text(FRICTION_SCENE.replace('name = "friction"', f'name = "{solver}"'))
-    summary = run_campaign(d / "scene.toml", d / "out", workers=1, progress=False)
+    summary = run_campaign(write_friction_campaign(d, solver), d / "out", workers=1, progress=False)
     assert summary.n_failed == 0
     return d / "out"
 

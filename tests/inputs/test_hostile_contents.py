@@ -26,7 +26,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from _hostile import Case, sweep
-from _support import BLOCKS, run_opsrock
+from _support import BLOCKS, run_opsrock, write_friction_campaign
 
 from opsrock._files import remove_stale
 from opsrock.contents.design import VARIANTS
@@ -97,38 +97,6 @@ CASES: list[Case] = [
 
 
 # --- a campaign solved with friction, and its tables broken one way each ------------------------------
-FRICTION_BLOCKS = """
-[[block]]
-name = "crate"
-width = 0.9
-height = 1.2
-reason = "stocky: slides before it could rock"
-friction = 0.4
-
-[[block]]
-name = "shelf"
-width = 0.5
-height = 1.8
-reason = "slender: rocks, overturns and slides"
-friction = 0.4
-"""
-
-FRICTION_SCENE = """
-name = "friction-records"
-blocks = "blocks.toml"
-[solver]
-name = "friction"
-[records]
-glob = "rec/*.txt"
-units = "g"
-dt = 0.01
-ground = true
-[records.intensity]
-method = "ida"
-measure = "pfa_g"
-levels = [0.5, 0.8, 1.2, 1.8, 2.6]
-"""
-
 #: Broken tables: file -> (column, row of the table (0-based), value). The first row is a failed case whose
 #: numbers are NaN, as a failed case's may be: it must not be refused.
 BROKEN: dict[str, tuple[str, int, object]] = {
@@ -153,14 +121,7 @@ def slides(tmp_path_factory) -> Path:
     levels, 60 cases), ``valid.csv`` (its table, the first case failed), ``plain.csv`` (the table without
     the slide columns: a campaign of any other solver) and the :data:`BROKEN` tables."""
     d = tmp_path_factory.mktemp("slides")
-    (d / "rec").mkdir()
-    rng = np.random.default_rng(0)
-    t = np.arange(0.0, 6.0, 0.01)
-    for k in range(6):
-        a = np.sin(np.pi * t / t[-1]) ** 2 * (np.sin(2 * np.pi * (1.0 + 0.4 * k) * t) + 0.3 * rng.normal(size=t.size))
-        np.savetxt(d / "rec" / f"r{k}.txt", a / np.abs(a).max())
-    (d / "blocks.toml").write_text(FRICTION_BLOCKS)
-    (d / "scene.toml").write_text(FRICTION_SCENE)
+    write_friction_campaign(d)
     proc = run_opsrock(["run", "scene.toml", "--out", "run", "--workers", "1", "--no-progress"], d)
     assert proc.returncode == 0, proc.stderr
     cases = _with_failed_row(pd.read_csv(d / "run" / "cases.csv"))

@@ -25,26 +25,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 from _hostile import Case, sweep
-from _support import BLOCKS, opsrock_command, run_opsrock
+from _support import BLOCKS, RECORD_SCENE, opsrock_command, run_opsrock
 
 SIM = ("simulate", "--width", "0.4", "--height", "2.2")
 
-#: A record scene: three short noise records, two blocks, four levels (24 cases, seconds with housner_fast).
-RECORD_SCENE = """name = "env"
-blocks = "{blocks}"
-select = ["bookcase", "wardrobe"]
-[solver]
-name = "housner_fast"
-[records]
-files = {files}
-units = "g"
-dt = 0.01
-ground = true
-[records.intensity]
-method = "ida"
-measure = "pfa_ratio"
-levels = [0.8, 2.0, 4.0, 8.0]
-"""
+#: The record scenes: three short noise records, two blocks, four levels (24 cases, seconds with housner_fast).
+LEVELS = "[0.8, 2.0, 4.0, 8.0]"
 
 #: A pulse scene slow enough to be stopped mid-way: 2 blocks x 4 x 4 pulses with the scipy solver.
 SLOW_SCENE = """name = "slow"
@@ -78,7 +64,7 @@ def env_base(tmp_path_factory):
     sock.close()
     for kind, path in _not_files(base).items():
         (base / f"blocks_{kind}.toml").write_text(SLOW_SCENE.format(blocks=path, num=2))
-        (base / f"records_{kind}.toml").write_text(RECORD_SCENE.format(blocks=BLOCKS, files=f'["{path}"]'))
+        (base / f"records_{kind}.toml").write_text(RECORD_SCENE.format(name="env", blocks=BLOCKS, levels=LEVELS, files=f'["{path}"]'))
     return base
 
 
@@ -173,7 +159,8 @@ def test_a_full_standard_output_is_one_line(args, tmp_path):
         proc = subprocess.run(opsrock_command(args), cwd=tmp_path, stdout=full, stderr=subprocess.PIPE, text=True,
                               timeout=120, stdin=subprocess.DEVNULL)
     _one_fault_line(proc, "standard output", "/dev/full", "no space left")
-    if args[0] == "run":
+    assert proc.returncode == 1 and "/dev/full" in proc.stderr, proc.stderr
+    if args[0] == "run":  # taken by the "run tiny" case
         assert (tmp_path / "out" / "cases.csv").is_file() and "finished cases are kept" in proc.stderr
 
 
@@ -183,6 +170,8 @@ def test_a_closed_standard_output_is_told_before_any_work(tmp_path):
     cmd = shlex.join(opsrock_command([*SIM, "--pfa-ratio", "4", "--freq-ratio", "3", "--solver", "housner_fast"]))
     proc = subprocess.run(["sh", "-c", f"exec {cmd} >&-"], cwd=tmp_path, capture_output=True, text=True, timeout=60)
     _one_fault_line(proc, "standard output is closed")
+    assert proc.returncode == 1 and "standard output is closed" in proc.stderr, proc.stderr
+    assert list(tmp_path.iterdir()) == []  # refused before any work: nothing written
 
 
 def test_a_reader_that_goes_away_ends_the_command_quietly(tmp_path):
@@ -223,7 +212,7 @@ def record_campaign(tmp_path_factory) -> Path:
     rng = np.random.default_rng(1)
     for k in range(3):
         (base / f"r{k}.txt").write_text("\n".join(f"{x:.6f}" for x in 0.1 * rng.standard_normal(600)) + "\n")
-    (base / "env.toml").write_text(RECORD_SCENE.format(blocks=BLOCKS, files='["r0.txt", "r1.txt", "r2.txt"]'))
+    (base / "env.toml").write_text(RECORD_SCENE.format(name="env", blocks=BLOCKS, levels=LEVELS, files='["r0.txt", "r1.txt", "r2.txt"]'))
     proc = run_opsrock(["run", "env.toml", "--out", "run", "--no-progress", "--workers", "1"], base)
     assert proc.returncode == 0, proc.stderr
     return base / "run"

@@ -25,7 +25,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from _hostile import Case, listing, sweep
-from _support import BLOCKS, OPSROCK, permissions_bind_root, run_opsrock
+from _support import BLOCKS, OPSROCK, RECORD_SCENE, permissions_bind_root, run_opsrock
 
 
 #: The values every numeric option is tried with (each kept only where it is bad for that option).
@@ -102,21 +102,6 @@ levels = {{start = 1, stop = 1, num = 1}}
 ''')
 
 
-RECORD_SCENE = """name = "{name}"
-blocks = "{blocks}"
-select = ["bookcase", "wardrobe"]
-[solver]
-name = "housner_fast"
-[records]
-files = ["r0.txt", "r1.txt", "r2.txt"]
-units = "g"
-dt = 0.01
-ground = true
-[records.intensity]
-method = "ida"
-measure = "pfa_ratio"
-levels = {levels}
-"""
 
 
 def _write_campaigns(base: Path) -> None:
@@ -127,7 +112,7 @@ def _write_campaigns(base: Path) -> None:
     for k in range(3):
         (camp / f"r{k}.txt").write_text("\n".join(f"{x:.6f}" for x in 0.1 * rng.standard_normal(600)) + "\n")
     for name, levels in (("weak", [0.5, 0.8]), ("strong", [30.0, 40.0]), ("mixed", [0.8, 2.0, 4.0, 8.0])):
-        (camp / f"{name}.toml").write_text(RECORD_SCENE.format(name=name, blocks=BLOCKS, levels=levels))
+        (camp / f"{name}.toml").write_text(RECORD_SCENE.format(name=name, blocks=BLOCKS, files='["r0.txt", "r1.txt", "r2.txt"]', levels=levels))
         proc = run_opsrock(["run", f"{name}.toml", "--out", f"run_{name}", "--no-progress", "--workers", "1"], camp)
         assert proc.returncode == 0, proc.stderr
     full = (camp / "run_mixed" / "cases.csv").read_text().splitlines(keepends=True)

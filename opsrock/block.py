@@ -12,7 +12,8 @@ from opsrock.limits import LIMITS, check, positive_finite, real_number
 
 @dataclass(frozen=True)
 class Block:
-    """A homogeneous rectangular block of full width ``2b`` and full height ``2h``.
+    """A rectangular block of full width ``2b`` and full height ``2h``, homogeneous unless ``cm_height`` or
+    ``radius_of_gyration`` say otherwise.
 
     Parameters
     ----------
@@ -43,12 +44,22 @@ class Block:
     friction_kinetic : float or None, optional
         Kinetic coefficient ``mu_k <= mu`` (dimensionless, below 4/3) used while the base slips.
         Default None: ``mu_k = mu``, or infinite without ``friction``.
+    cm_height : float or None, optional
+        Height of the centre of mass above the base (m), in ``(0, height]``. Default None: mid-height,
+        ``h = height / 2`` (a homogeneous block). A loaded bookcase or a rack with its batteries low has it
+        lower.
+    radius_of_gyration : float or None, optional
+        Radius of gyration ``r`` about the centre of mass for rotation in the plane of the motion (m), so
+        that ``I_cm = m r²``. Default None: a homogeneous block's, ``r² = (width² + height²) / 12``.
 
     Notes
     -----
-    Derived quantities follow docs/modelling.md section 2: ``R = sqrt(b² + h²)``,
-    ``alpha = atan(b / h)``, ``p = sqrt(3 g / 4 R)``, ``I_O = 4/3 m R²``,
-    ``e_R = 1 - 1.5 sin²(alpha)`` (Eq. 9), ``e = restitution_factor · e_R`` (or ``restitution``).
+    Derived quantities follow docs/modelling.md section 2, with ``h`` the height of the centre of mass
+    (:attr:`h_cm`): ``R = sqrt(b² + h²)``, ``alpha = atan(b / h)``, ``I_O = m (r² + R²)``,
+    ``p = sqrt(m g R / I_O)``, ``e_R = 1 - 2 m b² / I_O`` (angular momentum about the new pivot kept
+    through the impact). For a homogeneous block these are the paper's ``p = sqrt(3 g / 4 R)``,
+    ``I_O = 4/3 m R²`` and ``e_R = 1 - 1.5 sin²(alpha)`` (Eq. 9); ``e = restitution_factor · e_R`` (or
+    ``restitution``).
     """
 
     width: float
@@ -59,12 +70,15 @@ class Block:
     restitution: float | None = None
     friction: float | None = None
     friction_kinetic: float | None = None
+    cm_height: float | None = None
+    radius_of_gyration: float | None = None
 
     def __post_init__(self) -> None:
         self._check_friction()
         object.__setattr__(self, "width", check("width", self.width))
         object.__setattr__(self, "height", check("height", self.height))
         object.__setattr__(self, "mass", check("mass", self.mass))
+        self._check_mass_distribution()
         f = positive_finite("restitution_factor", self.restitution_factor)
         object.__setattr__(self, "restitution_factor", f)
         if not isinstance(self.name, str):
@@ -110,6 +124,30 @@ class Block:
                                  "coefficient must not exceed the static one", argument="friction_kinetic")
         object.__setattr__(self, "friction_kinetic", mu_k)
 
+    def _check_mass_distribution(self) -> None:
+        """Range-check ``cm_height`` (in ``(0, height]``) and ``radius_of_gyration`` (positive, at most the
+        distance from the centre of mass to the farthest corner: all the mass there)."""
+        if self.cm_height is not None:
+            hc = real_number("cm_height", self.cm_height)
+            if not (math.isfinite(hc) and 0.0 < hc <= self.height):
+                raise InputError(f"cm_height must lie in (0, height] = (0, {self.height:g}] m, got {self.cm_height!r}",
+                                 argument="cm_height")
+            object.__setattr__(self, "cm_height", hc)
+        if self.radius_of_gyration is not None:
+            r = real_number("radius_of_gyration", self.radius_of_gyration)
+            far = math.hypot(self.b, max(self.h_cm, self.height - self.h_cm))
+            if not (math.isfinite(r) and 0.0 < r <= far):
+                raise InputError(f"radius_of_gyration must lie in (0, {far:.6g}] m (all the mass at the corner "
+                                 f"farthest from the centre of mass), got {self.radius_of_gyration!r}",
+                                 argument="radius_of_gyration")
+            object.__setattr__(self, "radius_of_gyration", r)
+
+    @property
+    def homogeneous(self) -> bool:
+        """True if the block has a homogeneous block's mass distribution (neither ``cm_height`` nor
+        ``radius_of_gyration`` given)."""
+        return self.cm_height is None and self.radius_of_gyration is None
+
     @property
     def slips(self) -> bool:
         """True if the block has a finite friction coefficient (its base may slide)."""
@@ -127,35 +165,55 @@ class Block:
         return 0.5 * self.height
 
     @property
+    def h_cm(self) -> float:
+        """Height of the centre of mass above the base (m): ``cm_height``, or ``h`` for a homogeneous block."""
+        return self.h if self.cm_height is None else self.cm_height
+
+    @property
+    def r_gyration(self) -> float:
+        """Radius of gyration about the centre of mass (m): ``radius_of_gyration``, or a homogeneous block's
+        ``sqrt((b² + h²) / 3)``."""
+        if self.radius_of_gyration is not None:
+            return self.radius_of_gyration
+        return math.sqrt((self.b**2 + self.h**2) / 3.0)
+
+    @property
     def R(self) -> float:  # noqa: N802  (the paper's symbol)
-        """Size parameter ``R = sqrt(b² + h²)`` (m): pivot to centre of mass."""
-        return math.hypot(self.b, self.h)
+        """Size parameter ``R = sqrt(b² + h_cm²)`` (m): pivot to centre of mass."""
+        return math.hypot(self.b, self.h_cm)
 
     @property
     def alpha(self) -> float:
-        """Slenderness ``alpha = atan(b / h)`` (rad)."""
-        return math.atan2(self.b, self.h)
+        """Slenderness ``alpha = atan(b / h_cm)`` (rad)."""
+        return math.atan2(self.b, self.h_cm)
 
     @property
     def tan_alpha(self) -> float:
-        """``tan(alpha) = b / h`` (dimensionless)."""
-        return self.b / self.h
+        """``tan(alpha) = b / h_cm`` (dimensionless)."""
+        return self.b / self.h_cm
 
     # --- dynamics -----------------------------------------------------------------------
     @property
     def p(self) -> float:
-        """Frequency parameter ``p = sqrt(3 g / 4 R)`` (rad/s)."""
-        return math.sqrt(3.0 * G / (4.0 * self.R))
+        """Frequency parameter ``p = sqrt(m g R / I_O)`` (rad/s); ``sqrt(3 g / 4 R)`` for a homogeneous block."""
+        if self.homogeneous:
+            return math.sqrt(3.0 * G / (4.0 * self.R))
+        return math.sqrt(G * self.R / (self.r_gyration**2 + self.R**2))
 
     @property
     def I_O(self) -> float:  # noqa: N802
-        """Moment of inertia about a pivot corner, ``4/3 m R²`` (kg m²)."""
-        return 4.0 / 3.0 * self.mass * self.R**2
+        """Moment of inertia about a pivot corner, ``m (r² + R²)`` (kg m²); ``4/3 m R²`` for a homogeneous block."""
+        if self.homogeneous:
+            return 4.0 / 3.0 * self.mass * self.R**2
+        return self.mass * (self.r_gyration**2 + self.R**2)
 
     @property
     def e_R(self) -> float:  # noqa: N802
-        """Housner's rigid-body restitution coefficient ``1 - 1.5 sin²(alpha)`` (Eq. 9)."""
-        return 1.0 - 1.5 * math.sin(self.alpha) ** 2
+        """Housner's rigid-body restitution coefficient ``1 - 2 m b² / I_O``: ``1 - 1.5 sin²(alpha)`` (Eq. 9)
+        for a homogeneous block."""
+        if self.homogeneous:
+            return 1.0 - 1.5 * math.sin(self.alpha) ** 2
+        return 1.0 - 2.0 * self.b**2 / (self.r_gyration**2 + self.R**2)
 
     @property
     def e(self) -> float:
@@ -187,4 +245,6 @@ class Block:
             "e": self.e,
             "friction": self.friction,
             "friction_kinetic": self.friction_kinetic,
+            "cm_height": self.h_cm,
+            "radius_of_gyration": self.r_gyration,
         }

@@ -144,3 +144,9 @@ __all__ = [
     "RecordFileError", "SceneError",
     "StoreError", "StoreUnavailableError", "UnknownRecordError", "UnknownSettingError", "UsageError",
 ]
+
+
+class ImplausibleInputError(InputError):
+    """A value that is valid but that no real floor or content reaches (a floor motion of 900 g, a
+    400-m cabinet): almost always a unit mistake. The message names the likely cause and the option that
+    confirms the value (:data:`opsrock.limits.PLAUSIBLE`)."""

@@ -88,6 +88,77 @@ LIMITS: dict[str, Limit] = {
 }
 
 
+@dataclass(frozen=True)
+class Plausible:
+    """A bound that no real input reaches although the physics allows it: beyond it the value is refused as a
+    likely unit mistake unless the user confirms it (:func:`check_plausible`).
+
+    Parameters
+    ----------
+    high : float
+        The bound, in ``unit``.
+    unit : str
+        Its SI unit.
+    reason : str
+        Why no real input reaches it (one line, for docs and messages).
+    """
+
+    high: float
+    unit: str
+    reason: str
+
+
+#: Plausibility bounds, declared once; every user boundary (command line, scene, inventory, motions
+#: manifest, :class:`~opsrock.excitations.records.Record`) checks against these.
+PLAUSIBLE: dict[str, Plausible] = {
+    "pfa": Plausible(10.0 * 9.80665, "m/s²", "no recorded floor or ground motion reaches 10 g (the largest "
+                     "recorded ground accelerations are about 4 g)"),
+    "block_size": Plausible(10.0, "m", "no piece of furniture or equipment is larger than 10 m in any "
+                            "dimension"),
+}
+
+#: Factors from the units a user may have meant to the SI unit of each plausibility bound's quantity, tried
+#: in this order to name the likely cause of an implausible value.
+LIKELY_UNITS: dict[str, dict[str, float]] = {
+    "pfa": {"cm/s²": 0.01, "mm/s²": 0.001},
+    "block_size": {"mm": 0.001, "cm": 0.01, "in": 0.0254},
+}
+
+
+def check_plausible(name: str, value: float, *, what: str, option: str, confirm: bool = False) -> None:
+    """Refuse ``value`` (SI) beyond ``PLAUSIBLE[name]`` unless ``confirm``, naming its likely cause.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`PLAUSIBLE` (``"pfa"``, ``"block_size"``).
+    value : float
+        The value, in the bound's SI unit (m/s², m).
+    what : str
+        What the value is and where it came from, for the message (``"--width"``, ``"motions.csv line 3
+        (rec1.csv): PFA"``).
+    option : str
+        How the user confirms it (``"--accept-implausible"``, ``"accept_implausible=True"``).
+    confirm : bool
+        True: the user has confirmed the value; nothing is checked.
+
+    Raises
+    ------
+    ImplausibleInputError
+        One line: the value, the bound and why, the likely unit and the fix.
+    """
+    from opsrock.errors import ImplausibleInputError
+
+    bound = PLAUSIBLE[name]
+    if confirm or not math.isfinite(value) or abs(value) <= bound.high:
+        return
+    likely = [(u, abs(value) * f) for u, f in LIKELY_UNITS[name].items() if abs(value) * f <= bound.high]
+    cause = f"the value looks like {likely[0][0]} ({abs(value):.4g} {likely[0][0]} = {likely[0][1]:.4g} {bound.unit})" \
+        if likely else "check its unit"
+    raise ImplausibleInputError(f"{what} = {value:.4g} {bound.unit} exceeds {bound.high:.4g} {bound.unit}: {bound.reason}; "
+                                f"{cause}: give it in {bound.unit}, or confirm it with {option}", argument=what)
+
+
 def shown(value: object) -> str:
     """``repr`` of a value for a message, numpy scalars as plain Python numbers (``1e+300``, not
     ``np.float64(1e+300)``)."""

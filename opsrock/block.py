@@ -26,7 +26,8 @@ class Block:
         moments and forces reported by the OpenSees model. Default 1 kg.
     restitution_factor : float, optional
         ``e / e_R``, the ratio of the restitution coefficient used to Housner's rigid-body
-        value (dimensionless, > 0, with ``e = restitution_factor · e_R <= 1``). Default 0.95, the paper's
+        value (dimensionless, > 0, with ``e = restitution_factor · e_R <= 1``; without effect on a block with
+        ``e_R <= 0``, which lands flat, ``e = 0``). Default 0.95, the paper's
         choice; measured free rocking of limestone blocks gives about 1 (validation case
         ``experiments``), with scatter on both sides.
     name : str, optional
@@ -35,7 +36,7 @@ class Block:
         The restitution coefficient ``e`` itself (dimensionless, in (0, 1]), as the rocking
         literature sets it (e.g. ``e = 0.9``), instead of ``restitution_factor · e_R``. Give one of
         the two: with ``restitution`` set, ``restitution_factor`` must keep its default. Default
-        None (``e = restitution_factor · e_R``).
+        None (``e = restitution_factor · e_R``, or 0 for a block with ``e_R <= 0``, which lands flat).
     friction : float or None, optional
         Static Coulomb friction coefficient ``mu`` between the block's base and the floor
         (dimensionless, within :data:`opsrock.limits.LIMITS`). Default None: the base never slips
@@ -60,6 +61,12 @@ class Block:
     through the impact). For a homogeneous block these are the paper's ``p = sqrt(3 g / 4 R)``,
     ``I_O = 4/3 m R²`` and ``e_R = 1 - 1.5 sin²(alpha)`` (Eq. 9); ``e = restitution_factor · e_R`` (or
     ``restitution``).
+
+    A block with ``e_R <= 0`` (homogeneous: width/height >= sqrt(2), a desk, a crate) is a valid block: after
+    an impact the angular momentum about the striking corner would turn it the wrong way (into the floor),
+    so it lands flat and stops rocking, ``e = 0`` unless ``restitution`` says otherwise (docs/modelling.md,
+    "Wide blocks"). With friction
+    ``mu < tan(alpha)`` it slides before it can uplift and never rocks under horizontal floor motion.
     """
 
     width: float
@@ -95,12 +102,6 @@ class Block:
         if self.e_R > 0.0 and f * self.e_R > 1.0 + 1e-12:
             raise InputError(f"restitution_factor must lie in (0, 1/e_R] = (0, {1.0 / self.e_R:.6g}] for this block "
                              f"(e = restitution_factor · e_R <= 1), got {f!r}", argument="restitution_factor")
-        if self.e_R <= 0.0:
-            raise InputError(
-                f"width/height = {self.width:g}/{self.height:g} gives alpha = {self.alpha:.4f} rad and "
-                f"e_R = 1 - 1.5 sin²(alpha) = {self.e_R:.4f} <= 0: the block is too stocky for "
-                "Housner's rocking model (needs alpha < 0.9553 rad, width/height < 1.414)", argument="width"
-            )
 
     def _check_friction(self) -> None:
         """Range-check ``friction`` and ``friction_kinetic``; ``mu_k`` defaults to ``mu``."""
@@ -216,10 +217,18 @@ class Block:
         return 1.0 - 2.0 * self.b**2 / (self.r_gyration**2 + self.R**2)
 
     @property
+    def lands_flat(self) -> bool:
+        """True if Housner's ``e_R <= 0`` (a homogeneous block with width/height >= sqrt(2)): the angular momentum
+        about the striking corner leaves no rotation about it, so an impact lands the block flat (``e = 0``)."""
+        return self.e_R <= 0.0
+
+    @property
     def e(self) -> float:
-        """Restitution coefficient used, ``restitution`` if set, else ``restitution_factor · e_R``
-        (dimensionless)."""
-        return self.restitution if self.restitution is not None else self.restitution_factor * self.e_R
+        """Restitution coefficient used, ``restitution`` if set, else ``restitution_factor · e_R``, or 0 for a block
+        that lands flat (:attr:`lands_flat`) (dimensionless)."""
+        if self.restitution is not None:
+            return self.restitution
+        return 0.0 if self.lands_flat else self.restitution_factor * self.e_R
 
     @property
     def uplift_acceleration(self) -> float:

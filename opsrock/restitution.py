@@ -113,9 +113,12 @@ class RestitutionDistribution:
                              f"[{self.low!r}, {self.high!r}]")
 
     def sample(self, case_id: str, e_R: float) -> float:  # noqa: N803  (Housner's symbol)
-        """The factor of case ``case_id`` for a block of Housner's ``e_R`` (dimensionless)."""
+        """The factor of case ``case_id`` for a block of Housner's ``e_R`` (dimensionless); a block with ``e_R <= 0``
+        lands flat whatever its factor (``e = 0``, :attr:`opsrock.block.Block.lands_flat`) and gets ``mean``."""
         from scipy.stats import truncnorm
 
+        if e_R <= 0.0:
+            return self.mean
         high = min(self.high, 1.0 / e_R)
         if high <= self.low:  # the block's e_R leaves no room above low: e = 1 at most
             return min(self.mean, 1.0 / e_R)

@@ -35,7 +35,9 @@ Blocks file layout: an array of tables ``[[block]]`` with ``name``, ``width`` (2
 ``restitution_factor`` (``e / e_R``, or a distribution of it sampled per case) or ``restitution`` (``e``
 itself, or a named law: :mod:`opsrock.restitution`), and ``friction`` (the static
 Coulomb coefficient on the floor) with ``friction_kinetic``; a block with friction needs a solver of
-the ``friction`` model.
+the ``friction`` model. ``cm_height`` (m above the base) and ``radius_of_gyration`` (m, about the centre of
+mass) describe a mass distribution other than a homogeneous block's (:class:`~opsrock.block.Block`); such a
+block needs a solver that models it (registry: ``mass_distribution``).
 """
 
 from __future__ import annotations
@@ -83,7 +85,7 @@ _SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "sol
 _NEEDS_KEYS = {"answer", "tolerance", "model"}
 _SOLVER_KEYS = {"name", "settings", "case_timeout"}
 _BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor", "restitution", "friction",
-               "friction_kinetic"}
+               "friction_kinetic", "cm_height", "radius_of_gyration"}
 
 
 @dataclass(frozen=True)
@@ -113,6 +115,10 @@ class BlockSpec:
     restitution_distribution : RestitutionDistribution or None
         A distribution of ``e / e_R`` drawn once per case (:meth:`block_for`); ``restitution_factor`` is
         then its mean. None: the factor is fixed.
+    cm_height : float or None
+        Height of the centre of mass above the base (m); None: mid-height (a homogeneous block).
+    radius_of_gyration : float or None
+        Radius of gyration about the centre of mass (m); None: a homogeneous block's.
     """
 
     name: str
@@ -125,13 +131,16 @@ class BlockSpec:
     friction: float | None = None
     friction_kinetic: float | None = None
     restitution_distribution: RestitutionDistribution | None = None
+    cm_height: float | None = None
+    radius_of_gyration: float | None = None
 
     @property
     def block(self) -> Block:
         """The :class:`~opsrock.block.Block` this entry describes (with the mean factor of a distribution)."""
         return Block(width=self.width, height=self.height, mass=self.mass, restitution_factor=self.restitution_factor,
                      name=self.name, restitution=self.restitution, friction=self.friction,
-                     friction_kinetic=self.friction_kinetic)
+                     friction_kinetic=self.friction_kinetic, cm_height=self.cm_height,
+                     radius_of_gyration=self.radius_of_gyration)
 
     def block_for(self, case_id: str) -> Block:
         """The block of case ``case_id``: :attr:`block`, with its own draw of the restitution factor when the
@@ -323,6 +332,8 @@ class Scene:
                 + ([b.restitution] if b.restitution is not None else [])
                 + ([{"friction": b.friction, "friction_kinetic": b.friction_kinetic}] if b.friction is not None else [])
                 + ([{"restitution": b.restitution_distribution.fingerprint()}] if b.restitution_distribution else [])
+                + ([{"cm_height": b.cm_height, "radius_of_gyration": b.radius_of_gyration}]
+                   if (b.cm_height, b.radius_of_gyration) != (None, None) else [])
                 for b in self.blocks
             ],
             **self.design.fingerprint(),
@@ -414,11 +425,15 @@ def _block_spec(f: TomlFile, where: str, entry: dict) -> BlockSpec:
         friction=f.number(f"{where}.friction", entry["friction"]) if "friction" in entry else None,
         friction_kinetic=(f.number(f"{where}.friction_kinetic", entry["friction_kinetic"])
                           if "friction_kinetic" in entry else None),
+        cm_height=f.number(f"{where}.cm_height", entry["cm_height"]) if "cm_height" in entry else None,
+        radius_of_gyration=(f.number(f"{where}.radius_of_gyration", entry["radius_of_gyration"])
+                            if "radius_of_gyration" in entry else None),
     )
-    try:  # the Block's own physical checks (restitution in (0, 1], e_R > 0, friction ranges)
+    try:  # the Block's own physical checks (restitution in (0, 1], friction ranges, mass distribution)
         spec.block
     except OpsrockError as exc:
-        key = next((k for k in ("friction_kinetic", "friction") if str(exc).startswith(k) and k in entry), None)
+        key = next((k for k in ("friction_kinetic", "friction", "cm_height", "radius_of_gyration")
+                    if str(exc).startswith(k) and k in entry), None)
         if key:
             raise f.error(f"{where}.{key}", entry[key], str(exc)) from None
         raise f.error(where, {"width": spec.width, "height": spec.height}, str(exc)) from None

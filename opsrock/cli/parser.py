@@ -125,6 +125,11 @@ def _simulate(sub) -> None:
     p = sub.add_parser("simulate", help="one block, one pulse or record",
                        description="Simulate one block under one pulse or one record.")
     _block(p)
+    p.add_argument("--cm-height", type=positive("--cm-height"),
+                   help="height of the centre of mass above the base (m), at most --height (default: mid-height)")
+    p.add_argument("--radius-of-gyration", type=positive("--radius-of-gyration"),
+                   help="radius of gyration about the centre of mass (m) (default: a homogeneous block's, "
+                        "sqrt((b² + h²) / 3))")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--pfa", type=positive("--pfa"), help="peak floor acceleration (g); a record is scaled to it")
     g.add_argument("--pfa-ratio", type=positive("--pfa-ratio"), help="PFA / (g tan alpha); a record is scaled to it")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import sys
 
@@ -31,6 +32,9 @@ from opsrock.limits import scaled_input
 from opsrock.solvers import simulate as solve
 from opsrock.solvers.common import LONG_SOLVE_S, event_driven_estimate
 from opsrock.solvers.registry import METHODS
+
+#: The mass-distribution options of ``opsrock simulate`` by the :class:`Block` argument they set.
+MASS_OPTIONS: dict[str, str] = {"cm_height": "--cm-height", "radius_of_gyration": "--radius-of-gyration"}
 
 #: Options of ``--record`` that mean nothing without it.
 RECORD_ONLY = ("units", "dt", "building_period", "storeys", "damping", "floor", "vertical_record")
@@ -110,10 +114,21 @@ def _record(args: argparse.Namespace, block: Block) -> tuple[Record, float]:
         return rec.scaled_to_pfa(target), rec.scale_to(target)
 
 
+def _block(args: argparse.Namespace) -> Block:
+    """The block of the block options, with the mass distribution of ``--cm-height`` and
+    ``--radius-of-gyration`` (None: a homogeneous block's); the block checks them."""
+    block = make_block(args)
+    given = {name: getattr(args, name) for name in MASS_OPTIONS if getattr(args, name) is not None}
+    if not given:
+        return block
+    with named_options(MASS_OPTIONS):
+        return dataclasses.replace(block, **given)
+
+
 def simulate(args: argparse.Namespace) -> int:
     """``opsrock simulate``: one block under one pulse or record, through :func:`opsrock.solvers.simulate`."""
     _check_args(args)
-    block = make_block(args)
+    block = _block(args)
     excitation, scale = (_pulse(args, block), None) if args.record is None else _record(args, block)
     _announce_long_solve(args.solver, excitation)
     # the solvers check their settings before any work and raise only for bad settings;
@@ -152,6 +167,8 @@ def _summary(result, block: Block, excitation, scale: float | None) -> dict:
                                    "status", "reason", "solver")}
     out.update(alpha=block.alpha, R=block.R, p=block.p, e=block.e, e_R=block.e_R, pfa=excitation.pfa,
                pfa_ratio=excitation.pfa / block.uplift_acceleration)
+    if not block.homogeneous:
+        out.update(cm_height=block.h_cm, radius_of_gyration=block.r_gyration, I_O=block.I_O)
     if scale is None:
         out.update(pulse=excitation.shape, omega_p=excitation.omega_p, freq_ratio=excitation.freq_ratio(block),
                    T_p=excitation.T_p, duration=excitation.duration)
@@ -169,7 +186,9 @@ def _summary(result, block: Block, excitation, scale: float | None) -> dict:
 
 
 def _text(result, block, excitation, out) -> str:
-    head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m: alpha = {block.alpha:.4f} rad, "
+    mass = "" if block.homogeneous else (f", centre of mass {block.h_cm:g} m up, radius of gyration "
+                                         f"{block.r_gyration:.4g} m")
+    head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m{mass}: alpha = {block.alpha:.4f} rad, "
             f"R = {block.R:.4f} m, p = {block.p:.4f} rad/s, e = {block.e:.4f}\n")
     if "record" in out:
         motion = (f"record {out['record']} ({out['floor']}) x {out['scale']:.4g}: PFA = {excitation.pfa:.4g} m/s² "

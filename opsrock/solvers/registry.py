@@ -52,6 +52,10 @@ class SolverInfo:
         ``excitation=None``, as the span of free rocking (a campaign, whose cases all move the floor, refuses it).
     histories : bool
         Returns time histories (``time``, ``theta``, ``theta_dot``) when ``record`` is True.
+    mass_distribution : bool
+        Models a block whose mass is not distributed as a homogeneous block's (``Block.cm_height``,
+        ``Block.radius_of_gyration``: its ``R``, ``alpha``, ``p``, ``I_O`` and ``e_R`` from them); False: such a
+        block is refused.
     restitution : bool
         Takes any restitution of the block (``restitution``, ``restitution_factor``, so the campaign's
         restitution laws and distributions); False: Housner's ``e_H`` only.
@@ -72,6 +76,7 @@ class SolverInfo:
     free_rocking: bool = True
     end_time_under_motion: bool = True
     histories: bool = True
+    mass_distribution: bool = False
     restitution: bool = True
     excitations: str = "any"
     compiled: bool = False
@@ -102,15 +107,15 @@ def _entry(name: str, settings: str, model: str, **declared: Any) -> SolverInfo:
 
 #: The registry: every solver by name (as scipy's ``solve_ivp`` keeps its ``METHODS``).
 METHODS: dict[str, SolverInfo] = {
-    "opensees": _entry("opensees", "OpenSeesSettings", "sdof", needs_opensees=True),
-    "sdof": _entry("sdof", "SDOFSettings", "sdof"),
-    "housner": _entry("housner", "HousnerSettings", "rigid"),
+    "opensees": _entry("opensees", "OpenSeesSettings", "sdof", needs_opensees=True, mass_distribution=True),
+    "sdof": _entry("sdof", "SDOFSettings", "sdof", mass_distribution=True),
+    "housner": _entry("housner", "HousnerSettings", "rigid", mass_distribution=True),
     "housner_fast": _entry("housner_fast", "HousnerFastSettings", "rigid", excitations="pulses_records",
-                           compiled=True, end_time_under_motion=False),
+                           compiled=True, end_time_under_motion=False, mass_distribution=True),
     "friction": _entry("friction", "FrictionSettings", "friction", friction=True, vertical=True,
                        excitations="pulses_records", compiled=True, end_time_under_motion=False),
     "moreau_jean": _entry("moreau_jean", "MoreauJeanSettings", "friction", friction=True, vertical=True,
-                          restitution=False, excitations="pulses_records", compiled=True, end_time_under_motion=False),
+                          restitution=False, mass_distribution=True, excitations="pulses_records", compiled=True, end_time_under_motion=False),
 }
 
 #: Solver names accepted by :func:`opsrock.solvers.simulate` and the command line.
@@ -145,8 +150,8 @@ def solver_names(**declared: Any) -> tuple[str, ...]:
 
 def check_model(name: str, block: Block, excitation: object) -> None:
     """Refuse what the solver ``name`` does not model, as its registry entry declares it: a block whose
-    base slips, a vertical floor motion, free rocking (``excitation=None``), a restitution other than
-    Housner's.
+    base slips, a mass distribution other than a homogeneous block's, a vertical floor motion, free rocking
+    (``excitation=None``), a restitution other than Housner's.
 
     Raises
     ------
@@ -158,6 +163,11 @@ def check_model(name: str, block: Block, excitation: object) -> None:
         raise ModelNotSupported(
             f"solver {name!r} models no-slip rocking; block {block.name or '<unnamed>'} has friction = "
             f"{block.friction!r}: use solver {_alternative('friction')} (or drop friction)")
+    if not block.homogeneous and not entry.mass_distribution:
+        raise ModelNotSupported(
+            f"solver {name!r} models a homogeneous block only; block {block.name or '<unnamed>'} has cm_height = "
+            f"{block.cm_height!r}, radius_of_gyration = {block.radius_of_gyration!r}: use solver "
+            f"{_mass_alternative(block)} (or drop cm_height and radius_of_gyration)", argument="solver")
     if excitation is not None and has_vertical(excitation) and not entry.vertical:
         raise ModelNotSupported(
             f"solver {name!r} takes horizontal floor motion only; the excitation has a vertical component: "
@@ -170,6 +180,12 @@ def check_model(name: str, block: Block, excitation: object) -> None:
         raise ModelNotSupported(
             f"solver {name!r} reproduces Housner's impact (e = e_H = {block.e_R:.6g}) and no other: block "
             f"{block.name or '<unnamed>'} has {given}; build it with restitution_factor=1.0 and no restitution")
+
+
+def _mass_alternative(block: Block) -> str:
+    """The first solver that models ``block``'s mass distribution (and its friction, if any), quoted."""
+    wanted = {"mass_distribution": True, **({"friction": True} if block.slips else {})}
+    return repr(solver_names(**wanted)[0])
 
 
 def _alternative(capability: str) -> str:

@@ -30,19 +30,23 @@ _HISTORY_EXTRA = 50_000
 
 
 def block_parameters(block: Block) -> tuple[float, float, float, float]:
-    """``(alpha, e / e_H, mu, mu_k)`` of ``block`` as the kernel takes them (``inf``: no slip).
+    """``(alpha, e / e_H, mu, mu_k)`` of ``block`` as the kernel takes them (``inf``: no slip). A block that lands
+    flat (``e_H <= 0``, :attr:`Block.lands_flat`) gets the factor 1: the kernel's impact law itself then lands it
+    flat (its rigid stick impulse would drive the old pivot into the floor), ``e = 0``.
 
     Raises
     ------
-    InputError
-        If Housner's ``e_H`` of the block is not positive (the impact law needs it).
+    ModelNotSupported
+        A block that lands flat given a ``restitution``: the impact law has no rebound to scale.
     """
-    if block.e_R <= 0.0:
-        raise InputError(f"block {block.name or '<unnamed>'}: e_R = 1 - 1.5 sin²(alpha) = {block.e_R:.4f} <= 0; "
-                         "the impact law needs a block with width/height < 1.414")
+    if block.lands_flat and block.restitution is not None:
+        raise ModelNotSupported(
+            f"solver {SOLVER_NAME!r}: block {block.name or '<unnamed>'} has e_R = {block.e_R:.4f} <= 0, so its impact "
+            f"lands it flat (e = 0); restitution = {block.restitution!r} has no rebound to scale: drop restitution",
+            argument="restitution")
     mu = math.inf if block.friction is None else block.friction
     mu_k = math.inf if block.friction_kinetic is None else block.friction_kinetic
-    return block.alpha, block.e / block.e_R, mu, mu_k
+    return block.alpha, 1.0 if block.lands_flat else block.e / block.e_R, mu, mu_k
 
 
 def excitation_parameters(block: Block, excitation: Pulse | Record | None, settings: FrictionSettings,

@@ -5,7 +5,9 @@ Coulomb friction (docs/friction.md: notation, the impact at ``theta = 0``, the r
 Everything here is per unit mass (the motion does not depend on the mass): positions in m, velocities
 in m/s and rad/s, impulses in m/s (N s per kg), energies in J/kg. The state is the centre of mass
 ``(x, y)`` in the floor frame and the clockwise rotation ``theta``; the floor's accelerations enter as
-the body force ``(-a_h, -(g + a_v), 0)``. ``M^-1 = diag(1, 1, 3 / R²)``.
+the body force ``(-a_h, -(g + a_v), 0)``. ``M^-1 = diag(1, 1, kappa / R²)``, ``kappa = R² / r²`` with ``r`` the
+radius of gyration about the centre of mass (3 for a homogeneous block); ``h`` is the height of the centre of
+mass above the base (half the height for a homogeneous block).
 
 Corner ``c = +1`` (right) / ``-1`` (left), with ``s = sin(theta)``, ``co = cos(theta)``:
 
@@ -417,7 +419,7 @@ def _step(state, a_h, a_v, dt, theta_mj, geom, mu_s, mu_k, stick_only, tol, gn, 
         gn[i], gt[i] = _rows(c, b, h, th)
     v = new[3:]
     ws, wi, wb, last = work
-    st = _impulses(vf, gn, gt, act, 3.0 / (R * R), R, mu_s, mu_k, stick_only, tol, dt * g, pn, pt, v, ws, wi, wb,
+    st = _impulses(vf, gn, gt, act, geom[4] / (R * R), R, mu_s, mu_k, stick_only, tol, dt * g, pn, pt, v, ws, wi, wb,
                    last)
     for i in range(3):
         new[i] = state[i] + dt * ((1.0 - theta_mj) * state[3 + i] + theta_mj * v[i])
@@ -475,8 +477,10 @@ def run(geom, fric, num, form, ah, av, sub, n_exc, tail_av, state, limits, hist_
 
     Parameters
     ----------
-    geom : float64[4]
-        ``(b, h, R, g)``: half-width, half-height, ``hypot(b, h)`` (m), gravity (m/s²).
+    geom : float64[5]
+        ``(b, h, R, g, kappa)``: half-width, height of the centre of mass above the base, ``hypot(b, h)`` (m),
+        gravity (m/s²), ``kappa = R² / r²`` (dimensionless; ``r`` the radius of gyration about the centre of
+        mass, ``kappa = 3`` for a homogeneous block).
     fric : float64[3]
         ``(mu_s, mu_k, infinite)``: static and kinetic coefficients; ``infinite`` 1.0 for ``mu = infinity``.
     num : float64[4]
@@ -536,7 +540,7 @@ def run(geom, fric, num, form, ah, av, sub, n_exc, tail_av, state, limits, hist_
         out[OUT_INPUT_WORK] -= a_h * (new[0] - state[0]) + a_v * (new[1] - state[1])
         if _contacts(new, geom, gt, act, pn, pt, touch, slip, vel_tol, lift_gap, out):
             dvx, dvy, dvt = new[3] - vf[0], new[4] - vf[1], new[5] - vf[2]
-            out[OUT_IMPACT_LOSS] += 0.5 * (dvx * dvx + dvy * dvy + R * R * dvt * dvt / 3.0)
+            out[OUT_IMPACT_LOSS] += 0.5 * (dvx * dvx + dvy * dvy + R * R * dvt * dvt / geom[4])
             out[OUT_IMPACTS] += 1.0
         state[:] = new
         k += 1
@@ -566,5 +570,6 @@ def run(geom, fric, num, form, ah, av, sub, n_exc, tail_av, state, limits, hist_
     out[OUT_X:OUT_X + 6] = state
     out[OUT_N_HIST] = j
     out[OUT_TIME] = k * dt
-    out[OUT_EVENT_TIME] = k * dt * math.sqrt(0.75 * geom[3] / R)  # in units of 1/p, p = sqrt(3 g / 4 R)
+    # in units of 1/p, p = sqrt(g R / (r² + R²)) = sqrt(kappa / (kappa + 1) g / R) (sqrt(3 g / 4 R) homogeneous)
+    out[OUT_EVENT_TIME] = k * dt * math.sqrt(geom[4] / (geom[4] + 1.0) * geom[3] / R)
     return status

@@ -91,7 +91,7 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     out = np.zeros(kn.OUT_SIZE)
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": dt}
     try:
-        kn.run(np.array([block.b, block.h, R, G]), fric, num, forcing.form, forcing.ah, forcing.av, forcing.sub,
+        kn.run(np.array([block.b, block.h_cm, R, G, inertia_ratio(block)]), fric, num, forcing.form, forcing.ah, forcing.av, forcing.sub,
                forcing.n_exc, forcing.tail_av, state.copy(), limits, every, *hist, out)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, block.alpha, f"{type(exc).__name__}: {exc}",
@@ -103,7 +103,7 @@ def _mechanical(block: Block, state: np.ndarray) -> tuple[float, float]:
     """Kinetic and potential energy (J) of ``state = (x, y, theta, x', y', theta')``; ``PE = m g (y - h)``."""
     _, y, _, vx, vy, vt = (float(v) for v in state)
     m = block.mass
-    return 0.5 * m * (vx * vx + vy * vy + block.R ** 2 / 3.0 * vt * vt), m * G * (y - block.h)
+    return 0.5 * m * (vx * vx + vy * vy + block.R ** 2 / inertia_ratio(block) * vt * vt), m * G * (y - block.h_cm)
 
 
 def _energy(block: Block, out: np.ndarray, state0: np.ndarray) -> dict[str, float]:
@@ -136,7 +136,7 @@ def _result(block: Block, out: np.ndarray, hist: list[np.ndarray], record: dict[
     contact = ContactSummary(
         first_mode=MODES[first] if first >= 0 else "rest", time_sliding=float(out[kn.OUT_TIME_SLIDING]),
         time_rocking=float(out[kn.OUT_TIME_ROCKING]), slide_max=float(out[kn.OUT_SLIDE_MAX]),
-        slide_residual=float(kn._slide_of(block.b, block.h, out[kn.OUT_X], out[kn.OUT_X + 2])),
+        slide_residual=float(kn._slide_of(block.b, block.h_cm, out[kn.OUT_X], out[kn.OUT_X + 2])),
         energy=_energy(block, out, state0))
     theta_max = float(out[kn.OUT_THETA_MAX])
     return RockingResult(
@@ -217,16 +217,22 @@ class _MoreauJeanRun(SolverRun):
         return _run(self, forcing, rocking_state(block, s.theta0, s.theta_dot0), tail=True)
 
 
+def inertia_ratio(block: Block) -> float:
+    """``kappa = R² / r²`` of ``block`` (dimensionless): the pivot distance over the radius of gyration about the
+    centre of mass, squared; exactly 3 for a homogeneous block (``I_cm = m R² / 3``)."""
+    return 3.0 if block.homogeneous else block.R**2 / block.r_gyration**2
+
+
 def rocking_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndarray:
     """``(x, y, theta, x', y', theta')`` of the block rocking on corner ``sgn(theta)`` (stuck, on the floor)
     with rotation ``theta`` (rad) and angular velocity ``theta_dot`` (rad/s); the pivot is where it
     was at rest, so the slide is zero."""
     c = 1.0 if theta >= 0.0 else -1.0
     phi = c * block.alpha - theta
-    x = c * block.b * (1.0 - math.cos(theta)) + block.h * math.sin(theta)
-    y = c * block.b * math.sin(theta) + block.h * math.cos(theta)
+    x = c * block.b * (1.0 - math.cos(theta)) + block.h_cm * math.sin(theta)
+    y = c * block.b * math.sin(theta) + block.h_cm * math.cos(theta)
     return np.array([x, y, theta, block.R * math.cos(phi) * theta_dot, block.R * math.sin(phi) * theta_dot,
                      theta_dot])
 
 
-__all__ = ["SOLVER_NAME", "rocking_state", "solve"]
+__all__ = ["SOLVER_NAME", "inertia_ratio", "rocking_state", "solve"]

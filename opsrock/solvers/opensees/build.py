@@ -109,7 +109,8 @@ def build_lumped(block: Block, excitation: Excitation, settings: OpenSeesSetting
     ops.node(3, 0.0, R)  # centre of mass
     ops.fix(1, 1, 1, 1)
     ops.fix(2, 1, 1, 0)
-    ops.mass(3, m, m, m * R**2 / 3.0)
+    # rotational mass about the centre of mass: m r² (m R² / 3 for a homogeneous block), so that I_O = m (r² + R²)
+    ops.mass(3, m, m, m * R**2 / 3.0 if block.homogeneous else m * block.r_gyration**2)
     ops.uniaxialMaterial(
         "ElasticMultiLinear", SPRING_MAT, 0.0, "-strain", *map(float, theta_tab), "-stress", *map(float, moment_tab)
     )

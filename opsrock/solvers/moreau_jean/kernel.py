@@ -68,7 +68,10 @@ OUT_MAX_PENETRATION = ST.OUT_COMMON + 14
 OUT_MAX_FLICKER_GAP = ST.OUT_COMMON + 15
 OUT_TIME = ST.OUT_COMMON + 16  # end of the run (s)
 OUT_FLICKER_STEPS = ST.OUT_COMMON + 17
-OUT_SIZE = ST.OUT_COMMON + 18
+#: Slip velocity (m/s) of a block whose run ended while it slid flat on a still floor with too little friction to
+#: stop it within the tail (0: it did not): the friction solver's ending of a slide that cannot stop.
+OUT_SLIP_END = ST.OUT_COMMON + 18
+OUT_SIZE = ST.OUT_COMMON + 19
 
 
 @numba.njit(cache=True)
@@ -559,6 +562,12 @@ def run(geom, fric, num, form, ah, av, sub, n_exc, tail_av, state, limits, hist_
             break
         still = max(abs(state[3]), abs(state[4]), R * abs(state[5])) < rest_vel
         resting = resting + 1 if (k >= n_exc and mode == MODE_REST and still) else 0
+        if k >= n_exc and max_tail >= 0 and not stick_only and mode == MODE_SLIDE and mu_k * h <= b and \
+                mu_k * (geom[3] + tail_av) * (n_exc + max_tail - k) * dt < abs(state[3]):
+            # sliding flat on a still floor, decelerated by mu_k (g + a_v) without tipping (mu_k <= b / h): it would
+            # still slide when the tail ends (a frictionless block, always): the run ends with the motion
+            out[OUT_SLIP_END] = state[3]
+            break
     if k % hist_every != 0:
         j = _record(j, hist_t.size, k * dt, state[2], state[5], _slide_of(b, h, state[0], state[2]),
                     hist_t, hist_th, hist_thd, hist_sl)

@@ -67,7 +67,7 @@ def solve_lumped_mass(
     """Lumped-mass form of the paper's Figure 2b, built in 2-D OpenSees.
 
     A pivot node with the same rotational spring and damper as :func:`solve`, a rigid link of
-    length ``R`` to a mass node carrying ``m`` on its translations and ``I_CM = m R^2 / 3`` on its
+    length ``R`` to a mass node carrying ``m`` on its translations and ``I_CM = m r^2`` (``m R^2 / 3`` homogeneous) on its
     rotation, and the horizontal force ``m a(t) cos(alpha)`` on the mass (the model is the
     mirror image of the block, so that ``theta`` keeps the sign convention of :func:`solve`).
     The excitation lever is therefore *not* an input: it follows from the geometry. Gravity is

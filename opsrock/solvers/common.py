@@ -587,6 +587,13 @@ class EventDrivenSolver(SolverRun):
 
 
 # --- the block's energy -------------------------------------------------------------------------------
+def inertia_ratio(block: Block) -> float:
+    """``kappa = R² / r²`` of ``block`` (dimensionless): the distance from a base corner to the centre of mass over
+    the radius of gyration about the centre of mass, squared; exactly 3 for a homogeneous block (``I_cm = m R² /
+    3``), so that the kernels written with it reproduce a homogeneous block's numbers bit for bit."""
+    return 3.0 if block.homogeneous else block.R**2 / block.r_gyration**2
+
+
 def potential_energy(block: Block, theta: np.ndarray | float) -> np.ndarray | float:
     """Potential energy of the rocking block ``m g R [cos(alpha - |theta|) - cos(alpha)]`` (J), zero when
     seated; ``theta`` in rad."""
@@ -749,5 +756,5 @@ def _merged(a: tuple[np.ndarray, ...], b: tuple[np.ndarray, ...]) -> tuple[np.nd
 
 __all__ = ["EventDrivenSolver", "History", "IVP_METHODS", "LONG_SOLVE_S", "SECONDS_PER_SEGMENT", "SHARED_SETTINGS", "ScipySettings", "SolverRun",
            "SolverSettings", "StopRun", "TAILS", "check_inputs", "event_driven_estimate", "first_exceedance",
-           "first_nonfinite_sample", "refuse_value", "timed_out",
+           "first_nonfinite_sample", "inertia_ratio", "refuse_value", "timed_out",
            "make_settings", "potential_energy", "rocking_energy", "setting_names", "settings_record"]

@@ -112,7 +112,7 @@ METHODS: dict[str, SolverInfo] = {
     "housner": _entry("housner", "HousnerSettings", "rigid", mass_distribution=True),
     "housner_fast": _entry("housner_fast", "HousnerFastSettings", "rigid", excitations="pulses_records",
                            compiled=True, end_time_under_motion=False, mass_distribution=True),
-    "friction": _entry("friction", "FrictionSettings", "friction", friction=True, vertical=True,
+    "friction": _entry("friction", "FrictionSettings", "friction", friction=True, vertical=True, mass_distribution=True,
                        excitations="pulses_records", compiled=True, end_time_under_motion=False),
     "moreau_jean": _entry("moreau_jean", "MoreauJeanSettings", "friction", friction=True, vertical=True,
                           restitution=False, mass_distribution=True, excitations="pulses_records", compiled=True, end_time_under_motion=False),

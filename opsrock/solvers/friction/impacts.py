@@ -9,7 +9,8 @@ impulse level (Moreau's impact law with friction for one contact):
   effective mass (Delassus) matrix and ``U = (U_N, U_T)`` the corner's velocity before; accepted if
   ``|P_T| <= mu P_N``. For a block that rocked without slip this is Housner's (1963) law: it
   conserves the angular momentum about ``c`` and gives ``theta'+ = e_H theta'-``,
-  ``e_H = 1 - 3/2 sin²(alpha)``;
+  ``e_H = 1 - 2 m b² / I_O`` (``1 - 3/2 sin²(alpha)`` for a homogeneous block); the mass distribution enters
+  as ``kap = R² / r²`` (:mod:`.modes`), the rotation's entry of the inverse mass matrix;
 * **slip**: ``P_T = -sig mu_k P_N`` with ``P_N = -U_N / (W_NN - sig mu_k W_NT)``, for the slip
   direction ``sig`` whose impulse is compressive and whose slip after is along ``sig``. It conserves
   nothing but dissipates (docs/friction.md).
@@ -35,16 +36,16 @@ _TOL = 1e-12
 
 
 @numba.njit(cache=True)
-def single_contact(gn, gt, u_n, u_t, mu_s, mu_k):
+def single_contact(gn, gt, u_n, u_t, mu_s, mu_k, kap):
     """Impulse ``(P_N, P_T, ok)`` at one corner whose velocity is ``(u_n < 0, u_t)`` (units of ``m R p``),
     stick if friction allows it, else slip. ``gn`` and ``gt`` are the rotation's entries of the corner's
     normal and tangential Jacobian rows (``h sin(theta) - c b cos(theta)`` and ``-(c b sin(theta) + h
-    cos(theta))``, over ``R``); with the mass matrix ``diag(1, 1, 1/3)`` the Delassus matrix is
-    ``W = [[1 + 3 gn², 3 gn gt], [3 gn gt, 1 + 3 gt²]]``."""
-    wnn = 1.0 + 3.0 * gn * gn
-    wtt = 1.0 + 3.0 * gt * gt
-    wnt = 3.0 * gn * gt
-    det = wnn * wtt - wnt * wnt  # = 4 + 3 (gn² + gt²) - ... > 0; exactly 4 at theta = 0
+    cos(theta))``, over ``R``); with the mass matrix ``diag(1, 1, 1/kap)`` the Delassus matrix is
+    ``W = [[1 + kap gn², kap gn gt], [kap gn gt, 1 + kap gt²]]`` (``kap = 3`` homogeneous)."""
+    wnn = 1.0 + kap * gn * gn
+    wtt = 1.0 + kap * gt * gt
+    wnt = kap * gn * gt
+    det = wnn * wtt - wnt * wnt  # = 1 + kap (gn² + gt²) > 0; exactly kap + 1 at theta = 0
     p_n = -(wtt * u_n - wnt * u_t) / det
     p_t = -(-wnt * u_n + wnn * u_t) / det
     if p_n > 0.0 and abs(p_t) <= mu_s * p_n * (1.0 + _TOL):
@@ -67,7 +68,7 @@ def single_contact(gn, gt, u_n, u_t, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
-def _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k):
+def _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k, kap):
     """Both corners land (``theta'+ = 0``, ``y'+ = 0``): ``(mode, sig, w+, ok)`` with the base at rest
     or sliding on at ``w+``; ``ok`` is False if no compressive pair of corner impulses does it."""
     p_n = -vy
@@ -75,8 +76,8 @@ def _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k):
         p_t = -vx
     else:
         p_t = -(1.0 if vx > 0.0 else -1.0) * mu_k * p_n
-    # angular impulse about the centre of mass: -om / 3 = -sa (P_+ - P_-) - ca P_T
-    diff = (om / 3.0 - ca * p_t) / sa
+    # angular impulse about the centre of mass: -om / kap = -sa (P_+ - P_-) - ca P_T
+    diff = (om / kap - ca * p_t) / sa
     p_plus = 0.5 * (p_n + diff)
     p_minus = 0.5 * (p_n - diff)
     tol = -_TOL * abs(p_n)
@@ -89,7 +90,7 @@ def _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
-def contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f):
+def contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f, kap):
     """The impact of a block at ``theta = 0`` whose centre of mass moves at ``(vx, vy)`` and turns at ``om``
     (units of ``R p``, ``p``): ``(mode, s, sig, om, w, ok)``.
 
@@ -103,10 +104,10 @@ def contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f):
         u_n = vy - c * sa * om
         if u_n >= 0.0:
             continue
-        p_n, p_t, ok = single_contact(-c * sa, -ca, u_n, vx - ca * om, mu_s, mu_k)
+        p_n, p_t, ok = single_contact(-c * sa, -ca, u_n, vx - ca * om, mu_s, mu_k, kap)
         if not ok:
             continue
-        om_after = om + 3.0 * (-c * sa * p_n - ca * p_t)
+        om_after = om + kap * (-c * sa * p_n - ca * p_t)
         if vy + p_n + c * sa * om_after < -_TOL * abs(u_n):  # the other corner, -c, would go into the floor
             continue
         w_after = vx + p_t - ca * om_after
@@ -117,29 +118,29 @@ def contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f):
         c = 1.0 if om > 0.0 else -1.0
         w = vx - ca * om
         return SLIDE_ROCK if w != 0.0 else ROCK, c, (1.0 if w > 0.0 else -1.0) if w != 0.0 else 0.0, om, w, True
-    mode, sig, w_after, ok = _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k)
+    mode, sig, w_after, ok = _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k, kap)
     return mode, 0.0, sig, 0.0, w_after, ok
 
 
 @numba.njit(cache=True)
-def impact(s, om, w, sa, ca, mu_s, mu_k, f):
+def impact(s, om, w, sa, ca, mu_s, mu_k, f, kap):
     """The state after corner ``-s`` strikes: ``(mode, s, sig, om, w, ok)`` (:func:`contact_at_zero`).
 
     ``om`` (< 0 along ``s``) and ``w`` are the rotation rate and the pivot's slip velocity just before.
     The new mode is ``ROCK`` or ``SLIDE_ROCK`` about ``-s`` (``sig`` the new pivot's slip direction),
     or, after a flat landing, ``REST`` or ``SLIDE``. ``ok`` is False if the law has no solution."""
-    return contact_at_zero(w + ca * om, s * sa * om, om, sa, ca, mu_s, mu_k, f)
+    return contact_at_zero(w + ca * om, s * sa * om, om, sa, ca, mu_s, mu_k, f, kap)
 
 
 @numba.njit(cache=True)
-def landing(th, om, vx, vy, sa, ca, mu_s, mu_k, f):
+def landing(th, om, vx, vy, sa, ca, mu_s, mu_k, f, kap):
     """A block in free flight lands: ``(mode, s, sig, om, w, ok)`` after the impact of its lower corner
     ``c = sgn(theta)`` (``theta``, ``om``: rotation and rate; ``vx``, ``vy``: the centre of mass's
     velocity relative to the floor, units of ``R p``), by the same law as :func:`impact` in the general
     position; at ``theta = 0`` by :func:`contact_at_zero`. The new mode
     rocks, or slide-rocks, about ``c`` (``w`` the corner's slip velocity)."""
     if th == 0.0:
-        return contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f)
+        return contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f, kap)
     c = 1.0 if th > 0.0 else -1.0
     sn, cs = math.sin(th), math.cos(th)
     gn = ca * sn - c * sa * cs
@@ -149,11 +150,11 @@ def landing(th, om, vx, vy, sa, ca, mu_s, mu_k, f):
     if u_n >= 0.0:  # grazing: no impulse
         p_n, p_t = 0.0, 0.0
     else:
-        p_n, p_t, ok = single_contact(gn, gt, u_n, u_t, mu_s, mu_k)
+        p_n, p_t, ok = single_contact(gn, gt, u_n, u_t, mu_s, mu_k, kap)
         if not ok:
             return REST, 0.0, 0.0, 0.0, 0.0, False
-    om_after = om + 3.0 * (gn * p_n + gt * p_t)
-    w_after = u_t + (1.0 + 3.0 * gt * gt) * p_t + 3.0 * gn * gt * p_n
+    om_after = om + kap * (gn * p_n + gt * p_t)
+    w_after = u_t + (1.0 + kap * gt * gt) * p_t + kap * gn * gt * p_n
     if abs(w_after) <= _TOL * max(abs(u_n), abs(u_t)):
         return ROCK, c, 0.0, f * om_after, 0.0, True
     return SLIDE_ROCK, c, (1.0 if w_after > 0.0 else -1.0), f * om_after, w_after, True

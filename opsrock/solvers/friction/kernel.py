@@ -69,10 +69,13 @@ P_G_CONST, P_G_TAIL, P_DTAU = 9, 10, 11
 P_H_NOM, P_H_TAIL, P_REST_VELOCITY, P_MAX_IMPACTS, P_MAX_STEPS, P_MAX_TAIL = 12, 13, 14, 15, 16, 17
 #: The start state: ``theta0`` (rad) and ``omega0`` (units of p), rocking on a stuck pivot.
 P_THETA0, P_OMEGA0 = 18, 19
-P_SIZE = 20
+#: The block's mass distribution ``kap = R² / r²`` (dimensionless, 3 for a homogeneous block; :mod:`.modes`).
+P_KAPPA = 20
+P_SIZE = 21
 
-# --- slots of the forcing context: a_h/g of the segment, 1 + a_v/g = g0 + g1 (tau - gt0), tail flag
-_FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL = 0, 1, 2, 3, 4, 5, 6, 7
+# --- slots of the forcing context: a_h/g of the segment, 1 + a_v/g = g0 + g1 (tau - gt0), tail flag, and the
+# block's kap (it travels with the context to every function that evaluates the equations)
+_FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL, _FC_KAPPA = 0, 1, 2, 3, 4, 5, 6, 7, 8
 
 #: Iterations allowed to an event location (Illinois with a bisection every fourth step).
 _EVENT_MAX_ITER = 100
@@ -92,7 +95,7 @@ def _floor(tau, fc):
 @numba.njit(cache=True)
 def _deriv(mode, s, sig, th, om, w, tau, fc, alpha, mu_k):
     ah, gv = _floor(tau, fc)
-    return accelerations(mode, s, sig, th, om, w, ah, gv, alpha, mu_k)
+    return accelerations(mode, s, sig, th, om, w, ah, gv, alpha, mu_k, fc[_FC_KAPPA])
 
 
 @numba.njit(cache=True)
@@ -124,8 +127,8 @@ def _event(ev, mode, s, sig, th, om, w, tau, fc, alpha, mu_s, mu_k):
     if mode == SLIDE:
         return sig * w if ev == 1 else gv
     if mode == SLIDE_ROCK:
-        return sig * w if ev == 1 else slide_rock_normal(s, sig, th, om, gv, alpha, mu_k)
-    f, n = rock_forces(s, th, om, ah, gv, alpha)
+        return sig * w if ev == 1 else slide_rock_normal(s, sig, th, om, gv, alpha, mu_k, fc[_FC_KAPPA])
+    f, n = rock_forces(s, th, om, ah, gv, alpha, fc[_FC_KAPPA])
     if ev == 2:
         return n
     return 1.0 if mu_s == math.inf else mu_s * n - abs(f)
@@ -197,24 +200,24 @@ def _next_departure(tau, level, form, k, nu, phase, tau_end, kvals, gvals, g_con
 
 
 @numba.njit(cache=True)
-def _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity):
+def _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity, kap):
     """The mode a block takes after an impact or a landing: seated if, at ``theta = 0``, the rotation
     left is below ``rest_velocity`` and pulled back; slide-rock if a stuck pivot cannot hold; a
     slide that tips (``mu_k > b/h``) turns into slide-rock. Returns ``(mode, s, sig, om, w, ok)``
     (``ok`` False: the contact force would be negative, the block takes off)."""
     if th == 0.0 and (mode == ROCK or mode == SLIDE_ROCK) and abs(om) < rest_velocity:
-        thdd = accelerations(mode, s, sig, 0.0, om, w, ah, gv, alpha, mu_k)[0]
+        thdd = accelerations(mode, s, sig, 0.0, om, w, ah, gv, alpha, mu_k, kap)[0]
         if s * thdd <= 0.0:
             if abs(w) < rest_velocity:
                 return REST, 0.0, 0.0, 0.0, 0.0, True
             mode, s, sig, om = SLIDE, 0.0, (1.0 if w > 0.0 else -1.0), 0.0
     if mode == ROCK:
-        f, n = rock_forces(s, th, om, ah, gv, alpha)
+        f, n = rock_forces(s, th, om, ah, gv, alpha, kap)
         if n <= 0.0:
             return mode, s, sig, om, w, False
         if abs(f) > mu_s * n:
             return SLIDE_ROCK, s, (-1.0 if f > 0.0 else 1.0), om, 0.0, True
-    if mode == SLIDE_ROCK and slide_rock_normal(s, sig, th, om, gv, alpha, mu_k) <= 0.0:
+    if mode == SLIDE_ROCK and slide_rock_normal(s, sig, th, om, gv, alpha, mu_k, kap) <= 0.0:
         return mode, s, sig, om, w, False
     if (mode == SLIDE or mode == REST) and gv <= 0.0:
         return mode, s, sig, om, w, False
@@ -226,9 +229,11 @@ def _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_veloc
 # --- free flight ------------------------------------------------------------------------------------
 @numba.njit(cache=True)
 def _flight_rhs(vx, vy, tau, fc):
-    """Accelerations of the centre of mass in flight (units of ``R p²``) and the input power."""
+    """Accelerations of the centre of mass in flight (units of ``R p²``: ``g / (R p²) = (kap + 1) / kap``, 4/3
+    homogeneous) and the input power."""
     ah, gv = _floor(tau, fc)
-    return -4.0 / 3.0 * ah, -4.0 / 3.0 * gv, -(ah * vx + (gv - 1.0) * vy)
+    c = (fc[_FC_KAPPA] + 1.0) / fc[_FC_KAPPA]
+    return -c * ah, -c * gv, -(ah * vx + (gv - 1.0) * vy)
 
 
 @numba.njit(cache=True)
@@ -357,19 +362,19 @@ def _peak(mode, s, sig, th, om, u, w, tau, d, om_end, fc, alpha, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
-def _energy(mode, s, th, om, w, fy, fvy, alpha, ca):
+def _energy(mode, s, th, om, w, fy, fvy, alpha, ca, kap):
     """Kinetic plus potential energy of any mode's state (units of ``m g R``)."""
     if mode == FLIGHT:
-        return 0.375 * (w * w + fvy * fvy + om * om / 3.0) + fy - ca
-    return kinetic_energy(mode, s, th, om, w, alpha) + potential_energy(s if mode != SLIDE else 0.0, th, alpha)
+        return 0.5 * (kap / (kap + 1.0)) * (w * w + fvy * fvy + om * om / kap) + fy - ca
+    return kinetic_energy(mode, s, th, om, w, alpha, kap) + potential_energy(s if mode != SLIDE else 0.0, th, alpha)
 
 
 @numba.njit(cache=True)
-def _unstoppable(w, mu_k, g_tail, time_left):
+def _unstoppable(w, mu_k, g_tail, time_left, kap):
     """Whether a pure slide at slip velocity ``w`` on the still floor after the excitation (closed form:
-    uniform deceleration ``4/3 mu_k g_tail``, units of ``R p²``) cannot stop within ``time_left`` (units of
-    ``1/p``): always with ``mu_k = 0`` and ``w != 0``."""
-    return 4.0 / 3.0 * mu_k * g_tail * time_left < abs(w)
+    uniform deceleration ``(kap + 1) / kap mu_k g_tail``, 4/3 homogeneous, units of ``R p²``) cannot stop within
+    ``time_left`` (units of ``1/p``): always with ``mu_k = 0`` and ``w != 0``."""
+    return (kap + 1.0) / kap * mu_k * g_tail * time_left < abs(w)
 
 
 @numba.njit(cache=True)
@@ -379,7 +384,7 @@ def _start_slip(mode, s, th, om, tau, fc, alpha, mu_s):
     if mode != ROCK or mu_s == math.inf:
         return 0.0
     ah, gv = _floor(tau, fc)
-    f, n = rock_forces(s, th, om, ah, gv, alpha)
+    f, n = rock_forces(s, th, om, ah, gv, alpha, fc[_FC_KAPPA])
     if abs(f) <= mu_s * n:
         return 0.0
     return -1.0 if f > 0.0 else 1.0
@@ -404,10 +409,11 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     g_const, g_tail, dtau = params[P_G_CONST], params[P_G_TAIL], params[P_DTAU]
     h_nom, h_tail, rest_velocity = params[P_H_NOM], params[P_H_TAIL], params[P_REST_VELOCITY]
     max_impacts, max_steps, max_tail = int(params[P_MAX_IMPACTS]), int(params[P_MAX_STEPS]), params[P_MAX_TAIL]
-    theta0, omega0 = params[P_THETA0], params[P_OMEGA0]
+    theta0, omega0, kap = params[P_THETA0], params[P_OMEGA0], params[P_KAPPA]
     sa, ca, beta = math.sin(alpha), math.cos(alpha), math.tan(alpha)
     level = min(mu_s, beta)
-    fc = np.zeros(8)
+    fc = np.zeros(9)
+    fc[_FC_KAPPA] = kap
     out[:] = 0.0
     tau, th, om, u, w, fy, fvy = 0.0, theta0, omega0, 0.0, 0.0, 0.0, 0.0
     mode, s, sig = REST, 0.0, 0.0
@@ -418,7 +424,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
         s = (1.0 if theta0 > 0.0 else -1.0) if theta0 != 0.0 else (1.0 if omega0 > 0.0 else -1.0)
         fresh_th = theta0 == 0.0
         out[OUT_ROCKED] = 1.0
-    out[OUT_ENERGY_START] = _energy(mode, s, th, om, w, fy, fvy, alpha, ca)
+    out[OUT_ENERGY_START] = _energy(mode, s, th, om, w, fy, fvy, alpha, ca, kap)
     theta_max, u_max = abs(theta0), 0.0
     win = wfr = eimp = t_slide = t_rock = t_fly = 0.0
     n_imp = n_steps = 0
@@ -454,7 +460,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             tau = t_up
             seg, seg_end = _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
             ah, gv = _floor(tau, fc)
-            mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k)
+            mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k, kap)
             if mode == REST:  # at the threshold to round-off: leave by the level that was exceeded
                 d = -1.0 if ah > 0.0 else 1.0
                 mode, s, sig = (SLIDE, 0.0, d) if mu_s < beta else (ROCK, d, 0.0)
@@ -470,11 +476,11 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
                 out[OUT_ROCKED] = 1.0
             n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
             continue
-        if tail and mode == SLIDE and _unstoppable(w, mu_k, g_tail, max_tail - (tau - tau_end)):
+        if tail and mode == SLIDE and _unstoppable(w, mu_k, g_tail, max_tail - (tau - tau_end), kap):
             # a pure slide on the still floor stops only after max_tail, or never: the case ends here
             # (docs/friction.md, the ending rule); a slip slower than rest_velocity is seated
             if abs(w) < rest_velocity:
-                eimp += 0.375 * w * w
+                eimp += 0.5 * (kap / (kap + 1.0)) * w * w
                 mode, w, sig = REST, 0.0, 0.0
             out[OUT_SLIP_END] = w
             break
@@ -510,17 +516,17 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             if n_imp > max_impacts:
                 status = STATUS_MAX_IMPACTS
                 break
-            e_before = _energy(FLIGHT, 0.0, th, om, w, fy, fvy, alpha, ca)
+            e_before = _energy(FLIGHT, 0.0, th, om, w, fy, fvy, alpha, ca, kap)
             x_cm, vx = u, w
-            mode, s, sig, om, w, ok = landing(th, om, vx, fvy, sa, ca, mu_s, mu_k, f_rest)
+            mode, s, sig, om, w, ok = landing(th, om, vx, fvy, sa, ca, mu_s, mu_k, f_rest, kap)
             if not ok:
                 status = STATUS_IMPACT_LAW
                 break
             # the base displacement: of the landing corner (its rest position is s b), or the centre's if flat
             u = x_cm if th == 0.0 else x_cm + s * sa * math.cos(th) - ca * math.sin(th) - s * sa
             ah, gv = _floor(tau, fc)
-            mode, s, sig, om, w, ok = _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity)
-            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca)
+            mode, s, sig, om, w, ok = _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity, kap)
+            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca, kap)
             if not ok:
                 takeoff = True
                 continue
@@ -549,7 +555,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
         if undeveloped:
             # the new mode does not develop within 1e-14/p: drop the part that does not (the rotation
             # or the slip), or both
-            e_before = _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca)
+            e_before = _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca, kap)
             rotates = fresh_th and s * y1[0] > 0.0
             slips = (fresh_w and sig * y1[3] > 0.0) or (not fresh_w and w != 0.0)
             if fresh_th and not rotates:
@@ -561,7 +567,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
                 mode, w, sig = REST, 0.0, 0.0
             else:
                 mode, w, sig = ROCK, 0.0, 0.0
-            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca)
+            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca, kap)
             fresh_th, fresh_w = False, False
             continue
         if not (math.isfinite(y1[0]) and math.isfinite(y1[1]) and math.isfinite(y1[2]) and math.isfinite(y1[3])):
@@ -601,14 +607,14 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             if n_imp > max_impacts:
                 status = STATUS_MAX_IMPACTS
                 break
-            e_before = _energy(mode, s, 0.0, om, w, 0.0, 0.0, alpha, ca)
-            mode, s, sig, om, w, ok = impact(s, om, w, sa, ca, mu_s, mu_k, f_rest)
+            e_before = _energy(mode, s, 0.0, om, w, 0.0, 0.0, alpha, ca, kap)
+            mode, s, sig, om, w, ok = impact(s, om, w, sa, ca, mu_s, mu_k, f_rest, kap)
             if not ok:
                 status = STATUS_IMPACT_LAW
                 break
             th = 0.0
-            mode, s, sig, om, w, ok = _settle(mode, s, sig, 0.0, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity)
-            eimp += e_before - _energy(mode, s, 0.0, om, w, 0.0, 0.0, alpha, ca)
+            mode, s, sig, om, w, ok = _settle(mode, s, sig, 0.0, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity, kap)
+            eimp += e_before - _energy(mode, s, 0.0, om, w, 0.0, 0.0, alpha, ca, kap)
             if not ok:
                 takeoff = True
                 continue
@@ -616,10 +622,10 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             fresh_w = mode == SLIDE_ROCK and w == 0.0
         elif ev == 1:  # stick-slip
             if mode == ROCK:
-                f, _ = rock_forces(s, th, om, ah, gv, alpha)
+                f, _ = rock_forces(s, th, om, ah, gv, alpha, kap)
                 mode, sig, w, fresh_w = SLIDE_ROCK, (-1.0 if f > 0.0 else 1.0), 0.0, True
             elif mode == SLIDE_ROCK:
-                f, n = rock_forces(s, th, om, ah, gv, alpha)
+                f, n = rock_forces(s, th, om, ah, gv, alpha, kap)
                 w = 0.0
                 if abs(f) <= mu_s * n:
                     mode, sig = ROCK, 0.0
@@ -627,7 +633,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
                     sig, fresh_w = (-1.0 if f > 0.0 else 1.0), True
             else:
                 w = 0.0
-                mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k)
+                mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k, kap)
                 if mode == FLIGHT:
                     mode, takeoff = SLIDE, True
                     continue
@@ -653,7 +659,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     out[OUT_TIME_SLIDING], out[OUT_TIME_ROCKING], out[OUT_SLIDE_MAX], out[OUT_SLIDE_END] = t_slide, t_rock, u_max, u
     out[OUT_TIME_FLIGHT] = t_fly
     out[OUT_INPUT_WORK], out[OUT_FRICTION_WORK], out[OUT_IMPACT_LOSS] = win, wfr, eimp
-    total = _energy(mode, s, th, om, w, fy, fvy, alpha, ca)
+    total = _energy(mode, s, th, om, w, fy, fvy, alpha, ca, kap)
     out[OUT_POTENTIAL] = fy - ca if mode == FLIGHT else potential_energy(s if mode != SLIDE else 0.0, th, alpha)
     out[OUT_KINETIC] = total - out[OUT_POTENTIAL]
 

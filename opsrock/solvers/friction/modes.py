@@ -1,9 +1,12 @@
 """The equations of motion of each contact mode, compiled (numba), in the units of the kernel.
 
-Units: time ``tau = p t`` (``p = sqrt(3 g / 4 R)``), lengths in ``R``, floor accelerations in ``g``
+Units: time ``tau = p t`` (``p = sqrt(m g R / I_O)``), lengths in ``R``, floor accelerations in ``g``
 (``ah = a_h / g``; ``gv = 1 + a_v / g``, the effective gravity), forces in ``m g``, energies in
-``m g R``. With these, the rocking equation has no constants left: ``theta'' = -(gv sin(phi) + ah
-cos(phi))``, ``phi = s alpha - theta``, and the kinetic energy is ``3/8 (x'² + y'² + theta'²/3)``.
+``m g R``. The block's mass distribution enters as ``kap = R² / r²`` (``r`` the radius of gyration about
+the centre of mass; 3 for a homogeneous block), through ``k = R p² / g = kap / (kap + 1)`` (3/4
+homogeneous) and ``1 / k``. With these, the rocking equation has no constants left: ``theta'' = -(gv
+sin(phi) + ah cos(phi))``, ``phi = s alpha - theta``, and the kinetic energy is ``k/2 (x'² + y'² +
+theta'²/kap)`` (``3/8 (x'² + y'² + theta'²/3)`` homogeneous).
 
 Generalised state of a moving mode: rotation ``th`` and its rate ``om``; the base's horizontal
 displacement relative to the floor ``u`` (the pivot corner's while one corner is up, the whole
@@ -26,57 +29,63 @@ FLIGHT = 4
 
 
 @numba.njit(cache=True)
-def accelerations(mode, s, sig, th, om, w, ah, gv, alpha, mu_k):
+def accelerations(mode, s, sig, th, om, w, ah, gv, alpha, mu_k, kap):
     """``(theta'', u'', input power, friction power)`` of a moving mode (``SLIDE``, ``ROCK``,
     ``SLIDE_ROCK``) at one instant; pivot ``s`` and slip direction ``sig`` are +-1. The powers are the
-    rates of the floor's inertial work and of the friction dissipation (units of ``m g R`` per tau)."""
+    rates of the floor's inertial work and of the friction dissipation (units of ``m g R`` per tau); ``kap``
+    as the module docstring."""
+    c = (kap + 1.0) / kap  # 1 / k, 4/3 homogeneous
     if mode == SLIDE:
-        return 0.0, 4.0 / 3.0 * (-ah - sig * mu_k * gv), -ah * w, mu_k * gv * abs(w)
+        return 0.0, c * (-ah - sig * mu_k * gv), -ah * w, mu_k * gv * abs(w)
     phi = s * alpha - th
     sp = math.sin(phi)
     cp = math.cos(phi)
     av = gv - 1.0
     if mode == ROCK:
         return -(gv * sp + ah * cp), 0.0, -(ah * cp + av * sp) * om, 0.0
+    k = kap / (kap + 1.0)
     q = sp - mu_k * sig * cp
-    thdd = -4.0 / 3.0 * q * (gv - 0.75 * om * om * cp) / (1.0 / 3.0 + sp * q)
-    normal = gv + 0.75 * (sp * thdd - cp * om * om)
-    udd = 4.0 / 3.0 * (-ah - mu_k * sig * normal) - cp * thdd - sp * om * om
+    thdd = -c * q * (gv - k * om * om * cp) / (1.0 / kap + sp * q)
+    normal = gv + k * (sp * thdd - cp * om * om)
+    udd = c * (-ah - mu_k * sig * normal) - cp * thdd - sp * om * om
     return thdd, udd, -ah * (w + cp * om) - av * sp * om, mu_k * normal * abs(w)
 
 
 @numba.njit(cache=True)
-def rock_forces(s, th, om, ah, gv, alpha):
+def rock_forces(s, th, om, ah, gv, alpha, kap):
     """``(F, N)``: the horizontal and vertical force of the floor on a stuck pivot ``s`` while the
     block rocks (units of ``m g``; ``F`` positive along +x). Rocking needs ``N > 0`` and ``|F| <= mu N``."""
     phi = s * alpha - th
     sp = math.sin(phi)
     cp = math.cos(phi)
     thdd = -(gv * sp + ah * cp)
-    return ah + 0.75 * (cp * thdd + sp * om * om), gv + 0.75 * (sp * thdd - cp * om * om)
+    k = kap / (kap + 1.0)
+    return ah + k * (cp * thdd + sp * om * om), gv + k * (sp * thdd - cp * om * om)
 
 
 @numba.njit(cache=True)
-def slide_rock_normal(s, sig, th, om, gv, alpha, mu_k):
+def slide_rock_normal(s, sig, th, om, gv, alpha, mu_k, kap):
     """``N``: the normal force on a slipping pivot ``s`` (slip direction ``sig``), units of ``m g``."""
     phi = s * alpha - th
     sp = math.sin(phi)
     cp = math.cos(phi)
+    c, k = (kap + 1.0) / kap, kap / (kap + 1.0)
     q = sp - mu_k * sig * cp
-    thdd = -4.0 / 3.0 * q * (gv - 0.75 * om * om * cp) / (1.0 / 3.0 + sp * q)
-    return gv + 0.75 * (sp * thdd - cp * om * om)
+    thdd = -c * q * (gv - k * om * om * cp) / (1.0 / kap + sp * q)
+    return gv + k * (sp * thdd - cp * om * om)
 
 
 @numba.njit(cache=True)
-def critical_friction(lam, beta):
+def critical_friction(lam, beta, kap):
     """The static friction a block at rest needs to start rocking without slip when
-    ``|a_h| / (g + a_v) = lam`` (``> beta = b/h``): ``[lam (1 + 4 beta²) + 3 beta] / [4 + beta² + 3 lam beta]``
-    (docs/friction.md, mode initiation)."""
-    return (lam * (1.0 + 4.0 * beta * beta) + 3.0 * beta) / (4.0 + beta * beta + 3.0 * lam * beta)
+    ``|a_h| / (g + a_v) = lam`` (``> beta = b/h``): ``[lam (1 + (kap + 1) beta²) + kap beta] / [kap + 1 + beta² +
+    kap lam beta]``, ``[lam (1 + 4 beta²) + 3 beta] / [4 + beta² + 3 lam beta]`` for a homogeneous block (``kap =
+    3``; docs/friction.md, mode initiation)."""
+    return (lam * (1.0 + (kap + 1.0) * beta * beta) + kap * beta) / ((kap + 1.0) + beta * beta + kap * lam * beta)
 
 
 @numba.njit(cache=True)
-def start_mode(ah, gv, beta, mu_s, mu_k):
+def start_mode(ah, gv, beta, mu_s, mu_k, kap):
     """The mode a block at rest (or whose base has just stopped slipping) takes under ``ah``, ``gv``:
     ``(mode, s, sig)`` with the pivot ``s`` and slip direction ``sig`` (0 where they do not apply).
 
@@ -91,7 +100,7 @@ def start_mode(ah, gv, beta, mu_s, mu_k):
     d = -1.0 if ah > 0.0 else 1.0
     if mu_s < beta:
         return SLIDE, 0.0, d
-    if mu_s >= critical_friction(mag / gv, beta):
+    if mu_s >= critical_friction(mag / gv, beta, kap):
         return ROCK, d, 0.0
     if mu_k <= beta * (1.0 + 1e-12):  # b/h from atan2 and back may miss mu_k = b/h by an ulp
         return SLIDE, 0.0, d
@@ -99,16 +108,17 @@ def start_mode(ah, gv, beta, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
-def kinetic_energy(mode, s, th, om, w, alpha):
+def kinetic_energy(mode, s, th, om, w, alpha, kap):
     """Kinetic energy of a mode's state (units of ``m g R``)."""
     if mode == REST:
         return 0.0
+    half_k = 0.5 * (kap / (kap + 1.0))  # 3/8 homogeneous
     if mode == SLIDE:
-        return 0.375 * w * w
+        return half_k * w * w
     phi = s * alpha - th
     vx = w + math.cos(phi) * om
     vy = math.sin(phi) * om
-    return 0.375 * (vx * vx + vy * vy + om * om / 3.0)
+    return half_k * (vx * vx + vy * vy + om * om / kap)
 
 
 @numba.njit(cache=True)

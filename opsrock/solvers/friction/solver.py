@@ -9,12 +9,12 @@ import numpy as np
 
 from opsrock.block import Block
 from opsrock.constants import G
-from opsrock.errors import InputError, InputTypeError, ModelNotSupported
+from opsrock.errors import InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
 from opsrock.excitations.vertical import check_free_fall
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
-from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
+from opsrock.solvers.common import SolverRun, check_inputs, inertia_ratio, make_settings, settings_record
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, pulse_forcing
 from opsrock.solvers.friction import kernel as K
 from opsrock.solvers.friction.settings import DEFAULT_TAIL_DTAU, FrictionSettings
@@ -90,6 +90,7 @@ def case_parameters(block: Block, excitation: Pulse | Record | None,
     params[K.P_H_TAIL], params[K.P_REST_VELOCITY] = settings.max_dtau, settings.rest_velocity
     params[K.P_MAX_IMPACTS], params[K.P_MAX_STEPS], params[K.P_MAX_TAIL] = settings.max_impacts, settings.step_limit, tail
     params[K.P_THETA0], params[K.P_OMEGA0] = settings.theta0, settings.theta_dot0 / block.p
+    params[K.P_KAPPA] = inertia_ratio(block)
     return params, kvals, gvals
 
 

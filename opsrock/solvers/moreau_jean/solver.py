@@ -13,7 +13,7 @@ from opsrock.constants import OVERTURNING_ANGLE, G
 from opsrock.errors import InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
-from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
+from opsrock.solvers.common import SolverRun, check_inputs, inertia_ratio, make_settings, settings_record
 from opsrock.solvers.moreau_jean import kernel as kn
 from opsrock.solvers.moreau_jean.settings import DEFAULT_TAIL_DTAU, MoreauJeanSettings
 from opsrock.solvers.status import REASONS, failure_of
@@ -217,12 +217,6 @@ class _MoreauJeanRun(SolverRun):
         return _run(self, forcing, rocking_state(block, s.theta0, s.theta_dot0), tail=True)
 
 
-def inertia_ratio(block: Block) -> float:
-    """``kappa = R² / r²`` of ``block`` (dimensionless): the pivot distance over the radius of gyration about the
-    centre of mass, squared; exactly 3 for a homogeneous block (``I_cm = m R² / 3``)."""
-    return 3.0 if block.homogeneous else block.R**2 / block.r_gyration**2
-
-
 def rocking_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndarray:
     """``(x, y, theta, x', y', theta')`` of the block rocking on corner ``sgn(theta)`` (stuck, on the floor)
     with rotation ``theta`` (rad) and angular velocity ``theta_dot`` (rad/s); the pivot is where it
@@ -235,4 +229,4 @@ def rocking_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndar
                      theta_dot])
 
 
-__all__ = ["SOLVER_NAME", "inertia_ratio", "rocking_state", "solve"]
+__all__ = ["SOLVER_NAME", "rocking_state", "solve"]

@@ -56,6 +56,10 @@ class SolverInfo:
         Models a block whose mass is not distributed as a homogeneous block's (``Block.cm_height``,
         ``Block.radius_of_gyration``: its ``R``, ``alpha``, ``p``, ``I_O`` and ``e_R`` from them); False: such a
         block is refused.
+    flat_landing : bool
+        Models an impact that leaves no rotation (``e = 0``: a block with ``e_R <= 0``, :attr:`Block.lands_flat`,
+        which lands flat); False: such a block is refused (the SDOF model's damper keeps ``e²`` of the energy per
+        passage through its band, and no finite damper keeps none).
     restitution : bool
         Takes any restitution of the block (``restitution``, ``restitution_factor``, so the campaign's
         restitution laws and distributions); False: Housner's ``e_H`` only.
@@ -77,6 +81,7 @@ class SolverInfo:
     end_time_under_motion: bool = True
     histories: bool = True
     mass_distribution: bool = False
+    flat_landing: bool = True
     restitution: bool = True
     excitations: str = "any"
     compiled: bool = False
@@ -107,8 +112,9 @@ def _entry(name: str, settings: str, model: str, **declared: Any) -> SolverInfo:
 
 #: The registry: every solver by name (as scipy's ``solve_ivp`` keeps its ``METHODS``).
 METHODS: dict[str, SolverInfo] = {
-    "opensees": _entry("opensees", "OpenSeesSettings", "sdof", needs_opensees=True, mass_distribution=True),
-    "sdof": _entry("sdof", "SDOFSettings", "sdof", mass_distribution=True),
+    "opensees": _entry("opensees", "OpenSeesSettings", "sdof", needs_opensees=True, mass_distribution=True,
+                       flat_landing=False),
+    "sdof": _entry("sdof", "SDOFSettings", "sdof", mass_distribution=True, flat_landing=False),
     "housner": _entry("housner", "HousnerSettings", "rigid", mass_distribution=True),
     "housner_fast": _entry("housner_fast", "HousnerFastSettings", "rigid", excitations="pulses_records",
                            compiled=True, end_time_under_motion=False, mass_distribution=True),
@@ -150,7 +156,8 @@ def solver_names(**declared: Any) -> tuple[str, ...]:
 
 def check_model(name: str, block: Block, excitation: object) -> None:
     """Refuse what the solver ``name`` does not model, as its registry entry declares it: a block whose
-    base slips, a mass distribution other than a homogeneous block's, a vertical floor motion, free rocking
+    base slips, a mass distribution other than a homogeneous block's, a block that lands flat (``e = 0``), a
+    vertical floor motion, free rocking
     (``excitation=None``), a restitution other than Housner's.
 
     Raises
@@ -168,6 +175,11 @@ def check_model(name: str, block: Block, excitation: object) -> None:
             f"solver {name!r} models a homogeneous block only; block {block.name or '<unnamed>'} has cm_height = "
             f"{block.cm_height!r}, radius_of_gyration = {block.radius_of_gyration!r}: use solver "
             f"{_mass_alternative(block)} (or drop cm_height and radius_of_gyration)", argument="solver")
+    if block.e == 0.0 and not entry.flat_landing:
+        raise ModelNotSupported(
+            f"solver {name!r} models an impact by a damper that keeps e² of the energy; block "
+            f"{block.name or '<unnamed>'} ({block.width:g} x {block.height:g} m) has e_R = {block.e_R:.4f} <= 0 and "
+            f"lands flat (e = 0): use solver {_alternative('flat_landing')}, or give its restitution", argument="solver")
     if excitation is not None and has_vertical(excitation) and not entry.vertical:
         raise ModelNotSupported(
             f"solver {name!r} takes horizontal floor motion only; the excitation has a vertical component: "

@@ -193,8 +193,11 @@ BAD_BLOCKS = [
     ('name = "stocky"', 'name = "a/b"', "block[1].name", "'a/b'"),
     ('reason = "test"', "colour = 1", "block[0].colour", "1"),
     ('reason = "test"', "restitution_factor = 1.5", "block[0]", "{'width': 0.4, 'height': 2.2}"),
-    # too stocky for Housner's model: e_R = 1 - 1.5 sin²(alpha) <= 0 (Block's own check)
-    ("width = 0.50", "width = 3.0", "block[1]", "{'width': 3.0, 'height': 1.15}"),
+    # a mass distribution the block cannot have (Block's own checks; issue 32: a block too stocky for Housner's
+    # e_R is now a valid block that lands flat, tests/solvers/test_wide_blocks.py)
+    ("width = 0.50", "width = 0.50\ncm_height = 2.0", "block[1].cm_height", "2.0"),
+    ("width = 0.50", "width = 0.50\nradius_of_gyration = 5.0", "block[1].radius_of_gyration", "5.0"),
+    ("width = 0.50", 'width = 0.50\ncm_height = "low"', "block[1].cm_height", "'low'"),
 ]
 
 

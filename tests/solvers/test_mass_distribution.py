@@ -174,3 +174,23 @@ def test_homogeneous_values_given_explicitly_change_nothing():
         a = simulate(Block(0.5, 2.0, **kw), pulse, solver=solver)
         b = simulate(Block(0.5, 2.0, cm_height=1.0, radius_of_gyration=same.r_gyration, **kw), pulse, solver=solver)
         assert b.theta_max == pytest.approx(a.theta_max, rel=1e-9, abs=1e-12)
+
+
+@pytest.mark.parametrize("kappa", [3.0, 1.5, 8.0])
+@pytest.mark.parametrize("lam, beta", [(0.3, 0.25), (0.9, 0.6), (2.5, 1.2)])
+def test_critical_friction_solves_newton_euler(kappa, lam, beta):
+    """The friction the floor must supply when a block at rest starts rocking without slip (friction kernel,
+    modes.critical_friction) against a direct Newton-Euler solve at onset: unknowns theta'', F, N with the pivot
+    stuck, centre of mass at (-b, h) from the pivot, I_cm = m R² / kappa, floor acceleration -lam g (m = g = R
+    = 1). A linear solve: agreement to 1e-12."""
+    from opsrock.solvers.friction.modes import critical_friction
+
+    alpha = math.atan(beta)
+    sa, ca = math.sin(alpha), math.cos(alpha)
+    # rows: m x_G'' = F - m a_h with x_G'' = ca theta''; m y_G'' = N - m g with y_G'' = sa theta'';
+    # I_cm theta'' = -(sa N + ca F) (the moment of the pivot's force about the centre of mass)
+    a = np.array([[ca, -1.0, 0.0], [sa, 0.0, -1.0], [1.0 / kappa, ca, sa]])
+    rhs = np.array([lam, -1.0, 0.0])
+    thdd, f, n = np.linalg.solve(a, rhs)
+    assert lam > beta and thdd > 0.0 and n > 0.0  # above the uplift threshold: it starts to rock
+    assert critical_friction(lam, beta, kappa) == pytest.approx(abs(f) / n, rel=1e-12)

@@ -47,14 +47,42 @@ def test_bad_block_input_names_the_argument(kwargs, name):
         Block(**kwargs)
 
 
-def test_block_refuses_non_numbers_and_too_stocky_blocks():
+def test_block_refuses_non_numbers_and_takes_wide_blocks():
     with pytest.raises(TypeError, match="width"):
         Block(width="wide", height=2.0)  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="height"):
         Block(width=0.4, height=True)  # type: ignore[arg-type]
-    # e_R = 1 - 1.5 sin²(alpha) <= 0 for alpha >= asin(sqrt(2/3)) = 0.9553 rad (width/height >= 1.414)
-    with pytest.raises(ValueError, match="too stocky"):
-        Block(width=3.0, height=2.0)
+    # e_R = 1 - 1.5 sin²(alpha) <= 0 for alpha >= asin(sqrt(2/3)) = 0.9553 rad (width/height >= 1.414): a valid
+    # block (issue 32) that lands flat, e = 0 (docs/modelling.md, "Wide blocks")
+    wide = Block(width=3.0, height=2.0)
+    assert wide.e_R == pytest.approx(1 - 1.5 * math.sin(math.atan(1.5)) ** 2, rel=1e-14) and wide.e_R < 0.0
+    assert wide.lands_flat and wide.e == 0.0
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    ({"cm_height": 2.5}, "cm_height"), ({"cm_height": 0.0}, "cm_height"), ({"cm_height": math.nan}, "cm_height"),
+    ({"cm_height": -0.1}, "cm_height"), ({"radius_of_gyration": 0.0}, "radius_of_gyration"),
+    ({"radius_of_gyration": math.inf}, "radius_of_gyration"),
+    # all the mass at the far corner from a centre of mass 0.1 m up: r <= hypot(0.25, 1.9) = 1.9164 m
+    ({"cm_height": 0.1, "radius_of_gyration": 1.92}, "radius_of_gyration"),
+])
+def test_impossible_mass_distributions_are_refused(kwargs, name):
+    with pytest.raises(ValueError, match=name) as info:
+        Block(0.5, 2.0, **kwargs)
+    assert info.value.argument == name
+
+
+def test_mass_distribution_closed_forms():
+    """R, alpha, I_O (parallel axes), p = sqrt(m g R / I_O), e_R = 1 - 2 m b² / I_O from their definitions, and
+    the uplift acceleration g b / h_cm (round-off only: 1e-15)."""
+    b = Block(0.5, 2.0, mass=3.0, cm_height=0.7, radius_of_gyration=0.5)
+    R = math.hypot(0.25, 0.7)
+    assert not b.homogeneous and b.h_cm == 0.7 and b.r_gyration == 0.5
+    assert b.R == pytest.approx(R, rel=1e-15) and b.alpha == pytest.approx(math.atan(0.25 / 0.7), rel=1e-15)
+    assert b.I_O == pytest.approx(3.0 * (0.25 + R * R), rel=1e-15)
+    assert b.p == pytest.approx(math.sqrt(3.0 * 9.81 * R / b.I_O), rel=1e-15)
+    assert b.e_R == pytest.approx(1.0 - 2.0 * 3.0 * 0.0625 / b.I_O, rel=1e-15)
+    assert b.uplift_acceleration == pytest.approx(9.81 * 0.25 / 0.7, rel=1e-15)
 
 
 def test_pulse_from_ratios_round_trips_and_derived_values():

@@ -180,6 +180,11 @@ def check_model(name: str, block: Block, excitation: object) -> None:
             f"solver {name!r} models an impact by a damper that keeps e² of the energy; block "
             f"{block.name or '<unnamed>'} ({block.width:g} x {block.height:g} m) has e_R = {block.e_R:.4f} <= 0 and "
             f"lands flat (e = 0): use solver {_alternative('flat_landing')}, or give its restitution", argument="solver")
+    if block.lands_flat and block.restitution is not None and entry.model == "friction":
+        raise ModelNotSupported(
+            f"solver {name!r}: block {block.name or '<unnamed>'} has e_R = {block.e_R:.4f} <= 0, so its corner "
+            f"impulses land it flat (e = 0); restitution = {block.restitution!r} has no rebound to scale: drop "
+            "restitution", argument="restitution")
     if excitation is not None and has_vertical(excitation) and not entry.vertical:
         raise ModelNotSupported(
             f"solver {name!r} takes horizontal floor motion only; the excitation has a vertical component: "

@@ -107,6 +107,20 @@ def test_the_sdof_model_refuses_a_block_that_lands_flat():
 
 
 def test_the_friction_solver_refuses_a_restitution_it_cannot_apply():
-    with pytest.raises(ModelNotSupported, match="lands it flat") as info:
+    with pytest.raises(ModelNotSupported, match="land it flat") as info:
         friction.solve(Block(1.6, 1.0, restitution=0.5, friction=0.5), OneSinePulse(3.0, 10.0))
     assert info.value.argument == "restitution"
+
+
+def test_a_scene_refuses_the_rebound_when_it_is_loaded(tmp_path):
+    """The same refusal from the registry's check, when the scene is loaded (not case by case)."""
+    from opsrock.campaign.scene import load_scene
+    from opsrock.errors import SceneError
+
+    (tmp_path / "blocks.toml").write_text('[[block]]\nname = "crate"\nwidth = 1.6\nheight = 1.0\nrestitution = 0.5\n'
+                                          'friction = 0.5\n')
+    (tmp_path / "scene.toml").write_text('name = "t"\nblocks = "blocks.toml"\n[solver]\nname = "friction"\n'
+                                         '[grid.freq_ratio]\nvalues = [3.0]\n[grid.pfa_ratio]\nvalues = [1.5]\n')
+    with pytest.raises(SceneError, match="land it flat") as info:
+        load_scene(tmp_path / "scene.toml")
+    assert info.value.field == "solver.name"

@@ -32,18 +32,8 @@ _HISTORY_EXTRA = 50_000
 def block_parameters(block: Block) -> tuple[float, float, float, float]:
     """``(alpha, e / e_H, mu, mu_k)`` of ``block`` as the kernel takes them (``inf``: no slip). A block that lands
     flat (``e_H <= 0``, :attr:`Block.lands_flat`) gets the factor 1: the kernel's impact law itself then lands it
-    flat (its rigid stick impulse would drive the old pivot into the floor), ``e = 0``.
-
-    Raises
-    ------
-    ModelNotSupported
-        A block that lands flat given a ``restitution``: the impact law has no rebound to scale.
-    """
-    if block.lands_flat and block.restitution is not None:
-        raise ModelNotSupported(
-            f"solver {SOLVER_NAME!r}: block {block.name or '<unnamed>'} has e_R = {block.e_R:.4f} <= 0, so its impact "
-            f"lands it flat (e = 0); restitution = {block.restitution!r} has no rebound to scale: drop restitution",
-            argument="restitution")
+    flat (its rigid stick impulse would drive the old pivot into the floor), ``e = 0``; such a block with a
+    ``restitution`` of its own is refused before (:func:`opsrock.solvers.registry.check_model`)."""
     mu = math.inf if block.friction is None else block.friction
     mu_k = math.inf if block.friction_kinetic is None else block.friction_kinetic
     return block.alpha, 1.0 if block.lands_flat else block.e / block.e_R, mu, mu_k

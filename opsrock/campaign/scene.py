@@ -62,6 +62,7 @@ from opsrock.solvers.registry import METHODS, capabilities, check_model, solver_
 
 if TYPE_CHECKING:
     from opsrock.campaign.records import RecordSet
+    from opsrock.inventory.friction import FrictionDistribution
 
 #: Version of the scene format; bump when the meaning of a scene file changes.
 SCENE_FORMAT: int = 1
@@ -113,6 +114,10 @@ class BlockSpec:
     restitution_distribution : RestitutionDistribution or None
         A distribution of ``e / e_R`` drawn once per case (:meth:`block_for`); ``restitution_factor`` is
         then its mean. None: the factor is fixed.
+    friction_distribution : FrictionDistribution or None
+        A distribution of the friction coefficients drawn once per case (:meth:`block_for`,
+        :mod:`opsrock.inventory.friction`); ``friction`` and ``friction_kinetic`` are then its median's. None:
+        the friction is fixed.
     """
 
     name: str
@@ -125,6 +130,7 @@ class BlockSpec:
     friction: float | None = None
     friction_kinetic: float | None = None
     restitution_distribution: RestitutionDistribution | None = None
+    friction_distribution: FrictionDistribution | None = None
 
     @property
     def block(self) -> Block:
@@ -134,9 +140,12 @@ class BlockSpec:
                      friction_kinetic=self.friction_kinetic)
 
     def block_for(self, case_id: str) -> Block:
-        """The block of case ``case_id``: :attr:`block`, with its own draw of the restitution factor when the
-        entry has a distribution."""
+        """The block of case ``case_id``: :attr:`block`, with its own draws of the friction coefficients and of
+        the restitution factor when the entry has distributions of them."""
         block = self.block
+        if self.friction_distribution is not None:
+            mu, mu_k = self.friction_distribution.sample(case_id)
+            block = dataclasses.replace(block, friction=mu, friction_kinetic=mu_k)
         if self.restitution_distribution is None:
             return block
         return dataclasses.replace(block, restitution_factor=self.restitution_distribution.sample(case_id, block.e_R))
@@ -323,6 +332,8 @@ class Scene:
                 + ([b.restitution] if b.restitution is not None else [])
                 + ([{"friction": b.friction, "friction_kinetic": b.friction_kinetic}] if b.friction is not None else [])
                 + ([{"restitution": b.restitution_distribution.fingerprint()}] if b.restitution_distribution else [])
+                + ([{"friction_distribution": b.friction_distribution.fingerprint()}] if b.friction_distribution
+                   else [])
                 for b in self.blocks
             ],
             **self.design.fingerprint(),

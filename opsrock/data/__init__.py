@@ -4,6 +4,11 @@
 * ``scenes/*.toml``: the scenes, named by their file stem (``paper``, ``spectrum``, ``tiny``,
   ``fema-far-field-ida``, ``fema-far-field-ida-b3``); a scene names its blocks file relative to
   itself (``blocks = "../blocks.toml"``);
+* ``inventories/<name>.csv``: the shipped inventories of contents (``fema-p58-nine``, ``example``;
+  :func:`opsrock.inventory.items.shipped_inventory`), each with a ``.md`` giving every number's source;
+* ``examples/floor-motions/``: the example floor motions of a three-storey building (a manifest
+  ``motions.csv`` and its record files; :func:`example_motions_manifest`), made by
+  ``tools/make_example_motions.py``;
 * ``experiments/*.csv``: measured free rocking of limestone blocks (Colombo et al., University of
   Minho, DOI 10.60756/uminho-jh25, CC BY 4.0; ``experiments/SOURCE.md``), for validation case
   ``experiments``.
@@ -55,4 +60,23 @@ def block_library(name: str) -> Path:
     return path
 
 
-__all__ = ["block_library", "block_library_names", "blocks_file", "scene_file", "scene_names"]
+def inventory_names() -> tuple[str, ...]:
+    """Names of the shipped inventories (``inventories/<name>.csv``), sorted."""
+    return tuple(sorted(p.stem for p in (_root() / "inventories").glob("*.csv")))
+
+
+def inventory_file(name: str) -> Path:
+    """Path of the shipped inventory ``name`` (:func:`inventory_names`); ``KeyError`` if none."""
+    path = _root() / "inventories" / f"{name}.csv"
+    if not path.is_file():
+        raise KeyError(f"no shipped inventory {name!r} (shipped: {', '.join(inventory_names())})")
+    return path
+
+
+def example_motions_manifest() -> Path:
+    """Path of the manifest of the shipped example floor motions (``examples/floor-motions/motions.csv``)."""
+    return _root() / "examples" / "floor-motions" / "motions.csv"
+
+
+__all__ = ["block_library", "block_library_names", "blocks_file", "example_motions_manifest", "inventory_file",
+           "inventory_names", "scene_file", "scene_names"]

@@ -37,7 +37,7 @@ from pathlib import Path
 
 from opsrock._files import not_a_file
 from opsrock.campaign.toml import NAME_PATTERN
-from opsrock.errors import MISSING, OpsrockError
+from opsrock.errors import MISSING, InputError, OpsrockError
 from opsrock.excitations.readers import UNITS, read_record
 from opsrock.excitations.records import Record
 from opsrock.inventory.items import DIRECTIONS, Row, TableFileError, number_cell, read_csv_rows
@@ -101,6 +101,15 @@ class MotionSet:
 
     motions: tuple[FloorMotion, ...]
     source: str
+
+    def __post_init__(self) -> None:
+        motions = tuple(self.motions)
+        seen: set[tuple[str, str, str]] = set()
+        dup = next((m.key for m in motions if m.key in seen or seen.add(m.key)), None)
+        if dup is not None:
+            raise InputError(f"motions {self.source}: record {dup[0]!r}, floor {dup[1]!r}, direction {dup[2]!r} "
+                             "appears twice", argument="motions")
+        object.__setattr__(self, "motions", motions)
 
     @property
     def floors(self) -> tuple[str, ...]:

@@ -28,17 +28,27 @@ def _root() -> Path:
     return Path(str(resources.files(__name__)))
 
 
+def _stems(folder: str, suffix: str) -> tuple[str, ...]:
+    """Stems of the files ``<folder>/*<suffix>``, sorted."""
+    return tuple(sorted(p.stem for p in (_root() / folder).glob(f"*{suffix}")))
+
+
+def _shipped(folder: str, suffix: str, name: str, what: str) -> Path:
+    """Path of ``<folder>/<name><suffix>``; ``KeyError`` naming ``what`` and the shipped names if none."""
+    path = _root() / folder / f"{name}{suffix}"
+    if not path.is_file():
+        raise KeyError(f"no shipped {what} {name!r} (shipped: {', '.join(_stems(folder, suffix))})")
+    return path
+
+
 def scene_names() -> tuple[str, ...]:
     """Names of the shipped scenes (file stems), sorted."""
-    return tuple(sorted(p.stem for p in (_root() / "scenes").glob("*.toml")))
+    return _stems("scenes", ".toml")
 
 
 def scene_file(name: str) -> Path:
     """Path of the shipped scene ``name`` (a file stem of :func:`scene_names`); ``KeyError`` if none."""
-    path = _root() / "scenes" / f"{name}.toml"
-    if not path.is_file():
-        raise KeyError(f"no shipped scene {name!r} (shipped: {', '.join(scene_names())})")
-    return path
+    return _shipped("scenes", ".toml", name, "scene")
 
 
 def blocks_file() -> Path:
@@ -49,28 +59,22 @@ def blocks_file() -> Path:
 def block_library_names() -> tuple[str, ...]:
     """Names of the shipped blocks libraries (``blocks/<name>.toml``), sorted: a scene names one as
     ``blocks = "<name>"``."""
-    return tuple(sorted(p.stem for p in (_root() / "blocks").glob("*.toml")))
+    return _stems("blocks", ".toml")
 
 
 def block_library(name: str) -> Path:
     """Path of the shipped blocks library ``name`` (:func:`block_library_names`); ``KeyError`` if none."""
-    path = _root() / "blocks" / f"{name}.toml"
-    if not path.is_file():
-        raise KeyError(f"no shipped blocks library {name!r} (shipped: {', '.join(block_library_names())})")
-    return path
+    return _shipped("blocks", ".toml", name, "blocks library")
 
 
 def inventory_names() -> tuple[str, ...]:
     """Names of the shipped inventories (``inventories/<name>.csv``), sorted."""
-    return tuple(sorted(p.stem for p in (_root() / "inventories").glob("*.csv")))
+    return _stems("inventories", ".csv")
 
 
 def inventory_file(name: str) -> Path:
     """Path of the shipped inventory ``name`` (:func:`inventory_names`); ``KeyError`` if none."""
-    path = _root() / "inventories" / f"{name}.csv"
-    if not path.is_file():
-        raise KeyError(f"no shipped inventory {name!r} (shipped: {', '.join(inventory_names())})")
-    return path
+    return _shipped("inventories", ".csv", name, "inventory")
 
 
 def example_motions_manifest() -> Path:

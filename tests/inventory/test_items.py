@@ -263,7 +263,7 @@ def test_a_scene_s_digest_sees_the_friction_distribution():
 def test_block_spec_carries_the_mass_distribution():
     item = Item("book", "bookcase", 0.32, 0.91, 1.8, cm_height=0.78, radius_of_gyration=0.5)
     spec = item.block_spec("1", "book.d1")
-    assert spec.block == item.planar_block("1")
+    assert spec.block == dataclasses.replace(item.planar_block("1"), name="book.d1")
     assert spec.block.h_cm == 0.78 and spec.block.r_gyration == 0.5
 
 

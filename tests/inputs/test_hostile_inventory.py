@@ -91,8 +91,24 @@ def inventory_cases(b: Path) -> list[Case]:
     ]
 
 
+#: Cases whose kind of refusal another case already shows in make test (an unknown column, a bad friction
+#: distribution, a missing file, a repeated row, an empty file): behind ``slow``, to keep make test's budget
+#: (each case is one start of the console script, about 0.7 s of CPU).
+SECOND = {"inventory wide.csv", "inventory empty.csv", "motions scale.csv", "motions missing.csv",
+          "motions dup_motions.csv"}
+
+
 def test_hostile_inventories_and_manifests_are_refused(inputs, tmp_path):
-    broken = sweep(inventory_cases(inputs), tmp_path, workers=4, timeout=120)
+    cases = [c for c in inventory_cases(inputs) if c.name not in SECOND]
+    broken = sweep(cases, tmp_path, workers=4, timeout=120)
+    assert not broken, "\n".join(broken)
+
+
+@pytest.mark.slow
+def test_more_hostile_inventories_and_manifests_are_refused(inputs, tmp_path):
+    cases = [c for c in inventory_cases(inputs) if c.name in SECOND]
+    assert len(cases) == len(SECOND)
+    broken = sweep(cases, tmp_path, workers=4, timeout=120)
     assert not broken, "\n".join(broken)
 
 

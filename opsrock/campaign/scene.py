@@ -64,6 +64,7 @@ from opsrock.solvers.registry import METHODS, capabilities, check_model, solver_
 
 if TYPE_CHECKING:
     from opsrock.campaign.records import RecordSet
+    from opsrock.inventory.friction import FrictionDistribution
 
 #: Version of the scene format; bump when the meaning of a scene file changes.
 SCENE_FORMAT: int = 1
@@ -119,6 +120,10 @@ class BlockSpec:
         Height of the centre of mass above the base (m); None: mid-height (a homogeneous block).
     radius_of_gyration : float or None
         Radius of gyration about the centre of mass (m); None: a homogeneous block's.
+    friction_distribution : FrictionDistribution or None
+        A distribution of the friction coefficients drawn once per case (:meth:`block_for`,
+        :mod:`opsrock.inventory.friction`); ``friction`` and ``friction_kinetic`` are then its median's. None:
+        the friction is fixed.
     """
 
     name: str
@@ -133,6 +138,7 @@ class BlockSpec:
     restitution_distribution: RestitutionDistribution | None = None
     cm_height: float | None = None
     radius_of_gyration: float | None = None
+    friction_distribution: FrictionDistribution | None = None
 
     @property
     def block(self) -> Block:
@@ -143,9 +149,12 @@ class BlockSpec:
                      radius_of_gyration=self.radius_of_gyration)
 
     def block_for(self, case_id: str) -> Block:
-        """The block of case ``case_id``: :attr:`block`, with its own draw of the restitution factor when the
-        entry has a distribution."""
+        """The block of case ``case_id``: :attr:`block`, with its own draws of the friction coefficients and of
+        the restitution factor when the entry has distributions of them."""
         block = self.block
+        if self.friction_distribution is not None:
+            mu, mu_k = self.friction_distribution.sample(case_id)
+            block = dataclasses.replace(block, friction=mu, friction_kinetic=mu_k)
         if self.restitution_distribution is None:
             return block
         return dataclasses.replace(block, restitution_factor=self.restitution_distribution.sample(case_id, block.e_R))
@@ -334,6 +343,8 @@ class Scene:
                 + ([{"restitution": b.restitution_distribution.fingerprint()}] if b.restitution_distribution else [])
                 + ([{"cm_height": b.cm_height, "radius_of_gyration": b.radius_of_gyration}]
                    if (b.cm_height, b.radius_of_gyration) != (None, None) else [])
+                + ([{"friction_distribution": b.friction_distribution.fingerprint()}] if b.friction_distribution
+                   else [])
                 for b in self.blocks
             ],
             **self.design.fingerprint(),

@@ -4,6 +4,11 @@
 * ``scenes/*.toml``: the scenes, named by their file stem (``paper``, ``spectrum``, ``tiny``,
   ``fema-far-field-ida``, ``fema-far-field-ida-b3``); a scene names its blocks file relative to
   itself (``blocks = "../blocks.toml"``);
+* ``inventories/<name>.csv``: the shipped inventories of contents (``fema-p58-nine``, ``example``;
+  :func:`opsrock.inventory.items.shipped_inventory`), each with a ``.md`` giving every number's source;
+* ``examples/floor-motions/``: the example floor motions of a three-storey building (a manifest
+  ``motions.csv`` and its record files; :func:`example_motions_manifest`), made by
+  ``tools/make_example_motions.py``;
 * ``experiments/*.csv``: measured free rocking of limestone blocks (Colombo et al., University of
   Minho, DOI 10.60756/uminho-jh25, CC BY 4.0; ``experiments/SOURCE.md``), for validation case
   ``experiments``.
@@ -23,17 +28,27 @@ def _root() -> Path:
     return Path(str(resources.files(__name__)))
 
 
+def _stems(folder: str, suffix: str) -> tuple[str, ...]:
+    """Stems of the files ``<folder>/*<suffix>``, sorted."""
+    return tuple(sorted(p.stem for p in (_root() / folder).glob(f"*{suffix}")))
+
+
+def _shipped(folder: str, suffix: str, name: str, what: str) -> Path:
+    """Path of ``<folder>/<name><suffix>``; ``KeyError`` naming ``what`` and the shipped names if none."""
+    path = _root() / folder / f"{name}{suffix}"
+    if not path.is_file():
+        raise KeyError(f"no shipped {what} {name!r} (shipped: {', '.join(_stems(folder, suffix))})")
+    return path
+
+
 def scene_names() -> tuple[str, ...]:
     """Names of the shipped scenes (file stems), sorted."""
-    return tuple(sorted(p.stem for p in (_root() / "scenes").glob("*.toml")))
+    return _stems("scenes", ".toml")
 
 
 def scene_file(name: str) -> Path:
     """Path of the shipped scene ``name`` (a file stem of :func:`scene_names`); ``KeyError`` if none."""
-    path = _root() / "scenes" / f"{name}.toml"
-    if not path.is_file():
-        raise KeyError(f"no shipped scene {name!r} (shipped: {', '.join(scene_names())})")
-    return path
+    return _shipped("scenes", ".toml", name, "scene")
 
 
 def blocks_file() -> Path:
@@ -44,15 +59,28 @@ def blocks_file() -> Path:
 def block_library_names() -> tuple[str, ...]:
     """Names of the shipped blocks libraries (``blocks/<name>.toml``), sorted: a scene names one as
     ``blocks = "<name>"``."""
-    return tuple(sorted(p.stem for p in (_root() / "blocks").glob("*.toml")))
+    return _stems("blocks", ".toml")
 
 
 def block_library(name: str) -> Path:
     """Path of the shipped blocks library ``name`` (:func:`block_library_names`); ``KeyError`` if none."""
-    path = _root() / "blocks" / f"{name}.toml"
-    if not path.is_file():
-        raise KeyError(f"no shipped blocks library {name!r} (shipped: {', '.join(block_library_names())})")
-    return path
+    return _shipped("blocks", ".toml", name, "blocks library")
 
 
-__all__ = ["block_library", "block_library_names", "blocks_file", "scene_file", "scene_names"]
+def inventory_names() -> tuple[str, ...]:
+    """Names of the shipped inventories (``inventories/<name>.csv``), sorted."""
+    return _stems("inventories", ".csv")
+
+
+def inventory_file(name: str) -> Path:
+    """Path of the shipped inventory ``name`` (:func:`inventory_names`); ``KeyError`` if none."""
+    return _shipped("inventories", ".csv", name, "inventory")
+
+
+def example_motions_manifest() -> Path:
+    """Path of the manifest of the shipped example floor motions (``examples/floor-motions/motions.csv``)."""
+    return _root() / "examples" / "floor-motions" / "motions.csv"
+
+
+__all__ = ["block_library", "block_library_names", "blocks_file", "example_motions_manifest", "inventory_file",
+           "inventory_names", "scene_file", "scene_names"]

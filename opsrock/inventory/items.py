@@ -1,19 +1,100 @@
 """The inventory: one row per item type, as loss assessors keep them (CSV, or TOML), read into
-:class:`Inventory` (:func:`read_inventory`); the FEMA P-58 nine are a shipped inventory
-(:func:`shipped_inventory`).
+:class:`Inventory` (:func:`read_inventory`); the FEMA P-58 nine and an example are shipped inventories
+(:func:`shipped_inventory`). ``docs/inventory.md`` describes the file formats.
 
 Columns (SI): ``id, description, width, depth, height`` (m; ``width`` along motion direction 1, ``depth``
 along direction 2), optional ``mass`` (kg), ``cm_height`` (m), ``radius_of_gyration`` (m), ``friction``
-(a number, or a distribution: its name and parameters, drawn per case from the seed and the case id),
-``friction_kinetic``, ``restitution``, ``fema_id``, ``floor`` (the floors it stands on; empty: every floor
-of the motions), ``quantity`` (per floor), ``support_period`` (s) and ``support_damping`` (-) for an item
-standing on a desk, table or shelf, ``repair_cost``.
+(a number, or a distribution: its name and parameters, drawn per case from the seed and the case id;
+:mod:`opsrock.inventory.friction`), ``friction_kinetic``, ``restitution``, ``fema_id``, ``floor`` (the floors
+it stands on, separated by ``;``; empty: every floor of the motions), ``quantity`` (per floor),
+``support_period`` (s) and ``support_damping`` (-) for an item standing on a desk, table or shelf,
+``repair_cost``.
+
+A CSV file has a header row naming its columns (any order, any case, spaces trimmed), then one row per item;
+lines starting with ``#`` are comments, blank lines and blank cells are allowed (a blank optional cell takes
+its default), UTF-8 with or without a byte-order mark. A TOML file has one ``[[item]]`` table per item with
+the same keys (``floor`` a string or an array). Every value is checked as the block it makes
+(:class:`opsrock.block.Block`, in each direction) and a dimension beyond
+:data:`opsrock.limits.PLAUSIBLE` ``"block_size"`` is refused as a likely unit mistake unless confirmed;
+every error is one line naming the file, the line, the column and the value (:class:`TableFileError`).
 """
 
 from __future__ import annotations
 
+import csv
+import dataclasses
+import io
+import json
+import math
+import re
+import tomllib
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Callable
+
+from opsrock import data
+from opsrock._files import atomic_text, not_a_file
+from opsrock.block import Block
+from opsrock.campaign.scene import BlockSpec
+from opsrock.campaign.toml import NAME_PATTERN
+from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
+from opsrock.errors import MISSING, InputError, OpsrockError
+from opsrock.inventory.friction import FrictionDistribution, FrictionLaw, parse_friction
+from opsrock.limits import check, check_plausible, positive_finite
+from opsrock.published import fema_p58
+
+#: The horizontal directions of the floor motions: ``Item.width`` lies along ``"1"``, ``Item.depth`` along
+#: ``"2"``.
+DIRECTIONS: tuple[str, ...] = ("1", "2")
+
+#: The inventory's columns, in the order :func:`write_inventory` writes them.
+COLUMNS: tuple[str, ...] = ("id", "description", "width", "depth", "height", "mass", "cm_height",
+                            "radius_of_gyration", "friction", "friction_kinetic", "restitution", "fema_id", "floor",
+                            "quantity", "support_period", "support_damping", "repair_cost")
+
+#: The columns every inventory has.
+REQUIRED: tuple[str, ...] = ("id", "description", "width", "depth", "height")
+
+#: Largest inventory or manifest file read (bytes): a table of a million rows; larger files are refused unread.
+MAX_TABLE_BYTES: int = 64_000_000
+
+#: Separator of several floors in one cell (``1;2;roof``).
+FLOOR_SEPARATOR: str = ";"
+
+_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+
+
+class TableFileError(InputError):
+    """A bad inventory or motions-manifest file; the message names the file, the line, the column and the value.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    line : int or None
+        Its line (1-based); None when the file as a whole is at fault.
+    column : str or None
+        The column (``argument`` of the error); None for the file or a row as a whole.
+    value : object
+        The cell's value (:data:`opsrock.errors.MISSING` when there is none to show).
+    problem : str
+        What is wrong.
+    """
+
+    def __init__(self, path: str | Path, line: int | None, column: str | None, value: Any, problem: str) -> None:
+        where = f"{path}:{line}" if line else f"{path}"
+        cell = "" if column is None else (f"{column}: " if value is MISSING else f"{column} = {value!r}: ")
+        super().__init__(f"{where}: {cell}{problem}", argument=column)
+        self.path, self.line, self.column, self.value, self.problem = str(path), line, column, value, problem
+
+
+def _argued(name: str, fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
+    """``fn(*args, **kwargs)``, an error of it re-raised with ``argument`` ``name`` (the checks of
+    :mod:`opsrock.limits` name the value, not always the argument)."""
+    try:
+        return fn(*args, **kwargs)
+    except OpsrockError as exc:
+        raise InputError(str(exc), argument=name) from None
 
 
 @dataclass(frozen=True)
@@ -31,63 +112,47 @@ class Support:
     period: float
     damping: float = 0.05
 
-
-@dataclass(frozen=True)
-class FrictionLaw:
-    """An item's friction: a fixed coefficient or a distribution drawn once per case.
-
-    Parameters
-    ----------
-    distribution : str
-        ``"fixed"``, or a distribution's name (e.g. ``"uniform"``, ``"lognormal"``, ``"normal"``).
-    parameters : tuple of float
-        ``(mu,)`` for ``"fixed"``; the distribution's parameters otherwise (dimensionless).
-    kinetic_ratio : float or None
-        ``mu_k / mu_s`` when the inventory gives ``friction_kinetic`` relative to a distribution; None:
-        ``mu_k = mu_s``.
-    """
-
-    distribution: str
-    parameters: tuple[float, ...]
-    kinetic_ratio: float | None = None
-
-    def draw(self, case_id: str, seed: int) -> float:
-        """The static coefficient of one case (dimensionless), the same for the same seed and case id."""
-        raise NotImplementedError
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "period", _argued("support_period", check, "period", self.period,
+                                                   shown_as="support_period"))
+        object.__setattr__(self, "damping", _argued("support_damping", check, "damping", self.damping,
+                                                    shown_as="support_damping"))
 
 
 @dataclass(frozen=True)
 class Item:
-    """One item type of the inventory (a row).
+    """One item type of the inventory (a row); checked when made, as the block it makes in each direction.
 
     Parameters
     ----------
     id : str
         Unique label (letters, digits, ``_``, ``.``, ``-``); first part of its case ids.
     description : str
-        What it is, for the report.
+        What it is, for the report (not empty).
     width, depth, height : float
         Full dimensions (m): ``width`` along motion direction 1, ``depth`` along direction 2.
     mass : float or None
         Mass (kg); None: not given (rocking does not depend on it).
     cm_height, radius_of_gyration : float or None
-        Mass distribution (m), as :class:`opsrock.block.Block`; None: homogeneous.
+        Mass distribution (m), as :class:`opsrock.block.Block`, the same in both directions; None: homogeneous.
     friction : FrictionLaw or None
         None: no slip (rocking only).
     friction_kinetic : float or None
-        Kinetic coefficient (dimensionless) when ``friction`` is fixed; None: equal to it.
+        Kinetic coefficient (dimensionless): of the fixed coefficient, or at the distribution's median (each draw
+        then scales it, ``FrictionLaw.kinetic_ratio``, set here); None: equal to the static one.
     restitution : float or None
-        ``e`` itself (dimensionless); None: the project's default ``0.95 e_R``.
+        ``e`` itself (dimensionless); None: the project's default ``0.95 e_R`` (or the study's factor).
     fema_id : str
-        FEMA P-58 fragility ID it maps to (``E.20.22.102a``), or ``""``.
+        FEMA P-58 fragility ID it maps to, one of :data:`opsrock.published.fema_p58.ITEMS` (``E.20.22.102a``),
+        or ``""``.
     floors : tuple of str
         Floors it stands on, as the motions name them; empty: every floor.
     quantity : float
-        Units per floor (pelicun's ``Theta_0``).
+        Units per floor (pelicun's ``Theta_0``), positive.
     support : Support or None
         The desk, table or shelf it stands on; None: the floor itself.
     repair_cost : float or None
-        Cost of one overturned unit (the inventory's currency); None: no loss assessment.
+        Cost of one overturned unit (the inventory's currency), >= 0; None: no loss assessment.
     """
 
     id: str
@@ -107,6 +172,159 @@ class Item:
     support: Support | None = None
     repair_cost: float | None = None
 
+    def __post_init__(self) -> None:
+        if not isinstance(self.id, str) or not NAME_PATTERN.match(self.id):
+            raise InputError(f"id = {self.id!r} must use only letters, digits, '_', '.', '-'", argument="id")
+        if not isinstance(self.description, str) or not self.description.strip():
+            raise InputError(f"description of item {self.id!r} must be a non-empty string", argument="description")
+        for name in ("width", "depth", "height"):
+            limit = "height" if name == "height" else "width"
+            object.__setattr__(self, name, _argued(name, check, limit, getattr(self, name), shown_as=name))
+        if self.mass is not None:
+            object.__setattr__(self, "mass", _argued("mass", check, "mass", self.mass))
+        self._check_friction()
+        object.__setattr__(self, "fema_id", _fema_id(self.fema_id))
+        object.__setattr__(self, "floors", _floors(self.floors))
+        object.__setattr__(self, "quantity", _argued("quantity", positive_finite, "quantity", self.quantity))
+        if self.support is not None and not isinstance(self.support, Support):
+            raise InputError(f"support must be a Support or None, got {self.support!r}", argument="support_period")
+        if self.repair_cost is not None:
+            cost = _argued("repair_cost", check_nonnegative, "repair_cost", self.repair_cost)
+            object.__setattr__(self, "repair_cost", cost)
+        for direction in DIRECTIONS:
+            self.planar_block(direction)  # the Block's own checks, in both directions
+
+    def _check_friction(self) -> None:
+        law = self.friction
+        if law is not None and not isinstance(law, FrictionLaw):
+            raise InputError(f"friction must be a FrictionLaw or None, got {law!r}", argument="friction")
+        if self.friction_kinetic is None or law is None or law.fixed:
+            return  # a fixed pair is the Block's to check; a kinetic coefficient without friction too
+        mu_k = _argued("friction_kinetic", check, "friction_kinetic", self.friction_kinetic)
+        if mu_k > law.median:
+            raise InputError(f"friction_kinetic = {mu_k!r} exceeds the median static friction {law.median:.6g} of "
+                             f"{law.text}: the kinetic coefficient must not exceed the static one",
+                             argument="friction_kinetic")
+        ratio = mu_k / law.median
+        if law.kinetic_ratio is None:
+            object.__setattr__(self, "friction", dataclasses.replace(law, kinetic_ratio=ratio))
+        elif not math.isclose(law.kinetic_ratio, ratio, rel_tol=1e-9):
+            raise InputError(f"friction_kinetic = {mu_k!r} at the median friction {law.median:.6g} gives the ratio "
+                             f"{ratio:.6g}, but the friction law says {law.kinetic_ratio!r}", argument="friction_kinetic")
+
+    # --- the planar blocks --------------------------------------------------------------------------
+    def dimension(self, direction: str) -> float:
+        """The base dimension along the motion of ``direction`` (m): ``width`` along ``"1"``, ``depth`` along
+        ``"2"``."""
+        if direction not in DIRECTIONS:
+            raise InputError(f"direction = {direction!r} must be one of {', '.join(DIRECTIONS)}", argument="direction")
+        return self.width if direction == "1" else self.depth
+
+    def planar_block(self, direction: str, restitution_factor: float = DEFAULT_RESTITUTION_FACTOR) -> Block:
+        """The rigid block that rocks and slides in the plane of ``direction`` (``"1"`` or ``"2"``), with the
+        median friction of a distribution (:meth:`block_spec` draws it per case).
+
+        Parameters
+        ----------
+        direction : str
+            ``"1"``: ``width`` along the motion; ``"2"``: ``depth`` along it.
+        restitution_factor : float
+            ``e / e_R`` (dimensionless) when the item gives no ``restitution`` of its own.
+
+        Raises
+        ------
+        InputError
+            The Block's refusal, with the direction when the base dimension matters, ``argument`` the column.
+        """
+        base = self.dimension(direction)
+        law = self.friction
+        mu = None if law is None else (law.parameters[0] if law.fixed else law.median)
+        mu_k = self.friction_kinetic if law is None or law.fixed else law.kinetic(mu)
+        try:
+            return Block(width=base, height=self.height, mass=1.0 if self.mass is None else self.mass,
+                         restitution_factor=DEFAULT_RESTITUTION_FACTOR if self.restitution is not None
+                         else restitution_factor, name=self.id, restitution=self.restitution, friction=mu,
+                         friction_kinetic=mu_k, cm_height=self.cm_height, radius_of_gyration=self.radius_of_gyration)
+        except OpsrockError as exc:
+            if exc.argument not in _PLANAR:  # the same in both directions: the column is the argument
+                raise InputError(str(exc), argument=exc.argument) from None
+            column = "depth" if direction == "2" and exc.argument in (None, "width") else (exc.argument or "width")
+            along = "width" if direction == "1" else "depth"
+            raise InputError(f"{exc} (direction {direction}: {along} {base:g} m along the motion)",
+                             argument=column) from None
+
+    def block_spec(self, direction: str, name: str, restitution_factor: float = DEFAULT_RESTITUTION_FACTOR,
+                   seed: int = 0) -> BlockSpec:
+        """The campaign entry of this item in ``direction``: the planar block (:meth:`planar_block`), its
+        friction fixed or drawn per case from ``seed`` and the case id (``friction_distribution``).
+
+        Parameters
+        ----------
+        direction : str
+            ``"1"`` or ``"2"``.
+        name : str
+            The entry's name (first part of its case ids; letters, digits, ``_ . -``).
+        restitution_factor : float
+            ``e / e_R`` (dimensionless) when the item gives no ``restitution`` of its own.
+        seed : int
+            Seed of the friction draws (with each case id), within ``LIMITS["seed"]``.
+        """
+        block = self.planar_block(direction, restitution_factor)
+        law = self.friction
+        extra: dict[str, Any] = {}
+        if law is not None and not law.fixed:
+            extra["friction_distribution"] = FrictionDistribution(law, seed)
+        for key in ("cm_height", "radius_of_gyration"):  # only when given: a homogeneous entry as ever
+            if getattr(self, key) is not None:
+                extra[key] = getattr(self, key)
+        return BlockSpec(name=name, width=block.width, height=block.height, reason=f"{self.description} "
+                         f"(inventory item {self.id}, direction {direction})", mass=block.mass,
+                         restitution_factor=block.restitution_factor, restitution=block.restitution,
+                         friction=block.friction, friction_kinetic=block.friction_kinetic if law is not None else None,
+                         **extra)
+
+    def floors_in(self, available: tuple[str, ...] | list[str]) -> tuple[str, ...]:
+        """The floors of ``available`` (the motions' floors, in their order) this item stands on: all of them
+        when :attr:`floors` is empty. Raises ``InputError`` naming the item and a floor not available."""
+        if not self.floors:
+            return tuple(available)
+        missing = [f for f in self.floors if f not in available]
+        if missing:
+            raise InputError(f"item {self.id!r}: floor {missing[0]!r} is not among the motions' floors "
+                             f"({', '.join(available)})", argument="floor")
+        return tuple(f for f in available if f in self.floors)
+
+
+#: Arguments of a Block's refusal that depend on the base along the motion (the direction is then named).
+_PLANAR = frozenset({None, "width", "radius_of_gyration", "restitution_factor"})
+
+
+def check_nonnegative(name: str, value: object) -> float:
+    """``value`` as a float if it is a finite number >= 0; ``InputError`` naming ``name`` otherwise."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (math.isfinite(value) and value >= 0):
+        raise InputError(f"{name} must be a finite number >= 0, got {value!r}", argument=name)
+    return float(value)
+
+
+def _fema_id(value: object) -> str:
+    if not isinstance(value, str):
+        raise InputError(f"fema_id must be a string, got {value!r}", argument="fema_id")
+    if value:
+        _argued("fema_id", fema_p58.item, value)
+    return value
+
+
+def _floors(value: object) -> tuple[str, ...]:
+    if isinstance(value, str) or not isinstance(value, (tuple, list)):
+        raise InputError(f"floors must be a tuple of floor labels, got {value!r}", argument="floor")
+    floors = tuple(value)
+    for f in floors:
+        if not isinstance(f, str) or not NAME_PATTERN.match(f):
+            raise InputError(f"floor {f!r} must use only letters, digits, '_', '.', '-'", argument="floor")
+    if len(set(floors)) != len(floors):
+        raise InputError(f"floor lists {next(f for f in floors if floors.count(f) > 1)!r} twice", argument="floor")
+    return floors
+
 
 @dataclass(frozen=True)
 class Inventory:
@@ -115,7 +333,7 @@ class Inventory:
     Parameters
     ----------
     items : tuple of Item
-        In file order, ids unique.
+        In file order, ids unique, at least one.
     source : str
         The file read, or ``"shipped:<name>"``.
     """
@@ -123,16 +341,405 @@ class Inventory:
     items: tuple[Item, ...]
     source: str
 
+    def __post_init__(self) -> None:
+        items = tuple(self.items)
+        if not items:
+            raise InputError(f"inventory {self.source}: no items", argument="inventory")
+        ids = [it.id for it in items]
+        dup = next((i for i in ids if ids.count(i) > 1), None)
+        if dup is not None:
+            raise InputError(f"inventory {self.source}: id {dup!r} is used twice", argument="id")
+        object.__setattr__(self, "items", items)
 
+    @property
+    def ids(self) -> tuple[str, ...]:
+        """The item ids, in file order."""
+        return tuple(it.id for it in self.items)
+
+    def item(self, item_id: str) -> Item:
+        """The item ``item_id``; ``KeyError`` if none."""
+        for it in self.items:
+            if it.id == item_id:
+                return it
+        raise KeyError(f"no item {item_id!r} in {self.source} (items: {', '.join(self.ids)})")
+
+
+# --- reading rows -----------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Row:
+    """One row of an inventory or manifest file, before its values are interpreted.
+
+    Parameters
+    ----------
+    line : int
+        Its line in the file (the ``[[item]]`` line of a TOML table).
+    cells : dict
+        Column -> ``(value, line)`` for every non-blank cell: text (CSV, trimmed) or a TOML value.
+    typed : bool
+        True for a TOML table, whose numbers must be TOML numbers (not strings).
+    """
+
+    line: int
+    cells: dict[str, tuple[Any, int]]
+    typed: bool = False
+
+
+def read_text_file(path: Path) -> str:
+    """The text of an inventory or manifest ``path`` (UTF-8, a byte-order mark dropped); ``TableFileError``
+    naming the file when it cannot be read."""
+    kind = not_a_file(path)
+    if kind is not None:
+        raise TableFileError(path, None, None, MISSING, f"is {kind}, not a file")
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(MAX_TABLE_BYTES + 1)
+    except FileNotFoundError:
+        raise TableFileError(path, None, None, MISSING, "no such file") from None
+    except OSError as exc:
+        raise TableFileError(path, None, None, MISSING, f"cannot be read: {exc.strerror or exc}") from None
+    if len(data) > MAX_TABLE_BYTES:
+        raise TableFileError(path, None, None, MISSING, f"larger than {MAX_TABLE_BYTES / 1e6:.0f} MB; not read")
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise TableFileError(path, None, None, MISSING, f"not UTF-8 text ({exc.reason} at byte {exc.start})") from None
+
+
+def read_csv_rows(path: str | Path, known: tuple[str, ...], required: tuple[str, ...]) -> list[Row]:
+    """The rows of a CSV table with a header row: ``#`` comment lines and blank lines skipped, names and cells
+    trimmed, names matched without case; blank cells left out.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    known, required : tuple of str
+        The columns it may have, and those it must have.
+
+    Raises
+    ------
+    TableFileError
+        An unknown, repeated or missing column, a row with more cells than the header, an empty file.
+    """
+    path = Path(path)
+    lines = read_text_file(path).splitlines()
+    text = "\n".join("" if ln.strip().startswith("#") else ln for ln in lines)
+    reader = csv.reader(io.StringIO(text), skipinitialspace=True, strict=True)
+    header: list[str] | None = None
+    rows: list[Row] = []
+    try:
+        for cells in reader:
+            cells = [c.strip() for c in cells]
+            if not any(cells):
+                continue
+            if header is None:
+                header, header_line = _header(path, reader.line_num, cells, known, required), reader.line_num
+                continue
+            rows.append(_csv_row(path, reader.line_num, header, cells))
+    except csv.Error as exc:
+        raise TableFileError(path, reader.line_num, None, MISSING, f"not valid CSV: {exc}") from None
+    if header is None:
+        raise TableFileError(path, None, None, MISSING, f"empty file: no header row (columns {', '.join(required)} "
+                             "at least)")
+    if not rows:
+        raise TableFileError(path, header_line, None, MISSING, "no rows after the header")
+    return rows
+
+
+def _header(path: Path, line: int, cells: list[str], known: tuple[str, ...], required: tuple[str, ...]) -> list[str]:
+    names = [c.lower() for c in cells]
+    while names and not names[-1]:  # trailing empty names (a spreadsheet's trailing commas)
+        names.pop()
+    for name in names:
+        if name not in known:
+            problem = "an unnamed column" if not name else "unknown column"
+            raise TableFileError(path, line, "header", name, f"{problem} (known: {', '.join(known)})")
+        if names.count(name) > 1:
+            raise TableFileError(path, line, "header", name, "column named twice")
+    missing = [c for c in required if c not in names]
+    if missing:
+        raise TableFileError(path, line, "header", ",".join(cells), f"lacks the column(s) {', '.join(missing)} "
+                             f"(required: {', '.join(required)})")
+    return names
+
+
+def _csv_row(path: Path, line: int, header: list[str], cells: list[str]) -> Row:
+    extra = [c for c in cells[len(header):] if c]
+    if extra:
+        raise TableFileError(path, line, None, MISSING, f"{len(cells)} cells where the header names {len(header)} "
+                             f"columns (first extra value {extra[0]!r}; quote a cell that holds a comma, "
+                             '"uniform(0.3, 0.5)")')
+    return Row(line, {name: (value, line) for name, value in zip(header, cells) if value})
+
+
+def read_toml_rows(path: str | Path, table: str, known: tuple[str, ...], required: tuple[str, ...]) -> list[Row]:
+    """The ``[[<table>]]`` tables of a TOML file as rows, with the line of each key; other top-level keys,
+    unknown and missing keys refused (``TableFileError``)."""
+    path = Path(path)
+    text = read_text_file(path)
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise TableFileError(path, None, None, MISSING, f"not valid TOML: {exc}") from None
+    extra = sorted(set(data) - {table})
+    if extra:
+        raise TableFileError(path, None, extra[0], MISSING, f"unknown key: the file holds [[{table}]] tables only")
+    entries = data.get(table)
+    if not isinstance(entries, list) or not entries or not all(isinstance(e, dict) for e in entries):
+        raise TableFileError(path, None, table, MISSING, f"needs at least one [[{table}]] table")
+    where = _toml_lines(text, table)
+    rows = []
+    for k, entry in enumerate(entries):
+        head, keys = where[k] if k < len(where) else (None, {})
+        for key in entry:
+            if key not in known:
+                raise TableFileError(path, keys.get(key, head), key, entry[key], f"unknown key (known: {', '.join(known)})")
+        for key in required:
+            if key not in entry:
+                raise TableFileError(path, head, key, MISSING, f"missing in [[{table}]] number {k + 1}")
+        rows.append(Row(head or 0, {key: (_toml_cell(v), keys.get(key, head or 0)) for key, v in entry.items()
+                                    if not (isinstance(v, str) and not v.strip())}, typed=True))
+    return rows
+
+
+def _toml_cell(value: Any) -> Any:
+    """A TOML value as a cell: strings trimmed, an array of labels joined like a CSV cell, the rest as is."""
+    if isinstance(value, str):
+        return value.strip()
+    if isinstance(value, list) and all(isinstance(v, (str, int)) and not isinstance(v, bool) for v in value):
+        return FLOOR_SEPARATOR.join(str(v) for v in value)
+    return value
+
+
+_TOML_TABLE = re.compile(r"^\s*\[\[\s*([A-Za-z0-9_-]+)\s*\]\]")
+_TOML_KEY = re.compile(r"""^\s*["']?([A-Za-z0-9_-]+)["']?\s*=""")
+
+
+def _toml_lines(text: str, table: str) -> list[tuple[int, dict[str, int]]]:
+    """For each ``[[table]]``: its line and the line of each of its keys (a plain scan of the text: a key
+    written elsewhere, in an inline table, is not found and is then named by its table's line)."""
+    out: list[tuple[int, dict[str, int]]] = []
+    inside = False
+    for n, line in enumerate(text.splitlines(), start=1):
+        head = _TOML_TABLE.match(line)
+        if head or line.lstrip().startswith("["):
+            inside = bool(head) and head.group(1) == table
+            if inside:
+                out.append((n, {}))
+            continue
+        key = _TOML_KEY.match(line)
+        if inside and key:
+            out[-1][1].setdefault(key.group(1), n)
+    return out
+
+
+# --- cells to values ------------------------------------------------------------------------------
+def number_cell(value: Any) -> float:
+    """A cell's number: a plain decimal text (``0.32``, ``1e-3``; no ``nan``, ``inf``, ``_`` or hex) or a TOML
+    number; ``InputError`` otherwise."""
+    if isinstance(value, str):
+        if not _NUMBER.match(value):
+            raise InputError("is not a number")
+        v = float(value)
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        v = float(value)
+    else:
+        raise InputError(f"must be a number, not {type(value).__name__}")
+    if not math.isfinite(v):
+        raise InputError("is not a finite number")
+    return v
+
+
+def text_cell(value: Any) -> str:
+    """A cell's text: a string (a TOML number is refused, a CSV cell is text already)."""
+    if not isinstance(value, str):
+        raise InputError(f"must be a string, not {type(value).__name__}")
+    return value
+
+
+def floors_cell(value: Any) -> tuple[str, ...]:
+    """A ``floor`` cell's floors: labels separated by ``;`` (spaces trimmed), or one TOML integer."""
+    if isinstance(value, int) and not isinstance(value, bool):
+        return (str(value),)
+    return tuple(f.strip() for f in text_cell(value).split(FLOOR_SEPARATOR))
+
+
+def _friction(row: Row) -> FrictionLaw | None:
+    if "friction" not in row.cells:
+        return None
+    value = row.cells["friction"][0]
+    if isinstance(value, str):
+        return parse_friction(value)
+    return FrictionLaw("fixed", (number_cell(value),))
+
+
+#: How each column's cell becomes an :class:`Item` argument: (argument, parser).
+_PARSERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
+    "id": ("id", text_cell), "description": ("description", text_cell), "width": ("width", number_cell),
+    "depth": ("depth", number_cell), "height": ("height", number_cell), "mass": ("mass", number_cell),
+    "cm_height": ("cm_height", number_cell), "radius_of_gyration": ("radius_of_gyration", number_cell),
+    "friction_kinetic": ("friction_kinetic", number_cell), "restitution": ("restitution", number_cell),
+    "fema_id": ("fema_id", text_cell), "quantity": ("quantity", number_cell),
+    "floor": ("floors", floors_cell),
+    "repair_cost": ("repair_cost", number_cell),
+}
+
+
+def _item(path: Path, row: Row, confirm: bool) -> Item:
+    """The :class:`Item` of one row; every error names the file, the line, the column and the value."""
+    for column in REQUIRED:
+        if column not in row.cells:
+            raise TableFileError(path, row.line, column, MISSING, "blank: every item needs it")
+    kwargs: dict[str, Any] = {}
+    for column, (value, line) in row.cells.items():
+        if column in _PARSERS:
+            arg, parse = _PARSERS[column]
+            try:
+                if row.typed and parse is number_cell and isinstance(value, str):
+                    raise InputError("must be a number, not str")
+                kwargs[arg] = parse(value)
+            except OpsrockError as exc:
+                raise TableFileError(path, line, column, value, str(exc)) from None
+    for column in ("width", "depth", "height"):
+        value, line = row.cells[column]
+        check_plausible("block_size", kwargs[column], what=f"{path} line {line}: {column}",
+                        option="--accept-implausible", confirm=confirm)
+    try:
+        kwargs["friction"] = _friction(row)
+        kwargs["support"] = _support(row)
+        return Item(**kwargs)
+    except OpsrockError as exc:
+        column = _column_of(exc.argument, row)
+        value, line = row.cells.get(column, (MISSING, row.line))
+        raise TableFileError(path, line, column, value, str(exc)) from None
+
+
+def _support(row: Row) -> Support | None:
+    cells = row.cells
+    if "support_period" not in cells:
+        if "support_damping" in cells:
+            raise InputError("support_damping needs support_period (the desk's or table's period)",
+                             argument="support_damping")
+        return None
+    period = _argued("support_period", number_cell, cells["support_period"][0])
+    if "support_damping" not in cells:
+        return Support(period)
+    return Support(period, _argued("support_damping", number_cell, cells["support_damping"][0]))
+
+
+def _column_of(argument: str | None, row: Row) -> str:
+    """The inventory column an error's ``argument`` names (the row's first given one when it names none)."""
+    column = {"floors": "floor", "support": "support_period"}.get(argument or "", argument or "")
+    if column in COLUMNS:
+        return column
+    return next(iter(row.cells))
+
+
+# --- the public readers and writer ------------------------------------------------------------------
 def read_inventory(path: str | Path, *, confirm: bool = False) -> Inventory:
-    """Read an inventory CSV or TOML file; a block larger than :data:`opsrock.limits.PLAUSIBLE` is refused
-    unless ``confirm``. Raises :class:`opsrock.errors.InputError` naming the file, line, column and value."""
-    raise NotImplementedError
+    """Read an inventory CSV or TOML file (``.toml``: TOML; anything else: CSV).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (formats: the module docstring, ``docs/inventory.md``).
+    confirm : bool
+        True: dimensions beyond :data:`opsrock.limits.PLAUSIBLE` ``"block_size"`` are accepted (the user
+        confirmed them, ``--accept-implausible``).
+
+    Raises
+    ------
+    TableFileError
+        Naming the file, the line, the column and the value (an :class:`opsrock.errors.InputError`).
+    ImplausibleInputError
+        A dimension beyond 10 m, with its likely unit.
+    """
+    path = Path(path)
+    if path.suffix.lower() == ".toml":
+        rows = read_toml_rows(path, "item", COLUMNS, REQUIRED)
+    else:
+        rows = read_csv_rows(path, COLUMNS, REQUIRED)
+    items: list[Item] = []
+    seen: dict[str, int] = {}
+    for row in rows:
+        item = _item(path, row, confirm)
+        if item.id in seen:
+            raise TableFileError(path, row.cells["id"][1], "id", item.id, f"used twice (first on line {seen[item.id]})")
+        seen[item.id] = row.cells["id"][1]
+        items.append(item)
+    return Inventory(tuple(items), str(path))
+
+
+def item_cells(item: Item) -> dict[str, Any]:
+    """The non-blank cells of ``item``'s row (column -> value: str, float), as :func:`write_inventory` writes
+    them; reading them back gives the same item."""
+    law = item.friction
+    cells: dict[str, Any] = {
+        "id": item.id, "description": item.description, "width": item.width, "depth": item.depth,
+        "height": item.height, "mass": item.mass, "cm_height": item.cm_height,
+        "radius_of_gyration": item.radius_of_gyration,
+        "friction": None if law is None else (law.parameters[0] if law.fixed else law.text),
+        "friction_kinetic": item.friction_kinetic, "restitution": item.restitution, "fema_id": item.fema_id or None,
+        "floor": FLOOR_SEPARATOR.join(item.floors) or None, "quantity": item.quantity,
+        "support_period": None if item.support is None else item.support.period,
+        "support_damping": None if item.support is None else item.support.damping,
+        "repair_cost": item.repair_cost,
+    }
+    return {k: v for k, v in cells.items() if v is not None}
+
+
+def write_inventory(inventory: Inventory, path: str | Path) -> Path:
+    """Write ``inventory`` to ``path`` (``.toml``: TOML, else CSV) so that :func:`read_inventory` reads it back
+    equal: every float at full precision (``repr``). Written atomically (whole or not at all)."""
+    path = Path(path)
+    rows = [item_cells(it) for it in inventory.items]
+    if path.suffix.lower() == ".toml":
+        text = "".join("[[item]]\n" + "".join(f"{k} = {_toml_value(v)}\n" for k, v in row.items()) + "\n"
+                       for row in rows)
+    else:
+        columns = [c for c in COLUMNS if any(c in row for row in rows)]
+        buf = io.StringIO()
+        writer = csv.writer(buf, lineterminator="\n")
+        writer.writerow(columns)
+        writer.writerows([_csv_value(row.get(c)) for c in columns] for row in rows)
+        text = buf.getvalue()
+    atomic_text(path, text)
+    return path
+
+
+def _toml_value(value: Any) -> str:
+    return json.dumps(value, ensure_ascii=False) if isinstance(value, str) else repr(float(value))
+
+
+def _csv_value(value: Any) -> str:
+    return "" if value is None else (value if isinstance(value, str) else repr(float(value)))
+
+
+#: The shipped inventories: name -> what it holds.
+SHIPPED: dict[str, str] = {
+    "fema-p58-nine": "FEMA P-58's nine unanchored contents that overturn (the fema-p58-contents blocks library)",
+    "example": "an example office: a low cabinet that slides, a loaded bookcase, server racks, a printer on a desk",
+}
 
 
 def shipped_inventory(name: str = "fema-p58-nine") -> Inventory:
-    """A shipped inventory (``fema-p58-nine``: FEMA P-58's nine unanchored contents; ``example``)."""
-    raise NotImplementedError
+    """A shipped inventory (:data:`SHIPPED`: ``fema-p58-nine``, FEMA P-58's nine unanchored contents;
+    ``example``), read from ``opsrock/data/inventories/<name>.csv`` (its ``.md`` gives every number's source).
+
+    Raises
+    ------
+    InputError
+        ``name`` is not shipped (``argument`` ``"inventory"``).
+    """
+    try:
+        path = data.inventory_file(name)
+    except KeyError as exc:
+        raise InputError(str(exc.args[0]), argument="inventory") from None
+    inventory = read_inventory(path)
+    return dataclasses.replace(inventory, source=f"shipped:{name}")
 
 
-__all__ = ["FrictionLaw", "Inventory", "Item", "Support", "read_inventory", "shipped_inventory"]
+__all__ = ["COLUMNS", "DIRECTIONS", "FLOOR_SEPARATOR", "FrictionLaw", "Inventory", "Item", "MAX_TABLE_BYTES",
+           "REQUIRED", "Row", "SHIPPED", "Support", "TableFileError", "check_nonnegative", "floors_cell", "item_cells",
+           "number_cell", "read_csv_rows", "read_inventory", "read_text_file", "read_toml_rows",
+           "shipped_inventory", "text_cell", "write_inventory"]

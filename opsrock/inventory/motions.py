@@ -2,14 +2,61 @@
 (``dt`` where the file does not give it; ``file`` relative to the manifest), listing floor acceleration
 histories in any format :func:`opsrock.excitations.readers.read_record` reads. Each motion is checked
 for plausibility (:data:`opsrock.limits.PLAUSIBLE`) unless confirmed.
+
+The manifest is read like an inventory (:func:`opsrock.inventory.items.read_csv_rows`: a header row, ``#``
+comments, blank lines, spaces trimmed, UTF-8 with or without a byte-order mark). Per row:
+
+``record``
+    The ground-motion record (event) the floor motion comes from: the unit a record bootstrap resamples
+    (letters, digits, ``_ . -``).
+``floor``
+    The floor's label, as the inventory's ``floor`` column names it (letters, digits, ``_ . -``).
+``direction``
+    ``1`` or ``2``: the horizontal direction (an item's ``width`` lies along 1, its ``depth`` along 2). Name
+    X and Y as 1 and 2: the manifest says which is which, not a convention of opsrock's.
+``file``
+    The record file, relative to the manifest's folder (or absolute): ``.AT2`` (PEER NGA, its units in its
+    header), or text/CSV of one column (accelerations) or two (time, acceleration).
+``units``
+    ``g``, ``m/s2`` or ``cm/s2`` (:data:`opsrock.excitations.readers.UNITS`): required for text/CSV files;
+    for an ``.AT2`` file optional and checked against its header.
+``dt``
+    The sampling interval (s) of a one-column file that states none. A one-column file may state it in a
+    comment line before its samples, ``# dt = 0.01`` (``s`` after the number allowed); a ``dt`` cell then must
+    agree with it. ``.AT2`` and two-column files give their own step, and a ``dt`` cell for them is refused.
+
+Each (record, floor, direction) appears once. A motion is named ``<record>@<floor>@<direction>`` (unique, and
+safe in case ids: the parts use no ``@``), with ``info.floor`` the floor's label.
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from opsrock._files import not_a_file
+from opsrock.campaign.toml import NAME_PATTERN
+from opsrock.errors import MISSING, InputError, OpsrockError
+from opsrock.excitations.readers import UNITS, read_record
 from opsrock.excitations.records import Record
+from opsrock.inventory.items import DIRECTIONS, Row, TableFileError, number_cell, read_csv_rows
+from opsrock.limits import check, check_plausible
+
+#: The manifest's columns.
+MANIFEST_COLUMNS: tuple[str, ...] = ("record", "floor", "direction", "file", "units", "dt")
+
+#: The columns every manifest has.
+MANIFEST_REQUIRED: tuple[str, ...] = ("record", "floor", "direction", "file")
+
+#: Separator of the parts of a motion's name (``LOS000@2@1``): not among the characters of a label.
+NAME_SEPARATOR: str = "@"
+
+#: Lines of a record file searched for a ``dt`` comment before its first sample.
+HEADER_LINES: int = 50
+
+_DT_LINE = re.compile(r"^\s*#\s*dt\s*[=:]\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(?:s|sec|seconds)?\s*$",
+                      re.IGNORECASE)
 
 
 @dataclass(frozen=True)
@@ -33,6 +80,11 @@ class FloorMotion:
     direction: str
     motion: Record = field(repr=False)
 
+    @property
+    def key(self) -> tuple[str, str, str]:
+        """``(record, floor, direction)``."""
+        return self.record, self.floor, self.direction
+
 
 @dataclass(frozen=True)
 class MotionSet:
@@ -50,6 +102,15 @@ class MotionSet:
     motions: tuple[FloorMotion, ...]
     source: str
 
+    def __post_init__(self) -> None:
+        motions = tuple(self.motions)
+        seen: set[tuple[str, str, str]] = set()
+        dup = next((m.key for m in motions if m.key in seen or seen.add(m.key)), None)
+        if dup is not None:
+            raise InputError(f"motions {self.source}: record {dup[0]!r}, floor {dup[1]!r}, direction {dup[2]!r} "
+                             "appears twice", argument="motions")
+        object.__setattr__(self, "motions", motions)
+
     @property
     def floors(self) -> tuple[str, ...]:
         """The floors, in first-seen order."""
@@ -65,11 +126,147 @@ class MotionSet:
         """The records, in first-seen order."""
         return tuple(dict.fromkeys(m.record for m in self.motions))
 
+    def select(self, floor: str | None = None, direction: str | None = None) -> tuple[FloorMotion, ...]:
+        """The motions on ``floor`` in ``direction`` (None: any), in manifest order."""
+        return tuple(m for m in self.motions if floor in (None, m.floor) and direction in (None, m.direction))
+
+    def motion(self, record: str, floor: str, direction: str) -> FloorMotion:
+        """The motion of ``(record, floor, direction)``; ``KeyError`` if the set has none."""
+        for m in self.motions:
+            if m.key == (record, floor, direction):
+                return m
+        raise KeyError(f"no motion of record {record!r} on floor {floor!r} in direction {direction!r} in {self.source}")
+
+
+def motion_name(record: str, floor: str, direction: str) -> str:
+    """The name of a floor motion: ``<record>@<floor>@<direction>``."""
+    return NAME_SEPARATOR.join((record, floor, direction))
+
+
+def header_dt(path: Path) -> float | None:
+    """The ``dt`` a one-column text/CSV record file states in a comment line before its first sample
+    (``# dt = 0.01``), s; None when it states none or has more than one column (its time column rules)."""
+    found = None
+    if not_a_file(path) is not None:
+        return None  # a FIFO would block; read_record names what it is
+    try:
+        with open(path, encoding="utf-8-sig", errors="replace") as fh:
+            for _, line in zip(range(HEADER_LINES), fh):
+                m = _DT_LINE.match(line)
+                if m:
+                    found = float(m.group(1))
+                    continue
+                text = line.strip()
+                if not text or text.startswith("#"):
+                    continue
+                tokens = text.split(",") if path.suffix.lower() == ".csv" else text.split()
+                if not _numeric(tokens[0]):
+                    continue  # a header of column names
+                return found if len(tokens) == 1 else None
+    except OSError:
+        return None  # read_record names the problem
+    return found
+
+
+def _numeric(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def _label(manifest: Path, row: Row, column: str) -> str:
+    value, line = row.cells[column]
+    if not NAME_PATTERN.match(value):
+        raise TableFileError(manifest, line, column, value, "must use only letters, digits, '_', '.', '-'")
+    return value
+
+
+def _units_dt(manifest: Path, row: Row, path: Path) -> tuple[str | None, float | None]:
+    """The ``units`` and ``dt`` to read the row's file with; refusals name the manifest line and column."""
+    cells = row.cells
+    units = cells["units"][0] if "units" in cells else None
+    if units is not None and units not in UNITS:
+        raise TableFileError(manifest, cells["units"][1], "units", units, f"must be one of {', '.join(UNITS)}")
+    at2 = path.suffix.lower() == ".at2"
+    if units is None and not at2:
+        raise TableFileError(manifest, row.line, "units", MISSING, f"blank, and {path.name} is a text/CSV file, "
+                             f"which does not state its units: give one of {', '.join(UNITS)}")
+    dt = None
+    if "dt" in cells:
+        value, line = cells["dt"]
+        try:
+            dt = check("dt", number_cell(value))
+        except OpsrockError as exc:
+            raise TableFileError(manifest, line, "dt", value, str(exc)) from None
+    stated = None if at2 else header_dt(path)
+    if stated is not None and dt is not None and abs(stated - dt) > 1e-9 * stated:
+        raise TableFileError(manifest, cells["dt"][1], "dt", cells["dt"][0], f"but {path.name} states dt = {stated:g} s "
+                             "in its header")
+    return units, dt if dt is not None else stated
+
+
+def _key(manifest: Path, row: Row) -> tuple[str, str, str]:
+    """The row's ``(record, floor, direction)``, each checked."""
+    for column in MANIFEST_REQUIRED:
+        if column not in row.cells:
+            raise TableFileError(manifest, row.line, column, MISSING, "blank: every motion needs it")
+    record, floor = _label(manifest, row, "record"), _label(manifest, row, "floor")
+    direction, line = row.cells["direction"]
+    if direction not in DIRECTIONS:
+        raise TableFileError(manifest, line, "direction", direction, f"must be {' or '.join(DIRECTIONS)} (1: along "
+                             "each item's width, 2: along its depth; write X and Y as 1 and 2)")
+    return record, floor, direction
+
+
+def _motion(manifest: Path, row: Row, key: tuple[str, str, str], confirm: bool) -> FloorMotion:
+    record, floor, direction = key
+    text, line = row.cells["file"]
+    path = Path(text) if Path(text).is_absolute() else manifest.parent / text
+    units, dt = _units_dt(manifest, row, path)
+    name = motion_name(record, floor, direction)
+    try:
+        rec = read_record(path, units=units, dt=dt, name=name)
+    except OpsrockError as exc:
+        raise TableFileError(manifest, line, "file", text, str(exc)) from None
+    check_plausible("pfa", rec.pfa, what=f"{manifest} line {row.line} ({text}): PFA", option="--accept-implausible",
+                    confirm=confirm)
+    return FloorMotion(record, floor, direction, rec.with_name(name, floor=floor))
+
 
 def read_motions(path: str | Path, *, confirm: bool = False) -> MotionSet:
-    """Read a motions manifest; a motion whose PFA exceeds :data:`opsrock.limits.PLAUSIBLE` is refused with
-    its likely unit unless ``confirm``. Raises :class:`opsrock.errors.InputError` naming the manifest line."""
-    raise NotImplementedError
+    """Read a motions manifest (the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        The manifest CSV.
+    confirm : bool
+        True: motions whose PFA exceeds :data:`opsrock.limits.PLAUSIBLE` ``"pfa"`` are accepted (the user
+        confirmed them, ``--accept-implausible``).
+
+    Raises
+    ------
+    TableFileError
+        Naming the manifest, its line, the column and the value (a record file's own problem quoted with its
+        file and line).
+    ImplausibleInputError
+        A motion beyond 10 g, with its likely unit.
+    """
+    manifest = Path(path)
+    rows = read_csv_rows(manifest, MANIFEST_COLUMNS, MANIFEST_REQUIRED)
+    motions: list[FloorMotion] = []
+    seen: dict[tuple[str, str, str], int] = {}
+    for row in rows:
+        key = _key(manifest, row)
+        if key in seen:
+            raise TableFileError(manifest, row.line, "record", key[0], f"floor {key[1]!r}, direction {key[2]!r} "
+                                 f"listed twice (first on line {seen[key]})")
+        seen[key] = row.line
+        motions.append(_motion(manifest, row, key, confirm))
+    return MotionSet(tuple(motions), str(manifest))
 
 
-__all__ = ["FloorMotion", "MotionSet", "read_motions"]
+__all__ = ["FloorMotion", "HEADER_LINES", "MANIFEST_COLUMNS", "MANIFEST_REQUIRED", "MotionSet", "NAME_SEPARATOR",
+           "header_dt", "motion_name", "read_motions"]

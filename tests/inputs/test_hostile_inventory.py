@@ -1,0 +1,117 @@
+"""Hostile inventories and motion manifests through the real console script (issue 32, area "inventory"):
+``opsrock contents --inventory FILE --motions FILE --out DIR`` refuses each with exit 2 and one line naming
+the file, its line, the column and the value, writing nothing (the promise of :mod:`_hostile`).
+
+The readers are :mod:`opsrock.inventory.items` and :mod:`opsrock.inventory.motions`; their refusals are also
+tested in-process (``tests/inventory/``). This module is skipped while ``opsrock contents`` has no
+``--inventory`` option (the study's command line is written in parallel, issue 32).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from pathlib import Path
+
+import pytest
+from _hostile import Case, sweep
+from _support import run_opsrock
+
+_HELP = run_opsrock(["contents", "--help"], timeout=120)
+pytestmark = pytest.mark.skipif("--inventory" not in _HELP.stdout,
+                                reason="opsrock contents has no --inventory option yet (issue 32 study)")
+
+HEADER = "id,description,width,depth,height,friction,floor"
+GOOD_ROW = "box,a box,0.4,0.5,1.0,0.5,1"
+MANIFEST = "record,floor,direction,file,units,dt"
+GOOD_MOTION = "r1,1,1,floor.txt,m/s2,0.01"
+
+
+@pytest.fixture(scope="module")
+def inputs(tmp_path_factory) -> Path:
+    """A folder of inventories and manifests, each broken in one way (and one good of each), with a short
+    floor motion in m/s² (``floor.txt``) and the same values declared too large (``floor_cm.txt``)."""
+    base = tmp_path_factory.mktemp("inventory_inputs")
+    motion = "\n".join(f"{0.5 * ((k % 20) - 10) / 10:.3f}" for k in range(1000))
+    (base / "floor.txt").write_text(motion + "\n")
+    (base / "floor_cm.txt").write_text("\n".join(f"{float(v) * 10000:g}" for v in motion.split()) + "\n")
+    files = {
+        "good.csv": f"{HEADER}\n{GOOD_ROW}\n",
+        "colour.csv": f"{HEADER},colour\n{GOOD_ROW},red\n",
+        "word.csv": f"{HEADER}\n# a comment\nbox,a box,abc,0.5,1.0,0.5,1\n",
+        "twice.csv": f"{HEADER}\n{GOOD_ROW}\n{GOOD_ROW}\n",
+        "mm.csv": f"{HEADER}\nbox,a box,400,500,1000,0.5,1\n",
+        "weibull.csv": f"{HEADER}\nbox,a box,0.4,0.5,1.0,\"weibull(1, 2)\",1\n",
+        "wide.csv": f"{HEADER}\nbox,a box,0.4,0.5,1.0,\"normal(0.1, 0.2)\",1\n",
+        "cm.csv": "id,description,width,depth,height,cm_height\nbox,a box,0.4,0.5,1.0,1.5\n",
+        "floor4.csv": f"{HEADER}\nbox,a box,0.4,0.5,1.0,0.5,4\n",
+        "empty.csv": "# nothing but a comment\n",
+        "key.toml": "[[item]]\nid = 'box'\ndescription = 'a box'\nwidth = 0.4\ndepth = 0.5\nheight = 1.0\ncolour = 'red'\n",
+        "good_motions.csv": f"{MANIFEST}\n{GOOD_MOTION}\n",
+        "nofile.csv": f"{MANIFEST}\n{GOOD_MOTION}\nr2,1,1,nope.txt,m/s2,0.01\n",
+        "cm_motions.csv": f"{MANIFEST}\nr1,1,1,floor_cm.txt,m/s2,0.01\n",
+        "xy.csv": f"{MANIFEST}\nr1,1,X,floor.txt,m/s2,0.01\n",
+        "nounits.csv": f"{MANIFEST}\nr1,1,1,floor.txt,,0.01\n",
+        "dup_motions.csv": f"{MANIFEST}\n{GOOD_MOTION}\n{GOOD_MOTION}\n",
+        "scale.csv": f"{MANIFEST},scale\n{GOOD_MOTION},2\n",
+    }
+    for name, text in files.items():
+        (base / name).write_text(text)
+    return base
+
+
+def inventory_cases(b: Path) -> list[Case]:
+    """Each broken inventory (with good motions) and each broken manifest (with a good inventory)."""
+    def inv(name: str, needles: tuple[str, ...]) -> Case:
+        return Case(f"inventory {name}", ("contents", "--inventory", f"{b}/{name}", "--motions",
+                                          f"{b}/good_motions.csv", "--out", "out"), needles)
+
+    def mot(name: str, needles: tuple[str, ...]) -> Case:
+        return Case(f"motions {name}", ("contents", "--inventory", f"{b}/good.csv", "--motions", f"{b}/{name}",
+                                        "--out", "out"), needles)
+
+    return [
+        inv("colour.csv", ("colour.csv:1", "header = 'colour'", "unknown column")),
+        inv("word.csv", ("word.csv:3", "width = 'abc'", "not a number")),
+        inv("twice.csv", ("twice.csv:3", "id = 'box'", "used twice")),
+        inv("mm.csv", ("mm.csv line 2: width", "400", "mm", "--accept-implausible")),
+        inv("weibull.csv", ("weibull.csv:2", "friction", "weibull")),
+        inv("wide.csv", ("wide.csv:2", "friction", "normal(0.1, 0.2)", "outside")),
+        inv("cm.csv", ("cm.csv:2", "cm_height = '1.5'")),
+        inv("floor4.csv", ("floor", "'4'")),
+        inv("empty.csv", ("empty.csv", "empty file")),
+        inv("missing.csv", ("missing.csv", "no such file")),
+        inv("key.toml", ("key.toml:7", "colour", "unknown key")),
+        mot("nofile.csv", ("nofile.csv:3", "file = 'nope.txt'", "no such file")),
+        mot("cm_motions.csv", ("cm_motions.csv line 2 (floor_cm.txt): PFA", "cm/s²", "--accept-implausible")),
+        mot("xy.csv", ("xy.csv:2", "direction = 'X'")),
+        mot("nounits.csv", ("nounits.csv:2", "units")),
+        mot("dup_motions.csv", ("dup_motions.csv:3", "listed twice")),
+        mot("scale.csv", ("scale.csv:1", "header = 'scale'", "unknown column")),
+        mot("missing.csv", ("missing.csv", "no such file")),
+    ]
+
+
+#: Cases whose kind of refusal another case already shows in make test (an unknown column, a bad friction
+#: distribution, a missing file, a repeated row, an empty file): behind ``slow``, to keep make test's budget
+#: (each case is one start of the console script, about 0.7 s of CPU).
+SECOND = {"inventory wide.csv", "inventory empty.csv", "motions scale.csv", "motions missing.csv",
+          "motions dup_motions.csv"}
+
+
+def test_hostile_inventories_and_manifests_are_refused(inputs, tmp_path):
+    cases = [c for c in inventory_cases(inputs) if c.name not in SECOND]
+    broken = sweep(cases, tmp_path, workers=4, timeout=120)
+    assert not broken, "\n".join(broken)
+
+
+@pytest.mark.slow
+def test_more_hostile_inventories_and_manifests_are_refused(inputs, tmp_path):
+    cases = [c for c in inventory_cases(inputs) if c.name in SECOND]
+    assert len(cases) == len(SECOND)
+    broken = sweep(cases, tmp_path, workers=4, timeout=120)
+    assert not broken, "\n".join(broken)
+
+
+def test_inventory_case_counts(inputs):
+    counts = Counter(c.name.split()[0] for c in inventory_cases(inputs))
+    assert counts == {"inventory": 11, "motions": 7}, counts

@@ -123,9 +123,11 @@ def block_name(item_id: str, direction: str) -> str:
     return f"{item_id}-d{direction}"
 
 
-def item_block_spec(item: Item, direction: str, name: str) -> Any:
+def item_block_spec(item: Item, direction: str, name: str, seed: int = 0) -> Any:
     """The planar block of ``item`` under motion direction ``direction``, as a campaign's
-    :class:`~opsrock.campaign.scene.BlockSpec`.
+    :class:`~opsrock.campaign.scene.BlockSpec`: the item's own ``block_spec`` where the installed
+    :class:`~opsrock.inventory.items.Item` has one (friction drawn per case from ``seed`` and the case id), else
+    built here.
 
     Parameters
     ----------
@@ -135,46 +137,47 @@ def item_block_spec(item: Item, direction: str, name: str) -> Any:
         ``"1"``: the block's base is the item's ``width``; ``"2"``: its ``depth`` (m).
     name : str
         The block's label (:func:`block_name`).
+    seed : int
+        Seed of friction drawn per case.
 
     Returns
     -------
     BlockSpec
         Base (m), height (m), mass (kg; 1 when not given: rocking does not depend on it), the item's own
-        restitution ``e`` if given (else the project's ``0.95 e_R``), a fixed friction coefficient (static,
-        kinetic) or None. A centre of mass, radius of gyration or friction distribution is passed on where
-        the installed :class:`~opsrock.campaign.scene.BlockSpec` has the field, and refused otherwise.
+        restitution ``e`` if given (else the project's ``0.95 e_R``), its friction (static, kinetic) or None.
+        Built here, a friction distribution is refused, and a centre of mass or radius of gyration is passed
+        on where the installed BlockSpec has the field and refused otherwise.
     """
     from opsrock.campaign.scene import BlockSpec
 
     if direction not in ("1", "2"):
         raise InputError(f"direction must be '1' or '2', got {direction!r}", argument="direction")
+    if hasattr(item, "block_spec"):
+        return item.block_spec(direction, name, seed=seed)
     fields = {f.name for f in dataclasses.fields(BlockSpec)}
     extra = {k: getattr(item, k) for k in ("cm_height", "radius_of_gyration") if getattr(item, k) is not None}
-    mu, mu_k = _friction(item, fields, extra)
     missing = sorted(set(extra) - fields)
     if missing:
         raise InputError(f"item {item.id!r}: {', '.join(missing)} cannot be run by this build's campaigns "
                          f"(BlockSpec has no such field)", argument="inventory")
+    mu, mu_k = _friction(item)
     return BlockSpec(name=name, width=item.width if direction == "1" else item.depth, height=item.height,
                      reason=item.description, mass=item.mass if item.mass is not None else 1.0,
                      restitution=item.restitution, friction=mu, friction_kinetic=mu_k, **extra)
 
 
-def _friction(item: Item, fields: set[str], extra: dict) -> tuple[float | None, float | None]:
-    """``(mu_s, mu_k)`` of a fixed friction; a distribution goes into ``extra`` (the mean stays None)."""
+def _friction(item: Item) -> tuple[float | None, float | None]:
+    """``(mu_s, mu_k)`` of a fixed friction (None, None without friction); a distribution is refused."""
     law = item.friction
     if law is None:
         return None, None
-    if law.distribution == "fixed":
-        mu = float(law.parameters[0])
-        kinetic = item.friction_kinetic if item.friction_kinetic is not None else (
-            mu * law.kinetic_ratio if law.kinetic_ratio is not None else mu)
-        return mu, float(kinetic)
-    if "friction_distribution" not in fields:
+    if law.distribution != "fixed":
         raise InputError(f"item {item.id!r}: friction drawn from a {law.distribution!r} distribution is not "
                          "supported by this build's campaigns (give a fixed friction)", argument="inventory")
-    extra["friction_distribution"] = law
-    return None, None
+    mu = float(law.parameters[0])
+    kinetic = item.friction_kinetic if item.friction_kinetic is not None else (
+        mu * law.kinetic_ratio if law.kinetic_ratio is not None else mu)
+    return mu, float(kinetic)
 
 
 def groups_of(items: tuple[Item, ...], motions: MotionSet, solver: str,
@@ -200,7 +203,8 @@ def groups_of(items: tuple[Item, ...], motions: MotionSet, solver: str,
     return out
 
 
-def group_scenes(groups: dict[Group, list[Item]], motions: MotionSet, intensity: Any) -> list[GroupScene]:
+def group_scenes(groups: dict[Group, list[Item]], motions: MotionSet, intensity: Any,
+                 seed: int = 0) -> list[GroupScene]:
     """One record scene per group (see the module docstring).
 
     Parameters
@@ -211,6 +215,8 @@ def group_scenes(groups: dict[Group, list[Item]], motions: MotionSet, intensity:
         The floor motions (m/s²).
     intensity : Intensity
         The intensity axis (:class:`opsrock.campaign.records.Intensity`): IDA levels or a cloud.
+    seed : int
+        Seed of friction drawn per case.
     """
     from opsrock.campaign.records import Floor, RecordSet
     from opsrock.campaign.scene import Scene
@@ -225,7 +231,7 @@ def group_scenes(groups: dict[Group, list[Item]], motions: MotionSet, intensity:
         floor = Floor(None, 0) if g.support is None else Floor(
             ShearBuilding(SUPPORT_NAME, g.support.period, 1, g.support.damping), 1)
         records = RecordSet(grounds=grounds, floors=(floor,), source=motions.source, intensity=intensity)
-        blocks = tuple(item_block_spec(it, g.direction, block_name(it.id, g.direction)) for it in items)
+        blocks = tuple(item_block_spec(it, g.direction, block_name(it.id, g.direction), seed) for it in items)
         for b in blocks:
             for rec in grounds:
                 try:

@@ -274,7 +274,7 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
 
     t_start = time.perf_counter()
     groups = groups_of(design.inventory.items, design.motions, design.solver, design.friction_solver)
-    scenes = group_scenes(groups, design.motions, design.intensity)  # every input checked first
+    scenes = group_scenes(groups, design.motions, design.intensity, design.seed)  # every input checked first
     out = Path(out_dir)
     store = Path(store_dir) if store_dir is not None else out / "campaigns"
     timings: dict[str, float] = {}

@@ -8,6 +8,9 @@ as recorded at that floor and direction (:func:`opsrock.inventory.campaigns.floo
 on a support (whose campaign scaled the floor motion before its oscillator), so that the fragility is in the
 demand pelicun assesses.
 
+A fit whose median lies beyond the largest demand of its cases (a few exceedances at the top levels) is kept,
+with a message that says it is an extrapolation.
+
 Sliding "beyond ``slide_distance``" is ``slide_max >= slide_distance``: the peak displacement of the base
 relative to the floor (m), whether the item then overturned or not.
 
@@ -76,17 +79,25 @@ def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: i
                 if not y.any():
                     row.update(_no_fit(f"never {_verb(outcome)} {_within(study.method)}"))
                 else:
-                    plans.append(plan_mle(ok[f"x_{demand}"].to_numpy(float), y.to_numpy(bool), n_boot=study.n_boot,
-                                          seed=study.seed, groups=ok["record"].to_numpy()))
-                    where.append(len(rows))
+                    x = ok[f"x_{demand}"].to_numpy(float)
+                    plans.append(plan_mle(x, y.to_numpy(bool), n_boot=study.n_boot, seed=study.seed,
+                                          groups=ok["record"].to_numpy()))
+                    where.append((len(rows), float(x.max())))
                 rows.append(row)
-    for i, f in zip(where, fit_plans(plans, workers or 1)):
+    for (i, x_max), f in zip(where, fit_plans(plans, workers or 1)):
         ok = bool(f.success and math.isfinite(f.mu))
         rows[i].update(median=f.mu if ok else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
-                       beta=f.beta if ok else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=ok, message=f.message)
+                       beta=f.beta if ok else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=ok,
+                       message=_extrapolated(f.mu, x_max, rows[i]) if ok and f.mu > x_max else f.message)
     table = pd.DataFrame(rows, columns=list(FIT_COLUMNS))
     table["ratio_fema"] = table["median"] / table["fema_median"]
     return table
+
+
+def _extrapolated(median: float, x_max: float, row: dict) -> str:
+    """The message of a fit whose median lies beyond every demand of its cases."""
+    return (f"extrapolated: the median {median:.3g} {row['unit']} lies beyond the largest demand of the cases "
+            f"({x_max:.3g} {row['unit']}), from {row['n_exceeded']} of {row['n_cases']} cases")
 
 
 def _scaled_demands(cases: pd.DataFrame, demands: pd.DataFrame) -> pd.DataFrame:

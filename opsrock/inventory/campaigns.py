@@ -23,8 +23,9 @@ the fits are the *floor's* (the scale factor times the floor motion's PFA and PF
 assesses.
 
 The floor-motion measures (:func:`opsrock.intensity.records.motion_measures`) of every motion are computed
-once (:func:`floor_demands`) and handed to each unfiltered group's campaign through its floor-motion cache
-(:func:`seed_motions`), so no campaign computes them again.
+once (:func:`floor_demands`, cached in the store for a resumed study: :func:`cached_demands`) and handed to
+each unfiltered group's campaign through its floor-motion cache (:func:`seed_motions`), so no campaign
+computes them again.
 """
 
 from __future__ import annotations
@@ -286,6 +287,41 @@ def floor_demands(motions: MotionSet, workers: int | None = 1) -> pd.DataFrame:
                          for m, meas in zip(motions.motions, measured)])
 
 
+#: The motions' demands, cached in the store (keyed by the motions' digest): a resumed study does not measure
+#: them again.
+DEMANDS_FILE: str = "floor_demands.pickle"
+
+
+def motions_digest(motions: MotionSet) -> str:
+    """A digest of every motion: record, floor, direction, time step and samples."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for m in motions.motions:
+        h.update(f"{m.record}|{m.floor}|{m.direction}|{m.motion.dt!r}|".encode())
+        h.update(np.ascontiguousarray(m.motion.values).tobytes())
+    return h.hexdigest()
+
+
+def cached_demands(motions: MotionSet, store: Path, workers: int | None = 1) -> pd.DataFrame:
+    """:func:`floor_demands`, read from ``store``'s cache (:data:`DEMANDS_FILE`) when it was written for these
+    motions, else computed and cached (atomically)."""
+    from opsrock._files import atomic_write
+
+    digest, cache = motions_digest(motions), store / DEMANDS_FILE
+    try:
+        with open(cache, "rb") as fh:
+            saved = pickle.load(fh)
+        if saved.get("digest") == digest:
+            return saved["table"]
+    except (OSError, EOFError, pickle.UnpicklingError, AttributeError, KeyError, TypeError, ValueError):
+        pass
+    table = floor_demands(motions, workers)
+    store.mkdir(parents=True, exist_ok=True)
+    atomic_write(cache, lambda fh: pickle.dump({"digest": digest, "table": table}, fh), binary=True)
+    return table
+
+
 def seed_motions(gs: GroupScene, folder: Path, demands: pd.DataFrame) -> bool:
     """Give an unfiltered group's campaign the floor motions and their measures (:func:`floor_demands`)
     through its floor-motion cache (:data:`opsrock.campaign.motions.MOTIONS_FILE`), so that it computes
@@ -350,5 +386,6 @@ def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
     return df
 
 
-__all__ = ["BATCH", "CASE_COLUMNS", "SUPPORT_NAME", "Group", "GroupScene", "block_name", "floor_demands",
-           "group_scenes", "groups_of", "item_block_spec", "run_groups", "seed_motions"]
+__all__ = ["BATCH", "CASE_COLUMNS", "DEMANDS_FILE", "SUPPORT_NAME", "Group", "GroupScene", "block_name",
+           "cached_demands", "floor_demands", "group_scenes", "groups_of", "item_block_spec", "motions_digest",
+           "run_groups", "seed_motions"]

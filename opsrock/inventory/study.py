@@ -270,7 +270,7 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     InputError
         Bad inputs (before anything is written), or every case failed (nothing written).
     """
-    from opsrock.inventory.campaigns import floor_demands, group_scenes, groups_of, run_groups
+    from opsrock.inventory.campaigns import cached_demands, group_scenes, groups_of, run_groups
 
     t_start = time.perf_counter()
     groups = groups_of(design.inventory.items, design.motions, design.solver, design.friction_solver)
@@ -279,7 +279,7 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     store = Path(store_dir) if store_dir is not None else out / "campaigns"
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
-    demands = floor_demands(design.motions, _workers(workers))
+    demands = cached_demands(design.motions, store, _workers(workers))
     timings["demands_s"] = time.perf_counter() - t0
     _say(progress, f"{sum(s.scene.n_cases for s in scenes)} cases in {len(scenes)} campaigns into {store}")
     cases, t_camp = run_groups(scenes, store, demands, workers=workers, progress=progress, force=force)

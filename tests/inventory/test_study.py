@@ -19,7 +19,7 @@ from scipy.stats import norm
 
 from opsrock.errors import InputError
 from opsrock.excitations.records import Record
-from opsrock.inventory.campaigns import group_scenes, groups_of, item_block_spec
+from opsrock.inventory.campaigns import DEMANDS_FILE, group_scenes, groups_of, item_block_spec
 from opsrock.inventory.fits import FIT_COLUMNS
 from opsrock.inventory.items import FrictionLaw, Inventory, Item, Support
 from opsrock.inventory.motions import FloorMotion, MotionSet
@@ -80,6 +80,7 @@ def test_the_second_run_computes_nothing_and_writes_the_same_fits(study):
     first, second = study
     assert first.n_cases == second.n_cases == 3 * len(RECORDS) * len(LEVELS)
     assert first.n_computed == first.n_cases and second.n_computed == 0
+    assert (Path(first.out_dir) / "campaigns" / DEMANDS_FILE).exists()  # the demands are not measured again
     a, b = (pd.read_csv(s.tables["fits"]) for s in study)
     pd.testing.assert_frame_equal(a, b)
 

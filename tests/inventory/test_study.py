@@ -225,3 +225,25 @@ def test_contents_inventory_motions_through_the_console_script(tmp_path):
     assert "opsrock contents: 2 items" in proc.stdout
     for name in ("fits.csv", "expected.csv", "demands.csv", "report.md", "pelicun/config.json", "pelicun/fragility.csv"):
         assert (tmp_path / "out" / name).exists(), name
+
+
+def test_a_cloud_gives_the_empirical_count_beside_the_expectation():
+    """A cloud (one case per motion, as recorded) made by hand: the fit on the records' own PFV, and
+    ``empirical_overturned = quantity x`` the share of the records that overturned the item (2 of 4)."""
+    from opsrock.inventory.fits import expected_table, fit_table
+
+    motions = synthetic_motions(floors=("1",))
+    design = InventoryDesign(Inventory((BOOKCASE,), "test"), motions, method="cloud", n_boot=0)
+    pfv = np.array([0.2, 0.45, 0.3, 0.6])  # m/s, made up
+    demands = pd.DataFrame({"record": RECORDS, "floor": "1", "direction": "1", "pfa": 9.81 * pfv, "pfv": pfv})
+    over = np.array([False, False, True, True])  # at 0.3 and 0.6, not at 0.45: not separated, a finite MLE
+    cases = pd.DataFrame({"item": "bookcase", "floor": "1", "direction": "1", "record": RECORDS, "scale": 1.0,
+                          "status": "ok", "overturned": over, "slide_max": math.nan})
+    fits = fit_table(cases, demands, design, 1)
+    assert set(fits["method"]) == {"cloud"} and (fits["n_exceeded"] == 2).all()
+    pfv_fit = fits[fits["demand"] == "pfv"].iloc[0]
+    assert pfv_fit["ok"] and pfv_fit["n_records"] == 4
+    expected = expected_table(fits, cases, demands, design).iloc[0]
+    assert expected["empirical_overturned"] == 3.0 * 2 / 4  # quantity 3, 2 of 4 records
+    want = 3.0 * norm.cdf(np.log(pfv / pfv_fit["median"]) / pfv_fit["beta"]).mean()
+    assert expected["expected_overturned"] == pytest.approx(want, rel=1e-12)

@@ -127,6 +127,7 @@ def main(argv: list[str] | None = None) -> int:
 
         with tempfile.TemporaryDirectory() as tmp:
             path = Path(tmp) / "config.json"
+            config["DL"]["Options"]["LogFile"] = str(Path(tmp) / "pelicun_log.txt")  # not into the working folder
             path.write_text(json.dumps(config))
             run_pelicun(str(path), config["DL"]["Demands"]["DemandFilePath"], str(Path(tmp) / "out"), size, None,
                         str(folder), ["csv"], detailed_results=False, coupled_edp=True)

@@ -53,6 +53,13 @@ test-fuzz: install
 # FEMA P-58's E.20.22 fragilities and with opsrock's: first on a quick study made now from this checkout,
 # then on the committed study (studies/contents/pelicun/), whose expected numbers of overturned items
 # studies/contents/README.md quotes.
+# Then the user's route (opsrock contents --inventory --motions): the shipped example inventory on the shipped
+# example floor motions, quick, into .pelicun-venv/inventory; pelicun runs its pelicun/ folder as it is (damage
+# and loss, tools/pelicun_inventory.py, and pelicun's own DL_calculation on its config.json) and prints each
+# item's expected number overturned per floor and direction beside the exact expectation over the records.
+EXAMPLE_INVENTORY := opsrock/data/inventories/example.csv
+EXAMPLE_MOTIONS   := opsrock/data/examples/floor-motions/motions.csv
+
 test-pelicun: install
 	@test -x .pelicun-venv/bin/python || $(PYTHON) -m venv .pelicun-venv
 	.pelicun-venv/bin/python -m pip install --quiet 'pelicun==3.10.0'
@@ -64,6 +71,11 @@ test-pelicun: install
 	for f in .pelicun-venv/contents/pelicun/fragility_*.csv; do .pelicun-venv/bin/python tools/pelicun_load.py $$f || exit 1; done
 	.pelicun-venv/bin/python tools/pelicun_assess.py .pelicun-venv/contents/pelicun --repeat 20
 	.pelicun-venv/bin/python tools/pelicun_assess.py studies/contents/pelicun
+	@if [ -f $(EXAMPLE_INVENTORY) ] && [ -f $(EXAMPLE_MOTIONS) ]; then \
+	  $(BIN)/opsrock contents --inventory $(EXAMPLE_INVENTORY) --motions $(EXAMPLE_MOTIONS) \
+	    --out .pelicun-venv/inventory --quick --no-progress --force && \
+	  .pelicun-venv/bin/python tools/pelicun_inventory.py .pelicun-venv/inventory/pelicun --dl-calculation; \
+	else echo "no shipped example inventory and motions ($(EXAMPLE_INVENTORY), $(EXAMPLE_MOTIONS)): skipped"; fi
 
 # A wheel built from this checkout, installed (not editable) into a fresh venv, runs `opsrock run tiny`,
 # `opsrock validate --quick` and `opsrock reproduce` from an empty folder elsewhere (.ci/run calls it).

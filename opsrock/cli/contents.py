@@ -1,4 +1,6 @@
-"""``opsrock contents``: FEMA P-58's unanchored contents in one building, beside FEMA's fragilities."""
+"""``opsrock contents``: FEMA P-58's unanchored contents in one building, beside FEMA's fragilities; with
+``--inventory`` and/or ``--motions``, the user's inventory on the user's floor motions
+(:func:`opsrock.inventory.study.run_inventory_study`). Options of the other route are refused, one line."""
 
 from __future__ import annotations
 
@@ -21,6 +23,43 @@ CONTENTS_OPTIONS: dict[str, str] = {
 }
 
 
+#: Fields of :class:`opsrock.inventory.study.InventoryDesign` and of the building source -> their options.
+INVENTORY_OPTIONS: dict[str, str] = {
+    "inventory": "--inventory", "motions": "--motions", "method": "--method", "levels": "--levels",
+    "demand_levels_pfv": "--demand-levels-pfv", "demand_levels_pfa": "--demand-levels-pfa",
+    "slide_distance": "--slide-distance", "n_boot": "--n-boot", "seed": "--seed", "period": "--period",
+    "storeys": "--storeys", "damping": "--damping", "floors": "--floors", "record_set": "--record-set",
+    "records": "--records",
+}
+
+#: Options of each route, with the value they have when not given (the parser's defaults).
+_INVENTORY_ONLY = {"--method": ("method", None), "--levels": ("levels", None),
+                   "--demand-levels-pfv": ("demand_levels_pfv", None), "--demand-levels-pfa": ("demand_levels_pfa", None),
+                   "--slide-distance": ("slide_distance", None), "--accept-implausible": ("accept_implausible", False)}
+_FEMA_ONLY = {"--items": ("items", None), "--variants": ("variants", "default,housner,friction"),
+              "--friction": ("friction", None), "--no-sweep": ("no_sweep", False)}
+_BUILDING = {"--period": ("period", 1.0), "--storeys": ("storeys", 8), "--damping": ("damping", 0.05),
+             "--floors": ("floors", "ground,roof"), "--record-set": ("record_set", "fema-p695:far-field"),
+             "--records": ("records", None)}
+
+
+def _refuse(args: argparse.Namespace, options: dict, why: str) -> None:
+    """Refuse the first option of ``options`` given (not at its default): it does not apply to this route."""
+    for option, (dest, default) in options.items():
+        if getattr(args, dest) != default:
+            raise UsageError(f"{option} does not apply {why}")
+
+
+def _numbers(option: str, text: str | None) -> tuple | None:
+    """``"0.25, 0.5"`` -> ``(0.25, 0.5)``; None -> None; anything else not a number is refused naming ``option``."""
+    if text is None:
+        return None
+    try:
+        return tuple(float(part) for part in _comma_list(option, text))
+    except ValueError:
+        raise UsageError(f"{option} needs comma-separated numbers; got {text!r}") from None
+
+
 def _comma_list(option: str, text: str | None) -> tuple[str, ...]:
     """``"a, b"`` -> ``("a", "b")`` (spaces around a name are dropped); None -> (). An empty entry
     (``""``, ``"a,"``, ``",,"``) is refused naming ``option``; names given twice are refused by the
@@ -40,10 +79,14 @@ def _floors(text: str) -> tuple:
 
 
 def contents(args: argparse.Namespace) -> int:
-    """``opsrock contents``: :func:`opsrock.contents.run_contents_study` for one building."""
+    """``opsrock contents``: :func:`opsrock.contents.run_contents_study` for one building, or with
+    ``--inventory``/``--motions`` :func:`opsrock.inventory.study.run_inventory_study`."""
     output_dir("--out", args.out)
     if args.store is not None:
         output_dir("--store", args.store)
+    if args.inventory is not None or args.motions is not None:
+        return _inventory(args)
+    _refuse(args, _INVENTORY_ONLY, "without --inventory or --motions (FEMA P-58's study in the shipped building)")
     try:
         with named_options(CONTENTS_OPTIONS):
             design = ContentsDesign(period=args.period, storeys=args.storeys, damping=args.damping,
@@ -65,6 +108,39 @@ def contents(args: argparse.Namespace) -> int:
              else f"opsrock's no-slip median PFV over FEMA P-58's: {s.ratio_range[0]:.2f} to {s.ratio_range[1]:.2f}")
     print(f"opsrock contents: {s.n_cases} cases ({s.n_failed} failed) in {s.timings['total_s']:.1f} s; {ratio}; "
           f"see {res.report}")
+    return 0
+
+
+def _inventory(args: argparse.Namespace) -> int:
+    """The route of ``--inventory``/``--motions``: the design is read and checked by the library."""
+    from opsrock.inventory.sources import BuildingSource
+    from opsrock.inventory.study import inventory_design, run_inventory_study
+
+    _refuse(args, _FEMA_ONLY, "with --inventory or --motions (it is an option of FEMA P-58's study)")
+    if args.motions is not None:
+        _refuse(args, _BUILDING, "with --motions (the motions are the manifest's, not the shipped building's)")
+    settings = {k: v for k, v in {
+        "method": args.method, "levels": _numbers("--levels", args.levels),
+        "demand_levels_pfv": _numbers("--demand-levels-pfv", args.demand_levels_pfv),
+        "demand_levels_pfa": _numbers("--demand-levels-pfa", args.demand_levels_pfa),
+        "slide_distance": args.slide_distance, "n_boot": args.n_boot, "seed": args.seed}.items() if v is not None}
+    settings["accept_implausible"] = args.accept_implausible
+    try:
+        with named_options(INVENTORY_OPTIONS):
+            source = BuildingSource(period=args.period, storeys=args.storeys, damping=args.damping,
+                                    floors=_floors(args.floors), record_set=args.record_set,
+                                    names=_comma_list("--records", args.records))
+            design = inventory_design(args.inventory, args.motions, source, settings, quick_run=args.quick,
+                                      workers=args.workers)
+            res = run_inventory_study(design, args.out, workers=args.workers, progress=not args.no_progress,
+                                      force=args.force, store_dir=args.store)
+    except KeyboardInterrupt:
+        print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
+              "run the same command again to compute only the missing ones", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    print(f"opsrock contents: {len(design.inventory.items)} items, {res.n_cases} cases ({res.n_computed} computed now, "
+          f"{res.n_failed} failed) in {res.timings['total_s']:.1f} s; fits in {res.tables['fits']}, pelicun folder "
+          f"{Path(res.out_dir) / 'pelicun'}; see {res.report}")
     return 0
 
 

@@ -301,6 +301,24 @@ def _contents(sub) -> None:
     p.add_argument("--workers", type=count("--workers", "workers"), help="local worker processes (default: all cores)")
     p.add_argument("--force", action="store_true", help="discard stored cases of other settings in the campaigns")
     p.add_argument("--no-progress", action="store_true", help="no progress on stderr")
+    # the user's inventory on the user's floor motions (opsrock.inventory.study): the route of --inventory/--motions
+    p.add_argument("--inventory", help="an inventory file (CSV or TOML, one row per item type): each item's fragility "
+                                       "per floor and a pelicun folder (default with --motions: FEMA P-58's nine)")
+    p.add_argument("--motions", help="a floor-motions manifest (CSV: record, floor, direction, file, units, dt) "
+                                     "(default with --inventory: the shipped shear building's, --period ... --records)")
+    p.add_argument("--method", help="with --inventory/--motions: ida (each motion scaled to --levels; default) or "
+                                    "cloud (the motions as given)")
+    p.add_argument("--levels", help="with --inventory/--motions: IDA levels of PFA / (g tan alpha), comma-separated "
+                                    "(default 16 from 1.1 to 9)")
+    p.add_argument("--demand-levels-pfv", help="with --inventory/--motions: PFV values (m/s), comma-separated, at which "
+                                               "the report gives P(overturning) (default 0.25,0.5,1)")
+    p.add_argument("--demand-levels-pfa", help="with --inventory/--motions: PFA values (g), comma-separated, at which "
+                                               "the report gives P(overturning) (default 0.25,0.5,1)")
+    p.add_argument("--slide-distance", type=positive("--slide-distance"),
+                   help="with --inventory/--motions: sliding beyond it (m) is counted where friction is modelled "
+                        "(default 0.05)")
+    p.add_argument("--accept-implausible", action="store_true",
+                   help="with --inventory/--motions: run a block larger than 10 m or a motion beyond 10 g anyway")
 
 
 COMMANDS = {"simulate": _simulate, "threshold": _threshold, "records": _records, "run": _run,

@@ -1,0 +1,391 @@
+"""The inventory study's campaigns: every item on the floors it stands on, in every direction of the motions.
+
+One campaign (a record :class:`~opsrock.campaign.scene.Scene`, run resumably by
+:func:`opsrock.campaign.run_campaign` into ``store/<group>``) per :class:`Group`: the items that stand on the
+same floors, under one direction, on the same support, with the same solver. An item runs only on its
+floors, and every floor motion is shared by all the items of its group (a campaign costs a pool of worker
+processes and a store whatever its size, so the groups are as few as the items allow):
+
+* the scene's "ground records" are the user's floor motions of the group's floors and direction, as given,
+  each named ``<record>.<floor>``; an item on the floor itself meets them unfiltered (the campaign's floor
+  label ``ground``: the motion as given, whatever floor it was recorded on);
+* an item on a support (a desk, a table, a shelf: :class:`opsrock.inventory.items.Support`) meets them through
+  the support's linear oscillator: a one-storey shear building
+  (:class:`opsrock.excitations.building.ShearBuilding` with one storey, period and damping the support's) *is*
+  that single-degree-of-freedom oscillator, its floor 1 the support's top (floor label ``support.f1``);
+* the items with friction run with the ``friction`` solver, the others with the design's no-slip solver.
+
+Case ids, stable and readable: ``<item>-d<direction>/<record>.<floor>/<ground|support.f1>/l<k>`` inside the
+group's folder ``d<direction>-<solver>[-T<period>z<damping>][-on-<floors>]`` (``-on-`` only for items on
+some of the floors). The IDA levels are ``PFA / (g tan alpha)`` of the motion the item meets; the demands of
+the fits are the *floor's* (the scale factor times the floor motion's PFA and PFV,
+:mod:`opsrock.inventory.fits`), so that an item on a desk has its fragility in the floor demand pelicun
+assesses.
+
+The floor-motion measures (:func:`opsrock.intensity.records.motion_measures`) of every motion are computed
+once (:func:`floor_demands`, cached in the store for a resumed study: :func:`cached_demands`) and handed to
+each unfiltered group's campaign through its floor-motion cache (:func:`seed_motions`), so no campaign
+computes them again.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import pickle
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from opsrock.errors import InputError
+from opsrock.inventory.items import Item, Support
+from opsrock.inventory.motions import MotionSet
+
+#: Label of the one-storey building that stands for a support (its top is the floor label ``support.f1``).
+SUPPORT_NAME: str = "support"
+
+#: Cases per batch sent to a worker (as the contents study: a case takes about a millisecond, and every
+#: batch costs a round trip and a store commit).
+BATCH: int = 256
+
+#: Columns of a campaign's ``cases.csv`` the study reads (``slide_max`` too where friction is modelled).
+CASE_COLUMNS: tuple[str, ...] = ("case_id", "block", "record", "level", "level_value", "scale", "status",
+                                 "overturned")
+
+
+@dataclass(frozen=True)
+class Group:
+    """The items of one campaign: those that stand on one floor, under one direction, on one support, with
+    one solver.
+
+    Parameters
+    ----------
+    floors : tuple of str
+        The floors its items stand on, as the motions name them.
+    all_floors : bool
+        Whether they are all the floors of the motions.
+    direction : str
+        ``"1"`` or ``"2"``.
+    support : Support or None
+        The support the items stand on; None: the floor itself.
+    solver : str
+        The solver of its cases.
+    """
+
+    floors: tuple[str, ...]
+    all_floors: bool
+    direction: str
+    support: Support | None
+    solver: str
+
+    @property
+    def name(self) -> str:
+        """Folder of the campaign: ``d<direction>-<solver>[-T<period>z<damping>][-on-<floors>]``."""
+        from opsrock.excitations.records import safe_name
+
+        tail = "" if self.support is None else "-" + _number(f"T{self.support.period:g}z{self.support.damping:g}")
+        on = "" if self.all_floors else "-on-" + "_".join(safe_name(f) for f in self.floors)
+        return f"d{self.direction}-{self.solver}{tail}{on}"
+
+
+def _number(text: str) -> str:
+    return text.replace(".", "p")
+
+
+@dataclass(frozen=True)
+class GroupScene:
+    """One group's campaign scene and what its blocks stand for.
+
+    Parameters
+    ----------
+    group : Group
+        The group.
+    scene : Scene
+        Its record scene (:class:`opsrock.campaign.scene.Scene`).
+    blocks : dict of str to str
+        Block name -> item id.
+    records : dict of str to (str, str)
+        Record name in the scene (``<record>.<floor>``, safe in case ids) -> the record and the floor as the
+        motions name them.
+    """
+
+    group: Group
+    scene: Any
+    blocks: dict[str, str]
+    records: dict[str, tuple[str, str]]
+
+
+def block_name(item_id: str, direction: str) -> str:
+    """The campaign's block label of an item in a direction: ``<item>-d<direction>``."""
+    return f"{item_id}-d{direction}"
+
+
+def item_block_spec(item: Item, direction: str, name: str, seed: int = 0) -> Any:
+    """The planar block of ``item`` under motion direction ``direction``, as a campaign's
+    :class:`~opsrock.campaign.scene.BlockSpec`: the item's own ``block_spec`` where the installed
+    :class:`~opsrock.inventory.items.Item` has one (friction drawn per case from ``seed`` and the case id), else
+    built here.
+
+    Parameters
+    ----------
+    item : Item
+        The inventory row (SI: m, kg).
+    direction : str
+        ``"1"``: the block's base is the item's ``width``; ``"2"``: its ``depth`` (m).
+    name : str
+        The block's label (:func:`block_name`).
+    seed : int
+        Seed of friction drawn per case.
+
+    Returns
+    -------
+    BlockSpec
+        Base (m), height (m), mass (kg; 1 when not given: rocking does not depend on it), the item's own
+        restitution ``e`` if given (else the project's ``0.95 e_R``), its friction (static, kinetic) or None.
+        Built here, a friction distribution is refused, and a centre of mass or radius of gyration is passed
+        on where the installed BlockSpec has the field and refused otherwise.
+    """
+    from opsrock.campaign.scene import BlockSpec
+
+    if direction not in ("1", "2"):
+        raise InputError(f"direction must be '1' or '2', got {direction!r}", argument="direction")
+    if hasattr(item, "block_spec"):
+        return item.block_spec(direction, name, seed=seed)
+    fields = {f.name for f in dataclasses.fields(BlockSpec)}
+    extra = {k: getattr(item, k) for k in ("cm_height", "radius_of_gyration") if getattr(item, k) is not None}
+    missing = sorted(set(extra) - fields)
+    if missing:
+        raise InputError(f"item {item.id!r}: {', '.join(missing)} cannot be run by this build's campaigns "
+                         f"(BlockSpec has no such field)", argument="inventory")
+    mu, mu_k = _friction(item)
+    return BlockSpec(name=name, width=item.width if direction == "1" else item.depth, height=item.height,
+                     reason=item.description, mass=item.mass if item.mass is not None else 1.0,
+                     restitution=item.restitution, friction=mu, friction_kinetic=mu_k, **extra)
+
+
+def _friction(item: Item) -> tuple[float | None, float | None]:
+    """``(mu_s, mu_k)`` of a fixed friction (None, None without friction); a distribution is refused."""
+    law = item.friction
+    if law is None:
+        return None, None
+    if law.distribution != "fixed":
+        raise InputError(f"item {item.id!r}: friction drawn from a {law.distribution!r} distribution is not "
+                         "supported by this build's campaigns (give a fixed friction)", argument="inventory")
+    mu = float(law.parameters[0])
+    kinetic = item.friction_kinetic if item.friction_kinetic is not None else (
+        mu * law.kinetic_ratio if law.kinetic_ratio is not None else mu)
+    return mu, float(kinetic)
+
+
+def groups_of(items: tuple[Item, ...], motions: MotionSet, solver: str,
+              friction_solver: str) -> dict[Group, list[Item]]:
+    """The groups of the study and their items, in inventory order: each item on its floors (all the
+    motions' floors when it names none), in each direction of the motions."""
+    floors = motions.floors
+    out: dict[Group, list[Item]] = {}
+    for item in items:
+        bad = [f for f in item.floors if f not in floors]
+        if bad:
+            raise InputError(f"item {item.id!r} stands on floors {bad!r} that the motions do not have "
+                             f"(they have {', '.join(floors)})", argument="inventory")
+        own = tuple(f for f in floors if f in item.floors) if item.floors else floors
+        for direction in motions.directions:
+            g = Group(own, own == floors, direction, item.support,
+                      friction_solver if item.friction is not None else solver)
+            out.setdefault(g, []).append(item)
+    names = [g.name for g in out]
+    if len(set(names)) != len(names):
+        raise InputError(f"two floors of the motions give the same folder name: {sorted(names)!r}; rename one",
+                         argument="motions")
+    return out
+
+
+def group_scenes(groups: dict[Group, list[Item]], motions: MotionSet, intensity: Any,
+                 seed: int = 0) -> list[GroupScene]:
+    """One record scene per group (see the module docstring).
+
+    Parameters
+    ----------
+    groups : dict
+        :func:`groups_of`.
+    motions : MotionSet
+        The floor motions (m/s²).
+    intensity : Intensity
+        The intensity axis (:class:`opsrock.campaign.records.Intensity`): IDA levels or a cloud.
+    seed : int
+        Seed of friction drawn per case.
+    """
+    from opsrock.campaign.records import Floor, RecordSet
+    from opsrock.campaign.scene import Scene
+    from opsrock.excitations.building import ShearBuilding
+    from opsrock.excitations.records import check_sampling
+
+    names = _motion_names(motions)
+    out = []
+    for g, items in groups.items():
+        grounds = tuple(m.motion.with_name(names[(m.record, m.floor)]) for m in motions.motions
+                        if m.floor in g.floors and m.direction == g.direction)
+        floor = Floor(None, 0) if g.support is None else Floor(
+            ShearBuilding(SUPPORT_NAME, g.support.period, 1, g.support.damping), 1)
+        records = RecordSet(grounds=grounds, floors=(floor,), source=motions.source, intensity=intensity)
+        blocks = tuple(item_block_spec(it, g.direction, block_name(it.id, g.direction), seed) for it in items)
+        for b in blocks:
+            for rec in grounds:
+                try:
+                    check_sampling(rec, b.block)
+                except ValueError as exc:
+                    raise InputError(str(exc), argument="motions") from None
+        scene = Scene(name=f"inventory-{g.name}", path="", blocks=blocks, grid=None, solver=g.solver, records=records)
+        out.append(GroupScene(g, scene, {b.name: it.id for b, it in zip(blocks, items)},
+                              {v: k for k, v in names.items()}))
+    return out
+
+
+def _motion_names(motions: MotionSet) -> dict[tuple[str, str], str]:
+    """``(record, floor)`` -> ``<record>.<floor>``, usable in case ids (:func:`opsrock.excitations.records.safe_name`)."""
+    from opsrock.excitations.records import safe_name
+
+    names = {(m.record, m.floor): f"{safe_name(m.record)}.{safe_name(m.floor)}" for m in motions.motions}
+    if len(set(names.values())) != len(names):
+        raise InputError("two (record, floor) pairs of the motions give the same name in case ids "
+                         "(<record>.<floor>, characters outside A-Z a-z 0-9 _ . - replaced): rename one",
+                         argument="motions")
+    return names
+
+
+class _Measures:
+    """Task state of :func:`floor_demands`: task ``(lo, hi)`` measures motions ``lo`` to ``hi - 1``."""
+
+    def __init__(self, records: list) -> None:
+        self.records = records
+
+    def run(self, lo: int, hi: int) -> list:
+        from opsrock.intensity.records import motion_measures
+
+        return [dataclasses.asdict(motion_measures(r)) for r in self.records[lo:hi]]
+
+
+def floor_demands(motions: MotionSet, workers: int | None = 1) -> pd.DataFrame:
+    """Every motion's demands, computed once: one row per (record, floor, direction) with the fields of
+    :class:`opsrock.intensity.records.MotionMeasures` (``pfa`` m/s², ``pfv`` m/s, ``pfd`` m, ``mean_period``
+    and ``predominant_period`` s), in ``workers`` processes (about 0.1-0.3 s a motion: the spectrum of the
+    predominant period)."""
+    from opsrock._pool import TaskPool
+
+    n = len(motions.motions)
+    workers = max(1, workers or 1)
+    size = max(1, math.ceil(n / (4 * workers)))
+    tasks = [(lo, min(n, lo + size)) for lo in range(0, n, size)]
+    state = _Measures([m.motion for m in motions.motions])
+    with TaskPool(state, tasks, workers if n >= 8 else 1) as pool:
+        measured = [row for chunk in pool.results() for row in chunk]
+    return pd.DataFrame([{"record": m.record, "floor": m.floor, "direction": m.direction, **meas}
+                         for m, meas in zip(motions.motions, measured)])
+
+
+#: The motions' demands, cached in the store (keyed by the motions' digest): a resumed study does not measure
+#: them again.
+DEMANDS_FILE: str = "floor_demands.pickle"
+
+
+def motions_digest(motions: MotionSet) -> str:
+    """A digest of every motion: record, floor, direction, time step and samples."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for m in motions.motions:
+        h.update(f"{m.record}|{m.floor}|{m.direction}|{m.motion.dt!r}|".encode())
+        h.update(np.ascontiguousarray(m.motion.values).tobytes())
+    return h.hexdigest()
+
+
+def cached_demands(motions: MotionSet, store: Path, workers: int | None = 1) -> pd.DataFrame:
+    """:func:`floor_demands`, read from ``store``'s cache (:data:`DEMANDS_FILE`) when it was written for these
+    motions, else computed and cached (atomically)."""
+    from opsrock._files import atomic_write
+
+    digest, cache = motions_digest(motions), store / DEMANDS_FILE
+    try:
+        with open(cache, "rb") as fh:
+            saved = pickle.load(fh)
+        if saved.get("digest") == digest:
+            return saved["table"]
+    except (OSError, EOFError, pickle.UnpicklingError, AttributeError, KeyError, TypeError, ValueError):
+        pass
+    table = floor_demands(motions, workers)
+    store.mkdir(parents=True, exist_ok=True)
+    atomic_write(cache, lambda fh: pickle.dump({"digest": digest, "table": table}, fh), binary=True)
+    return table
+
+
+def seed_motions(gs: GroupScene, folder: Path, demands: pd.DataFrame) -> bool:
+    """Give an unfiltered group's campaign the floor motions and their measures (:func:`floor_demands`)
+    through its floor-motion cache (:data:`opsrock.campaign.motions.MOTIONS_FILE`), so that it computes
+    none; a group on a support computes its filtered motions itself. Returns whether it seeded."""
+    from opsrock._files import atomic_write
+    from opsrock.campaign.motions import MOTIONS_FILE
+    from opsrock.intensity.records import MotionMeasures
+
+    if gs.group.support is not None or (folder / MOTIONS_FILE).exists():
+        return False
+    d = demands[demands["direction"] == gs.group.direction].set_index(["record", "floor"])
+    keys = [f.name for f in dataclasses.fields(MotionMeasures)]
+    results = []
+    for ground, _building, _floors in gs.scene.records.motion_items():
+        row = d.loc[gs.records[ground.name]]
+        results.append([(np.asarray(ground.values), MotionMeasures(**{k: float(row[k]) for k in keys}))])
+    folder.mkdir(parents=True, exist_ok=True)
+    atomic_write(folder / MOTIONS_FILE, lambda fh: pickle.dump({"digest": gs.scene.digest(), "results": results}, fh),
+                 binary=True)
+    return True
+
+
+def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, workers: int | None,
+               progress: bool, force: bool) -> tuple[pd.DataFrame, dict[str, Any]]:
+    """Run (or resume) every group's campaign into ``store/<group>``, on one pool of worker processes.
+
+    Returns
+    -------
+    cases : DataFrame
+        Every case (:data:`CASE_COLUMNS`, ``slide_max`` (m) where friction is modelled, else NaN) with
+        ``item``, ``floor``, ``direction``, ``group``, ``overturned`` as bool and ``record`` as the motions name it.
+    timings : dict
+        Wall time of the campaigns (s), their cases and those computed now.
+    """
+    from opsrock.campaign import run_campaign
+    from opsrock.campaign.executors import LocalPool
+
+    frames, t0, computed = [], time.perf_counter(), 0
+    with LocalPool(workers) as pool:
+        for gs in scenes:
+            folder = store / gs.group.name
+            seed_motions(gs, folder, demands)
+            summary = run_campaign(gs.scene, folder, executor=pool, progress=progress, force=force, batch=BATCH)
+            computed += summary.n_computed
+            frames.append(_read_cases(summary.cases_csv, gs))
+    cases = pd.concat(frames, ignore_index=True)
+    return cases, {"campaigns_s": time.perf_counter() - t0, "n_cases": len(cases), "n_computed": computed}
+
+
+def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
+    from opsrock._files import read_table
+
+    friction = "slide_max" in gs.scene.columns
+    df = read_table(path, usecols=list(CASE_COLUMNS) + (["slide_max"] if friction else []))
+    if not friction:
+        df["slide_max"] = math.nan
+    df["item"] = df["block"].map(gs.blocks)
+    source = df["record"].map(gs.records)
+    df["record"], df["floor"] = [r for r, _ in source], [f for _, f in source]
+    df["direction"], df["group"] = gs.group.direction, gs.group.name
+    df["overturned"] = df["overturned"].astype(str).eq("True")
+    return df
+
+
+__all__ = ["BATCH", "CASE_COLUMNS", "DEMANDS_FILE", "SUPPORT_NAME", "Group", "GroupScene", "block_name",
+           "cached_demands", "floor_demands", "group_scenes", "groups_of", "item_block_spec", "motions_digest",
+           "run_groups", "seed_motions"]

@@ -1,0 +1,176 @@
+"""Each item's fragility per floor and direction, in the floor's PFV (m/s) and PFA (g): overturning, and
+sliding beyond a distance where friction is modelled; lognormal maximum likelihood on every finished case
+(:func:`opsrock.fragility.mle.plan_mle`, as the contents study fits), 95 % intervals from resampling whole
+records, the resamples shared among worker processes (:func:`opsrock.fragility.mle.fit_plans`).
+
+The demand of a case is the *floor* motion's, scaled: ``scale x PFV`` and ``scale x PFA / g`` of the motion
+as recorded at that floor and direction (:func:`opsrock.inventory.campaigns.floor_demands`), also for an item
+on a support (whose campaign scaled the floor motion before its oscillator), so that the fragility is in the
+demand pelicun assesses.
+
+A fit whose median lies beyond the largest demand of its cases (a few exceedances at the top levels) is kept,
+with a message that says it is an extrapolation.
+
+Sliding "beyond ``slide_distance``" is ``slide_max >= slide_distance``: the peak displacement of the base
+relative to the floor (m), whether the item then overturned or not.
+
+``ratio_fema`` is opsrock's PFV median over FEMA P-58's (:data:`opsrock.published.fema_p58.ITEMS`) for the
+overturning rows of an item that names one of FEMA's nine unanchored items; FEMA's fragilities are in PFV
+only, so a PFA row has none.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from opsrock.constants import G
+
+#: Demands fitted: name -> (unit, column of the floor demands, divisor).
+DEMANDS: dict[str, tuple[str, str, float]] = {"pfv": ("m/s", "pfv", 1.0), "pfa": ("g", "pfa", G)}
+
+#: Columns of ``fits.csv``, in order (the report reads them).
+FIT_COLUMNS: tuple[str, ...] = (
+    "item", "description", "floor", "direction", "outcome", "demand", "unit", "method", "median", "median_lo",
+    "median_hi", "beta", "beta_lo", "beta_hi", "n_cases", "n_exceeded", "n_failed", "n_records", "ok", "message",
+    "fema_id", "fema_median", "ratio_fema", "pelicun_id",
+)  # fmt: skip
+
+
+def outcomes(cases: pd.DataFrame, slide_distance: float) -> dict[str, pd.Series]:
+    """The outcomes a group of cases is fitted for: ``overturning`` always, ``sliding`` (``slide_max >=
+    slide_distance``, m) when friction is modelled (a ``slide_max`` was computed)."""
+    out = {"overturning": cases["overturned"].astype(bool)}
+    slide = cases["slide_max"].astype(float)
+    if slide.notna().any():
+        out["sliding"] = slide.fillna(0.0) >= slide_distance
+    return out
+
+
+def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: int | None) -> pd.DataFrame:
+    """Every fit of the study (:data:`FIT_COLUMNS`), one row per item, floor, direction, outcome and demand.
+
+    Parameters
+    ----------
+    cases : DataFrame
+        :func:`opsrock.inventory.campaigns.run_groups`.
+    demands : DataFrame
+        :func:`opsrock.inventory.campaigns.floor_demands` (pfa m/s², pfv m/s).
+    study : InventoryDesign
+        Its ``inventory``, ``method``, ``slide_distance`` (m), ``n_boot`` and ``seed``.
+    workers : int or None
+        Processes for the resamples (None or 1: this one).
+    """
+    from opsrock.fragility.mle import fit_plans, plan_mle
+
+    items = {it.id: it for it in study.inventory.items}
+    scaled = _scaled_demands(cases, demands)
+    rows, plans, where = [], [], []
+    for (item, floor, direction), g in scaled.groupby(["item", "floor", "direction"], sort=False):
+        ok = g[g["status"] == "ok"]
+        for outcome, y in outcomes(ok, study.slide_distance).items():
+            for demand, (unit, _, _) in DEMANDS.items():
+                row = _row_keys(items[item], floor, direction, outcome, demand, unit, study.method)
+                row.update(n_cases=len(ok), n_exceeded=int(y.sum()), n_failed=len(g) - len(ok),
+                           n_records=int(ok["record"].nunique()))
+                if not y.any():
+                    row.update(_no_fit(f"never {_verb(outcome)} {_within(study.method)}"))
+                else:
+                    x = ok[f"x_{demand}"].to_numpy(float)
+                    plans.append(plan_mle(x, y.to_numpy(bool), n_boot=study.n_boot, seed=study.seed,
+                                          groups=ok["record"].to_numpy()))
+                    where.append((len(rows), float(x.max())))
+                rows.append(row)
+    for (i, x_max), f in zip(where, fit_plans(plans, workers or 1)):
+        ok = bool(f.success and math.isfinite(f.mu))
+        rows[i].update(median=f.mu if ok else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
+                       beta=f.beta if ok else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=ok,
+                       message=_extrapolated(f.mu, x_max, rows[i]) if ok and f.mu > x_max else f.message)
+    table = pd.DataFrame(rows, columns=list(FIT_COLUMNS))
+    table["ratio_fema"] = table["median"] / table["fema_median"]
+    return table
+
+
+def _extrapolated(median: float, x_max: float, row: dict) -> str:
+    """The message of a fit whose median lies beyond every demand of its cases."""
+    return (f"extrapolated: the median {median:.3g} {row['unit']} lies beyond the largest demand of the cases "
+            f"({x_max:.3g} {row['unit']}), from {row['n_exceeded']} of {row['n_cases']} cases")
+
+
+def _scaled_demands(cases: pd.DataFrame, demands: pd.DataFrame) -> pd.DataFrame:
+    """``cases`` with ``x_pfv`` (m/s) and ``x_pfa`` (g): the scale factor times the floor motion's demand."""
+    d = demands.set_index(["record", "floor", "direction"])
+    keys = list(zip(cases["record"], cases["floor"], cases["direction"]))
+    out = cases.copy()
+    for demand, (_, column, div) in DEMANDS.items():
+        out[f"x_{demand}"] = cases["scale"].to_numpy(float) * d[column].reindex(keys).to_numpy(float) / div
+    return out
+
+
+def _row_keys(item, floor: str, direction: str, outcome: str, demand: str, unit: str, method: str) -> dict:
+    fema = fema_median(item.fema_id) if outcome == "overturning" and demand == "pfv" else math.nan
+    return {"item": item.id, "description": item.description, "floor": floor, "direction": direction,
+            "outcome": outcome, "demand": demand, "unit": unit, "method": method, "fema_id": item.fema_id,
+            "fema_median": fema, "pelicun_id": ""}
+
+
+def fema_median(fema_id: str) -> float:
+    """FEMA P-58's median PFV at overturning (m/s) of one of its nine unanchored items; NaN for any other ID."""
+    from opsrock.published.fema_p58 import ITEMS
+
+    return next((it.median_mps for it in ITEMS if it.fema_id == fema_id), math.nan)
+
+
+def _verb(outcome: str) -> str:
+    return "overturned" if outcome == "overturning" else "slid that far"
+
+
+def _within(method: str) -> str:
+    return "within the levels" if method == "ida" else "under the motions as recorded"
+
+
+def _no_fit(message: str) -> dict[str, Any]:
+    nan = math.nan
+    return {"median": nan, "median_lo": nan, "median_hi": nan, "beta": nan, "beta_lo": nan, "beta_hi": nan,
+            "ok": False, "message": message}
+
+
+def lognormal_cdf(x: np.ndarray, median: float, beta: float) -> np.ndarray:
+    """``Phi(ln(x / median) / beta)`` (``x`` and ``median`` in one unit; ``beta`` dimensionless)."""
+    from scipy.special import ndtr
+
+    return ndtr(np.log(np.asarray(x, float) / median) / beta)
+
+
+def expected_table(fits: pd.DataFrame, cases: pd.DataFrame, demands: pd.DataFrame, study: Any) -> pd.DataFrame:
+    """The expected number of each item overturned per floor and direction under the motions as recorded.
+
+    ``expected_overturned = quantity x mean_r Phi(ln(PFV_r / theta) / beta)``: the exact expectation over the
+    records ``r`` of that floor and direction with the fitted PFV fragility (0 where the item never overturned
+    within the study, NaN where its fit failed); for a cloud also ``empirical_overturned``, ``quantity`` times
+    the share of the records under which it overturned (NaN for IDA)."""
+    items = {it.id: it for it in study.inventory.items}
+    pfv = fits[(fits["outcome"] == "overturning") & (fits["demand"] == "pfv")]
+    rows = []
+    for _, r in pfv.iterrows():
+        item = items[r["item"]]
+        d = demands[(demands["floor"] == r["floor"]) & (demands["direction"] == r["direction"])]["pfv"].to_numpy(float)
+        if r["ok"]:
+            p = float(np.mean(lognormal_cdf(d, r["median"], r["beta"])))
+        else:
+            p = 0.0 if r["n_exceeded"] == 0 and r["n_cases"] > 0 else math.nan
+        row = {"item": r["item"], "floor": r["floor"], "direction": r["direction"], "quantity": item.quantity,
+               "n_records": len(d), "expected_overturned": item.quantity * p, "empirical_overturned": math.nan}
+        if study.method == "cloud":
+            c = cases[(cases["item"] == r["item"]) & (cases["floor"] == r["floor"])
+                      & (cases["direction"] == r["direction"]) & (cases["status"] == "ok")]
+            row["empirical_overturned"] = item.quantity * float(c["overturned"].mean()) if len(c) else math.nan
+        rows.append(row)
+    return pd.DataFrame(rows, columns=["item", "floor", "direction", "quantity", "n_records", "expected_overturned",
+                                       "empirical_overturned"])
+
+
+__all__ = ["DEMANDS", "FIT_COLUMNS", "expected_table", "fema_median", "fit_table", "lognormal_cdf", "outcomes"]

@@ -1,0 +1,360 @@
+"""The user's inventory on the user's floor motions, end to end: :func:`run_inventory_study`
+(``opsrock contents --inventory FILE --motions FILE --out DIR``).
+
+Every item runs on the floors it stands on, in every direction of the motions (direction ``"1"``: its
+``width`` along the motion; ``"2"``: its ``depth``), through its support's oscillator if it stands on one
+(:mod:`opsrock.inventory.campaigns`): by IDA (``method="ida"``: each motion scaled to the levels of
+``PFA / (g tan alpha)`` of the item) or as recorded (``method="cloud"``: one case per motion, fitted as a
+cloud). Each item's fragility per floor and direction, overturning and (where friction is modelled)
+sliding beyond ``slide_distance``, in the floor's PFV and PFA (:mod:`opsrock.inventory.fits`); the expected
+number overturned under the motions as recorded; and a pelicun folder (:mod:`opsrock.inventory.pelicun`).
+
+Outputs (in ``out_dir``, written together through a staging folder: a failed or interrupted run changes
+nothing): ``fits.csv`` (:data:`opsrock.inventory.fits.FIT_COLUMNS`), ``demands.csv`` (each motion's
+:class:`~opsrock.intensity.records.MotionMeasures`, pfa m/s², pfv m/s, pfd m, periods s), ``expected.csv``,
+``pelicun/`` and ``report.md``. The campaigns keep their stores in ``out_dir/campaigns/<group>`` (or
+``store_dir``): a second run computes only what is missing.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from opsrock.contents.design import DEFAULT_LEVELS
+from opsrock.errors import InputError
+from opsrock.inventory.items import Inventory
+from opsrock.inventory.motions import MotionSet
+
+#: Intensity methods: IDA on the given motions, or the motions as given (a cloud).
+METHODS: tuple[str, ...] = ("ida", "cloud")
+
+#: Default PFV levels (m/s) and PFA levels (g) at which the report tabulates P(overturning).
+DEFAULT_DEMAND_LEVELS_PFV: tuple[float, ...] = (0.25, 0.5, 1.0)
+DEFAULT_DEMAND_LEVELS_PFA: tuple[float, ...] = (0.25, 0.5, 1.0)
+
+#: Sliding beyond this distance (m) is counted where friction is modelled.
+DEFAULT_SLIDE_DISTANCE: float = 0.05
+
+#: Files the study writes into its folder (besides ``campaigns/``).
+TABLES: dict[str, str] = {"fits": "fits.csv", "demands": "demands.csv", "expected": "expected.csv"}
+
+#: Every output the study owns in its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
+OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pelicun/*.csv", "pelicun/*.json")
+
+
+def _positive(name: str, values: tuple, what: str) -> tuple[float, ...]:
+    if not values or any(isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x) or x <= 0
+                         for x in values):
+        raise InputError(f"{name} must be positive numbers ({what}), got {values!r}", argument=name)
+    return tuple(float(x) for x in values)
+
+
+@dataclass(frozen=True)
+class InventoryDesign:
+    """The study of one inventory on one set of floor motions.
+
+    Parameters
+    ----------
+    inventory : Inventory
+        The items (SI: m, kg).
+    motions : MotionSet
+        The floor motions (m/s²), per record, floor and direction.
+    method : str
+        ``"ida"``: each motion scaled to ``levels``; ``"cloud"``: the motions as given (one case each).
+    levels : tuple of float
+        IDA levels of ``PFA / (g tan alpha)`` (dimensionless), per item; not used by a cloud.
+    n_boot : int
+        Record-bootstrap resamples of each fit (0: no intervals).
+    seed : int
+        Seed of the resamples (and of friction drawn per case).
+    demand_levels_pfv : tuple of float
+        PFV values (m/s) at which the report tabulates P(overturning).
+    demand_levels_pfa : tuple of float
+        PFA values (g) at which the report tabulates P(overturning).
+    slide_distance : float
+        Sliding beyond it (m) is an outcome where friction is modelled.
+    solver : str
+        Solver of the items without friction (no slip; default ``housner_fast``).
+    friction_solver : str
+        Solver of the items with friction (a solver of the ``friction`` model; default ``friction``).
+    accept_implausible : bool
+        Run a block larger than :data:`opsrock.limits.PLAUSIBLE` or a motion beyond its PFA bound anyway.
+    """
+
+    inventory: Inventory
+    motions: MotionSet = field(repr=False)
+    method: str = "ida"
+    levels: tuple[float, ...] = DEFAULT_LEVELS
+    n_boot: int = 100
+    seed: int = 0
+    demand_levels_pfv: tuple[float, ...] = DEFAULT_DEMAND_LEVELS_PFV
+    demand_levels_pfa: tuple[float, ...] = DEFAULT_DEMAND_LEVELS_PFA
+    slide_distance: float = DEFAULT_SLIDE_DISTANCE
+    solver: str = "housner_fast"
+    friction_solver: str = "friction"
+    accept_implausible: bool = False
+
+    def __post_init__(self) -> None:
+        from opsrock.limits import int_at_least
+
+        if self.method not in METHODS:
+            raise InputError(f"method must be one of {', '.join(METHODS)}, got {self.method!r}", argument="method")
+        object.__setattr__(self, "levels", _positive("levels", tuple(self.levels), "PFA / g tan alpha"))
+        object.__setattr__(self, "demand_levels_pfv", _positive("demand_levels_pfv", tuple(self.demand_levels_pfv), "m/s"))
+        object.__setattr__(self, "demand_levels_pfa", _positive("demand_levels_pfa", tuple(self.demand_levels_pfa), "g"))
+        _positive("slide_distance", (self.slide_distance,), "m")
+        int_at_least("n_boot", self.n_boot, 0)
+        int_at_least("seed", self.seed, 0)
+        self._check_solvers()
+        self._check_inputs()
+
+    def _check_solvers(self) -> None:
+        from opsrock.solvers.registry import METHODS as SOLVERS
+
+        for name, model in (("solver", None), ("friction_solver", "friction")):
+            value = getattr(self, name)
+            info = SOLVERS.get(value) if isinstance(value, str) else None
+            if info is None or (model is not None and info.model != model) or (model is None and info.model == "friction"):
+                kind = "of the friction model" if model else "without friction (no slip)"
+                raise InputError(f"{name} must name a solver {kind}, got {value!r}", argument=name)
+
+    def _check_inputs(self) -> None:
+        from opsrock.limits import check_plausible
+
+        if not self.inventory.items:
+            raise InputError(f"the inventory {self.inventory.source} has no items", argument="inventory")
+        ids = [it.id for it in self.inventory.items]
+        if len(set(ids)) != len(ids):
+            raise InputError(f"the inventory names an item twice: {sorted(i for i in set(ids) if ids.count(i) > 1)!r}",
+                             argument="inventory")
+        if not self.motions.motions:
+            raise InputError(f"the motions {self.motions.source} hold no motion", argument="motions")
+        option = "accept_implausible=True"
+        for it in self.inventory.items:
+            for dim in ("width", "depth", "height"):
+                check_plausible("block_size", getattr(it, dim), what=f"item {it.id}: {dim}", option=option,
+                                confirm=self.accept_implausible)
+        for m in self.motions.motions:
+            check_plausible("pfa", float(np.max(np.abs(m.motion.values))), what=f"motion {m.record} floor {m.floor} "
+                            f"direction {m.direction}: PFA", option=option, confirm=self.accept_implausible)
+
+    @property
+    def intensity(self) -> Any:
+        """The campaigns' intensity axis (:class:`opsrock.campaign.records.Intensity`)."""
+        from opsrock.campaign.records import Intensity
+
+        if self.method == "cloud":
+            return Intensity("cloud", "", (1.0,))
+        return Intensity("ida", "pfa_ratio", self.levels)
+
+
+def quick(design: InventoryDesign) -> InventoryDesign:
+    """A small copy of ``design`` for checks: eight IDA levels (1.1 to 9), at most 20 resamples."""
+    return dataclasses.replace(design, n_boot=min(design.n_boot, 20),
+                               levels=tuple(float(x) for x in np.geomspace(1.1, 9.0, 8)))
+
+
+def inventory_design(inventory: str | Path | None, motions: str | Path | None, source: Any, settings: dict[str, Any],
+                     *, quick_run: bool = False, workers: int | None = None) -> InventoryDesign:
+    """The design of ``opsrock contents --inventory FILE --motions FILE``, every input read and checked.
+
+    Parameters
+    ----------
+    inventory : str, Path or None
+        An inventory file (:func:`opsrock.inventory.items.read_inventory`); None: FEMA P-58's nine
+        (:func:`opsrock.inventory.items.shipped_inventory`).
+    motions : str, Path or None
+        A motions manifest (:func:`opsrock.inventory.motions.read_motions`); None: the shipped shear building's
+        floor motions (:func:`opsrock.inventory.sources.building_motions` of ``source``).
+    source : BuildingSource
+        The building, floors and records when ``motions`` is None (:class:`opsrock.inventory.sources.BuildingSource`).
+    settings : dict
+        The other fields of :class:`InventoryDesign` (``method``, ``levels``, ``n_boot``, ...).
+    quick_run : bool
+        :func:`quick`; on the building's motions also the quick records of the contents study (unless named).
+    workers : int or None
+        Processes of the building analyses.
+    """
+    from opsrock.contents.design import QUICK_RECORDS
+    from opsrock.inventory.items import read_inventory, shipped_inventory
+    from opsrock.inventory.motions import read_motions
+    from opsrock.inventory.sources import building_motions
+
+    confirm = bool(settings.get("accept_implausible", False))
+    inv = shipped_inventory("fema-p58-nine") if inventory is None else read_inventory(inventory, confirm=confirm)
+    if motions is not None:
+        ms = read_motions(motions, confirm=confirm)
+    else:
+        if quick_run and not source.names:
+            source = dataclasses.replace(source, names=QUICK_RECORDS)
+        ms = building_motions(source, workers)
+    design = InventoryDesign(inv, ms, **settings)
+    return quick(design) if quick_run else design
+
+
+@dataclass(frozen=True)
+class InventoryStudy:
+    """What :func:`run_inventory_study` computed and wrote.
+
+    Parameters
+    ----------
+    design : InventoryDesign
+        The study as run.
+    out_dir : str
+        The output folder.
+    tables : dict of str to str
+        Key of :data:`TABLES` -> CSV path.
+    pelicun : dict of str to str
+        pelicun file key -> path (:func:`opsrock.inventory.pelicun.write_pelicun_folder`).
+    report : str
+        ``report.md``.
+    n_cases, n_computed, n_failed : int
+        Cases of the campaigns, those computed by this call (0 on a resume with nothing missing), those failed.
+    timings : dict of str to float
+        Wall times (s): ``demands_s``, ``campaigns_s``, ``fits_s``, ``outputs_s``, ``total_s``.
+    """
+
+    design: InventoryDesign
+    out_dir: str
+    tables: dict[str, str]
+    pelicun: dict[str, str]
+    report: str
+    n_cases: int
+    n_computed: int
+    n_failed: int
+    timings: dict[str, float]
+
+
+def _say(progress: bool, text: str) -> None:
+    if progress:
+        print(f"contents: {text}", file=sys.stderr, flush=True)
+
+
+def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers: int | None = None,
+                        progress: bool = True, force: bool = False,
+                        store_dir: str | Path | None = None) -> InventoryStudy:
+    """Each item's overturning (and sliding) fragility per floor and direction, the expected numbers
+    overturned, and a pelicun folder, written into ``out_dir`` (resumable).
+
+    Parameters
+    ----------
+    design : InventoryDesign
+        The inventory, the motions and how to run and fit them.
+    out_dir : str or Path
+        Output folder (see the module docstring).
+    workers : int or None
+        Processes (default: all cores).
+    progress : bool
+        Progress on stderr.
+    force : bool
+        Delete stored results of other settings in the campaigns' folders instead of refusing them.
+    store_dir : str or Path, optional
+        Where the campaigns keep their stores; default ``out_dir/campaigns``.
+
+    Returns
+    -------
+    InventoryStudy
+        The paths written, the case counts and the timings (s).
+
+    Raises
+    ------
+    InputError
+        Bad inputs (before anything is written), or every case failed (nothing written).
+    """
+    from opsrock.inventory.campaigns import cached_demands, group_scenes, groups_of, run_groups
+
+    t_start = time.perf_counter()
+    groups = groups_of(design.inventory.items, design.motions, design.solver, design.friction_solver)
+    scenes = group_scenes(groups, design.motions, design.intensity, design.seed)  # every input checked first
+    out = Path(out_dir)
+    store = Path(store_dir) if store_dir is not None else out / "campaigns"
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    demands = cached_demands(design.motions, store, _workers(workers))
+    timings["demands_s"] = time.perf_counter() - t0
+    _say(progress, f"{sum(s.scene.n_cases for s in scenes)} cases in {len(scenes)} campaigns into {store}")
+    cases, t_camp = run_groups(scenes, store, demands, workers=workers, progress=progress, force=force)
+    timings["campaigns_s"] = t_camp["campaigns_s"]
+    failed = cases["status"] != "ok"
+    if failed.all():
+        raise InputError(f"every one of the {len(cases)} cases failed (first: {cases['status'].iloc[0]}); "
+                         f"nothing to fit: see {store}", argument="motions")
+    return _fit_and_write(design, cases, demands, out, workers, progress,
+                          {"timings": timings, "t_start": t_start, "n_computed": t_camp["n_computed"]})
+
+
+def _workers(workers: int | None) -> int:
+    """``workers``, or every core this process may use."""
+    import os
+
+    if workers is not None:
+        return workers
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+
+
+def _fit_and_write(design: InventoryDesign, cases: pd.DataFrame, demands: pd.DataFrame, out: Path,
+                   workers: int | None, progress: bool, run: dict) -> InventoryStudy:
+    from opsrock._files import staged_folder
+    from opsrock.inventory.fits import expected_table, fit_table
+    from opsrock.inventory.pelicun import with_pelicun_ids, write_pelicun_folder
+
+    timings = run["timings"]
+    t0 = time.perf_counter()
+    _say(progress, f"fits ({design.n_boot} record resamples each)")
+    fits = with_pelicun_ids(fit_table(cases, demands, design, _workers(workers)), design.motions.directions)
+    expected = expected_table(fits, cases, demands, design)
+    timings["fits_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    tables = {"fits": fits, "demands": demands, "expected": expected}
+    with staged_folder(out, OUTPUTS) as stage:
+        paths = {k: _write_csv(df, stage / TABLES[k]) for k, df in tables.items()}
+        pel = write_pelicun_folder(fits, demands, design, stage / "pelicun")
+        timings["outputs_s"] = time.perf_counter() - t0
+        timings["total_s"] = time.perf_counter() - run["t_start"]
+        report = _write_report(stage, {**tables, "design": design, "cases": cases, "timings": timings})
+        final = {p: out / Path(p).relative_to(stage) for p in [report, *paths.values(), *pel.values()]}
+    n_failed = int((cases["status"] != "ok").sum())
+    _say(progress, f"done in {timings['total_s']:.1f} s: {final[report]}")
+    return InventoryStudy(design=design, out_dir=str(out), tables={k: str(final[p]) for k, p in paths.items()},
+                          pelicun={k: str(final[p]) for k, p in pel.items()}, report=str(final[report]),
+                          n_cases=len(cases), n_computed=int(run["n_computed"]), n_failed=n_failed, timings=timings)
+
+
+def _write_csv(df: pd.DataFrame, path: Path) -> Path:
+    """``df`` as CSV at full precision."""
+    from opsrock._files import atomic_write
+
+    atomic_write(path, lambda fh: df.to_csv(fh, index=False), durable=False)
+    return path
+
+
+def _write_report(stage: Path, study_tables: dict[str, Any]) -> Path:
+    """A placeholder report (``report.md``): the per-item, per-floor table of the overturning fits in PFV.
+    The report of :mod:`opsrock.inventory.report` replaces it."""
+    fits = study_tables["fits"]
+    design = study_tables["design"]
+    rows = fits[(fits["outcome"] == "overturning") & (fits["demand"] == "pfv")]
+    lines = [f"# Contents fragility: {design.inventory.source} on {design.motions.source}", "",
+             f"Method: {design.method}; PFV = peak absolute floor velocity (m/s) of the floor motion.", "",
+             "| item | floor | direction | median PFV (m/s) | 95 % interval | beta | FEMA median (m/s) | note |",
+             "|---|---|---|---|---|---|---|---|"]
+    for _, r in rows.iterrows():
+        lines.append(f"| {r['item']} | {r['floor']} | {r['direction']} | {r['median']:.3g} | "
+                     f"{r['median_lo']:.3g}-{r['median_hi']:.3g} | {r['beta']:.3g} | {r['fema_median']:.3g} | "
+                     f"{'' if r['ok'] else r['message']} |")
+    path = stage / "report.md"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+__all__ = ["DEFAULT_DEMAND_LEVELS_PFA", "DEFAULT_DEMAND_LEVELS_PFV", "DEFAULT_SLIDE_DISTANCE", "METHODS", "OUTPUTS",
+           "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study"]

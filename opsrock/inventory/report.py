@@ -156,17 +156,20 @@ def formatted_table(table: pd.DataFrame, verb: str = "overturned", confidence: f
     return pd.DataFrame(rows)
 
 
-def _method_lines(inputs: ReportInputs) -> list[str]:
-    method = METHODS.get(inputs.method, inputs.method)
+def method_lines(method: str, confidence: float = 0.95) -> list[str]:
+    """The method paragraph: what ``method`` (:data:`METHODS` key, or a text) means and how the curves and
+    intervals are fitted (``confidence`` dimensionless)."""
+    method = METHODS.get(method, method)
     return ["## Method", "",
             f"Method: {method}. Each curve is a lognormal fragility P(overturning | demand) = "
             "Phi(ln(demand / median) / beta) fitted by maximum likelihood to every finished case of one item on one "
-            f"floor; the {100 * inputs.confidence:.0f} % intervals come from resampling whole records (all the cases "
+            f"floor; the {100 * confidence:.0f} % intervals come from resampling whole records (all the cases "
             "of a record together). beta is the lognormal dispersion (dimensionless). P at a level is that curve's "
             "probability at the demand named in the column.", ""]
 
 
-def _footnotes(table: pd.DataFrame, verb: str) -> list[str]:
+def footnotes(table: pd.DataFrame, verb: str) -> list[str]:
+    """The notes under a :func:`formatted_table`: why an estimate is marked, what \"none\" means, each missing fit."""
     lines = []
     outside = table[table[[c for c in table.columns if "_outside_" in c]].any(axis=1)]
     if len(outside):
@@ -247,14 +250,14 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
              + ". Overturning first; table rows are one item on one floor.", "",
              "## Per item and floor: overturning", "",
              markdown_table(formatted_table(t, "overturned", inputs.confidence)) if len(t) else "(no item was fitted)", "",
-             *(_footnotes(t, "overturned") if len(t) else []),
-             *_method_lines(inputs)]
+             *(footnotes(t, "overturned") if len(t) else []),
+             *method_lines(inputs.method, inputs.confidence)]
     if inputs.findings:
         lines += ["## What the floors show", "", *(f"- {f.text}" for f in inputs.findings), ""]
     if inputs.sliding is not None and len(inputs.sliding):
         lines += ["## Per item and floor: sliding", "",
                   markdown_table(formatted_table(inputs.sliding, "slid", inputs.confidence)), "",
-                  *_footnotes(inputs.sliding, "slid")]
+                  *footnotes(inputs.sliding, "slid")]
     lines += [*_figure_lines(inputs.figures), *_expected_lines(inputs.expected, inputs.pelicun),
               *_failure_lines(inputs), *_pelicun_lines(inputs.pelicun)]
     path = Path(path)
@@ -262,4 +265,5 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
     return path
 
 
-__all__ = ["DEFINITIONS", "METHODS", "OUTSIDE_MARK", "ReportInputs", "formatted_table", "write_report"]
+__all__ = ["DEFINITIONS", "METHODS", "OUTSIDE_MARK", "ReportInputs", "footnotes", "formatted_table", "method_lines",
+           "write_report"]

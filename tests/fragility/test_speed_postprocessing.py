@@ -348,7 +348,9 @@ def test_record_study_counts_its_fits(monkeypatch):
     monkeypatch.setattr(mle, "newton", count_newton)
     monkeypatch.setattr(logistic, "newton", count_newton)
     study = rs.record_fragility(cases, rs.RecordStudySettings(n_boot=n_boot), n_rank_boot=n_rank)
-    n_ims, n_plans = 9, 9 + 2 * 2 + 2  # IMs, blocks x (PFA, PFV), the measure under both conventions
+    # IMs, blocks x floors x (PFA, PFV) (two each: _campaign), the measure under both conventions
+    n_ims, n_plans = 9, 9 + 2 * 2 * 2 + 2
+    assert len(study.blocks) == 2 * 2 * 2 and study.blocks.groupby(["block", "floor"]).size().eq(2).all()
     assert calls["logistic"] == n_ims  # one per IM: none in the ranking resamples
     # one Newton run per point fit, per bootstrap resample, per ranking resample and IM, per logistic fit; at most
     assert 0 < calls["newton"] <= n_plans * (1 + n_boot) + n_ims * n_rank + n_ims

@@ -100,6 +100,14 @@ def _num(v: float) -> str:
     return f"{v:.3g}" if isinstance(v, (int, float)) and math.isfinite(v) else "n/a"
 
 
+def _probability(p: float) -> str:
+    """A probability to three decimals, bounded at 0.001 and 0.999 (a fitted tail, not a certainty); ``-``
+    without a fit."""
+    if not math.isfinite(p):
+        return "-"
+    return "< 0.001" if p < 0.001 else "> 0.999" if p > 0.999 else f"{p:.3f}"
+
+
 def _no_fit(r: pd.Series, d: str, verb: str) -> str:
     status = r[f"status_{d}"]
     if status == "never":
@@ -132,13 +140,15 @@ def _levels(table: pd.DataFrame, d: str) -> list[tuple[str, str]]:
     return [(c, c[len(prefix):]) for c in table.columns if c.startswith(prefix)]
 
 
-def formatted_table(table: pd.DataFrame, verb: str = "overturned", confidence: float = 0.95) -> pd.DataFrame:
-    """The report's text cells of an :func:`~opsrock.inventory.summary.item_floor_table` (formatting only)."""
+def formatted_table(table: pd.DataFrame, verb: str = "overturned", confidence: float = 0.95,
+                    what: str = "item") -> pd.DataFrame:
+    """The report's text cells of an :func:`~opsrock.inventory.summary.item_floor_table` (formatting only;
+    ``what`` names the first column: ``item``, or ``block`` in the record-scene report)."""
     pct = f"{100 * confidence:.0f} %"
     several = table["direction"].nunique() > 1
     rows = []
     for _, r in table.iterrows():
-        row = {"item": r["item"], "floor": r["floor"]}
+        row = {what: r["item"], "floor": r["floor"]}
         if several:
             row["direction"] = r["direction"]
         row[f"median PFV (m/s) [{pct}]"] = _median_cell(r, "pfv", verb)
@@ -150,7 +160,7 @@ def formatted_table(table: pd.DataFrame, verb: str = "overturned", confidence: f
         for d, abbr, unit in (("pfv", "PFV", "m/s"), ("pfa", "PFA", "g")):
             for column, level in _levels(table, d):
                 value = r[column]
-                row[f"P at {abbr} {level} {unit}"] = _num(value) if math.isfinite(value) else "-"
+                row[f"P at {abbr} {level} {unit}"] = _probability(value)
         row["records / cases"] = f"{int(r['n_records'])} / {int(r['n_cases'])}"
         rows.append(row)
     return pd.DataFrame(rows)
@@ -185,9 +195,10 @@ def footnotes(table: pd.DataFrame, verb: str) -> list[str]:
         lines.append(f"\"none {verb}\": no case of " + ", ".join(f"{r.item} on floor {r.floor}" for r in never.itertuples())
                      + f" {verb}, so there is no curve to fit and no probability is given (\"-\"); it is not zero, only "
                      "below what these motions reach.")
-    nofit = table[(table["status_pfv"] == "no fit") | (table["status_pfa"] == "no fit")]
-    for r in nofit.itertuples():
-        lines.append(f"no fit, {r.item} on floor {r.floor}: {r.message_pfv or r.message_pfa}.")
+    for r in table.itertuples():
+        for d, abbr in (("pfv", "PFV"), ("pfa", "PFA")):
+            if getattr(r, f"status_{d}") == "no fit":
+                lines.append(f"no fit, {r.item} on floor {r.floor}, {abbr}: {getattr(r, f'message_{d}').rstrip('.')}.")
     return [*(f"{line}\n" for line in lines)]
 
 
@@ -208,7 +219,8 @@ def _failure_lines(inputs: ReportInputs) -> list[str]:
     lines = ["## Cases", ""]
     if inputs.failures is not None and len(inputs.failures):
         total = int(inputs.failures["n_cases"].sum())
-        lines += [f"{total} cases failed (excluded from the fits, never counted as a verdict); their reasons:", "",
+        lines += [f"{total} case{'s' if total != 1 else ''} failed (excluded from the fits, never counted as a "
+                  f"verdict); {'their reasons' if total != 1 else 'its reason'}:", "",
                   markdown_table(inputs.failures, ".3g"), ""]
     elif inputs.failures is not None or n_failed == 0:
         lines += ["No case failed.", ""]

@@ -256,7 +256,7 @@ class Finding:
         ``"lower_higher"`` (the median falls floor by floor going up), ``"higher_higher"`` (it rises),
         ``"same"`` (equal on every floor), ``"mixed"``, ``"single"`` (one fitted floor), ``"none"`` (no fit).
     floors : tuple of str
-        The fitted floors, in building order.
+        The fitted floors (status ``fitted``: a successful fit with a finite median), in building order.
     medians : tuple of float
         Their medians (m/s or g).
     overlap : bool
@@ -297,7 +297,7 @@ def floor_findings(table: pd.DataFrame, demand: str = "pfv", verb: str = "overtu
     abbr, unit, _ = DEMANDS[demand]
     out = []
     for (item, direction), g in table.groupby(["item", "direction"], sort=False):
-        fit = g[np.isfinite(g[f"median_{demand}"].to_numpy(float))]
+        fit = g[g[f"status_{demand}"].eq("fitted").to_numpy() & np.isfinite(g[f"median_{demand}"].to_numpy(float))]
         floors, med = tuple(fit["floor"]), [float(v) for v in fit[f"median_{demand}"]]
         lo, hi = fit[f"median_lo_{demand}"].to_numpy(float), fit[f"median_hi_{demand}"].to_numpy(float)
         overlap = bool(len(fit) > 1 and np.isfinite(lo).all() and np.isfinite(hi).all() and lo.max() <= hi.min())

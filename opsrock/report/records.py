@@ -192,7 +192,7 @@ def _block_lines(out: Path, report: RecordReport) -> list[str]:
     each block's figure."""
     t, conf = report.table, report.study.settings.confidence
     lines = ["## Per block and floor, for loss assessment", "",
-             markdown_table(formatted_table(t, "overturned", conf)) if len(t) else "(no block was fitted)", "",
+             markdown_table(formatted_table(t, "overturned", conf, "block")) if len(t) else "(no block was fitted)", "",
              *(footnotes(t, "overturned") if len(t) else []),
              "Exported to `fragility_pelicun.csv` in the FEMA P-58 / pelicun damage-model form, one component per "
              "block and floor, `opsrock.<block>.<floor>.<PFA|PFV>` (a pelicun component has one fragility wherever "
@@ -212,8 +212,9 @@ def _block_lines(out: Path, report: RecordReport) -> list[str]:
 def _case_lines(report: RecordReport) -> list[str]:
     lines = [*_solver_lines(report.source, report.study.cases)]
     if len(report.failures):
-        lines += [f"{int(report.failures['n_cases'].sum())} cases failed (excluded from every fit, never counted as "
-                  "a verdict); their reasons:", "", markdown_table(report.failures), ""]
+        n = int(report.failures["n_cases"].sum())
+        lines += [f"{n} case{'s' if n != 1 else ''} failed (excluded from every fit, never counted as a verdict); "
+                  f"{'their reasons' if n != 1 else 'its reason'}:", "", markdown_table(report.failures), ""]
     return lines
 
 

@@ -120,6 +120,9 @@ def test_cells_flags_and_explanations(built):
     assert OUTSIDE_MARK not in rows[("cabinet", "1")] and OUTSIDE_MARK not in rows[("rack", "1")]
     assert f"{OUTSIDE_MARK} The maximum-likelihood estimate lies outside its own bootstrap interval (cabinet on floor 3)" in text
     assert "none overturned (80 cases)" in rows[("printer", "1")]
+    # P at PFV 1 m/s of rack, floor 3: Phi(ln(1/0.4)/0.35) = 0.99558 in closed form, three decimals; cabinet,
+    # floor 1 at 0.25 m/s: Phi(ln(0.25/0.8)/0.3) = 5.3e-5, below the table's resolution
+    assert "| 0.996 |" in rows[("rack", "3")] and "| < 0.001 |" in rows[("cabinet", "1")]
     assert "0.4 (E.20.22.102a)" in rows[("rack", "1")] and "not mapped" in rows[("cabinet", "1")]
     # failures counted and their reasons summarised (the reason up to its first colon)
     assert "3 cases failed" in text and "| max_steps reached | 2 |" in text and "| worker died | 1 |" in text
@@ -144,6 +147,12 @@ def test_sentences_agree_with_the_numbers(built):
     assert {f.item: f.kind for f in summary.floor_findings(t2)}["rack"] == "higher_higher"
     t2.loc[t2["item"] == "rack", "median_pfv"] = 0.5
     assert "the same PFV median on every fitted floor" in {f.item: f for f in summary.floor_findings(t2)}["rack"].text
+    # a fit that failed (perfect separation: a finite "median" in the middle of the gap, ok False) is not a
+    # median a sentence may quote: the table says "no fit" there
+    t4 = built["table"].copy()
+    t4.loc[(t4["item"] == "rack") & (t4["floor"] == "2"), ["status_pfv", "median_pfv"]] = ["no fit", 0.9]
+    rack = {f.item: f for f in summary.floor_findings(t4)}["rack"]
+    assert rack.floors == ("1", "3") and "0.9 m/s" not in rack.text and rack.kind == "lower_higher"
     # non-numbered floors: no claim about "higher" floors
     t3 = built["table"].replace({"floor": {"1": "ground", "2": "mezzanine", "3": "roof"}})
     assert {f.item: f.kind for f in summary.floor_findings(t3)}["rack"] == "mixed"

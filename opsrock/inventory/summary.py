@@ -19,6 +19,7 @@ them; ``demands`` gives PFA in m/s² and is converted here.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -51,23 +52,45 @@ def level_column(demand: str, level: float) -> str:
     return f"P_{demand}_{level:g}"
 
 
+_NUMBERED = re.compile(r"^(.*?)(\d+)$")
+
+
+def _building(prefix: str) -> str:
+    """The building part of a floor label's prefix: ``"b3.f"`` and ``"b3."`` -> ``"b3"``, ``"L"`` -> ``""``."""
+    return re.sub(r"[.\s_-]*[a-z]*[.\s_-]*$", "", prefix)
+
+
+def _floor_keys(labels: list[str]) -> dict[str, float] | None:
+    """Height rank of each label when the labels name the floors of one building: a number (``"3"``), one
+    prefix and a number (``"L3"``, ``"b3.f2"``), ``"ground"`` (0) or ``"roof"`` (above every number); None
+    when any label is none of these or the prefixes differ (two buildings)."""
+    keys, prefixes = {}, set()
+    for label in labels:
+        low = label.lower()
+        if low in ("ground", "g"):
+            keys[label] = 0.0
+        elif low == "roof" or low.endswith(".roof"):
+            keys[label], _ = math.inf, prefixes.add(_building(low[:-4]))
+        else:
+            m = _NUMBERED.match(label)
+            if m is None:
+                return None
+            keys[label], _ = float(m.group(2)), prefixes.add(_building(m.group(1).lower()))
+    return keys if len(prefixes - {""}) <= 1 else None
+
+
 def floor_order(floors) -> list[str]:
-    """Floors in building order: by number where every label is a number (``"1"``, ``"2"``, ``"10"``),
-    else in first-seen order."""
+    """Floors in building order where the labels give it (:func:`floors_are_numbered`: ``"1"``, ``"2"``,
+    ``"10"``; ``"ground"``, ``"b3.f1"``, ``"b3.roof"``), else in first-seen order."""
     labels = [str(f) for f in dict.fromkeys(floors)]
-    try:
-        return sorted(labels, key=float)
-    except ValueError:
-        return labels
+    keys = _floor_keys(labels)
+    return labels if keys is None else sorted(labels, key=keys.__getitem__)
 
 
 def floors_are_numbered(floors) -> bool:
-    """True when every floor label is a number, so that "higher floor" has a meaning."""
-    try:
-        [float(str(f)) for f in floors]
-    except ValueError:
-        return False
-    return True
+    """True when the floor labels give their order (numbers, one building's numbered floors, ``ground``,
+    ``roof``), so that "higher floor" has a meaning."""
+    return _floor_keys([str(f) for f in dict.fromkeys(floors)]) is not None
 
 
 def outside_interval(estimate: float, lo: float, hi: float) -> bool:
@@ -254,7 +277,8 @@ class Finding:
         The item and the demand (``pfv``/``pfa``).
     kind : str
         ``"lower_higher"`` (the median falls floor by floor going up), ``"higher_higher"`` (it rises),
-        ``"same"`` (equal on every floor), ``"mixed"``, ``"single"`` (one fitted floor), ``"none"`` (no fit).
+        ``"same"`` (equal on every floor), ``"mixed"`` (ordered floors, neither), ``"unordered"`` (floor labels
+        without an order: the lowest and highest named), ``"single"`` (one fitted floor), ``"none"`` (no fit).
     floors : tuple of str
         The fitted floors (status ``fitted``: a successful fit with a finite median), in building order.
     medians : tuple of float
@@ -287,7 +311,7 @@ def _kind(medians: list[float], numbered: bool) -> str:
         return "lower_higher"
     if numbered and (steps > 0).all():
         return "higher_higher"
-    return "mixed"
+    return "mixed" if numbered else "unordered"
 
 
 def floor_findings(table: pd.DataFrame, demand: str = "pfv", verb: str = "overturns") -> tuple[Finding, ...]:
@@ -312,8 +336,11 @@ def floor_findings(table: pd.DataFrame, demand: str = "pfv", verb: str = "overtu
             "lower_higher": f"{where} {verb} at a lower {abbr} on higher floors ({listed}).",
             "higher_higher": f"{where} {verb} at a higher {abbr} on higher floors ({listed}).",
             "mixed": f"{where}: the {abbr} median does not change in one direction from floor to floor ({listed}).",
+            "unordered": f"{where}: the {abbr} median is lowest on floor {floors[int(np.argmin(med))]} and highest on "
+                         f"floor {floors[int(np.argmax(med))]} ({listed}); the floor labels do not give their order."
+                         if med else "",
         }[kind]
-        if overlap and kind in ("lower_higher", "higher_higher", "mixed"):
+        if overlap and kind in ("lower_higher", "higher_higher", "mixed", "unordered"):
             text += " The floors' intervals overlap: these records do not resolve the difference."
         out.append(Finding(item, demand, kind, floors, tuple(med), overlap, text))
     return tuple(out)

@@ -153,9 +153,13 @@ def test_sentences_agree_with_the_numbers(built):
     t4.loc[(t4["item"] == "rack") & (t4["floor"] == "2"), ["status_pfv", "median_pfv"]] = ["no fit", 0.9]
     rack = {f.item: f for f in summary.floor_findings(t4)}["rack"]
     assert rack.floors == ("1", "3") and "0.9 m/s" not in rack.text and rack.kind == "lower_higher"
-    # non-numbered floors: no claim about "higher" floors
-    t3 = built["table"].replace({"floor": {"1": "ground", "2": "mezzanine", "3": "roof"}})
-    assert {f.item: f.kind for f in summary.floor_findings(t3)}["rack"] == "mixed"
+    # floor labels without an order: no claim about "higher" floors, the lowest and highest named
+    t3 = built["table"].replace({"floor": {"1": "lobby", "2": "mezzanine", "3": "attic"}})
+    rack = {f.item: f for f in summary.floor_findings(t3)}["rack"]
+    assert rack.kind == "unordered" and "lowest on floor attic and highest on floor lobby" in rack.text
+    # one building's labels give the order: ground, b3.f1, ..., roof
+    assert summary.floor_order(["b3.roof", "b3.f10", "ground", "b3.f2"]) == ["ground", "b3.f2", "b3.f10", "b3.roof"]
+    assert not summary.floors_are_numbered(["b3.f1", "b4.f1"])  # two buildings: no order
 
 
 def test_curves_carry_bands_and_leave_out_unfitted_items(built):

@@ -136,7 +136,7 @@ def _check_complete(csv_path: Path, n_rows: int) -> None:
 #: The scene's measure (``[records.intensity] measure``) -> its axis label, quantity and unit.
 MEASURE_LABELS: dict[str, str] = {
     "pfa_g": "PFA, peak floor acceleration (g)",
-    "pfa_ratio": "PFA / (g tan alpha), peak floor acceleration over the block's uplift acceleration (dimensionless)",
+    "pfa_ratio": "PFA / (g tan alpha) (dimensionless)",
     "": "no levels (the motions as recorded)",
     "unknown": "the scene's level value (its measure not recognised from the cases; see the scene file)",
 }

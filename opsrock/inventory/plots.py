@@ -18,7 +18,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from opsrock.plots import save_figure  # noqa: E402
+from opsrock.plots import log_ticks, save_figure  # noqa: E402
 
 #: Smallest legend and tick text (pt).
 MIN_FONT: float = 9.0
@@ -69,6 +69,7 @@ def plot_item_fragility(curves: pd.DataFrame, item: str, path: str | Path, deman
     if not groups:
         ax.text(0.5, 0.5, f"no fitted {outcome} curve", ha="center", va="center", transform=ax.transAxes, fontsize=10)
     ax.set_xscale("log")
+    log_ticks(ax.xaxis)
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel(AXIS_LABELS[demand])
     ax.set_ylabel(f"P({outcome} | {demand.upper()}) (-)")

@@ -16,7 +16,7 @@ import pandas as pd  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
 from opsrock.fragility.lognormal import fragility_probability  # noqa: E402
-from opsrock.plots import save_figure  # noqa: E402
+from opsrock.plots import log_ticks, save_figure  # noqa: E402
 
 #: Height at which overturned cases are drawn on the IDA axes (theta_max / alpha).
 OVERTURNED_Y: float = 1.25
@@ -110,6 +110,7 @@ def plot_sliding_fragility(cases: pd.DataFrame, sliding: pd.DataFrame, path: str
             else:  # the report's table says why
                 ax.plot([], [], marker, color=c, label=f"{label}: no lognormal fit")
         ax.set_xscale("log")
+        log_ticks(ax.xaxis)
         ax.set_ylim(-0.02, 1.02)
         ax.set_title(f"{block}, floor {floor}", fontsize=9)
         ax.set_xlabel("PFA, peak floor acceleration (m/s²)")
@@ -148,7 +149,7 @@ def plot_im_ranking(ims: pd.DataFrame, frequencies: pd.DataFrame, path: str | Pa
             k += 1
     ax.set_ylim(0, 1)
     ax.set_title("how often each IM wins", fontsize=9)
-    ax.legend(fontsize=MIN_FONT)
+    ax.legend(fontsize=MIN_FONT, loc="best")
     axes[0].set_ylabel("beta (-)")
     axes[1].set_ylabel("HR (-)")
     ax.set_ylabel("share of resamples or sets (-)")

@@ -15,6 +15,7 @@ import matplotlib
 import numpy as np
 import pandas as pd
 import pytest
+from _support import drawn_figure
 from scipy.stats import norm
 
 from opsrock.inventory import plots, summary
@@ -170,24 +171,8 @@ def test_curves_carry_bands_and_leave_out_unfitted_items(built):
     assert set(c.groupby(["item", "floor", "demand"]).size()) == {120}
 
 
-def _figure_of(fn, *args):
-    """Draw with ``fn`` but keep the figure open: ``save_figure`` closes it, so it is replaced here."""
-    import matplotlib.pyplot as plt
-
-    kept = {}
-    real = plots.save_figure
-    plots.save_figure = lambda fig, path: kept.setdefault("fig", fig) and path
-    try:
-        fn(*args)
-    finally:
-        plots.save_figure = real
-    fig = kept["fig"]
-    plt.close(fig)
-    return fig
-
-
 def test_item_figure_is_readable(built, tmp_path):
-    fig = _figure_of(plots.plot_item_fragility, built["curves"], "cabinet", tmp_path / "c.png")
+    fig = drawn_figure(plots, plots.plot_item_fragility, built["curves"], "cabinet", tmp_path / "c.png")
     ax = fig.axes[0]
     legend = ax.get_legend()
     assert all(t.get_fontsize() >= 8 for t in legend.get_texts())
@@ -202,7 +187,7 @@ def test_item_figure_is_readable(built, tmp_path):
 
 
 def test_demand_figure_is_readable(tmp_path):
-    fig = _figure_of(plots.plot_floor_demands, summary.demand_table(synthetic_demands()), tmp_path / "d.png")
+    fig = drawn_figure(plots, plots.plot_floor_demands, summary.demand_table(synthetic_demands()), tmp_path / "d.png")
     labels = [ax.get_ylabel() for ax in fig.axes]
     assert labels == ["PFA, peak floor acceleration (g)", "PFV, peak floor velocity (m/s)"]
     for ax in fig.axes:

@@ -12,6 +12,7 @@ import re
 import numpy as np
 import pandas as pd
 import pytest
+from _support import drawn_figure
 from scipy import stats
 
 from opsrock.analysis import record_report as rr
@@ -112,28 +113,14 @@ def test_no_figure_pools_blocks_or_floors(report):
     assert "fragility" not in res.figures and "![Fragility]" not in (out / "report.md").read_text()
 
 
-def _kept(fn, *args):
-    kept = {}
-    real = rplots.save_figure
-    rplots.save_figure = lambda fig, path: kept.setdefault("fig", fig) and path
-    try:
-        fn(*args)
-    finally:
-        rplots.save_figure = real
-    import matplotlib.pyplot as plt
-
-    plt.close(kept["fig"])
-    return kept["fig"]
-
-
 def test_axes_name_quantity_and_unit_and_legends_read(report, tmp_path):
     _, res, _ = report
-    fig = _kept(rplots.plot_ida_curves, res.study.cases, tmp_path / "i.png", rr.MEASURE_LABELS["pfa_ratio"])
+    fig = drawn_figure(rplots, rplots.plot_ida_curves, res.study.cases, tmp_path / "i.png", rr.MEASURE_LABELS["pfa_ratio"])
     for ax in fig.axes:
         if ax.get_visible():
             assert ax.get_xlabel().startswith("PFA / (g tan alpha)") and ax.get_xlabel().endswith("(dimensionless)")
             assert "(-)" in ax.get_ylabel()
             assert all(t.get_fontsize() >= 8 for t in ax.get_legend().get_texts())
-    fig = _kept(rplots.plot_im_ranking, res.study.ims, res.study.frequencies, tmp_path / "r.png")
+    fig = drawn_figure(rplots, rplots.plot_im_ranking, res.study.ims, res.study.frequencies, tmp_path / "r.png")
     assert all(ax.get_ylabel().endswith("(-)") for ax in fig.axes)
     assert all(t.get_fontsize() >= 8 for t in fig.axes[2].get_legend().get_texts())

@@ -346,5 +346,32 @@ def floor_findings(table: pd.DataFrame, demand: str = "pfv", verb: str = "overtu
     return tuple(out)
 
 
+def report_tables(fits: pd.DataFrame, demand_levels: dict[str, tuple[float, ...]] | None = None,
+                  cases: pd.DataFrame | None = None, grid: dict[str, np.ndarray] | None = None) -> dict:
+    """Every computed field of :class:`opsrock.inventory.report.ReportInputs` from the study's tables:
+    ``table`` and ``sliding`` (:func:`item_floor_table` of each outcome; ``sliding`` None without sliding
+    fits), ``curves`` (:func:`curve_table`), ``findings`` (:func:`floor_findings` in PFV) and ``failures``
+    (:func:`failure_table` of ``cases``; None without them), so that
+    ``ReportInputs(title=..., ..., **report_tables(fits, levels, cases))``.
+
+    Parameters
+    ----------
+    fits : pandas.DataFrame
+        ``fits.csv`` (PFV in m/s, PFA in g).
+    demand_levels : dict of str to tuple of float, optional
+        ``{"pfv": (m/s, ...), "pfa": (g, ...)}`` (default :data:`DEFAULT_LEVELS`).
+    cases : pandas.DataFrame, optional
+        The study's cases (``status``, ``reason``), for the failures by reason.
+    grid : dict of str to numpy.ndarray, optional
+        The figures' demand values (m/s, g); default :func:`default_grid`.
+    """
+    table = item_floor_table(fits, demand_levels)
+    has_sliding = bool((fits["outcome"] == "sliding").any())
+    return {"table": table, "curves": curve_table(fits, grid), "findings": floor_findings(table),
+            "failures": None if cases is None else failure_table(cases),
+            "sliding": item_floor_table(fits, demand_levels, "sliding") if has_sliding else None}
+
+
 __all__ = ["DEFAULT_LEVELS", "DEMANDS", "Finding", "curve_table", "default_grid", "demand_table", "failure_table",
-           "floor_findings", "floor_order", "item_floor_table", "level_column", "outside_interval", "probability"]
+           "floor_findings", "floor_order", "floors_are_numbered", "item_floor_table", "level_column", "outside_interval",
+           "probability", "report_tables"]

@@ -79,10 +79,12 @@ def built(tmp_path_factory):
                           "reason": [""] * 5 + ["max_steps reached: 1e7", "max_steps reached: 2e7", "worker died"]})
     expected = pd.DataFrame({"item": ["rack"], "floor": ["1"], "direction": ["1"], "quantity": [4.0],
                              "expected_overturned": [0.5]})
+    tables = summary.report_tables(fits, LEVELS, cases)
+    pd.testing.assert_frame_equal(tables["table"], table)
+    assert tables["sliding"] is None  # no sliding fits
     inputs = ReportInputs(title="Contents of building X", method="ida", fits=fits, demands=synthetic_demands(),
-                          expected=expected, inventory=pd.DataFrame({"id": list(ITEMS)}), table=table, curves=curves,
-                          figures=figs, notes=("240 cases in 3.2 s",), pelicun={"fragility": "pelicun/fragility.csv"},
-                          findings=summary.floor_findings(table), failures=summary.failure_table(cases))
+                          expected=expected, inventory=pd.DataFrame({"id": list(ITEMS)}), figures=figs,
+                          notes=("240 cases in 3.2 s",), pelicun={"fragility": "pelicun/fragility.csv"}, **tables)
     path = write_report(out / "report.md", inputs)
     return {"text": path.read_text(), "table": table, "curves": curves, "drawn": drawn, "fits": fits}
 
@@ -200,3 +202,18 @@ def test_figures_written_as_png(built):
     for path in built["drawn"].values():
         assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert matplotlib.get_backend().lower() == "agg"
+
+
+def test_sliding_gets_its_own_table_after_overturning(tmp_path):
+    fits = synthetic_fits()
+    slide = fits[fits["item"] == "rack"].assign(outcome="sliding", median=lambda d: d["median"] / 2,
+                                                median_lo=lambda d: d["median_lo"] / 2,
+                                                median_hi=lambda d: d["median_hi"] / 2)
+    both = pd.concat([fits, slide], ignore_index=True)
+    tables = summary.report_tables(both, LEVELS)
+    assert list(tables["sliding"]["item"]) == ["rack"] * 3 and tables["sliding"]["median_pfv"].tolist() == [0.3, 0.25, 0.2]
+    inputs = ReportInputs(title="t", method="cloud", fits=both, demands=synthetic_demands(), expected=pd.DataFrame(),
+                          inventory=pd.DataFrame(), figures={}, notes=(), pelicun={}, **tables)
+    text = write_report(tmp_path / "report.md", inputs).read_text()
+    assert text.index("## Per item and floor: overturning") < text.index("## Per item and floor: sliding")
+    assert "| rack | 1 | 0.3 [0.25, 0.35] |" in text and "**cloud**" in text

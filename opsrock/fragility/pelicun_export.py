@@ -1,9 +1,9 @@
 """Export fitted overturning fragilities in the damage-model CSV form of FEMA P-58 / pelicun.
 
-One component per block, floor and demand (:func:`component_id`), one limit state (``LS1``: overturned), lognormal: ``Theta_0``
-the median, ``Theta_1`` the dispersion ``beta``. Demands are given in SI units that pelicun knows
-(``Peak Floor Acceleration`` in ``mps2``, ``Peak Floor Velocity`` in ``mps``), so no convention of
-``g`` enters (pelicun's g is 9.80665 m/s², ours 9.81). ``Demand-Offset`` 0 (the floor the block
+One component per block, floor and demand (:func:`component_id`), one limit state (``LS1``:
+overturned), lognormal: ``Theta_0`` the median, ``Theta_1`` the dispersion ``beta``. Demands are
+given in SI units that pelicun knows (``Peak Floor Acceleration`` in ``mps2``, ``Peak Floor
+Velocity`` in ``mps``), so no convention of ``g`` enters (pelicun's g is 9.80665 m/s², ours 9.81). ``Demand-Offset`` 0 (the floor the block
 stands on) and ``Demand-Directional`` 1 (the block rocks about one axis: use the demand of that
 direction). The file loads with ``Assessment.damage.load_model_parameters([path], ids)``.
 """

@@ -105,7 +105,8 @@ def plot_sliding_fragility(cases: pd.DataFrame, sliding: pd.DataFrame, path: str
             ax.plot(by_level["pfa"].median(), by_level["beyond"].mean(), marker, ms=4, color=c, alpha=0.7, mfc="none")
             label = f"beyond {100 * d:g} cm"
             if r["success"] and np.isfinite(r["median"]) and r["beta"] > 0:
-                ax.plot(x, fragility_probability(x, r["median"], r["beta"]), color=c, lw=1.4, ls=ls,
+                ax.plot(x, fragility_probability(x, r["median"], r["beta"]), color=c, lw=1.4, ls=ls, marker=marker,
+                        mfc="none", markevery=(12 * k, 40),  # staggered markers: coinciding curves stay apart
                         label=f"{label}: median {r['median']:.3g} m/s², beta {r['beta']:.2f}")
             else:  # the report's table says why
                 ax.plot([], [], marker, color=c, label=f"{label}: no lognormal fit")

@@ -277,8 +277,8 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
     pel = write_pelicun_csv(comps, out / "fragility_pelicun.csv")
     table = summary.item_floor_table(fits, demand_levels)
     measure = scene_measure(cases)
-    figs = _figures(cases, study, summary.curve_table(fits), (robust, sliding), out / "figures",
-                    (workers, MEASURE_LABELS[measure]))
+    figs = _figures(cases, study, summary.curve_table(fits), robust, sliding, out / "figures", workers,
+                    MEASURE_LABELS[measure])
     report = RecordReport(study=study, robustness=robust, robustness_sets=robustness_sets, sliding=sliding,
                           slide_distances=SLIDE_DISTANCES, pelicun=pel, skipped=skipped, figures=figs,
                           timings={"fits_s": t_fit, "total_s": time.perf_counter() - t0}, source=source,
@@ -288,15 +288,15 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
     return report
 
 
-def _figures(cases: pd.DataFrame, study, curves: pd.DataFrame, extra: tuple, fig: Path,
-             how: tuple[int, str]) -> dict[str, Path]:
+def _figures(cases: pd.DataFrame, study, curves: pd.DataFrame, robust: pd.DataFrame | None,
+             sliding: pd.DataFrame | None, fig: Path, workers: int, measure_label: str) -> dict[str, Path]:
     """The report's figures from the computed study (independent: drawn at once with ``workers`` > 1):
-    ``extra`` the robustness shares and the sliding table (None where not computed), ``how`` the workers
-    and the scene measure's axis label. Each block's fragility is drawn per floor, never pooled."""
+    ``curves`` the per-block, per-floor curve table, ``robust`` and ``sliding`` None where not computed,
+    ``measure_label`` the IDA axis (the scene's measure and its unit). Each block's fragility is drawn per
+    floor, never pooled."""
     from opsrock.inventory.plots import plot_item_fragility
     from opsrock.plots import record_fragility as rplots
 
-    (robust, sliding), (workers, measure_label) = extra, how
     jobs = {"ida": (rplots.plot_ida_curves, (study.cases, fig / "ida_curves.png", measure_label)),
             "ranking": (rplots.plot_im_ranking, (study.ims, study.frequencies, fig / "im_ranking.png", robust))}
     for block in dict.fromkeys(curves["item"]):

@@ -457,6 +457,32 @@ def test_ctrl_c_while_a_pool_forks_is_delivered_after_it(sigint_as_in_a_terminal
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
 
 
+def test_a_ctrl_c_while_a_task_pool_starts_shuts_its_workers_down(sigint_as_in_a_terminal, monkeypatch):
+    # a Ctrl-C recorded while TaskPool submits (forks) is raised in its constructor, before any caller's `with`
+    # could shut the pool down: the constructor must do it, else the interpreter's exit waits for every queued
+    # task (`opsrock fragility --n-boot 10000` stayed a minute after Ctrl-C)
+    import os
+    import signal
+    import time
+
+    from opsrock import _pool
+
+    class Recorder:
+        shutdowns: list = []
+
+        def submit(self, fn, *args):
+            os.kill(os.getpid(), signal.SIGINT)  # recorded by deferred_interrupts, raised as its block ends
+            time.sleep(0.01)
+
+        def shutdown(self, cancel_futures=False):
+            self.shutdowns.append(cancel_futures)
+
+    monkeypatch.setattr(_pool, "process_pool", lambda *a, **k: Recorder())
+    with pytest.raises(KeyboardInterrupt):
+        _pool.TaskPool(None, [(0,), (1,)], workers=2)
+    assert Recorder.shutdowns == [True]
+
+
 def test_an_ignored_ctrl_c_stays_ignored_through_a_pool_start():
     # nohup and a shell's background jobs ignore SIGINT: the block must not turn it into an interrupt
     import os

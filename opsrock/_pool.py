@@ -115,8 +115,12 @@ class TaskPool:
         self.pool = self.futures = self._done = None
         if workers > 1 and len(self.tasks) > 1:
             self.pool = process_pool(min(workers, len(self.tasks)), _pool_init, (state,))
-            with deferred_interrupts():  # the workers are forked at the first submit
-                self.futures = [self.pool.submit(_pool_run, *t) for t in self.tasks]
+            try:
+                with deferred_interrupts():  # the workers are forked at the first submit
+                    self.futures = [self.pool.submit(_pool_run, *t) for t in self.tasks]
+            except BaseException:  # a Ctrl-C deferred while forking: no caller's `with` will shut the pool down
+                self.pool.shutdown(cancel_futures=True)
+                raise
 
     def __enter__(self) -> TaskPool:
         return self

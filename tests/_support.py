@@ -129,3 +129,20 @@ def write_friction_campaign(folder: Path, solver: str = "friction") -> Path:
     scene = folder / "scene.toml"
     scene.write_text(FRICTION_SCENE.format(solver=solver))
     return scene
+
+
+def drawn_figure(module, fn, *args):
+    """The matplotlib figure that ``fn(*args)`` (a figure function of ``module``, which imported
+    ``save_figure``) draws, read back instead of written: ``module.save_figure`` is swapped for one that keeps
+    the figure, then restored; the figure is closed (its artists stay readable)."""
+    import matplotlib.pyplot as plt
+
+    kept = {}
+    real = module.save_figure
+    module.save_figure = lambda fig, path: kept.setdefault("fig", fig) and path
+    try:
+        fn(*args)
+    finally:
+        module.save_figure = real
+    plt.close(kept["fig"])
+    return kept["fig"]

@@ -25,6 +25,7 @@ import numpy as np
 import pandas as pd
 
 from opsrock._files import atomic_csv, read_table
+from opsrock.constants import G
 from opsrock.errors import InputError
 from opsrock.fragility.sliding import DEFAULT_DISTANCES
 from opsrock.report.records import RecordReport, write_markdown
@@ -132,21 +133,103 @@ def _check_complete(csv_path: Path, n_rows: int) -> None:
                          f"({manifest}); re-run `opsrock run` on the campaign to rebuild it")
 
 
-def _exports(blocks: pd.DataFrame):
+#: The scene's measure (``[records.intensity] measure``) -> its axis label, quantity and unit.
+MEASURE_LABELS: dict[str, str] = {
+    "pfa_g": "PFA, peak floor acceleration (g)",
+    "pfa_ratio": "PFA / (g tan alpha) (dimensionless)",
+    "": "no levels (the motions as recorded)",
+    "unknown": "the scene's level value (its measure not recognised from the cases; see the scene file)",
+}
+#: Relative tolerance (dimensionless) of recognising the measure: a level is set by scaling the motion to it
+#: exactly, so its value and the scaled motion's measure agree to round-off.
+MEASURE_RTOL: float = 1e-6
+
+
+def scene_measure(cases: pd.DataFrame) -> str:
+    """The scene's measure recognised from its cases: ``"pfa_g"`` when every finished case's ``level_value``
+    is its PFA in g, ``"pfa_ratio"`` when it is its ``pfa_ratio``, ``""`` for a cloud (no level values),
+    ``"unknown"`` otherwise."""
+    ok = cases[cases["status"] == "ok"]
+    level = ok["level_value"].to_numpy(float)
+    finite = np.isfinite(level)
+    if not finite.any():
+        return ""
+    candidates = [("pfa_g", ok["pfa"].to_numpy(float) / G)]
+    if "pfa_ratio" in ok.columns:
+        candidates.append(("pfa_ratio", ok["pfa_ratio"].to_numpy(float)))
+    elif "alpha" in ok.columns:
+        candidates.append(("pfa_ratio", ok["pfa"].to_numpy(float) / (G * np.tan(ok["alpha"].to_numpy(float)))))
+    for name, value in candidates:
+        if np.allclose(level[finite], value[finite], rtol=MEASURE_RTOL, atol=0.0):
+            return name
+    return "unknown"
+
+
+def scene_method(cases: pd.DataFrame) -> str:
+    """``"cloud"`` (no level values), ``"ida"`` (a motion at several levels) or ``"msa"`` (each motion at one
+    level of several)."""
+    if not np.isfinite(cases["level_value"].to_numpy(float)).any():
+        return "cloud"
+    per_motion = cases.groupby(["block", "record", "floor"], sort=False)["level"].nunique()
+    return "ida" if (per_motion > 1).any() else "msa"
+
+
+def record_fits(blocks: pd.DataFrame, cases: pd.DataFrame, method: str) -> pd.DataFrame:
+    """The study's per-block, per-floor fits (:attr:`RecordStudy.blocks`) in the inventory study's ``fits``
+    form (:func:`opsrock.inventory.summary.item_floor_table` reads it): PFA in g, PFV in m/s, the failed
+    cases of each block and floor counted from ``cases``, the pelicun ID of each row."""
+    from opsrock.fragility.pelicun_export import component_id
+
+    failed = cases[cases["status"] != "ok"].groupby(["block", "floor"]).size()
+    rows = []
+    for _, r in blocks.iterrows():
+        to_unit = 1.0 / G if r["demand"] == "pfa" else 1.0
+        rows.append({"item": r["block"], "description": r["block"], "floor": str(r["floor"]), "direction": "1",
+                     "outcome": "overturning", "demand": r["demand"], "unit": "g" if r["demand"] == "pfa" else "m/s",
+                     "method": method, **{k: float(r[m]) * to_unit for k, m in
+                                          (("median", "mu"), ("median_lo", "mu_lo"), ("median_hi", "mu_hi"))},
+                     "beta": float(r["beta"]), "beta_lo": float(r["beta_lo"]), "beta_hi": float(r["beta_hi"]),
+                     "n_cases": int(r["n_cases"]), "n_exceeded": int(r["n_overturned"]),
+                     "n_failed": int(failed.get((r["block"], r["floor"]), 0)), "n_records": int(r["n_records"]),
+                     "ok": bool(r["success"]) and math.isfinite(r["mu"]), "message": str(r["message"]),
+                     "fema_id": "", "fema_median": math.nan, "ratio_fema": math.nan,
+                     "pelicun_id": component_id(r["block"], str(r["floor"]), r["demand"])})
+    return pd.DataFrame(rows)
+
+
+def _exports(fits: pd.DataFrame):
+    """The pelicun components of the fitted rows of :func:`record_fits` (medians back in m/s² and m/s), and
+    the rows not exported with why."""
+    from opsrock.fragility.pelicun_export import ComponentFragility
+
+    out, skipped = [], []
+    for _, r in fits.iterrows():
+        median = r["median"] * (G if r["demand"] == "pfa" else 1.0)
+        if r["ok"] and math.isfinite(median) and r["beta"] > 0:
+            out.append(ComponentFragility(r["pelicun_id"], r["demand"], float(median), float(r["beta"])))
+        else:
+            skipped.append(f"{r['pelicun_id']}: {r['message']}")
+    return out, skipped
+
+
+def _slide_exports(sliding: pd.DataFrame):
+    """The pelicun components of the per-floor sliding fits (``opsrock.<block>.<floor>.SLIDE<mm>MM.<PFA|PFV>``),
+    and the rows not exported with why."""
     from opsrock.fragility.pelicun_export import ComponentFragility, component_id
 
     out, skipped = [], []
-    for _, r in blocks.iterrows():
-        if r["success"] and math.isfinite(r["mu"]) and r["beta"] > 0:
-            out.append(ComponentFragility(component_id(r["block"], r["demand"]), r["demand"], float(r["mu"]), float(r["beta"])))
+    for _, r in sliding.iterrows():
+        cid = component_id(r["block"], str(r["floor"]), r["demand"], f"SLIDE{round(r['distance'] * 1000)}MM")
+        if r["success"] and math.isfinite(r["median"]) and r["beta"] > 0:
+            out.append(ComponentFragility(cid, r["demand"], float(r["median"]), float(r["beta"])))
         else:
-            skipped.append(f"{r['block']}/{r['demand']}: {r['message']}")
+            skipped.append(f"{cid}: {r['message']}")
     return out, skipped
 
 
 def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, seed: int = 0,
                         outcome: str = "as_simulated", robustness_sets: int = 0, workers: int = 1,
-                        source: str = "") -> RecordReport:
+                        source: str = "", demand_levels: dict[str, tuple[float, ...]] | None = None) -> RecordReport:
     """Run the study on ``cases`` and write every output into ``out``.
 
     Parameters
@@ -165,9 +248,13 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
         Processes.
     source : str
         Where the cases came from (named in the report).
+    demand_levels : dict of str to tuple of float, optional
+        Where the per-block table gives P(overturning): ``{"pfv": (m/s, ...), "pfa": (g, ...)}`` (default
+        :data:`opsrock.inventory.summary.DEFAULT_LEVELS`).
     """
     from opsrock.fragility.pelicun_export import write_pelicun_csv
     from opsrock.fragility.record_study import RecordStudySettings, record_fragility
+    from opsrock.inventory import summary
 
     t0 = time.perf_counter()
     out.mkdir(parents=True, exist_ok=True)
@@ -181,31 +268,39 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
         atomic_csv(out / "robustness.csv", robust)
     for name in STUDY_TABLES:
         atomic_csv(out / f"{name}.csv", getattr(study, name))
-    comps, skipped = _exports(study.blocks)
+    fits = record_fits(study.blocks, cases, scene_method(cases))
+    comps, skipped = _exports(fits)
     sliding = _sliding(cases, out, n_boot, seed, workers)
     if sliding is not None:
-        from opsrock.fragility.sliding import sliding_components
-
-        slide_comps, slide_skipped = sliding_components(sliding)
+        slide_comps, slide_skipped = _slide_exports(sliding)
         comps, skipped = comps + slide_comps, skipped + slide_skipped
     pel = write_pelicun_csv(comps, out / "fragility_pelicun.csv")
-    figs = _figures(cases, study, robust, sliding, out / "figures", workers)
+    table = summary.item_floor_table(fits, demand_levels)
+    measure = scene_measure(cases)
+    figs = _figures(cases, study, summary.curve_table(fits), robust, sliding, out / "figures", workers,
+                    MEASURE_LABELS[measure])
     report = RecordReport(study=study, robustness=robust, robustness_sets=robustness_sets, sliding=sliding,
                           slide_distances=SLIDE_DISTANCES, pelicun=pel, skipped=skipped, figures=figs,
-                          timings={"fits_s": t_fit, "total_s": time.perf_counter() - t0}, source=source)
+                          timings={"fits_s": t_fit, "total_s": time.perf_counter() - t0}, source=source,
+                          table=table, findings=summary.floor_findings(table), failures=summary.failure_table(cases),
+                          measure=measure, method=fits["method"].iloc[0] if len(fits) else scene_method(cases))
     write_markdown(out, report)
     return report
 
 
-def _figures(cases: pd.DataFrame, study, robust: pd.DataFrame | None, sliding: pd.DataFrame | None, fig: Path,
-             workers: int) -> dict[str, Path]:
-    """The report's figures from the computed study (independent: drawn at once with ``workers`` > 1)."""
+def _figures(cases: pd.DataFrame, study, curves: pd.DataFrame, robust: pd.DataFrame | None,
+             sliding: pd.DataFrame | None, fig: Path, workers: int, measure_label: str) -> dict[str, Path]:
+    """The report's figures from the computed study (independent: drawn at once with ``workers`` > 1):
+    ``curves`` the per-block, per-floor curve table, ``robust`` and ``sliding`` None where not computed,
+    ``measure_label`` the IDA axis (the scene's measure and its unit). Each block's fragility is drawn per
+    floor, never pooled."""
+    from opsrock.inventory.plots import plot_item_fragility
     from opsrock.plots import record_fragility as rplots
 
-    jobs = {"ida": (rplots.plot_ida_curves, (study.cases, fig / "ida_curves.png", "scene measure (level value)")),
-            "fragility": (rplots.plot_measure_fragility, (study.cases, study.measure_fits, fig / "fragility.png",
-                                                          "scene measure (level value)")),
+    jobs = {"ida": (rplots.plot_ida_curves, (study.cases, fig / "ida_curves.png", measure_label)),
             "ranking": (rplots.plot_im_ranking, (study.ims, study.frequencies, fig / "im_ranking.png", robust))}
+    for block in dict.fromkeys(curves["item"]):
+        jobs[f"fragility:{block}"] = (plot_item_fragility, (curves, block, fig / f"fragility_{block}.png"))
     if sliding is not None:
         jobs["sliding"] = (rplots.plot_sliding_fragility, (cases, sliding, fig / "sliding.png"))
     if workers > 1:
@@ -220,16 +315,22 @@ def _figures(cases: pd.DataFrame, study, robust: pd.DataFrame | None, sliding: p
 
 
 def _sliding(cases: pd.DataFrame, out: Path, n_boot: int, seed: int, workers: int) -> pd.DataFrame | None:
-    """The sliding fragilities of a campaign solved with friction (``sliding.csv``), None for another."""
+    """The sliding fragilities of a campaign solved with friction, per block and floor (``sliding.csv``:
+    :func:`opsrock.fragility.sliding.sliding_table` of each floor's cases, its ``floor`` column after
+    ``block``), None for another campaign."""
     from opsrock.fragility.sliding import has_slides, sliding_table
 
     if not has_slides(cases):
         return None
-    table = sliding_table(cases, SLIDE_DISTANCES, n_boot=n_boot, seed=seed, workers=workers)
+    parts = []
+    for floor in dict.fromkeys(cases["floor"]):
+        part = sliding_table(cases[cases["floor"] == floor], SLIDE_DISTANCES, n_boot=n_boot, seed=seed, workers=workers)
+        part.insert(1, "floor", floor)
+        parts.append(part)
+    table = pd.concat(parts, ignore_index=True)
     atomic_csv(out / "sliding.csv", table)
     return table
 
 
-
-
-__all__ = ["OUTPUTS", "SLIDE_DISTANCES", "STUDY_TABLES", "TABLES", "read_cases", "write_record_report"]
+__all__ = ["MEASURE_LABELS", "OUTPUTS", "SLIDE_DISTANCES", "STUDY_TABLES", "TABLES", "read_cases", "record_fits",
+           "scene_measure", "scene_method", "write_record_report"]

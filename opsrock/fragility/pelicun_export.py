@@ -1,9 +1,9 @@
 """Export fitted overturning fragilities in the damage-model CSV form of FEMA P-58 / pelicun.
 
-One component per block and demand, one limit state (``LS1``: overturned), lognormal: ``Theta_0``
-the median, ``Theta_1`` the dispersion ``beta``. Demands are given in SI units that pelicun knows
-(``Peak Floor Acceleration`` in ``mps2``, ``Peak Floor Velocity`` in ``mps``), so no convention of
-``g`` enters (pelicun's g is 9.80665 m/s², ours 9.81). ``Demand-Offset`` 0 (the floor the block
+One component per block, floor and demand (:func:`component_id`), one limit state (``LS1``:
+overturned), lognormal: ``Theta_0`` the median, ``Theta_1`` the dispersion ``beta``. Demands are
+given in SI units that pelicun knows (``Peak Floor Acceleration`` in ``mps2``, ``Peak Floor
+Velocity`` in ``mps``), so no convention of ``g`` enters (pelicun's g is 9.80665 m/s², ours 9.81). ``Demand-Offset`` 0 (the floor the block
 stands on) and ``Demand-Directional`` 1 (the block rocks about one axis: use the demand of that
 direction). The file loads with ``Assessment.damage.load_model_parameters([path], ids)``.
 """
@@ -35,7 +35,7 @@ class ComponentFragility:
     Parameters
     ----------
     component_id : str
-        pelicun component ID (``opsrock.<block>.<DEMAND>``).
+        pelicun component ID (:func:`component_id`: ``opsrock.<block>.<floor>.<DEMAND>``).
     demand : str
         ``"pfa"`` or ``"pfv"`` (:data:`PELICUN_DEMANDS`).
     median : float
@@ -58,9 +58,12 @@ class ComponentFragility:
                 raise InputError(f"{name} must be positive and finite for {self.component_id}, got {v!r}")
 
 
-def component_id(block: str, demand: str) -> str:
-    """``opsrock.<block>.<PFA|PFV>``."""
-    return f"opsrock.{block}.{demand.upper()}"
+def component_id(block: str, floor: str, demand: str, state: str = "") -> str:
+    """``opsrock.<block>.<floor>.<PFA|PFV>``, or ``opsrock.<block>.<floor>.<state>.<PFA|PFV>`` (``state`` e.g.
+    ``SLIDE50MM``): a pelicun component has one fragility wherever it stands, and a block's differs by floor,
+    so each block gets one component per floor (the floor as the campaign names it: ``ground``,
+    ``b3.f2``)."""
+    return f"opsrock.{block}.{floor}.{state + '.' if state else ''}{demand.upper()}"
 
 
 def write_pelicun_csv(components: list[ComponentFragility], path: str | Path) -> Path:

@@ -15,6 +15,8 @@ Choices:
   measure its value is the level, so this is the per-level binomial likelihood exactly; for the
   other IMs each case carries its own value (a cloud of points). Beside it, a logistic regression
   on ``ln IM`` (:mod:`opsrock.fragility.logistic`).
+* **Per block and floor** for loss assessment: the fits in PFA and PFV never pool floors (one
+  block's fragility differs from floor to floor with the floor motions' frequency content).
 * **Intervals** by resampling **records** with replacement (all cases of a record together),
   never single cases: the cases of one record at ten levels are not ten independent draws.
 * **Resurrection** (:mod:`opsrock.fragility.ida`): counted per IDA curve; the fits use the outcome
@@ -117,7 +119,8 @@ class RecordStudy:
     sufficiency : pandas.DataFrame
         One row per (IM, covariate): coefficient, standard error, z, p-value.
     blocks : pandas.DataFrame
-        Per block and exported demand (PFA in m/s², PFV in m/s): MLE median, beta, intervals.
+        Per block, floor and exported demand (PFA in m/s², PFV in m/s): MLE median, beta, intervals, the
+        counts of cases, overturned cases and records.
     frequencies : pandas.DataFrame
         How often each IM wins by beta, HR and CV over the record bootstrap.
     settings : RecordStudySettings
@@ -291,21 +294,27 @@ def ranking_frequencies(cases: pd.DataFrame, ims: tuple[str, ...], n_boot: int, 
 
 
 def _block_plans(cases: pd.DataFrame, s: RecordStudySettings) -> list[tuple[dict, MLEPlan]]:
+    """One plan per block, floor and exported demand: a block's fragility differs from floor to floor (the
+    floors' motions differ in frequency content), so no fit pools floors."""
     out = []
-    for block, sub in cases.groupby("block", sort=False):
+    for (block, floor), sub in cases.groupby(["block", "floor"], sort=False):
         for demand in EXPORT_DEMANDS:
             x = sub[demand].to_numpy(float)
             keep = np.isfinite(x) & (x > 0)
-            plan = _plan(x[keep], sub["y"].to_numpy(bool)[keep], sub["record"].to_numpy()[keep], False, s)
-            out.append(({"block": block, "demand": demand, "unit": "m/s2" if demand == "pfa" else "m/s",
-                         "n_cases": int(keep.sum())}, plan))
+            y = sub["y"].to_numpy(bool)[keep]
+            records = sub["record"].to_numpy()[keep]
+            plan = _plan(x[keep], y, records, False, s)
+            out.append(({"block": block, "floor": floor, "demand": demand,
+                         "unit": "m/s2" if demand == "pfa" else "m/s", "n_cases": int(keep.sum()),
+                         "n_overturned": int(y.sum()), "n_records": int(pd.unique(records).size)}, plan))
     return out
 
 
 def _block_row(head: dict, m: MLEFit) -> dict:
-    return {"block": head["block"], "demand": head["demand"], "unit": head["unit"], "mu": m.mu, "beta": m.beta,
-            "mu_lo": m.mu_lo, "mu_hi": m.mu_hi, "beta_lo": m.beta_lo, "beta_hi": m.beta_hi,
-            "n_cases": head["n_cases"], "success": m.success, "message": m.message}
+    return {"block": head["block"], "floor": head["floor"], "demand": head["demand"], "unit": head["unit"],
+            "mu": m.mu, "beta": m.beta, "mu_lo": m.mu_lo, "mu_hi": m.mu_hi, "beta_lo": m.beta_lo,
+            "beta_hi": m.beta_hi, "n_cases": head["n_cases"], "n_overturned": head["n_overturned"],
+            "n_records": head["n_records"], "success": m.success, "message": m.message}
 
 
 def _block_fits(cases: pd.DataFrame, s: RecordStudySettings) -> pd.DataFrame:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 #: Resolution of every figure (dots per inch).
@@ -25,6 +26,21 @@ def save_figure(fig, path: str | Path) -> Path:
     finally:
         plt.close(fig)
     return path
+
+
+def log_ticks(axis) -> None:
+    """Plain numbers on a log axis (``0.2``, ``0.5``, ``1``, ``2``), labelled at 1, 2 and 5 of each decade only,
+    so that no two labels overlap (matplotlib is imported here, lazily, as by every figure module)."""
+    from matplotlib.ticker import FuncFormatter
+
+    def label(value: float, _pos) -> str:
+        if value <= 0:
+            return ""
+        lead = round(value / 10 ** math.floor(math.log10(value) + 1e-9), 6)
+        return f"{value:g}" if lead in (1.0, 2.0, 5.0) else ""
+
+    axis.set_major_formatter(FuncFormatter(label))
+    axis.set_minor_formatter(FuncFormatter(label))
 
 
 def figure_pool(workers: int):

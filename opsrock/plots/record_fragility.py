@@ -1,5 +1,7 @@
-"""Figures of the record fragility study: IDA curves, fragility curves with observed fractions, the IM
-ranking, and the robustness of the ranking."""
+"""Figures of the record fragility study: IDA curves, the IM ranking and its robustness, and the sliding
+fragilities per block and floor (each block's overturning fragility per floor is
+:func:`opsrock.inventory.plots.plot_item_fragility`). Legend and tick text at least :data:`MIN_FONT` pt;
+every axis names its quantity and unit; no curve pools blocks or floors."""
 
 from __future__ import annotations
 
@@ -14,15 +16,18 @@ import pandas as pd  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
 from opsrock.fragility.lognormal import fragility_probability  # noqa: E402
-from opsrock.plots import save_figure  # noqa: E402
+from opsrock.plots import log_ticks, save_figure  # noqa: E402
 
 #: Height at which overturned cases are drawn on the IDA axes (theta_max / alpha).
 OVERTURNED_Y: float = 1.25
+#: Smallest legend text (pt).
+MIN_FONT: float = 8.0
 
 
 def plot_ida_curves(cases: pd.DataFrame, path: str | Path, measure_label: str = "level") -> Path:
     """One panel per block: theta_max/alpha against the scene's measure for every IDA curve, one
-    line per (record, floor); overturned cases drawn at the top, resurrections visible as drops."""
+    line per (record, floor), coloured by floor; overturned cases drawn at the top, resurrections visible as
+    drops. ``measure_label``: the x axis, the measure's quantity and unit."""
     blocks = list(dict.fromkeys(cases["block"]))
     n = len(blocks)
     cols = min(n, 2)
@@ -38,13 +43,13 @@ def plot_ida_curves(cases: pd.DataFrame, path: str | Path, measure_label: str = 
         ax.autoscale_view()
         for f in floors:
             ax.plot([], [], "-", color=colors[f], label=f"floor {f}")
-        ax.legend(fontsize=7, loc="center right")
+        ax.legend(fontsize=MIN_FONT, loc="center right")
         ax.axhline(1.0, color="k", lw=0.6, ls=":")
         ax.set_ylim(0, OVERTURNED_Y + 0.1)
         ax.set_yticks([0, 0.25, 0.5, 0.75, 1.0, OVERTURNED_Y])
         ax.set_yticklabels(["0", "0.25", "0.5", "0.75", "1", "overturned"])
         ax.set_xlabel(measure_label)
-        ax.set_ylabel(r"$\theta_{max}/\alpha$")
+        ax.set_ylabel(r"peak rotation over slenderness $\theta_{max}/\alpha$ (-)")
         ax.set_title(str(block), fontsize=10)
     for ax in axes.ravel()[n:]:
         ax.set_visible(False)
@@ -75,66 +80,46 @@ def _ida_segments(sub: pd.DataFrame, colors: dict) -> tuple[list[np.ndarray], li
     return segments, segment_colors
 
 
-def plot_measure_fragility(cases: pd.DataFrame, measure_fits: pd.DataFrame, path: str | Path,
-                           measure_label: str = "level") -> Path:
-    """Observed overturned fraction per level (all blocks and per block) and the MLE curve of each
-    outcome convention, with the band spanned by the curves at the corners of the intervals."""
-    fig, ax = plt.subplots(figsize=(6.5, 4.5), constrained_layout=True)
-    for block, g in cases.groupby("block", sort=False):
-        frac = g.groupby("level_value")["y"].mean()
-        ax.plot(frac.index, frac.values, "o", ms=3, alpha=0.6, label=f"observed, {block}")
-    frac = cases.groupby("level_value")["y"].mean()
-    ax.plot(frac.index, frac.values, "ks", ms=5, label="observed, all blocks")
-    x = np.geomspace(max(cases["level_value"].min() * 0.7, 1e-6), cases["level_value"].max() * 1.4, 300)
-    for (_, r), color in zip(measure_fits.iterrows(), ("tab:red", "tab:green")):
-        if not np.isfinite(r["mu"]):
-            continue
-        ax.plot(x, fragility_probability(x, r["mu"], r["beta"]), color=color, lw=1.6,
-                label=f"MLE, {r['outcome']}: median {r['mu']:.3g}, beta {r['beta']:.2f}")
-        if np.isfinite(r["mu_lo"]):
-            corners = [fragility_probability(x, m, b) for m in (r["mu_lo"], r["mu_hi"]) for b in (r["beta_lo"], r["beta_hi"])]
-            ax.fill_between(x, np.min(corners, axis=0), np.max(corners, axis=0), color=color, alpha=0.15, lw=0)
-    ax.set_xscale("log")
-    ax.set_ylim(-0.02, 1.02)
-    ax.set_xlabel(measure_label)
-    ax.set_ylabel("P(overturning)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
-    return save_figure(fig, path)
-
-
 def plot_sliding_fragility(cases: pd.DataFrame, sliding: pd.DataFrame, path: str | Path) -> Path:
-    """One panel per block: the fraction of its finished cases at each level that slid beyond each distance
-    (or overturned), at the level's median PFA (m/s²), and the MLE curve in PFA of each distance
-    (:func:`opsrock.fragility.sliding.sliding_table` rows of demand ``pfa``)."""
+    """One panel per block and floor: the fraction of its finished cases at each level that slid beyond each
+    distance (or overturned), at the level's median PFA (m/s²), and the MLE curve in PFA of each distance
+    (the rows of demand ``pfa`` of the per-floor sliding table, ``block`` and ``floor`` columns)."""
     from opsrock.fragility.sliding import slid_beyond
 
     pfa_rows = sliding[sliding["demand"] == "pfa"]
-    blocks = list(dict.fromkeys(pfa_rows["block"]))
-    fig, axes = plt.subplots(1, max(len(blocks), 1), figsize=(4.2 * max(len(blocks), 1), 3.6),
-                             constrained_layout=True, squeeze=False)
-    for ax, block in zip(axes.ravel(), blocks):
-        sel = cases[(cases["block"] == block) & (cases["status"] == "ok")]
+    panels = list(dict.fromkeys(zip(pfa_rows["block"], pfa_rows["floor"])))
+    n = max(len(panels), 1)
+    cols = min(n, 3)
+    rows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(4.6 * cols, 3.8 * rows), constrained_layout=True, squeeze=False)
+    for ax, (block, floor) in zip(axes.ravel(), panels):
+        sel = cases[(cases["block"] == block) & (cases["floor"] == floor) & (cases["status"] == "ok")]
         pfa = sel["pfa"].to_numpy(float)
         x = np.geomspace(max(np.nanmin(pfa) * 0.7, 1e-6), np.nanmax(pfa) * 1.4, 300) if len(sel) else np.array([])
-        for (_, r), color in zip(pfa_rows[pfa_rows["block"] == block].iterrows(), plt.rcParams["axes.prop_cycle"]):
+        here = pfa_rows[(pfa_rows["block"] == block) & (pfa_rows["floor"] == floor)]
+        for k, ((_, r), color) in enumerate(zip(here.iterrows(), plt.rcParams["axes.prop_cycle"])):
             d, c = r["distance"], color["color"]
+            ls, marker = [("-", "o"), ("--", "s"), ("-.", "^"), (":", "D")][k % 4]
             by_level = pd.DataFrame({"level": sel["level"].to_numpy(), "pfa": pfa,
                                      "beyond": slid_beyond(sel, d, r["measure"])}).groupby("level")
-            ax.plot(by_level["pfa"].median(), by_level["beyond"].mean(), "o", ms=3, color=c, alpha=0.7)
+            ax.plot(by_level["pfa"].median(), by_level["beyond"].mean(), marker, ms=4, color=c, alpha=0.7, mfc="none")
             label = f"beyond {100 * d:g} cm"
             if r["success"] and np.isfinite(r["median"]) and r["beta"] > 0:
-                ax.plot(x, fragility_probability(x, r["median"], r["beta"]), color=c, lw=1.4,
+                ax.plot(x, fragility_probability(x, r["median"], r["beta"]), color=c, lw=1.4, ls=ls, marker=marker,
+                        mfc="none", markevery=(12 * k, 40),  # staggered markers: coinciding curves stay apart
                         label=f"{label}: median {r['median']:.3g} m/s², beta {r['beta']:.2f}")
             else:  # the report's table says why
-                ax.plot([], [], "o", color=c, label=f"{label}: no lognormal fit")
+                ax.plot([], [], marker, color=c, label=f"{label}: no lognormal fit")
         ax.set_xscale("log")
+        log_ticks(ax.xaxis)
         ax.set_ylim(-0.02, 1.02)
-        ax.set_title(block, fontsize=9)
-        ax.set_xlabel("PFA (m/s²)")
-        ax.set_ylabel("P(slid beyond d or overturned)")
+        ax.set_title(f"{block}, floor {floor}", fontsize=9)
+        ax.set_xlabel("PFA, peak floor acceleration (m/s²)")
+        ax.set_ylabel("P(slid beyond d or overturned) (-)")
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=6)
+        ax.legend(fontsize=MIN_FONT)
+    for ax in axes.ravel()[len(panels):]:
+        ax.set_visible(False)
     return save_figure(fig, path)
 
 
@@ -165,8 +150,12 @@ def plot_im_ranking(ims: pd.DataFrame, frequencies: pd.DataFrame, path: str | Pa
             k += 1
     ax.set_ylim(0, 1)
     ax.set_title("how often each IM wins", fontsize=9)
-    ax.legend(fontsize=6)
+    ax.legend(fontsize=MIN_FONT, loc="best")
+    axes[0].set_ylabel("beta (-)")
+    axes[1].set_ylabel("HR (-)")
+    ax.set_ylabel("share of resamples or sets (-)")
     for ax in axes:
+        ax.set_xlabel("intensity measure")
         ax.set_xticks(x)
         ax.set_xticklabels(ims["im"])
     return save_figure(fig, path)

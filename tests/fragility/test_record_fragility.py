@@ -180,11 +180,15 @@ def test_cli_fragility_report(tmp_path):
     p = _cli("fragility", str(tmp_path), "--out", str(tmp_path / "rep"), "--n-boot", "10")
     assert p.returncode == 0, p.stderr
     for name in ("report.md", "ims.csv", "resurrections.csv", "fragility_pelicun.csv", "figures/ida_curves.png",
-                 "figures/fragility.png", "figures/im_ranking.png"):
+                 "figures/fragility_b.png", "figures/im_ranking.png"):
         assert (tmp_path / "rep" / name).stat().st_size > 100, name
+    assert not (tmp_path / "rep" / "figures" / "fragility.png").exists()  # no curve pooling blocks and floors
     report = (tmp_path / "rep" / "report.md").read_text()
     assert "## Conclusion" in report and "Resurrection" in report
-    assert len(read_pelicun_csv(tmp_path / "rep" / "fragility_pelicun.csv")) == 2
+    assert report.index("## Per block and floor") < report.index("## Conclusion")
+    # one pelicun component per block, floor and demand, the floor in its ID
+    assert [c.component_id for c in read_pelicun_csv(tmp_path / "rep" / "fragility_pelicun.csv")] == [
+        "opsrock.b.ground.PFA", "opsrock.b.ground.PFV"]
 
 
 @pytest.mark.parametrize("make,needle", [

@@ -123,10 +123,13 @@ def test_fragility_report_of_a_friction_campaign_has_a_sliding_section(friction_
     for name in ("ims", "measure_fits", "blocks", "frequencies", "sufficiency", "resurrections"):
         assert (tmp_path / "with" / f"{name}.csv").read_bytes() == (tmp_path / "without" / f"{name}.csv").read_bytes()
 
-    # sliding.csv is sliding_table of the finished cases, every block x distance x demand
+    # sliding.csv is sliding_table of each floor's finished cases (one floor here), every block x distance x demand,
+    # with the floor after the block
     # read_table parses round-trip: pandas before 3 reads the last digit of some floats differently by default
     table = read_table(tmp_path / "with" / "sliding.csv")
+    (floor,) = friction_cases["floor"].unique()
     expected = sliding_table(friction_cases, SLIDE_DISTANCES, n_boot=n_boot, seed=2)
+    expected.insert(1, "floor", floor)
     assert len(table) == 2 * len(SLIDE_DISTANCES) * 2
     pd.testing.assert_frame_equal(table, read_table(io.StringIO(expected.to_csv(index=False))))
     fitted = table[table["success"] & (table["beta"] > 0)]
@@ -138,12 +141,12 @@ def test_fragility_report_of_a_friction_campaign_has_a_sliding_section(friction_
     plain_comps = read_pelicun_csv(tmp_path / "without" / "fragility_pelicun.csv")
     slides = [c for c in with_comps if ".SLIDE" in c.component_id]
     assert [c for c in with_comps if ".SLIDE" not in c.component_id] == plain_comps
-    assert [c.component_id for c in slides] == [sliding_component_id(r.block, r.distance, r.demand)
-                                                for r in fitted.itertuples()]
+    assert [c.component_id for c in slides] == [f"opsrock.{r.block}.{floor}.SLIDE{round(1000 * r.distance)}MM."
+                                                f"{r.demand.upper()}" for r in fitted.itertuples()]
     assert [(c.median, c.beta) for c in slides] == list(zip(fitted["median"], fitted["beta"]))
 
     # the report: a table per block and the figure
     report = (tmp_path / "with" / "report.md").read_text()
     section = report[report.index("## Sliding beyond a distance"):]
-    assert "### crate" in section and "### shelf" in section and "![Sliding](figures/sliding.png)" in section
+    assert f"### crate, floor {floor}" in section and f"### shelf, floor {floor}" in section and "![Sliding](figures/sliding.png)" in section
     assert (tmp_path / "with" / "figures" / "sliding.png").stat().st_size > 1000

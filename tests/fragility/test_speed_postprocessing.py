@@ -348,7 +348,9 @@ def test_record_study_counts_its_fits(monkeypatch):
     monkeypatch.setattr(mle, "newton", count_newton)
     monkeypatch.setattr(logistic, "newton", count_newton)
     study = rs.record_fragility(cases, rs.RecordStudySettings(n_boot=n_boot), n_rank_boot=n_rank)
-    n_ims, n_plans = 9, 9 + 2 * 2 + 2  # IMs, blocks x (PFA, PFV), the measure under both conventions
+    # IMs, blocks x floors x (PFA, PFV) (two each: _campaign), the measure under both conventions
+    n_ims, n_plans = 9, 9 + 2 * 2 * 2 + 2
+    assert len(study.blocks) == 2 * 2 * 2 and study.blocks.groupby(["block", "floor"]).size().eq(2).all()
     assert calls["logistic"] == n_ims  # one per IM: none in the ranking resamples
     # one Newton run per point fit, per bootstrap resample, per ranking resample and IM, per logistic fit; at most
     assert 0 < calls["newton"] <= n_plans * (1 + n_boot) + n_ims * n_rank + n_ims
@@ -453,6 +455,32 @@ def test_ctrl_c_while_a_pool_forks_is_delivered_after_it(sigint_as_in_a_terminal
         pytest.fail("the recorded Ctrl-C was lost")  # ... and raised as the block ends
     assert reached
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_a_ctrl_c_while_a_task_pool_starts_shuts_its_workers_down(sigint_as_in_a_terminal, monkeypatch):
+    # a Ctrl-C recorded while TaskPool submits (forks) is raised in its constructor, before any caller's `with`
+    # could shut the pool down: the constructor must do it, else the interpreter's exit waits for every queued
+    # task (`opsrock fragility --n-boot 10000` stayed a minute after Ctrl-C)
+    import os
+    import signal
+    import time
+
+    from opsrock import _pool
+
+    class Recorder:
+        shutdowns: list = []
+
+        def submit(self, fn, *args):
+            os.kill(os.getpid(), signal.SIGINT)  # recorded by deferred_interrupts, raised as its block ends
+            time.sleep(0.01)
+
+        def shutdown(self, cancel_futures=False):
+            self.shutdowns.append(cancel_futures)
+
+    monkeypatch.setattr(_pool, "process_pool", lambda *a, **k: Recorder())
+    with pytest.raises(KeyboardInterrupt):
+        _pool.TaskPool(None, [(0,), (1,)], workers=2)
+    assert Recorder.shutdowns == [True]
 
 
 def test_an_ignored_ctrl_c_stays_ignored_through_a_pool_start():

@@ -19,7 +19,8 @@ import opsrock
 PACKAGE = Path(opsrock.__file__).resolve().parent
 #: The writing and drawing modules.
 WRITERS: list[Path] = sorted([*PACKAGE.glob("report/*.py"), *PACKAGE.glob("plots/*.py"),
-                              PACKAGE / "contents" / "report.py", PACKAGE / "contents" / "plots.py"])
+                              PACKAGE / "contents" / "report.py", PACKAGE / "contents" / "plots.py",
+                              PACKAGE / "inventory" / "report.py", PACKAGE / "inventory" / "plots.py"])
 #: Modules a writer must not import (a prefix each).
 FORBIDDEN: tuple[str, ...] = ("opsrock.solvers", "opsrock.validation", "opsrock.campaign", "opsrock.analysis",
                               "opsrock.intensity.records", "opsrock.opensees_session", "openseespy")

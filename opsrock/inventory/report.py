@@ -1,0 +1,281 @@
+"""The inventory study's ``report.md``, for a loss assessor: the per-item, per-floor table first, then what
+the method means, what the floors show, the figures, the expected numbers overturned, the failed cases and
+the pelicun files.
+
+It computes nothing: every number comes from :class:`ReportInputs`, whose tables
+:mod:`opsrock.inventory.summary` computed (:func:`~opsrock.inventory.summary.item_floor_table`,
+:func:`~opsrock.inventory.summary.curve_table`, :func:`~opsrock.inventory.summary.floor_findings`, ...),
+and every sentence is made from those numbers. PFV and PFA are defined before the table uses them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pandas as pd
+
+from opsrock._files import atomic_text
+from opsrock.report.markdown import markdown_table
+
+#: Mark of a point estimate outside its own bootstrap interval.
+OUTSIDE_MARK: str = "†"
+#: What each demand is, where the report first names it.
+DEFINITIONS: dict[str, str] = {
+    "pfv": "**PFV** (peak floor velocity, m/s): the largest absolute velocity of the floor the item stands on "
+           "(or of its support: a desk, a table, a shelf) during the motion",
+    "pfa": "**PFA** (peak floor acceleration, g; 1 g = 9.81 m/s²): the largest absolute acceleration of that "
+           "floor (or support)",
+}
+#: What each method means, for the report's method paragraph.
+METHODS: dict[str, str] = {
+    "ida": "**IDA** (incremental dynamic analysis) on the given motions: each floor motion is scaled to a "
+           "series of increasing levels and every item is run at each; the fit uses every finished case, so the "
+           "curve describes the records' own shape at amplitudes they did not have as recorded",
+    "cloud": "**cloud** (the motions as recorded, unscaled): each floor motion gives each item one case at its "
+             "own PFA and PFV; the curve is only informed between the smallest and the largest demand of the "
+             "records",
+    "msa": "**multiple stripes**: each level has its own set of records, each at that level",
+}
+
+
+@dataclass(frozen=True)
+class ReportInputs:
+    """Everything ``report.md`` states, computed beforehand.
+
+    Parameters
+    ----------
+    title : str
+        The report's first line.
+    method : str
+        ``"ida"``, ``"cloud"`` or ``"msa"`` (:data:`METHODS`); another text is printed as it is.
+    fits : pandas.DataFrame
+        ``fits.csv`` (PFV in m/s, PFA in g).
+    demands : pandas.DataFrame
+        ``demands.csv`` (PFA in m/s², PFV in m/s).
+    expected : pandas.DataFrame
+        ``expected.csv``: ``item, floor, direction, quantity, expected_overturned`` (counts).
+    inventory : pandas.DataFrame
+        One row per item: ``id, description, width, depth, height`` (m) and the optional columns.
+    table : pandas.DataFrame
+        :func:`opsrock.inventory.summary.item_floor_table` of overturning.
+    curves : pandas.DataFrame
+        :func:`opsrock.inventory.summary.curve_table` (the figures' points).
+    figures : dict of str to str
+        Figure name (an item id, or ``"demands"``) -> its path relative to the report.
+    notes : tuple of str
+        Measured lines (case counts, timings), printed as they are.
+    pelicun : dict of str to str
+        What each pelicun file is (``"fragility"``, ``"inventory"``, ``"demands"``, ``"config"``,
+        ``"mapping"``) -> its file name relative to the report.
+    findings : tuple of Finding or None
+        :func:`opsrock.inventory.summary.floor_findings`; None: no statement about the floors.
+    failures : pandas.DataFrame or None
+        :func:`opsrock.inventory.summary.failure_table` (``reason, n_cases``); None: not counted.
+    sliding : pandas.DataFrame or None
+        :func:`opsrock.inventory.summary.item_floor_table` of sliding; None: no friction modelled.
+    confidence : float
+        Level of the intervals (dimensionless), for the headers.
+    """
+
+    title: str
+    method: str
+    fits: pd.DataFrame = field(repr=False)
+    demands: pd.DataFrame = field(repr=False)
+    expected: pd.DataFrame = field(repr=False)
+    inventory: pd.DataFrame = field(repr=False)
+    table: pd.DataFrame = field(repr=False)
+    curves: pd.DataFrame = field(repr=False)
+    figures: dict[str, str]
+    notes: tuple[str, ...]
+    pelicun: dict[str, str]
+    findings: tuple | None = None
+    failures: pd.DataFrame | None = field(default=None, repr=False)
+    sliding: pd.DataFrame | None = field(default=None, repr=False)
+    confidence: float = 0.95
+
+
+def _num(v: float) -> str:
+    return f"{v:.3g}" if isinstance(v, (int, float)) and math.isfinite(v) else "n/a"
+
+
+def _probability(p: float) -> str:
+    """A probability to three decimals, bounded at 0.001 and 0.999 (a fitted tail, not a certainty); ``-``
+    without a fit."""
+    if not math.isfinite(p):
+        return "-"
+    return "< 0.001" if p < 0.001 else "> 0.999" if p > 0.999 else f"{p:.3f}"
+
+
+def _no_fit(r: pd.Series, d: str, verb: str) -> str:
+    status = r[f"status_{d}"]
+    if status == "never":
+        return f"none {verb} ({int(r['n_cases'])} cases)"
+    if status == "always":
+        return f"all {verb} ({int(r['n_cases'])} cases)"
+    return "no fit (see below)"
+
+
+def _median_cell(r: pd.Series, d: str, verb: str) -> str:
+    if r[f"status_{d}"] != "fitted":
+        return _no_fit(r, d, verb)
+    mark = OUTSIDE_MARK if r[f"median_outside_{d}"] else ""
+    interval = (f" [{_num(r[f'median_lo_{d}'])}, {_num(r[f'median_hi_{d}'])}]"
+                if math.isfinite(r[f"median_lo_{d}"]) else " (no interval)")
+    return f"{_num(r[f'median_{d}'])}{mark}{interval}"
+
+
+def _beta_cell(r: pd.Series, d: str) -> str:
+    if r[f"status_{d}"] != "fitted":
+        return "n/a"
+    mark = OUTSIDE_MARK if r[f"beta_outside_{d}"] else ""
+    interval = f" [{_num(r[f'beta_lo_{d}'])}, {_num(r[f'beta_hi_{d}'])}]" if math.isfinite(r[f"beta_lo_{d}"]) else ""
+    return f"{_num(r[f'beta_{d}'])}{mark}{interval}"
+
+
+def _levels(table: pd.DataFrame, d: str) -> list[tuple[str, str]]:
+    """``(column, level text)`` of the probability columns of demand ``d``."""
+    prefix = f"P_{d}_"
+    return [(c, c[len(prefix):]) for c in table.columns if c.startswith(prefix)]
+
+
+def formatted_table(table: pd.DataFrame, verb: str = "overturned", confidence: float = 0.95,
+                    what: str = "item") -> pd.DataFrame:
+    """The report's text cells of an :func:`~opsrock.inventory.summary.item_floor_table` (formatting only;
+    ``what`` names the first column: ``item``, or ``block`` in the record-scene report)."""
+    pct = f"{100 * confidence:.0f} %"
+    several = table["direction"].nunique() > 1
+    rows = []
+    for _, r in table.iterrows():
+        row = {what: r["item"], "floor": r["floor"]}
+        if several:
+            row["direction"] = r["direction"]
+        row[f"median PFV (m/s) [{pct}]"] = _median_cell(r, "pfv", verb)
+        row["beta (PFV)"] = _beta_cell(r, "pfv")
+        row[f"median PFA (g) [{pct}]"] = _median_cell(r, "pfa", verb)
+        row["beta (PFA)"] = _beta_cell(r, "pfa")
+        row["FEMA P-58 median PFV (m/s)"] = (f"{_num(r['fema_median'])} ({r['fema_id']})" if r["fema_id"] else "not mapped")
+        row["ours / FEMA"] = _num(r["ratio_fema"]) if r["fema_id"] else "-"
+        for d, abbr, unit in (("pfv", "PFV", "m/s"), ("pfa", "PFA", "g")):
+            for column, level in _levels(table, d):
+                value = r[column]
+                row[f"P at {abbr} {level} {unit}"] = _probability(value)
+        row["records / cases"] = f"{int(r['n_records'])} / {int(r['n_cases'])}"
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def method_lines(method: str, confidence: float = 0.95) -> list[str]:
+    """The method paragraph: what ``method`` (:data:`METHODS` key, or a text) means and how the curves and
+    intervals are fitted (``confidence`` dimensionless)."""
+    method = METHODS.get(method, method)
+    return ["## Method", "",
+            f"Method: {method}. Each curve is a lognormal fragility P(overturning | demand) = "
+            "Phi(ln(demand / median) / beta) fitted by maximum likelihood to every finished case of one item on one "
+            f"floor; the {100 * confidence:.0f} % intervals come from resampling whole records (all the cases "
+            "of a record together). beta is the lognormal dispersion (dimensionless). P at a level is that curve's "
+            "probability at the demand named in the column.", ""]
+
+
+def footnotes(table: pd.DataFrame, verb: str) -> list[str]:
+    """The notes under a :func:`formatted_table`: why an estimate is marked, what \"none\" means, each missing fit."""
+    lines = []
+    outside = table[table[[c for c in table.columns if "_outside_" in c]].any(axis=1)]
+    if len(outside):
+        which = ", ".join(f"{r.item} on floor {r.floor}" for r in outside.itertuples())
+        records = sorted({int(n) for n in outside["n_records"]})
+        lines.append(f"{OUTSIDE_MARK} The maximum-likelihood estimate lies outside its own bootstrap interval ({which}). "
+                     f"With few records ({', '.join(map(str, records))} here) many resamples miss the records that "
+                     "decide the fit, so the resampled estimates are skewed to one side and their percentile interval "
+                     "need not contain the estimate from all the records. Read the estimate as the fit to these "
+                     "records and the interval as how much it moves with them; more records narrow both.")
+    never = table[(table["status_pfv"] == "never")]
+    if len(never):
+        lines.append(f"\"none {verb}\": no case of " + ", ".join(f"{r.item} on floor {r.floor}" for r in never.itertuples())
+                     + f" {verb}, so there is no curve to fit and no probability is given (\"-\"); it is not zero, only "
+                     "below what these motions reach.")
+    for r in table.itertuples():
+        for d, abbr in (("pfv", "PFV"), ("pfa", "PFA")):
+            if getattr(r, f"status_{d}") == "no fit":
+                lines.append(f"no fit, {r.item} on floor {r.floor}, {abbr}: {getattr(r, f'message_{d}').rstrip('.')}.")
+    return [*(f"{line}\n" for line in lines)]
+
+
+def _expected_lines(expected: pd.DataFrame, pelicun: dict[str, str]) -> list[str]:
+    if expected is None or expected.empty:
+        return []
+    cols = [c for c in ("item", "floor", "direction", "quantity", "expected_overturned") if c in expected.columns]
+    return ["## Expected number overturned", "",
+            "Per item, floor and direction: the quantity on the floor and the expected number overturned, the exact "
+            "expectation over the records (each record weighted equally, the fitted PFV curve at its demand), "
+            "which the pelicun assessment of the files below should reproduce"
+            + (f" (`{pelicun['fragility']}`)" if "fragility" in pelicun else "") + ":", "",
+            markdown_table(expected[cols], ".3g"), ""]
+
+
+def _failure_lines(inputs: ReportInputs) -> list[str]:
+    n_failed = int(inputs.fits["n_failed"].max()) if len(inputs.fits) else 0
+    lines = ["## Cases", ""]
+    if inputs.failures is not None and len(inputs.failures):
+        total = int(inputs.failures["n_cases"].sum())
+        lines += [f"{total} case{'s' if total != 1 else ''} failed (excluded from the fits, never counted as a "
+                  f"verdict); {'their reasons' if total != 1 else 'its reason'}:", "",
+                  markdown_table(inputs.failures, ".3g"), ""]
+    elif inputs.failures is not None or n_failed == 0:
+        lines += ["No case failed.", ""]
+    else:
+        lines += [f"Failed cases per item and floor (excluded from the fits): up to {n_failed}; reasons not given.", ""]
+    return lines + [*(f"- {note}" for note in inputs.notes), ""]
+
+
+def _pelicun_lines(pelicun: dict[str, str]) -> list[str]:
+    if not pelicun:
+        return []
+    return ["## Into pelicun", "", "The folder pelicun runs as it is:", "",
+            *(f"- {what}: `{name}`" for what, name in pelicun.items()), ""]
+
+
+def _figure_lines(figures: dict[str, str]) -> list[str]:
+    lines = ["## Figures", "",
+             "Each item's overturning fragility in PFV on each floor (one line style and marker per floor, the shaded "
+             "band spanned by the curves at the corners of the intervals); the floors' demands, one point per record.",
+             ""]
+    for name, rel in figures.items():
+        lines += [f"![{name}]({rel})", ""]
+    return lines
+
+
+def write_report(path: str | Path, inputs: ReportInputs) -> Path:
+    """Write ``report.md`` (atomically) from ``inputs`` and return its path.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file written (figure paths in ``inputs.figures`` are relative to its folder).
+    inputs : ReportInputs
+        The computed tables.
+    """
+    t = inputs.table
+    lines = [f"# {inputs.title}", "",
+             "Each item's fragility on each floor of the building, in two demands: " + "; ".join(DEFINITIONS.values())
+             + ". Overturning first; table rows are one item on one floor.", "",
+             "## Per item and floor: overturning", "",
+             markdown_table(formatted_table(t, "overturned", inputs.confidence)) if len(t) else "(no item was fitted)", "",
+             *(footnotes(t, "overturned") if len(t) else []),
+             *method_lines(inputs.method, inputs.confidence)]
+    if inputs.findings:
+        lines += ["## What the floors show", "", *(f"- {f.text}" for f in inputs.findings), ""]
+    if inputs.sliding is not None and len(inputs.sliding):
+        lines += ["## Per item and floor: sliding", "",
+                  markdown_table(formatted_table(inputs.sliding, "slid", inputs.confidence)), "",
+                  *footnotes(inputs.sliding, "slid")]
+    lines += [*_figure_lines(inputs.figures), *_expected_lines(inputs.expected, inputs.pelicun),
+              *_failure_lines(inputs), *_pelicun_lines(inputs.pelicun)]
+    path = Path(path)
+    atomic_text(path, "\n".join(lines) + "\n")
+    return path
+
+
+__all__ = ["DEFINITIONS", "METHODS", "OUTSIDE_MARK", "ReportInputs", "footnotes", "formatted_table", "method_lines",
+           "write_report"]

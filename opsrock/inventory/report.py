@@ -21,6 +21,8 @@ from opsrock.report.markdown import markdown_table
 
 #: Mark of a point estimate outside its own bootstrap interval.
 OUTSIDE_MARK: str = "†"
+#: Mark of a median beyond the largest demand of the cases (a fit's extrapolation from a few exceedances).
+EXTRAPOLATED_MARK: str = "‡"
 #: What each demand is, where the report first names it.
 DEFINITIONS: dict[str, str] = {
     "pfv": "**PFV** (peak floor velocity, m/s): the largest absolute velocity of the floor the item stands on "
@@ -120,7 +122,8 @@ def _no_fit(r: pd.Series, d: str, verb: str) -> str:
 def _median_cell(r: pd.Series, d: str, verb: str) -> str:
     if r[f"status_{d}"] != "fitted":
         return _no_fit(r, d, verb)
-    mark = OUTSIDE_MARK if r[f"median_outside_{d}"] else ""
+    mark = (OUTSIDE_MARK if r[f"median_outside_{d}"] else "") + (
+        EXTRAPOLATED_MARK if r.get(f"median_extrapolated_{d}", False) else "")
     interval = (f" [{_num(r[f'median_lo_{d}'])}, {_num(r[f'median_hi_{d}'])}]"
                 if math.isfinite(r[f"median_lo_{d}"]) else " (no interval)")
     return f"{_num(r[f'median_{d}'])}{mark}{interval}"
@@ -178,27 +181,40 @@ def method_lines(method: str, confidence: float = 0.95) -> list[str]:
             "probability at the demand named in the column.", ""]
 
 
+def _where(r, several: bool) -> str:
+    """``item on floor F`` of a table row, with ``, direction D`` when the table has several directions."""
+    return f"{r.item} on floor {r.floor}" + (f", direction {r.direction}" if several else "")
+
+
 def footnotes(table: pd.DataFrame, verb: str) -> list[str]:
     """The notes under a :func:`formatted_table`: why an estimate is marked, what \"none\" means, each missing fit."""
     lines = []
+    several = "direction" in table.columns and table["direction"].nunique() > 1
     outside = table[table[[c for c in table.columns if "_outside_" in c]].any(axis=1)]
     if len(outside):
-        which = ", ".join(f"{r.item} on floor {r.floor}" for r in outside.itertuples())
+        which = ", ".join(_where(r, several) for r in outside.itertuples())
         records = sorted({int(n) for n in outside["n_records"]})
         lines.append(f"{OUTSIDE_MARK} The maximum-likelihood estimate lies outside its own bootstrap interval ({which}). "
                      f"With few records ({', '.join(map(str, records))} here) many resamples miss the records that "
                      "decide the fit, so the resampled estimates are skewed to one side and their percentile interval "
                      "need not contain the estimate from all the records. Read the estimate as the fit to these "
                      "records and the interval as how much it moves with them; more records narrow both.")
+    extrapolated = [c for c in table.columns if c.startswith("median_extrapolated_")]
+    beyond = table[table[extrapolated].any(axis=1)] if extrapolated else table.iloc[:0]
+    if len(beyond):
+        lines.append(f"{EXTRAPOLATED_MARK} The median lies beyond the largest demand any case of "
+                     + ", ".join(_where(r, several) for r in beyond.itertuples())
+                     + " reached: the curve is fitted to the few cases that exceeded and extrapolated past every "
+                     "tested demand; read it as \"rarely, within these demands\", not as a measured median.")
     never = table[(table["status_pfv"] == "never")]
     if len(never):
-        lines.append(f"\"none {verb}\": no case of " + ", ".join(f"{r.item} on floor {r.floor}" for r in never.itertuples())
+        lines.append(f"\"none {verb}\": no case of " + ", ".join(_where(r, several) for r in never.itertuples())
                      + f" {verb}, so there is no curve to fit and no probability is given (\"-\"); it is not zero, only "
                      "below what these motions reach.")
     for r in table.itertuples():
         for d, abbr in (("pfv", "PFV"), ("pfa", "PFA")):
             if getattr(r, f"status_{d}") == "no fit":
-                lines.append(f"no fit, {r.item} on floor {r.floor}, {abbr}: {getattr(r, f'message_{d}').rstrip('.')}.")
+                lines.append(f"no fit, {_where(r, several)}, {abbr}: {getattr(r, f'message_{d}').rstrip('.')}.")
     return [*(f"{line}\n" for line in lines)]
 
 

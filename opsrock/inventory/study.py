@@ -320,7 +320,8 @@ def _fit_and_write(design: InventoryDesign, cases: pd.DataFrame, demands: pd.Dat
         pel = write_pelicun_folder(fits, demands, design, stage / "pelicun")
         timings["outputs_s"] = time.perf_counter() - t0
         timings["total_s"] = time.perf_counter() - run["t_start"]
-        report = _write_report(stage, {**tables, "design": design, "cases": cases, "timings": timings})
+        report = _write_report(stage, {**tables, "design": design, "cases": cases, "timings": timings,
+                                       "pelicun": pel, "n_computed": run["n_computed"]})
         final = {p: out / Path(p).relative_to(stage) for p in [report, *paths.values(), *pel.values()]}
     n_failed = int((cases["status"] != "ok").sum())
     _say(progress, f"done in {timings['total_s']:.1f} s: {final[report]}")
@@ -338,22 +339,30 @@ def _write_csv(df: pd.DataFrame, path: Path) -> Path:
 
 
 def _write_report(stage: Path, study_tables: dict[str, Any]) -> Path:
-    """A placeholder report (``report.md``): the per-item, per-floor table of the overturning fits in PFV.
-    The report of :mod:`opsrock.inventory.report` replaces it."""
-    fits = study_tables["fits"]
-    design = study_tables["design"]
-    rows = fits[(fits["outcome"] == "overturning") & (fits["demand"] == "pfv")]
-    lines = [f"# Contents fragility: {design.inventory.source} on {design.motions.source}", "",
-             f"Method: {design.method}; PFV = peak absolute floor velocity (m/s) of the floor motion.", "",
-             "| item | floor | direction | median PFV (m/s) | 95 % interval | beta | FEMA median (m/s) | note |",
-             "|---|---|---|---|---|---|---|---|"]
-    for _, r in rows.iterrows():
-        lines.append(f"| {r['item']} | {r['floor']} | {r['direction']} | {r['median']:.3g} | "
-                     f"{r['median_lo']:.3g}-{r['median_hi']:.3g} | {r['beta']:.3g} | {r['fema_median']:.3g} | "
-                     f"{'' if r['ok'] else r['message']} |")
-    path = stage / "report.md"
-    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    return path
+    """``report.md`` and its figures (:mod:`opsrock.inventory.report`, :mod:`opsrock.inventory.plots`) from the
+    study's tables; every number the report shows is computed in :mod:`opsrock.inventory.summary`."""
+    from opsrock.inventory.items import item_cells
+    from opsrock.inventory.plots import item_figures, plot_floor_demands
+    from opsrock.inventory.report import ReportInputs, write_report
+    from opsrock.inventory.summary import demand_table, report_tables
+
+    design, fits, cases = study_tables["design"], study_tables["fits"], study_tables["cases"]
+    levels = {"pfv": design.demand_levels_pfv, "pfa": design.demand_levels_pfa}
+    computed = report_tables(fits, levels, cases)
+    figures = {item: f"figures/{p.name}" for item, p in item_figures(computed["curves"], stage / "figures").items()}
+    figures["demands"] = f"figures/{plot_floor_demands(demand_table(study_tables['demands']), stage / 'figures' / 'demands.png').name}"
+    t = study_tables["timings"]
+    notes = (f"{len(cases)} cases, {int((cases['status'] != 'ok').sum())} failed; "
+             f"{study_tables['n_computed']} computed in this run.",
+             f"Wall time (s): demands {t.get('demands_s', 0.0):.1f}, campaigns {t.get('campaigns_s', 0.0):.1f}, "
+             f"fits {t.get('fits_s', 0.0):.1f}.")
+    pelicun = {key: f"pelicun/{Path(path).name}" for key, path in study_tables["pelicun"].items()}
+    inputs = ReportInputs(title=f"Contents fragility: {design.inventory.source} on {design.motions.source}",
+                          method=design.method, fits=fits, demands=study_tables["demands"],
+                          expected=study_tables["expected"],
+                          inventory=pd.DataFrame([item_cells(i) for i in design.inventory.items]),
+                          figures=figures, notes=notes, pelicun=pelicun, **computed)
+    return write_report(stage / "report.md", inputs)
 
 
 __all__ = ["DEFAULT_DEMAND_LEVELS_PFA", "DEFAULT_DEMAND_LEVELS_PFV", "DEFAULT_SLIDE_DISTANCE", "METHODS", "OUTPUTS",

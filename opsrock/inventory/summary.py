@@ -107,6 +107,10 @@ def probability(x: np.ndarray | float, median: float, beta: float) -> np.ndarray
     return norm.cdf(np.log(x / median) / beta)
 
 
+#: How :mod:`opsrock.inventory.fits` starts the message of a median beyond the largest demand of the cases.
+EXTRAPOLATED: str = "extrapolated:"
+
+
 def _status(r: pd.Series) -> str:
     """``fitted``, ``never`` (no case exceeded), ``always`` (every case did) or ``no fit``."""
     if bool(r["ok"]) and math.isfinite(r["median"]):
@@ -125,6 +129,7 @@ def _demand_part(r: pd.Series, levels: tuple[float, ...]) -> dict:
     part[f"message_{d}"] = str(r["message"]) if isinstance(r["message"], str) else ""
     part[f"median_outside_{d}"] = outside_interval(r["median"], r["median_lo"], r["median_hi"])
     part[f"beta_outside_{d}"] = outside_interval(r["beta"], r["beta_lo"], r["beta_hi"])
+    part[f"median_extrapolated_{d}"] = part[f"message_{d}"].startswith(EXTRAPOLATED)
     for level in levels:
         part[level_column(d, level)] = float(probability(level, r["median"], r["beta"]))
     return part
@@ -372,6 +377,6 @@ def report_tables(fits: pd.DataFrame, demand_levels: dict[str, tuple[float, ...]
             "sliding": item_floor_table(fits, demand_levels, "sliding") if has_sliding else None}
 
 
-__all__ = ["DEFAULT_LEVELS", "DEMANDS", "Finding", "curve_table", "default_grid", "demand_table", "failure_table",
+__all__ = ["DEFAULT_LEVELS", "DEMANDS", "EXTRAPOLATED", "Finding", "curve_table", "default_grid", "demand_table", "failure_table",
            "floor_findings", "floor_order", "floors_are_numbered", "item_floor_table", "level_column", "outside_interval",
            "probability", "report_tables"]

@@ -217,3 +217,20 @@ def test_sliding_gets_its_own_table_after_overturning(tmp_path):
     text = write_report(tmp_path / "report.md", inputs).read_text()
     assert text.index("## Per item and floor: overturning") < text.index("## Per item and floor: sliding")
     assert "| rack | 1 | 0.3 [0.25, 0.35] |" in text and "**cloud**" in text
+
+
+def test_an_extrapolated_median_is_marked_and_explained():
+    """A median beyond every demand tested (fits.py's message starts with summary.EXTRAPOLATED) gets its own
+    mark in the table and a note saying it is extrapolated; the other rows stay unmarked."""
+    from opsrock.inventory.report import EXTRAPOLATED_MARK, footnotes, formatted_table
+
+    fits = synthetic_fits()
+    rack3 = (fits["item"] == "rack") & (fits["floor"] == "3") & (fits["demand"] == "pfv")
+    fits.loc[rack3, "message"] = f"{summary.EXTRAPOLATED} the median 0.4 m/s lies beyond the largest demand"
+    table = summary.item_floor_table(fits)
+    cells = formatted_table(table).set_index(["item", "floor"])
+    assert EXTRAPOLATED_MARK in cells.loc[("rack", "3"), "median PFV (m/s) [95 %]"]
+    assert EXTRAPOLATED_MARK not in cells.loc[("rack", "3"), "median PFA (g) [95 %]"]
+    assert EXTRAPOLATED_MARK not in cells.loc[("rack", "1"), "median PFV (m/s) [95 %]"]
+    notes = "".join(footnotes(table, "overturned"))
+    assert f"{EXTRAPOLATED_MARK} The median lies beyond the largest demand any case of rack on floor 3 reached" in notes

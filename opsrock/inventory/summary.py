@@ -195,14 +195,18 @@ def _missing_demand(d: str, levels: tuple[float, ...]) -> dict:
 
 
 def default_grid(fits: pd.DataFrame, n: int = 120) -> dict[str, np.ndarray]:
-    """Per demand, ``n`` log-spaced values spanning every finite median and interval of ``fits`` (x 1/3 to
-    x 3): PFV in m/s, PFA in g."""
+    """Per demand, ``n`` log-spaced values spanning ``median · exp(±2.5 beta)`` of every fitted row of ``fits``
+    (where such a curve runs from P = 0.006 to 0.994): PFV in m/s, PFA in g. Medians extrapolated beyond the
+    demands tested (:data:`EXTRAPOLATED`) are left out when any other row has a fit, so that one poorly
+    determined curve does not stretch the axis of the others over decades."""
     grid = {}
     for d in DEMANDS:
-        sel = fits[fits["demand"] == d]
-        values = pd.concat([sel["median"], sel["median_lo"], sel["median_hi"]]).to_numpy(float)
-        values = values[np.isfinite(values) & (values > 0)]
-        lo, hi = (values.min() / 3, values.max() * 3) if values.size else (0.01, 10.0)
+        sel = fits[(fits["demand"] == d) & np.isfinite(fits["median"].astype(float))
+                   & np.isfinite(fits["beta"].astype(float)) & (fits["median"].astype(float) > 0)]
+        measured = sel[~sel["message"].fillna("").astype(str).str.startswith(EXTRAPOLATED)]
+        sel = measured if len(measured) else sel
+        med, beta = sel["median"].to_numpy(float), sel["beta"].to_numpy(float)
+        lo, hi = ((med * np.exp(-2.5 * beta)).min(), (med * np.exp(2.5 * beta)).max()) if med.size else (0.01, 10.0)
         grid[d] = np.geomspace(lo, hi, n)
     return grid
 
@@ -215,7 +219,8 @@ def curve_table(fits: pd.DataFrame, grid: dict[str, np.ndarray] | None = None) -
     fits : pandas.DataFrame
         The study's fits (PFV in m/s, PFA in g).
     grid : dict of str to numpy.ndarray, optional
-        Demand values per demand (m/s for ``pfv``, g for ``pfa``); default :func:`default_grid`.
+        Demand values per demand (m/s for ``pfv``, g for ``pfa``); default :func:`default_grid` of each item's
+        own rows (each item's figure spans its own curves).
 
     Returns
     -------
@@ -224,10 +229,11 @@ def curve_table(fits: pd.DataFrame, grid: dict[str, np.ndarray] | None = None) -
         ``p_lo, p_hi`` the band spanned by the curves at the corners of the median and beta intervals, NaN
         without intervals). Rows without a finite fit are left out.
     """
-    grid = default_grid(fits) if grid is None else grid
+    grids = ({item: default_grid(rows) for item, rows in fits.groupby("item", sort=False)} if grid is None
+             else dict.fromkeys(fits["item"], grid))
     parts = []
     for _, r in fits.iterrows():
-        x = np.asarray(grid.get(r["demand"], ()), dtype=float)
+        x = np.asarray(grids[r["item"]].get(r["demand"], ()), dtype=float)
         p = probability(x, r["median"], r["beta"])
         if not x.size or np.isnan(p).all():
             continue

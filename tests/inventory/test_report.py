@@ -234,3 +234,18 @@ def test_an_extrapolated_median_is_marked_and_explained():
     assert EXTRAPOLATED_MARK not in cells.loc[("rack", "1"), "median PFV (m/s) [95 %]"]
     notes = "".join(footnotes(table, "overturned"))
     assert f"{EXTRAPOLATED_MARK} The median lies beyond the largest demand any case of rack on floor 3 reached" in notes
+
+
+def test_each_item_figure_spans_its_own_curves():
+    """An extrapolated median of 1e6 m/s on one item leaves every other item's grid where its own curves are
+    (median · exp(±2.5 beta), the closed form of P = 0.006 to 0.994), and the item's own measured rows
+    keep it out of its grid too."""
+    fits = synthetic_fits()
+    rack3 = (fits["item"] == "rack") & (fits["floor"] == "3") & (fits["demand"] == "pfv")
+    fits.loc[rack3, ["median", "message"]] = [1e6, f"{summary.EXTRAPOLATED} beyond every demand"]
+    curves = summary.curve_table(fits)
+    pfv = curves[curves["demand"] == "pfv"]
+    cabinet = pfv[pfv["item"] == "cabinet"]["x"]
+    assert cabinet.max() == pytest.approx(0.9 * math.exp(2.5 * 0.3), rel=1e-12)
+    assert cabinet.min() == pytest.approx(0.8 * math.exp(-2.5 * 0.3), rel=1e-12)
+    assert pfv[pfv["item"] == "rack"]["x"].max() == pytest.approx(0.6 * math.exp(2.5 * 0.4), rel=1e-12)

@@ -26,16 +26,9 @@ from pathlib import Path
 import numpy as np
 
 from opsrock._files import not_a_file
-from opsrock.constants import G
 from opsrock.errors import InputError, RecordFileError, UnknownRecordError
-from opsrock.excitations.records import Record, RecordInfo, safe_name
+from opsrock.excitations.records import LIBRARY_PREFIX, UNITS, Record, RecordInfo, safe_name
 from opsrock.limits import LIMITS
-
-#: Prefix of record-library references (:data:`opsrock.excitations.library.LIBRARY`).
-LIBRARY_PREFIX: str = "fema-p695:"
-
-#: Acceleration units accepted for record files, with their factor to m/s².
-UNITS: dict[str, float] = {"g": G, "m/s2": 1.0, "cm/s2": 0.01}
 
 #: Largest relative deviation of a time step from the first one in a two-column file: time
 #: columns printed with a few decimals stay far inside it, a record with a changed sampling
@@ -179,7 +172,7 @@ def _read_at2(path: Path, lines: list[str], units: str | None, dt: float | None,
         raise RecordFileError(path, len(lines), f"the header says NPTS = {npts}, the file holds {len(values)} samples")
     info = RecordInfo(source=str(path), event=lines[1].split(",")[0].strip(), units_in_file=file_units,
                       component=lines[1].split(",")[-1].strip() if "," in lines[1] else "")
-    return _record(path, step, np.asarray(values) * UNITS[file_units], name, info)
+    return _record(path, step, np.asarray(values), file_units, name, info)
 
 
 # --- text / CSV ---------------------------------------------------------------------------------
@@ -216,7 +209,7 @@ def _looks_numeric(token: str) -> bool:
 def _read_text(path: Path, lines: list[str], units: str | None, dt: float | None, name: str) -> Record:
     if units is None:
         raise RecordFileError(path, None, "units missing: a text/CSV record needs units = g, m/s2 or cm/s2")
-    factor = units_factor(units)
+    units_factor(units)
     rows, _ = _data_rows(path, lines)
     ncol = len(rows[0][1])
     if ncol not in (1, 2):
@@ -236,7 +229,7 @@ def _read_text(path: Path, lines: list[str], units: str | None, dt: float | None
         dt = _uniform_step(path, rows, data[:, 0])
         acc = data[:, 1]
     info = RecordInfo(source=str(path), units_in_file=units)
-    return _record(path, dt, acc * factor, name, info)
+    return _record(path, dt, acc, units, name, info)
 
 
 def _uniform_step(path: Path, rows, times: np.ndarray) -> float:
@@ -254,9 +247,10 @@ def _uniform_step(path: Path, rows, times: np.ndarray) -> float:
     return (float(times[-1]) - float(times[0])) / (times.size - 1)
 
 
-def _record(path: Path, dt: float, values: np.ndarray, name: str, info: RecordInfo) -> Record:
+def _record(path: Path, dt: float, values: np.ndarray, units: str, name: str, info: RecordInfo) -> Record:
+    """The record of ``values`` in ``units`` (converted to m/s² by :class:`Record`)."""
     try:
-        return Record(dt=dt, values=values, name=name, info=info)
+        return Record(dt=dt, values=values, name=name, info=info, units=units)
     except (TypeError, ValueError) as exc:
         raise RecordFileError(path, None, str(exc)) from None
 

@@ -129,6 +129,12 @@ LIKELY_UNITS: dict[str, dict[str, float]] = {
     "block_size": {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254},
 }
 
+#: The command-line option that confirms implausible values (``simulate``, ``threshold``, ``run``, ``records``).
+ACCEPT_OPTION: str = "--accept-implausible"
+
+#: The scene key that confirms them (top level of a scene file; ``run`` takes :data:`ACCEPT_OPTION` too).
+ACCEPT_KEY: str = "accept_implausible = true"
+
 #: How a unit is named in a message.
 UNIT_WORDS: dict[str, str] = {"m/s2": "m/s²", "cm/s2": "cm/s²", "mm/s2": "mm/s²", "g": "g", "m": "m",
                               "cm": "centimetres", "mm": "millimetres", "in": "inches"}
@@ -236,6 +242,14 @@ def check_plausible(name: str, value: float, *, what: str, option: str, confirm:
     declared = declared or next(iter(LIKELY_UNITS[name]))
     raise ImplausibleInputError(implausible_message(name, value, what=what, declared=declared, option=option),
                                 argument=what)
+
+
+def check_plausible_sizes(sizes: dict[str, float], *, option: str, confirm: bool = False) -> None:
+    """:func:`check_plausible` of every block dimension in ``sizes`` (``{what: value in m}``, e.g.
+    ``{"--width": 0.4, "--height": 2.2}``), in order: the first beyond ``PLAUSIBLE["block_size"]`` is refused
+    unless ``confirm``, naming the unit it looks like (millimetres, centimetres, inches)."""
+    for what, value in sizes.items():
+        check_plausible("block_size", value, what=what, option=option, confirm=confirm)
 
 
 def shown(value: object) -> str:
@@ -400,6 +414,6 @@ def bool_fields(obj: object) -> None:
                 raise InputTypeError(f"{f.name} must be true or false (a bool), got {value!r}")
 
 
-__all__ = ["G_LIKE_PEAK", "LIKELY_UNITS", "LIMITS", "Limit", "PLAUSIBLE", "Plausible", "UNIT_WORDS", "check_plausible",
-           "implausible_message", "likely_unit", "unit_symbol", "bool_fields", "check", "check_count", "compiled_stepping", "in_open_interval", "initial_state", "int_at_least", "one_of",
+__all__ = ["ACCEPT_KEY", "ACCEPT_OPTION", "G_LIKE_PEAK", "LIKELY_UNITS", "LIMITS", "Limit", "PLAUSIBLE", "Plausible", "UNIT_WORDS", "check_plausible",
+           "check_plausible_sizes", "implausible_message", "likely_unit", "unit_symbol", "bool_fields", "check", "check_count", "compiled_stepping", "in_open_interval", "initial_state", "int_at_least", "one_of",
            "positive_finite", "real_number", "scaled_input", "shown"]

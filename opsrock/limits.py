@@ -285,8 +285,22 @@ def check(name: str, value: object, *, shown_as: str | None = None) -> float:
     v = real_number(label, value)
     if not math.isfinite(v) or not (limit.low <= v <= limit.high):
         unit = "" if limit.unit == "-" else f" {limit.unit}"
-        raise InputError(f"{label} must lie in [{limit.low:g}, {limit.high:g}]{unit}, got {shown(value)}")
+        raise InputError(f"{label} must lie in [{limit.low:g}, {limit.high:g}]{unit}, got {shown(value)}"
+                         + _unit_hint(name, v))
     return v
+
+
+#: Limits whose quantity has a plausibility bound: a value beyond the limit is named with its likely unit too.
+_PLAUSIBLE_OF: dict[str, str] = {"width": "block_size", "height": "block_size"}
+
+
+def _unit_hint(name: str, value: float) -> str:
+    """``"; it looks like millimetres (2500 mm = 2.5 m)"`` for a block dimension beyond its limit, else ``""``."""
+    quantity = _PLAUSIBLE_OF.get(name)
+    likely = None if quantity is None or not math.isfinite(value) else likely_unit(quantity, value, "m")
+    if likely is None:
+        return ""
+    return f"; it looks like {UNIT_WORDS[likely[0]]} ({abs(value):g} {likely[0]} = {likely[1]:.4g} m)"
 
 
 def check_count(name: str, value: object, *, shown_as: str | None = None) -> int:

@@ -143,9 +143,10 @@ UNIT_WORDS: dict[str, str] = {"m/s2": "m/s²", "cm/s2": "cm/s²", "mm/s2": "mm/s
 #: peak lies strictly between 0 and this (m/s²) looks like g and is refused until its units are stated. In
 #: g, the motions opsrock analyses peak between about 0.05 and 4 g, so their numbers in g lie below 1 (every
 #: FEMA P695 far-field component, 52 of the 56 near-field ones). In m/s², a peak below 1 m/s² (0.102 g)
-#: cannot uplift a block with ``b/h`` above 0.102 (uplift needs ``PFA > g b/h``): every shipped block is
-#: stockier (the slenderest has ``b/h`` = 0.155). Read as m/s², such a record moves nothing; read as g, it is
-#: an ordinary motion.
+#: cannot uplift a block with ``b/h`` above 0.102 (uplift needs ``PFA > g b/h``; every shipped block is
+#: stockier, the slenderest has ``b/h`` = 0.155) nor make a block slide on a friction coefficient above 0.102
+#: (furniture on floors: 0.2-0.6). Read as m/s², such a record moves nothing; read as g, it is an ordinary
+#: motion.
 G_LIKE_PEAK: float = 1.0
 
 

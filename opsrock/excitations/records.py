@@ -159,8 +159,9 @@ class Record:
         if 0.0 < peak < G_LIKE_PEAK:
             raise ImplausibleInputError(
                 f"values: record {label} is given without units and peaks at {peak:.4g}: that looks like g "
-                f"({peak:.4g} g = {peak * G:.4g} m/s²); read as m/s² ({peak / G:.3g} g) it could uplift no block "
-                f"with b/h above {peak / G:.3g}; pass units='g', or units='m/s2' to confirm", argument="values")
+                f"({peak:.4g} g = {peak * G:.4g} m/s²); read as m/s² ({peak / G:.3g} g) it could neither uplift a "
+                f"block with b/h nor slide one with friction above {peak / G:.3g}; pass units='g', or units='m/s2' "
+                "to confirm", argument="values")
         if peak > plausible.high:
             raise ImplausibleInputError(implausible_message(
                 "pfa", peak, what=f"values: record {label}, given without units (read as m/s²): PFA", declared="m/s2",

@@ -139,7 +139,7 @@ class CaseTimeout(OpsrockError):
 
 
 __all__ = [
-    "AnalysisError", "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError", "InputError",
+    "AnalysisError", "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError", "ImplausibleInputError", "InputError",
     "InputTypeError", "LibraryUnavailableError", "MISSING", "MissingBlasError", "ModelNotSupported", "OpsrockError",
     "RecordFileError", "SceneError",
     "StoreError", "StoreUnavailableError", "UnknownRecordError", "UnknownSettingError", "UsageError",
@@ -149,4 +149,5 @@ __all__ = [
 class ImplausibleInputError(InputError):
     """A value that is valid but that no real floor or content reaches (a floor motion of 900 g, a
     400-m cabinet): almost always a unit mistake. The message names the likely cause and the option that
-    confirms the value (:data:`opsrock.limits.PLAUSIBLE`)."""
+    confirms the value (:data:`opsrock.limits.PLAUSIBLE`); ``argument`` is what the value is (the option, or the
+    file and field)."""

@@ -14,8 +14,8 @@ import math
 from dataclasses import dataclass
 from numbers import Integral, Real
 
-from opsrock.constants import OVERTURNING_ANGLE
-from opsrock.errors import InputError, InputTypeError
+from opsrock.constants import G, OVERTURNING_ANGLE
+from opsrock.errors import ImplausibleInputError, InputError, InputTypeError
 
 
 @dataclass(frozen=True)
@@ -101,31 +101,119 @@ class Plausible:
         Its SI unit.
     reason : str
         Why no real input reaches it (one line, for docs and messages).
+    typical : float
+        A typical value (``unit``): of the units a refused value may have been meant in
+        (:data:`LIKELY_UNITS`), the one that brings it nearest to this (in ratio) is named as the likely cause.
     """
 
     high: float
     unit: str
     reason: str
+    typical: float = 1.0
 
 
 #: Plausibility bounds, declared once; every user boundary (command line, scene, inventory, motions
-#: manifest, :class:`~opsrock.excitations.records.Record`) checks against these.
+#: manifest, record files) checks against these (:func:`check_plausible`,
+#: :func:`opsrock.excitations.records.check_plausible_record`).
 PLAUSIBLE: dict[str, Plausible] = {
-    "pfa": Plausible(10.0 * 9.80665, "m/s²", "no recorded floor or ground motion reaches 10 g (the largest "
-                     "recorded ground accelerations are about 4 g)"),
+    "pfa": Plausible(10.0 * G, "m/s²", "no recorded floor or ground motion reaches 10 g (the largest "
+                     "recorded ground accelerations are about 4 g)", typical=0.3 * G),
     "block_size": Plausible(10.0, "m", "no piece of furniture or equipment is larger than 10 m in any "
-                            "dimension"),
+                            "dimension", typical=1.0),
 }
 
-#: Factors from the units a user may have meant to the SI unit of each plausibility bound's quantity, tried
-#: in this order to name the likely cause of an implausible value.
+#: The units a value of each plausibility bound's quantity may be given or meant in, with the factor to its SI
+#: unit (ASCII names, as ``--units`` takes them); the SI unit itself first.
 LIKELY_UNITS: dict[str, dict[str, float]] = {
-    "pfa": {"cm/s²": 0.01, "mm/s²": 0.001},
-    "block_size": {"mm": 0.001, "cm": 0.01, "in": 0.0254},
+    "pfa": {"m/s2": 1.0, "g": G, "cm/s2": 0.01, "mm/s2": 0.001},
+    "block_size": {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254},
 }
 
+#: The command-line option that confirms implausible values (``simulate``, ``threshold``, ``run``, ``records``).
+ACCEPT_OPTION: str = "--accept-implausible"
 
-def check_plausible(name: str, value: float, *, what: str, option: str, confirm: bool = False) -> None:
+#: The scene key that confirms them (top level of a scene file; ``run`` takes :data:`ACCEPT_OPTION` too).
+ACCEPT_KEY: str = "accept_implausible = true"
+
+#: How a unit is named in a message.
+UNIT_WORDS: dict[str, str] = {"m/s2": "m/s²", "cm/s2": "cm/s²", "mm/s2": "mm/s²", "g": "g", "m": "m",
+                              "cm": "centimetres", "mm": "millimetres", "in": "inches"}
+
+#: A record given without its units (:class:`~opsrock.excitations.records.Record` with ``units=None``) whose
+#: peak lies strictly between 0 and this (m/s²) looks like g and is refused until its units are stated. In
+#: g, the motions opsrock analyses peak between about 0.05 and 4 g, so their numbers in g lie below 1 (every
+#: FEMA P695 far-field component, 52 of the 56 near-field ones). In m/s², a peak below 1 m/s² (0.102 g)
+#: cannot uplift a block with ``b/h`` above 0.102 (uplift needs ``PFA > g b/h``; every shipped block is
+#: stockier, the slenderest has ``b/h`` = 0.155) nor make a block slide on a friction coefficient above 0.102
+#: (furniture on floors: 0.2-0.6). Read as m/s², such a record moves nothing; read as g, it is an ordinary
+#: motion.
+G_LIKE_PEAK: float = 1.0
+
+
+def likely_unit(name: str, value: float, declared: str, among: tuple[str, ...] | None = None
+                ) -> tuple[str, float] | None:
+    """The unit ``value`` was most likely meant in, if not ``declared``: ``(unit, SI value)`` or None.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`PLAUSIBLE`.
+    value : float
+        The value in its SI unit (m/s², m), as read with ``declared``.
+    declared : str
+        The unit it was given in, a key of ``LIKELY_UNITS[name]``.
+    among : tuple of str, optional
+        The units to try (those the user can give, e.g. the record units ``g``, ``m/s2``, ``cm/s2``); default
+        every unit of ``LIKELY_UNITS[name]``.
+
+    Returns
+    -------
+    tuple or None
+        Of the other units in which the number as written is plausible, the one nearest (in ratio) to the
+        bound's typical value; None if none is.
+    """
+    bound, units = PLAUSIBLE[name], LIKELY_UNITS[name]
+    written = abs(value) / units[declared]
+    if written == 0.0 or not math.isfinite(written):
+        return None
+    plausible = [(u, written * f) for u, f in units.items()
+                 if u != declared and (among is None or u in among) and written * f <= bound.high]
+    if not plausible:
+        return None
+    return min(plausible, key=lambda uv: abs(math.log(uv[1] / bound.typical)))
+
+
+def unit_symbol(unit: str) -> str:
+    """The symbol of a unit of :data:`LIKELY_UNITS` as printed (``"cm/s2"`` -> ``"cm/s²"``)."""
+    return unit.replace("s2", "s²")
+
+
+def implausible_message(name: str, value: float, *, what: str, declared: str, option: str,
+                        fix: str | None = None, among: tuple[str, ...] | None = None) -> str:
+    """The one line that refuses ``value`` (SI) beyond ``PLAUSIBLE[name]``: the value as written in
+    ``declared``, the bound and why, the likely unit with ``fix`` for it (default: give the value in
+    ``declared``, converted), and the confirming ``option``. ``fix`` given (a template of ``{unit}``, the likely
+    unit's ASCII name): the value is a record's values ("the values look like cm/s² declared as g: give
+    --units cm/s2", from ``"give --units {unit}"``), and the likely unit is one of
+    ``among`` (:func:`likely_unit`)."""
+    bound, factor = PLAUSIBLE[name], LIKELY_UNITS[name][declared]
+    d, si = unit_symbol(declared), unit_symbol(next(iter(LIKELY_UNITS[name])))
+    written = value / factor
+    shown = f"{written:.4g} {d}" + ("" if factor == 1.0 else f" ({value:.4g} {si})")
+    likely = likely_unit(name, value, declared, among)
+    if likely is None:
+        cause = f"check its unit ({d})"
+    else:
+        u, meant = likely
+        same = f"{abs(written):.4g} {unit_symbol(u)}" + ("" if unit_symbol(u) == si else f" = {meant:.4g} {si}")
+        cause = (f"the values look like {UNIT_WORDS[u]} declared as {d} ({same}): {fix.format(unit=u)}" if fix else
+                 f"it looks like {UNIT_WORDS[u]}, not {d} ({same}): give it in {d} ({meant / factor:.4g})")
+    return (f"{what} = {shown} exceeds {bound.high / factor:.4g} {d}: {bound.reason}; {cause}, "
+            f"or confirm it with {option}")
+
+
+def check_plausible(name: str, value: float, *, what: str, option: str, confirm: bool = False,
+                    declared: str | None = None) -> None:
     """Refuse ``value`` (SI) beyond ``PLAUSIBLE[name]`` unless ``confirm``, naming its likely cause.
 
     Parameters
@@ -138,25 +226,31 @@ def check_plausible(name: str, value: float, *, what: str, option: str, confirm:
         What the value is and where it came from, for the message (``"--width"``, ``"motions.csv line 3
         (rec1.csv): PFA"``).
     option : str
-        How the user confirms it (``"--accept-implausible"``, ``"accept_implausible=True"``).
+        How the user confirms it (``"--accept-implausible"``, ``"accept_implausible = true"``).
     confirm : bool
         True: the user has confirmed the value; nothing is checked.
+    declared : str, optional
+        The unit the user gave the value in, a key of ``LIKELY_UNITS[name]`` (``"g"`` for ``--pfa``); default
+        the SI unit. The message shows the value as written and names the unit it was more likely meant in.
 
     Raises
     ------
     ImplausibleInputError
         One line: the value, the bound and why, the likely unit and the fix.
     """
-    from opsrock.errors import ImplausibleInputError
-
-    bound = PLAUSIBLE[name]
-    if confirm or not math.isfinite(value) or abs(value) <= bound.high:
+    if confirm or not math.isfinite(value) or abs(value) <= PLAUSIBLE[name].high:
         return
-    likely = [(u, abs(value) * f) for u, f in LIKELY_UNITS[name].items() if abs(value) * f <= bound.high]
-    cause = f"the value looks like {likely[0][0]} ({abs(value):.4g} {likely[0][0]} = {likely[0][1]:.4g} {bound.unit})" \
-        if likely else "check its unit"
-    raise ImplausibleInputError(f"{what} = {value:.4g} {bound.unit} exceeds {bound.high:.4g} {bound.unit}: {bound.reason}; "
-                                f"{cause}: give it in {bound.unit}, or confirm it with {option}", argument=what)
+    declared = declared or next(iter(LIKELY_UNITS[name]))
+    raise ImplausibleInputError(implausible_message(name, value, what=what, declared=declared, option=option),
+                                argument=what)
+
+
+def check_plausible_sizes(sizes: dict[str, float], *, option: str, confirm: bool = False) -> None:
+    """:func:`check_plausible` of every block dimension in ``sizes`` (``{what: value in m}``, e.g.
+    ``{"--width": 0.4, "--height": 2.2}``), in order: the first beyond ``PLAUSIBLE["block_size"]`` is refused
+    unless ``confirm``, naming the unit it looks like (millimetres, centimetres, inches)."""
+    for what, value in sizes.items():
+        check_plausible("block_size", value, what=what, option=option, confirm=confirm)
 
 
 def shown(value: object) -> str:
@@ -192,8 +286,22 @@ def check(name: str, value: object, *, shown_as: str | None = None) -> float:
     v = real_number(label, value)
     if not math.isfinite(v) or not (limit.low <= v <= limit.high):
         unit = "" if limit.unit == "-" else f" {limit.unit}"
-        raise InputError(f"{label} must lie in [{limit.low:g}, {limit.high:g}]{unit}, got {shown(value)}")
+        raise InputError(f"{label} must lie in [{limit.low:g}, {limit.high:g}]{unit}, got {shown(value)}"
+                         + _unit_hint(name, v))
     return v
+
+
+#: Limits whose quantity has a plausibility bound: a value beyond the limit is named with its likely unit too.
+_PLAUSIBLE_OF: dict[str, str] = {"width": "block_size", "height": "block_size"}
+
+
+def _unit_hint(name: str, value: float) -> str:
+    """``"; it looks like millimetres (2500 mm = 2.5 m)"`` for a block dimension beyond its limit, else ``""``."""
+    quantity = _PLAUSIBLE_OF.get(name)
+    likely = None if quantity is None or not math.isfinite(value) else likely_unit(quantity, value, "m")
+    if likely is None:
+        return ""
+    return f"; it looks like {UNIT_WORDS[likely[0]]} ({abs(value):g} {likely[0]} = {likely[1]:.4g} m)"
 
 
 def check_count(name: str, value: object, *, shown_as: str | None = None) -> int:
@@ -321,5 +429,6 @@ def bool_fields(obj: object) -> None:
                 raise InputTypeError(f"{f.name} must be true or false (a bool), got {value!r}")
 
 
-__all__ = ["LIMITS", "Limit", "bool_fields", "check", "check_count", "compiled_stepping", "in_open_interval", "initial_state", "int_at_least", "one_of",
+__all__ = ["ACCEPT_KEY", "ACCEPT_OPTION", "G_LIKE_PEAK", "LIKELY_UNITS", "LIMITS", "Limit", "PLAUSIBLE", "Plausible", "UNIT_WORDS", "check_plausible",
+           "check_plausible_sizes", "implausible_message", "likely_unit", "unit_symbol", "bool_fields", "check", "check_count", "compiled_stepping", "in_open_interval", "initial_state", "int_at_least", "one_of",
            "positive_finite", "real_number", "scaled_input", "shown"]

@@ -22,7 +22,7 @@ def noise_record(seed, duration=20.0, dt=0.01, band=(0.5, 6.0)):
     sos = signal.butter(4, band, btype="bandpass", fs=1 / dt, output="sos")
     a = signal.sosfiltfilt(sos, rng.standard_normal(int(duration / dt)))
     env = np.minimum(1.0, np.minimum(np.arange(a.size) * dt / 2.0, (a.size - np.arange(a.size)) * dt / 2.0))
-    return Record(dt, a * env, name=f"noise{seed}")
+    return Record(dt, a * env, name=f"noise{seed}", units="m/s2")
 
 blocks = [Block(0.4, 2.2, name="b1"), Block(0.6, 2.0, name="b2"), Block(0.5, 1.15, name="b3")]
 eps = (0.0, 1e-6, 1e-5, 1e-4, 1e-3)

@@ -54,10 +54,10 @@ from opsrock.errors import MISSING, OpsrockError
 from opsrock.excitations import library
 from opsrock.excitations.building import ShearBuilding
 from opsrock.excitations.readers import read_record
-from opsrock.excitations.records import Record, check_sampling
+from opsrock.excitations.records import Record, check_plausible_record, check_sampling
 from opsrock.excitations.vertical import VERTICAL_SOURCES, synthetic_vertical
 from opsrock.intensity.records import MotionMeasures
-from opsrock.limits import LIMITS, check
+from opsrock.limits import ACCEPT_KEY, ACCEPT_OPTION, LIMITS, check
 
 #: Intensity methods of a record scene.
 METHODS: tuple[str, ...] = ("cloud", "ida", "msa")
@@ -206,12 +206,14 @@ def _case(bspec: Any, rname: str, flabel: str, motion, inten: Intensity, k: int,
 
 
 # --- parsing ------------------------------------------------------------------------------------
-def parse_records(f: TomlFile, raw: Any, blocks: Sequence[Block]) -> RecordSet:
+def parse_records(f: TomlFile, raw: Any, blocks: Sequence[Block], *, confirm: bool = False) -> RecordSet:
     """Validate a ``[records]`` table of the scene file ``f``; a :class:`~opsrock.errors.SceneError`
-    names the field and the value."""
+    names the field and the value. A record file whose PFA exceeds ``PLAUSIBLE["pfa"]`` (10 g) is refused
+    with the unit its values look like (:func:`~opsrock.excitations.records.check_plausible_record`) unless
+    ``confirm`` (the scene's ``accept_implausible``)."""
     f.table("records", raw, "a table [records]")
     f.keys("records", raw, allowed=_RECORDS_KEYS)
-    grounds, source = _grounds(f, raw)
+    grounds, source = _grounds(f, raw, confirm)
     grounds = _vertical(f, raw, grounds)
     if not grounds:
         raise f.error("records", source, "selects no records")
@@ -233,7 +235,7 @@ def parse_records(f: TomlFile, raw: Any, blocks: Sequence[Block]) -> RecordSet:
                      vertical=raw.get("vertical", "none"))
 
 
-def _grounds(f: TomlFile, raw: dict) -> tuple[list[Record], str]:
+def _grounds(f: TomlFile, raw: dict, confirm: bool) -> tuple[list[Record], str]:
     given = [k for k in ("set", "files", "glob") if k in raw]
     if len(given) != 1:
         raise f.error("records", sorted(raw), "give exactly one of set, files or glob")
@@ -246,7 +248,7 @@ def _grounds(f: TomlFile, raw: dict) -> tuple[list[Record], str]:
     else:
         if "components" in raw:
             raise f.error("records.components", raw["components"], "applies to library sets only")
-        records, source = _files(f, raw, kind)
+        records, source = _files(f, raw, kind, confirm)
     if "names" in raw:
         names = f.strings("records.names", raw["names"], "record names")
         by_name = {r.name: r for r in records}
@@ -293,7 +295,7 @@ def _library_set(f: TomlFile, raw: dict) -> tuple[list[Record], str]:
     return [library.load(e.reference) for e in entries if e.component in comps], ref
 
 
-def _files(f: TomlFile, raw: dict, kind: str) -> tuple[list[Record], str]:
+def _files(f: TomlFile, raw: dict, kind: str, confirm: bool) -> tuple[list[Record], str]:
     base = f.path.parent
     if kind == "files":
         paths = [base / p for p in f.strings("records.files", raw["files"], "paths")]
@@ -310,9 +312,12 @@ def _files(f: TomlFile, raw: dict, kind: str) -> tuple[list[Record], str]:
     records = []
     for p in paths:
         try:
-            records.append(read_record(p, units=units, dt=dt))
+            rec = read_record(p, units=units, dt=dt)
         except OpsrockError as exc:
             raise f.error(f"records.{kind}", str(p), str(exc)) from None
+        check_plausible_record(rec, what=f"{f.path}: records.{kind} {p}", option=f"{ACCEPT_KEY} in the scene "
+                               f"(or {ACCEPT_OPTION})", confirm=confirm, units_option="records.units =")
+        records.append(rec)
     return records, f"{kind}:{raw[kind]}"
 
 

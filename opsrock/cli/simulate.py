@@ -26,9 +26,9 @@ from opsrock.errors import UsageError
 from opsrock.excitations import library, pulse_class
 from opsrock.excitations.building import ShearBuilding, floor_motion
 from opsrock.excitations.readers import read_record
-from opsrock.excitations.records import Record, check_sampling
+from opsrock.excitations.records import Record, check_plausible_record, check_sampling
 from opsrock.excitations.vertical import synthetic_vertical, with_vertical
-from opsrock.limits import scaled_input
+from opsrock.limits import ACCEPT_OPTION, check_plausible, check_plausible_sizes, scaled_input
 from opsrock.solvers import simulate as solve
 from opsrock.solvers.common import LONG_SOLVE_S, event_driven_estimate
 from opsrock.solvers.registry import METHODS
@@ -83,7 +83,11 @@ def _vertical(args: argparse.Namespace, rec: Record) -> Record:
     with given_by("--vertical-record"):
         if source == "synthetic":
             return synthetic_vertical(args.record)
-        return with_vertical(rec, read_record(source, units=args.units, dt=args.dt))
+        vertical = read_record(source, units=args.units, dt=args.dt)
+    check_plausible_record(vertical, what=f"--vertical-record {source}", option=ACCEPT_OPTION,
+                           confirm=args.accept_implausible)
+    with given_by("--vertical-record"):
+        return with_vertical(rec, vertical)
 
 
 def _floor(args: argparse.Namespace, rec: Record) -> Record:
@@ -101,6 +105,7 @@ def _record(args: argparse.Namespace, block: Block) -> tuple[Record, float]:
     """The record of ``--record`` on its floor, scaled as asked, and the scale factor."""
     with given_by("--record"):
         rec = read_record(args.record, units=args.units, dt=args.dt)
+    check_plausible_record(rec, what=f"--record {args.record}", option=ACCEPT_OPTION, confirm=args.accept_implausible)
     rec = _floor(args, _vertical(args, rec))
     with given_by("--record"):
         check_sampling(rec, block)
@@ -128,6 +133,7 @@ def _block(args: argparse.Namespace) -> Block:
 def simulate(args: argparse.Namespace) -> int:
     """``opsrock simulate``: one block under one pulse or record, through :func:`opsrock.solvers.simulate`."""
     _check_args(args)
+    _check_plausible(args)
     block = _block(args)
     excitation, scale = (_pulse(args, block), None) if args.record is None else _record(args, block)
     _announce_long_solve(args.solver, excitation)
@@ -142,6 +148,16 @@ def simulate(args: argparse.Namespace) -> int:
         plot_response(result, block, excitation, args.plot)
     print(json.dumps(out, default=str) if args.json else _text(result, block, excitation, out))
     return 0 if result.ok else EXIT_FAILED
+
+
+def _check_plausible(args: argparse.Namespace) -> None:
+    """--width, --height and --pfa beyond the plausibility bounds, refused unless --accept-implausible (a
+    record file is checked as read, :func:`_record`)."""
+    check_plausible_sizes({"--width": args.width, "--height": args.height}, option=ACCEPT_OPTION,
+                          confirm=args.accept_implausible)
+    if args.pfa is not None:
+        check_plausible("pfa", args.pfa * G, what="--pfa", option=ACCEPT_OPTION, confirm=args.accept_implausible,
+                        declared="g")
 
 
 def _announce_long_solve(solver: str, excitation) -> None:

@@ -16,13 +16,15 @@ from opsrock.cli.common import (
     need_frequency,
     pulse_omega,
 )
-from opsrock.limits import scaled_input
+from opsrock.limits import ACCEPT_OPTION, check_plausible_sizes, scaled_input
 
 
 def threshold(args: argparse.Namespace) -> int:
     """``opsrock threshold``: :func:`opsrock.analysis.threshold.overturning_intervals` of one block and pulse."""
     check_model_args(args)
     need_frequency(args)
+    check_plausible_sizes({"--width": args.width, "--height": args.height}, option=ACCEPT_OPTION,
+                          confirm=args.accept_implausible)
     block = make_block(args)
     scaled_input("--pfa-ratio-max", args.pfa_ratio_max, "pfa", block.uplift_acceleration)
     settings = model_settings(args)

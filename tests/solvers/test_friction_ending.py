@@ -32,7 +32,7 @@ def _record_floor(rec: Record) -> tuple[float, float]:
     return float(v[-1]), float(x)
 
 
-STEP = Record(dt=0.01, values=np.r_[np.full(100, 0.1 * G), np.zeros(100)], name="step")
+STEP = Record(dt=0.01, values=np.r_[np.full(100, 0.1 * G), np.zeros(100)], name="step", units="m/s2")
 
 
 @pytest.mark.parametrize("mu", [0.0, 1e-320])

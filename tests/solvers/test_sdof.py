@@ -149,7 +149,7 @@ def test_sdof_stiff_branch_in_closed_form_matches_the_implicit_integrator_on_a_r
     n, dt = 800, 0.01
     a = signal.sosfiltfilt(signal.butter(4, (0.5, 6.0), btype="bandpass", fs=1 / dt, output="sos"), rng.standard_normal(n))
     block = Block(0.5, 1.15)
-    rec = Record(dt, a).scaled(1.3 * block.uplift_acceleration / np.abs(a).max())
+    rec = Record(dt, a, units="m/s2").scaled(1.3 * block.uplift_acceleration / np.abs(a).max())
     fast = sdof.solve(block, rec)
     slow = sdof.solve(block, rec, stiff_closed_form=False)
     assert fast.verdict == slow.verdict and fast.rocked

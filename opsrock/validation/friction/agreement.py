@@ -95,7 +95,8 @@ def record_cases(quick: bool = False) -> list[Case]:
         vertical = noise_record(seed + 100).values
         vertical = vertical / np.max(np.abs(vertical)) * np.max(np.abs(base.values)) * 2.0 / 3.0
         for with_vertical in (False, True):
-            rec = Record(base.dt, base.values, name=base.name, vertical=vertical if with_vertical else None)
+            rec = Record(base.dt, base.values, name=base.name, vertical=vertical if with_vertical else None,
+                         units="m/s2")
             for r in slender:
                 for mu in frictions:
                     for a in pfas:

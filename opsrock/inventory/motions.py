@@ -39,9 +39,9 @@ from opsrock._files import not_a_file
 from opsrock.campaign.toml import NAME_PATTERN
 from opsrock.errors import MISSING, InputError, OpsrockError
 from opsrock.excitations.readers import UNITS, read_record
-from opsrock.excitations.records import Record
+from opsrock.excitations.records import Record, check_plausible_record
 from opsrock.inventory.items import DIRECTIONS, Row, TableFileError, number_cell, read_csv_rows
-from opsrock.limits import check, check_plausible
+from opsrock.limits import check
 
 #: The manifest's columns.
 MANIFEST_COLUMNS: tuple[str, ...] = ("record", "floor", "direction", "file", "units", "dt")
@@ -230,8 +230,8 @@ def _motion(manifest: Path, row: Row, key: tuple[str, str, str], confirm: bool) 
         rec = read_record(path, units=units, dt=dt, name=name)
     except OpsrockError as exc:
         raise TableFileError(manifest, line, "file", text, str(exc)) from None
-    check_plausible("pfa", rec.pfa, what=f"{manifest} line {row.line} ({text}): PFA", option="--accept-implausible",
-                    confirm=confirm)
+    check_plausible_record(rec, what=f"{manifest} line {row.line} ({text})", option="--accept-implausible",
+                           confirm=confirm, declared_units=units, units_option="the units column")
     return FloorMotion(record, floor, direction, rec.with_name(name, floor=floor))
 
 

@@ -386,7 +386,7 @@ def test_a_radius_of_gyration_too_large_in_direction_2_only_names_it(tmp_path):
 
 def test_a_block_size_in_millimetres_is_refused_with_its_likely_unit(tmp_path):
     path = _write(tmp_path, "id,description,width,depth,height\nbox,b,400,500,900\n")
-    with pytest.raises(ImplausibleInputError, match=rf"{path} line 2: width = 400 m exceeds 10 m.*looks like mm"
+    with pytest.raises(ImplausibleInputError, match=rf"{path} line 2: width = 400 m exceeds 10 m.*looks like millimetres"
                                                    r".*--accept-implausible"):
         read_inventory(path)
     assert read_inventory(path, confirm=True).items[0].width == 400.0

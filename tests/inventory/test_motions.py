@@ -140,8 +140,8 @@ def test_an_empty_manifest_is_refused(tmp_path):
 def test_a_cm_file_declared_in_metres_is_refused_with_its_likely_unit(files):
     path = _manifest(files, "r,1,1,rec/e.txt,m/s2,0.01\n")
     peak = max(abs(v) for v in ACC)  # 2.994 m/s² (the samples miss the sine's crest)
-    with pytest.raises(ImplausibleInputError, match=rf"^{path} line 2 \(rec/e.txt\): PFA = 299.4 m/s² exceeds 98.07 "
-                                                    r"m/s².*looks like cm/s².*--accept-implausible"):
+    with pytest.raises(ImplausibleInputError, match=rf"^{path} line 2 \(rec/e.txt\): PFA = 299.4 m/s² exceeds 98.1 "
+                                                    r"m/s².*look like cm/s² declared as m/s².*give the units column cm/s2.*--accept-implausible"):
         read_motions(path)
     assert read_motions(path, confirm=True).motions[0].motion.pfa == pytest.approx(100 * peak, rel=1e-12)
     assert read_motions(_manifest(files, "r,1,1,rec/e.txt,cm/s2,0.01\n")).motions[0].motion.pfa == pytest.approx(peak)

@@ -130,7 +130,7 @@ def floor_velocities(scene, folder: Path) -> pd.DataFrame:
         v_floor, _ = velocity_displacement(m.record)
         padded = np.zeros(len(m.record.values))
         padded[: len(ground.values)] = ground.values
-        v_ground, _ = velocity_displacement(Record(dt=ground.dt, values=padded, name=rname))
+        v_ground, _ = velocity_displacement(Record(dt=ground.dt, values=padded, name=rname, units="m/s2"))
         rows.append({"record": rname, "floor": flabel, "pfa": m.measures.pfa, "pfv": m.measures.pfv,
                      "pfv_rel": float(np.max(np.abs(v_floor - v_ground)))})
     return pd.DataFrame(rows)

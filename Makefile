@@ -71,11 +71,9 @@ test-pelicun: install
 	for f in .pelicun-venv/contents/pelicun/fragility_*.csv; do .pelicun-venv/bin/python tools/pelicun_load.py $$f || exit 1; done
 	.pelicun-venv/bin/python tools/pelicun_assess.py .pelicun-venv/contents/pelicun --repeat 20
 	.pelicun-venv/bin/python tools/pelicun_assess.py studies/contents/pelicun
-	@if [ -f $(EXAMPLE_INVENTORY) ] && [ -f $(EXAMPLE_MOTIONS) ]; then \
-	  $(BIN)/opsrock contents --inventory $(EXAMPLE_INVENTORY) --motions $(EXAMPLE_MOTIONS) \
-	    --out .pelicun-venv/inventory --quick --no-progress --force && \
-	  .pelicun-venv/bin/python tools/pelicun_inventory.py .pelicun-venv/inventory/pelicun --dl-calculation; \
-	else echo "no shipped example inventory and motions ($(EXAMPLE_INVENTORY), $(EXAMPLE_MOTIONS)): skipped"; fi
+	$(BIN)/opsrock contents --inventory $(EXAMPLE_INVENTORY) --motions $(EXAMPLE_MOTIONS) \
+	    --out .pelicun-venv/inventory --quick --no-progress --force
+	.pelicun-venv/bin/python tools/pelicun_inventory.py .pelicun-venv/inventory/pelicun --dl-calculation
 
 # A wheel built from this checkout, installed (not editable) into a fresh venv, runs `opsrock run tiny`,
 # `opsrock validate --quick` and `opsrock reproduce` from an empty folder elsewhere (.ci/run calls it).

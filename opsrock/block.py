@@ -236,6 +236,15 @@ class Block:
         return G * self.tan_alpha
 
     @property
+    def onset_acceleration(self) -> float:
+        """Horizontal floor acceleration at which the block first moves from rest on a still vertical floor
+        (m/s²): ``g min(tan(alpha), mu)`` with friction (it slides first where ``mu < tan(alpha)``), else the
+        uplift acceleration ``g tan(alpha)``."""
+        if self.friction is None:
+            return self.uplift_acceleration
+        return G * min(self.tan_alpha, self.friction)
+
+    @property
     def overturning_rotation_moment(self) -> float:
         """Peak restoring moment ``m g R sin(alpha)`` (N m), at ``theta = 0±``."""
         return self.mass * G * self.R * math.sin(self.alpha)

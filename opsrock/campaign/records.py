@@ -24,7 +24,8 @@ Layout (inside a scene file, instead of ``[grid]``; see ``docs/scenes.md``)::
 
     [records.intensity]
     method = "ida"                  # "cloud" (as recorded), "ida" or "msa"
-    measure = "pfa_g"               # ida/msa: "pfa_g" (PFA in g) or "pfa_ratio" (PFA / g tan alpha)
+    measure = "pfa_g"               # ida/msa: "pfa_g" (PFA in g), "pfa_ratio" (PFA / g tan alpha) or
+                                    # "pfa_onset" (PFA / g min(tan alpha, mu): where the block first moves)
     levels = [0.1, 0.2, 0.5]        # ida/msa: the measure's target values (or start/stop/num)
     # stripes = [["A", "B"], ["C"]] # msa: the records of each level, by name
     # scale = 1.0                   # cloud: one factor on every record
@@ -62,8 +63,13 @@ from opsrock.limits import ACCEPT_KEY, ACCEPT_OPTION, LIMITS, check
 #: Intensity methods of a record scene.
 METHODS: tuple[str, ...] = ("cloud", "ida", "msa")
 
-#: Measures an IDA or MSA level can be given in: PFA in g, or PFA / (g tan alpha) (block-dependent).
-MEASURES: tuple[str, ...] = ("pfa_g", "pfa_ratio")
+#: Measures an IDA or MSA level can be given in: PFA in g, PFA / (g tan alpha), or PFA over the acceleration at
+#: which the block first moves, slip or uplift (:attr:`opsrock.block.Block.onset_acceleration`; equal to
+#: ``pfa_ratio`` without friction, and the one that spreads the levels of a block that slides before it can rock).
+MEASURES: tuple[str, ...] = ("pfa_g", "pfa_ratio", "pfa_onset")
+
+#: The reference acceleration (m/s²) of each block-dependent measure.
+_REFERENCE = {"pfa_ratio": lambda block: block.uplift_acceleration, "pfa_onset": lambda block: block.onset_acceleration}
 
 #: Most records in one scene.
 MAX_RECORDS: int = 2_000
@@ -196,7 +202,7 @@ def _case(bspec: Any, rname: str, flabel: str, motion, inten: Intensity, k: int,
         return RecordCase(case_id, block, motion, math.nan, k, value, "the floor motion is all zeros: no scale "
                           f"factor reaches {inten.measure} = {value:g}")
     else:
-        target = value * G if inten.measure == "pfa_g" else value * block.uplift_acceleration
+        target = value * G if inten.measure == "pfa_g" else value * _REFERENCE[inten.measure](block)
         scale, level_value = motion.record.scale_to(target), value
     lim = LIMITS["scale"]
     problem = "" if lim.low <= scale <= lim.high else (

@@ -324,8 +324,8 @@ def _contents(sub) -> None:
                                      "(default with --inventory: the shipped shear building's, --period ... --records)")
     p.add_argument("--method", help="with --inventory/--motions: ida (each motion scaled to --levels; default) or "
                                     "cloud (the motions as given)")
-    p.add_argument("--levels", help="with --inventory/--motions: IDA levels of PFA / (g tan alpha), comma-separated "
-                                    "(default 16 from 1.1 to 9)")
+    p.add_argument("--levels", help="with --inventory/--motions: IDA levels of PFA / (g min(tan alpha, mu)), comma-"
+                                    "separated (default 16 from 1.1 to 9)")
     p.add_argument("--demand-levels-pfv", help="with --inventory/--motions: PFV values (m/s), comma-separated, at which "
                                                "the report gives P(overturning) (default 0.25,0.5,1)")
     p.add_argument("--demand-levels-pfa", help="with --inventory/--motions: PFA values (g), comma-separated, at which "

@@ -17,7 +17,7 @@ processes and a store whatever its size, so the groups are as few as the items a
 
 Case ids, stable and readable: ``<item>-d<direction>/<record>.<floor>/<ground|support.f1>/l<k>`` inside the
 group's folder ``d<direction>-<solver>[-T<period>z<damping>][-on-<floors>]`` (``-on-`` only for items on
-some of the floors). The IDA levels are ``PFA / (g tan alpha)`` of the motion the item meets; the demands of
+some of the floors). The IDA levels are ``PFA / (g min(tan alpha, mu))`` (``pfa_onset``) of the motion the item meets; the demands of
 the fits are the *floor's* (the scale factor times the floor motion's PFA and PFV,
 :mod:`opsrock.inventory.fits`), so that an item on a desk has its fragility in the floor demand pelicun
 assesses.

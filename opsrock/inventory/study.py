@@ -71,7 +71,8 @@ class InventoryDesign:
     method : str
         ``"ida"``: each motion scaled to ``levels``; ``"cloud"``: the motions as given (one case each).
     levels : tuple of float
-        IDA levels of ``PFA / (g tan alpha)`` (dimensionless), per item; not used by a cloud.
+        IDA levels of ``PFA / (g min(tan alpha, mu))`` (dimensionless, per item: over the floor acceleration at
+        which it first moves, slip or uplift; ``PFA / (g tan alpha)`` without friction); not used by a cloud.
     n_boot : int
         Record-bootstrap resamples of each fit (0: no intervals).
     seed : int
@@ -108,7 +109,7 @@ class InventoryDesign:
 
         if self.method not in METHODS:
             raise InputError(f"method must be one of {', '.join(METHODS)}, got {self.method!r}", argument="method")
-        object.__setattr__(self, "levels", _positive("levels", tuple(self.levels), "PFA / g tan alpha"))
+        object.__setattr__(self, "levels", _positive("levels", tuple(self.levels), "PFA / g min(tan alpha, mu)"))
         object.__setattr__(self, "demand_levels_pfv", _positive("demand_levels_pfv", tuple(self.demand_levels_pfv), "m/s"))
         object.__setattr__(self, "demand_levels_pfa", _positive("demand_levels_pfa", tuple(self.demand_levels_pfa), "g"))
         _positive("slide_distance", (self.slide_distance,), "m")
@@ -154,7 +155,7 @@ class InventoryDesign:
 
         if self.method == "cloud":
             return Intensity("cloud", "", (1.0,))
-        return Intensity("ida", "pfa_ratio", self.levels)
+        return Intensity("ida", "pfa_onset", self.levels)
 
 
 def quick(design: InventoryDesign) -> InventoryDesign:

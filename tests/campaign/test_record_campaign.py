@@ -194,3 +194,29 @@ def test_records_list_and_show():
     assert len(rows) == 44 and rows[0]["name"] == "NORTHR_MUL009"
     bad = cli(["records", "list", "mid-field"], ROOT)
     assert bad.returncode == 2 and "unknown record set 'mid-field'" in bad.stderr
+
+
+def test_pfa_onset_levels_scale_to_where_the_block_first_moves(tmp_path):
+    """``measure = "pfa_onset"``: level x times ``g min(tan alpha, mu)`` (Block.onset_acceleration, closed form).
+    A block with mu = 0.2 below its tan alpha = 0.5 is scaled to x · 0.2 g (slip comes first); without friction
+    the same level is x · g tan alpha, as ``pfa_ratio``. Both to round-off (scale_to solves a linear factor)."""
+    from opsrock.block import Block
+    from opsrock.campaign.records import Floor, Intensity, RecordSet
+    from opsrock.campaign.scene import BlockSpec
+    from opsrock.constants import G
+    from opsrock.excitations.records import Record
+    from opsrock.campaign.motions import Motion
+    from opsrock.intensity.records import motion_measures
+
+    rec = Record(dt=0.01, values=2.0 * np.sin(np.linspace(0, 20, 1000)), name="r", units="m/s2")
+    motion = Motion(record=rec, measures=motion_measures(rec), floor="ground", ground="r")
+    inten = Intensity("ida", "pfa_onset", (3.0,))
+    sliding = BlockSpec("s", 0.5, 1.0, friction=0.2)
+    rocking = BlockSpec("r", 0.5, 1.0)
+    assert Block(0.5, 1.0, friction=0.2).onset_acceleration == pytest.approx(0.2 * G, rel=1e-15)
+    assert Block(0.5, 1.0, friction=0.9).onset_acceleration == pytest.approx(0.5 * G, rel=1e-15)
+    records = RecordSet(grounds=(rec,), floors=(Floor(None, 0),), intensity=inten, source="test")
+    cases = records.cases([sliding, rocking], {("r", "ground"): motion})
+    assert [c.case_id for c in cases] == ["s/r/ground/l01", "r/r/ground/l01"]
+    for case, reference in zip(cases, (0.2 * G, 0.5 * G)):
+        assert case.scale * rec.pfa == pytest.approx(3.0 * reference, rel=1e-12)

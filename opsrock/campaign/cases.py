@@ -71,22 +71,6 @@ IDENTITY_EXCLUDED: tuple[str, ...] = ("wall_time_s",)
 #: Longest failure reason kept (characters); a reason is also folded onto one line.
 MAX_REASON: int = 500
 
-#: Reason prefix of a case lost to the infrastructure: its worker process died or its pool broke while it ran
-#: alone (``BrokenProcessPool``), or its Dask worker was lost (``KilledWorker``). Such a case is stored failed
-#: (never a verdict), and is not a result: a resume computes it again. A case the solver failed (it did not
-#: converge, ran past its budget, raised) is a result: stored failed with its reason, and reused.
-LOST_PREFIX: str = "lost to the infrastructure: "
-
-#: Texts that mark a lost case in a reason: :data:`LOST_PREFIX` (also inside a record case's ``"floor motion
-#: failed: ..."``), and the reason stores written before it gave such a case.
-LOST_MARKERS: tuple[str, ...] = (LOST_PREFIX, "worker process died")
-
-
-def is_lost(reason: str | None) -> bool:
-    """Is ``reason`` (a stored failure reason) that of a case lost to the infrastructure (:data:`LOST_PREFIX`)?"""
-    return bool(reason) and any(m in reason for m in LOST_MARKERS)
-
-
 def _block_columns(case_id: str, b: Block) -> dict[str, Any]:
     return {"case_id": case_id, "block": b.name, "width": b.width, "height": b.height, "alpha": b.alpha,
             "R": b.R, "p": b.p, "e": b.e, "e_R": b.e_R, "friction": b.friction, "friction_kinetic": b.friction_kinetic}
@@ -277,6 +261,5 @@ def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], column
     atomic_write(Path(path), write)
 
 
-__all__ = ["BLOCK_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "LOST_MARKERS",
-           "LOST_PREFIX", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS", "RESULT_COLUMNS", "RecordCase", "case_table",
-           "failed_row", "is_lost", "result_row", "write_cases_csv"]
+__all__ = ["BLOCK_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
+           "RESULT_COLUMNS", "RecordCase", "case_table", "failed_row", "result_row", "write_cases_csv"]

@@ -19,7 +19,7 @@ A worker that dies (a segmentation fault in native code, ``os._exit``, the OOM k
 stop the campaign. The batches it may have been running are re-run one item at a time, each
 alone, so that the item that kills its worker is identified; that item's result is then built
 by the caller's ``lost(item, reason)`` function, with a reason that starts with
-:data:`~opsrock.campaign.cases.LOST_PREFIX` (lost to the infrastructure: a resume computes it again), and
+:data:`LOST_PREFIX` (lost to the infrastructure: a resume computes it again), and
 every other item is computed normally. An item that overruns its budget alone is the solver's failure: its
 reason starts ``"timeout"``.
 
@@ -44,7 +44,6 @@ from typing import Callable, Iterator, Protocol, Sequence, TypeVar, runtime_chec
 
 from opsrock._pool import (UNGUARDED_EXIT, leave_if_reimported, pool_allowed, unguarded_error, warn_unguarded_here,
                            worker_start)
-from opsrock.campaign.cases import LOST_PREFIX
 from opsrock.errors import ExecutorUnavailableError, InputError
 from opsrock.limits import check_count
 
@@ -114,6 +113,22 @@ def make_batches(items: Sequence[T], size: int) -> list[list[T]]:
     if size < 1:
         raise InputError(f"size must be >= 1, got {size!r}")
     return [list(items[k : k + size]) for k in range(0, len(items), size)]
+
+
+#: Reason prefix of a case lost to the infrastructure: its worker process died or its pool broke while it ran
+#: alone (``BrokenProcessPool``), or its Dask worker was lost (``KilledWorker``). Such a case is stored failed
+#: (never a verdict), and is not a result: a resume computes it again. A case the solver failed (it did not
+#: converge, ran past its budget, raised) is a result: stored failed with its reason, and reused.
+LOST_PREFIX: str = "lost to the infrastructure: "
+
+#: Texts that mark a lost case in a reason: :data:`LOST_PREFIX` (also inside a record case's ``"floor motion
+#: failed: ..."``), and the reason stores written before it gave such a case.
+LOST_MARKERS: tuple[str, ...] = (LOST_PREFIX, "worker process died")
+
+
+def is_lost(reason: str | None) -> bool:
+    """Is ``reason`` (a stored failure reason) that of a case lost to the infrastructure (:data:`LOST_PREFIX`)?"""
+    return bool(reason) and any(m in reason for m in LOST_MARKERS)
 
 
 def _lost_reason(kind: str, detail: str) -> str:
@@ -480,8 +495,11 @@ __all__ = [
     "Executor",
     "KILL_GRACE",
     "ExecutorUnavailableError",
+    "LOST_MARKERS",
+    "LOST_PREFIX",
     "LocalPool",
     "MAX_BATCH",
     "batch_size",
+    "is_lost",
     "make_batches",
 ]

@@ -25,7 +25,7 @@ A case whose solver raises, runs past its budget, or returns ``status="failed"``
 its reason: a result, never given a verdict other than ``"failed"``, and reused by a resume (use
 ``force=True`` to recompute everything). A case lost to the infrastructure (its worker process died while
 it ran alone, its Dask worker was lost) is stored failed too, with a reason that starts with
-:data:`~opsrock.campaign.cases.LOST_PREFIX`; it is not a result: a resume computes it again
+:data:`~opsrock.campaign.executors.LOST_PREFIX`; it is not a result: a resume computes it again
 (:meth:`~opsrock.campaign.store.ResultStore.done_ids`), and so does one of a store written before the
 prefix (reason ``"worker process died ..."``). The summary counts them (``n_lost``).
 
@@ -55,9 +55,8 @@ from opsrock import __version__
 from opsrock._files import atomic_write
 from opsrock._pool import leave_if_reimported, pool_allowed
 from opsrock.campaign.advice import sliding_warnings
-from opsrock.campaign.cases import (CASES_FILE, IDENTITY_EXCLUDED, case_table, failed_row, is_lost, result_row,
-                                   write_cases_csv)
-from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
+from opsrock.campaign.cases import CASES_FILE, IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
+from opsrock.campaign.executors import Executor, LocalPool, batch_size, is_lost, make_batches
 from opsrock.campaign.motions import MOTIONS_FILE, cached_motions, compute_motions
 from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import DISK_ERRNOS, MANIFEST_FILE, STORE_FILE, ResultStore, disk_fault
@@ -107,7 +106,7 @@ class CampaignSummary:
         Why the solver was chosen for (or checked against) the scene's ``[needs]``; empty without needs.
     n_lost : int
         Cases of the final table lost to the infrastructure (their worker died:
-        :data:`~opsrock.campaign.cases.LOST_PREFIX`), counted in ``n_failed`` too; running the same
+        :data:`~opsrock.campaign.executors.LOST_PREFIX`), counted in ``n_failed`` too; running the same
         campaign again computes them.
     """
 
@@ -192,7 +191,7 @@ def _solve_one(case, fn: Callable, solver: str, settings: Mapping[str, Any], cas
 
 def lost_row(case, reason: str, *, solver: str) -> dict[str, Any]:
     """The stored row of a case the executor could not solve alone, failed with ``reason``: its worker died
-    (a reason starting :data:`~opsrock.campaign.cases.LOST_PREFIX`: a resume computes it again) or it ran
+    (a reason starting :data:`~opsrock.campaign.executors.LOST_PREFIX`: a resume computes it again) or it ran
     past its budget (``"timeout..."``: the solver's failure, a result)."""
     return failed_row(case.case_id, solver, reason)
 

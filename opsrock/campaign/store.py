@@ -10,7 +10,7 @@ standard library, and readers (a progress monitor, a test) never block the write
   taken), so an interruption loses at most the batches still being computed.
 * Rows are only ever inserted (on the ``case_id`` key: a case computed twice, e.g. after a worker was
   restarted, keeps its first result), except a case lost to the infrastructure (its worker died: reason
-  marked by :data:`~opsrock.campaign.cases.LOST_MARKERS`, the old stores' ``"worker process died"``
+  marked by :data:`~opsrock.campaign.executors.LOST_MARKERS`, the old stores' ``"worker process died"``
   included): it is not a result (:meth:`ResultStore.done_ids` leaves it out, so a resume computes it
   again) and its row gives way to the case's next row. The only deletion is :meth:`ResultStore.clear`,
   which ``run_campaign(force=True)`` uses to start over.
@@ -47,7 +47,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterable, Iterator, Mapping
 
-from opsrock.campaign.cases import LOST_MARKERS
+from opsrock.campaign.executors import LOST_MARKERS
 from opsrock.errors import StoreError, StoreUnavailableError
 from opsrock.result import STATUSES, VERDICTS
 
@@ -115,7 +115,7 @@ DISK_ERRNOS: frozenset[int] = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EIO, 
 
 def _lost_sql(table: str = "") -> str:
     """SQL condition: the row (of ``table``, when named) is that of a case lost to the infrastructure
-    (:data:`~opsrock.campaign.cases.LOST_MARKERS`), not a result."""
+    (:data:`~opsrock.campaign.executors.LOST_MARKERS`), not a result."""
     q = f"{table}." if table else ""
     marks = " OR ".join(f"instr({q}reason, '{m}') > 0" for m in LOST_MARKERS)  # the markers hold no quote
     return f"({q}status = 'failed' AND ({marks}))"
@@ -294,7 +294,7 @@ class ResultStore:
 
     def done_ids(self) -> set[str]:
         """Case ids whose result is stored: every stored case but those lost to the infrastructure (their
-        worker died; :data:`~opsrock.campaign.cases.LOST_MARKERS`), which a resume computes again."""
+        worker died; :data:`~opsrock.campaign.executors.LOST_MARKERS`), which a resume computes again."""
         with self._faults():
             return {r[0] for r in self._db.execute(f"SELECT case_id FROM results WHERE NOT {_lost_sql()}")}
 

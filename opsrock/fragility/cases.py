@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from opsrock.campaign.cases import is_lost
+from opsrock.campaign.executors import is_lost
 from opsrock.errors import AllCasesFailedError, InputError
 
 

@@ -16,9 +16,9 @@ from pathlib import Path
 import pytest
 
 from opsrock.campaign import CampaignConflictError, run_campaign
-from opsrock.campaign.cases import IDENTITY_EXCLUDED, LOST_PREFIX
+from opsrock.campaign.cases import IDENTITY_EXCLUDED
 from opsrock.campaign.cases import PULSE_COLUMNS as CASES_COLUMNS
-from opsrock.campaign.executors import DaskExecutor, LocalPool
+from opsrock.campaign.executors import LOST_PREFIX, DaskExecutor, LocalPool
 from opsrock.campaign.scene import load_scene
 from opsrock.campaign.store import STORE_FILE, read_rows
 from opsrock.cli import main as cli_main

@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from opsrock.campaign.cases import LOST_PREFIX, is_lost
+from opsrock.campaign.executors import LOST_PREFIX, is_lost
 from opsrock.campaign.store import RESULT_COLUMNS, STORE_FILE, ResultStore, StoreError, StoreUnavailableError, read_rows, store_fault
 
 

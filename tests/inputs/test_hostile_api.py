@@ -22,7 +22,7 @@ from _hostile import Case, sweep
 from _support import BLOCKS, RECORD_SCENE
 
 from opsrock.campaign import run_campaign
-from opsrock.campaign.cases import LOST_PREFIX
+from opsrock.campaign.executors import LOST_PREFIX
 from opsrock.campaign.scene import load_scene
 from opsrock.errors import AllCasesFailedError
 

@@ -19,17 +19,99 @@ from __future__ import annotations
 
 import contextlib
 import ctypes
+import multiprocessing
 import os
 import signal
 import sys
 import threading
 import time
+import warnings
+
+from opsrock.errors import UnguardedScriptError
 
 #: ``prctl`` option of Linux: the signal the kernel sends a process when the thread that made it ends.
 PR_SET_PDEATHSIG: int = 1
 
 #: Seconds between two looks at the parent's pid where ``prctl`` is not available (macOS, Windows).
 PARENT_POLL_S: float = 1.0
+
+
+#: Exit status of a worker process that found itself re-running the main script's campaign
+#: (:func:`pool_allowed`): the parent reads it from the dead worker and raises :func:`unguarded_error`.
+UNGUARDED_EXIT: int = 87
+
+
+def reimported_script() -> str | None:
+    """The main script that ``multiprocessing`` is importing again in this process (a worker being started by
+    ``spawn`` or ``forkserver``, which runs the script's top-level code as ``__mp_main__``), if the caller is
+    running inside that import; else None."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        if frame.f_code.co_name == "<module>" and frame.f_globals.get("__name__") == "__mp_main__":
+            return str(frame.f_globals.get("__file__") or frame.f_code.co_filename)
+        frame = frame.f_back
+    return None
+
+
+def main_script() -> str:
+    """How to name this process's main script in a message: its file, its module, or ``"the main module"``."""
+    main = sys.modules.get("__main__")
+    spec = getattr(main, "__spec__", None)
+    return str(getattr(main, "__file__", None) or getattr(spec, "name", None) or "the main module")
+
+
+def leave_if_reimported() -> None:
+    """End this process at once, quietly, with status :data:`UNGUARDED_EXIT`, if it is a worker re-running the
+    main script's top-level code (:func:`reimported_script`); the parent's pool tells the user."""
+    if reimported_script() is not None:
+        os._exit(UNGUARDED_EXIT)
+
+
+def pool_allowed(workers: int | None) -> bool:
+    """May this process start a pool of worker processes? Call it before a campaign writes anything.
+
+    * In a worker process that is re-running the main script (the script has no
+      ``if __name__ == "__main__":`` guard) the worker ends at once (:func:`leave_if_reimported`); the parent's
+      pool tells the user (:func:`unguarded_error`).
+    * Inside a worker process of any pool (``multiprocessing.parent_process()`` is set): False for
+      ``workers`` 1 (run the items in this process), :class:`~opsrock.errors.UnguardedScriptError` for more.
+    * Else True.
+
+    Parameters
+    ----------
+    workers : int or None
+        Worker processes asked for (None: all cores).
+    """
+    leave_if_reimported()
+    parent = multiprocessing.parent_process()
+    if parent is None:
+        return True
+    if workers == 1:
+        return False
+    raise UnguardedScriptError(
+        f"a campaign cannot start worker processes inside a worker process (this process, pid {os.getpid()}, was "
+        f"started by multiprocessing from pid {parent.pid}): start the campaign from the main process, or pass "
+        "workers=1 to run its cases in this process")
+
+
+def unguarded_error() -> UnguardedScriptError:
+    """The error of a pool whose workers ended with :data:`UNGUARDED_EXIT`: they re-ran the main script."""
+    return UnguardedScriptError(
+        f"the worker processes re-ran the script {main_script()}: multiprocessing starts every worker by "
+        "importing the main script again, and this one starts its campaign when imported; put the script's "
+        'work under `if __name__ == "__main__":`, or pass workers=1 to run the cases in this process')
+
+
+def warn_unguarded_here() -> None:
+    """Warn (``RuntimeWarning``, at the user's line) that an unguarded script's ``workers=1`` campaign runs its
+    cases in this process (:func:`unguarded_error` for more workers)."""
+    level, frame = 2, sys._getframe(1)  # stacklevel 2: the caller of this function
+    while frame is not None and str(frame.f_globals.get("__name__", "")).startswith("opsrock"):
+        level, frame = level + 1, frame.f_back
+    warnings.warn(f"the worker process re-ran the script {main_script()} (no `if __name__ == \"__main__\":` guard): "
+                  "with workers=1 its cases run in this process instead, without a worker's protection against a "
+                  "case that crashes its process; put the script's work under the guard to run them in workers",
+                  RuntimeWarning, stacklevel=level)
 
 
 def ignore_interrupts() -> None:

@@ -134,15 +134,29 @@ class AnalysisError(OpsrockError, RuntimeError):
     """An analysis opsrock runs for the user failed (the shear building's OpenSees analysis)."""
 
 
+class AllCasesFailedError(InputError):
+    """A campaign whose every case failed given to a fit (``opsrock fragility``, ``opsrock contents``): there is
+    nothing to fit. The message names the campaign, the number of cases and the first reason
+    (:func:`opsrock.fragility.cases.check_some_finished`)."""
+
+
+class UnguardedScriptError(OpsrockError, RuntimeError):
+    """A campaign's worker processes cannot start from here: the main script has no
+    ``if __name__ == "__main__":`` guard (every spawned worker imports it again, and would run its campaign
+    again), or the campaign was started inside a worker process. The message names the fix (the guard, or
+    ``workers=1``)."""
+
+
 class CaseTimeout(OpsrockError):
     """A case ran past its wall-clock budget (a campaign stores it failed, with this message)."""
 
 
 __all__ = [
-    "AnalysisError", "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError", "ImplausibleInputError", "InputError",
+    "AllCasesFailedError", "AnalysisError", "CampaignConflictError", "CaseTimeout", "ExecutorUnavailableError",
+    "ImplausibleInputError", "InputError",
     "InputTypeError", "LibraryUnavailableError", "MISSING", "MissingBlasError", "ModelNotSupported", "OpsrockError",
     "RecordFileError", "SceneError",
-    "StoreError", "StoreUnavailableError", "UnknownRecordError", "UnknownSettingError", "UsageError",
+    "StoreError", "StoreUnavailableError", "UnguardedScriptError", "UnknownRecordError", "UnknownSettingError", "UsageError",
 ]
 
 

@@ -71,7 +71,6 @@ IDENTITY_EXCLUDED: tuple[str, ...] = ("wall_time_s",)
 #: Longest failure reason kept (characters); a reason is also folded onto one line.
 MAX_REASON: int = 500
 
-
 def _block_columns(case_id: str, b: Block) -> dict[str, Any]:
     return {"case_id": case_id, "block": b.name, "width": b.width, "height": b.height, "alpha": b.alpha,
             "R": b.R, "p": b.p, "e": b.e, "e_R": b.e_R, "friction": b.friction, "friction_kinetic": b.friction_kinetic}

@@ -18,8 +18,14 @@ pool's workers and the ``LocalCluster`` workers run one thread each).
 A worker that dies (a segmentation fault in native code, ``os._exit``, the OOM killer) does not
 stop the campaign. The batches it may have been running are re-run one item at a time, each
 alone, so that the item that kills its worker is identified; that item's result is then built
-by the caller's ``lost(item, reason)`` function (a ``status="failed"`` row), and every other
-item is computed normally.
+by the caller's ``lost(item, reason)`` function, with a reason that starts with
+:data:`LOST_PREFIX` (lost to the infrastructure: a resume computes it again), and
+every other item is computed normally. An item that overruns its budget alone is the solver's failure: its
+reason starts ``"timeout"``.
+
+Workers that end before they start, because the main script has no ``if __name__ == "__main__":`` guard
+(:func:`opsrock._pool.pool_allowed`), stop the campaign at once with
+:class:`~opsrock.errors.UnguardedScriptError`; with ``workers=1`` the items then run in this process.
 """
 
 from __future__ import annotations
@@ -36,7 +42,8 @@ from concurrent.futures import TimeoutError as FutureTimeout
 from concurrent.futures.process import BrokenProcessPool
 from typing import Callable, Iterator, Protocol, Sequence, TypeVar, runtime_checkable
 
-from opsrock._pool import worker_start
+from opsrock._pool import (UNGUARDED_EXIT, leave_if_reimported, pool_allowed, unguarded_error, warn_unguarded_here,
+                           worker_start)
 from opsrock.errors import ExecutorUnavailableError, InputError
 from opsrock.limits import check_count
 
@@ -108,8 +115,24 @@ def make_batches(items: Sequence[T], size: int) -> list[list[T]]:
     return [list(items[k : k + size]) for k in range(0, len(items), size)]
 
 
+#: Reason prefix of a case lost to the infrastructure: its worker process died or its pool broke while it ran
+#: alone (``BrokenProcessPool``), or its Dask worker was lost (``KilledWorker``). Such a case is stored failed
+#: (never a verdict), and is not a result: a resume computes it again. A case the solver failed (it did not
+#: converge, ran past its budget, raised) is a result: stored failed with its reason, and reused.
+LOST_PREFIX: str = "lost to the infrastructure: "
+
+#: Texts that mark a lost case in a reason: :data:`LOST_PREFIX` (also inside a record case's ``"floor motion
+#: failed: ..."``), and the reason stores written before it gave such a case.
+LOST_MARKERS: tuple[str, ...] = (LOST_PREFIX, "worker process died")
+
+
+def is_lost(reason: str | None) -> bool:
+    """Is ``reason`` (a stored failure reason) that of a case lost to the infrastructure (:data:`LOST_PREFIX`)?"""
+    return bool(reason) and any(m in reason for m in LOST_MARKERS)
+
+
 def _lost_reason(kind: str, detail: str) -> str:
-    return f"worker process died while solving this case alone ({kind}: {detail})"
+    return f"{LOST_PREFIX}worker process died while solving this case alone ({kind}: {detail})"
 
 
 class _Closing:
@@ -147,6 +170,14 @@ class LocalPool(_Closing):
         re-run one at a time, and an item that overruns alone gets ``lost(item, reason)`` with a
         reason starting ``"timeout"``. This backs up the in-process budget
         (:func:`opsrock.campaign.timeout.time_limit`), which cannot interrupt native code. None: no limit.
+
+    Raises
+    ------
+    UnguardedScriptError
+        ``workers`` > 1 inside a worker process (:func:`opsrock._pool.pool_allowed`), or, from
+        :meth:`map_batches`, workers that ended re-running a main script without an
+        ``if __name__ == "__main__":`` guard. With ``workers=1`` the items run in this process instead (no
+        protection against a case that kills its process; a warning says so when the script is unguarded).
     """
 
     def __init__(self, workers: int | None = None, *, mp_context: str = "spawn",
@@ -164,6 +195,9 @@ class LocalPool(_Closing):
         self.mp_context = mp_context
         self.item_timeout = None if item_timeout is None or math.isinf(item_timeout) else float(item_timeout)
         self._pool: ProcessPoolExecutor | None = None
+        self._processes: dict = {}  # the pool's worker processes, kept to read their exit status once it broke
+        #: Run the items in this process: no worker may start here (``workers=1`` only).
+        self.here = not pool_allowed(workers)
 
     def __repr__(self) -> str:
         return f"LocalPool(workers={self.workers})"
@@ -172,7 +206,25 @@ class LocalPool(_Closing):
         self._shutdown_pool()
         self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context(self.mp_context),
                                          initializer=worker_start, initargs=(os.getpid(),))
+        self._processes = self._pool._processes  # the same dict, filled as workers start; kept after shutdown
         return self._pool
+
+    def _unguarded(self) -> bool:
+        """After a break: did a worker end re-running the main script (status :data:`UNGUARDED_EXIT`)? Then
+        ``workers=1`` goes on in this process (with a warning) and more workers raise :func:`unguarded_error`."""
+        deadline = time.monotonic() + 2.0
+        codes = []
+        for proc in list(self._processes.values()):
+            proc.join(timeout=max(0.0, deadline - time.monotonic()))
+            codes.append(proc.exitcode)
+        if UNGUARDED_EXIT not in codes:
+            return False
+        self._kill_pool()
+        if self.workers > 1:
+            raise unguarded_error()
+        warn_unguarded_here()
+        self.here = True
+        return True
 
     def _kill_pool(self) -> None:
         """Kill the worker processes (a hung native call cannot be stopped otherwise)."""
@@ -207,7 +259,11 @@ class LocalPool(_Closing):
         todo = list(range(len(batches)))[::-1]  # a stack, popped from the end = in order
         suspects: list[int] = []
         try:
-            yield from self._run_batches(fn, batches, todo, suspects)
+            if not self.here:
+                yield from self._run_batches(fn, batches, todo, suspects)
+            while todo:  # no worker may start here (workers=1): this process runs what is left
+                k = todo.pop()
+                yield k, fn(batches[k])
             # Suspects: every item alone in a one-worker pool, so a death names its item.
             for k in sorted(suspects):
                 yield k, [self._run_alone(fn, item, lost) for item in batches[k]]
@@ -230,6 +286,9 @@ class LocalPool(_Closing):
                     # a worker died after the last wait returned: batch k never ran; the batches
                     # in flight are the suspects, exactly as when wait() reports the break
                     todo.append(k)
+                    if self._unguarded():
+                        _give_back(todo, running)
+                        return
                     suspects.extend(j for j, _ in running.values())
                     running.clear()
                     pool = self._new_pool(self.workers)
@@ -251,12 +310,17 @@ class LocalPool(_Closing):
             if not done:  # a batch overran its budget: kill the workers, re-run its items alone
                 self._kill_pool()
                 broken = True
+            if broken and self._unguarded():
+                _give_back(todo, running, suspects)
+                return
             if broken:
                 suspects.extend(k for k, _ in running.values())
                 running.clear()
                 pool = self._new_pool(self.workers)
 
     def _run_alone(self, fn, item, lost):
+        if self.here:
+            return fn([item])[0]
         if self._pool is None or getattr(self._pool, "_max_workers", 1) != 1:
             self._new_pool(1)
         with _interrupts_held():
@@ -265,12 +329,25 @@ class LocalPool(_Closing):
         try:
             return fut.result(timeout=budget)[0]
         except BrokenProcessPool as exc:
+            if self._unguarded():
+                return fn([item])[0]
             self._new_pool(1)
             return lost(item, _lost_reason("BrokenProcessPool", str(exc) or "no detail"))
         except FutureTimeout:
             self._kill_pool()
             return lost(item, f"timeout: no answer within {budget:g} s (the case budget plus {KILL_GRACE:g} s "
                               "of grace); its worker process was killed")
+
+
+def _give_back(todo: list[int], running: dict, suspects: list[int] | None = None) -> None:
+    """Put the batches that were in flight (and the suspects: none of them ran) back on the ``todo`` stack,
+    in order, for this process to run (a pool whose workers could not start)."""
+    todo.extend(k for k, _ in running.values())
+    if suspects is not None:
+        todo.extend(suspects)
+        suspects.clear()
+    running.clear()
+    todo.sort(reverse=True)
 
 
 #: Signals held back while workers are spawned: Ctrl-C, and the stops the command line treats like it.
@@ -335,6 +412,7 @@ class DaskExecutor(_Closing):
             isinstance(local_workers, bool) or not isinstance(local_workers, int) or local_workers < 1
         ):
             raise InputError(f"local_workers must be an integer >= 1, got {local_workers!r}")
+        leave_if_reimported()  # a worker re-running an unguarded script starts no cluster
         distributed = _import_distributed()
         self._cluster = None
         if local_workers is not None:
@@ -417,8 +495,11 @@ __all__ = [
     "Executor",
     "KILL_GRACE",
     "ExecutorUnavailableError",
+    "LOST_MARKERS",
+    "LOST_PREFIX",
     "LocalPool",
     "MAX_BATCH",
     "batch_size",
+    "is_lost",
     "make_batches",
 ]

@@ -21,10 +21,18 @@ batches being computed, and re-running the same command computes only the missin
 ends with the same ``cases.csv`` as an uninterrupted run, column for column, except
 ``wall_time_s``, which is measured (:data:`~opsrock.campaign.cases.IDENTITY_EXCLUDED`).
 
-A case whose solver raises, or returns ``status="failed"``, is stored as failed with its
-reason; so is a case whose worker process dies while it runs alone. Failed cases are never
-given a verdict other than ``"failed"``, and are not retried by a resume (they are results);
-use ``force=True`` to recompute everything. The command line is ``opsrock run`` (:mod:`opsrock.cli`).
+A case whose solver raises, runs past its budget, or returns ``status="failed"``, is stored as failed with
+its reason: a result, never given a verdict other than ``"failed"``, and reused by a resume (use
+``force=True`` to recompute everything). A case lost to the infrastructure (its worker process died while
+it ran alone, its Dask worker was lost) is stored failed too, with a reason that starts with
+:data:`~opsrock.campaign.executors.LOST_PREFIX`; it is not a result: a resume computes it again
+(:meth:`~opsrock.campaign.store.ResultStore.done_ids`), and so does one of a store written before the
+prefix (reason ``"worker process died ..."``). The summary counts them (``n_lost``).
+
+A campaign never re-runs the user's script: started from a script without an ``if __name__ ==
+"__main__":`` guard, or with several workers inside a worker process, it stops with
+:class:`~opsrock.errors.UnguardedScriptError` naming the fix (:func:`opsrock._pool.pool_allowed`). The
+command line is ``opsrock run`` (:mod:`opsrock.cli`).
 """
 
 from __future__ import annotations
@@ -45,10 +53,11 @@ from typing import Any, Callable, Collection, Iterator, Mapping, Sequence
 
 from opsrock import __version__
 from opsrock._files import atomic_write
+from opsrock._pool import leave_if_reimported, pool_allowed
 from opsrock.campaign.advice import sliding_warnings
 from opsrock.campaign.cases import CASES_FILE, IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
-from opsrock.campaign.executors import Executor, LocalPool, batch_size, make_batches
-from opsrock.campaign.motions import cached_motions, compute_motions
+from opsrock.campaign.executors import Executor, LocalPool, batch_size, is_lost, make_batches
+from opsrock.campaign.motions import MOTIONS_FILE, cached_motions, compute_motions
 from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import DISK_ERRNOS, MANIFEST_FILE, STORE_FILE, ResultStore, disk_fault
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
@@ -95,6 +104,10 @@ class CampaignSummary:
         Where the no-slip model may not hold (:func:`opsrock.campaign.advice.sliding_warnings`).
     choice : str
         Why the solver was chosen for (or checked against) the scene's ``[needs]``; empty without needs.
+    n_lost : int
+        Cases of the final table lost to the infrastructure (their worker died:
+        :data:`~opsrock.campaign.executors.LOST_PREFIX`), counted in ``n_failed`` too; running the same
+        campaign again computes them.
     """
 
     n_cases: int
@@ -110,12 +123,15 @@ class CampaignSummary:
     solver: str
     warnings: tuple[str, ...] = ()
     choice: str = ""
+    n_lost: int = 0
 
     def lines(self) -> list[str]:
         """The report a command line prints, one line each."""
         head = (f"{self.n_cases} cases ({self.n_computed} computed, {self.n_reused} reused) with {self.solver} in "
                 f"{self.wall_time_s:.1f} s -> {self.cases_csv}")
-        return [head] + ([f"solver chosen for the scene's needs: {self.choice}"] if self.choice else [])
+        lost = ([f"{self.n_lost} cases lost to the infrastructure (a worker process died), stored failed: run the "
+                 "same campaign again to compute them"] if self.n_lost else [])
+        return [head] + ([f"solver chosen for the scene's needs: {self.choice}"] if self.choice else []) + lost
 
 
 # --- work done in the workers -------------------------------------------------------------------
@@ -174,7 +190,9 @@ def _solve_one(case, fn: Callable, solver: str, settings: Mapping[str, Any], cas
 
 
 def lost_row(case, reason: str, *, solver: str) -> dict[str, Any]:
-    """The stored row of a case whose batch was lost (its worker died or hung), failed with ``reason``."""
+    """The stored row of a case the executor could not solve alone, failed with ``reason``: its worker died
+    (a reason starting :data:`~opsrock.campaign.executors.LOST_PREFIX`: a resume computes it again) or it ran
+    past its budget (``"timeout..."``: the solver's failure, a result)."""
     return failed_row(case.case_id, solver, reason)
 
 
@@ -323,6 +341,7 @@ class _Run:
         return CampaignSummary(
             n_cases=len(table), n_computed=self.n_computed, n_reused=self.n_reused,
             n_failed=sum(r["status"] == "failed" for r in table), wall_time_s=wall_time_s, out_dir=str(out),
+            n_lost=sum(r["status"] == "failed" and is_lost(r["reason"]) for r in table),
             store_path=str(out / STORE_FILE), cases_csv=str(out / CASES_FILE), manifest_path=str(out / MANIFEST_FILE),
             digest=self.digest, solver=self.scene.solver, warnings=tuple(sliding_warnings(self.scene.blocks, table)),
             choice=self.scene.choice.reason if self.scene.choice is not None else "")
@@ -343,7 +362,14 @@ class _Run:
         if self.scene.records is None:
             return self.scene.cases()
         items = self.scene.records.motion_items()
-        return self.scene.cases(cached_motions(self.out, self.digest, items, self._compute_motions))
+        fresh: list[bool] = []
+        motions = cached_motions(self.out, self.digest, items, lambda todo: fresh.append(True) or
+                                 self._compute_motions(todo))
+        if not fresh and any(isinstance(m, str) and is_lost(m) for m in motions.values()):
+            # a cached motion lost to the infrastructure is not a result: compute the motions again
+            (self.out / MOTIONS_FILE).unlink(missing_ok=True)
+            motions = cached_motions(self.out, self.digest, items, self._compute_motions)
+        return self.scene.cases(motions)
 
     def _compute_motions(self, items: list) -> list:
         results: list[Any] = [None] * len(items)
@@ -443,6 +469,9 @@ class Stage:
         by an earlier stage). Returns the summary and the scene's cases (all of them, in its order).
         """
         t_start = time.perf_counter()
+        leave_if_reimported()  # a worker re-running an unguarded script: before the folder is touched
+        if self.how.executor is None:
+            pool_allowed(self.how.workers)  # several workers inside a worker: refused before anything is written
         how, out = self.how, Path(out_dir)
         digest, manifest = campaign_identity(scene, self.solve_fn)
         solve = functools.partial(solve_batch, solver=scene.solver, settings=dict(scene.solver_settings),

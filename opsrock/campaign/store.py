@@ -8,9 +8,12 @@ standard library, and readers (a progress monitor, a test) never block the write
 * Each batch of results that comes back from a worker is committed in one transaction as
   soon as it arrives (``synchronous=FULL``: the commit is on disk before the next batch is
   taken), so an interruption loses at most the batches still being computed.
-* Rows are only ever inserted (``INSERT OR IGNORE`` on the ``case_id`` key: a case computed
-  twice, e.g. after a worker was restarted, keeps its first result). The only deletion is
-  :meth:`ResultStore.clear`, which ``run_campaign(force=True)`` uses to start over.
+* Rows are only ever inserted (on the ``case_id`` key: a case computed twice, e.g. after a worker was
+  restarted, keeps its first result), except a case lost to the infrastructure (its worker died: reason
+  marked by :data:`~opsrock.campaign.executors.LOST_MARKERS`, the old stores' ``"worker process died"``
+  included): it is not a result (:meth:`ResultStore.done_ids` leaves it out, so a resume computes it
+  again) and its row gives way to the case's next row. The only deletion is :meth:`ResultStore.clear`,
+  which ``run_campaign(force=True)`` uses to start over.
 * A manifest table records what the rows were computed with (the scene's digest, solver and
   settings); the campaign refuses to add rows computed with anything else.
 * One campaign at a time per folder: an exclusive ``flock`` on ``<out>/.lock``, released by
@@ -44,6 +47,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterable, Iterator, Mapping
 
+from opsrock.campaign.executors import LOST_MARKERS
 from opsrock.errors import StoreError, StoreUnavailableError
 from opsrock.result import STATUSES, VERDICTS
 
@@ -107,6 +111,15 @@ _DAMAGE_CODES = frozenset({"SQLITE_CORRUPT", "SQLITE_NOTADB", "SQLITE_FORMAT", "
 
 #: ``errno`` values of a file system that refuses a write: full, over quota, failing, read-only.
 DISK_ERRNOS: frozenset[int] = frozenset({errno.ENOSPC, errno.EDQUOT, errno.EIO, errno.EROFS})
+
+
+def _lost_sql(table: str = "") -> str:
+    """SQL condition: the row (of ``table``, when named) is that of a case lost to the infrastructure
+    (:data:`~opsrock.campaign.executors.LOST_MARKERS`), not a result."""
+    q = f"{table}." if table else ""
+    marks = " OR ".join(f"instr({q}reason, '{m}') > 0" for m in LOST_MARKERS)  # the markers hold no quote
+    return f"({q}status = 'failed' AND ({marks}))"
+
 
 _BOOL_COLUMNS = ("overturned", "rocked")
 _FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s", "time_sliding", "time_rocking", "time_flight",
@@ -258,7 +271,8 @@ class ResultStore:
         ----------
         rows : iterable of dict
             Each with ``case_id`` and every key of :data:`RESULT_COLUMNS`. A ``case_id``
-            already stored is left as it is (the first result wins).
+            already stored is left as it is (the first result wins), unless its stored row is that of a
+            case lost to the infrastructure: the new row replaces it.
         """
         names = ["case_id", *RESULT_COLUMNS]
         values = []
@@ -269,7 +283,9 @@ class ResultStore:
             values.append(tuple(_to_sql(n, row[n]) for n in names))
         if not values:
             return 0
-        sql = f"INSERT OR IGNORE INTO results ({', '.join(names)}) VALUES ({', '.join('?' * len(names))})"
+        sql = (f"INSERT INTO results ({', '.join(names)}) VALUES ({', '.join('?' * len(names))}) "
+               f"ON CONFLICT(case_id) DO UPDATE SET {', '.join(f'{n} = excluded.{n}' for n in RESULT_COLUMNS)} "
+               f"WHERE {_lost_sql('results')}")
         with self._transaction():
             before = self._db.total_changes
             self._db.executemany(sql, values)
@@ -277,9 +293,15 @@ class ResultStore:
         return inserted
 
     def done_ids(self) -> set[str]:
-        """Case ids already stored."""
+        """Case ids whose result is stored: every stored case but those lost to the infrastructure (their
+        worker died; :data:`~opsrock.campaign.executors.LOST_MARKERS`), which a resume computes again."""
         with self._faults():
-            return {r[0] for r in self._db.execute("SELECT case_id FROM results")}
+            return {r[0] for r in self._db.execute(f"SELECT case_id FROM results WHERE NOT {_lost_sql()}")}
+
+    def lost_ids(self) -> set[str]:
+        """Case ids stored as lost to the infrastructure (not results: a resume computes them again)."""
+        with self._faults():
+            return {r[0] for r in self._db.execute(f"SELECT case_id FROM results WHERE {_lost_sql()}")}
 
     def __len__(self) -> int:
         with self._faults():

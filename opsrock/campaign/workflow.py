@@ -12,6 +12,7 @@ import os
 from pathlib import Path
 from typing import Any, Callable
 
+from opsrock._pool import leave_if_reimported
 from opsrock.campaign.executors import Executor
 from opsrock.campaign.multifidelity import MultiFidelity, MultiFidelitySummary
 from opsrock.campaign.run import CampaignSummary, Execution, Stage, case_budget
@@ -91,7 +92,13 @@ def run_campaign(
     SceneError, InputError, CampaignConflictError, StoreError
         Invalid scene, settings or policy (nothing written); ``out_dir`` holds results of other settings
         and ``force`` is False; another run holds ``out_dir``.
+    UnguardedScriptError
+        The script that calls it has no ``if __name__ == "__main__":`` guard (the spawned workers import the
+        script again, and would start its campaign again), or it runs inside a worker process with more
+        than one worker: at once, no case stored. The message names the fix: the guard, or ``workers=1``
+        (which runs the cases in this process).
     """
+    leave_if_reimported()  # a worker process re-running an unguarded script ends here, quietly
     scene = scene if isinstance(scene, Scene) else load_scene(scene)
     if solver is not None:
         scene = scene.with_solver(solver)

@@ -20,6 +20,7 @@ import pandas as pd
 
 from opsrock._files import read_table
 from opsrock.contents.design import split_block_name
+from opsrock.fragility.cases import check_some_finished
 
 #: Columns of ``cases.csv`` the study reads.
 CASE_COLUMNS: tuple[str, ...] = ("case_id", "block", "width", "height", "alpha", "R", "p", "e", "e_R", "record",
@@ -66,6 +67,11 @@ def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, p
     timings : dict
         Wall time of each campaign (s), its cases and those computed now, and whether the friction
         campaign's floor motions were seeded.
+
+    Raises
+    ------
+    AllCasesFailedError
+        Every case of a campaign failed (:func:`opsrock.fragility.cases.check_some_finished`).
     """
     from opsrock.campaign import run_campaign
 
@@ -77,6 +83,8 @@ def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, p
                                                               scenes["rocking"], scene)
         t0 = time.perf_counter()
         summary = run_campaign(scene, folder, workers=workers, progress=progress, force=force, batch=BATCH)
+        if summary.n_failed == summary.n_cases:  # nothing to fit: one line (AllCasesFailedError), exit 2
+            check_some_finished(read_table(summary.cases_csv, usecols=["status", "reason"]), str(folder))
         timings[f"{name}_s"] = time.perf_counter() - t0
         timings[f"{name}_cases"] = summary.n_cases
         timings[f"{name}_computed"] = summary.n_computed

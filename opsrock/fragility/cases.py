@@ -1,5 +1,10 @@
 """Which cases enter the fragility statistics: rocking cases only (Eq. 13); no-uplift and failed
-cases counted and reported, never a verdict."""
+cases counted and reported, never a verdict.
+
+A campaign whose every case failed has nothing to fit: every entry point that fits a campaign
+(``opsrock fragility``, :func:`opsrock.fragility.record_study.record_fragility`, ``opsrock contents``) refuses
+it in one line through :func:`check_some_finished`; a group (a block, an item on a floor) whose every case
+failed is skipped, with the reason :func:`failed_groups` gives."""
 
 from __future__ import annotations
 
@@ -8,7 +13,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from opsrock.errors import InputError
+from opsrock.campaign.executors import is_lost
+from opsrock.errors import AllCasesFailedError, InputError
 
 
 def _as_bool(series: pd.Series, name: str) -> np.ndarray:
@@ -100,3 +106,45 @@ def split_cases(cases: pd.DataFrame) -> CaseSplit:
         n_no_uplift=int(np.sum(ok & ~rocked)),
         n_failed=int(np.sum(~ok)),
     )
+
+
+def _why_failed(cases: pd.DataFrame) -> str:
+    """``"N cases; first reason: ..."`` of failed cases, and what to do about those lost to the infrastructure."""
+    reasons = cases["reason"].fillna("").astype(str).tolist() if "reason" in cases.columns else []
+    text = f"{len(cases)} cases" + (f"; first reason: {reasons[0]}" if reasons and reasons[0] else "")
+    n_lost = sum(map(is_lost, reasons))
+    if n_lost:
+        text += (f"; {n_lost} of them were lost to the infrastructure (a worker process died): run the campaign "
+                 "again to compute them")
+    return text
+
+
+def check_some_finished(cases: pd.DataFrame, source: str) -> None:
+    """Refuse a campaign's cases of which none finished: nothing to fit.
+
+    Parameters
+    ----------
+    cases : pandas.DataFrame
+        Its case table: column ``status`` (``"ok"`` for a finished case) and, when present, ``reason``.
+    source : str
+        The campaign (its folder or table), named in the message.
+
+    Raises
+    ------
+    AllCasesFailedError
+        ``"every case of <source> failed (N cases; first reason: ...): nothing to fit"`` (an
+        :class:`~opsrock.errors.InputError`: exit 2), with what to do when cases were lost to the infrastructure.
+    """
+    if len(cases) and not (cases["status"].astype(str) == "ok").any():
+        raise AllCasesFailedError(f"every case of {source} failed ({_why_failed(cases)}): nothing to fit")
+
+
+def failed_groups(cases: pd.DataFrame, by: str | list[str]) -> dict:
+    """The groups of ``cases`` (by the column or columns ``by``: a block, an item and its floor) of which no case
+    finished, each with why: ``{group key: "every case failed (N cases; first reason: ...)"}``, in the table's
+    order. A fit skips them and says so."""
+    out = {}
+    for key, sub in cases.groupby(by, sort=False):
+        if not (sub["status"].astype(str) == "ok").any():
+            out[key] = f"every case failed ({_why_failed(sub)})"
+    return out

@@ -41,6 +41,7 @@ import pandas as pd
 
 from opsrock._pool import TaskPool
 from opsrock.errors import InputError
+from opsrock.fragility.cases import check_some_finished, failed_groups
 from opsrock.fragility.hybrid_strip import hybrid_strip
 from opsrock.fragility.ida import OUTCOMES, outcomes, resurrection_summary, resurrections
 from opsrock.fragility.logistic import LogisticFit, fit_logistic
@@ -317,6 +318,15 @@ def _block_row(head: dict, m: MLEFit) -> dict:
             "n_records": head["n_records"], "success": m.success, "message": m.message}
 
 
+def _failed_block_rows(cases: pd.DataFrame) -> list[dict]:
+    """Rows of ``blocks`` for the blocks of which no case finished: no fit, and why (:func:`failed_groups`)."""
+    nan = math.nan
+    return [{"block": block, "demand": demand, "unit": "m/s2" if demand == "pfa" else "m/s", "mu": nan, "beta": nan,
+             "mu_lo": nan, "mu_hi": nan, "beta_lo": nan, "beta_hi": nan, "n_cases": 0, "success": False,
+             "message": f"{why}: no fit"}
+            for block, why in failed_groups(cases, "block").items() for demand in EXPORT_DEMANDS]
+
+
 def _block_fits(cases: pd.DataFrame, s: RecordStudySettings) -> pd.DataFrame:
     return pd.DataFrame([_block_row(head, plan.finish(plan.draws())) for head, plan in _block_plans(cases, s)])
 
@@ -376,9 +386,17 @@ def record_fragility(cases: pd.DataFrame, settings: RecordStudySettings | None =
     Returns
     -------
     RecordStudy
+        A block whose every case failed has rows in ``blocks`` with ``success`` False and the reason.
+
+    Raises
+    ------
+    AllCasesFailedError
+        No case finished (:func:`opsrock.fragility.cases.check_some_finished`): nothing to fit.
     """
     s = settings or RecordStudySettings()
     workers = check_count("workers", workers)
+    if "status" in cases.columns:  # (a table without it is refused by _prepare, naming the column)
+        check_some_finished(cases, "the cases")
     ok, n_failed = _prepare(cases, s.outcome)
     freq = _Frequencies(ok, s.ims, s.n_boot if n_rank_boot is None else n_rank_boot, s.seed)
     parts = [_im_part(ok, im, s) for im in s.ims]
@@ -397,7 +415,8 @@ def record_fragility(cases: pd.DataFrame, settings: RecordStudySettings | None =
         cases=ok, ims=ims,
         measure_fits=pd.DataFrame([_measure_row(h, m) for (h, _), m in zip(measures, fits[k + len(blocks):])]),
         resurrections=res, resurrection_summary=resurrection_summary(res), sufficiency=suff,
-        blocks=pd.DataFrame([_block_row(h, m) for (h, _), m in zip(blocks, fits[k:k + len(blocks)])]),
+        blocks=pd.DataFrame([_block_row(h, m) for (h, _), m in zip(blocks, fits[k:k + len(blocks)])]
+                            + _failed_block_rows(cases)),
         frequencies=freq.table(criteria), settings=s, n_failed=n_failed)
 
 

@@ -7,6 +7,7 @@ import json
 import math
 import os
 import signal
+import sqlite3
 import subprocess
 import sys
 import time
@@ -17,9 +18,9 @@ import pytest
 from opsrock.campaign import CampaignConflictError, run_campaign
 from opsrock.campaign.cases import IDENTITY_EXCLUDED
 from opsrock.campaign.cases import PULSE_COLUMNS as CASES_COLUMNS
-from opsrock.campaign.executors import DaskExecutor, LocalPool
+from opsrock.campaign.executors import LOST_PREFIX, DaskExecutor, LocalPool
 from opsrock.campaign.scene import load_scene
-from opsrock.campaign.store import read_rows
+from opsrock.campaign.store import STORE_FILE, read_rows
 from opsrock.cli import main as cli_main
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.result import RockingResult, failed_result
@@ -87,13 +88,6 @@ def failing_solve(block, excitation, solver, **settings) -> RockingResult:
         raise RuntimeError("singular matrix at step 12")
     if (f, a) == (6.0, 5.0):
         return failed_result("fake", settings, block.alpha, "no convergence at t = 0.41 s")
-    return fake_solve(block, excitation, solver, **settings)
-
-
-def dying_solve(block, excitation, solver, **settings) -> RockingResult:
-    """fake_solve, except the worker process dies outright on one case."""
-    if round(excitation.omega_p / block.p, 6) == 3.0 and round(excitation.pfa / block.uplift_acceleration, 6) == 5.0:
-        os._exit(3)
     return fake_solve(block, excitation, solver, **settings)
 
 
@@ -207,13 +201,52 @@ def test_failed_cases_are_stored_as_failed_with_reasons(tmp_path):
     assert (again.n_computed, again.n_reused, again.n_failed) == (0, 9, 2)
 
 
-def test_a_dying_worker_fails_only_its_case(tmp_path):
-    out = tmp_path / "out"
-    summary = run_campaign(small_scene(tmp_path), out, workers=2, progress=False, solve_fn=dying_solve, batch=3)
+class DiesTwice:
+    """fake_solve, except the worker process dies outright on one case the first two times it is solved (in its
+    batch, then alone): counted in a file every worker shares. Named by its class in the manifest, so a resume
+    with another counter is the same campaign."""
+
+    def __init__(self, counter: Path) -> None:
+        self.counter = counter
+
+    def __call__(self, block, excitation, solver, **settings) -> RockingResult:
+        target = (round(excitation.omega_p / block.p, 6), round(excitation.pfa / block.uplift_acceleration, 6))
+        if target == (3.0, 5.0) and (self.counter.stat().st_size if self.counter.exists() else 0) < 2:
+            with open(self.counter, "ab") as fh:
+                fh.write(b".")
+            os._exit(3)
+        return fake_solve(block, excitation, solver, **settings)
+
+
+def test_a_dying_worker_loses_only_its_case_and_a_resume_computes_it(tmp_path):
+    # A worker that dies is the infrastructure's failure, not the solver's: the case is stored failed (never a
+    # verdict) with a reason marked lost (LOST_PREFIX), and a resume computes it again instead of reusing it.
+    out, counter = tmp_path / "out", tmp_path / "deaths"
+    summary = run_campaign(small_scene(tmp_path), out, workers=2, progress=False, solve_fn=DiesTwice(counter), batch=3)
     rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
     dead = rows["medicine_cabinet/f02/a03"]
-    assert dead["status"] == "failed" and "worker process died" in dead["reason"]
-    assert summary.n_failed == 1 and len(rows) == 9
+    assert dead["status"] == "failed" and dead["verdict"] == "failed" and dead["reason"].startswith(LOST_PREFIX)
+    assert "worker process died" in dead["reason"] and counter.stat().st_size == 2
+    assert (summary.n_failed, summary.n_lost, len(rows)) == (1, 1, 9)
+    assert any("1 cases lost to the infrastructure" in line for line in summary.lines())
+    again = run_campaign(small_scene(tmp_path), out, workers=1, progress=False, solve_fn=DiesTwice(counter))
+    assert (again.n_computed, again.n_reused, again.n_failed, again.n_lost) == (1, 8, 0, 0)
+    assert read_rows(out)["medicine_cabinet/f02/a03"]["status"] == "ok"
+
+
+def test_a_store_of_the_old_code_has_its_lost_cases_computed_again(tmp_path):
+    # Before LOST_PREFIX, a case whose worker died was stored failed with "worker process died ..." and reused by
+    # every resume (the issue's 320 failed cases, 0 computed): such a row is a lost case, computed again.
+    scene, out = small_scene(tmp_path), tmp_path / "out"
+    run_campaign(scene, out, workers=1, progress=False, solve_fn=fake_solve)
+    before = identity_view(read_csv(out / "cases.csv"))
+    old = "worker process died while solving this case alone (BrokenProcessPool: A process in the pool was terminated)"
+    with sqlite3.connect(out / STORE_FILE) as db:
+        db.execute("UPDATE results SET status = 'failed', verdict = 'failed', reason = ?, theta_max = NULL "
+                   "WHERE case_id IN ('medicine_cabinet/f01/a01', 'medicine_cabinet/f03/a02')", (old,))
+    resumed = run_campaign(scene, out, workers=1, progress=False, solve_fn=fake_solve)
+    assert (resumed.n_computed, resumed.n_reused, resumed.n_failed) == (2, 7, 0)
+    assert identity_view(read_csv(out / "cases.csv")) == before  # the lost rows replaced by their results
 
 
 def test_ctrl_c_then_resume_computes_only_the_missing_cases(tmp_path):

@@ -9,6 +9,7 @@ import sys
 
 import pytest
 
+from opsrock.campaign.executors import LOST_PREFIX, is_lost
 from opsrock.campaign.store import RESULT_COLUMNS, STORE_FILE, ResultStore, StoreError, StoreUnavailableError, read_rows, store_fault
 
 
@@ -67,6 +68,30 @@ def test_append_only_first_result_wins(tmp_path):
         assert store.append([row("a", 0.9), row("b", 0.2)]) == 1  # "a" kept, "b" new
         rows = store.rows()
     assert rows["a"]["theta_max"] == 0.1 and len(rows) == 2
+
+
+def _failed(case_id: str, reason: str) -> dict:
+    return row(case_id, math.nan, status="failed", reason=reason, verdict="failed", rocked=False,
+               theta_max_over_alpha=math.nan, wall_time_s=math.nan, n_steps=None, n_impacts=None)
+
+
+def test_a_lost_case_is_not_a_result_and_gives_way_to_its_next_row(tmp_path):
+    # A case lost to the infrastructure (its worker died: LOST_PREFIX, or the text of a store written before
+    # the prefix) is retried by a resume, and its next row replaces it; a solver's failure is a result and stays.
+    lost_now = _failed("a", f"{LOST_PREFIX}worker process died while solving this case alone (BrokenProcessPool: x)")
+    lost_old = _failed("b", "worker process died while solving this case alone (BrokenProcessPool: x)")
+    solver_failed = _failed("c", "no convergence at t = 0.41 s")
+    timed_out = _failed("d", "timeout: no answer within 35 s (the case budget plus 30 s of grace)")
+    with ResultStore(tmp_path / STORE_FILE) as store:
+        store.append([lost_now, lost_old, solver_failed, timed_out, row("e")])
+        assert store.done_ids() == {"c", "d", "e"} and store.lost_ids() == {"a", "b"}
+        assert store.append([row("a", 0.3), row("b", 0.4), row("c", 0.5), row("d", 0.6), row("e", 0.7)]) == 2
+        got = store.rows()
+        assert store.done_ids() == set("abcde") and not store.lost_ids()
+    assert (got["a"]["status"], got["a"]["theta_max"], got["b"]["theta_max"]) == ("ok", 0.3, 0.4)
+    assert got["c"]["reason"] == "no convergence at t = 0.41 s" and got["d"]["status"] == "failed"
+    assert got["e"]["theta_max"] == 0.1  # a result: the first one wins
+    assert is_lost(lost_old["reason"]) and not is_lost(timed_out["reason"]) and not is_lost("")
 
 
 def test_incomplete_row_is_refused_and_nothing_written(tmp_path):

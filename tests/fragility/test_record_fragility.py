@@ -16,6 +16,7 @@ import pytest
 from scipy import special, stats
 
 from opsrock.analysis.robustness import draw_block_sets, ranking_robustness
+from opsrock.errors import AllCasesFailedError
 from opsrock.fragility import fit_lognormal_mle
 from opsrock.fragility.ida import outcomes, resurrection_summary, resurrections
 from opsrock.fragility.logistic import fit_logistic
@@ -123,6 +124,21 @@ def test_record_study_on_a_synthetic_campaign():
     assert study.frequencies["n_resamples"].iloc[0] == 10
     assert set(study.blocks["demand"]) == {"pfa", "pfv"}
     assert set(study.sufficiency["covariate"]) == {"magnitude", "distance_km"}  # the period does not vary
+
+
+def test_a_block_whose_every_case_failed_is_skipped_with_its_reason_and_all_failed_is_refused():
+    good = synthetic_ida(n_records=10)
+    failed = good.assign(block="needle", status="failed", overturned=False, rocked=False,
+                         reason="scale factor 0.003 to reach pfa_ratio = 1.5 is outside [0.01, 100]")
+    study = record_fragility(pd.concat([good, failed], ignore_index=True), RecordStudySettings(n_boot=5),
+                             n_rank_boot=5)
+    needle = study.blocks[study.blocks["block"] == "needle"]
+    assert list(needle["demand"]) == ["pfa", "pfv"] and not needle["success"].any()
+    assert needle["message"].iloc[0] == ("every case failed (100 cases; first reason: scale factor 0.003 to reach "
+                                         "pfa_ratio = 1.5 is outside [0.01, 100]): no fit")
+    assert study.blocks[study.blocks["block"] == "b"]["success"].all() and study.n_failed == 100
+    with pytest.raises(AllCasesFailedError, match=r"^every case of the cases failed \(100 cases; first reason: scale"):
+        record_fragility(failed, RecordStudySettings(n_boot=5))
 
 
 def test_wilson_interval():

@@ -54,7 +54,7 @@ BATCH: int = 256
 
 #: Columns of a campaign's ``cases.csv`` the study reads (``slide_max`` too where friction is modelled).
 CASE_COLUMNS: tuple[str, ...] = ("case_id", "block", "record", "level", "level_value", "scale", "status",
-                                 "overturned")
+                                 "reason", "overturned")
 
 
 @dataclass(frozen=True)

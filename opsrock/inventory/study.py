@@ -31,6 +31,7 @@ import pandas as pd
 
 from opsrock.contents.design import DEFAULT_LEVELS
 from opsrock.errors import InputError
+from opsrock.fragility.cases import check_some_finished
 from opsrock.inventory.items import Inventory
 from opsrock.inventory.motions import MotionSet
 
@@ -285,10 +286,7 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     _say(progress, f"{sum(s.scene.n_cases for s in scenes)} cases in {len(scenes)} campaigns into {store}")
     cases, t_camp = run_groups(scenes, store, demands, workers=workers, progress=progress, force=force)
     timings["campaigns_s"] = t_camp["campaigns_s"]
-    failed = cases["status"] != "ok"
-    if failed.all():
-        raise InputError(f"every one of the {len(cases)} cases failed (first: {cases['status'].iloc[0]}); "
-                         f"nothing to fit: see {store}", argument="motions")
+    check_some_finished(cases, str(store))
     return _fit_and_write(design, cases, demands, out, workers, progress,
                           {"timings": timings, "t_start": t_start, "n_computed": t_camp["n_computed"]})
 

@@ -13,6 +13,7 @@ campaign step on the same campaign.
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from pathlib import Path
 
@@ -47,6 +48,13 @@ def campaigns(tmp_path_factory) -> Path:
                                          levels="[1.5, 2.0, 3.0]"))
     summary = run_campaign(scene, failed / "rocking", workers=1, progress=False)
     assert (summary.n_cases, summary.n_failed) == (N_CASES, N_CASES)
+    still = base / "still"  # the user's route: floor motions so weak (2e-4 m/s²) that no IDA level is in reach
+    still.mkdir()
+    (still / "inventory.csv").write_text("id,description,width,depth,height\nrack,server rack,0.6,1.0,2.0\n")
+    (still / "motions.csv").write_text("record,floor,direction,file,units,dt\n"
+                                       + "".join(f"r{k},1,1,r{k}.txt,m/s2,0.01\n" for k in range(2)))
+    for k in range(2):
+        (still / f"r{k}.txt").write_text("".join(f"{2e-4 * math.sin(0.1 * (i + k)):.6e}\n" for i in range(300)))
     lost = base / "lost"
     lost.mkdir()
     table = pd.read_csv(failed / "rocking" / "cases.csv")
@@ -66,6 +74,10 @@ def api_cases(b: Path) -> list[Case]:
         Case("fragility on a campaign whose every case was lost (old store)", ("fragility", f"{b}/lost", *out),
              (f"({N_CASES} cases", "worker process died", f"{N_CASES} of them were lost to the infrastructure",
               "run the campaign again")),
+        Case("contents on the user's motions too weak to scale", ("contents", "--inventory", f"{b}/still/inventory.csv",
+             "--motions", f"{b}/still/motions.csv", "--out", "rep", "--store", "store", "--quick", "--no-progress"),
+             ("every case of", "failed (", "first reason:", "scale factor", "nothing to fit"),
+             expect_files=("store",)),  # the failed cases are results (each with its reason), kept for a resume
     ]
 
 
@@ -74,7 +86,7 @@ def test_api_refusals_keep_the_promise(campaigns, tmp_path):
 
 
 def test_api_case_counts(campaigns):
-    assert Counter(c.args[0] for c in api_cases(campaigns)) == {"fragility": 3}
+    assert Counter(c.args[0] for c in api_cases(campaigns)) == {"fragility": 3, "contents": 1}
 
 
 def test_contents_campaigns_with_nothing_to_fit_are_refused_in_one_line(campaigns):

@@ -201,8 +201,16 @@ def all_cases(root: Path, base: Path) -> list[Case]:
     return _damaged_stores(root, base) + _scene_cases(root)
 
 
+#: Scene cases swept by ``make test`` (one per kind of unmet need: a restitution, an end time, a vertical motion,
+#: and ``--solver`` on a scene); the others, the same checks on other solvers, behind ``slow``
+#: (tests/campaign/test_scene_capabilities.py loads every solver x need combination in make test, in-process).
+QUICK_SCENES: tuple[str, ...] = ("scene_mj_default", "scene_friction_end_time", "scene_opensees_vertical",
+                                 "scene_sdof_slider", "run_slider_housner_fast")
+
+
 def test_hostile_stores_and_scenes(base, tmp_path):
-    cases = all_cases(tmp_path, base)
+    cases = [c for c in all_cases(tmp_path, base) if not c.name.startswith(("scene_", "run_")) or c.name in QUICK_SCENES]
+    assert len(cases) == 26 + len(QUICK_SCENES)
     before = {c.name: (tmp_path / "stores" / c.name[6:] / "results.sqlite").read_bytes()
               for c in cases if c.name.startswith("store_")}
     work = tmp_path / "work"
@@ -212,6 +220,14 @@ def test_hostile_stores_and_scenes(base, tmp_path):
     for name, data in before.items():  # a damaged store is refused, never touched
         store = tmp_path / "stores" / name[6:] / "results.sqlite"
         assert store.read_bytes() == data, name
+
+
+@pytest.mark.slow
+def test_every_scene_whose_solver_cannot_meet_a_need_is_refused(base, tmp_path):
+    cases = [c for c in _scene_cases(tmp_path) if c.name not in QUICK_SCENES]
+    work = tmp_path / "work"
+    work.mkdir()
+    assert sweep(cases, work) == []
 
 
 def test_store_case_counts(base, tmp_path):

@@ -64,3 +64,18 @@ def sweep(cases: Iterable[Case], work: Path, *, workers: int = 4, timeout: float
     """Check every case (in parallel threads, each its own subprocess); the broken promises, one line each."""
     with ThreadPoolExecutor(max_workers=workers) as pool:
         return [r for r in pool.map(lambda c: check_case(c, work, timeout=timeout), cases) if r]
+
+
+def one_per_option(cases: list[Case]) -> tuple[list[Case], list[Case]]:
+    """``(quick, rest)``: the cases split so that ``make test`` sweeps one bad value of every option and the slow
+    test every other; together they are the whole table. A case's option is its name without the last word
+    (``"simulate --width '-1'"`` -> ``"simulate --width"``); the k-th option takes its (k mod n)-th value, so the
+    bad values are spread over the options. The values of one option meet the same check (one converter, one
+    range check), so one value per option catches a broken check; a case whose name is its own group (a file
+    defect, a regression named in words) is always in ``quick``."""
+    groups: dict[str, list[Case]] = {}
+    for case in cases:
+        groups.setdefault(case.name.rsplit(" ", 1)[0], []).append(case)
+    quick = [group[k % len(group)] for k, group in enumerate(groups.values())]
+    chosen = {id(c) for c in quick}
+    return quick, [c for c in cases if id(c) not in chosen]

@@ -74,6 +74,7 @@ def test_an_unguarded_script_stops_at_once_with_one_error_naming_the_fix(tmp_pat
     assert wall < 60.0  # two interpreter start-ups (measured about 4 s on a loaded 2-core machine); the old way: minutes
 
 
+@pytest.mark.slow  # make test runs guarded main modules through spawn in every `opsrock run --workers 2` test
 def test_a_guarded_script_runs_in_workers(tmp_path):
     proc, _, starts = run_script(tmp_path, GUARDED.format(workers=2))
     assert proc.returncode == 0, proc.stderr

@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from _hostile import Case, listing, sweep
+from _hostile import Case, listing, one_per_option, sweep
 from _support import BLOCKS, OPSROCK, RECORD_SCENE, permissions_bind_root, run_opsrock
 
 
@@ -328,19 +328,6 @@ def _report_cases(b: str) -> list[Case]:
     ]
 
 
-def quick_and_rest(cases: list[Case]) -> tuple[list[Case], list[Case]]:
-    """The numeric sweep split in two: ``make test`` sweeps one bad value of every option (the k-th option its
-    (k mod n)-th value, so every bad value is tried on several options), the slow test every other; together
-    they are the whole table. The values of one option meet the same check (one converter, one range check), so
-    one value per option catches a broken check, and ``make test`` stays under 10 minutes on 2 cores."""
-    groups: dict[str, list[Case]] = {}
-    for case in cases:
-        groups.setdefault(case.name.rsplit(" ", 1)[0], []).append(case)
-    quick = [group[k % len(group)] for k, group in enumerate(groups.values())]
-    chosen = {id(c) for c in quick}
-    return quick, [c for c in cases if id(c) not in chosen]
-
-
 def _sweep_and_check(cases: list[Case], base: Path, work: Path) -> None:
     before = listing(base)
     broken = sweep(cases, work)
@@ -349,7 +336,7 @@ def _sweep_and_check(cases: list[Case], base: Path, work: Path) -> None:
 
 
 def test_every_command_refuses_hostile_input(base, tmp_path):
-    quick, _ = quick_and_rest(numeric_cases(str(base)))
+    quick, _ = one_per_option(numeric_cases(str(base)))
     assert {c.name.rsplit(" ", 1)[1] for c in quick} == {repr(v) for v in BAD_VALUES}  # every bad value tried
     cases = quick + file_cases(str(base))
     _sweep_and_check(cases, base, tmp_path)
@@ -357,7 +344,7 @@ def test_every_command_refuses_hostile_input(base, tmp_path):
 
 @pytest.mark.slow
 def test_every_option_refuses_every_bad_value(base, tmp_path):
-    _, rest = quick_and_rest(numeric_cases(str(base)))
+    _, rest = one_per_option(numeric_cases(str(base)))
     _sweep_and_check(rest, base, tmp_path)
 
 

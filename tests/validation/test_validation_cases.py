@@ -166,6 +166,9 @@ def test_sdof_agreement_row(sdof_agreement_case, case_id):
             f"the tolerance {THETA_TOLERANCE:g}")
 
 
+# Behind slow to keep make test under 10 minutes: CI's `make test-wheel` runs every case's quick form through
+# `opsrock validate --quick`, which fails unless each case passes its targets.
+@pytest.mark.slow
 def test_model_form_quick(tmp_path):
     # 36 pulses; the SDOF model approaches the rigid body as delta shrinks (README of the case).
     m = run_case("model_form", tmp_path, quick=True)
@@ -253,6 +256,9 @@ def test_sdof_records_quick(tmp_path):
     assert len(sdof_records._load(path)) == 2
 
 
+# Behind slow to keep make test under 10 minutes: CI's `make test-wheel` runs every case's quick form through
+# `opsrock validate --quick`, which fails unless each case passes its targets.
+@pytest.mark.slow
 def test_friction_quick(tmp_path):
     # Validation case 11, quick form: every closed form and limit check, the mode-initiation diagram on a
     # coarse grid, and 35 cases of the two implementations (26 pulses, 8 noise-record cases). Measured: all

@@ -16,6 +16,9 @@ TABLE2_COLUMNS = ["im", "W_HS", "R_S", "R_O", "W_HS_over_R_S", "W_HS_over_R_O", 
 FIGURES = ["fig3", "fig4", "fig6a", "fig6b", "fig8", "fig9", "fig10", "fig11", "fig12", "thresholds"]
 
 
+# Behind slow to keep make test under 10 minutes: CI's `make test-wheel` runs `opsrock reproduce` end to end from
+# the installed wheel, which exits non-zero when the validation gate fails; this test checks its files in detail.
+@pytest.mark.slow
 @pytest.mark.opensees
 def test_reproduce_end_to_end_on_tiny_scene(tmp_path):
     out = tmp_path / "results"

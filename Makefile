@@ -19,13 +19,13 @@ reproduce: install
 test: install
 	$(BIN)/python -m pytest
 
-# The fragility tests with the lowest scipy and numpy that pyproject.toml allows (scipy 1.10.0, numpy 1.24.0,
+# The fragility, plot and inventory tests with the lowest scipy and numpy that pyproject.toml allows (scipy 1.10.0, numpy 1.24.0,
 # pinned with the rest in requirements-lowest.txt), in a venv of their own: the fits use no private scipy name
 # and must give the same answers on every scipy in the declared range. .ci/run calls it after make test.
 # `make test-lowest LOWEST_TESTS=` runs the whole suite there.
 LOWEST_VENV  := .venv-lowest
 LOWEST       := requirements-lowest.txt
-LOWEST_TESTS ?= tests/fragility tests/plots
+LOWEST_TESTS ?= tests/fragility tests/plots tests/inventory
 
 test-lowest: blas $(LOWEST_VENV)/.opsrock-installed
 	$(LOWEST_VENV)/bin/python -m pytest $(LOWEST_TESTS)

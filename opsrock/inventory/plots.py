@@ -65,7 +65,10 @@ def plot_item_fragility(curves: pd.DataFrame, item: str, path: str | Path, deman
         line, = ax.plot(g["x"], g["p"], ls=ls, marker=marker, ms=5, lw=1.6, markevery=(k * step // max(len(groups), 1), step),
                         mfc="none", label=label)
         if g["p_lo"].notna().any():
-            ax.fill_between(g["x"], g["p_lo"], g["p_hi"], color=line.get_color(), alpha=0.12, lw=0)
+            # arrays, not Series: numpy 1.24 (the floor pyproject.toml allows) cannot mask a Series whose index
+            # does not start at 0
+            ax.fill_between(g["x"].to_numpy(float), g["p_lo"].to_numpy(float), g["p_hi"].to_numpy(float),
+                            color=line.get_color(), alpha=0.12, lw=0)
     if not groups:
         ax.text(0.5, 0.5, f"no fitted {outcome} curve", ha="center", va="center", transform=ax.transAxes, fontsize=10)
     ax.set_xscale("log")

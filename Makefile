@@ -19,7 +19,7 @@ reproduce: install
 test: install
 	$(BIN)/python -m pytest
 
-# The fragility, plot and inventory tests with the lowest scipy and numpy that pyproject.toml allows (scipy 1.10.0, numpy 1.24.0,
+# The fragility, plot and inventory tests with the lowest scipy and numpy that pyproject.toml allows (scipy 1.10.0, numpy 1.24.1,
 # pinned with the rest in requirements-lowest.txt), in a venv of their own: the fits use no private scipy name
 # and must give the same answers on every scipy in the declared range. .ci/run calls it after make test.
 # `make test-lowest LOWEST_TESTS=` runs the whole suite there.

@@ -52,6 +52,10 @@ class Block:
     radius_of_gyration : float or None, optional
         Radius of gyration ``r`` about the centre of mass for rotation in the plane of the motion (m), so
         that ``I_cm = m r²``. Default None: a homogeneous block's, ``r² = (width² + height²) / 12``.
+    depth : float or None, optional
+        Full base depth ``2d`` (m), across the plane of ``width`` and ``height``, within
+        :data:`opsrock.limits.LIMITS` (as ``width``). Default None: a planar block (every planar solver ignores
+        the depth; the three-dimensional solver ``rigid3d`` needs it).
 
     Notes
     -----
@@ -79,10 +83,13 @@ class Block:
     friction_kinetic: float | None = None
     cm_height: float | None = None
     radius_of_gyration: float | None = None
+    depth: float | None = None
 
     def __post_init__(self) -> None:
         self._check_friction()
         object.__setattr__(self, "width", check("width", self.width))
+        if self.depth is not None:
+            object.__setattr__(self, "depth", check("width", self.depth, shown_as="depth"))
         object.__setattr__(self, "height", check("height", self.height))
         object.__setattr__(self, "mass", check("mass", self.mass))
         self._check_mass_distribution()
@@ -159,6 +166,17 @@ class Block:
     def b(self) -> float:
         """Half-width ``b`` (m)."""
         return 0.5 * self.width
+
+    @property
+    def d(self) -> float:
+        """Half-depth ``d`` (m); ``nan`` for a planar block (``depth`` None)."""
+        return math.nan if self.depth is None else self.depth / 2.0
+
+    @property
+    def alpha_depth(self) -> float:
+        """Slenderness across the depth, ``atan(d / h)`` (rad, ``h`` the height of the centre of mass); ``nan``
+        for a planar block."""
+        return math.atan2(self.d, self.h_cm) if self.depth is not None else math.nan
 
     @property
     def h(self) -> float:
@@ -265,4 +283,5 @@ class Block:
             "friction_kinetic": self.friction_kinetic,
             "cm_height": self.h_cm,
             "radius_of_gyration": self.r_gyration,
+            "depth": self.depth,
         }

@@ -145,6 +145,81 @@ class ImpactLog:
 
 
 @dataclass(frozen=True)
+class PlanSummary:
+    """What a block did in three dimensions (solver ``rigid3d``), beyond the tilt that
+    :attr:`RockingResult.theta` holds.
+
+    Parameters
+    ----------
+    tilt_max : float
+        Peak tilt (rad): the angle between the block's vertical axis and the vertical. In planar motion it is
+        ``|theta|``, so it equals :attr:`RockingResult.theta_max`.
+    twist_max : float
+        Peak rotation about the vertical (rad, absolute).
+    slide_max : float
+        Peak horizontal displacement of the base's centre relative to the floor (m, the magnitude of the
+        vector).
+    slide_residual : tuple of float
+        Horizontal displacement ``(x, y)`` of the base's centre relative to the floor at the end of the run
+        (m, block frame at rest).
+    overturned_over : str
+        ``"edge"`` or ``"corner"``: what the block last stood on when it overturned (one base edge on the floor,
+        or a single corner); ``""`` if it did not overturn.
+    overturn_direction : float
+        Direction in plan (deg, block frame, from ``x`` towards ``y``) in which the centre of mass left the
+        support polygon when the block overturned; ``nan`` if it did not.
+    time_edge : float
+        Time during which the block stood on one base edge (two corners) only (s): rocking about an edge.
+    time_corner : float
+        Time during which the block stood on a single corner (s): rocking on a corner, wobbling.
+    time_sliding : float
+        Time during which a loaded corner slipped (s).
+    time_flight : float
+        Time during which no corner touched the floor (s).
+    energy : Mapping
+        Energy balance in J (for the block's mass), as :attr:`ContactSummary.energy`.
+    """
+
+    tilt_max: float
+    twist_max: float
+    slide_max: float
+    slide_residual: tuple[float, float]
+    overturned_over: str = ""
+    overturn_direction: float = math.nan
+    time_edge: float = 0.0
+    time_corner: float = 0.0
+    time_sliding: float = 0.0
+    time_flight: float = 0.0
+    energy: Mapping[str, float] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class PlanHistory:
+    """Time histories of a three-dimensional run (solver ``rigid3d``), on :attr:`RockingResult.time`.
+
+    Parameters
+    ----------
+    rotation : ndarray
+        ``(n, 3)`` rotation vector of the block (rad, floor frame at rest: ``x`` along the width, ``y`` along
+        the depth, ``z`` up).
+    position : ndarray
+        ``(n, 3)`` position of the centre of mass relative to its place at rest (m, floor frame).
+    twist : ndarray
+        ``(n,)`` rotation about the vertical (rad).
+    slide : ndarray
+        ``(n, 2)`` horizontal displacement of the base's centre relative to the floor (m).
+    corners_down : ndarray
+        ``(n,)`` number of base corners on the floor (0 to 4).
+    """
+
+    rotation: np.ndarray = field(repr=False)
+    position: np.ndarray = field(repr=False)
+    twist: np.ndarray = field(repr=False)
+    slide: np.ndarray = field(repr=False)
+    corners_down: np.ndarray = field(repr=False)
+
+
+@dataclass(frozen=True)
 class RockingResult:
     """Response of one block to one excitation, whatever solver produced it.
 
@@ -197,6 +272,11 @@ class RockingResult:
         ``friction`` model only).
     contact : ContactSummary or None
         Modes, sliding and energy balance (solvers of the ``friction`` model only).
+    plan : PlanSummary or None
+        What the block did in three dimensions (solver ``rigid3d`` only; its ``theta`` is then the tilt, rad,
+        and ``alpha`` the slenderness of the weaker axis, ``atan(min(b, d) / h)``).
+    plan_history : PlanHistory or None
+        Its three-dimensional histories (solver ``rigid3d`` with ``record=True`` only).
     diagnostics : Mapping
         Solver bookkeeping that is not part of the answer, JSON-serialisable: for OpenSees the
         number of its own console messages (sent to its log file, never to the terminal), the
@@ -224,6 +304,8 @@ class RockingResult:
     slide: np.ndarray | None = field(default=None, repr=False)
     contact: ContactSummary | None = None
     failure: str | None = None
+    plan: PlanSummary | None = None
+    plan_history: PlanHistory | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         if self.status == "failed" and self.failure is None:

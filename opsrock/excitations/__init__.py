@@ -22,7 +22,8 @@ from opsrock.excitations.pulses import (
     RickerWavelet,
     pulse_class,
 )
+from opsrock.excitations.plan import PlanMotion
 from opsrock.excitations.records import Record
 
-__all__ = ["Excitation", "HalfSinePulse", "HarmonicPulse", "OneCosinePulse", "OneSinePulse", "PFV_CONVENTIONS", "PULSE_SHAPES", "Pulse",
+__all__ = ["Excitation", "HalfSinePulse", "HarmonicPulse", "OneCosinePulse", "OneSinePulse", "PFV_CONVENTIONS", "PULSE_SHAPES", "PlanMotion", "Pulse",
            "Record", "RectangularPulse", "RickerWavelet", "pulse_class"]

@@ -18,7 +18,7 @@ from opsrock.excitations.base import has_vertical
 from opsrock.limits import one_of
 
 #: The models a solver may solve (:attr:`SolverInfo.model`).
-MODELS: tuple[str, ...] = ("rigid", "sdof", "friction")
+MODELS: tuple[str, ...] = ("rigid", "sdof", "friction", "rigid3d")
 
 #: What a solver takes as excitation (:attr:`SolverInfo.excitations`): any :class:`Excitation`, or the
 #: analytic pulses of ``PULSE_SHAPES`` and records only (the compiled kernels).
@@ -40,7 +40,9 @@ class SolverInfo:
     model : str
         What it solves, one of :data:`MODELS`: ``"rigid"`` (the rigid-body equation, Eq. 1-3),
         ``"sdof"`` (the paper's equivalent SDOF model, Eq. 5-8) or ``"friction"`` (the rigid block with
-        Coulomb friction under horizontal and vertical floor motion, docs/friction.md).
+        Coulomb friction under horizontal and vertical floor motion, docs/friction.md) or ``"rigid3d"`` (the
+        rigid box on four base corners with isotropic Coulomb friction under two horizontal components and
+        a vertical one, docs/three-dimensions.md).
     friction : bool
         Models a base that slips (``Block.friction``); False: a block with friction is refused.
     vertical : bool
@@ -65,6 +67,10 @@ class SolverInfo:
         restitution laws and distributions); False: Housner's ``e_H`` only.
     excitations : str
         What it takes as excitation, one of :data:`EXCITATION_KINDS`.
+    plan : bool
+        Models motion in plan: takes a :class:`~opsrock.excitations.plan.PlanMotion` with a second horizontal
+        component or a block turned in plan (``azimuth``), and a block's ``depth``; False: planar motion along
+        the block's width only (a :class:`PlanMotion` that is not planar is refused).
     compiled : bool
         Runs a numba kernel (compiled once and cached on first use).
     needs_opensees : bool
@@ -84,6 +90,7 @@ class SolverInfo:
     flat_landing: bool = True
     restitution: bool = True
     excitations: str = "any"
+    plan: bool = False
     compiled: bool = False
     needs_opensees: bool = False
 
@@ -122,6 +129,9 @@ METHODS: dict[str, SolverInfo] = {
                        excitations="pulses_records", compiled=True, end_time_under_motion=False),
     "moreau_jean": _entry("moreau_jean", "MoreauJeanSettings", "friction", friction=True, vertical=True,
                           restitution=False, mass_distribution=True, excitations="pulses_records", compiled=True, end_time_under_motion=False),
+    "rigid3d": _entry("rigid3d", "Rigid3DSettings", "rigid3d", friction=True, vertical=True, restitution=False,
+                      mass_distribution=True, excitations="pulses_records", plan=True, compiled=True,
+                      end_time_under_motion=False),
 }
 
 #: Solver names accepted by :func:`opsrock.solvers.simulate` and the command line.
@@ -189,6 +199,11 @@ def check_model(name: str, block: Block, excitation: object) -> None:
         raise ModelNotSupported(
             f"solver {name!r} takes horizontal floor motion only; the excitation has a vertical component: "
             f"use solver {_alternative('vertical')} (or drop the vertical motion)")
+    if _in_plan(excitation) and not entry.plan:
+        raise ModelNotSupported(
+            f"solver {name!r} is planar (one horizontal component along the block's width); the excitation has "
+            f"a second horizontal component or turns the block in plan: use solver {_alternative('plan')}",
+            argument="solver")
     if excitation is None and not entry.free_rocking:
         raise ModelNotSupported(f"solver {name!r} does not model free rocking (excitation None)")
     if not entry.restitution and (block.restitution is not None or block.restitution_factor != 1.0):
@@ -197,6 +212,11 @@ def check_model(name: str, block: Block, excitation: object) -> None:
         raise ModelNotSupported(
             f"solver {name!r} reproduces Housner's impact (e = e_H = {block.e_R:.6g}) and no other: block "
             f"{block.name or '<unnamed>'} has {given}; build it with restitution_factor=1.0 and no restitution")
+
+
+def _in_plan(excitation: object) -> bool:
+    """True if ``excitation`` is a :class:`~opsrock.excitations.plan.PlanMotion` that is not planar."""
+    return getattr(excitation, "planar", True) is False
 
 
 def _mass_alternative(block: Block) -> str:

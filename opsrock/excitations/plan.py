@@ -1,0 +1,113 @@
+"""Floor motion in plan: two horizontal components (and the first one's vertical motion) and the block's
+orientation in plan, for the three-dimensional solver ``rigid3d``.
+
+Frames (docs/three-dimensions.md)
+---------------------------------
+The *motion axes* 1 and 2 are those of the records (a building's two horizontal directions; a recording's two
+components). The *block frame* has ``x`` along the block's width (``2b``), ``y`` along its depth (``2d``) and
+``z`` up. ``azimuth`` is the angle (deg) from motion axis 1 to the block's ``x`` axis, counter-clockwise seen
+from above; the floor acceleration in the block frame is therefore::
+
+    a_x =  a_1 cos(azimuth) + a_2 sin(azimuth)
+    a_y = -a_1 sin(azimuth) + a_2 cos(azimuth)
+
+A single horizontal motion along the block's direction ``phi`` (deg, from ``x`` towards ``y``) is
+``PlanMotion(motion, azimuth=-phi)`` (:meth:`PlanMotion.along`). With ``second=None`` and ``azimuth=0`` the
+motion is the planar solvers' motion along the block's width, with their sign convention (a positive floor
+acceleration tips the block towards negative ``theta``).
+
+The vertical floor motion is the first component's (``first.vertical``, as every planar excitation carries
+it); ``second`` must carry none.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from opsrock.errors import InputError, InputTypeError
+from opsrock.excitations.base import Excitation, has_vertical
+from opsrock.limits import real_number
+
+
+@dataclass(frozen=True)
+class PlanMotion:
+    """Two horizontal floor-motion components and the block's orientation in plan.
+
+    Parameters
+    ----------
+    first : Excitation
+        The component along motion axis 1 (m/s²), with the vertical floor motion if any.
+    second : Excitation or None
+        The component along motion axis 2 (m/s²), with no vertical motion of its own. None: none.
+    azimuth : float
+        Angle from motion axis 1 to the block's width axis ``x`` (deg), counter-clockwise seen from above, in
+        [-360, 360]. Default 0.
+    """
+
+    first: Excitation
+    second: Excitation | None = None
+    azimuth: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in ("first", "second"):
+            value = getattr(self, name)
+            if value is None and name == "second":
+                continue
+            if isinstance(value, PlanMotion) or not isinstance(value, Excitation):
+                raise InputTypeError(f"{name} must be a floor motion (a pulse or a record), got {value!r}")
+        if self.second is not None and has_vertical(self.second):
+            raise InputError("second must carry no vertical motion (the vertical floor motion is the first "
+                             "component's)", argument="second")
+        az = real_number("azimuth", self.azimuth)
+        if not (math.isfinite(az) and -360.0 <= az <= 360.0):
+            raise InputError(f"azimuth must lie in [-360, 360] deg, got {self.azimuth!r}", argument="azimuth")
+        object.__setattr__(self, "azimuth", az)
+
+    @classmethod
+    def along(cls, motion: Excitation, phi: float) -> "PlanMotion":
+        """``motion`` along the block's plan direction ``phi`` (deg, from its width axis ``x`` towards ``y``)."""
+        return cls(motion, None, -real_number("phi", phi))
+
+    @property
+    def planar(self) -> bool:
+        """True if the motion is the planar solvers' own: one component along the block's width (``azimuth`` a
+        multiple of 360 deg, no second component)."""
+        return self.second is None and self.azimuth % 360.0 == 0.0
+
+    @property
+    def vertical(self):
+        """The first component's vertical motion (as :attr:`Record.vertical` or :attr:`Pulse.vertical`)."""
+        return getattr(self.first, "vertical", None)
+
+    @property
+    def duration(self) -> float:
+        """Time after which both components are zero (s)."""
+        return max(self.first.duration, 0.0 if self.second is None else self.second.duration)
+
+    @property
+    def pfa(self) -> float:
+        """Peak of the first component (m/s²): the quantity a campaign scales, as for a planar motion."""
+        return self.first.pfa
+
+    def components(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Floor acceleration ``(a_x, a_y)`` in the block frame at times ``t`` (m/s²)."""
+        a1 = np.asarray(self.first.acceleration(t), dtype=float)
+        a2 = np.zeros_like(a1) if self.second is None else np.asarray(self.second.acceleration(t), dtype=float)
+        c, s = math.cos(math.radians(self.azimuth)), math.sin(math.radians(self.azimuth))
+        return c * a1 + s * a2, -s * a1 + c * a2
+
+    def acceleration(self, t: np.ndarray | float) -> np.ndarray:
+        """Magnitude of the horizontal floor acceleration at times ``t`` (m/s²)."""
+        ax, ay = self.components(t)
+        return np.hypot(ax, ay)
+
+    def breakpoints(self) -> np.ndarray:
+        """Times where either component is not smooth (s)."""
+        parts = [self.first.breakpoints()] + ([] if self.second is None else [self.second.breakpoints()])
+        return np.unique(np.concatenate(parts))
+
+
+__all__ = ["PlanMotion"]

@@ -800,8 +800,8 @@ def _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
 
     A corner with a normal impulse is down (an impact if it was up), slipping if its tangential speed exceeds
     ``vel_tol``. A corner without impulse is up once it moves away from the floor faster than ``vel_tol`` or
-    rises above ``lift_gap``; otherwise it keeps its flags (a pivot constrained at velocity level drifts up and
-    takes an occasional free step)."""
+    rises above ``lift_gap``; otherwise it stays down (a pivot constrained at velocity level drifts up and
+    takes an occasional free step; a level block may rest on three corners), slipping if it moves."""
     impact = False
     V0, V1, V2, w0, w1, w2 = new[7], new[8], new[9], new[10], new[11], new[12]
     for i in range(4):
@@ -820,6 +820,8 @@ def _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
         elif u2 > vel_tol or gap > lift_gap:
             touch[i] = False
             slip[i] = False
+        elif touch[i]:  # down without load (a level block on three corners): slipping if it moves
+            slip[i] = math.hypot(u0, u1) > vel_tol
     return impact
 
 

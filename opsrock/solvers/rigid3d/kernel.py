@@ -916,7 +916,6 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
         A history row every this many steps (and the last state).
     """
     h, Rw = geom[2], geom[7]
-    stick_only = fric[2] > 0.5
     dt, theta_mj, rocked_theta, weak_y = num[0], num[1], num[2], num[3] > 0.5
     max_steps, max_tail, rest_vel = int(limits[0]), int(limits[1]), limits[2]
     rest_steps, vel_tol, lift_gap = int(limits[3]), limits[4], limits[5]

@@ -77,11 +77,11 @@ component at azimuth 30 deg, ``mu = 0.32`` (it slides, twists and rocks a little
 dtau     mu = None       mu = 0.32       record-s     two components, mu = 0.32:        record-s
          theta_max/a     theta_max/a     per CPU-s    theta_max/a, slide_max (m)        per CPU-s
 =======  ==============  ==============  ===========  ================================  ===========
-1e-3     0.901102        0.866976        791          0.015860, 0.03518                 139
-5e-4     0.899872        0.882513        373          0.015829, 0.03524                 64
-2.5e-4   0.896300        0.895276        202          0.015968, 0.03526                 33
-1e-4     0.908043        0.908082        77           0.015898, 0.03528                 16.5
-5e-5     0.906304        0.906364        38           0.015889, 0.03529                 7.8
+1e-3     0.901102        0.866976        609          0.015860, 0.03518                 190
+5e-4     0.899872        0.882513        295          0.015829, 0.03524                 98
+2.5e-4   0.896300        0.895276        218          0.015968, 0.03526                 51
+1e-4     0.908043        0.908082        91           0.015901, 0.03527                 26.4
+5e-5     0.906304        0.906364        45           0.015889, 0.03529                 13.8
 =======  ==============  ==============  ===========  ================================  ===========
 
 rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha on the pulse and 1e-5 on the
@@ -97,8 +97,9 @@ overturns, as ``moreau_jean`` does. Against ``friction`` (mu = 0.5, which models
 swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 4.2e-4, 95th percentile 1.3e-3.
 
 Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms), 5-20 µs
-an NSGS step (slipping on one or two corners), 20 ns a rest-skipped step; 77 record-seconds per CPU-second on
-the rocking record above, 16.5 on the sliding two-component one (2-core project machine, shared). The kernel
+an NSGS step (slipping on one or two corners), 20 ns a rest-skipped step; 91 record-seconds per CPU-second on
+the rocking record above, 26 on the sliding two-component one (2-core project machine, shared; one run, the
+speeds scatter by about 20 % between runs). The kernel
 is compiled once and cached (``cache=True``): about 20 s cold, 0.3 s to load the cache.
 """
 

@@ -86,6 +86,9 @@ OUT_STICK_STEPS = ST.OUT_COMMON + 34  # steps solved by the closed-form stick (_
 OUT_SLIDE_STEPS = ST.OUT_COMMON + 35  # steps solved by the closed-form flat slide (_slide_flat)
 OUT_SIZE = ST.OUT_COMMON + 36
 
+#: Friction coefficient standing for infinity in the limit solve of :func:`_local` (its relative error 1/LIMIT_MU).
+LIMIT_MU = 1e6
+
 #: Corner signs ``(sx, sy)``: corners 0..3 at (+b, +d), (-b, +d), (-b, -d), (+b, -d) (counter-clockwise).
 CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
 CORNER_SY = np.array([1.0, 1.0, -1.0, -1.0])
@@ -228,8 +231,10 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
     (Newton, ``e_n = 0``) and Coulomb's law: open if the corner does not approach; else stick (``u = 0``) if that
     impulse lies in the static cone ``|P_t| <= mu_s P_z``; else slip with ``|P_t| = mu_k P_z`` against the slip
     velocity (maximal dissipation), the slip direction iterated from that of ``Pw`` (the corner's current
-    impulse). Returns 0 solved, 1 the infinite-friction limit (sticking needs a pulling
-    impulse: the corner is left open, see ``_nsgs``), 2 no slip solution (``W_zz - mu_k W_zt . s <= 0``)."""
+    impulse). Returns 0 solved, 1 solved by the infinite-friction limit (sticking would need a pulling impulse:
+    the slip solution with ``mu_k = LIMIT_MU``, whose normal impulse tends to 0 with a finite friction impulse
+    and ``u_z = 0``, as moreau_jean's limit status), 2 no slip solution (``W_zz - mu_k W_zt . s <= 0``; the
+    corner is then left open)."""
     if q[2] >= 0.0:
         P[0], P[1], P[2] = 0.0, 0.0, 0.0
         return 0
@@ -237,9 +242,9 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
         P[i] = -(Winv[i, 0] * q[0] + Winv[i, 1] * q[1] + Winv[i, 2] * q[2])
     if P[2] >= 0.0 and (stick_only or math.hypot(P[0], P[1]) <= mu_s * P[2] * (1.0 + 1e-12)):
         return 0
-    if stick_only:
-        P[0], P[1], P[2] = 0.0, 0.0, 0.0
-        return 1
+    limit = stick_only
+    if limit:  # the infinite-friction limit of slip: mu_k -> infinity, P_N -> 0 with a finite friction impulse
+        mu_k = LIMIT_MU
     # slip: alternate the normal impulse (u_z = 0 for the slip direction s) and the slip direction (secular),
     # from the direction of the previous friction impulse (warm start) or of the velocity with u_z = 0
     nu = math.hypot(Pw[0], Pw[1])
@@ -273,8 +278,11 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
             break
     den = W[2, 2] - mu_k * (W[2, 0] * s0 + W[2, 1] * s1)
     pn = -q[2] / den
+    if den <= 0.0:
+        P[0], P[1], P[2] = 0.0, 0.0, 0.0
+        return 2
     P[0], P[1], P[2] = -mu_k * pn * s0, -mu_k * pn * s1, pn
-    return 0
+    return 1 if limit else 0
 
 
 @numba.njit(cache=True)

@@ -20,7 +20,8 @@ corners, gap = height above the floor; Newton's impact law with ``e_n = 0`` at e
 (any other restitution is refused, as the registry declares). Isotropic Coulomb friction: stick inside the
 static cone ``|P_T| <= mu P_N``, else slip with the kinetic ``mu_k`` against the slip velocity; stick is tried
 first. ``Block.friction = None`` is infinite friction (corners stick only; a corner whose sticking impulse would
-pull is left open: ``diagnostics["limit_solves"]``).
+pull slides in the infinite-friction limit, ``P_N -> 0`` with a finite friction impulse, as moreau_jean's limit
+status: ``diagnostics["limit_solves"]``).
 
 Scheme (theta-method, ``theta_mj = 1/2``)::
 
@@ -88,12 +89,12 @@ rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha 
 record; like it, the rocking peak converges at first order with a scatter (each impact is located to a step).
 Hence the default ``dtau = 1e-4``: about 1e-3 alpha on records, 1e-4 on pulses. Planar limit (slow tier,
 tests/solvers/test_rigid3d_slow.py): the paper's 400 pulses (depth twice the width) against ``housner_fast``
-395/400 verdicts, median |d theta_max|/alpha 3.1e-5, 95th percentile 1.05e-3; the five differences are the
-model's, not the scheme's: on bookcase/f01/a07-a10 the tilt peaks at 8.57-8.70 alpha where housner_fast
-overturns (8.8: near pi/2 the pivot's normal impulse vanishes and the unilateral corner opens, where the
-event-driven equation holds it), and medicine_cabinet/f06/a09 leaves the floor (0.18 s of flight) and
-overturns, as ``moreau_jean`` does. Against ``friction`` (mu = 0.5, which models flight): 400/400, median 5.0e-5,
-95th percentile 3.3e-4. Twelve FEMA P695 far-field records at 0.45 g along ``x`` and, width and depth
+399/400 verdicts, median |d theta_max|/alpha 3.1e-5, 95th percentile 1.05e-3; the one difference is the
+model's, not the scheme's: medicine_cabinet/f06/a09 leaves the floor (0.18 s of flight, which housner_fast's
+bilateral pivot cannot) and overturns, as ``moreau_jean`` does. (With infinite friction a corner whose sticking
+impulse would pull slides in the infinite-friction limit; when it was left open instead, bookcase/f01/a07-a10
+stopped at 8.57-8.70 alpha, short of overturning at 8.8.) Against ``friction`` (mu = 0.5, which models flight): 400/400, median 5.0e-5,
+95th percentile 3.3e-4 (flight included, the friction solver models it). Twelve FEMA P695 far-field records at 0.45 g along ``x`` and, width and depth
 swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 4.2e-4, 95th percentile 1.3e-3.
 
 Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms), 5-20 µs

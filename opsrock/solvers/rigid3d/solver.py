@@ -318,7 +318,7 @@ def solve(block: Block, excitation: PlanMotion | Pulse | Record | None, settings
         ``max_penetration`` (m), ``contact_steps`` (of which ``stick_steps`` and ``flat_slide_steps`` were
         solved in closed form, the rest by NSGS), ``rest_skip_steps``, ``nsgs_unconverged_steps``,
         ``nsgs_mean_sweeps``, ``nsgs_max_sweeps``, ``limit_solves`` (local solves where sticking with infinite
-        friction needed a pulling impulse: the corner was left open).
+        friction needed a pulling impulse: solved by the infinite-friction limit of slip).
 
     Raises
     ------

@@ -95,7 +95,8 @@ bilateral pivot cannot) and overturns, as ``moreau_jean`` does. (With infinite f
 impulse would pull slides in the infinite-friction limit; when it was left open instead, bookcase/f01/a07-a10
 stopped at 8.57-8.70 alpha, short of overturning at 8.8.) Against ``friction`` (mu = 0.5, which models
 flight): 400/400, median 5.0e-5, 95th percentile 3.3e-4. Twelve FEMA P695 far-field records at 0.45 g along
-``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 4.2e-4, 95th percentile 1.3e-3.
+``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 4.2e-4, 95th
+percentile 1.3e-3.
 
 Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms), 5-20 µs
 an NSGS step (slipping on one or two corners), 20 ns a rest-skipped step; 91 record-seconds per CPU-second on

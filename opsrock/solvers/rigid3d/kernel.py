@@ -314,7 +314,8 @@ def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter,
             u2 = V[2] + Om[0] * ri[1] - Om[1] * ri[0]
             W = Wd[i]
             for a in range(3):
-                q[a] = (u0 if a == 0 else (u1 if a == 1 else u2)) - (W[a, 0] * Pi[0] + W[a, 1] * Pi[1] + W[a, 2] * Pi[2])
+                ua = u0 if a == 0 else (u1 if a == 1 else u2)
+                q[a] = ua - (W[a, 0] * Pi[0] + W[a, 1] * Pi[1] + W[a, 2] * Pi[2])
             code = _local(W, Wi[i], q, mu_s, mu_k, stick_only, Pi, Pn)
             if code == 1:
                 out[OUT_LIMIT_STEPS] += 1.0
@@ -532,16 +533,17 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
 
 @numba.njit(cache=True)
 def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
-    """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its
-    corners on the floor (``V_z = 0``, no rotation about a horizontal axis: with the floor's normal ``z`` the
-    corners' normal velocities ``V_z + omega_x r_y - omega_y r_x`` vanish at three corners not in a line iff
-    these do, whatever the tilt) and moves with ``(V_x, V_y, omega_z)``; each corner's impulse is ``N_i (-mu_k s_i, 1)``. For the slip directions ``s_i`` the six momentum
-    equations are linear in ``(N_i, V_x, V_y, omega_z)``; their least-norm solution (the indeterminate part of
-    the normal impulses, alternating between the corners, left at zero) is iterated with ``s_i`` the direction
-    of each corner's slip velocity (from the free velocity's first) until the directions settle; on four corners a
-    distribution with a pulling corner is moved along the system's free direction to the nearest compressive one. Accepted, into
-    ``V``, ``Om`` and ``P``, if the directions settle (each corner then slips along the ``s_i`` its friction
-    opposes) and every ``N_i >= 0``; else False (NSGS then solves the step). ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
+    """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its corners
+    on the floor (``V_z = 0``, no rotation about a horizontal axis: with the floor's normal ``z`` the corners'
+    normal velocities ``V_z + omega_x r_y - omega_y r_x`` vanish at three corners not in a line iff these do,
+    whatever the tilt) and moves with ``(V_x, V_y, omega_z)``; each corner's impulse is ``N_i (-mu_k s_i, 1)``. For
+    the slip directions ``s_i`` the six momentum equations are linear in ``(N_i, V_x, V_y, omega_z)``; their least-
+    norm solution (the indeterminate part of the normal impulses, alternating between the corners, left at zero) is
+    iterated with ``s_i`` the direction of each corner's slip velocity (from the free velocity's first) until the
+    directions settle; on four corners a distribution with a pulling corner is moved along the system's free
+    direction to the nearest compressive one. Accepted, into ``V``, ``Om`` and ``P``, if the directions settle (each
+    corner then slips along the ``s_i`` its friction opposes) and every ``N_i >= 0``; else False (NSGS then solves
+    the step). ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
     idx = np.empty(4, dtype=np.int64)
     xs = np.empty(7)
     zs = np.empty(7)
@@ -1048,7 +1050,8 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
             out[OUT_OVER_KIND] = over_kind
             out[OUT_OVER_DIR] = math.atan2(ly, lx)
             break
-        speed = max(abs(state[7]), abs(state[8]), abs(state[9]), Rw * (abs(state[10]) + abs(state[11]) + abs(state[12])))
+        speed = max(abs(state[7]), abs(state[8]), abs(state[9]),
+                    Rw * (abs(state[10]) + abs(state[11]) + abs(state[12])))
         still = speed < rest_vel
         resting = resting + 1 if (k >= n_exc and mode == MODE_REST and still) else 0
         if mode == MODE_REST and n_down == 4 and speed < vel_tol:

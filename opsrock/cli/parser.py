@@ -365,6 +365,11 @@ def _contents(sub) -> None:
                         "(default 0.05)")
     p.add_argument("--accept-implausible", action="store_true",
                    help="with --inventory/--motions: run a block larger than 10 m or a motion beyond 10 g anyway")
+    p.add_argument("--solver", help="with --inventory/--motions: the solver of the items without friction "
+                                    "(default housner_fast), or rigid3d: each item a box in three dimensions under "
+                                    "both directions of each record and floor at once (docs/inventory.md)")
+    p.add_argument("--azimuths", help="with --solver rigid3d: the items' azimuths in plan (deg, from direction 1 to "
+                                      "an item's width), comma-separated, pooled in each fit (default 0,45,90)")
 
 
 COMMANDS = {"simulate": _simulate, "threshold": _threshold, "records": _records, "run": _run,

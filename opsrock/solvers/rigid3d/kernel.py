@@ -132,18 +132,21 @@ def _inv_inertia(Q, ib, Iinv, Iw):
 
 @numba.njit(cache=True)
 def _delassus(r, Iinv, W):
-    """``W = 1 - S I^-1 S`` of one corner at ``r`` from the centre of mass (its own 3 x 3 block)."""
-    S = np.empty((3, 3))
-    S[0, 0], S[0, 1], S[0, 2] = 0.0, -r[2], r[1]
-    S[1, 0], S[1, 1], S[1, 2] = r[2], 0.0, -r[0]
-    S[2, 0], S[2, 1], S[2, 2] = -r[1], r[0], 0.0
-    for i in range(3):
-        for j in range(3):
-            a = 0.0
-            for k in range(3):
-                for m in range(3):
-                    a += S[i, k] * Iinv[k, m] * S[m, j]
-            W[i, j] = (1.0 if i == j else 0.0) - a
+    """``W = 1 - S I^-1 S`` of one corner at ``r`` from the centre of mass (its own 3 x 3 block): ``-S I^-1 S
+    e_j = r x (I^-1 (r x e_j))``."""
+    r0, r1, r2 = r[0], r[1], r[2]
+    for j in range(3):
+        # c = r x e_j
+        c0 = 0.0 if j == 0 else (r2 if j == 1 else -r1)
+        c1 = -r2 if j == 0 else (0.0 if j == 1 else r0)
+        c2 = r1 if j == 0 else (-r0 if j == 1 else 0.0)
+        t0 = Iinv[0, 0] * c0 + Iinv[0, 1] * c1 + Iinv[0, 2] * c2
+        t1 = Iinv[1, 0] * c0 + Iinv[1, 1] * c1 + Iinv[1, 2] * c2
+        t2 = Iinv[2, 0] * c0 + Iinv[2, 1] * c1 + Iinv[2, 2] * c2
+        # W e_j = e_j - (t x r) = e_j + r x t
+        W[0, j] = (1.0 if j == 0 else 0.0) + r1 * t2 - r2 * t1
+        W[1, j] = (1.0 if j == 1 else 0.0) + r2 * t0 - r0 * t2
+        W[2, j] = (1.0 if j == 2 else 0.0) + r0 * t1 - r1 * t0
 
 
 @numba.njit(cache=True)
@@ -277,11 +280,12 @@ def _cross_add(a, b, Iinv, w, scale):
 
 
 @numba.njit(cache=True)
-def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter, q, Pn, out):
+def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter, q, Pn, out, single):
     """Nonsmooth Gauss-Seidel (Jean & Moreau) over the active corners: each corner's local problem solved
     exactly (:func:`_local`) with the others' impulses fixed, the body's velocity ``(V, Om)`` updated after each,
     sweeps until no impulse changes by more than ``tol`` (m/s). Warm-started from ``P`` (the previous step's
-    impulses). Returns the number of sweeps (``max_iter + 1``: not converged)."""
+    impulses). Returns the number of sweeps (``max_iter + 1``: not converged); with a ``single`` active corner
+    one sweep is exact."""
     for it in range(max_iter):
         change = 0.0
         for i in range(4):
@@ -308,9 +312,278 @@ def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter,
             Pi[0] += d0
             Pi[1] += d1
             Pi[2] += d2
-        if change <= tol:
+        if change <= tol or single:
             return it + 1
     return max_iter + 1
+
+
+@numba.njit(cache=True)
+def _solve6(A, y):
+    """Solve ``A y_new = y`` in place (6 x 6, Gaussian elimination with partial pivoting; ``A`` is overwritten);
+    False if a pivot is below 1e-13 of the largest entry."""
+    n = 6
+    big = 0.0
+    for i in range(n):
+        for j in range(n):
+            big = max(big, abs(A[i, j]))
+    for col in range(n):
+        piv = col
+        for i in range(col + 1, n):
+            if abs(A[i, col]) > abs(A[piv, col]):
+                piv = i
+        if abs(A[piv, col]) <= 1e-13 * big:
+            return False
+        if piv != col:
+            for j in range(n):
+                A[col, j], A[piv, j] = A[piv, j], A[col, j]
+            y[col], y[piv] = y[piv], y[col]
+        for i in range(col + 1, n):
+            f = A[i, col] / A[col, col]
+            for j in range(col, n):
+                A[i, j] -= f * A[col, j]
+            y[i] -= f * y[col]
+    for i in range(n - 1, -1, -1):
+        acc = y[i]
+        for j in range(i + 1, n):
+            acc -= A[i, j] * y[j]
+        y[i] = acc / A[i, i]
+    return True
+
+
+@numba.njit(cache=True)
+def _stick_flat(act, r, Iw, vf, P, B):
+    """Impulses that stop a block standing on three or four corners of its level base: the total impulse
+    ``-vf`` (per unit mass) and torque ``-I omega_f`` are fixed; with the corners in one plane (``r_z`` the
+    same, ``rz``) the tangential impulses enter the horizontal torques through their total only, so the normal
+    impulses are the least-norm solution of ``sum N = F_z``, ``sum N r_y = T_x + rz F_y``, ``sum N r_x = rz F_x
+    - T_y``; the tangential impulses are then proportional to the normal ones, ``P_t,i = N_i (c + kappa z x
+    (rho_i - rho_bar))`` (a translation and a twist about the centre of pressure ``rho_bar``), ``c`` and
+    ``kappa`` from the total and the vertical torque. False if the normal impulses do not add up to a
+    compressive total. ``B`` (6 x 6) is workspace."""
+    F0, F1, F2 = -vf[0], -vf[1], -vf[2]
+    T0 = -(Iw[0, 0] * vf[3] + Iw[0, 1] * vf[4] + Iw[0, 2] * vf[5])
+    T1 = -(Iw[1, 0] * vf[3] + Iw[1, 1] * vf[4] + Iw[1, 2] * vf[5])
+    T2 = -(Iw[2, 0] * vf[3] + Iw[2, 1] * vf[4] + Iw[2, 2] * vf[5])
+    if F2 <= 0.0:
+        return False
+    rz = 0.0
+    n = 0
+    for i in range(4):
+        if act[i]:
+            rz += r[i, 2]
+            n += 1
+    rz /= n
+    # B B^T (3 x 3, rows (1, r_y, r_x)) into B[0:3, 0:3], its inverse into B[3:6, 0:3]
+    for a in range(3):
+        for c in range(3):
+            B[a, c] = 0.0
+    for i in range(4):
+        if act[i]:
+            row = (1.0, r[i, 1], r[i, 0])
+            for a in range(3):
+                for c in range(3):
+                    B[a, c] += row[a] * row[c]
+    if not _inv3(B[0:3, 0:3], B[3:6, 0:3]):
+        return False
+    g0, g1, g2 = F2, T0 + rz * F1, rz * F0 - T1
+    y0 = B[3, 0] * g0 + B[3, 1] * g1 + B[3, 2] * g2
+    y1 = B[4, 0] * g0 + B[4, 1] * g1 + B[4, 2] * g2
+    y2 = B[5, 0] * g0 + B[5, 1] * g1 + B[5, 2] * g2
+    total = 0.0
+    cx = 0.0
+    cy = 0.0
+    for i in range(4):
+        if act[i]:
+            P[i, 2] = y0 + y1 * r[i, 1] + y2 * r[i, 0]
+            total += P[i, 2]
+            cx += P[i, 2] * r[i, 0]
+            cy += P[i, 2] * r[i, 1]
+        else:
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+    if total <= 0.0:
+        return False
+    cx /= total
+    cy /= total
+    c0, c1 = F0 / total, F1 / total
+    spread = 0.0
+    for i in range(4):
+        if act[i]:
+            spread += P[i, 2] * ((r[i, 0] - cx) ** 2 + (r[i, 1] - cy) ** 2)
+    kappa = (T2 - (cx * c1 - cy * c0) * total) / spread if spread > 0.0 else 0.0
+    for i in range(4):
+        if act[i]:
+            P[i, 0] = P[i, 2] * (c0 - kappa * (r[i, 1] - cy))
+            P[i, 1] = P[i, 2] * (c1 + kappa * (r[i, 0] - cx))
+    return True
+
+
+@numba.njit(cache=True)
+def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
+    """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
+    through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
+    it stops; the impulses are the least-norm ones that make that velocity change (no self-equilibrated
+    friction "squeeze": the statically indeterminate part is left at zero), on three or four corners with the
+    friction split in proportion to the normal impulses (:func:`_stick_flat`). Accepted, into ``V``, ``Om`` and
+    ``P``, if every normal impulse is compressive and every tangential one lies in the static cone; else False
+    (NSGS then solves the step). ``A6`` (6 x 6) and ``y6`` (6) are workspace."""
+    i1 = -1
+    i2 = -1
+    for i in range(4):
+        if act[i]:
+            if i1 < 0:
+                i1 = i
+            elif i2 < 0:
+                i2 = i
+    if n_act == 2:
+        ra, rb = r[i1], r[i2]
+        L0, L1, L2 = ra[0] - rb[0], ra[1] - rb[1], ra[2] - rb[2]
+        nl = math.sqrt(L0 * L0 + L1 * L1 + L2 * L2)
+        e0, e1, e2 = L0 / nl, L1 / nl, L2 / nl
+        z0, z1, z2 = ra[1] * e2 - ra[2] * e1, ra[2] * e0 - ra[0] * e2, ra[0] * e1 - ra[1] * e0  # r_a x e
+        Ie0 = Iw[0, 0] * e0 + Iw[0, 1] * e1 + Iw[0, 2] * e2
+        Ie1 = Iw[1, 0] * e0 + Iw[1, 1] * e1 + Iw[1, 2] * e2
+        Ie2 = Iw[2, 0] * e0 + Iw[2, 1] * e1 + Iw[2, 2] * e2
+        num = z0 * vf[0] + z1 * vf[1] + z2 * vf[2] + Ie0 * vf[3] + Ie1 * vf[4] + Ie2 * vf[5]
+        sc = num / (z0 * z0 + z1 * z1 + z2 * z2 + Ie0 * e0 + Ie1 * e1 + Ie2 * e2)
+        V[0], V[1], V[2] = sc * z0, sc * z1, sc * z2
+        Om[0], Om[1], Om[2] = sc * e0, sc * e1, sc * e2
+        F0, F1, F2 = V[0] - vf[0], V[1] - vf[1], V[2] - vf[2]
+        d0, d1, d2 = Om[0] - vf[3], Om[1] - vf[4], Om[2] - vf[5]
+        T0 = Iw[0, 0] * d0 + Iw[0, 1] * d1 + Iw[0, 2] * d2
+        T1 = Iw[1, 0] * d0 + Iw[1, 1] * d1 + Iw[1, 2] * d2
+        T2 = Iw[2, 0] * d0 + Iw[2, 1] * d1 + Iw[2, 2] * d2
+        m0, m1, m2 = 0.5 * (ra[0] + rb[0]), 0.5 * (ra[1] + rb[1]), 0.5 * (ra[2] + rb[2])
+        T0 -= m1 * F2 - m2 * F1
+        T1 -= m2 * F0 - m0 * F2
+        T2 -= m0 * F1 - m1 * F0
+        q = 1.0 / (nl * nl)
+        D0, D1, D2 = (T1 * L2 - T2 * L1) * q, (T2 * L0 - T0 * L2) * q, (T0 * L1 - T1 * L0) * q
+        for i in range(4):
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+        P[i1, 0], P[i1, 1], P[i1, 2] = 0.5 * F0 + D0, 0.5 * F1 + D1, 0.5 * F2 + D2
+        P[i2, 0], P[i2, 1], P[i2, 2] = 0.5 * F0 - D0, 0.5 * F1 - D1, 0.5 * F2 - D2
+    else:  # three or four corners (a level base): the block stops
+        if not _stick_flat(act, r, Iw, vf, P, A6):
+            return False
+        for a in range(3):
+            V[a] = 0.0
+            Om[a] = 0.0
+    for i in range(4):
+        if act[i]:
+            if P[i, 2] < 0.0:
+                return False
+            if not stick_only and math.hypot(P[i, 0], P[i, 1]) > mu_s * P[i, 2] * (1.0 + 1e-12):
+                return False
+    return True
+
+
+@numba.njit(cache=True)
+def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
+    """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its
+    corners on the floor (``V_z = 0``, no rotation about a horizontal axis) and moves with ``(V_x, V_y,
+    omega_z)``; each corner's impulse is ``N_i (-mu_k s_i, 1)``. For the slip directions ``s_i`` the six momentum
+    equations are linear in ``(N_i, V_x, V_y, omega_z)``; their least-norm solution (the indeterminate part of
+    the normal impulses, alternating between the corners, left at zero) is iterated with ``s_i`` the direction
+    of each corner's slip velocity (from the free velocity's first) until the directions settle. Accepted, into
+    ``V``, ``Om`` and ``P``, if the directions settle (each corner then slips along the ``s_i`` its friction
+    opposes) and every ``N_i >= 0``; else False (NSGS then solves the step). ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
+    idx = np.empty(4, dtype=np.int64)
+    n = 0
+    for i in range(4):
+        if act[i]:
+            idx[n] = i
+            n += 1
+            u0 = vf[0] - vf[5] * r[i, 1]
+            u1 = vf[1] + vf[5] * r[i, 0]
+            nu = math.hypot(u0, u1)
+            if nu == 0.0:
+                return False
+            sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+    m = n + 3
+    settled = False
+    for it in range(30):
+        # rows: force x, y, z; torque x, y, z. Columns: N of each active corner, then V_x, V_y, omega_z
+        for a in range(6):
+            for c in range(7):
+                Am[a, c] = 0.0
+        for k in range(n):
+            i = idx[k]
+            p0, p1 = -mu_k * sdir[i, 0], -mu_k * sdir[i, 1]
+            x0, x1, x2 = r[i, 0], r[i, 1], r[i, 2]
+            # V - vf = sum P  ->  V_x - sum N p0 = vf_x; V_y - sum N p1 = vf_y; - sum N = vf_z (V_z = 0)
+            Am[0, k] = -p0
+            Am[1, k] = -p1
+            Am[2, k] = -1.0
+            # Iw (Om - Omf) = sum r x P  ->  Iw[:, 2] omega_z - sum N (r x p) = Iw Omf
+            Am[3, k] = -(x1 * 1.0 - x2 * p1)
+            Am[4, k] = -(x2 * p0 - x0 * 1.0)
+            Am[5, k] = -(x0 * p1 - x1 * p0)
+        Am[0, n] = 1.0
+        Am[1, n + 1] = 1.0
+        for a in range(3):
+            Am[3 + a, n + 2] = Iw[a, 2]
+        y6[0], y6[1], y6[2] = vf[0], vf[1], vf[2]
+        for a in range(3):
+            y6[3 + a] = Iw[a, 0] * vf[3] + Iw[a, 1] * vf[4] + Iw[a, 2] * vf[5]
+        for a in range(6):
+            for c in range(6):
+                acc = 0.0
+                for k in range(m):
+                    acc += Am[a, k] * Am[c, k]
+                A6[a, c] = acc
+        if not _solve6(A6, y6):
+            return False
+        moved = 0.0
+        wz = 0.0
+        for c in range(m):
+            x = 0.0
+            for a in range(6):
+                x += Am[a, c] * y6[a]
+            if c < n:
+                i = idx[c]
+                P[i, 2] = x
+            elif c == n:
+                V[0] = x
+            elif c == n + 1:
+                V[1] = x
+            else:
+                wz = x
+        for k in range(n):
+            i = idx[k]
+            u0 = V[0] - wz * r[i, 1]
+            u1 = V[1] + wz * r[i, 0]
+            nu = math.hypot(u0, u1)
+            if nu == 0.0:
+                return False
+            moved = max(moved, abs(u0 / nu - sdir[i, 0]), abs(u1 / nu - sdir[i, 1]))
+            sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+        if moved < 1e-12:
+            settled = True
+            break
+    if not settled:
+        return False
+    V[2] = 0.0
+    Om[0], Om[1], Om[2] = 0.0, 0.0, wz
+    for i in range(4):
+        if not act[i]:
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+            continue
+        N = P[i, 2]
+        if N < 0.0:
+            return False
+        u0 = V[0] - wz * r[i, 1]
+        u1 = V[1] + wz * r[i, 0]
+        nu = math.hypot(u0, u1)
+        if nu == 0.0:
+            return False
+        P[i, 0], P[i, 1] = -mu_k * N * sdir[i, 0], -mu_k * N * sdir[i, 1]
+    return True
+
+
+@numba.njit(cache=True)
+def _flat(s):
+    """True if the base is level (tilt below 1e-9 rad): the corners of a flat slide share the floor's plane."""
+    return s[4] * s[4] + s[5] * s[5] < 2.5e-19
 
 
 @numba.njit(cache=True)
@@ -463,7 +736,7 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
     ``X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]`` and the quaternion turned by ``dt`` times the
     same blend of the angular velocities. Returns the sweeps NSGS took (0: no contact;
     ``nsgs[1] + 1``: it did not converge). ``ws`` holds the workspace (see :func:`run`)."""
-    Q, Iinv, Iw, r, Wd, Wi, vec = ws
+    Q, Iinv, Iw, r, Wd, Wi, vec = ws[0], ws[1], ws[2], ws[3], ws[4], ws[5], ws[6]
     g = geom[3]
     _geometry(s, geom, ib, Q, Iinv, Iw, r)
     V = vec[0]
@@ -484,21 +757,32 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
         ri = r[i]
         un = s[9] + s[10] * ri[1] - s[11] * ri[0]
         act[i] = s[2] + ri[2] + 0.5 * dt * un <= 0.0
-        if act[i]:
-            n_act += 1
-            _delassus(ri, Iinv, Wd[i])
-            _inv3(Wd[i], Wi[i])
-            V[0] += P[i, 0]
-            V[1] += P[i, 1]
-            V[2] += P[i, 2]
-            _cross_add(ri, P[i], Iinv, Om, 1.0)
-        else:
-            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+        n_act += act[i]
     sweeps = 0
-    if n_act > 0:
+    stick_only = fric[2] > 0.5
+    if n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
+        sweeps = 1
+    elif n_act >= 3 and not stick_only and _flat(s) and _slide_flat(act, r, Iw, vf, V, Om, P, fric[1], ws[8], ws[7],
+                                                                   vec[3], ws[9]):
+        sweeps = 1
+    elif n_act > 0:
+        V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
+        for i in range(4):
+            if act[i]:
+                _delassus(r[i], Iinv, Wd[i])
+                _inv3(Wd[i], Wi[i])
+                V[0] += P[i, 0]
+                V[1] += P[i, 1]
+                V[2] += P[i, 2]
+                _cross_add(r[i], P[i], Iinv, Om, 1.0)
+            else:
+                P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
         scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), geom[7] * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
-        sweeps = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, fric[0], fric[1], fric[2] > 0.5, nsgs[0] * scale,
-                       int(nsgs[1]), vec[3], vec[4], out)
+        sweeps = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, fric[0], fric[1], stick_only, nsgs[0] * scale,
+                       int(nsgs[1]), vec[3], vec[4], out, n_act == 1)
+    else:
+        for i in range(4):
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
     for a in range(3):
         new[a] = s[a] + dt * ((1.0 - theta_mj) * s[7 + a] + theta_mj * V[a])
         new[7 + a] = V[a]
@@ -594,7 +878,7 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     out[:] = 0.0
     out[OUT_FIRST_MODE] = -1.0
     ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
-          np.zeros((4, 3, 3)), np.zeros((5, 6)))
+          np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)))
     Q, Iinv, Iw, r = ws[0], ws[1], ws[2], ws[3]
     act = np.zeros(4, dtype=np.bool_)
     touch = np.zeros(4, dtype=np.bool_)

@@ -113,3 +113,18 @@ def test_a_planar_solver_given_azimuth_360_answers_as_without_it(capsys):
     assert main([*base, "--azimuth", "360"]) == 0
     turned = json.loads(capsys.readouterr().out)
     assert turned["theta_max"] == plain["theta_max"] and "azimuth" not in turned
+
+
+def test_a_box_under_two_records_runs_end_to_end(tmp_path, capsys):
+    """rigid3d through the command, in this process: two 2-s records (one along each motion axis), a block turned
+    30 deg; the JSON carries the three-dimensional outputs, and the tilt is theta_max (rigid3d's definition)."""
+    (tmp_path / "a.txt").write_text("\n".join(f"{0.3 * math.sin(2 * math.pi * 1.5 * k / 100):.6f}" for k in range(200)))
+    (tmp_path / "b.txt").write_text("\n".join(f"{0.2 * math.sin(2 * math.pi * 2.0 * k / 100):.6f}" for k in range(200)))
+    status = main(["simulate", "--width", "0.4", "--height", "1.2", "--depth", "0.6", "--record", str(tmp_path / "a.txt"),
+                   "--record2", str(tmp_path / "b.txt"), "--units", "g", "--dt", "0.01", "--azimuth", "30", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert status == (0 if out["status"] == "ok" else 1) and out["solver"] == "rigid3d"
+    assert out["azimuth"] == 30.0 and out["record2"] == "b" and out["depth"] == 0.6
+    if out["status"] == "ok":
+        assert out["tilt_max"] == out["theta_max"] and len(out["slide_residual"]) == 2
+        assert (out["overturned_over"] in ("edge", "corner")) == out["overturned"]

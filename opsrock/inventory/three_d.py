@@ -221,22 +221,8 @@ def run_three_d_study(design: Any, out_dir: str | Path, *, workers: int | None =
                       force: bool = False, store_dir: str | Path | None = None) -> Any:
     """The route of the module docstring, written into ``out_dir`` (resumable); returns an
     :class:`opsrock.inventory.study.InventoryStudy` (``tables`` ``fits3d`` and ``demands``, no pelicun files).
-
-    Parameters
-    ----------
-    design : InventoryDesign
-        With ``solver`` :data:`THREE_D_SOLVER` and its ``azimuths`` (deg).
-    out_dir : str or Path
-        Output folder.
-    workers : int or None
-        Processes (default: all cores).
-    progress : bool
-        Progress on stderr.
-    force : bool
-        Delete stored results of other settings in the campaigns' folders instead of refusing them.
-    store_dir : str or Path, optional
-        Where the campaigns keep their stores; default ``out_dir/campaigns``.
-    """
+    The parameters are :func:`opsrock.inventory.study.run_inventory_study`'s, which calls it for a ``design``
+    whose ``solver`` is :data:`THREE_D_SOLVER` (its ``azimuths`` in deg)."""
     from opsrock._files import staged_folder
     from opsrock.fragility.cases import check_some_finished
     from opsrock.inventory.campaigns import cached_demands

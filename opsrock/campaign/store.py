@@ -60,10 +60,10 @@ MANIFEST_FILE: str = "manifest.json"
 #: File locked by the campaign that writes to a folder.
 LOCK_FILE: str = ".lock"
 
-#: Version of the table layout below. A version-1 store (before the contact columns) is migrated in
-#: place when opened (the columns are added, empty: its cases were solved without friction); a store
-#: of any other version is refused.
-SCHEMA_VERSION: int = 2
+#: Version of the table layout below. A version-1 store (before the contact columns) or version-2 store
+#: (before the plan columns) is migrated in place when opened (the columns are added, empty: its cases were
+#: solved without friction, or in a plane); a store of any other version is refused.
+SCHEMA_VERSION: int = 3
 
 #: Columns stored per case (besides ``case_id``), with their SQLite types. Inputs (block,
 #: pulse, intensity measures) are not stored: they follow from the scene, whose digest the
@@ -88,11 +88,18 @@ RESULT_COLUMNS: dict[str, str] = {
     "time_flight": "REAL",
     "slide_max": "REAL",
     "slide_residual": "REAL",
+    # what a block did in three dimensions (solvers of the rigid3d model; NULL for the others)
+    "tilt_max": "REAL",
+    "twist_max": "REAL",
+    "overturned_over": "TEXT",
 }
 
 #: The columns schema version 2 added to version 1.
 _ADDED_IN_2: tuple[str, ...] = ("response", "first_mode", "time_sliding", "time_rocking", "time_flight",
                                 "slide_max", "slide_residual")
+
+#: The columns schema version 3 added to version 2.
+_ADDED_IN_3: tuple[str, ...] = ("tilt_max", "twist_max", "overturned_over")
 
 #: The manifest table's columns, with their SQLite types.
 MANIFEST_COLUMNS: dict[str, str] = {"key": "TEXT PRIMARY KEY", "value": "TEXT NOT NULL"}
@@ -123,7 +130,7 @@ def _lost_sql(table: str = "") -> str:
 
 _BOOL_COLUMNS = ("overturned", "rocked")
 _FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s", "time_sliding", "time_rocking", "time_flight",
-                  "slide_max", "slide_residual")
+                  "slide_max", "slide_residual", "tilt_max", "twist_max")
 
 
 class ResultStore:
@@ -212,7 +219,7 @@ class ResultStore:
                 raise
 
     def _create(self) -> None:
-        """Make the tables of a new store, or check an existing one's (and migrate a version-1 store)."""
+        """Make the tables of a new store, or check an existing one's (and migrate a version-1 or -2 store)."""
         cols = ",\n  ".join(f"{name} {kind}" for name, kind in RESULT_COLUMNS.items())
         with self._transaction():
             tables = _tables(self._db)
@@ -222,8 +229,9 @@ class ResultStore:
                 self._db.execute("INSERT INTO manifest (key, value) VALUES ('schema_version', ?)",
                                  (json.dumps(SCHEMA_VERSION),))
                 return
-            if check_layout(self.path, self._db) == 1:
-                for name in _ADDED_IN_2:
+            version = check_layout(self.path, self._db)
+            if version < SCHEMA_VERSION:
+                for name in (*(_ADDED_IN_2 if version < 2 else ()), *_ADDED_IN_3):
                     self._db.execute(f"ALTER TABLE results ADD COLUMN {name} {RESULT_COLUMNS[name]}")
                 self._db.execute("UPDATE manifest SET value = ? WHERE key = 'schema_version'",
                                  (json.dumps(SCHEMA_VERSION),))
@@ -270,17 +278,18 @@ class ResultStore:
         Parameters
         ----------
         rows : iterable of dict
-            Each with ``case_id`` and every key of :data:`RESULT_COLUMNS`. A ``case_id``
+            Each with ``case_id`` and every key of :data:`RESULT_COLUMNS` (the plan columns, schema version 3's,
+            may be left out: stored NULL, a planar solver's row). A ``case_id``
             already stored is left as it is (the first result wins), unless its stored row is that of a
             case lost to the infrastructure: the new row replaces it.
         """
         names = ["case_id", *RESULT_COLUMNS]
         values = []
         for row in rows:
-            missing = [n for n in names if n not in row]
+            missing = [n for n in names if n not in row and n not in _ADDED_IN_3]
             if missing:
                 raise StoreError(f"result row for {row.get('case_id')!r} lacks {missing}")
-            values.append(tuple(_to_sql(n, row[n]) for n in names))
+            values.append(tuple(_to_sql(n, row.get(n)) for n in names))
         if not values:
             return 0
         sql = (f"INSERT INTO results ({', '.join(names)}) VALUES ({', '.join('?' * len(names))}) "
@@ -340,7 +349,7 @@ _VALUES: dict[str, tuple] = {"status": STATUSES, "verdict": VERDICTS, "overturne
 
 
 def check_layout(path: Path, db: sqlite3.Connection) -> int:
-    """Check an existing store's whole layout and return its schema version (1: to migrate, or 2).
+    """Check an existing store's whole layout and return its schema version (1 or 2: to migrate, or 3).
 
     Checked: the tables ``manifest`` and ``results``; every column of each, with its declared type, NOT
     NULL and key; the ``schema_version`` (JSON, a whole number, not newer than :data:`SCHEMA_VERSION`); every
@@ -359,7 +368,8 @@ def check_layout(path: Path, db: sqlite3.Connection) -> int:
     _check_columns(path, db, "manifest", {k: _declared(v) for k, v in MANIFEST_COLUMNS.items()})
     version = _schema_version(path, db)
     expected = {"case_id": ("TEXT", False, True), **{k: _declared(v) for k, v in RESULT_COLUMNS.items()
-                                                       if version >= 2 or k not in _ADDED_IN_2}}
+                                                       if (version >= 2 or k not in _ADDED_IN_2)
+                                                       and (version >= 3 or k not in _ADDED_IN_3)}}
     _check_columns(path, db, "results", expected)
     _check_manifest(path, db)
     _check_values(path, db, expected)

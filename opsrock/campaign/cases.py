@@ -42,6 +42,11 @@ CONTACT_COLUMNS: tuple[str, ...] = (
 #: The contact columns a solver fills (the others are the scene's).
 _SOLVED_CONTACT_COLUMNS: tuple[str, ...] = CONTACT_COLUMNS[3:]
 
+#: Columns a solver of the ``rigid3d`` model fills (:class:`opsrock.result.PlanSummary`): what the block
+#: last stood on when it overturned (``edge``, ``corner``, empty if it did not), its peak twist (rad) and the
+#: time it stood on one edge or on one corner (s). Empty (NaN) for the planar solvers.
+PLAN_COLUMNS: tuple[str, ...] = ("overturned_over", "twist_max", "time_edge", "time_corner")
+
 #: The block's columns, first in every ``cases.csv`` (m, rad, m, rad/s; ``e``, ``e_R`` dimensionless).
 BLOCK_COLUMNS: tuple[str, ...] = ("case_id", "block", "width", "height", "alpha", "R", "p", "e", "e_R")
 
@@ -196,8 +201,16 @@ def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math
         "verdict": "failed", "theta_max": math.nan, "theta_max_over_alpha": math.nan, "overturned": False,
         "rocked": False, "solver": solver, "wall_time_s": wall_time_s, "n_steps": None, "n_impacts": None,
         "response": "failed", "first_mode": None, "time_sliding": math.nan, "time_rocking": math.nan,
-        "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan,
+        "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan, **_plan_columns(None),
     }
+
+
+def _plan_columns(plan: Any) -> dict[str, Any]:
+    """The store's :data:`PLAN_COLUMNS` of a result's :class:`~opsrock.result.PlanSummary` (None: empty)."""
+    if plan is None:
+        return {"overturned_over": None, "twist_max": math.nan, "time_edge": math.nan, "time_corner": math.nan}
+    return {"overturned_over": plan.overturned_over, "twist_max": float(plan.twist_max),
+            "time_edge": float(plan.time_edge), "time_corner": float(plan.time_corner)}
 
 
 def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[str, Any]:
@@ -213,7 +226,7 @@ def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[
         "case_id": case_id, "status": s["status"], "reason": _one_line(s["reason"]), "verdict": s["verdict"],
         "theta_max": s["theta_max"], "theta_max_over_alpha": s["theta_max_over_alpha"],
         "overturned": s["overturned"], "rocked": s["rocked"], "solver": s["solver"], "wall_time_s": wall_time_s,
-        "n_steps": s["n_steps"], "n_impacts": s["n_impacts"], **contact,
+        "n_steps": s["n_steps"], "n_impacts": s["n_impacts"], **contact, **_plan_columns(result.plan),
     }
 
 
@@ -235,7 +248,7 @@ def case_table(cases: Sequence, rows: Mapping[str, Mapping[str, Any]]) -> list[d
             raise KeyError(f"case {case.case_id!r} has no stored result")
         stored = rows[case.case_id]
         table.append({**case.row(), **{col: stored[col] for col in RESULT_COLUMNS},
-                      **{col: stored.get(col) for col in _SOLVED_CONTACT_COLUMNS}})
+                      **{col: stored.get(col) for col in (*_SOLVED_CONTACT_COLUMNS, *PLAN_COLUMNS)}})
     return table
 
 
@@ -261,5 +274,5 @@ def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], column
     atomic_write(Path(path), write)
 
 
-__all__ = ["BLOCK_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
+__all__ = ["BLOCK_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PLAN_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
            "RESULT_COLUMNS", "RecordCase", "case_table", "failed_row", "result_row", "write_cases_csv"]

@@ -60,10 +60,10 @@ MANIFEST_FILE: str = "manifest.json"
 #: File locked by the campaign that writes to a folder.
 LOCK_FILE: str = ".lock"
 
-#: Version of the table layout below. A version-1 store (before the contact columns) is migrated in
-#: place when opened (the columns are added, empty: its cases were solved without friction); a store
-#: of any other version is refused.
-SCHEMA_VERSION: int = 2
+#: Version of the table layout below. A version-1 store (before the contact columns) or version-2 store
+#: (before the plan columns) is migrated in place when opened (the columns it lacks are added, empty: its
+#: cases were solved without friction, or by a planar solver); a store of any other version is refused.
+SCHEMA_VERSION: int = 3
 
 #: Columns stored per case (besides ``case_id``), with their SQLite types. Inputs (block,
 #: pulse, intensity measures) are not stored: they follow from the scene, whose digest the
@@ -88,11 +88,22 @@ RESULT_COLUMNS: dict[str, str] = {
     "time_flight": "REAL",
     "slide_max": "REAL",
     "slide_residual": "REAL",
+    # what a block did in three dimensions (solvers of the rigid3d model; NULL for the others)
+    "overturned_over": "TEXT",
+    "twist_max": "REAL",
+    "time_edge": "REAL",
+    "time_corner": "REAL",
 }
 
 #: The columns schema version 2 added to version 1.
 _ADDED_IN_2: tuple[str, ...] = ("response", "first_mode", "time_sliding", "time_rocking", "time_flight",
                                 "slide_max", "slide_residual")
+
+#: The columns schema version 3 added to version 2.
+_ADDED_IN_3: tuple[str, ...] = ("overturned_over", "twist_max", "time_edge", "time_corner")
+
+#: The columns each older schema version lacks (added, empty, when such a store is opened).
+_ADDED_SINCE: dict[int, tuple[str, ...]] = {1: _ADDED_IN_2 + _ADDED_IN_3, 2: _ADDED_IN_3}
 
 #: The manifest table's columns, with their SQLite types.
 MANIFEST_COLUMNS: dict[str, str] = {"key": "TEXT PRIMARY KEY", "value": "TEXT NOT NULL"}
@@ -123,7 +134,7 @@ def _lost_sql(table: str = "") -> str:
 
 _BOOL_COLUMNS = ("overturned", "rocked")
 _FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s", "time_sliding", "time_rocking", "time_flight",
-                  "slide_max", "slide_residual")
+                  "slide_max", "slide_residual", "twist_max", "time_edge", "time_corner")
 
 
 class ResultStore:
@@ -222,8 +233,9 @@ class ResultStore:
                 self._db.execute("INSERT INTO manifest (key, value) VALUES ('schema_version', ?)",
                                  (json.dumps(SCHEMA_VERSION),))
                 return
-            if check_layout(self.path, self._db) == 1:
-                for name in _ADDED_IN_2:
+            version = check_layout(self.path, self._db)
+            if version < SCHEMA_VERSION:
+                for name in _ADDED_SINCE[version]:
                     self._db.execute(f"ALTER TABLE results ADD COLUMN {name} {RESULT_COLUMNS[name]}")
                 self._db.execute("UPDATE manifest SET value = ? WHERE key = 'schema_version'",
                                  (json.dumps(SCHEMA_VERSION),))
@@ -340,7 +352,7 @@ _VALUES: dict[str, tuple] = {"status": STATUSES, "verdict": VERDICTS, "overturne
 
 
 def check_layout(path: Path, db: sqlite3.Connection) -> int:
-    """Check an existing store's whole layout and return its schema version (1: to migrate, or 2).
+    """Check an existing store's whole layout and return its schema version (1 or 2: to migrate, or 3).
 
     Checked: the tables ``manifest`` and ``results``; every column of each, with its declared type, NOT
     NULL and key; the ``schema_version`` (JSON, a whole number, not newer than :data:`SCHEMA_VERSION`); every
@@ -358,8 +370,9 @@ def check_layout(path: Path, db: sqlite3.Connection) -> int:
             raise damaged(path, f"it has no table {name!r}" if name not in tables else f"{name!r} is a {tables[name]}")
     _check_columns(path, db, "manifest", {k: _declared(v) for k, v in MANIFEST_COLUMNS.items()})
     version = _schema_version(path, db)
+    lacking = _ADDED_SINCE.get(version, ())
     expected = {"case_id": ("TEXT", False, True), **{k: _declared(v) for k, v in RESULT_COLUMNS.items()
-                                                       if version >= 2 or k not in _ADDED_IN_2}}
+                                                       if k not in lacking}}
     _check_columns(path, db, "results", expected)
     _check_manifest(path, db)
     _check_values(path, db, expected)
@@ -499,7 +512,7 @@ def read_rows(out_dir: str | Path) -> dict[str, dict[str, Any]]:
     try:
         try:
             present = {rec[1] for rec in db.execute("PRAGMA table_info(results)")}
-            # a version-1 store (read, not migrated) lacks the contact columns: they read as empty
+            # an older store (read, not migrated) lacks the contact or plan columns: they read as empty
             names = [n for n in RESULT_COLUMNS if n in present] if present else list(RESULT_COLUMNS)
             records = db.execute(f"SELECT case_id, {', '.join(names)} FROM results").fetchall()
         except sqlite3.OperationalError as exc:  # created but its tables not yet committed

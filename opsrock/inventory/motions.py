@@ -27,6 +27,10 @@ comments, blank lines, spaces trimmed, UTF-8 with or without a byte-order mark).
 
 Each (record, floor, direction) appears once. A motion is named ``<record>@<floor>@<direction>`` (unique, and
 safe in case ids: the parts use no ``@``), with ``info.floor`` the floor's label.
+
+For the three-dimensional solver ``rigid3d``, :func:`paired_motions` pairs each (record, floor)'s direction-1
+and direction-2 motions (:class:`MotionPair`, :meth:`MotionPair.plan` the
+:class:`~opsrock.excitations.plan.PlanMotion` at a block azimuth).
 """
 
 from __future__ import annotations
@@ -38,6 +42,7 @@ from pathlib import Path
 from opsrock._files import not_a_file
 from opsrock.campaign.toml import NAME_PATTERN
 from opsrock.errors import MISSING, InputError, OpsrockError
+from opsrock.excitations.plan import PlanMotion
 from opsrock.excitations.readers import UNITS, read_record
 from opsrock.excitations.records import Record, check_plausible_record
 from opsrock.inventory.items import DIRECTIONS, Row, TableFileError, number_cell, read_csv_rows
@@ -136,6 +141,75 @@ class MotionSet:
             if m.key == (record, floor, direction):
                 return m
         raise KeyError(f"no motion of record {record!r} on floor {floor!r} in direction {direction!r} in {self.source}")
+
+
+@dataclass(frozen=True)
+class MotionPair:
+    """The two horizontal floor motions of one record on one floor, for the three-dimensional solver.
+
+    Parameters
+    ----------
+    first : FloorMotion
+        Direction ``"1"`` (m/s²): along an item's ``width`` at azimuth 0.
+    second : FloorMotion
+        Direction ``"2"`` (m/s²) of the same record and floor: along the item's ``depth`` at azimuth 0.
+    """
+
+    first: FloorMotion
+    second: FloorMotion
+
+    def __post_init__(self) -> None:
+        a, b = self.first, self.second
+        if (a.record, a.floor, a.direction) != (b.record, b.floor, "1") or b.direction != "2":
+            raise InputError(f"a motion pair is direction 1 and 2 of one record and floor, got {a.key!r} and "
+                             f"{b.key!r}", argument="motions")
+
+    @property
+    def record(self) -> str:
+        """The ground-motion record (event)."""
+        return self.first.record
+
+    @property
+    def floor(self) -> str:
+        """The floor's label."""
+        return self.first.floor
+
+    @property
+    def name(self) -> str:
+        """``<record>@<floor>``: unique in a motion set, safe in case ids."""
+        return NAME_SEPARATOR.join((self.record, self.floor))
+
+    def plan(self, azimuth: float = 0.0) -> PlanMotion:
+        """Both directions as one plan motion, the block's width axis at ``azimuth`` (deg) from direction 1,
+        counter-clockwise seen from above (:class:`~opsrock.excitations.plan.PlanMotion`)."""
+        return PlanMotion(self.first.motion, self.second.motion, azimuth)
+
+
+def paired_motions(motions: MotionSet) -> tuple[MotionPair, ...]:
+    """Each (record, floor)'s direction-1 and direction-2 motions as a :class:`MotionPair`, in the order of
+    the set's first direction-1 motions.
+
+    Parameters
+    ----------
+    motions : MotionSet
+        Floor motions (m/s²) in both directions.
+
+    Raises
+    ------
+    InputError
+        ``argument="motions"``: a record and floor with one direction only (named, with the set's source):
+        the three-dimensional route needs both.
+    """
+    pairs: dict[tuple[str, str], dict[str, FloorMotion]] = {}
+    for m in motions.motions:
+        pairs.setdefault((m.record, m.floor), {})[m.direction] = m
+    lone = [(key, tuple(found)) for key, found in pairs.items() if set(found) != set(DIRECTIONS)]
+    if lone:
+        (record, floor), have = lone[0]
+        more = f" (and {len(lone) - 1} more record/floor pairs)" if len(lone) > 1 else ""
+        raise InputError(f"motions {motions.source}: record {record!r} on floor {floor!r} has direction "
+                         f"{have[0]} only{more}; two horizontal directions need both 1 and 2", argument="motions")
+    return tuple(MotionPair(found["1"], found["2"]) for found in pairs.values())
 
 
 def motion_name(record: str, floor: str, direction: str) -> str:
@@ -268,5 +342,5 @@ def read_motions(path: str | Path, *, confirm: bool = False) -> MotionSet:
     return MotionSet(tuple(motions), str(manifest))
 
 
-__all__ = ["FloorMotion", "HEADER_LINES", "MANIFEST_COLUMNS", "MANIFEST_REQUIRED", "MotionSet", "NAME_SEPARATOR",
-           "header_dt", "motion_name", "read_motions"]
+__all__ = ["FloorMotion", "HEADER_LINES", "MANIFEST_COLUMNS", "MANIFEST_REQUIRED", "MotionPair", "MotionSet",
+           "NAME_SEPARATOR", "header_dt", "motion_name", "paired_motions", "read_motions"]

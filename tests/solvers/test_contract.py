@@ -26,6 +26,9 @@ from opsrock.solvers.status import FAILURE_KINDS, FAILURES, REASONS
 #: A block every solver models: b/h = 0.25, alpha = 0.245 rad, p = 3.45 rad/s, Housner's e = e_H = 0.912
 #: (Moreau-Jean reproduces no other).
 BLOCK = Block(0.3, 1.2, restitution_factor=1.0)
+#: The same block with a depth, for the solvers that model motion in plan (``rigid3d`` needs the depth). Twice the
+#: width: the width stays the weaker axis, so alpha, p and the free rocking along it are BLOCK's.
+BLOCK_3D = Block(0.3, 1.2, restitution_factor=1.0, depth=0.6)
 #: Free rocking: released at half its slenderness, followed for 1.6 s (two impacts: the first at ~0.33 s).
 THETA0 = 0.5 * BLOCK.alpha
 SPAN = 1.6
@@ -39,7 +42,8 @@ RESULT_FIELDS = {"solver": str, "settings": dict, "alpha": float, "time": np.nda
 def _solve(name: str, excitation, **settings) -> RockingResult:
     """The solver's own entry, ``solve(block, excitation, settings)``, with its settings object."""
     solver = get_solver(name)
-    return solver.solve(BLOCK, excitation, make_settings(settings_class(name), None, settings))
+    block = BLOCK_3D if METHODS[name].plan else BLOCK
+    return solver.solve(block, excitation, make_settings(settings_class(name), None, settings))
 
 
 def _free(name: str, **settings) -> RockingResult:
@@ -79,8 +83,9 @@ def name(request) -> str:
 
 
 def test_registry_declares_each_solver_and_names_one_thing():
-    assert set(SOLVERS) == set(METHODS) and len(SOLVERS) == 6
-    assert solver_names(friction=True) == ("friction", "moreau_jean")
+    assert set(SOLVERS) == set(METHODS) and len(SOLVERS) == 7
+    assert solver_names(friction=True) == ("friction", "moreau_jean", "rigid3d")
+    assert solver_names(plan=True) == ("rigid3d",)
     assert solver_names(model="rigid") == ("housner", "housner_fast")
     assert solver_names(needs_opensees=True) == ("opensees",)
     with pytest.raises(InputError, match="capability 'slips'"):
@@ -184,10 +189,12 @@ def test_free_rocking_from_a_start_state_meets_the_closed_form(name):
     moreau_jean docstring; 1.6e-5 at the default 1e-4) and its history is sampled every 0.01/p: 1e-3; the
     SDOF models replace the impact by the damper band tuned to keep e² of the energy over a free passage,
     with the tabulated spring (sdof 1.4e-5; OpenSees adds its adaptive Newmark steps, 1.4e-4): 1e-3.
-    Every solver but friction stops at ``end_time``, after 3 impacts; friction follows the block to rest.
+    rigid3d is the same Moreau-Jean scheme on the box (BLOCK_3D, rocking along its width: both corners of an
+    edge land in one step, e_n = 0 at each): the same error, 1e-3. Every solver but friction stops at
+    ``end_time``, after 3 impacts; friction follows the block to rest.
     """
     tolerance = {"housner": 1e-8, "housner_fast": 1e-4, "friction": 1e-4, "moreau_jean": 1e-3,
-                 "sdof": 1e-3, "opensees": 1e-3}[name]
+                 "sdof": 1e-3, "opensees": 1e-3, "rigid3d": 1e-3}[name]
     r = _free(name)
     assert r.ok and r.failure is None, r.reason
     assert r.theta_max == pytest.approx(THETA0, rel=1e-12)  # released from rest: the first peak is theta0
@@ -204,7 +211,7 @@ def test_opensees_is_loaded_only_when_first_used():
     code = ("import sys\n"
             "from opsrock import Block, OneSinePulse\n"
             "from opsrock.solvers import SOLVERS, settings_class, simulate, solver_names\n"
-            "b = Block(0.3, 1.2, restitution_factor=1.0)\n"
+            "b = Block(0.3, 1.2, restitution_factor=1.0, depth=0.6)  # rigid3d needs the depth; the rest ignore it\n"
             "[settings_class(n)() for n in SOLVERS]\n"
             "for n in solver_names(needs_opensees=False):\n"
             "    assert simulate(b, OneSinePulse.from_ratios(b, 1.35, 3.0), solver=n).ok, n\n"

@@ -4,34 +4,112 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from opsrock.errors import InputError
+from opsrock.limits import int_at_least, positive_finite, real_number
 from opsrock.solvers.common import SolverSettings, refuse_value
+
+#: Longest tail after the excitation when ``max_free_time`` is None, in units of ``1/p`` of the weaker axis.
+DEFAULT_TAIL_DTAU: float = 2000.0
+
+
+def _at_most(name: str, value: object, high: float, unit: str) -> float:
+    """``value`` as a positive finite float not above ``high``; the message names ``name``."""
+    v = positive_finite(name, value)
+    if v > high:
+        raise InputError(f"{name} must be <= {high:g}{unit}, got {value!r}")
+    return v
 
 
 @dataclass(frozen=True)
 class Rigid3DSettings(SolverSettings):
     """Numerical settings of :mod:`opsrock.solvers.rigid3d`: those of
-    :class:`~opsrock.solvers.common.SolverSettings` (the block is followed to rest after the excitation) and
-    the following. Times are in units of ``1/p`` of the weaker axis.
+    :class:`~opsrock.solvers.common.SolverSettings` (the block is followed to rest after the excitation:
+    ``tail="rest"``, ``stop_at_rest=True``; ``end_time`` only with ``excitation=None``, the span of free motion)
+    and the following.
+
+    Times are in units of ``1/p`` and velocities in units of ``p R`` of the weaker axis (the smaller of
+    ``alpha``, ``alpha_depth``; ``p = sqrt(g R / (r² + R²))`` for rocking in that plane, with ``R`` and ``r``
+    that plane's: :attr:`Block.p` when the width is the weaker axis).
 
     Parameters
     ----------
     dtau : float
-        Time step in units of ``1/p`` (dimensionless). Default 1e-4.
+        Time step in units of ``1/p`` (dimensionless), in (0, 0.05]. The step is shortened so that the pulse,
+        or each sample interval of a record, holds a whole number of steps. Default 1e-4 (the convergence
+        study of :mod:`opsrock.solvers.rigid3d`).
     theta_mj : float
-        Parameter of the theta-method, in [0.5, 1] (dimensionless). Default 0.5.
+        Parameter of the theta-method, in [0.5, 1] (dimensionless). Default 0.5 (the midpoint).
+    nsgs_tol : float
+        Convergence tolerance of the nonsmooth Gauss-Seidel contact solver (dimensionless), in (0, 1e-4]: a
+        step's sweeps stop when no impulse changes by more than ``nsgs_tol`` times the step's velocity scale
+        (``g dt`` or the free velocity, whichever is larger). Default 1e-10.
+    nsgs_max_sweeps : int
+        Sweeps over the active corners allowed per step (>= 1); a step that needs more is counted as
+        unconverged (``diagnostics["nsgs_unconverged_steps"]``) and keeps its last sweep. Default 500.
+    nsgs_fail_steps : int
+        Consecutive unconverged steps after which the run fails with its reason (>= 1). Default 50.
+    rest_velocity : float
+        After the excitation, the block is at rest when its corners are down without slip and every velocity
+        (``|V|``, ``R |omega|``) is below ``rest_velocity p R`` for ``rest_duration`` (dimensionless). Default 1e-6.
+    rest_duration : float
+        How long (units of ``1/p``) the block must stay at rest for the run to end. Default 1.0.
+    max_free_time : float or None
+        Longest tail after the excitation (s): a block still moving then is a failed run with its reason.
+        None (default): :data:`DEFAULT_TAIL_DTAU` ``/ p``.
+    max_steps : int or None
+        Steps allowed per run (excitation and tail, the rest skip's included) before it fails. Default (and
+        None) 200_000_000.
     history_dtau : float
         Spacing of the recorded history (units of ``1/p``). Default 0.01.
+    velocity_tol : float
+        Contact velocity (units of ``p R``) above which a loaded corner counts as slipping and an unloaded one
+        as leaving the floor, and below which a block on its four stuck corners is seated (the rest skip then
+        holds it while the floor's load is carried) (dimensionless). Default 1e-8.
+    contact_gap : float
+        A corner that had a normal impulse counts as down until it leaves the floor with a positive normal
+        velocity or rises more than ``contact_gap (g + max |a_v| + max |a_h|) dt²`` (m; dimensionless
+        factor), as in ``moreau_jean``. Default 20.
+    rocked_theta : float
+        The block *rocked* if its tilt ever exceeds this (rad). Default 1e-9.
     """
 
     max_steps: int | None = 200_000_000
     dtau: float = 1e-4
     theta_mj: float = 0.5
+    nsgs_tol: float = 1e-10
+    nsgs_max_sweeps: int = 500
+    nsgs_fail_steps: int = 50
+    rest_velocity: float = 1e-6
+    rest_duration: float = 1.0
     history_dtau: float = 0.01
+    velocity_tol: float = 1e-8
+    contact_gap: float = 20.0
+    rocked_theta: float = 1e-9
+
+    @property
+    def step_limit(self) -> int:
+        """``max_steps``, 200_000_000 when None."""
+        return 200_000_000 if self.max_steps is None else int(self.max_steps)
 
     def __post_init__(self) -> None:
         super().__post_init__()
         refuse_value("rigid3d", self, "tail", ("rest",))
         refuse_value("rigid3d", self, "stop_at_rest", (True,))
+        _at_most("dtau", self.dtau, 0.05, " (units of 1/p)")
+        theta = real_number("theta_mj", self.theta_mj)
+        if not 0.5 <= theta <= 1.0:
+            raise InputError(f"theta_mj must lie in [0.5, 1], got {self.theta_mj!r}")
+        _at_most("nsgs_tol", self.nsgs_tol, 1e-4, "")
+        int_at_least("nsgs_max_sweeps", self.nsgs_max_sweeps, 1)
+        int_at_least("nsgs_fail_steps", self.nsgs_fail_steps, 1)
+        _at_most("rest_velocity", self.rest_velocity, 1e-3, " (units of p R)")
+        _at_most("rest_duration", self.rest_duration, 1e3, " (units of 1/p)")
+        _at_most("history_dtau", self.history_dtau, 10.0, " (units of 1/p)")
+        _at_most("velocity_tol", self.velocity_tol, 1e-3, " (units of p R)")
+        c = positive_finite("contact_gap", self.contact_gap)
+        if not 2.0 <= c <= 1e4:
+            raise InputError(f"contact_gap must lie in [2, 1e4], got {self.contact_gap!r}")
+        _at_most("rocked_theta", self.rocked_theta, 1e-3, " rad")
 
 
-__all__ = ["Rigid3DSettings"]
+__all__ = ["DEFAULT_TAIL_DTAU", "Rigid3DSettings"]

@@ -1,32 +1,367 @@
-"""One case: :func:`solve` (skeleton until the kernel lands)."""
+"""One case: :func:`solve` (a floor motion in plan, a pulse or a record along the width, or free motion from a
+tilted state)."""
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass, replace
 from typing import Any
 
+import numpy as np
+
 from opsrock.block import Block
-from opsrock.result import RockingResult
-from opsrock.solvers.rigid3d.settings import Rigid3DSettings
+from opsrock.constants import OVERTURNING_ANGLE, G
+from opsrock.errors import InputError, InputTypeError, ModelNotSupported
+from opsrock.excitations import Pulse, Record
+from opsrock.excitations.plan import PlanMotion
+from opsrock.result import MODES, ContactSummary, PlanHistory, PlanSummary, RockingResult, failed_result
+from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
+from opsrock.solvers.rigid3d import kernel as kn
+from opsrock.solvers.rigid3d.settings import DEFAULT_TAIL_DTAU, Rigid3DSettings
+from opsrock.solvers.status import REASONS, failure_of
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "rigid3d"
 
 
-def solve(block: Block, excitation: Any, settings: Rigid3DSettings | None = None,
+@dataclass(frozen=True)
+class BoxProperties:
+    """A block's three-dimensional mass properties, per unit mass, as the kernel takes them.
+
+    Parameters
+    ----------
+    inertia : tuple of float
+        ``(I_x, I_y, I_z) / m`` about the centre of mass, body axes (m²).
+    weak_y : bool
+        True if the depth is the weaker axis (``alpha_depth < alpha``).
+    alpha : float
+        Slenderness of the weaker axis, ``atan(min(b, d) / h)`` (rad).
+    R : float
+        Pivot-to-centre-of-mass distance in the weaker axis's plane (m).
+    p : float
+        Frequency parameter of rocking in the weaker axis's plane, ``sqrt(g R / (r² + R²))`` (rad/s).
+    """
+
+    inertia: tuple[float, float, float]
+    weak_y: bool
+    alpha: float
+    R: float  # noqa: N815  (the paper's symbol)
+    p: float
+
+
+def box_properties(block: Block) -> BoxProperties:
+    """The block's inertia and weaker axis (docs/three-dimensions.md, the model).
+
+    A homogeneous box about its centre of mass: ``I_x = m (depth² + height²) / 12``, ``I_y = m (width² + height²)
+    / 12``, ``I_z = m (width² + depth²) / 12``; with ``cm_height`` only, the same formulas about that centre of
+    mass. With ``radius_of_gyration`` ``r`` (the radius for rocking along the width): ``I_y = m r²``, ``I_x = m (r²
+    + (depth² - width²) / 12)`` (the same vertical part, the horizontal part a homogeneous box's), ``I_z = m
+    (width² + depth²) / 12``.
+
+    Raises
+    ------
+    InputError
+        A block without ``depth``, or a ``radius_of_gyration`` that leaves ``I_x <= 0``.
+    """
+    if block.depth is None:
+        raise InputError("solver 'rigid3d' needs the block's depth (Block.depth, m), got depth = None",
+                         argument="depth")
+    w, dep, hh = block.width, block.depth, block.height
+    if block.radius_of_gyration is None:
+        ix, iy = (dep**2 + hh**2) / 12.0, (w**2 + hh**2) / 12.0
+    else:
+        r2 = block.radius_of_gyration**2
+        ix, iy = r2 + (dep**2 - w**2) / 12.0, r2
+        if ix <= 0.0:
+            raise InputError(f"radius_of_gyration = {block.radius_of_gyration!r} m leaves no inertia across the depth "
+                             f"(r² + (depth² - width²)/12 <= 0)", argument="radius_of_gyration")
+    iz = (w**2 + dep**2) / 12.0
+    weak_y = block.d < block.b
+    half, r2w = (block.d, ix) if weak_y else (block.b, iy)
+    R = math.hypot(half, block.h_cm)
+    return BoxProperties((ix, iy, iz), weak_y, math.atan2(half, block.h_cm), R, math.sqrt(G * R / (r2w + R * R)))
+
+
+@dataclass(frozen=True)
+class _Forcing:
+    """The floor motion in the block frame as the kernel takes it (see :func:`kernel.run`)."""
+
+    form: int
+    ax: np.ndarray
+    ay: np.ndarray
+    av: np.ndarray
+    sub: int
+    n_exc: int
+    tail_av: float
+    dt: float
+    peak: float  # max |a_h| + max |a_v| (m/s²), for the contact gap
+
+
+def as_plan(excitation: object) -> PlanMotion:
+    """``excitation`` as a :class:`PlanMotion` (a bare pulse or record: along the block's width); refuses what the
+    kernel cannot take (anything but analytic pulses and records, a pulse with a record, two records of
+    different sample steps)."""
+    plan = excitation if isinstance(excitation, PlanMotion) else None
+    if plan is None:
+        if not isinstance(excitation, (Pulse, Record)):
+            raise InputTypeError(f"solver 'rigid3d' solves analytic pulses (Pulse), records (Record) and PlanMotion "
+                                 f"of them, got {type(excitation).__name__}")
+        return PlanMotion(excitation)
+    parts = [plan.first] + ([] if plan.second is None else [plan.second])
+    if not (all(isinstance(p, Pulse) for p in parts) or all(isinstance(p, Record) for p in parts)):
+        raise InputTypeError("solver 'rigid3d' takes a PlanMotion of two pulses or of two records, got "
+                             f"{' and '.join(type(p).__name__ for p in parts)}")
+    if len(parts) == 2 and isinstance(plan.first, Record) and not math.isclose(plan.first.dt, plan.second.dt,
+                                                                                 rel_tol=1e-12):
+        raise InputError(f"second must share the first record's sample step dt = {plan.first.dt!r} s, got "
+                         f"{plan.second.dt!r} s", argument="second")
+    return plan
+
+
+def _pulse_forcing(plan: PlanMotion, dt_nom: float, theta_mj: float) -> _Forcing:
+    """Pulses sampled exactly at every step's evaluation time; a whole number of steps in the longer pulse."""
+    n = max(1, math.ceil(plan.duration / dt_nom))
+    dt = plan.duration / n
+    t = (np.arange(n) + theta_mj) * dt
+    ax, ay = (np.ascontiguousarray(a, dtype=float) for a in plan.components(t))
+    vertical = float(plan.first.vertical)
+    av = np.full(n, vertical)
+    return _Forcing(kn.FORCING_STEPWISE, ax, ay, av, 1, n, vertical, dt,
+                    float(np.max(np.hypot(ax, ay))) + abs(vertical))
+
+
+def _record_forcing(plan: PlanMotion, dt_nom: float) -> _Forcing:
+    """The records' samples rotated into the block frame, ``sub`` steps per sample interval."""
+    rec = plan.first
+    sub = max(1, math.ceil(rec.dt / dt_nom))
+    n_samples = max(rec.values.size, 0 if plan.second is None else plan.second.values.size)
+    a1, a2, av = np.zeros(n_samples), np.zeros(n_samples), np.zeros(n_samples)
+    a1[:rec.values.size] = rec.values
+    if plan.second is not None:
+        a2[:plan.second.values.size] = plan.second.values
+    if rec.vertical is not None:
+        av[:rec.values.size] = rec.vertical
+    c, s = math.cos(math.radians(plan.azimuth)), math.sin(math.radians(plan.azimuth))
+    ax, ay = c * a1 + s * a2, -s * a1 + c * a2
+    n = (n_samples - 1) * sub
+    return _Forcing(kn.FORCING_LINEAR, ax, ay, av, sub, n, 0.0, rec.dt / sub,
+                    float(np.max(np.hypot(ax, ay))) + float(np.max(np.abs(av))))
+
+
+def _free_forcing(duration: float, dt_nom: float) -> _Forcing:
+    """No floor motion for ``duration`` (s)."""
+    n = max(1, math.ceil(duration / dt_nom))
+    z = np.zeros(n)
+    return _Forcing(kn.FORCING_STEPWISE, z, z.copy(), z.copy(), 1, n, 0.0, duration / n, 0.0)
+
+
+def tilted_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndarray:
+    """The kernel's 13-float state of the block tilted by ``theta`` (rad) in the ``x-z`` plane (rocking along its
+    width, positive: the centre of mass towards ``+x``) on its stuck edge ``x = sgn(theta) b`` with angular
+    velocity ``theta_dot`` (rad/s): ``(X, q, V, omega)``, the rotation about ``+y``."""
+    c = 1.0 if theta >= 0.0 else -1.0
+    b, h = block.b, block.h_cm
+    x = c * b * (1.0 - math.cos(theta)) + h * math.sin(theta)
+    z = c * b * math.sin(theta) + h * math.cos(theta)
+    rx, rz = x - c * b, z  # from the pivot edge to the centre of mass
+    return np.array([x, 0.0, z, math.cos(0.5 * theta), 0.0, math.sin(0.5 * theta), 0.0,
+                     theta_dot * rz, 0.0, -theta_dot * rx, 0.0, theta_dot, 0.0])
+
+
+def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> RockingResult:
+    """Run the kernel on one case and build the result."""
+    block, settings = run.block, run.settings
+    box = box_properties(block)
+    p, R, dt = box.p, box.R, forcing.dt
+    mu_inf = block.friction is None
+    fric = np.array([0.0 if mu_inf else block.friction, 0.0 if mu_inf else block.friction_kinetic,
+                     1.0 if mu_inf else 0.0])
+    geom = np.array([block.b, block.d, block.h_cm, G, p, 0.0, 0.0, R])
+    num = np.array([dt, settings.theta_mj, settings.rocked_theta, 1.0 if box.weak_y else 0.0])
+    nsgs = np.array([settings.nsgs_tol, settings.nsgs_max_sweeps, settings.nsgs_fail_steps], dtype=float)
+    tail_dtau = DEFAULT_TAIL_DTAU if settings.max_free_time is None else settings.max_free_time * p
+    max_tail = math.ceil(tail_dtau / (p * dt)) if tail else -1
+    limits = np.array([settings.step_limit, max_tail, settings.rest_velocity * p * R,
+                       max(1, math.ceil(settings.rest_duration / (p * dt))), settings.velocity_tol * p * R,
+                       settings.contact_gap * (G + forcing.peak) * dt * dt])
+    every = max(1, round(settings.history_dtau / (p * dt)))
+    cap = min(forcing.n_exc + max(max_tail, 0), settings.step_limit) // every + 3 if settings.record else 0
+    hist = np.zeros((cap, kn.H_SIZE))
+    out = np.zeros(kn.OUT_SIZE)
+    record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": dt}
+    try:
+        kn.run(geom, np.array(box.inertia), fric, num, nsgs, forcing.form, forcing.ax, forcing.ay, forcing.av,
+               forcing.sub, forcing.n_exc, forcing.tail_av, state.copy(), limits, every, hist, out)
+    except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
+        return failed_result(SOLVER_NAME, record, box.alpha, f"{type(exc).__name__}: {exc}",
+                             wall_time_s=run.elapsed())
+    return _result(run, box, out, hist[:int(out[kn.OUT_N_HIST])], record, state)
+
+
+def _mechanical(block: Block, box: BoxProperties, state: np.ndarray) -> tuple[float, float]:
+    """Kinetic and potential energy (J) of a kernel state; ``PE = m g (z - h)``."""
+    w, x, y, z = (float(v) for v in state[3:7])
+    Q = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                  [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                  [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    om = Q.T @ state[10:13]  # body frame
+    m = block.mass
+    kinetic = 0.5 * m * (float(state[7:10] @ state[7:10]) + float(np.dot(box.inertia, om * om)))
+    return kinetic, m * G * (float(state[2]) - block.h_cm)
+
+
+def _energy(block: Block, box: BoxProperties, out: np.ndarray, state0: np.ndarray) -> dict[str, float]:
+    """The run's energy balance in J (for the block's mass), from the kernel's per-unit-mass sums."""
+    kinetic, potential = _mechanical(block, box, out[kn.OUT_STATE:kn.OUT_STATE + 13])
+    initial = sum(_mechanical(block, box, state0))
+    work, fric, imp = (block.mass * out[i] for i in (kn.OUT_INPUT_WORK, kn.OUT_FRICTION_WORK, kn.OUT_IMPACT_LOSS))
+    return {"input_work": float(work), "kinetic": kinetic, "potential": potential, "friction_work": float(fric),
+            "impact_loss": float(imp), "initial": initial,
+            "residual": float(work + initial - kinetic - potential - fric - imp)}
+
+
+def _diagnostics(out: np.ndarray) -> dict[str, Any]:
+    """The kernel's bookkeeping, JSON-serialisable."""
+    steps = max(1.0, out[kn.OUT_CONTACT_STEPS])
+    return {"end_time": float(out[kn.OUT_TIME]), "max_penetration": float(out[kn.OUT_MAX_PENETRATION]),
+            "contact_steps": int(out[kn.OUT_CONTACT_STEPS]), "rest_skip_steps": int(out[kn.OUT_REST_STEPS]),
+            "nsgs_unconverged_steps": int(out[kn.OUT_NSGS_FAILED]),
+            "nsgs_mean_sweeps": float(out[kn.OUT_NSGS_SWEEPS] / steps), "nsgs_max_sweeps": int(out[kn.OUT_NSGS_MAX]),
+            "limit_solves": int(out[kn.OUT_LIMIT_STEPS])}
+
+
+def _result(run: SolverRun, box: BoxProperties, out: np.ndarray, hist: np.ndarray, record: dict[str, Any],
+            state0: np.ndarray) -> RockingResult:
+    """The :class:`RockingResult` of a finished kernel run."""
+    block = run.block
+    time_s, theta, theta_dot = (hist[:, c].copy() for c in (kn.H_T, kn.H_THETA, kn.H_THETA_DOT))
+    axis = 1 if box.weak_y else 0
+    slide = hist[:, kn.H_SLIDE + axis].copy()
+    status, steps = int(out[kn.OUT_STATUS]), int(out[kn.OUT_STEPS])
+    diagnostics = _diagnostics(out)
+    if status != kn.STATUS_OK:
+        reason = REASONS[status]
+        if status == kn.STATUS_CONTACT:
+            reason += (f": the NSGS contact solver did not converge in {run.settings.nsgs_fail_steps} consecutive "
+                       f"steps (t = {out[kn.OUT_TIME]:.6g} s)")
+        failed = failed_result(SOLVER_NAME, record, box.alpha, reason, time=time_s, theta=theta,
+                               theta_dot=theta_dot, n_steps=steps, wall_time_s=run.elapsed(),
+                               failure=failure_of(status))
+        return replace(failed, slide=slide, diagnostics=diagnostics)
+    fin = out[kn.OUT_STATE:kn.OUT_STATE + 13]
+    w, x, y, z = fin[3:7]
+    h = block.h_cm
+    residual = (float(fin[0] - 2 * h * (x * z + w * y)), float(fin[1] - 2 * h * (y * z - w * x)))
+    energy = _energy(block, box, out, state0)
+    kind = int(out[kn.OUT_OVER_KIND])
+    overturned = bool(out[kn.OUT_OVERTURNED])
+    plan = PlanSummary(
+        tilt_max=float(out[kn.OUT_THETA_MAX]), twist_max=float(out[kn.OUT_TWIST_MAX]),
+        slide_max=float(out[kn.OUT_SLIDE_MAX]), slide_residual=residual,
+        overturned_over=("edge" if kind == 1 else "corner") if overturned else "",
+        overturn_direction=math.degrees(out[kn.OUT_OVER_DIR]) if overturned else math.nan,
+        time_edge=float(out[kn.OUT_TIME_EDGE]), time_corner=float(out[kn.OUT_TIME_CORNER]),
+        time_sliding=float(out[kn.OUT_TIME_SLIDING]), time_flight=float(out[kn.OUT_TIME_FLIGHT]), energy=energy)
+    first = int(out[kn.OUT_FIRST_MODE])
+    contact = ContactSummary(
+        first_mode=MODES[first] if first >= 0 else "rest", time_sliding=plan.time_sliding,
+        time_rocking=float(out[kn.OUT_TIME_ROCKING]), slide_max=plan.slide_max, slide_residual=residual[axis],
+        time_flight=plan.time_flight, energy=energy)
+    history = None
+    if run.settings.record:
+        history = PlanHistory(rotation=hist[:, kn.H_ROT:kn.H_ROT + 3].copy(),
+                              position=hist[:, kn.H_POS:kn.H_POS + 3].copy(), twist=hist[:, kn.H_TWIST].copy(),
+                              slide=hist[:, kn.H_SLIDE:kn.H_SLIDE + 2].copy(),
+                              corners_down=hist[:, kn.H_DOWN].astype(int))
+    theta_max = float(out[kn.OUT_THETA_MAX])
+    return RockingResult(
+        solver=SOLVER_NAME, settings=record, alpha=box.alpha, time=time_s, theta=theta, theta_dot=theta_dot,
+        theta_max=theta_max, overturned=theta_max >= OVERTURNING_ANGLE, rocked=bool(out[kn.OUT_ROCKED]),
+        n_steps=steps, wall_time_s=run.elapsed(), n_impacts=int(out[kn.OUT_IMPACTS]), diagnostics=diagnostics,
+        slide=slide, contact=contact, plan=plan, plan_history=history)
+
+
+def solve(block: Block, excitation: PlanMotion | Pulse | Record | None, settings: Rigid3DSettings | None = None,
           **overrides: Any) -> RockingResult:
     """Response of a box on a floor with Coulomb friction to a floor motion in plan (two horizontal components
-    and a vertical one), by Moreau-Jean time stepping.
+    and a vertical one), by Moreau-Jean time stepping with NSGS (module docstring).
 
     Parameters
     ----------
     block : Block
-        The block, with its ``depth`` (m).
+        The block, with its ``depth`` (m); ``friction`` (static ``mu``; None: infinite, no corner slips) and
+        ``friction_kinetic`` (``mu_k``, used while a corner slips); ``cm_height`` and ``radius_of_gyration``
+        (:func:`box_properties`). Its impact law must be Housner's (``restitution_factor = 1``, no
+        ``restitution``): ``e_n = 0`` at the corners gives ``e_H`` in planar rocking and nothing else.
     excitation : PlanMotion or Pulse or Record or None
-        The floor motion in plan; a pulse or a record alone is taken along the block's width.
+        The floor motion in plan (two pulses or two records of one sample step; the vertical is the first
+        component's); a bare pulse or record acts along the block's width. None: a still floor for ``end_time``
+        (required; no tail) from the block tilted by ``theta0`` (rad) in its ``x-z`` plane with ``theta_dot0``
+        (rad/s) on its stuck edge (:func:`tilted_state`).
     settings : Rigid3DSettings, optional
         Numerical settings; keyword ``overrides`` replace individual fields.
+
+    Returns
+    -------
+    RockingResult
+        ``theta`` the tilt (rad), signed by the lean along the weaker axis (positive: the centre of mass towards
+        ``+x``, or ``+y`` if the depth is the weaker axis), ``theta_dot`` the angular velocity about that axis's
+        horizontal normal (rad/s; the planar solvers' ``theta'`` in planar motion), ``alpha`` the weaker axis's
+        slenderness, ``theta_max`` the peak tilt, ``overturned`` (tilt reached pi/2), ``rocked`` (tilt above
+        ``rocked_theta``), ``n_impacts`` (steps in which a corner that was up landed), ``slide`` (base centre's
+        displacement along the weaker axis, m), ``contact`` (:class:`~opsrock.result.ContactSummary`, slides along
+        the weaker axis), ``plan`` (:class:`~opsrock.result.PlanSummary`) and ``plan_history``
+        (:class:`~opsrock.result.PlanHistory`, with ``record``). A run that did not finish is failed with its
+        reason (non-finite state or floor motion, ``max_steps``, still moving at the end of the tail, the contact
+        solver unconverged for ``nsgs_fail_steps`` steps in a row). ``diagnostics``: ``end_time`` (s),
+        ``max_penetration`` (m), ``contact_steps``, ``rest_skip_steps``, ``nsgs_unconverged_steps``,
+        ``nsgs_mean_sweeps``, ``nsgs_max_sweeps``, ``limit_solves`` (local solves where sticking with infinite
+        friction needed a pulling impulse: the corner was left open).
+
+    Raises
+    ------
+    InputError
+        A block without depth, a restitution other than Housner's, a settings value out of range, two records
+        of different sample steps.
+    InputTypeError
+        A block that is not a :class:`Block`, or an excitation other than pulses and records.
     """
-    raise NotImplementedError("rigid3d: the kernel lands with issue 33")
+    settings = make_settings(Rigid3DSettings, settings, overrides)
+    block = check_inputs(SOLVER_NAME, block, excitation, settings)
+    box_properties(block)
+    if (excitation is None) != (settings.end_time is not None):
+        raise ModelNotSupported(f"solver {SOLVER_NAME!r} takes end_time (the span of free motion) with "
+                                f"excitation None and only then, got end_time = {settings.end_time!r}")
+    plan = None if excitation is None else as_plan(excitation)
+    return _Rigid3DRun(block, plan, settings).run()
 
 
-__all__ = ["SOLVER_NAME", "solve"]
+class _Rigid3DRun(SolverRun):
+    """One case through the kernel: from rest under the floor motion, or free from a tilted state."""
+
+    name = SOLVER_NAME
+
+    def run(self) -> RockingResult:
+        """The shared skeleton, with each record component's non-finite samples checked (the skeleton checks a
+        bare record's only)."""
+        plan = self.excitation
+        if plan is not None and isinstance(plan.first, Record):
+            for part in (plan.first, plan.second):
+                if part is not None and not (np.all(np.isfinite(part.values)) and
+                                             (part.vertical is None or np.all(np.isfinite(part.vertical)))):
+                    self.excitation = part  # the skeleton reports its first non-finite sample
+                    return super().run()
+        return super().run()
+
+    def _run_impl(self) -> RockingResult:
+        s, plan = self.settings, self.excitation
+        dt_nom = s.dtau / box_properties(self.block).p
+        if plan is None:
+            return _run(self, _free_forcing(s.end_time, dt_nom), tilted_state(self.block, s.theta0, s.theta_dot0),
+                        tail=False)
+        forcing = _record_forcing(plan, dt_nom) if isinstance(plan.first, Record) else \
+            _pulse_forcing(plan, dt_nom, s.theta_mj)
+        return _run(self, forcing, tilted_state(self.block, s.theta0, s.theta_dot0), tail=True)
+
+
+__all__ = ["SOLVER_NAME", "BoxProperties", "as_plan", "box_properties", "solve", "tilted_state"]

@@ -1,0 +1,859 @@
+"""Compiled kernel of :mod:`opsrock.solvers.rigid3d` (numba): Moreau-Jean time stepping of a rigid box on a
+rigid floor with its four base corners as contacts, Newton's impact law with ``e_n = 0`` and isotropic Coulomb
+friction, the contact problem of each step solved by nonsmooth Gauss-Seidel (docs/three-dimensions.md).
+
+Everything here is per unit mass: positions in m, velocities in m/s and rad/s, impulses in m/s (N s per kg),
+energies in J/kg, inertias in m² (``I / m``). Frames: the floor frame ``(x, y, z)`` is the block frame at rest
+(``x`` along the width, ``y`` along the depth, ``z`` up, origin at the base centre at rest); the floor's
+accelerations enter as the body force ``(-a_x, -a_y, -(g + a_v))``.
+
+State (13 floats): centre of mass ``X`` (3, floor frame), orientation as a unit quaternion ``q = (w, x, y, z)``
+(body to floor), CM velocity ``V`` (3) and angular velocity ``omega`` (3, floor frame). The inertia is diagonal
+in the body frame, ``I_b = diag(I_x, I_y, I_z)``; in the floor frame ``I = Q I_b Q^T`` (``Q`` the rotation
+matrix of ``q``).
+
+Corner ``i`` sits at ``c_i = (sx_i b, sy_i d, -h)`` in the body frame (``h`` the height of the centre of mass
+above the base), at ``r_i = Q c_i`` from the centre of mass; its velocity is ``u_i = V + omega x r_i``, its gap
+the height ``X_z + r_i,z``. The contact frame is the floor's: tangents ``x``, ``y``, normal ``z``. An impulse
+``P_j`` at corner ``j`` changes ``u_i`` by ``W_ij P_j``, ``W_ij = 1 - S_i I^-1 S_j`` (``S`` the cross-product
+matrix of ``r``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.solvers import status as ST
+
+# --- status codes: the shared ones (:mod:`opsrock.solvers.status`) ------------------------------------
+STATUS_OK = ST.OK
+STATUS_NONFINITE = ST.NONFINITE
+STATUS_MAX_STEPS = ST.MAX_STEPS
+STATUS_TAIL = ST.MAX_FREE_TIME
+#: The contact solver (NSGS) did not converge in ``nsgs_fail_steps`` consecutive steps.
+STATUS_CONTACT = ST.NO_CONTACT_SOLUTION
+
+# --- contact modes, indices into opsrock.result.MODES ----------------------------------------------
+MODE_REST = 0
+MODE_SLIDE = 1
+MODE_ROCK = 2
+MODE_SLIDE_ROCK = 3
+MODE_FLIGHT = 4
+
+# --- forcing forms ---------------------------------------------------------------------------------
+FORCING_STEPWISE = 0
+FORCING_LINEAR = 1
+
+# --- history columns --------------------------------------------------------------------------------
+H_T, H_THETA, H_THETA_DOT = 0, 1, 2
+H_ROT = 3  # rotation vector, 3 columns
+H_POS = 6  # CM displacement from rest, 3 columns
+H_TWIST = 9
+H_SLIDE = 10  # base centre's horizontal displacement, 2 columns
+H_DOWN = 12
+H_SIZE = 13
+
+# --- layout of the kernel's output vector: the shared slots, then this kernel's own -----------------
+OUT_STATUS, OUT_THETA_MAX, OUT_OVERTURNED, OUT_ROCKED = ST.OUT_STATUS, ST.OUT_THETA_MAX, ST.OUT_OVERTURNED, ST.OUT_ROCKED
+OUT_IMPACTS, OUT_STEPS, OUT_N_HIST, OUT_EVENT_TIME = ST.OUT_IMPACTS, ST.OUT_STEPS, ST.OUT_N_HIST, ST.OUT_EVENT_TIME
+OUT_FIRST_MODE = ST.OUT_COMMON
+OUT_TIME_SLIDING = ST.OUT_COMMON + 1
+OUT_TIME_ROCKING = ST.OUT_COMMON + 2
+OUT_TIME_EDGE = ST.OUT_COMMON + 3
+OUT_TIME_CORNER = ST.OUT_COMMON + 4
+OUT_TIME_FLIGHT = ST.OUT_COMMON + 5
+OUT_SLIDE_MAX = ST.OUT_COMMON + 6
+OUT_TWIST_MAX = ST.OUT_COMMON + 7
+OUT_INPUT_WORK = ST.OUT_COMMON + 8
+OUT_FRICTION_WORK = ST.OUT_COMMON + 9
+OUT_IMPACT_LOSS = ST.OUT_COMMON + 10
+OUT_NSGS_FAILED = ST.OUT_COMMON + 11  # steps whose NSGS did not converge
+OUT_NSGS_SWEEPS = ST.OUT_COMMON + 12  # sweeps over all contact solves
+OUT_NSGS_MAX = ST.OUT_COMMON + 13  # most sweeps in one step
+OUT_MAX_PENETRATION = ST.OUT_COMMON + 14
+OUT_TIME = ST.OUT_COMMON + 15
+OUT_REST_STEPS = ST.OUT_COMMON + 16  # steps taken by the rest skip
+OUT_OVER_KIND = ST.OUT_COMMON + 17  # 1: over an edge, 2: over a corner
+OUT_OVER_DIR = ST.OUT_COMMON + 18  # direction of overturning (rad, floor frame)
+OUT_LIMIT_STEPS = ST.OUT_COMMON + 19  # local solves that met the infinite-friction limit (P_N < 0 to stick)
+OUT_CONTACT_STEPS = ST.OUT_COMMON + 20  # steps that solved a contact problem
+OUT_STATE = ST.OUT_COMMON + 21  # final state, 13 slots
+OUT_SIZE = ST.OUT_COMMON + 34
+
+#: Corner signs ``(sx, sy)``: corners 0..3 at (+b, +d), (-b, +d), (-b, -d), (+b, -d) (counter-clockwise).
+CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
+CORNER_SY = np.array([1.0, 1.0, -1.0, -1.0])
+
+
+@numba.njit(cache=True)
+def _floor(k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av):
+    """Floor accelerations ``(a_x, a_y, a_v)`` (m/s²) at the evaluation time ``(k + theta_mj) dt`` of step ``k``."""
+    if k >= n_exc:
+        return 0.0, 0.0, tail_av
+    if form == FORCING_STEPWISE:
+        return ax[k], ay[k], av[k]
+    j = k // sub
+    f = (k - j * sub + theta_mj) / sub
+    return (ax[j] + f * (ax[j + 1] - ax[j]), ay[j] + f * (ay[j + 1] - ay[j]), av[j] + f * (av[j + 1] - av[j]))
+
+
+@numba.njit(cache=True)
+def _rotmat(s, Q):
+    """Rotation matrix ``Q`` (body to floor) of the unit quaternion ``s[3:7]``."""
+    w, x, y, z = s[3], s[4], s[5], s[6]
+    Q[0, 0] = 1.0 - 2.0 * (y * y + z * z)
+    Q[0, 1] = 2.0 * (x * y - w * z)
+    Q[0, 2] = 2.0 * (x * z + w * y)
+    Q[1, 0] = 2.0 * (x * y + w * z)
+    Q[1, 1] = 1.0 - 2.0 * (x * x + z * z)
+    Q[1, 2] = 2.0 * (y * z - w * x)
+    Q[2, 0] = 2.0 * (x * z - w * y)
+    Q[2, 1] = 2.0 * (y * z + w * x)
+    Q[2, 2] = 1.0 - 2.0 * (x * x + y * y)
+
+
+@numba.njit(cache=True)
+def _inv_inertia(Q, ib, Iinv, Iw):
+    """Inverse inertia ``Q I_b^-1 Q^T`` and inertia ``Q I_b Q^T`` in the floor frame (per unit mass)."""
+    for i in range(3):
+        for j in range(3):
+            a = 0.0
+            c = 0.0
+            for k in range(3):
+                a += Q[i, k] * Q[j, k] / ib[k]
+                c += Q[i, k] * Q[j, k] * ib[k]
+            Iinv[i, j] = a
+            Iw[i, j] = c
+
+
+@numba.njit(cache=True)
+def _delassus(r, Iinv, W):
+    """``W = 1 - S I^-1 S`` of one corner at ``r`` from the centre of mass (its own 3 x 3 block): ``-S I^-1 S
+    e_j = r x (I^-1 (r x e_j))``."""
+    r0, r1, r2 = r[0], r[1], r[2]
+    for j in range(3):
+        # c = r x e_j
+        c0 = 0.0 if j == 0 else (r2 if j == 1 else -r1)
+        c1 = -r2 if j == 0 else (0.0 if j == 1 else r0)
+        c2 = r1 if j == 0 else (-r0 if j == 1 else 0.0)
+        t0 = Iinv[0, 0] * c0 + Iinv[0, 1] * c1 + Iinv[0, 2] * c2
+        t1 = Iinv[1, 0] * c0 + Iinv[1, 1] * c1 + Iinv[1, 2] * c2
+        t2 = Iinv[2, 0] * c0 + Iinv[2, 1] * c1 + Iinv[2, 2] * c2
+        # W e_j = e_j - (t x r) = e_j + r x t
+        W[0, j] = (1.0 if j == 0 else 0.0) + r1 * t2 - r2 * t1
+        W[1, j] = (1.0 if j == 1 else 0.0) + r2 * t0 - r0 * t2
+        W[2, j] = (1.0 if j == 2 else 0.0) + r0 * t1 - r1 * t0
+
+
+@numba.njit(cache=True)
+def _inv3(A, B):
+    """``B = A^-1`` of a 3 x 3 matrix; False if singular."""
+    c00 = A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1]
+    c01 = A[1, 2] * A[2, 0] - A[1, 0] * A[2, 2]
+    c02 = A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]
+    det = A[0, 0] * c00 + A[0, 1] * c01 + A[0, 2] * c02
+    if det == 0.0:
+        return False
+    B[0, 0] = c00 / det
+    B[1, 0] = c01 / det
+    B[2, 0] = c02 / det
+    B[0, 1] = (A[0, 2] * A[2, 1] - A[0, 1] * A[2, 2]) / det
+    B[1, 1] = (A[0, 0] * A[2, 2] - A[0, 2] * A[2, 0]) / det
+    B[2, 1] = (A[0, 1] * A[2, 0] - A[0, 0] * A[2, 1]) / det
+    B[0, 2] = (A[0, 1] * A[1, 2] - A[0, 2] * A[1, 1]) / det
+    B[1, 2] = (A[0, 2] * A[1, 0] - A[0, 0] * A[1, 2]) / det
+    B[2, 2] = (A[0, 0] * A[1, 1] - A[0, 1] * A[1, 0]) / det
+    return True
+
+
+@numba.njit(cache=True)
+def _slip_direction(a, c, e, r0, r1):
+    """Unit ``s`` and ``lam >= 0`` with ``(lam 1 + A) s = r``, ``A = [[a, c], [c, e]]`` symmetric positive
+    definite: the slip direction of a contact whose tangential velocity is ``r - A s`` (the trust-region
+    "secular" equation ``|s(lam)| = 1``, by Newton on ``1 - 1 / |s(lam)|``, which is concave and increasing, so
+    the iteration from ``lam = 0`` rises monotonically to the root). Returns ``(s0, s1)``."""
+    # eigen-decomposition of A
+    tr = 0.5 * (a + e)
+    df = 0.5 * (a - e)
+    rad = math.sqrt(df * df + c * c)
+    l1, l2 = tr + rad, tr - rad
+    if rad > 0.0:
+        if df >= 0.0:
+            cth, sth = df + rad, c
+        else:
+            cth, sth = c, rad - df
+        nn = math.hypot(cth, sth)
+        cth, sth = cth / nn, sth / nn
+    else:
+        cth, sth = 1.0, 0.0
+    # coordinates of r in the eigenbasis (first eigenvector (cth, sth) for l1)
+    p1 = cth * r0 + sth * r1
+    p2 = -sth * r0 + cth * r1
+    lam = 0.0
+    for _ in range(60):
+        s1 = p1 / (lam + l1)
+        s2 = p2 / (lam + l2)
+        ns = math.sqrt(s1 * s1 + s2 * s2)
+        if ns == 0.0:
+            break
+        if lam == 0.0 and ns <= 1.0:
+            break
+        dns = -(s1 * s1 / (lam + l1) + s2 * s2 / (lam + l2)) / ns
+        step = (1.0 - 1.0 / ns) / (dns / (ns * ns))
+        lam_new = lam - step
+        if lam_new < 0.0:
+            lam_new = 0.0
+        if abs(lam_new - lam) <= 1e-15 * (lam + l1):
+            lam = lam_new
+            break
+        lam = lam_new
+    s1 = p1 / (lam + l1)
+    s2 = p2 / (lam + l2)
+    ns = math.sqrt(s1 * s1 + s2 * s2)
+    if ns == 0.0:
+        return 1.0, 0.0
+    s1, s2 = s1 / ns, s2 / ns
+    return cth * s1 - sth * s2, sth * s1 + cth * s2
+
+
+@numba.njit(cache=True)
+def _local(W, Winv, q, mu_s, mu_k, stick_only, P):
+    """One corner's impulse ``P`` (tangential x, y, normal z) making ``u = q + W P`` obey ``0 <= u_z _|_ P_z >= 0``
+    (Newton, ``e_n = 0``) and Coulomb's law: open if the corner does not approach; else stick (``u = 0``) if that
+    impulse lies in the static cone ``|P_t| <= mu_s P_z``; else slip with ``|P_t| = mu_k P_z`` against the slip
+    velocity (maximal dissipation). Returns 0 solved, 1 the infinite-friction limit (sticking needs a pulling
+    impulse: the corner is left open, see ``_nsgs``), 2 no slip solution (``W_zz - mu_k W_zt . s <= 0``)."""
+    if q[2] >= 0.0:
+        P[0], P[1], P[2] = 0.0, 0.0, 0.0
+        return 0
+    for i in range(3):
+        P[i] = -(Winv[i, 0] * q[0] + Winv[i, 1] * q[1] + Winv[i, 2] * q[2])
+    if P[2] >= 0.0 and (stick_only or math.hypot(P[0], P[1]) <= mu_s * P[2] * (1.0 + 1e-12)):
+        return 0
+    if stick_only:
+        P[0], P[1], P[2] = 0.0, 0.0, 0.0
+        return 1
+    # slip: alternate the normal impulse (u_z = 0 for the slip direction s) and the slip direction (secular)
+    ut0 = q[0] - W[0, 2] * q[2] / W[2, 2]
+    ut1 = q[1] - W[1, 2] * q[2] / W[2, 2]
+    nu = math.hypot(ut0, ut1)
+    if nu > 0.0:
+        s0, s1 = ut0 / nu, ut1 / nu
+    else:
+        nu = math.hypot(P[0], P[1])
+        s0, s1 = (-P[0] / nu, -P[1] / nu) if nu > 0.0 else (1.0, 0.0)
+    pn = 0.0
+    for _ in range(30):
+        den = W[2, 2] - mu_k * (W[2, 0] * s0 + W[2, 1] * s1)
+        if den <= 0.0:
+            P[0], P[1], P[2] = 0.0, 0.0, 0.0
+            return 2
+        pn = -q[2] / den
+        r0 = q[0] + pn * W[0, 2]
+        r1 = q[1] + pn * W[1, 2]
+        c = mu_k * pn
+        if c <= 0.0:
+            break
+        n0, n1 = _slip_direction(c * W[0, 0], c * W[0, 1], c * W[1, 1], r0, r1)
+        moved = abs(n0 - s0) + abs(n1 - s1)
+        s0, s1 = n0, n1
+        if moved < 1e-13:
+            break
+    den = W[2, 2] - mu_k * (W[2, 0] * s0 + W[2, 1] * s1)
+    pn = -q[2] / den
+    P[0], P[1], P[2] = -mu_k * pn * s0, -mu_k * pn * s1, pn
+    return 0
+
+
+@numba.njit(cache=True)
+def _cross_add(a, b, Iinv, w, scale):
+    """``w += scale I^-1 (a x b)``."""
+    c0 = a[1] * b[2] - a[2] * b[1]
+    c1 = a[2] * b[0] - a[0] * b[2]
+    c2 = a[0] * b[1] - a[1] * b[0]
+    for i in range(3):
+        w[i] += scale * (Iinv[i, 0] * c0 + Iinv[i, 1] * c1 + Iinv[i, 2] * c2)
+
+
+@numba.njit(cache=True)
+def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter, q, Pn, out, single):
+    """Nonsmooth Gauss-Seidel (Jean & Moreau) over the active corners: each corner's local problem solved
+    exactly (:func:`_local`) with the others' impulses fixed, the body's velocity ``(V, Om)`` updated after each,
+    sweeps until no impulse changes by more than ``tol`` (m/s). Warm-started from ``P`` (the previous step's
+    impulses). Returns the number of sweeps (``max_iter + 1``: not converged); with a ``single`` active corner
+    one sweep is exact."""
+    for it in range(max_iter):
+        change = 0.0
+        for i in range(4):
+            if not act[i]:
+                continue
+            ri = r[i]
+            Pi = P[i]
+            u0 = V[0] + Om[1] * ri[2] - Om[2] * ri[1]
+            u1 = V[1] + Om[2] * ri[0] - Om[0] * ri[2]
+            u2 = V[2] + Om[0] * ri[1] - Om[1] * ri[0]
+            W = Wd[i]
+            for a in range(3):
+                q[a] = (u0 if a == 0 else (u1 if a == 1 else u2)) - (W[a, 0] * Pi[0] + W[a, 1] * Pi[1] + W[a, 2] * Pi[2])
+            code = _local(W, Wi[i], q, mu_s, mu_k, stick_only, Pn)
+            if code == 1:
+                out[OUT_LIMIT_STEPS] += 1.0
+            d0, d1, d2 = Pn[0] - Pi[0], Pn[1] - Pi[1], Pn[2] - Pi[2]
+            change = max(change, abs(d0), abs(d1), abs(d2))
+            V[0] += d0
+            V[1] += d1
+            V[2] += d2
+            Pn[0], Pn[1], Pn[2] = d0, d1, d2
+            _cross_add(ri, Pn, Iinv, Om, 1.0)
+            Pi[0] += d0
+            Pi[1] += d1
+            Pi[2] += d2
+        if change <= tol or single:
+            return it + 1
+    return max_iter + 1
+
+
+@numba.njit(cache=True)
+def _solve6(A, y):
+    """Solve ``A y_new = y`` in place (6 x 6, Gaussian elimination with partial pivoting; ``A`` is overwritten);
+    False if a pivot is below 1e-13 of the largest entry."""
+    n = 6
+    big = 0.0
+    for i in range(n):
+        for j in range(n):
+            big = max(big, abs(A[i, j]))
+    for col in range(n):
+        piv = col
+        for i in range(col + 1, n):
+            if abs(A[i, col]) > abs(A[piv, col]):
+                piv = i
+        if abs(A[piv, col]) <= 1e-13 * big:
+            return False
+        if piv != col:
+            for j in range(n):
+                A[col, j], A[piv, j] = A[piv, j], A[col, j]
+            y[col], y[piv] = y[piv], y[col]
+        for i in range(col + 1, n):
+            f = A[i, col] / A[col, col]
+            for j in range(col, n):
+                A[i, j] -= f * A[col, j]
+            y[i] -= f * y[col]
+    for i in range(n - 1, -1, -1):
+        acc = y[i]
+        for j in range(i + 1, n):
+            acc -= A[i, j] * y[j]
+        y[i] = acc / A[i, i]
+    return True
+
+
+@numba.njit(cache=True)
+def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
+    """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
+    through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
+    it stops; the impulses are the least-norm ones that make that velocity change (no self-equilibrated
+    friction "squeeze": the statically indeterminate part is left at zero). Accepted, into ``V``, ``Om`` and
+    ``P``, if every normal impulse is compressive and every tangential one lies in the static cone; else False
+    (NSGS then solves the step). ``A6`` (6 x 6) and ``y6`` (6) are workspace."""
+    i1 = -1
+    i2 = -1
+    for i in range(4):
+        if act[i]:
+            if i1 < 0:
+                i1 = i
+            elif i2 < 0:
+                i2 = i
+    if n_act == 2:
+        ra, rb = r[i1], r[i2]
+        L0, L1, L2 = ra[0] - rb[0], ra[1] - rb[1], ra[2] - rb[2]
+        nl = math.sqrt(L0 * L0 + L1 * L1 + L2 * L2)
+        e0, e1, e2 = L0 / nl, L1 / nl, L2 / nl
+        z0, z1, z2 = ra[1] * e2 - ra[2] * e1, ra[2] * e0 - ra[0] * e2, ra[0] * e1 - ra[1] * e0  # r_a x e
+        Ie0 = Iw[0, 0] * e0 + Iw[0, 1] * e1 + Iw[0, 2] * e2
+        Ie1 = Iw[1, 0] * e0 + Iw[1, 1] * e1 + Iw[1, 2] * e2
+        Ie2 = Iw[2, 0] * e0 + Iw[2, 1] * e1 + Iw[2, 2] * e2
+        num = z0 * vf[0] + z1 * vf[1] + z2 * vf[2] + Ie0 * vf[3] + Ie1 * vf[4] + Ie2 * vf[5]
+        sc = num / (z0 * z0 + z1 * z1 + z2 * z2 + Ie0 * e0 + Ie1 * e1 + Ie2 * e2)
+        V[0], V[1], V[2] = sc * z0, sc * z1, sc * z2
+        Om[0], Om[1], Om[2] = sc * e0, sc * e1, sc * e2
+        F0, F1, F2 = V[0] - vf[0], V[1] - vf[1], V[2] - vf[2]
+        d0, d1, d2 = Om[0] - vf[3], Om[1] - vf[4], Om[2] - vf[5]
+        T0 = Iw[0, 0] * d0 + Iw[0, 1] * d1 + Iw[0, 2] * d2
+        T1 = Iw[1, 0] * d0 + Iw[1, 1] * d1 + Iw[1, 2] * d2
+        T2 = Iw[2, 0] * d0 + Iw[2, 1] * d1 + Iw[2, 2] * d2
+        m0, m1, m2 = 0.5 * (ra[0] + rb[0]), 0.5 * (ra[1] + rb[1]), 0.5 * (ra[2] + rb[2])
+        T0 -= m1 * F2 - m2 * F1
+        T1 -= m2 * F0 - m0 * F2
+        T2 -= m0 * F1 - m1 * F0
+        q = 1.0 / (nl * nl)
+        D0, D1, D2 = (T1 * L2 - T2 * L1) * q, (T2 * L0 - T0 * L2) * q, (T0 * L1 - T1 * L0) * q
+        for i in range(4):
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+        P[i1, 0], P[i1, 1], P[i1, 2] = 0.5 * F0 + D0, 0.5 * F1 + D1, 0.5 * F2 + D2
+        P[i2, 0], P[i2, 1], P[i2, 2] = 0.5 * F0 - D0, 0.5 * F1 - D1, 0.5 * F2 - D2
+    else:  # three or four corners: the block stops; least-norm impulses P_i = y_F + y_T x r_i
+        for a in range(6):
+            for c in range(6):
+                A6[a, c] = 0.0
+        for i in range(4):
+            if not act[i]:
+                continue
+            x0, x1, x2 = r[i, 0], r[i, 1], r[i, 2]
+            # A_i A_i^T = [[1, S^T], [S, S S^T]], S = [r]x
+            A6[0, 0] += 1.0
+            A6[1, 1] += 1.0
+            A6[2, 2] += 1.0
+            S = ((0.0, -x2, x1), (x2, 0.0, -x0), (-x1, x0, 0.0))
+            for a in range(3):
+                for c in range(3):
+                    A6[3 + a, c] += S[a][c]
+                    A6[c, 3 + a] += S[a][c]
+                    acc = 0.0
+                    for m in range(3):
+                        acc += S[a][m] * S[c][m]
+                    A6[3 + a, 3 + c] += acc
+        y6[0], y6[1], y6[2] = -vf[0], -vf[1], -vf[2]
+        for a in range(3):
+            y6[3 + a] = -(Iw[a, 0] * vf[3] + Iw[a, 1] * vf[4] + Iw[a, 2] * vf[5])
+        if not _solve6(A6, y6):
+            return False
+        for i in range(4):
+            if act[i]:
+                x0, x1, x2 = r[i, 0], r[i, 1], r[i, 2]
+                P[i, 0] = y6[0] + y6[4] * x2 - y6[5] * x1
+                P[i, 1] = y6[1] + y6[5] * x0 - y6[3] * x2
+                P[i, 2] = y6[2] + y6[3] * x1 - y6[4] * x0
+            else:
+                P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+        for a in range(3):
+            V[a] = 0.0
+            Om[a] = 0.0
+    for i in range(4):
+        if act[i]:
+            if P[i, 2] < 0.0:
+                return False
+            if not stick_only and math.hypot(P[i, 0], P[i, 1]) > mu_s * P[i, 2] * (1.0 + 1e-12):
+                return False
+    return True
+
+
+@numba.njit(cache=True)
+def _quat_step(s, w0, w1, w2, dt, new):
+    """``new[3:7] = exp(dt omega / 2) * s[3:7]``, renormalised (``omega`` in the floor frame)."""
+    ang = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2) * dt
+    if ang > 0.0:
+        sh = math.sin(0.5 * ang) / (ang / dt)
+        a, bx, by, bz = math.cos(0.5 * ang), w0 * sh, w1 * sh, w2 * sh
+    else:
+        a, bx, by, bz = 1.0, 0.0, 0.0, 0.0
+    w, x, y, z = s[3], s[4], s[5], s[6]
+    nw = a * w - bx * x - by * y - bz * z
+    nx = a * x + bx * w + by * z - bz * y
+    ny = a * y - bx * z + by * w + bz * x
+    nz = a * z + bx * y - by * x + bz * w
+    n = math.sqrt(nw * nw + nx * nx + ny * ny + nz * nz)
+    new[3], new[4], new[5], new[6] = nw / n, nx / n, ny / n, nz / n
+
+
+@numba.njit(cache=True)
+def _kinetic(s, Iw):
+    """Kinetic energy per unit mass (J/kg) of state ``s`` with floor-frame inertia ``Iw``."""
+    e = 0.5 * (s[7] * s[7] + s[8] * s[8] + s[9] * s[9])
+    for i in range(3):
+        for j in range(3):
+            e += 0.5 * s[10 + i] * Iw[i, j] * s[10 + j]
+    return e
+
+
+@numba.njit(cache=True)
+def _cm_outside(X, r):
+    """True if the centre of mass's plan projection lies outside the convex hull of the four corners'
+    projections (the plan projection of the base)."""
+    inside_pos = True
+    inside_neg = True
+    for i in range(4):
+        j = (i + 1) % 4
+        ax, ay = X[0] + r[i, 0], X[1] + r[i, 1]
+        bx, by = X[0] + r[j, 0], X[1] + r[j, 1]
+        cr = (bx - ax) * (X[1] - ay) - (by - ay) * (X[0] - ax)
+        if cr < 0.0:
+            inside_pos = False
+        if cr > 0.0:
+            inside_neg = False
+    return not (inside_pos or inside_neg)
+
+
+@numba.njit(cache=True)
+def _record(j, cap, t, s, theta, theta_dot, down, h, hist):
+    """Store one history row if there is room; returns the next free row."""
+    if j >= cap:
+        return j
+    w, x, y, z = s[3], s[4], s[5], s[6]
+    nv = math.sqrt(x * x + y * y + z * z)
+    ang = 2.0 * math.atan2(nv, w)
+    f = ang / nv if nv > 0.0 else 2.0
+    hist[j, H_T] = t
+    hist[j, H_THETA] = theta
+    hist[j, H_THETA_DOT] = theta_dot
+    hist[j, H_ROT], hist[j, H_ROT + 1], hist[j, H_ROT + 2] = f * x, f * y, f * z
+    hist[j, H_POS], hist[j, H_POS + 1], hist[j, H_POS + 2] = s[0], s[1], s[2] - h
+    hist[j, H_TWIST] = _twist(s)
+    q02, q12 = 2.0 * (x * z + w * y), 2.0 * (y * z - w * x)
+    hist[j, H_SLIDE], hist[j, H_SLIDE + 1] = s[0] - h * q02, s[1] - h * q12
+    hist[j, H_DOWN] = down
+    return j + 1
+
+
+@numba.njit(cache=True)
+def _twist(s):
+    """Rotation about the vertical (rad) of the swing-twist decomposition of the quaternion, in (-pi, pi]."""
+    tw = 2.0 * math.atan2(s[6], s[3])
+    if tw > math.pi:
+        tw -= 2.0 * math.pi
+    elif tw <= -math.pi:
+        tw += 2.0 * math.pi
+    return tw
+
+
+@numba.njit(cache=True)
+def _tilt(s, weak_y):
+    """``(tilt, signed tilt, lean x, lean y)``: the tilt (rad) from the quaternion, ``2 asin(sqrt(q_x² + q_y²))``,
+    signed by the lean of the body's vertical axis along the weaker axis (``x``, or ``y`` if ``weak_y``), and the
+    plan components of that axis."""
+    w, x, y, z = s[3], s[4], s[5], s[6]
+    tilt = 2.0 * math.asin(min(1.0, math.sqrt(x * x + y * y)))
+    lx, ly = 2.0 * (x * z + w * y), 2.0 * (y * z - w * x)
+    lean = ly if weak_y else lx
+    return tilt, (tilt if lean >= 0.0 else -tilt), lx, ly
+
+
+@numba.njit(cache=True)
+def _mode(touch, slip):
+    """Contact mode (a ``MODE_*`` index) and corners down from the corners' contact and slip flags."""
+    n = 0
+    sl = False
+    for i in range(4):
+        if touch[i]:
+            n += 1
+            sl = sl or slip[i]
+    if n >= 3:
+        return (MODE_SLIDE if sl else MODE_REST), n
+    if n >= 1:
+        return (MODE_SLIDE_ROCK if sl else MODE_ROCK), n
+    return MODE_FLIGHT, n
+
+
+@numba.njit(cache=True)
+def _tally(mode, n_down, dt, out):
+    """First mode left rest into, and the times in each state."""
+    if mode != MODE_REST and out[OUT_FIRST_MODE] < 0.0:
+        out[OUT_FIRST_MODE] = mode
+    if mode == MODE_SLIDE or mode == MODE_SLIDE_ROCK:
+        out[OUT_TIME_SLIDING] += dt
+    if mode == MODE_ROCK or mode == MODE_SLIDE_ROCK:
+        out[OUT_TIME_ROCKING] += dt
+    if n_down == 2:
+        out[OUT_TIME_EDGE] += dt
+    elif n_down == 1:
+        out[OUT_TIME_CORNER] += dt
+    elif n_down == 0:
+        out[OUT_TIME_FLIGHT] += dt
+
+
+@numba.njit(cache=True)
+def _geometry(s, geom, ib, Q, Iinv, Iw, r):
+    """Rotation, floor-frame inertia and the corners' arms ``r`` (4 x 3) of state ``s``."""
+    _arms(s, geom, Q, r)
+    _inv_inertia(Q, ib, Iinv, Iw)
+
+
+@numba.njit(cache=True)
+def _arms(s, geom, Q, r):
+    """The corners' arms ``r`` (4 x 3, from the centre of mass, floor frame) of state ``s``; ``Q`` is workspace."""
+    b, d, h = geom[0], geom[1], geom[2]
+    _rotmat(s, Q)
+    for i in range(4):
+        cx, cy = CORNER_SX[i] * b, CORNER_SY[i] * d
+        for a in range(3):
+            r[i, a] = Q[a, 0] * cx + Q[a, 1] * cy - Q[a, 2] * h
+
+
+@numba.njit(cache=True)
+def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out):
+    """One Moreau-Jean step from ``s`` into ``new`` (docs/three-dimensions.md): the free velocity under the
+    step's forces (gravity and the floor's inertia force on the centre of mass, the gyroscopic torque
+    ``-omega x I omega`` at ``t_k``), the active corners from the mid-step prediction of their gaps, the
+    corners' Delassus blocks at ``q_k``, the impulses by NSGS (:func:`_nsgs`) warm-started from ``P``, then
+    ``X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]`` and the quaternion turned by ``dt`` times the
+    same blend of the angular velocities. Returns the sweeps NSGS took (0: no contact;
+    ``nsgs[1] + 1``: it did not converge). ``ws`` holds the workspace (see :func:`run`)."""
+    Q, Iinv, Iw, r, Wd, Wi, vec = ws[0], ws[1], ws[2], ws[3], ws[4], ws[5], ws[6]
+    g = geom[3]
+    _geometry(s, geom, ib, Q, Iinv, Iw, r)
+    V = vec[0]
+    Om = vec[1]
+    # free velocity
+    V[0], V[1], V[2] = s[7] - dt * a_x, s[8] - dt * a_y, s[9] - dt * (g + a_v)
+    w0, w1, w2 = s[10], s[11], s[12]
+    L0 = Iw[0, 0] * w0 + Iw[0, 1] * w1 + Iw[0, 2] * w2
+    L1 = Iw[1, 0] * w0 + Iw[1, 1] * w1 + Iw[1, 2] * w2
+    L2 = Iw[2, 0] * w0 + Iw[2, 1] * w1 + Iw[2, 2] * w2
+    g0, g1, g2 = -(w1 * L2 - w2 * L1), -(w2 * L0 - w0 * L2), -(w0 * L1 - w1 * L0)
+    for a in range(3):
+        Om[a] = s[10 + a] + dt * (Iinv[a, 0] * g0 + Iinv[a, 1] * g1 + Iinv[a, 2] * g2)
+    vf = vec[2]
+    vf[0], vf[1], vf[2], vf[3], vf[4], vf[5] = V[0], V[1], V[2], Om[0], Om[1], Om[2]
+    n_act = 0
+    for i in range(4):
+        ri = r[i]
+        un = s[9] + s[10] * ri[1] - s[11] * ri[0]
+        act[i] = s[2] + ri[2] + 0.5 * dt * un <= 0.0
+        n_act += act[i]
+    sweeps = 0
+    stick_only = fric[2] > 0.5
+    if n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
+        sweeps = 1
+    elif n_act > 0:
+        V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
+        for i in range(4):
+            if act[i]:
+                _delassus(r[i], Iinv, Wd[i])
+                _inv3(Wd[i], Wi[i])
+                V[0] += P[i, 0]
+                V[1] += P[i, 1]
+                V[2] += P[i, 2]
+                _cross_add(r[i], P[i], Iinv, Om, 1.0)
+            else:
+                P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+        scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), geom[7] * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
+        sweeps = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, fric[0], fric[1], stick_only, nsgs[0] * scale,
+                       int(nsgs[1]), vec[3], vec[4], out, n_act == 1)
+    else:
+        for i in range(4):
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+    for a in range(3):
+        new[a] = s[a] + dt * ((1.0 - theta_mj) * s[7 + a] + theta_mj * V[a])
+        new[7 + a] = V[a]
+        new[10 + a] = Om[a]
+    _quat_step(s, (1.0 - theta_mj) * s[10] + theta_mj * Om[0], (1.0 - theta_mj) * s[11] + theta_mj * Om[1],
+               (1.0 - theta_mj) * s[12] + theta_mj * Om[2], dt, new)
+    return sweeps
+
+
+@numba.njit(cache=True)
+def _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
+    """After a step: friction work of the impulses, and each corner's contact and slip flags (the arms ``r``
+    of the step's start: the velocity rows the solver enforced; ``r1`` those of its end, for the gaps); returns
+    True if a corner landed (an impact).
+
+    A corner with a normal impulse is down (an impact if it was up), slipping if its tangential speed exceeds
+    ``vel_tol``. A corner without impulse is up once it moves away from the floor faster than ``vel_tol`` or
+    rises above ``lift_gap``; otherwise it keeps its flags (a pivot constrained at velocity level drifts up and
+    takes an occasional free step)."""
+    impact = False
+    V0, V1, V2, w0, w1, w2 = new[7], new[8], new[9], new[10], new[11], new[12]
+    for i in range(4):
+        ri = r[i]
+        u0 = V0 + w1 * ri[2] - w2 * ri[1]
+        u1 = V1 + w2 * ri[0] - w0 * ri[2]
+        u2 = V2 + w0 * ri[1] - w1 * ri[0]
+        gap = new[2] + r1[i, 2]
+        if act[i]:
+            out[OUT_FRICTION_WORK] -= P[i, 0] * u0 + P[i, 1] * u1
+        if P[i, 2] > 0.0:
+            impact = impact or not touch[i]
+            touch[i] = True
+            slip[i] = math.hypot(u0, u1) > vel_tol
+            out[OUT_MAX_PENETRATION] = max(out[OUT_MAX_PENETRATION], -gap)
+        elif u2 > vel_tol or gap > lift_gap:
+            touch[i] = False
+            slip[i] = False
+    return impact
+
+
+@numba.njit(cache=True)
+def _rest_holds(a_x, a_y, a_v, geom, fric):
+    """Does a block at rest on its four corners, stuck, stay at rest under the floor accelerations? Iff
+    ``g + a_v > 0``, the centre of pressure ``(a_x, a_y) h / (g + a_v)`` lies in the base ``[-b, b] x [-d, d]``
+    and friction carries the load, ``hypot(a_x, a_y) <= mu (g + a_v)``."""
+    gz = geom[3] + a_v
+    if gz <= 0.0:
+        return False
+    h = geom[2]
+    if abs(a_x) * h > geom[0] * gz or abs(a_y) * h > geom[1] * gz:
+        return False
+    return fric[2] > 0.5 or math.hypot(a_x, a_y) <= fric[0] * gz
+
+
+@numba.njit(cache=True)
+def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state, limits, hist_every, hist, out):
+    """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history rows ``hist`` (columns ``H_*``);
+    returns the status.
+
+    Parameters
+    ----------
+    geom : float64[8]
+        ``(b, d, h, g, p_w, 0, 0, R_w)``: half-width, half-depth, height of the centre of mass above the base
+        (m), gravity (m/s²), the weaker axis's ``p`` (rad/s, the time unit of ``OUT_EVENT_TIME``), two unused
+        slots, and the weaker axis's ``R`` (m, the velocity scale ``R omega``).
+    ib : float64[3]
+        Body-frame inertia per unit mass about the centre of mass ``(I_x, I_y, I_z)`` (m²).
+    fric : float64[3]
+        ``(mu_s, mu_k, infinite)``; ``infinite`` 1.0 for ``mu = infinity`` (corners stick only).
+    num : float64[4]
+        ``(dt, theta_mj, rocked_theta, weak_y)``: step (s), theta-method parameter, tilt (rad) above which the
+        block rocked, 1.0 if the weaker axis is ``y`` (the sign of ``theta``).
+    nsgs : float64[3]
+        ``(tol, max_sweeps, fail_steps)``: NSGS tolerance relative to the step's velocity scale, sweeps per
+        step, and consecutive unconverged steps after which the run fails.
+    form, ax, ay, av, sub, n_exc, tail_av
+        Floor motion in the block frame: :data:`FORCING_STEPWISE` or :data:`FORCING_LINEAR` (samples, ``sub``
+        steps per interval), for ``n_exc`` steps; after them no horizontal motion and ``a_v = tail_av`` (m/s²).
+    state : float64[13]
+        Initial state; holds the final one on return.
+    limits : float64[6]
+        ``(max_steps, max_tail_steps (< 0: no tail), rest_velocity (m/s), rest_steps, velocity_tol (m/s),
+        lift_gap (m))``.
+    hist_every : int
+        A history row every this many steps (and the last state).
+    """
+    h, Rw = geom[2], geom[7]
+    stick_only = fric[2] > 0.5
+    dt, theta_mj, rocked_theta, weak_y = num[0], num[1], num[2], num[3] > 0.5
+    max_steps, max_tail, rest_vel = int(limits[0]), int(limits[1]), limits[2]
+    rest_steps, vel_tol, lift_gap = int(limits[3]), limits[4], limits[5]
+    fail_steps = int(nsgs[2])
+    out[:] = 0.0
+    out[OUT_FIRST_MODE] = -1.0
+    ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
+          np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)))
+    Q, Iinv, Iw, r = ws[0], ws[1], ws[2], ws[3]
+    act = np.zeros(4, dtype=np.bool_)
+    touch = np.zeros(4, dtype=np.bool_)
+    slip = np.zeros(4, dtype=np.bool_)
+    P = np.zeros((4, 3))
+    new = np.zeros(13)
+    Q1, r1 = np.zeros((3, 3)), np.zeros((4, 3))
+    cap = hist.shape[0]
+    _geometry(state, geom, ib, Q, Iinv, Iw, r)
+    for i in range(4):
+        touch[i] = state[2] + r[i, 2] <= lift_gap
+    tilt, theta, _, _ = _tilt(state, weak_y)
+    mode, n_down = _mode(touch, slip)
+    j = _record(0, cap, 0.0, state, theta, state[10 + (0 if weak_y else 1)] * (-1.0 if weak_y else 1.0),
+                n_down, h, hist)
+    theta_max = tilt
+    slide_max = 0.0
+    twist_max = abs(_twist(state))
+    status = STATUS_OK
+    resting = 0
+    unconverged = 0
+    seated = False
+    outside = False
+    over_kind = 0.0
+    last_down = n_down
+    k = 0
+    while True:
+        if k >= n_exc and (max_tail < 0 or resting >= rest_steps):
+            break
+        if k >= n_exc + max(max_tail, 0) or k >= max_steps:
+            status = STATUS_TAIL if k < max_steps else STATUS_MAX_STEPS
+            break
+        a_x, a_y, a_v = _floor(k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av)
+        if not math.isfinite(a_x + a_y + a_v):
+            status = STATUS_NONFINITE
+            break
+        if seated and _rest_holds(a_x, a_y, a_v, geom, fric):
+            # the rest skip: a seated, stuck block whose load the base carries stays at rest this step
+            out[OUT_REST_STEPS] += 1.0
+            k += 1
+            _tally(MODE_REST, 4, dt, out)
+            resting = resting + 1 if k >= n_exc else 0
+            if k % hist_every == 0:
+                j = _record(j, cap, k * dt, state, theta, 0.0, 4, h, hist)
+            continue
+        if seated:  # leaving rest: warm start from the static impulses of the step's load
+            seated = False
+            gz = geom[3] + a_v
+            for i in range(4):
+                P[i, 0], P[i, 1], P[i, 2] = 0.25 * a_x * dt, 0.25 * a_y * dt, 0.25 * gz * dt
+        sweeps = _step(state, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out)
+        if sweeps > 0:
+            out[OUT_CONTACT_STEPS] += 1.0
+            out[OUT_NSGS_SWEEPS] += min(sweeps, nsgs[1])
+            out[OUT_NSGS_MAX] = max(out[OUT_NSGS_MAX], min(sweeps, nsgs[1]))
+        if sweeps > nsgs[1]:
+            out[OUT_NSGS_FAILED] += 1.0
+            unconverged += 1
+            if unconverged > fail_steps:
+                status = STATUS_CONTACT
+                break
+        else:
+            unconverged = 0
+        # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
+        # _contacts, and at an impact the kinetic energy of the impulses' velocity change
+        out[OUT_INPUT_WORK] -= a_x * (new[0] - state[0]) + a_y * (new[1] - state[1]) + a_v * (new[2] - state[2])
+        _arms(new, geom, Q1, r1)
+        if _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
+            vf = ws[6][2]
+            e = 0.0
+            for a in range(3):
+                dv = new[7 + a] - vf[a]
+                e += 0.5 * dv * dv
+                for c in range(3):
+                    e += 0.5 * (new[10 + a] - vf[3 + a]) * Iw[a, c] * (new[10 + c] - vf[3 + c])
+            out[OUT_IMPACT_LOSS] += e
+            out[OUT_IMPACTS] += 1.0
+        state[:] = new
+        k += 1
+        fin = 0.0
+        for a in range(13):
+            fin += state[a]
+        if not math.isfinite(fin):
+            status = STATUS_NONFINITE
+            break
+        mode, n_down = _mode(touch, slip)
+        _tally(mode, n_down, dt, out)
+        if n_down > 0:
+            last_down = n_down
+        tilt, theta, lx, ly = _tilt(state, weak_y)
+        sx, sy = state[0] - h * lx, state[1] - h * ly
+        slide_max = max(slide_max, math.hypot(sx, sy))
+        twist_max = max(twist_max, abs(_twist(state)))
+        theta_max = max(theta_max, tilt)
+        now_out = _cm_outside(state, r1)
+        if now_out and not outside:
+            over_kind = 1.0 if last_down >= 2 else 2.0
+        outside = now_out
+        theta_dot = -state[10] if weak_y else state[11]
+        if k % hist_every == 0:
+            j = _record(j, cap, k * dt, state, theta, theta_dot, n_down, h, hist)
+        if theta_max >= OVERTURNING_ANGLE:
+            out[OUT_OVERTURNED] = 1.0
+            out[OUT_OVER_KIND] = over_kind
+            out[OUT_OVER_DIR] = math.atan2(ly, lx)
+            break
+        speed = max(abs(state[7]), abs(state[8]), abs(state[9]), Rw * (abs(state[10]) + abs(state[11]) + abs(state[12])))
+        still = speed < rest_vel
+        resting = resting + 1 if (k >= n_exc and mode == MODE_REST and still) else 0
+        if mode == MODE_REST and n_down == 4 and speed < vel_tol:
+            seated = True
+            for a in range(7, 13):
+                state[a] = 0.0
+    if k % hist_every != 0:
+        tilt, theta, _, _ = _tilt(state, weak_y)
+        j = _record(j, cap, k * dt, state, theta, -state[10] if weak_y else state[11], _mode(touch, slip)[1], h, hist)
+    out[OUT_STATUS] = status
+    out[OUT_STEPS] = k
+    out[OUT_THETA_MAX] = theta_max
+    out[OUT_ROCKED] = 1.0 if theta_max > rocked_theta else 0.0
+    out[OUT_SLIDE_MAX] = slide_max
+    out[OUT_TWIST_MAX] = twist_max
+    out[OUT_STATE:OUT_STATE + 13] = state
+    out[OUT_N_HIST] = j
+    out[OUT_TIME] = k * dt
+    out[OUT_EVENT_TIME] = k * dt * geom[4]
+    return status

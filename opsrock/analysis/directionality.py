@@ -308,30 +308,34 @@ def run_directionality_study(design: DirectionalityDesign, out_dir: str | Path, 
     store = Path(store_dir) if store_dir is not None else out / "campaigns"
     _say(progress, f"{sum(len(c.cases) for c in campaigns)} cases in {len(campaigns)} campaigns into {store}")
     t0 = time.perf_counter()
-    cases = run_campaigns(campaigns, store, workers=workers, progress=progress, force=force)
+    cases, computed = run_campaigns(campaigns, store, workers=workers, progress=progress, force=force)
     timings["campaigns_s"] = time.perf_counter() - t0
+    timings["n_computed"] = computed
     return _fit_and_write(design, items, motions, cases, out, workers, progress, timings, t_start)
 
 
-def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress: bool, force: bool) -> pd.DataFrame:
+def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress: bool,
+                  force: bool) -> tuple[pd.DataFrame, int]:
     """Every campaign (:class:`opsrock.analysis.directionality_cases.Campaign`) run or resumed by the campaign
-    engine into ``store/<name>`` on one pool of workers; their ``cases.csv`` joined, with ``campaign`` and
-    ``solver_name`` (the campaign's solver)."""
+    engine into ``store/<name>`` on one pool of workers: their ``cases.csv`` joined, with ``campaign`` and
+    ``solver_name`` (the campaign's solver), and the number of cases this call computed (the others were
+    stored)."""
     from opsrock._files import read_table
     from opsrock.campaign.executors import LocalPool
     from opsrock.campaign.run import Execution, Stage, case_budget
 
-    frames = []
+    frames, computed = [], 0
     with LocalPool(workers) as pool:
         for c in campaigns:
             how = Execution(workers, pool, force, progress, None, case_budget(c.scene, None))
             summary, _ = Stage(how)(c.scene, store / c.name, cases=c.cases)
             frames.append(read_table(summary.cases_csv, keep_default_na=False, na_values=["nan", "NaN", ""])
                           .assign(campaign=c.name, solver_name=c.scene.solver))
+            computed += summary.n_computed
     cases = pd.concat(frames, ignore_index=True)
     cases["overturned"] = cases["overturned"].astype(str).eq("True")
     cases["overturned_over"] = cases["overturned_over"].fillna("").astype(str)
-    return cases
+    return cases, computed
 
 
 def _fit_and_write(design: DirectionalityDesign, items: tuple[StudyItem, ...], motions: Any, cases: pd.DataFrame,

@@ -27,7 +27,7 @@ def _panels(n: int, width: float = 5.5, height: float = 4.5):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, n, figsize=(width * n, height), squeeze=False)
+    fig, axes = plt.subplots(1, n, figsize=(width * n, height), squeeze=False, layout="constrained")
     return fig, axes[0]
 
 
@@ -60,9 +60,14 @@ def plot_map(table: pd.DataFrame, tolerance: float, path: Path) -> Path:
         ax.set_yticks(range(len(items)), [f"{it} (b/h {b[it]:.2f})" for it in items], fontsize=MIN_FONT)
         ax.set_xticks(range(len(azimuths)), azimuths, fontsize=MIN_FONT)
         ax.set_xlabel("azimuth: item's width axis from direction 1 (deg)")
-        ax.set_title(f"{floor}: 3-D / planar median (weaker axis's PFV);\nframed: beyond +-{tolerance:.0%}")
+        ax.set_title(f"{_floor(floor)}: 3-D / planar median (weaker axis's PFV);\nframed: beyond +-{tolerance:.0%}")
     fig.colorbar(image, ax=list(axes), label="log2(3-D median / planar median)")
     return save_figure(fig, path)
+
+
+def _floor(label: str) -> str:
+    """``"ground"``, or ``"floor <n>"`` for the building's floor numbers."""
+    return f"floor {label}" if str(label).isdigit() else str(label)
 
 
 def _frame(j: int, i: int):
@@ -88,7 +93,7 @@ def _by_azimuth(table: pd.DataFrame, column: str, ylabel: str, path: Path, refer
             ax.axhline(reference, color="black", linewidth=1.5, linestyle=":", label=f"pelicun's {reference:g}")
         ax.set_xlabel("azimuth: item's width axis from direction 1 (deg)")
         ax.set_ylabel(ylabel)
-        ax.set_title(floor)
+        ax.set_title(_floor(floor))
         ax.tick_params(labelsize=MIN_FONT)
         ax.legend(fontsize=MIN_FONT, ncol=2)
     return save_figure(fig, path)
@@ -138,7 +143,9 @@ def write_report(path: Path, inputs: Any) -> Path:
     lines = [
         "# Directionality: contents under two horizontal components, in three dimensions", "",
         "    opsrock directionality --out studies/directionality", "",
-        f"{h['n_cases']} cases ({h['n_failed']} failed) in {h['wall_time_s']:.0f} s of wall time. Design:", "",
+        f"{h['n_cases']} cases ({h['n_failed']} failed; {h['n_computed']} computed by this run, the others read from "
+        f"the stores) in {h['wall_time_s']:.0f} s of wall time (motions {h['timings'].get('motions_s', 0):.0f} s, "
+        f"campaigns {h['timings'].get('campaigns_s', 0):.0f} s, fits {h['timings'].get('fits_s', 0):.0f} s). Design:", "",
         *_design_lines(d), "",
         "## Headline", "",
         f"* the factor on max(PFV_1, PFV_2) that makes the planar fragility of the weaker axis match the 3-D one "

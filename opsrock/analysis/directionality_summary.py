@@ -200,7 +200,8 @@ def headline(tables: dict[str, pd.DataFrame], cases: pd.DataFrame, timings: dict
     counts = each["verdict"].value_counts()
     return {
         "n_cases": len(cases), "n_failed": int((cases["status"] != "ok").sum()),
-        "wall_time_s": float(timings.get("total_s", math.nan)),
+        "n_computed": int(timings.get("n_computed", 0)), "wall_time_s": float(timings.get("total_s", math.nan)),
+        "timings": {k: float(v) for k, v in timings.items() if k.endswith("_s")},
         "cost_ratio_3d": float(three["ratio_to_planar"].max()) if len(three) else math.nan,
         "factor_implied_median": _median(pooled["factor_implied"]),
         "factor_implied_range": _range(pooled["factor_implied"]),

@@ -119,3 +119,16 @@ def test_quick_study_end_to_end_with_a_planar_stand_in(tmp_path):
     assert np.array_equal(weak["3d"]["median"], weak["planar"]["median"], equal_nan=True)
     demands = pd.read_csv(res.tables["demands"])  # the vector's peak lies between the larger peak and sqrt 2 of it
     assert ((demands["nd_over_max"] >= 1.0) & (demands["nd_over_max"] <= math.sqrt(2.0) + 1e-12)).all()
+
+
+@pytest.mark.slow
+def test_quick_study_through_the_console_script_with_rigid3d(tmp_path):
+    # the real solver (a cold numba cache compiles its kernel first: about a minute per worker)
+    from _support import run_opsrock
+
+    proc = run_opsrock(("directionality", "--quick", "--out", "out", "--workers", "2", "--no-progress"), tmp_path,
+                       timeout=900)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.startswith("opsrock directionality: 48 cases (0 failed)"), proc.stdout
+    cost = pd.read_csv(tmp_path / "out" / "cost.csv").set_index("solver")
+    assert cost.loc["rigid3d", "n_cases"] == 24 and cost.loc["rigid3d", "ratio_to_planar"] > 1.0

@@ -48,7 +48,7 @@ def plot_map(table: pd.DataFrame, tolerance: float, path: Path) -> Path:
         azimuths = list(dict.fromkeys(t["azimuth"]))
         grid = t.pivot(index="item", columns="azimuth", values="ratio_weak").reindex(index=items, columns=azimuths)
         values = np.log2(grid.to_numpy(float))
-        image = ax.imshow(values, cmap="RdBu_r", vmin=-1.0, vmax=1.0, aspect="auto")
+        image = ax.imshow(values, cmap="RdBu_r", vmin=-0.5, vmax=0.5, aspect="auto")
         verdicts = t.pivot(index="item", columns="azimuth", values="verdict").reindex(index=items, columns=azimuths)
         for i, item in enumerate(items):
             for j, az in enumerate(azimuths):

@@ -40,7 +40,16 @@ from typing import Any, Mapping
 import numpy as np
 import pandas as pd
 
+from opsrock._files import atomic_csv, read_table, staged_folder
+from opsrock.analysis import directionality_summary as summary
+from opsrock.analysis.directionality_cases import study_campaigns, study_motions
+from opsrock.analysis.directionality_report import write_figures, write_report
+from opsrock.campaign.executors import LocalPool
+from opsrock.campaign.run import Execution, Stage, case_budget
 from opsrock.errors import InputError
+from opsrock.inventory.items import shipped_inventory
+from opsrock.limits import int_at_least
+from opsrock.solvers.registry import METHODS
 
 #: The record pairs of the full study, by their first component's name (FEMA P695 far-field): eight of the 22, of
 #: 20 to 44 s, chosen to fit the cost budget (a rigid3d case costs about 0.5-0.7 s; docs/directionality.md).
@@ -125,8 +134,6 @@ class DirectionalityDesign:
     settings3d: Mapping[str, Any] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        from opsrock.limits import int_at_least
-        from opsrock.solvers.registry import METHODS
 
         for name, low, high in (("azimuths", 0.0, 90.0), ("levels", 0.0, math.inf)):
             values = getattr(self, name)
@@ -149,7 +156,6 @@ class DirectionalityDesign:
     @property
     def in_plan(self) -> bool:
         """Whether ``solver3d`` solves motion in plan (``rigid3d``); False: the plumbing stand-in."""
-        from opsrock.solvers.registry import METHODS
 
         return METHODS[self.solver3d].plan
 
@@ -209,7 +215,6 @@ class StudyItem:
 
 def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
     """The study's items from the shipped inventories (:data:`INVENTORIES`), in inventory order."""
-    from opsrock.inventory.items import shipped_inventory
 
     out = []
     for name in INVENTORIES:
@@ -293,7 +298,6 @@ def run_directionality_study(design: DirectionalityDesign, out_dir: str | Path, 
     DirectionalityStudy
         The paths written, the headline numbers and the wall times (s).
     """
-    from opsrock.analysis.directionality_cases import study_campaigns, study_motions
 
     t_start = time.perf_counter()
     design = quick(design) if quick_run else design
@@ -311,7 +315,8 @@ def run_directionality_study(design: DirectionalityDesign, out_dir: str | Path, 
     cases, computed = run_campaigns(campaigns, store, workers=workers, progress=progress, force=force)
     timings["campaigns_s"] = time.perf_counter() - t0
     timings["n_computed"] = computed
-    return _fit_and_write(design, items, motions, cases, out, workers, progress, timings, t_start)
+    return _fit_and_write(design, items, motions, cases, out,
+                          {"workers": workers, "progress": progress, "timings": timings, "t_start": t_start})
 
 
 def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress: bool,
@@ -320,9 +325,6 @@ def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress
     engine into ``store/<name>`` on one pool of workers: their ``cases.csv`` joined, with ``campaign`` and
     ``solver_name`` (the campaign's solver), and the number of cases this call computed (the others were
     stored)."""
-    from opsrock._files import read_table
-    from opsrock.campaign.executors import LocalPool
-    from opsrock.campaign.run import Execution, Stage, case_budget
 
     frames, computed = [], 0
     with LocalPool(workers) as pool:
@@ -339,10 +341,10 @@ def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress
 
 
 def _fit_and_write(design: DirectionalityDesign, items: tuple[StudyItem, ...], motions: Any, cases: pd.DataFrame,
-                   out: Path, workers: int | None, progress: bool, timings: dict, t_start: float) -> DirectionalityStudy:
-    from opsrock._files import atomic_csv, staged_folder
-    from opsrock.analysis import directionality_summary as summary
-    from opsrock.analysis.directionality_report import write_figures, write_report
+                   out: Path, run: dict[str, Any]) -> DirectionalityStudy:
+    """Fit, tabulate, draw and report into ``out`` (through a staging folder: all or nothing); ``run`` holds the
+    ``workers``, ``progress``, ``timings`` (s) and ``t_start`` of the run."""
+    workers, progress, timings, t_start = run["workers"], run["progress"], run["timings"], run["t_start"]
 
     t0 = time.perf_counter()
     _say(progress, f"fits ({design.n_boot} record resamples each)")

@@ -22,10 +22,20 @@ from typing import Any, Mapping
 import numpy as np
 import pandas as pd
 
+from opsrock._pool import TaskPool
 from opsrock.campaign.cases import CONTACT_COLUMNS, PLAN_COLUMNS, RESULT_COLUMNS
-from opsrock.campaign.scene import Scene
+from opsrock.campaign.records import Floor, Intensity, RecordSet
+from opsrock.campaign.scene import BlockSpec, Scene
 from opsrock.constants import G
+from opsrock.errors import InputError, OpsrockError
+from opsrock.excitations import library
+from opsrock.excitations.building import ShearBuilding, floor_motions
+from opsrock.excitations.plan import PlanMotion
 from opsrock.excitations.records import Record
+from opsrock.intensity.records import velocity_displacement
+from opsrock.inventory.motions import FloorMotion, MotionSet, paired_motions
+from opsrock.inventory.sources import BuildingSource, building_motions
+from opsrock.limits import LIMITS
 
 #: The demands of a record pair on a floor, unscaled: peak floor accelerations of each direction (m/s²), peak
 #: floor velocities of each direction, the larger of the two, and the non-directional value, the peak of the
@@ -82,7 +92,6 @@ class _Support:
         self.work = work
 
     def run(self, k: int) -> Record:
-        from opsrock.excitations.building import ShearBuilding, floor_motions
 
         record, period, damping = self.work[k]
         return floor_motions(record, ShearBuilding("support", period, 1, damping), [1])[0]
@@ -90,8 +99,6 @@ class _Support:
 
 def _pair_names(design: Any) -> dict[str, tuple[str, str]]:
     """First component's name -> the names of the pair's two components, for the design's pairs."""
-    from opsrock.errors import InputError, OpsrockError
-    from opsrock.excitations import library
 
     try:
         set_name, _ = library.parse_reference(design.record_set)
@@ -112,9 +119,6 @@ def _pair_names(design: Any) -> dict[str, tuple[str, str]]:
 def study_motions(design: Any, items: tuple, workers: int | None) -> StudyMotions:
     """The floor motions of the study's pairs in both directions, through the supports of ``items``, with their
     demands (see :class:`StudyMotions`)."""
-    from opsrock._pool import TaskPool
-    from opsrock.inventory.motions import FloorMotion, MotionSet, paired_motions
-    from opsrock.inventory.sources import BuildingSource, building_motions
 
     names = _pair_names(design)
     direction = {c: (pair, str(k + 1)) for pair, comps in names.items() for k, c in enumerate(comps)}
@@ -139,7 +143,6 @@ def study_motions(design: Any, items: tuple, workers: int | None) -> StudyMotion
 
 def _demands(pair: Any, velocities: dict) -> dict[str, Any]:
     """The demands of one pair on one floor (:data:`DEMAND_COLUMNS`); its velocities stored in ``velocities``."""
-    from opsrock.intensity.records import velocity_displacement
 
     v1, v2 = _padded(velocity_displacement(pair.first.motion)[0], velocity_displacement(pair.second.motion)[0])
     velocities[(pair.record, pair.floor)] = (v1, v2)
@@ -193,7 +196,6 @@ class PlanCase:
     def excitation(self) -> Any:
         """The scaled floor motion: a :class:`~opsrock.excitations.plan.PlanMotion` of both directions, or the
         weaker axis's component in the plane (m/s²)."""
-        from opsrock.excitations.plan import PlanMotion
 
         if self.second is None:
             return self.first.scaled(self.scale)
@@ -257,8 +259,6 @@ def study_campaigns(design: Any, items: tuple, motions: StudyMotions) -> list[Ca
     """The campaigns of the study, one per model, solver and item (a study of other items reuses the stores of
     the items it shares), each case once, ordered by pair and floor (so a batch sent to a worker carries few
     records)."""
-    from opsrock.campaign.records import Floor, Intensity, RecordSet
-    from opsrock.campaign.scene import BlockSpec
 
     groups: dict[tuple[str, str, str], list] = {}
     projected: dict = {}
@@ -330,7 +330,6 @@ def _projection(item: Any, pair: Any, azimuth: float, motions: StudyMotions, pro
 def _cases(design: Any, item: Any, pair: Any, d: pd.Series, motions: StudyMotions, projected: dict, three_d: bool,
            model: str) -> list[PlanCase]:
     """The cases of ``item`` under ``pair`` in ``model``: every orientation and level."""
-    from opsrock.limits import LIMITS
 
     lim = LIMITS["scale"]
     pfa_max = max(float(d["pfa_1"]), float(d["pfa_2"]))

@@ -8,13 +8,12 @@ import sys
 from pathlib import Path
 
 from opsrock._files import output_dir
+from opsrock.analysis.directionality import DirectionalityDesign, run_directionality_study
 from opsrock.cli import EXIT_INTERRUPTED
 
 
 def directionality(args: argparse.Namespace) -> int:
     """``opsrock directionality``: the study, resumable; prints its headline."""
-    from opsrock.analysis.directionality import DirectionalityDesign, run_directionality_study
-
     output_dir("--out", args.out)
     if args.store is not None:
         output_dir("--store", args.store)

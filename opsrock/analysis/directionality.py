@@ -336,7 +336,7 @@ def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress
             computed += summary.n_computed
     cases = pd.concat(frames, ignore_index=True)
     cases["overturned"] = cases["overturned"].astype(str).eq("True")
-    cases["overturned_over"] = cases["overturned_over"].fillna("").astype(str)
+    cases["overturned_over"] = [v if isinstance(v, str) else "" for v in cases["overturned_over"]]  # empty: NaN
     return cases, computed
 
 

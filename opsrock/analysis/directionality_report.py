@@ -12,9 +12,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from opsrock._files import atomic_text
+from opsrock.plots import save_figure
 from opsrock.report.markdown import markdown_table
 
 #: Smallest tick and legend text (pt).
@@ -22,6 +24,7 @@ MIN_FONT: float = 9.0
 
 
 def _panels(n: int, width: float = 5.5, height: float = 4.5):
+    """A row of ``n`` panels (matplotlib imported here, lazily: the command line loads it only to draw)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -35,10 +38,6 @@ def plot_map(table: pd.DataFrame, tolerance: float, path: Path) -> Path:
     """The map: one panel per floor, items (rows, by slenderness) x orientations, coloured by
     ``ratio_weak`` (3-D over planar median in the weaker axis's PFV), labelled with it; a cell outside the
     tolerance is framed."""
-    import numpy as np
-
-    from opsrock.plots import save_figure
-
     cells = table[table["azimuth"] != "all"]
     floors = list(dict.fromkeys(cells["floor"]))
     fig, axes = _panels(len(floors), 6.0, 0.45 * cells["item"].nunique() + 2.0)
@@ -71,15 +70,13 @@ def _floor(label: str) -> str:
 
 
 def _frame(j: int, i: int):
-    from matplotlib.patches import Rectangle
+    from matplotlib.patches import Rectangle  # lazily, as matplotlib itself (:func:`_panels`)
 
     return Rectangle((j - 0.5, i - 0.5), 1.0, 1.0, fill=False, edgecolor="black", linewidth=2.0)
 
 
 def _by_azimuth(table: pd.DataFrame, column: str, ylabel: str, path: Path, reference: float | None) -> Path:
     """One panel per floor: ``column`` against the orientation, one line per item."""
-    from opsrock.plots import save_figure
-
     cells = table[table["azimuth"] != "all"]
     floors = list(dict.fromkeys(cells["floor"]))
     fig, axes = _panels(len(floors))

@@ -18,10 +18,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pandas as pd
+
+from opsrock.fragility.mle import fit_plans, plan_mle
 
 #: Demand conventions fitted for each model.
 CONVENTIONS: dict[str, tuple[str, ...]] = {"3d": ("pfv_1", "pfv_2", "pfv_max", "pfv_nd", "pfv_weak"),
@@ -66,8 +69,6 @@ def fit_table(cases: pd.DataFrame, design: Any, workers: int = 1) -> pd.DataFram
     workers : int
         Processes for the resamples.
     """
-    from opsrock.fragility.mle import fit_plans, plan_mle
-
     rows, plans, where = [], [], []
     for (model, item, floor, azimuth), g in _groups(cases):
         ok = g[g["status"] == "ok"]
@@ -249,8 +250,6 @@ class ReportInputs:
 
 def report_inputs(design: Any, tables: dict, head: dict, figures: list) -> ReportInputs:
     """:class:`ReportInputs` of the study (figures relative to the report's folder)."""
-    from pathlib import Path
-
     return ReportInputs(design, tables, head, {Path(p).stem: f"figures/{Path(p).name}" for p in figures})
 
 

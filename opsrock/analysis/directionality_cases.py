@@ -48,10 +48,13 @@ SCENE_COLUMNS: tuple[str, ...] = (
     "pfa", "pfv_1", "pfv_2", "pfv_max", "pfv_nd", "pfv_weak",
 )  # fmt: skip
 
-#: Columns of a campaign's ``cases.csv``: the scene's, then what the solver stored.
+#: Columns of a campaign's ``cases.csv``: the scene's, then what the solver stored (the contact and plan columns
+#: a solver fills: :data:`opsrock.campaign.cases.CONTACT_COLUMNS`, :data:`~opsrock.campaign.cases.PLAN_COLUMNS`;
+#: the scene's own of those, the block's friction, depth and azimuth, are in the scene's columns or its plan).
 CASE_COLUMNS: tuple[str, ...] = (*SCENE_COLUMNS, *RESULT_COLUMNS,
                                  *(c for c in CONTACT_COLUMNS if c not in ("friction", "friction_kinetic",
-                                                                           "pfa_vertical")), *PLAN_COLUMNS)
+                                                                           "pfa_vertical")),
+                                 *(c for c in PLAN_COLUMNS if c not in ("depth", "azimuth", "record2")))
 
 
 @dataclass(frozen=True)

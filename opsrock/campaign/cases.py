@@ -18,6 +18,7 @@ from typing import Any, Mapping, Sequence
 from opsrock._files import atomic_write
 from opsrock.block import Block
 from opsrock.excitations import Pulse, Record
+from opsrock.excitations.plan import PlanMotion
 from opsrock.result import RockingResult
 
 #: Name of the assembled table in a campaign's folder.
@@ -42,10 +43,16 @@ CONTACT_COLUMNS: tuple[str, ...] = (
 #: The contact columns a solver fills (the others are the scene's).
 _SOLVED_CONTACT_COLUMNS: tuple[str, ...] = CONTACT_COLUMNS[3:]
 
-#: Columns a solver of the ``rigid3d`` model fills (:class:`opsrock.result.PlanSummary`): what the block
-#: last stood on when it overturned (``edge``, ``corner``, empty if it did not), its peak twist (rad) and the
-#: time it stood on one edge or on one corner (s). Empty (NaN) for the planar solvers.
-PLAN_COLUMNS: tuple[str, ...] = ("overturned_over", "twist_max", "time_edge", "time_corner")
+#: Columns a scene solved in three dimensions adds (solvers of the ``rigid3d`` model, after
+#: :data:`CONTACT_COLUMNS`, whose ``slide_max`` and ``slide_residual`` are then the magnitudes of the base's
+#: horizontal displacement, m): the block's full ``depth`` (m) and ``azimuth`` (deg, from motion axis 1 to its
+#: width; :class:`~opsrock.excitations.plan.PlanMotion`), the second horizontal component's record (empty: none),
+#: and what it did (:class:`~opsrock.result.PlanSummary`): ``tilt_max`` and ``twist_max`` (rad) and
+#: ``overturned_over`` (``edge``, ``corner`` or empty).
+PLAN_COLUMNS: tuple[str, ...] = ("depth", "azimuth", "record2", "tilt_max", "twist_max", "overturned_over")
+
+#: The plan columns a solver fills (the others are the scene's).
+_SOLVED_PLAN_COLUMNS: tuple[str, ...] = PLAN_COLUMNS[3:]
 
 #: The block's columns, first in every ``cases.csv`` (m, rad, m, rad/s; ``e``, ``e_R`` dimensionless).
 BLOCK_COLUMNS: tuple[str, ...] = ("case_id", "block", "width", "height", "alpha", "R", "p", "e", "e_R")
@@ -100,6 +107,9 @@ class PulseCase:
         ``PFA / (g tan alpha)`` (dimensionless).
     pfv_convention : str
         PFV convention of IM3 and IM8 (:data:`opsrock.excitations.PFV_CONVENTIONS`).
+    azimuth : float or None
+        The block's azimuth in plan (deg, from the pulse's direction to its width:
+        :class:`~opsrock.excitations.plan.PlanMotion`); None: the planar case (the pulse along the width).
     """
 
     case_id: str
@@ -108,14 +118,15 @@ class PulseCase:
     freq_ratio: float
     pfa_ratio: float
     pfv_convention: str = "amplitude"
+    azimuth: float | None = None
 
     #: A pulse case can always be run (a record case may not: its scale factor).
     problem = ""
 
     @property
-    def excitation(self) -> Pulse:
-        """What the solver gets: the pulse."""
-        return self.pulse
+    def excitation(self) -> Pulse | PlanMotion:
+        """What the solver gets: the pulse, or the pulse in plan at the case's azimuth."""
+        return self.pulse if self.azimuth is None else PlanMotion(self.pulse, None, self.azimuth)
 
     def row(self) -> dict[str, Any]:
         """The scene-side columns of ``cases.csv`` (:data:`PULSE_COLUMNS` before the results)."""
@@ -126,7 +137,7 @@ class PulseCase:
         return {**_block_columns(self.case_id, b), "pfa_vertical": abs(pulse.vertical), "pfa": pulse.pfa,
                 "omega_p": pulse.omega_p, "T_p": pulse.T_p,
                 "pfv": pulse.pfv(self.pfv_convention), "freq_ratio": self.freq_ratio, "pfa_ratio": self.pfa_ratio,
-                **{k: ims[k] for k in IM_COLUMNS}}
+                **{k: ims[k] for k in IM_COLUMNS}, **_plan_columns(b, self.azimuth, None)}
 
 
 @dataclass(frozen=True)
@@ -150,6 +161,10 @@ class RecordCase:
     problem : str
         Non-empty if the case cannot be run (a scale factor outside the limits, a floor motion that
         failed): it is stored failed with this reason.
+    azimuth : float or None
+        The block's azimuth in plan (deg, from the motion's axis 1 to its width); None: the planar case.
+    motion2 : Motion or None
+        The second horizontal component (along motion axis 2), scaled by the same factor; None: none.
     """
 
     case_id: str
@@ -159,12 +174,18 @@ class RecordCase:
     level: int
     level_value: float
     problem: str = ""
+    azimuth: float | None = None
+    motion2: Any = field(default=None, repr=False)
 
     @property
-    def excitation(self) -> Record:
-        """The scaled floor motion (m/s²)."""
+    def excitation(self) -> Record | PlanMotion:
+        """The scaled floor motion (m/s²), in plan with the second component and the azimuth if any."""
         rec = self.motion.record
-        return rec if self.scale == 1.0 else rec.scaled(self.scale)
+        first = rec if self.scale == 1.0 else rec.scaled(self.scale)
+        if self.azimuth is None and self.motion2 is None:
+            return first
+        second = None if self.motion2 is None else self.motion2.record.scaled(self.scale)
+        return PlanMotion(first, second, 0.0 if self.azimuth is None else self.azimuth)
 
     def row(self) -> dict[str, Any]:
         """The scene-side columns of ``cases.csv`` (:data:`RECORD_COLUMNS` before the results)."""
@@ -185,7 +206,15 @@ class RecordCase:
             "pfa": meas.pfa, "pfv": meas.pfv, "pfd": meas.pfd, "T_m": meas.mean_period,
             "T_pred": meas.predominant_period, "pfa_ratio": meas.pfa / b.uplift_acceleration, **ims,
             "pfa_vertical": m.record.pfa_vertical * self.scale,
+            **_plan_columns(b, self.azimuth, None if self.motion2 is None else self.motion2.ground),
         }
+
+
+def _plan_columns(block: Block, azimuth: float | None, record2: str | None) -> dict[str, Any]:
+    """The scene's plan columns of a case (:data:`PLAN_COLUMNS`): depth (m, NaN for a planar block), azimuth
+    (deg, 0 for a planar case) and the second component's record (None: none)."""
+    return {"depth": math.nan if block.depth is None else block.depth,
+            "azimuth": 0.0 if azimuth is None else azimuth, "record2": record2}
 
 
 # --- store rows ---------------------------------------------------------------------------------------
@@ -201,16 +230,9 @@ def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math
         "verdict": "failed", "theta_max": math.nan, "theta_max_over_alpha": math.nan, "overturned": False,
         "rocked": False, "solver": solver, "wall_time_s": wall_time_s, "n_steps": None, "n_impacts": None,
         "response": "failed", "first_mode": None, "time_sliding": math.nan, "time_rocking": math.nan,
-        "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan, **_plan_columns(None),
+        "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan,
+        "tilt_max": math.nan, "twist_max": math.nan, "overturned_over": None,
     }
-
-
-def _plan_columns(plan: Any) -> dict[str, Any]:
-    """The store's :data:`PLAN_COLUMNS` of a result's :class:`~opsrock.result.PlanSummary` (None: empty)."""
-    if plan is None:
-        return {"overturned_over": None, "twist_max": math.nan, "time_edge": math.nan, "time_corner": math.nan}
-    return {"overturned_over": plan.overturned_over, "twist_max": float(plan.twist_max),
-            "time_edge": float(plan.time_edge), "time_corner": float(plan.time_corner)}
 
 
 def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[str, Any]:
@@ -222,11 +244,14 @@ def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[
         contact = {"response": result.response, **result.contact.columns()}
     elif result.status == "failed":
         contact["response"] = "failed"
+    plan = result.plan
+    in_plan = ({"tilt_max": math.nan, "twist_max": math.nan, "overturned_over": None} if plan is None else
+               {"tilt_max": plan.tilt_max, "twist_max": plan.twist_max, "overturned_over": plan.overturned_over})
     return {
         "case_id": case_id, "status": s["status"], "reason": _one_line(s["reason"]), "verdict": s["verdict"],
         "theta_max": s["theta_max"], "theta_max_over_alpha": s["theta_max_over_alpha"],
         "overturned": s["overturned"], "rocked": s["rocked"], "solver": s["solver"], "wall_time_s": wall_time_s,
-        "n_steps": s["n_steps"], "n_impacts": s["n_impacts"], **contact, **_plan_columns(result.plan),
+        "n_steps": s["n_steps"], "n_impacts": s["n_impacts"], **contact, **in_plan,
     }
 
 
@@ -248,7 +273,7 @@ def case_table(cases: Sequence, rows: Mapping[str, Mapping[str, Any]]) -> list[d
             raise KeyError(f"case {case.case_id!r} has no stored result")
         stored = rows[case.case_id]
         table.append({**case.row(), **{col: stored[col] for col in RESULT_COLUMNS},
-                      **{col: stored.get(col) for col in (*_SOLVED_CONTACT_COLUMNS, *PLAN_COLUMNS)}})
+                      **{col: stored.get(col) for col in (*_SOLVED_CONTACT_COLUMNS, *_SOLVED_PLAN_COLUMNS)}})
     return table
 
 
@@ -274,5 +299,6 @@ def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], column
     atomic_write(Path(path), write)
 
 
-__all__ = ["BLOCK_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PLAN_COLUMNS", "PULSE_COLUMNS", "PulseCase", "RECORD_COLUMNS",
+__all__ = ["BLOCK_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PLAN_COLUMNS", "PULSE_COLUMNS",
+           "PulseCase", "RECORD_COLUMNS",
            "RESULT_COLUMNS", "RecordCase", "case_table", "failed_row", "result_row", "write_cases_csv"]

@@ -10,7 +10,10 @@ A scene's optional ``[needs]`` table::
 With ``[solver] name = "auto"`` the campaign runs the cheapest solver (most record-seconds per
 CPU-second) of the model asked whose measured numerical error meets the tolerance; the hysteresis of
 the model exists only in the SDOF model; a block with friction or a floor that moves vertically needs
-the rigid block with friction (solver ``friction``). The evidence is shipped with opsrock
+the rigid block with friction (solver ``friction``); a scene that turns a block in plan or gives a second
+horizontal component needs three dimensions: the box of solver ``rigid3d``, the only solver in plan (its
+verdicts checked against the planar solvers and Siconos, docs/three-dimensions.md; the evidence table has no
+row of it yet, so ``tolerance`` is not checked against a measured error). The evidence is shipped with opsrock
 (``opsrock/data/evidence/solvers.csv``, derived from the validation cases' and benchmarks' outputs by
 ``tools/evidence.py``), and the choice with the evidence row goes into the campaign's manifest. With a
 named solver, ``[needs]`` is checked against it. A need that no solver meets is refused before anything
@@ -123,16 +126,33 @@ def _candidates(needs: Needs, friction: bool) -> list[dict]:
     return [r for r in evidence() if r["model"] in models]
 
 
-def choose(needs: Needs, *, friction: bool = False, n_cases: int = 0) -> Choice:
+#: The solver of a scene that needs three dimensions.
+PLAN_SOLVER: str = "rigid3d"
+
+
+def _plan_choice(needs: Needs) -> Choice:
+    """``rigid3d`` for a scene in three dimensions, or :class:`InputError` if ``needs`` asks what it has not."""
+    if needs.model == "sdof" or needs.answer == "hysteresis":
+        raise InputError(f"needs.model = {needs.model!r}, answer {needs.answer!r}: the scene turns a block in plan or "
+                         "gives a second horizontal component, and only the rigid box of solver 'rigid3d' moves in "
+                         "plan (no SDOF model, no hysteresis); use model 'rigid' or 'either'")
+    return Choice(PLAN_SOLVER, f"{PLAN_SOLVER}: the scene needs three dimensions (a block turned in plan or a second "
+                               "horizontal component) and it is the only solver in plan; no measured error of it in "
+                               "the evidence table yet")
+
+
+def choose(needs: Needs, *, friction: bool = False, n_cases: int = 0, plan: bool = False) -> Choice:
     """The cheapest solver meeting ``needs`` (``friction``: the scene's blocks slide or its floor moves
-    vertically); the SDOF model's verdicts for :data:`MULTIFIDELITY_MIN_CASES` cases or more (``n_cases``)
-    are asked of a multi-fidelity campaign.
+    vertically; ``plan``: the scene needs three dimensions, :data:`PLAN_SOLVER`); the SDOF model's verdicts for
+    :data:`MULTIFIDELITY_MIN_CASES` cases or more (``n_cases``) are asked of a multi-fidelity campaign.
 
     Raises
     ------
     InputError
         If no solver meets the need, naming the closest one and its measured error.
     """
+    if plan:
+        return _plan_choice(needs)
     rows = _candidates(needs, friction)
     ok = [r for r in rows if r["numerical_error_alpha"] <= needs.tolerance]
     if not ok:
@@ -150,9 +170,14 @@ def choose(needs: Needs, *, friction: bool = False, n_cases: int = 0) -> Choice:
     return Choice(pick["solver"], reason, pick)
 
 
-def check(solver: str, needs: Needs, *, friction: bool = False) -> Choice:
-    """A named ``solver`` against ``needs``: its evidence row, or :class:`InputError` saying why it cannot
-    answer."""
+def check(solver: str, needs: Needs, *, friction: bool = False, plan: bool = False) -> Choice:
+    """A named ``solver`` against ``needs`` (``plan``: the scene needs three dimensions): its evidence row, or
+    :class:`InputError` saying why it cannot answer."""
+    if plan or solver == PLAN_SOLVER:
+        if solver != PLAN_SOLVER:
+            raise InputError(f"solver {solver!r} is planar and the scene needs three dimensions (a block turned in "
+                             f"plan or a second horizontal component): use {PLAN_SOLVER!r} or 'auto'")
+        return _plan_choice(needs)
     rows = {r["solver"]: r for r in _candidates(needs, friction)}
     if solver not in rows:
         raise InputError(f"solver {solver!r} cannot answer the scene's needs (answer {needs.answer!r}, model "
@@ -165,5 +190,6 @@ def check(solver: str, needs: Needs, *, friction: bool = False) -> Choice:
                           f"{needs.tolerance:g}", r)
 
 
-__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "HISTORY_ANSWERS", "MULTIFIDELITY_MIN_CASES", "NEEDED_MODELS", "Needs", "check", "choose",
+__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "HISTORY_ANSWERS", "MULTIFIDELITY_MIN_CASES", "NEEDED_MODELS", "Needs", "PLAN_SOLVER", "check",
+           "choose",
            "evidence"]

@@ -13,6 +13,11 @@ Layout (inside a scene file, instead of ``[grid]``; see ``docs/scenes.md``)::
     ground = false                  # also run on the ground motions (default: no buildings given)
     # vertical = "synthetic"        # library sets: a vertical motion of 2/3 the other horizontal
                                     # component (opsrock.excitations.vertical); default "none"
+    # second = "other"              # library sets (three dimensions, solver rigid3d): each record's other
+                                    # horizontal component along motion axis 2 (the records run are then
+                                    # component a's); default "none"
+    # azimuth = [0, 45, 90]         # the block's azimuth in plan, deg in [-360, 360], from motion axis 1
+                                    # to its width: a number or a list (one case per azimuth)
 
     [[records.building]]            # optional, any number: linear shear buildings
     name = "b3"
@@ -32,13 +37,16 @@ Layout (inside a scene file, instead of ``[grid]``; see ``docs/scenes.md``)::
 
 Each case is one block under one floor motion (a ground record, or its response at one floor of
 one building) scaled to one level; its stable id is ``<block>/<record>/<floor>/l<k>``, ``<floor>``
-``ground`` or ``<building>.f<n>``, ``k`` the 1-based level (``l01`` for a cloud). A scale factor
+``ground`` or ``<building>.f<n>``, ``k`` the 1-based level (``l01`` for a cloud), and ``/z<m>`` after it, ``m``
+the index into ``azimuth``, when the scene gives azimuths. The second component goes through the same
+building and is scaled by the same factor as the first (the levels are the first component's). A scale factor
 outside ``LIMITS["scale"]`` does not stop the campaign: its case is stored failed with the reason.
 The floor motions themselves are computed by the campaign (:mod:`opsrock.campaign.motions`).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import glob as _glob
 import hashlib
 import math
@@ -48,6 +56,7 @@ from typing import Any, Sequence
 
 from opsrock.block import Block
 from opsrock.campaign.cases import RECORD_COLUMNS, RecordCase
+from opsrock.campaign.grid import azimuth_id, parse_azimuths
 from opsrock.campaign.motions import GROUND, Motion, motion_items
 from opsrock.campaign.toml import TomlFile
 from opsrock.constants import G
@@ -56,7 +65,7 @@ from opsrock.excitations import library
 from opsrock.excitations.building import ShearBuilding
 from opsrock.excitations.readers import read_record
 from opsrock.excitations.records import Record, check_plausible_record, check_sampling
-from opsrock.excitations.vertical import VERTICAL_SOURCES, synthetic_vertical
+from opsrock.excitations.vertical import VERTICAL_SOURCES, partner, synthetic_vertical
 from opsrock.intensity.records import MotionMeasures
 from opsrock.limits import ACCEPT_KEY, ACCEPT_OPTION, LIMITS, check
 
@@ -75,7 +84,10 @@ _REFERENCE = {"pfa_ratio": lambda block: block.uplift_acceleration, "pfa_onset":
 MAX_RECORDS: int = 2_000
 
 _RECORDS_KEYS = {"set", "files", "glob", "units", "dt", "names", "components", "ground", "building", "intensity",
-                 "vertical"}
+                 "vertical", "second", "azimuth"}
+
+#: ``[records] second``: no second horizontal component, or each library record's other one.
+SECOND_SOURCES: tuple[str, ...] = ("none", "other")
 _BUILDING_KEYS = {"name", "period", "storeys", "damping", "floors", "masses", "stiffnesses"}
 _INTENSITY_KEYS = {"method", "measure", "levels", "stripes", "scale"}
 
@@ -120,13 +132,18 @@ class RecordSet:
     """The ``[records]`` table, validated: ground records, floors and intensity axis; the design of a
     record scene (the pulse scene's is :class:`opsrock.campaign.grid.Grid`). ``vertical`` is ``[records]
     vertical`` as written (``"none"`` or ``"synthetic"``), for messages; the motions themselves are in
-    ``grounds``."""
+    ``grounds``. ``seconds`` are the second horizontal components (m/s², one per ground record, in its order;
+    empty: none), ``second`` is ``[records] second`` (``""`` without one), ``azimuth`` the block's azimuths in
+    plan (deg; empty: planar cases)."""
 
     grounds: tuple[Record, ...] = field(repr=False)
     floors: tuple[Floor, ...]
     intensity: Intensity
     source: str
     vertical: str = "none"
+    seconds: tuple[Record, ...] = field(default=(), repr=False)
+    second: str = ""
+    azimuth: tuple[float, ...] = ()
 
     #: Columns of the scene's ``cases.csv``.
     columns = RECORD_COLUMNS
@@ -143,7 +160,7 @@ class RecordSet:
     def n_per_block(self) -> int:
         """Cases per block."""
         levels = range(1, len(self.intensity.levels) + 1)
-        return sum(len(self.level_records(k)) for k in levels) * len(self.floors)
+        return sum(len(self.level_records(k)) for k in levels) * len(self.floors) * max(1, len(self.azimuth))
 
     def fingerprint(self) -> dict[str, Any]:
         """Everything that determines the results, as JSON data: record contents, buildings, axis."""
@@ -155,11 +172,15 @@ class RecordSet:
             "floors": [[f.label, None if f.building is None else _building_json(f.building)] for f in self.floors],
             "intensity": [self.intensity.method, self.intensity.measure, list(self.intensity.levels),
                           [list(s) for s in self.intensity.stripes]],
+            # the plan's parts enter only when given, so existing scenes keep their digests
+            **({"seconds": [[r.name, r.dt, hashlib.sha256(r.values.tobytes()).hexdigest()] for r in self.seconds]}
+               if self.seconds else {}),
+            **({"azimuth": list(self.azimuth)} if self.azimuth else {}),
         }}
 
     def motion_items(self):
-        """The floor motions to compute: one item per ground record and building."""
-        return motion_items(self.grounds, self.floors)
+        """The floor motions to compute: one item per ground record (and second component) and building."""
+        return motion_items(self.grounds + self.seconds, self.floors)
 
     def cases(self, blocks: Sequence[Any], motions: dict) -> list[RecordCase]:
         """Every case, in id order: block, record, floor, level. A motion that failed gives failed cases.
@@ -173,14 +194,21 @@ class RecordSet:
         inten = self.intensity
         n_levels = len(inten.levels)
         width = max(2, len(str(n_levels)))
+        turns = [(azimuth_id(k, len(self.azimuth)), z) for k, z in enumerate(self.azimuth, start=1)] or [("", None)]
         cases = []
         for bspec in blocks:
             for gi, ground in enumerate(self.grounds):
                 for fl in self.floors:
                     motion = motions[(ground.name, fl.label)]
+                    motion2 = motions[(self.seconds[gi].name, fl.label)] if self.seconds else None
+                    if isinstance(motion2, str) and not isinstance(motion, str):
+                        motion = f"second component {self.seconds[gi].name}: {motion2}"
                     for k in range(1, n_levels + 1):
                         if gi in self.level_records(k):
-                            cases.append(_case(bspec, ground.name, fl.label, motion, inten, k, width))
+                            for tail, z in turns:
+                                case = _case(bspec, ground.name, fl.label, motion, inten, k, width, tail)
+                                cases.append(dataclasses.replace(case, azimuth=z, motion2=None if isinstance(
+                                    motion2, str) else motion2))
         return cases
 
 
@@ -188,8 +216,9 @@ def _building_json(b: ShearBuilding) -> list[Any]:
     return [b.name, b.period, b.storeys, b.damping, list(b.masses or ()), list(b.stiffnesses or ())]
 
 
-def _case(bspec: Any, rname: str, flabel: str, motion, inten: Intensity, k: int, width: int) -> RecordCase:
-    case_id = f"{bspec.name}/{rname}/{flabel}/l{k:0{width}d}"
+def _case(bspec: Any, rname: str, flabel: str, motion, inten: Intensity, k: int, width: int,
+          tail: str = "") -> RecordCase:
+    case_id = f"{bspec.name}/{rname}/{flabel}/l{k:0{width}d}{tail}"
     block = bspec.block_for(case_id)
     if isinstance(motion, str):
         dummy = Motion(record=Record(dt=1.0, values=[0.0, 0.0], name=rname), floor=flabel, ground=rname,
@@ -220,13 +249,14 @@ def parse_records(f: TomlFile, raw: Any, blocks: Sequence[Block], *, confirm: bo
     f.table("records", raw, "a table [records]")
     f.keys("records", raw, allowed=_RECORDS_KEYS)
     grounds, source = _grounds(f, raw, confirm)
+    seconds = _seconds(f, raw, grounds)
     grounds = _vertical(f, raw, grounds)
     if not grounds:
         raise f.error("records", source, "selects no records")
     if len(grounds) > MAX_RECORDS:
         raise f.error("records", f"<{len(grounds)} records>", f"must select <= {MAX_RECORDS} records")
     for block in blocks:
-        for rec in grounds:
+        for rec in grounds + seconds:
             try:
                 check_sampling(rec, block)
             except OpsrockError as exc:
@@ -237,8 +267,28 @@ def parse_records(f: TomlFile, raw: Any, blocks: Sequence[Block], *, confirm: bo
     if not floors:
         raise f.error("records.ground", ground, "no floor motions: give a building or ground = true")
     intensity = _intensity(f, raw.get("intensity", {"method": "cloud"}), {r.name for r in grounds})
+    azimuth = parse_azimuths(f, "records.azimuth", raw["azimuth"]) if "azimuth" in raw else ()
     return RecordSet(grounds=tuple(grounds), floors=tuple(floors), intensity=intensity, source=source,
-                     vertical=raw.get("vertical", "none"))
+                     vertical=raw.get("vertical", "none"), seconds=tuple(seconds),
+                     second="" if not seconds else raw["second"], azimuth=azimuth)
+
+
+def _seconds(f: TomlFile, raw: dict, grounds: list[Record]) -> list[Record]:
+    """The second horizontal components ``[records] second`` asks for: each library record's other one (the
+    records run are then one component of each recording, so no recording runs twice)."""
+    second = raw.get("second", "none")
+    if second not in SECOND_SOURCES:
+        raise f.error("records.second", second, f"must be one of {', '.join(SECOND_SOURCES)}")
+    if second == "none":
+        return []
+    if "set" not in raw:
+        raise f.error("records.second", second, "the other horizontal component needs a library set (set = ...); "
+                      "a record file has one component")
+    if raw.get("components", ["a"]) not in (["a"], ["b"]):
+        raise f.error("records.components", raw["components"], "with second = 'other' give one component, ['a'] "
+                      "(default) or ['b']: the other one runs along motion axis 2")
+    set_name, _ = library.parse_reference(raw["set"])
+    return [library.load(partner(f"{library.LIBRARY}:{set_name}/{r.name}")) for r in grounds]
 
 
 def _grounds(f: TomlFile, raw: dict, confirm: bool) -> tuple[list[Record], str]:
@@ -295,7 +345,7 @@ def _library_set(f: TomlFile, raw: dict) -> tuple[list[Record], str]:
         entries = library.entries(set_name)
     except (library.UnknownRecordError, library.LibraryUnavailableError) as exc:
         raise f.error("records.set", ref, str(exc)) from None
-    comps = raw.get("components", ["a", "b"])
+    comps = raw.get("components", ["a"] if raw.get("second", "none") != "none" else ["a", "b"])
     if not isinstance(comps, list) or not comps or not set(comps) <= {"a", "b"}:
         raise f.error("records.components", comps, "must be a non-empty list of 'a' and/or 'b'")
     return [library.load(e.reference) for e in entries if e.component in comps], ref
@@ -409,4 +459,4 @@ def _stripes(f: TomlFile, raw: Any, n_levels: int, names: set[str]) -> tuple[tup
     return tuple(out)
 
 
-__all__ = ["Floor", "Intensity", "MEASURES", "METHODS", "RecordSet", "parse_records"]
+__all__ = ["Floor", "Intensity", "MEASURES", "METHODS", "RecordSet", "SECOND_SOURCES", "parse_records"]

@@ -39,7 +39,14 @@ itself, or a named law: :mod:`opsrock.restitution`), and ``friction`` (the stati
 Coulomb coefficient on the floor) with ``friction_kinetic``; a block with friction needs a solver of
 the ``friction`` model. ``cm_height`` (m above the base) and ``radius_of_gyration`` (m, about the centre of
 mass) describe a mass distribution other than a homogeneous block's (:class:`~opsrock.block.Block`); such a
-block needs a solver that models it (registry: ``mass_distribution``).
+block needs a solver that models it (registry: ``mass_distribution``). ``depth`` (m, the base's full depth
+across ``width``) makes it a box in three dimensions, for a solver in plan (registry ``plan``: ``rigid3d``); a
+planar solver ignores it.
+
+Three dimensions: a scene whose design turns a block in plan (``[pulse] azimuth`` or ``[records] azimuth``
+other than multiples of 360 deg) or gives a second horizontal component (``[records] second``) needs a solver
+in plan and every block's ``depth``; ``[solver] name = "auto"`` then picks ``rigid3d`` (the only one), whose
+``cases.csv`` adds :data:`~opsrock.campaign.cases.PLAN_COLUMNS`.
 """
 
 from __future__ import annotations
@@ -52,7 +59,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping
 
 from opsrock.block import Block
-from opsrock.campaign.cases import CONTACT_COLUMNS
+from opsrock.campaign.cases import CONTACT_COLUMNS, PLAN_COLUMNS
 from opsrock.campaign.grid import Grid, parse_grid
 from opsrock.campaign.needs import HISTORY_ANSWERS, Choice, Needs, check, choose
 from opsrock.campaign.toml import MAX_AXIS_POINTS, TomlFile, canonical
@@ -60,6 +67,7 @@ from opsrock.constants import DEFAULT_RESTITUTION_FACTOR
 from opsrock.errors import ModelNotSupported, OpsrockError, SceneError, UnknownSettingError
 from opsrock.excitations import PFV_CONVENTIONS, pulse_class
 from opsrock.excitations.base import has_vertical
+from opsrock.excitations.plan import PlanMotion
 from opsrock.limits import ACCEPT_KEY, ACCEPT_OPTION, check_plausible_sizes
 from opsrock.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import check_settings
@@ -89,7 +97,7 @@ _SCENE_KEYS = {"name", "description", "blocks", "select", "pfv_convention", "sol
 _NEEDS_KEYS = {"answer", "tolerance", "model"}
 _SOLVER_KEYS = {"name", "settings", "case_timeout"}
 _BLOCK_KEYS = {"name", "width", "height", "reason", "mass", "restitution_factor", "restitution", "friction",
-               "friction_kinetic", "cm_height", "radius_of_gyration"}
+               "friction_kinetic", "cm_height", "radius_of_gyration", "depth"}
 
 
 @dataclass(frozen=True)
@@ -127,6 +135,8 @@ class BlockSpec:
         A distribution of the friction coefficients drawn once per case (:meth:`block_for`,
         :mod:`opsrock.inventory.friction`); ``friction`` and ``friction_kinetic`` are then its median's. None:
         the friction is fixed.
+    depth : float or None
+        Full depth ``2d`` of the base (m), across ``width``; None: a planar block.
     """
 
     name: str
@@ -142,6 +152,7 @@ class BlockSpec:
     cm_height: float | None = None
     radius_of_gyration: float | None = None
     friction_distribution: FrictionDistribution | None = None
+    depth: float | None = None
 
     @property
     def block(self) -> Block:
@@ -149,7 +160,7 @@ class BlockSpec:
         return Block(width=self.width, height=self.height, mass=self.mass, restitution_factor=self.restitution_factor,
                      name=self.name, restitution=self.restitution, friction=self.friction,
                      friction_kinetic=self.friction_kinetic, cm_height=self.cm_height,
-                     radius_of_gyration=self.radius_of_gyration)
+                     radius_of_gyration=self.radius_of_gyration, depth=self.depth)
 
     def block_for(self, case_id: str) -> Block:
         """The block of case ``case_id``: :attr:`block`, with its own draws of the friction coefficients and of
@@ -250,6 +261,9 @@ class Scene:
                              f"horizontal floor motion only (registry: vertical = False); use one of "
                              f"{_having('vertical')}, or drop the vertical motion")
         for spec in self.blocks:
+            if caps["plan"] and spec.depth is None:
+                raise SceneError(where, "solver.name", solver, f"solver {solver!r} models a box in three dimensions "
+                                 f"and block {spec.name!r} has no depth: give it depth (m) in the blocks file")
             if spec.restitution_distribution is not None and not caps["restitution"]:
                 raise SceneError(where, "solver.name", solver, f"block {spec.name!r} draws its restitution_factor "
                                  f"from a distribution, and solver {solver!r} reproduces Housner's impact only "
@@ -260,15 +274,33 @@ class Scene:
                 raise SceneError(where, "solver.name", solver, str(exc)) from None
 
     def _floor_motion(self) -> Any:
-        """A ground record of a record scene, one with a vertical motion if any has one; None for a pulse scene."""
+        """A ground record of a record scene, one with a vertical motion if any has one, in plan when the scene
+        is (:attr:`in_plan`); None for a pulse scene."""
         if self.records is None:
             return None
-        return next((r for r in self.records.grounds if has_vertical(r)), self.records.grounds[0])
+        return self._in_plan_if_turned(next((r for r in self.records.grounds if has_vertical(r)),
+                                            self.records.grounds[0]))
 
     def _pulse(self, spec: BlockSpec) -> Any:
-        """The first pulse of the grid for ``spec``'s block (a pulse has no vertical motion)."""
-        return pulse_class(self.grid.shape).from_ratios(spec.block, freq_ratio=self.grid.freq_ratio[0],
-                                                        pfa_ratio=self.grid.pfa_ratio[0])
+        """The first pulse of the grid for ``spec``'s block (a pulse has no vertical motion), in plan when the
+        scene is (:attr:`in_plan`)."""
+        return self._in_plan_if_turned(pulse_class(self.grid.shape).from_ratios(
+            spec.block, freq_ratio=self.grid.freq_ratio[0], pfa_ratio=self.grid.pfa_ratio[0]))
+
+    def _in_plan_if_turned(self, motion: Any) -> Any:
+        """``motion`` as a :class:`PlanMotion` turned by the scene's first azimuth that turns the block (or with
+        a second component), for the registry's checks; as it is in a planar scene."""
+        if not self.in_plan:
+            return motion
+        turned = next((z for z in self.design.azimuth if z % 360.0 != 0.0), 0.0)
+        second = self.records.seconds[0] if self.records is not None and self.records.seconds else None
+        return PlanMotion(motion, second, turned)
+
+    @property
+    def in_plan(self) -> bool:
+        """True if the scene needs three dimensions: its design turns a block in plan (an azimuth not a multiple
+        of 360 deg) or gives a second horizontal component."""
+        return needs_plan(self.design)
 
     @property
     def design(self) -> Grid | RecordSet:
@@ -279,8 +311,11 @@ class Scene:
     def columns(self) -> tuple[str, ...]:
         """Columns of the scene's ``cases.csv``: with the contact columns for a solver of the ``friction``
         model (:data:`opsrock.campaign.cases.CONTACT_COLUMNS`)."""
-        if METHODS.get(self.solver).model == "friction":
+        model = METHODS.get(self.solver).model
+        if model == "friction":
             return (*self.design.columns, *CONTACT_COLUMNS)
+        if model == "rigid3d":
+            return (*self.design.columns, *CONTACT_COLUMNS, *PLAN_COLUMNS)
         return self.design.columns
 
     @property
@@ -323,7 +358,7 @@ class Scene:
         if self.needs is not None:  # the scene's needs hold for any solver it is run with
             friction = any(b.friction is not None for b in self.blocks) or any(
                 r.vertical is not None for r in (self.records.grounds if self.records else ()))
-            choice = check(solver, self.needs, friction=friction)
+            choice = check(solver, self.needs, friction=friction, plan=self.in_plan)
         return dataclasses.replace(self, solver=solver, solver_settings=dict(settings), choice=choice)
 
     def fingerprint(self) -> dict[str, Any]:
@@ -348,6 +383,7 @@ class Scene:
                    if (b.cm_height, b.radius_of_gyration) != (None, None) else [])
                 + ([{"friction_distribution": b.friction_distribution.fingerprint()}] if b.friction_distribution
                    else [])
+                + ([{"depth": b.depth}] if b.depth is not None else [])
                 for b in self.blocks
             ],
             **self.design.fingerprint(),
@@ -357,6 +393,12 @@ class Scene:
         """SHA-256 (hex) of :meth:`fingerprint` as canonical JSON: equal digests, equal results."""
         text = json.dumps(self.fingerprint(), sort_keys=True, separators=(",", ":"), allow_nan=False)
         return hashlib.sha256(text.encode()).hexdigest()
+
+
+def needs_plan(design: Any) -> bool:
+    """True if a scene's design (:class:`Grid` or :class:`RecordSet`) needs three dimensions: an azimuth that
+    turns the block in plan (not a multiple of 360 deg), or a second horizontal component."""
+    return any(z % 360.0 != 0.0 for z in design.azimuth) or bool(getattr(design, "second", ""))
 
 
 def _having(capability: str) -> str:
@@ -401,8 +443,9 @@ def load_blocks(path: str | Path, *, confirm: bool = False) -> tuple[BlockSpec, 
         spec = _block_spec(f, where, f.table(where, entry, "a table"))
         if spec.name in seen:
             raise f.error(f"{where}.name", spec.name, f"duplicates block[{seen[spec.name]}].name")
-        check_plausible_sizes({f"{f.path}: {where}.width": spec.width, f"{f.path}: {where}.height": spec.height},
-                              option=f"{ACCEPT_KEY} in the scene (or {ACCEPT_OPTION})", confirm=confirm)
+        sizes = {f"{f.path}: {where}.width": spec.width, f"{f.path}: {where}.height": spec.height,
+                 **({f"{f.path}: {where}.depth": spec.depth} if spec.depth is not None else {})}
+        check_plausible_sizes(sizes, option=f"{ACCEPT_KEY} in the scene (or {ACCEPT_OPTION})", confirm=confirm)
         seen[spec.name] = k
         specs.append(spec)
     return tuple(specs)
@@ -449,11 +492,12 @@ def _block_spec(f: TomlFile, where: str, entry: dict) -> BlockSpec:
         cm_height=f.number(f"{where}.cm_height", entry["cm_height"]) if "cm_height" in entry else None,
         radius_of_gyration=(f.number(f"{where}.radius_of_gyration", entry["radius_of_gyration"])
                             if "radius_of_gyration" in entry else None),
+        depth=f.number(f"{where}.depth", entry["depth"]) if "depth" in entry else None,
     )
     try:  # the Block's own physical checks (restitution in (0, 1], friction ranges, mass distribution)
         spec.block
     except OpsrockError as exc:
-        key = next((k for k in ("friction_kinetic", "friction", "cm_height", "radius_of_gyration")
+        key = next((k for k in ("friction_kinetic", "friction", "cm_height", "radius_of_gyration", "depth")
                     if str(exc).startswith(k) and k in entry), None)
         if key:
             raise f.error(f"{where}.{key}", entry[key], str(exc)) from None
@@ -512,7 +556,7 @@ def load_scene(path: str | Path, *, accept_implausible: bool = False) -> Scene:
     grid, records = _design(f, data, blocks, pfv, confirm)
     solver, settings, case_timeout = _solver(f, data.get("solver", {}))
     n_cases = len(blocks) * (grid if grid is not None else records).n_per_block
-    needs, choice = _needs(f, data, solver, blocks, records, n_cases)
+    needs, choice = _needs(f, data, solver, blocks, (grid, records), n_cases)
     if choice is not None:
         solver = choice.solver
     return Scene(name=f.string("name", data.get("name", f.path.stem)), path=str(f.path), blocks=blocks,
@@ -521,8 +565,12 @@ def load_scene(path: str | Path, *, accept_implausible: bool = False) -> Scene:
                  blocks_path=str(blocks_path), case_timeout=case_timeout, records=records, needs=needs, choice=choice)
 
 
-def _needs(f: TomlFile, data: dict, solver: str, blocks, records, n_cases: int) -> tuple[Needs | None, Choice | None]:
-    """``[needs]`` and the solver it picks (``solver = "auto"``) or checks (a named solver)."""
+def _needs(f: TomlFile, data: dict, solver: str, blocks, designs: tuple, n_cases: int) -> tuple[Needs | None,
+                                                                                              Choice | None]:
+    """``[needs]`` and the solver it picks (``solver = "auto"``: ``rigid3d`` when the design needs three
+    dimensions, :func:`needs_plan`) or checks (a named solver)."""
+    grid, records = designs
+    plan = needs_plan(grid if grid is not None else records)
     raw = data.get("needs")
     if raw is None and solver != AUTO:
         return None, None
@@ -532,8 +580,8 @@ def _needs(f: TomlFile, data: dict, solver: str, blocks, records, n_cases: int) 
                                                                     (records.grounds if records else ()))
     try:
         needs = Needs(**raw)
-        choice = (choose(needs, friction=friction, n_cases=n_cases) if solver == AUTO
-                  else check(solver, needs, friction=friction))
+        choice = (choose(needs, friction=friction, n_cases=n_cases, plan=plan) if solver == AUTO
+                  else check(solver, needs, friction=friction, plan=plan))
     except OpsrockError as exc:
         key = next((k for k in raw if str(exc).startswith(f"needs.{k}")), None)
         raise f.error(f"needs.{key}" if key else "needs", raw.get(key, dict(raw)) if key else dict(raw),
@@ -641,4 +689,4 @@ def _check_solver(f: TomlFile, solver: Any, settings: dict) -> dict:
 
 
 __all__ = ["BlockSpec", "DEFAULT_SOLVER", "MAX_AXIS_POINTS", "MAX_CASES", "Scene", "SceneError", "load_blocks",
-           "load_scene", "scene_path"]
+           "load_scene", "needs_plan", "scene_path"]

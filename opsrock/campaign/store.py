@@ -61,8 +61,8 @@ MANIFEST_FILE: str = "manifest.json"
 LOCK_FILE: str = ".lock"
 
 #: Version of the table layout below. A version-1 store (before the contact columns) or version-2 store
-#: (before the plan columns) is migrated in place when opened (the columns it lacks are added, empty: its
-#: cases were solved without friction, or by a planar solver); a store of any other version is refused.
+#: (before the plan columns) is migrated in place when opened (the columns are added, empty: its cases were
+#: solved without friction, or in a plane); a store of any other version is refused.
 SCHEMA_VERSION: int = 3
 
 #: Columns stored per case (besides ``case_id``), with their SQLite types. Inputs (block,
@@ -89,10 +89,9 @@ RESULT_COLUMNS: dict[str, str] = {
     "slide_max": "REAL",
     "slide_residual": "REAL",
     # what a block did in three dimensions (solvers of the rigid3d model; NULL for the others)
-    "overturned_over": "TEXT",
+    "tilt_max": "REAL",
     "twist_max": "REAL",
-    "time_edge": "REAL",
-    "time_corner": "REAL",
+    "overturned_over": "TEXT",
 }
 
 #: The columns schema version 2 added to version 1.
@@ -100,10 +99,7 @@ _ADDED_IN_2: tuple[str, ...] = ("response", "first_mode", "time_sliding", "time_
                                 "slide_max", "slide_residual")
 
 #: The columns schema version 3 added to version 2.
-_ADDED_IN_3: tuple[str, ...] = ("overturned_over", "twist_max", "time_edge", "time_corner")
-
-#: The columns each older schema version lacks (added, empty, when such a store is opened).
-_ADDED_SINCE: dict[int, tuple[str, ...]] = {1: _ADDED_IN_2 + _ADDED_IN_3, 2: _ADDED_IN_3}
+_ADDED_IN_3: tuple[str, ...] = ("tilt_max", "twist_max", "overturned_over")
 
 #: The manifest table's columns, with their SQLite types.
 MANIFEST_COLUMNS: dict[str, str] = {"key": "TEXT PRIMARY KEY", "value": "TEXT NOT NULL"}
@@ -134,7 +130,7 @@ def _lost_sql(table: str = "") -> str:
 
 _BOOL_COLUMNS = ("overturned", "rocked")
 _FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s", "time_sliding", "time_rocking", "time_flight",
-                  "slide_max", "slide_residual", "twist_max", "time_edge", "time_corner")
+                  "slide_max", "slide_residual", "tilt_max", "twist_max")
 
 
 class ResultStore:
@@ -223,7 +219,7 @@ class ResultStore:
                 raise
 
     def _create(self) -> None:
-        """Make the tables of a new store, or check an existing one's (and migrate a version-1 store)."""
+        """Make the tables of a new store, or check an existing one's (and migrate a version-1 or -2 store)."""
         cols = ",\n  ".join(f"{name} {kind}" for name, kind in RESULT_COLUMNS.items())
         with self._transaction():
             tables = _tables(self._db)
@@ -235,7 +231,7 @@ class ResultStore:
                 return
             version = check_layout(self.path, self._db)
             if version < SCHEMA_VERSION:
-                for name in _ADDED_SINCE[version]:
+                for name in (*(_ADDED_IN_2 if version < 2 else ()), *_ADDED_IN_3):
                     self._db.execute(f"ALTER TABLE results ADD COLUMN {name} {RESULT_COLUMNS[name]}")
                 self._db.execute("UPDATE manifest SET value = ? WHERE key = 'schema_version'",
                                  (json.dumps(SCHEMA_VERSION),))
@@ -282,17 +278,18 @@ class ResultStore:
         Parameters
         ----------
         rows : iterable of dict
-            Each with ``case_id`` and every key of :data:`RESULT_COLUMNS`. A ``case_id``
+            Each with ``case_id`` and every key of :data:`RESULT_COLUMNS` (the plan columns, schema version 3's,
+            may be left out: stored NULL, a planar solver's row). A ``case_id``
             already stored is left as it is (the first result wins), unless its stored row is that of a
             case lost to the infrastructure: the new row replaces it.
         """
         names = ["case_id", *RESULT_COLUMNS]
         values = []
         for row in rows:
-            missing = [n for n in names if n not in row]
+            missing = [n for n in names if n not in row and n not in _ADDED_IN_3]
             if missing:
                 raise StoreError(f"result row for {row.get('case_id')!r} lacks {missing}")
-            values.append(tuple(_to_sql(n, row[n]) for n in names))
+            values.append(tuple(_to_sql(n, row.get(n)) for n in names))
         if not values:
             return 0
         sql = (f"INSERT INTO results ({', '.join(names)}) VALUES ({', '.join('?' * len(names))}) "
@@ -370,9 +367,9 @@ def check_layout(path: Path, db: sqlite3.Connection) -> int:
             raise damaged(path, f"it has no table {name!r}" if name not in tables else f"{name!r} is a {tables[name]}")
     _check_columns(path, db, "manifest", {k: _declared(v) for k, v in MANIFEST_COLUMNS.items()})
     version = _schema_version(path, db)
-    lacking = _ADDED_SINCE.get(version, ())
     expected = {"case_id": ("TEXT", False, True), **{k: _declared(v) for k, v in RESULT_COLUMNS.items()
-                                                       if k not in lacking}}
+                                                       if (version >= 2 or k not in _ADDED_IN_2)
+                                                       and (version >= 3 or k not in _ADDED_IN_3)}}
     _check_columns(path, db, "results", expected)
     _check_manifest(path, db)
     _check_values(path, db, expected)
@@ -512,7 +509,7 @@ def read_rows(out_dir: str | Path) -> dict[str, dict[str, Any]]:
     try:
         try:
             present = {rec[1] for rec in db.execute("PRAGMA table_info(results)")}
-            # an older store (read, not migrated) lacks the contact or plan columns: they read as empty
+            # a version-1 store (read, not migrated) lacks the contact columns: they read as empty
             names = [n for n in RESULT_COLUMNS if n in present] if present else list(RESULT_COLUMNS)
             records = db.execute(f"SELECT case_id, {', '.join(names)} FROM results").fetchall()
         except sqlite3.OperationalError as exc:  # created but its tables not yet committed

@@ -84,7 +84,7 @@ def check_model_args(args: argparse.Namespace) -> None:
                          f"--solver {args.solver}")
     if info.model != "rigid" and args.equations is not None:
         raise UsageError(f"--equations applies to the rigid-body solvers ({_models('rigid')}), not --solver {args.solver}")
-    if info.model != "friction":
+    if not info.friction:  # the solvers with friction (models friction, rigid3d) take vertical motion too
         given = [o for o, v in (("--friction", args.friction), ("--friction-kinetic", args.friction_kinetic),
                                 ("--vertical", getattr(args, "vertical", None)),
                                 ("--vertical-record", getattr(args, "vertical_record", None))) if v is not None]

@@ -29,13 +29,14 @@ INVENTORY_OPTIONS: dict[str, str] = {
     "demand_levels_pfv": "--demand-levels-pfv", "demand_levels_pfa": "--demand-levels-pfa",
     "slide_distance": "--slide-distance", "n_boot": "--n-boot", "seed": "--seed", "period": "--period",
     "storeys": "--storeys", "damping": "--damping", "floors": "--floors", "record_set": "--record-set",
-    "records": "--records",
+    "records": "--records", "solver": "--solver", "azimuths": "--azimuths",
 }
 
 #: Options of each route, with the value they have when not given (the parser's defaults).
 _INVENTORY_ONLY = {"--method": ("method", None), "--levels": ("levels", None),
                    "--demand-levels-pfv": ("demand_levels_pfv", None), "--demand-levels-pfa": ("demand_levels_pfa", None),
-                   "--slide-distance": ("slide_distance", None), "--accept-implausible": ("accept_implausible", False)}
+                   "--slide-distance": ("slide_distance", None), "--accept-implausible": ("accept_implausible", False),
+                   "--solver": ("solver", None), "--azimuths": ("azimuths", None)}
 _FEMA_ONLY = {"--items": ("items", None), "--variants": ("variants", "default,housner,friction"),
               "--friction": ("friction", None), "--no-sweep": ("no_sweep", False)}
 _BUILDING = {"--period": ("period", 1.0), "--storeys": ("storeys", 8), "--damping": ("damping", 0.05),
@@ -115,6 +116,7 @@ def _inventory(args: argparse.Namespace) -> int:
     """The route of ``--inventory``/``--motions``: the design is read and checked by the library."""
     from opsrock.inventory.sources import BuildingSource
     from opsrock.inventory.study import inventory_design, run_inventory_study
+    from opsrock.inventory.three_d import THREE_D_SOLVER
 
     _refuse(args, _FEMA_ONLY, "with --inventory or --motions (it is an option of FEMA P-58's study)")
     if args.motions is not None:
@@ -123,7 +125,10 @@ def _inventory(args: argparse.Namespace) -> int:
         "method": args.method, "levels": _numbers("--levels", args.levels),
         "demand_levels_pfv": _numbers("--demand-levels-pfv", args.demand_levels_pfv),
         "demand_levels_pfa": _numbers("--demand-levels-pfa", args.demand_levels_pfa),
-        "slide_distance": args.slide_distance, "n_boot": args.n_boot, "seed": args.seed}.items() if v is not None}
+        "slide_distance": args.slide_distance, "n_boot": args.n_boot, "seed": args.seed, "solver": args.solver,
+        "azimuths": _numbers("--azimuths", args.azimuths)}.items() if v is not None}
+    if args.azimuths is not None and args.solver != THREE_D_SOLVER:
+        raise UsageError(f"--azimuths applies to --solver {THREE_D_SOLVER} (the items in three dimensions)")
     settings["accept_implausible"] = args.accept_implausible
     try:
         with named_options(INVENTORY_OPTIONS):
@@ -138,9 +143,10 @@ def _inventory(args: argparse.Namespace) -> int:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)
         return EXIT_INTERRUPTED
+    where = (f"fits in {res.tables['fits3d']}" if "fits3d" in res.tables
+             else f"fits in {res.tables['fits']}, pelicun folder {Path(res.out_dir) / 'pelicun'}")
     print(f"opsrock contents: {len(design.inventory.items)} items, {res.n_cases} cases ({res.n_computed} computed now, "
-          f"{res.n_failed} failed) in {res.timings['total_s']:.1f} s; fits in {res.tables['fits']}, pelicun folder "
-          f"{Path(res.out_dir) / 'pelicun'}; see {res.report}")
+          f"{res.n_failed} failed) in {res.timings['total_s']:.1f} s; {where}; see {res.report}")
     return 0
 
 

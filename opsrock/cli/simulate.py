@@ -1,4 +1,11 @@
-"""``opsrock simulate``: one block under one pulse or record, through :func:`opsrock.solvers.simulate`."""
+"""``opsrock simulate``: one block under one pulse or record, through :func:`opsrock.solvers.simulate`.
+
+A box in three dimensions (``--depth``, a second horizontal record ``--record2``, the block's orientation in
+plan ``--azimuth``) runs a solver that models motion in plan (registry ``plan``: ``rigid3d``, the default when
+any of them is given) under a :class:`~opsrock.excitations.plan.PlanMotion`; a planar solver takes
+``--azimuth`` only as a multiple of 360 deg (the planar motion itself) and refuses ``--depth`` (it would
+ignore it) and ``--record2``.
+"""
 
 from __future__ import annotations
 
@@ -24,6 +31,7 @@ from opsrock.cli.common import (
 from opsrock.constants import G
 from opsrock.errors import UsageError
 from opsrock.excitations import library, pulse_class
+from opsrock.excitations.plan import PlanMotion
 from opsrock.excitations.building import ShearBuilding, floor_motion
 from opsrock.excitations.readers import read_record
 from opsrock.excitations.records import Record, check_plausible_record, check_sampling
@@ -31,16 +39,54 @@ from opsrock.excitations.vertical import synthetic_vertical, with_vertical
 from opsrock.limits import ACCEPT_OPTION, check_plausible, check_plausible_sizes, scaled_input
 from opsrock.solvers import simulate as solve
 from opsrock.solvers.common import LONG_SOLVE_S, event_driven_estimate
-from opsrock.solvers.registry import METHODS
+from opsrock.solvers.registry import METHODS, solver_names
 
 #: The mass-distribution options of ``opsrock simulate`` by the :class:`Block` argument they set.
 MASS_OPTIONS: dict[str, str] = {"cm_height": "--cm-height", "radius_of_gyration": "--radius-of-gyration"}
 
 #: Options of ``--record`` that mean nothing without it.
-RECORD_ONLY = ("units", "dt", "building_period", "storeys", "damping", "floor", "vertical_record")
+RECORD_ONLY = ("units", "dt", "building_period", "storeys", "damping", "floor", "vertical_record", "record2")
+
+#: The options of a box in three dimensions by the argument they set.
+PLAN_OPTIONS: dict[str, str] = {"depth": "--depth", "record2": "--record2", "azimuth": "--azimuth"}
+
+#: Solver of ``opsrock simulate`` when a plan option is given and ``--solver`` is not.
+PLAN_SOLVER: str = "rigid3d"
+
+
+def _check_plan_args(args: argparse.Namespace) -> None:
+    """The plan options against the solver: ``rigid3d`` by default when one is given; a solver in plan needs
+    ``--depth``; a planar one refuses ``--depth``, ``--record2`` and an ``--azimuth`` that turns the block."""
+    if args.record2 is not None and args.record is None:
+        raise UsageError("--record2 applies to --record only (its second horizontal component); a pulse has one "
+                         "direction, turned in the block's plan by --azimuth")
+    given = [o for name, o in PLAN_OPTIONS.items() if getattr(args, name) is not None]
+    if args.solver is None and given:
+        args.solver = PLAN_SOLVER
+    info = METHODS.get(args.solver)
+    if info is None:
+        return  # check_model_args names the unknown solver
+    in_plan = ", ".join(solver_names(plan=True))
+    if info.plan and args.depth is None:
+        raise UsageError(f"--solver {args.solver} needs --depth: the full depth 2d (m) of the block's base, across "
+                         "--width")
+    law = args.restitution_law
+    if info.plan and not info.restitution and (args.restitution is not None or law not in (None, "housner")):
+        option = f"--restitution {args.restitution:g}" if args.restitution is not None else f"--restitution-law {law}"
+        raise UsageError(f"{option}: --solver {args.solver} reproduces Housner's impact only (e = e_R, the default "
+                         "with it; --restitution-law housner)")
+    if not info.plan and args.depth is not None:
+        raise UsageError(f"--depth applies to a solver in plan ({in_plan}): --solver {args.solver} is planar and "
+                         "models the block's width and height only (it would ignore the depth)")
+    turned = args.azimuth is not None and args.azimuth % 360.0 != 0.0
+    if not info.plan and (args.record2 is not None or turned):
+        option = "--record2" if args.record2 is not None else f"--azimuth {args.azimuth:g}"
+        raise UsageError(f"{option} needs a solver in plan ({in_plan}): --solver {args.solver} is planar (one "
+                         "horizontal component along the block's width)")
 
 
 def _check_args(args: argparse.Namespace) -> None:
+    _check_plan_args(args)
     check_model_args(args)
     if args.plot is not None:
         output_file("--plot", args.plot, ".png")
@@ -101,6 +147,29 @@ def _floor(args: argparse.Namespace, rec: Record) -> Record:
         return floor_motion(rec, building, floor)
 
 
+def _second(args: argparse.Namespace, block: Block, scale: float) -> Record:
+    """The record of ``--record2`` on the floor of ``--record`` (the same building filter), times ``scale`` (the
+    factor of ``--record``)."""
+    with given_by("--record2"):
+        rec = read_record(args.record2, units=args.units, dt=args.dt)
+    check_plausible_record(rec, what=f"--record2 {args.record2}", option=ACCEPT_OPTION,
+                           confirm=args.accept_implausible)
+    rec = _floor(args, rec)
+    with given_by("--record2"):
+        check_sampling(rec, block)
+        return rec.scaled(scale)
+
+
+def _plan(args: argparse.Namespace, block: Block, excitation, scale: float | None):
+    """The excitation as a :class:`PlanMotion` when a plan option is given (``--record2`` its second component,
+    ``--azimuth`` the block's); else as it is."""
+    if args.record2 is None and args.azimuth is None and not METHODS[args.solver].plan:
+        return excitation
+    second = None if args.record2 is None else _second(args, block, scale)
+    with named_options({"azimuth": "--azimuth", "second": "--record2"}):
+        return PlanMotion(excitation, second, 0.0 if args.azimuth is None else args.azimuth)
+
+
 def _record(args: argparse.Namespace, block: Block) -> tuple[Record, float]:
     """The record of ``--record`` on its floor, scaled as asked, and the scale factor."""
     with given_by("--record"):
@@ -121,21 +190,34 @@ def _record(args: argparse.Namespace, block: Block) -> tuple[Record, float]:
 
 def _block(args: argparse.Namespace) -> Block:
     """The block of the block options, with the mass distribution of ``--cm-height`` and
-    ``--radius-of-gyration`` (None: a homogeneous block's); the block checks them."""
+    ``--radius-of-gyration`` (None: a homogeneous block's) and the depth of ``--depth``; the block checks them.
+    A solver in plan reproduces Housner's impact only: its block's default restitution is ``e_R``."""
     block = make_block(args)
     given = {name: getattr(args, name) for name in MASS_OPTIONS if getattr(args, name) is not None}
+    if args.depth is not None:
+        given["depth"] = args.depth
+    if METHODS[args.solver].plan and args.restitution is None and args.restitution_law is None:
+        given["restitution_factor"] = 1.0
     if not given:
         return block
-    with named_options(MASS_OPTIONS):
+    with named_options({**MASS_OPTIONS, "depth": "--depth"}):
         return dataclasses.replace(block, **given)
 
 
 def simulate(args: argparse.Namespace) -> int:
-    """``opsrock simulate``: one block under one pulse or record, through :func:`opsrock.solvers.simulate`."""
+    """``opsrock simulate``: one block under one pulse or record, through :func:`opsrock.solvers.simulate`.
+
+A box in three dimensions (``--depth``, a second horizontal record ``--record2``, the block's orientation in
+plan ``--azimuth``) runs a solver that models motion in plan (registry ``plan``: ``rigid3d``, the default when
+any of them is given) under a :class:`~opsrock.excitations.plan.PlanMotion`; a planar solver takes
+``--azimuth`` only as a multiple of 360 deg (the planar motion itself) and refuses ``--depth`` (it would
+ignore it) and ``--record2``.
+"""
     _check_args(args)
     _check_plausible(args)
     block = _block(args)
     excitation, scale = (_pulse(args, block), None) if args.record is None else _record(args, block)
+    excitation = _plan(args, block, excitation, scale)
     _announce_long_solve(args.solver, excitation)
     # the solvers check their settings before any work and raise only for bad settings;
     # a solver failure is a failed result, never an exception
@@ -145,7 +227,7 @@ def simulate(args: argparse.Namespace) -> int:
     if args.plot:
         from opsrock.plots.response import plot_response  # lazy: matplotlib, only for --plot
 
-        plot_response(result, block, excitation, args.plot)
+        plot_response(result, block, _first(excitation), args.plot)
     print(json.dumps(out, default=str) if args.json else _text(result, block, excitation, out))
     return 0 if result.ok else EXIT_FAILED
 
@@ -153,8 +235,8 @@ def simulate(args: argparse.Namespace) -> int:
 def _check_plausible(args: argparse.Namespace) -> None:
     """--width, --height and --pfa beyond the plausibility bounds, refused unless --accept-implausible (a
     record file is checked as read, :func:`_record`)."""
-    check_plausible_sizes({"--width": args.width, "--height": args.height}, option=ACCEPT_OPTION,
-                          confirm=args.accept_implausible)
+    sizes = {"--width": args.width, "--height": args.height, **({"--depth": args.depth} if args.depth else {})}
+    check_plausible_sizes(sizes, option=ACCEPT_OPTION, confirm=args.accept_implausible)
     if args.pfa is not None:
         check_plausible("pfa", args.pfa * G, what="--pfa", option=ACCEPT_OPTION, confirm=args.accept_implausible,
                         declared="g")
@@ -166,6 +248,7 @@ def _announce_long_solve(solver: str, excitation) -> None:
     info = METHODS[solver]
     if info.compiled or info.needs_opensees:
         return
+    excitation = _first(excitation)
     estimate = event_driven_estimate(excitation)
     if estimate <= LONG_SOLVE_S:
         return
@@ -177,7 +260,29 @@ def _announce_long_solve(solver: str, excitation) -> None:
           file=sys.stderr, flush=True)
 
 
-def _summary(result, block: Block, excitation, scale: float | None) -> dict:
+def _first(excitation):
+    """The first horizontal component of a :class:`PlanMotion` (the excitation itself otherwise)."""
+    return excitation.first if isinstance(excitation, PlanMotion) else excitation
+
+
+def _plan_summary(result, block: Block, motion) -> dict:
+    """The three-dimensional outputs (solver ``rigid3d``): the block's depth and azimuth, the second record, and
+    :class:`~opsrock.result.PlanSummary`'s scalars (rad, m, s; ``slide_residual`` the vector ``[x, y]``)."""
+    if not isinstance(motion, PlanMotion) or block.depth is None:
+        return {}  # a planar solver's run (its motion planar, unwrapped)
+    out = {"depth": block.depth, "alpha_depth": block.alpha_depth, "azimuth": motion.azimuth,
+           "record2": None if motion.second is None else getattr(motion.second, "name", None)}
+    plan = result.plan
+    if plan is not None:
+        out.update(tilt_max=plan.tilt_max, twist_max=plan.twist_max, slide_max=plan.slide_max,
+                   slide_residual=list(plan.slide_residual), overturned_over=plan.overturned_over,
+                   overturn_direction=plan.overturn_direction, time_edge=plan.time_edge,
+                   time_corner=plan.time_corner, time_sliding=plan.time_sliding, time_flight=plan.time_flight)
+    return out
+
+
+def _summary(result, block: Block, motion, scale: float | None) -> dict:
+    excitation = _first(motion)
     summary = result.summary()
     out = {k: summary[k] for k in ("theta_max", "theta_max_over_alpha", "overturned", "rocked", "verdict",
                                    "status", "reason", "solver")}
@@ -198,10 +303,12 @@ def _summary(result, block: Block, excitation, scale: float | None) -> dict:
     if result.contact is not None:
         out.update(response=result.response, **result.contact.columns(),
                    slip_velocity_end=result.contact.slip_velocity_end, energy=dict(result.contact.energy))
+    out.update(_plan_summary(result, block, motion))
     return out
 
 
-def _text(result, block, excitation, out) -> str:
+def _text(result, block, motion, out) -> str:
+    excitation = _first(motion)
     mass = "" if block.homogeneous else (f", centre of mass {block.h_cm:g} m up, radius of gyration "
                                          f"{block.r_gyration:.4g} m")
     head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m{mass}: alpha = {block.alpha:.4f} rad, "
@@ -215,8 +322,27 @@ def _text(result, block, excitation, out) -> str:
                   f"duration {excitation.duration:.4g} s\n")
     return (head + motion + f"{result.solver}: {result.verdict}; theta_max = {result.theta_max:.5g} rad "
             f"= {result.theta_max_over_alpha:.4g} alpha; {result.n_impacts} impacts, {result.n_steps} steps in "
-            f"{result.wall_time_s:.3f} s" + _contact_text(result, out)
+            f"{result.wall_time_s:.3f} s" + _contact_text(result, out) + _plan_text(out)
             + (f"\nfailed: {result.reason}" if not result.ok else ""))
+
+
+def _plan_text(out: dict) -> str:
+    """The lines of a box in three dimensions: its depth and azimuth, then what it did (tilt, twist, slide,
+    what it overturned over)."""
+    if "azimuth" not in out:
+        return ""
+    second = "" if out["record2"] is None else f", second component {out['record2']}"
+    head = (f"\nin plan: depth 2d = {out['depth']:g} m (alpha across it {out['alpha_depth']:.4f} rad), azimuth "
+            f"{out['azimuth']:g} deg{second}")
+    if "tilt_max" not in out:
+        return head
+    over = ("" if not out["overturned_over"] else f"; overturned over {'an' if out['overturned_over'] == 'edge' else 'a'} "
+            f"{out['overturned_over']} towards {out['overturn_direction']:.4g} deg")
+    x, y = out["slide_residual"]
+    return (head + f"\ntilt_max = {out['tilt_max']:.5g} rad, twist_max = {out['twist_max']:.5g} rad; slide peak "
+            f"{out['slide_max']:.4g} m, residual (x, y) = ({x:.4g}, {y:.4g}) m; on an edge {out['time_edge']:.3g} s, on "
+            f"a corner {out['time_corner']:.3g} s, sliding {out['time_sliding']:.3g} s, in flight "
+            f"{out['time_flight']:.3g} s{over}")
 
 
 def _contact_text(result, out) -> str:

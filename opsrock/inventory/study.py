@@ -34,6 +34,7 @@ from opsrock.errors import InputError
 from opsrock.fragility.cases import check_some_finished
 from opsrock.inventory.items import Inventory
 from opsrock.inventory.motions import MotionSet
+from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, THREE_D_SOLVER, check_azimuths, run_three_d_study
 
 #: Intensity methods: IDA on the given motions, or the motions as given (a cloud).
 METHODS: tuple[str, ...] = ("ida", "cloud")
@@ -85,11 +86,15 @@ class InventoryDesign:
     slide_distance : float
         Sliding beyond it (m) is an outcome where friction is modelled.
     solver : str
-        Solver of the items without friction (no slip; default ``housner_fast``).
+        Solver of the items without friction (no slip; default ``housner_fast``); ``rigid3d``: every item a box in
+        three dimensions under both directions at once (:mod:`opsrock.inventory.three_d`).
     friction_solver : str
         Solver of the items with friction (a solver of the ``friction`` model; default ``friction``).
     accept_implausible : bool
         Run a block larger than :data:`opsrock.limits.PLAUSIBLE` or a motion beyond its PFA bound anyway.
+    azimuths : tuple of float
+        With ``solver = "rigid3d"``: the items' azimuths in plan (deg, from direction 1 to an item's width),
+        pooled in each fit (:data:`opsrock.inventory.three_d.DEFAULT_AZIMUTHS`); unused by the planar route.
     """
 
     inventory: Inventory
@@ -104,6 +109,7 @@ class InventoryDesign:
     solver: str = "housner_fast"
     friction_solver: str = "friction"
     accept_implausible: bool = False
+    azimuths: tuple[float, ...] = DEFAULT_AZIMUTHS
 
     def __post_init__(self) -> None:
         from opsrock.limits import int_at_least
@@ -116,6 +122,7 @@ class InventoryDesign:
         _positive("slide_distance", (self.slide_distance,), "m")
         int_at_least("n_boot", self.n_boot, 0)
         int_at_least("seed", self.seed, 0)
+        object.__setattr__(self, "azimuths", check_azimuths(self.azimuths))
         self._check_solvers()
         self._check_inputs()
 
@@ -274,6 +281,9 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     """
     from opsrock.inventory.campaigns import cached_demands, group_scenes, groups_of, run_groups
 
+    if design.solver == THREE_D_SOLVER:
+        return run_three_d_study(design, out_dir, workers=workers, progress=progress, force=force,
+                                 store_dir=store_dir)
     t_start = time.perf_counter()
     groups = groups_of(design.inventory.items, design.motions, design.solver, design.friction_solver)
     scenes = group_scenes(groups, design.motions, design.intensity, design.seed)  # every input checked first
@@ -281,7 +291,7 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     store = Path(store_dir) if store_dir is not None else out / "campaigns"
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
-    demands = cached_demands(design.motions, store, _workers(workers))
+    demands = cached_demands(design.motions, store, workers_of(workers))
     timings["demands_s"] = time.perf_counter() - t0
     _say(progress, f"{sum(s.scene.n_cases for s in scenes)} cases in {len(scenes)} campaigns into {store}")
     cases, t_camp = run_groups(scenes, store, demands, workers=workers, progress=progress, force=force)
@@ -291,7 +301,7 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
                           {"timings": timings, "t_start": t_start, "n_computed": t_camp["n_computed"]})
 
 
-def _workers(workers: int | None) -> int:
+def workers_of(workers: int | None) -> int:
     """``workers``, or every core this process may use."""
     import os
 
@@ -309,13 +319,13 @@ def _fit_and_write(design: InventoryDesign, cases: pd.DataFrame, demands: pd.Dat
     timings = run["timings"]
     t0 = time.perf_counter()
     _say(progress, f"fits ({design.n_boot} record resamples each)")
-    fits = with_pelicun_ids(fit_table(cases, demands, design, _workers(workers)), design.motions.directions)
+    fits = with_pelicun_ids(fit_table(cases, demands, design, workers_of(workers)), design.motions.directions)
     expected = expected_table(fits, cases, demands, design)
     timings["fits_s"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     tables = {"fits": fits, "demands": demands, "expected": expected}
     with staged_folder(out, OUTPUTS) as stage:
-        paths = {k: _write_csv(df, stage / TABLES[k]) for k, df in tables.items()}
+        paths = {k: write_csv(df, stage / TABLES[k]) for k, df in tables.items()}
         pel = write_pelicun_folder(fits, demands, design, stage / "pelicun")
         timings["outputs_s"] = time.perf_counter() - t0
         timings["total_s"] = time.perf_counter() - run["t_start"]
@@ -329,7 +339,7 @@ def _fit_and_write(design: InventoryDesign, cases: pd.DataFrame, demands: pd.Dat
                           n_cases=len(cases), n_computed=int(run["n_computed"]), n_failed=n_failed, timings=timings)
 
 
-def _write_csv(df: pd.DataFrame, path: Path) -> Path:
+def write_csv(df: pd.DataFrame, path: Path) -> Path:
     """``df`` as CSV at full precision."""
     from opsrock._files import atomic_write
 
@@ -365,4 +375,5 @@ def _write_report(stage: Path, study_tables: dict[str, Any]) -> Path:
 
 
 __all__ = ["DEFAULT_DEMAND_LEVELS_PFA", "DEFAULT_DEMAND_LEVELS_PFV", "DEFAULT_SLIDE_DISTANCE", "METHODS", "OUTPUTS",
-           "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study"]
+           "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study",
+           "workers_of", "write_csv"]

@@ -28,6 +28,7 @@ from typing import Any
 from opsrock.block import Block
 from opsrock.errors import InputTypeError
 from opsrock.excitations import Excitation
+from opsrock.excitations.plan import PlanMotion
 from opsrock.result import RockingResult
 from opsrock.solvers.registry import METHODS, SOLVERS, SolverInfo, capabilities, check_model, info, solver_names
 
@@ -56,17 +57,24 @@ def check_settings(name: str, settings: dict[str, Any]) -> Any:
     return make_settings(settings_class(name), None, dict(settings))
 
 
-def simulate(block: Block, excitation: Excitation | None, solver: str = "opensees", **settings: Any) -> RockingResult:
+def simulate(block: Block, excitation: Excitation | PlanMotion | None, solver: str = "opensees",
+             **settings: Any) -> RockingResult:
     """Solve the rocking response of ``block`` to ``excitation``.
+
+    A :class:`~opsrock.excitations.plan.PlanMotion` goes as it is to a solver that models motion in plan
+    (registry ``plan``: ``rigid3d``); a planar one (:attr:`PlanMotion.planar`: one component along the block's
+    width) goes to a planar solver as its first component, and any other is refused for it
+    (:func:`check_model`).
 
     Parameters
     ----------
     block : Block
         The block.
-    excitation : Excitation or None
+    excitation : Excitation or PlanMotion or None
         A :class:`~opsrock.excitations.OneSinePulse`, :class:`~opsrock.excitations.Record`, or
-        anything with ``duration``, ``pfa``, ``acceleration(t)`` and ``breakpoints()``; None: a still
-        floor (free rocking from the settings' ``theta0``, ``theta_dot0``).
+        anything with ``duration``, ``pfa``, ``acceleration(t)`` and ``breakpoints()`` (m/s²); a
+        :class:`~opsrock.excitations.plan.PlanMotion` (two horizontal components, m/s², and the block's
+        azimuth, deg); None: a still floor (free rocking from the settings' ``theta0``, ``theta_dot0``).
     solver : str
         One of :data:`SOLVERS`.
     **settings
@@ -74,11 +82,21 @@ def simulate(block: Block, excitation: Excitation | None, solver: str = "opensee
     """
     if not isinstance(block, Block):
         raise InputTypeError(f"block must be a Block, got {block!r}")
-    if excitation is not None and not isinstance(excitation, Excitation):
-        raise InputTypeError(f"excitation must be an Excitation (OneSinePulse, Record), got {excitation!r}")
+    if excitation is not None and not isinstance(excitation, (Excitation, PlanMotion)):
+        raise InputTypeError(f"excitation must be an Excitation (OneSinePulse, Record) or a PlanMotion, got "
+                             f"{excitation!r}")
     check_model(solver, block, excitation)
-    return get_solver(solver).solve(block, excitation, **settings)
+    return get_solver(solver).solve(block, planar_excitation(solver, excitation), **settings)
+
+
+def planar_excitation(solver: str, excitation: Excitation | PlanMotion | None) -> Excitation | PlanMotion | None:
+    """What ``solver`` is given for ``excitation``: a planar :class:`~opsrock.excitations.plan.PlanMotion` as its
+    first component for a planar solver (registry ``plan`` False); anything else as it is (a non-planar
+    plan motion is refused for a planar solver by :func:`check_model`, not here)."""
+    if isinstance(excitation, PlanMotion) and excitation.planar and not info(solver).plan:
+        return excitation.first
+    return excitation
 
 
 __all__ = ["METHODS", "SOLVERS", "SolverInfo", "capabilities", "check_model", "check_settings", "get_solver", "info",
-           "settings_class", "simulate", "solver_names"]
+           "planar_excitation", "settings_class", "simulate", "solver_names"]

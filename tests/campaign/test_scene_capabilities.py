@@ -22,8 +22,8 @@ from opsrock.restitution import RestitutionDistribution
 from opsrock.solvers import SOLVERS
 
 NO_SLIP = {"opensees", "sdof", "housner", "housner_fast"}  # no friction, no vertical motion
-HOUSNER_ONLY = {"moreau_jean"}  # e = e_H and no other
-END_TIME_FREE_ONLY = {"housner_fast", "friction", "moreau_jean"}  # end_time only without a floor motion
+HOUSNER_ONLY = {"moreau_jean", "rigid3d"}  # e = e_H and no other
+END_TIME_FREE_ONLY = {"housner_fast", "friction", "moreau_jean", "rigid3d"}  # end_time only without a floor motion
 
 RESTITUTIONS = ("default", "housner", "e", "distribution")
 
@@ -32,7 +32,8 @@ def _spec(friction: bool, restitution: str) -> BlockSpec:
     kw = {"restitution_factor": 1.0} if restitution == "housner" else {"restitution": 0.8} if restitution == "e" else {}
     if restitution == "distribution":
         kw = {"restitution_factor": 1.0, "restitution_distribution": _DISTRIBUTION}
-    return BlockSpec(name="b", width=0.4, height=1.6, friction=0.5 if friction else None, **kw)
+    # a depth for rigid3d, which needs it (test_a_box_without_depth_is_refused_for_rigid3d); planar solvers ignore it
+    return BlockSpec(name="b", width=0.4, height=1.6, friction=0.5 if friction else None, depth=0.6, **kw)
 
 
 #: Draws of e / e_R around Housner's own (mean 1): check_model alone, on the mean block, would let it through.
@@ -85,6 +86,13 @@ def test_every_need_a_solver_cannot_meet_is_refused_when_the_scene_is_made():
                          f"end_time={end_time}: refused at {got}, expected {expected}")
     assert len(MATRIX) == len(SOLVERS) * 2 * 2 * 4 * 2
     assert not wrong, "\n".join(wrong)
+
+
+def test_a_box_without_depth_is_refused_for_rigid3d():
+    spec = BlockSpec(name="b", width=0.4, height=1.6, restitution_factor=1.0)
+    with pytest.raises(SceneError, match="block 'b' has no depth") as info:
+        Scene(name="m", path="m.toml", blocks=(spec,), solver="rigid3d", **_design(False))
+    assert info.value.field == "solver.name"
 
 
 def test_with_solver_checks_the_scene_again():

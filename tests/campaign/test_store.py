@@ -10,7 +10,7 @@ import sys
 import pytest
 
 from opsrock.campaign.executors import LOST_PREFIX, is_lost
-from opsrock.campaign.store import RESULT_COLUMNS, STORE_FILE, ResultStore, StoreError, StoreUnavailableError, read_rows, store_fault
+from opsrock.campaign.store import RESULT_COLUMNS, SCHEMA_VERSION, STORE_FILE, ResultStore, StoreError, StoreUnavailableError, read_rows, store_fault
 
 
 def row(case_id: str, theta_max: float = 0.1, **over) -> dict:
@@ -35,11 +35,6 @@ def row(case_id: str, theta_max: float = 0.1, **over) -> dict:
         "time_flight": math.nan,
         "slide_max": math.nan,
         "slide_residual": math.nan,
-        # the plan columns, empty: a planar solver
-        "overturned_over": None,
-        "twist_max": math.nan,
-        "time_edge": math.nan,
-        "time_corner": math.nan,
     }
     base.update(over)
     return base
@@ -169,7 +164,7 @@ def _version_1_store(path):
         store.append([row("old", 0.5)])
     db = sqlite3.connect(path)
     for name in ("response", "first_mode", "time_sliding", "time_rocking", "time_flight", "slide_max",
-                 "slide_residual", "overturned_over", "twist_max", "time_edge", "time_corner"):
+                 "slide_residual", "tilt_max", "twist_max", "overturned_over"):  # version 2's and 3's columns
         db.execute(f"ALTER TABLE results DROP COLUMN {name}")
     db.execute("UPDATE manifest SET value = '1' WHERE key = 'schema_version'")
     db.commit()
@@ -184,7 +179,7 @@ def test_a_version_1_store_is_migrated_and_keeps_its_rows(tmp_path):
         store.append([row("new", 0.25)])
         assert len(store) == 2
     db = sqlite3.connect(path)
-    assert db.execute("SELECT value FROM manifest WHERE key = 'schema_version'").fetchone()[0] == "3"
+    assert db.execute("SELECT value FROM manifest WHERE key = 'schema_version'").fetchone()[0] == str(SCHEMA_VERSION)
     db.close()
 
 

@@ -351,11 +351,79 @@ def _solve6(A, y):
 
 
 @numba.njit(cache=True)
+def _stick_flat(act, r, Iw, vf, P, B):
+    """Impulses that stop a block standing on three or four corners of its level base: the total impulse
+    ``-vf`` (per unit mass) and torque ``-I omega_f`` are fixed; with the corners in one plane (``r_z`` the
+    same, ``rz``) the tangential impulses enter the horizontal torques through their total only, so the normal
+    impulses are the least-norm solution of ``sum N = F_z``, ``sum N r_y = T_x + rz F_y``, ``sum N r_x = rz F_x
+    - T_y``; the tangential impulses are then proportional to the normal ones, ``P_t,i = N_i (c + kappa z x
+    (rho_i - rho_bar))`` (a translation and a twist about the centre of pressure ``rho_bar``), ``c`` and
+    ``kappa`` from the total and the vertical torque. False if the normal impulses do not add up to a
+    compressive total. ``B`` (6 x 6) is workspace."""
+    F0, F1, F2 = -vf[0], -vf[1], -vf[2]
+    T0 = -(Iw[0, 0] * vf[3] + Iw[0, 1] * vf[4] + Iw[0, 2] * vf[5])
+    T1 = -(Iw[1, 0] * vf[3] + Iw[1, 1] * vf[4] + Iw[1, 2] * vf[5])
+    T2 = -(Iw[2, 0] * vf[3] + Iw[2, 1] * vf[4] + Iw[2, 2] * vf[5])
+    if F2 <= 0.0:
+        return False
+    rz = 0.0
+    n = 0
+    for i in range(4):
+        if act[i]:
+            rz += r[i, 2]
+            n += 1
+    rz /= n
+    # B B^T (3 x 3, rows (1, r_y, r_x)) into B[0:3, 0:3], its inverse into B[3:6, 0:3]
+    for a in range(3):
+        for c in range(3):
+            B[a, c] = 0.0
+    for i in range(4):
+        if act[i]:
+            row = (1.0, r[i, 1], r[i, 0])
+            for a in range(3):
+                for c in range(3):
+                    B[a, c] += row[a] * row[c]
+    if not _inv3(B[0:3, 0:3], B[3:6, 0:3]):
+        return False
+    g0, g1, g2 = F2, T0 + rz * F1, rz * F0 - T1
+    y0 = B[3, 0] * g0 + B[3, 1] * g1 + B[3, 2] * g2
+    y1 = B[4, 0] * g0 + B[4, 1] * g1 + B[4, 2] * g2
+    y2 = B[5, 0] * g0 + B[5, 1] * g1 + B[5, 2] * g2
+    total = 0.0
+    cx = 0.0
+    cy = 0.0
+    for i in range(4):
+        if act[i]:
+            P[i, 2] = y0 + y1 * r[i, 1] + y2 * r[i, 0]
+            total += P[i, 2]
+            cx += P[i, 2] * r[i, 0]
+            cy += P[i, 2] * r[i, 1]
+        else:
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+    if total <= 0.0:
+        return False
+    cx /= total
+    cy /= total
+    c0, c1 = F0 / total, F1 / total
+    spread = 0.0
+    for i in range(4):
+        if act[i]:
+            spread += P[i, 2] * ((r[i, 0] - cx) ** 2 + (r[i, 1] - cy) ** 2)
+    kappa = (T2 - (cx * c1 - cy * c0) * total) / spread if spread > 0.0 else 0.0
+    for i in range(4):
+        if act[i]:
+            P[i, 0] = P[i, 2] * (c0 - kappa * (r[i, 1] - cy))
+            P[i, 1] = P[i, 2] * (c1 + kappa * (r[i, 0] - cx))
+    return True
+
+
+@numba.njit(cache=True)
 def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
     """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
     through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
     it stops; the impulses are the least-norm ones that make that velocity change (no self-equilibrated
-    friction "squeeze": the statically indeterminate part is left at zero). Accepted, into ``V``, ``Om`` and
+    friction "squeeze": the statically indeterminate part is left at zero), on three or four corners with the
+    friction split in proportion to the normal impulses (:func:`_stick_flat`). Accepted, into ``V``, ``Om`` and
     ``P``, if every normal impulse is compressive and every tangential one lies in the static cone; else False
     (NSGS then solves the step). ``A6`` (6 x 6) and ``y6`` (6) are workspace."""
     i1 = -1
@@ -394,40 +462,9 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
         P[i1, 0], P[i1, 1], P[i1, 2] = 0.5 * F0 + D0, 0.5 * F1 + D1, 0.5 * F2 + D2
         P[i2, 0], P[i2, 1], P[i2, 2] = 0.5 * F0 - D0, 0.5 * F1 - D1, 0.5 * F2 - D2
-    else:  # three or four corners: the block stops; least-norm impulses P_i = y_F + y_T x r_i
-        for a in range(6):
-            for c in range(6):
-                A6[a, c] = 0.0
-        for i in range(4):
-            if not act[i]:
-                continue
-            x0, x1, x2 = r[i, 0], r[i, 1], r[i, 2]
-            # A_i A_i^T = [[1, S^T], [S, S S^T]], S = [r]x
-            A6[0, 0] += 1.0
-            A6[1, 1] += 1.0
-            A6[2, 2] += 1.0
-            S = ((0.0, -x2, x1), (x2, 0.0, -x0), (-x1, x0, 0.0))
-            for a in range(3):
-                for c in range(3):
-                    A6[3 + a, c] += S[a][c]
-                    A6[c, 3 + a] += S[a][c]
-                    acc = 0.0
-                    for m in range(3):
-                        acc += S[a][m] * S[c][m]
-                    A6[3 + a, 3 + c] += acc
-        y6[0], y6[1], y6[2] = -vf[0], -vf[1], -vf[2]
-        for a in range(3):
-            y6[3 + a] = -(Iw[a, 0] * vf[3] + Iw[a, 1] * vf[4] + Iw[a, 2] * vf[5])
-        if not _solve6(A6, y6):
+    else:  # three or four corners (a level base): the block stops
+        if not _stick_flat(act, r, Iw, vf, P, A6):
             return False
-        for i in range(4):
-            if act[i]:
-                x0, x1, x2 = r[i, 0], r[i, 1], r[i, 2]
-                P[i, 0] = y6[0] + y6[4] * x2 - y6[5] * x1
-                P[i, 1] = y6[1] + y6[5] * x0 - y6[3] * x2
-                P[i, 2] = y6[2] + y6[3] * x1 - y6[4] * x0
-            else:
-                P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
         for a in range(3):
             V[a] = 0.0
             Om[a] = 0.0
@@ -438,6 +475,115 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
             if not stick_only and math.hypot(P[i, 0], P[i, 1]) > mu_s * P[i, 2] * (1.0 + 1e-12):
                 return False
     return True
+
+
+@numba.njit(cache=True)
+def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
+    """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its
+    corners on the floor (``V_z = 0``, no rotation about a horizontal axis) and moves with ``(V_x, V_y,
+    omega_z)``; each corner's impulse is ``N_i (-mu_k s_i, 1)``. For the slip directions ``s_i`` the six momentum
+    equations are linear in ``(N_i, V_x, V_y, omega_z)``; their least-norm solution (the indeterminate part of
+    the normal impulses, alternating between the corners, left at zero) is iterated with ``s_i`` the direction
+    of each corner's slip velocity (from the free velocity's first) until the directions settle. Accepted, into
+    ``V``, ``Om`` and ``P``, if the directions settle (each corner then slips along the ``s_i`` its friction
+    opposes) and every ``N_i >= 0``; else False (NSGS then solves the step). ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
+    idx = np.empty(4, dtype=np.int64)
+    n = 0
+    for i in range(4):
+        if act[i]:
+            idx[n] = i
+            n += 1
+            u0 = vf[0] - vf[5] * r[i, 1]
+            u1 = vf[1] + vf[5] * r[i, 0]
+            nu = math.hypot(u0, u1)
+            if nu == 0.0:
+                return False
+            sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+    m = n + 3
+    settled = False
+    for it in range(30):
+        # rows: force x, y, z; torque x, y, z. Columns: N of each active corner, then V_x, V_y, omega_z
+        for a in range(6):
+            for c in range(7):
+                Am[a, c] = 0.0
+        for k in range(n):
+            i = idx[k]
+            p0, p1 = -mu_k * sdir[i, 0], -mu_k * sdir[i, 1]
+            x0, x1, x2 = r[i, 0], r[i, 1], r[i, 2]
+            # V - vf = sum P  ->  V_x - sum N p0 = vf_x; V_y - sum N p1 = vf_y; - sum N = vf_z (V_z = 0)
+            Am[0, k] = -p0
+            Am[1, k] = -p1
+            Am[2, k] = -1.0
+            # Iw (Om - Omf) = sum r x P  ->  Iw[:, 2] omega_z - sum N (r x p) = Iw Omf
+            Am[3, k] = -(x1 * 1.0 - x2 * p1)
+            Am[4, k] = -(x2 * p0 - x0 * 1.0)
+            Am[5, k] = -(x0 * p1 - x1 * p0)
+        Am[0, n] = 1.0
+        Am[1, n + 1] = 1.0
+        for a in range(3):
+            Am[3 + a, n + 2] = Iw[a, 2]
+        y6[0], y6[1], y6[2] = vf[0], vf[1], vf[2]
+        for a in range(3):
+            y6[3 + a] = Iw[a, 0] * vf[3] + Iw[a, 1] * vf[4] + Iw[a, 2] * vf[5]
+        for a in range(6):
+            for c in range(6):
+                acc = 0.0
+                for k in range(m):
+                    acc += Am[a, k] * Am[c, k]
+                A6[a, c] = acc
+        if not _solve6(A6, y6):
+            return False
+        moved = 0.0
+        wz = 0.0
+        for c in range(m):
+            x = 0.0
+            for a in range(6):
+                x += Am[a, c] * y6[a]
+            if c < n:
+                i = idx[c]
+                P[i, 2] = x
+            elif c == n:
+                V[0] = x
+            elif c == n + 1:
+                V[1] = x
+            else:
+                wz = x
+        for k in range(n):
+            i = idx[k]
+            u0 = V[0] - wz * r[i, 1]
+            u1 = V[1] + wz * r[i, 0]
+            nu = math.hypot(u0, u1)
+            if nu == 0.0:
+                return False
+            moved = max(moved, abs(u0 / nu - sdir[i, 0]), abs(u1 / nu - sdir[i, 1]))
+            sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+        if moved < 1e-12:
+            settled = True
+            break
+    if not settled:
+        return False
+    V[2] = 0.0
+    Om[0], Om[1], Om[2] = 0.0, 0.0, wz
+    for i in range(4):
+        if not act[i]:
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+            continue
+        N = P[i, 2]
+        if N < 0.0:
+            return False
+        u0 = V[0] - wz * r[i, 1]
+        u1 = V[1] + wz * r[i, 0]
+        nu = math.hypot(u0, u1)
+        if nu == 0.0:
+            return False
+        P[i, 0], P[i, 1] = -mu_k * N * sdir[i, 0], -mu_k * N * sdir[i, 1]
+    return True
+
+
+@numba.njit(cache=True)
+def _flat(s):
+    """True if the base is level (tilt below 1e-9 rad): the corners of a flat slide share the floor's plane."""
+    return s[4] * s[4] + s[5] * s[5] < 2.5e-19
 
 
 @numba.njit(cache=True)
@@ -616,6 +762,9 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
     stick_only = fric[2] > 0.5
     if n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
         sweeps = 1
+    elif n_act >= 3 and not stick_only and _flat(s) and _slide_flat(act, r, Iw, vf, V, Om, P, fric[1], ws[8], ws[7],
+                                                                   vec[3], ws[9]):
+        sweeps = 1
     elif n_act > 0:
         V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
         for i in range(4):
@@ -729,7 +878,7 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     out[:] = 0.0
     out[OUT_FIRST_MODE] = -1.0
     ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
-          np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)))
+          np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)))
     Q, Iinv, Iw, r = ws[0], ws[1], ws[2], ws[3]
     act = np.zeros(4, dtype=np.bool_)
     touch = np.zeros(4, dtype=np.bool_)

@@ -1,0 +1,273 @@
+"""The inventory study in three dimensions (``opsrock contents --inventory F --motions M --solver rigid3d``):
+each item a box (``width`` along direction 1, ``depth`` along direction 2 at azimuth 0) under both horizontal
+floor motions of each record and floor at once (:func:`opsrock.inventory.motions.paired_motions`), turned in
+plan to each of the study's azimuths, by the solver in plan ``rigid3d``.
+
+Campaigns: one record scene per group of items on the same floors and support (:mod:`opsrock.inventory.campaigns`'
+groups, the direction ``"12"``): its ground records are the direction-1 motions (``<record>.<floor>``), its
+second components the direction-2 ones (``<record>.<floor>.d2``), its azimuths the study's (case ids
+``<item>-3d/<record>.<floor>/<ground|support.f1>/l<k>/z<m>``); the IDA levels scale both components by one
+factor, ``PFA / (g min(tan alpha, mu))`` of the direction-1 motion and the item's width. Stored and resumed as
+every campaign, in ``store/d12-rigid3d[...]``.
+
+The fragility of each item per floor pools its cases over the azimuths (an item's orientation in a room is
+not known in advance; the azimuths sample it), fitted as the planar study fits
+(:func:`opsrock.fragility.mle.plan_mle`, record bootstrap) in the demand conventions pelicun uses for floor
+velocity (:data:`PFV_CONVENTIONS`): the PFV of direction 1, of direction 2, the larger of the two, and the
+non-directional demand. Pelicun's non-directional demand is the larger directional one times
+``NonDirectionalMultipliers`` (default ``{"ALL": 1.2}``, "based on FEMA P-58"): NHERI-SimCenter/pelicun,
+``pelicun/base.py`` (``Options``) and ``pelicun/model/damage_model.py`` (a demand of direction 0 is "the
+maximum of all available directions" scaled by ``nondir_multi``); neither the geometric mean nor the SRSS. So
+``pfv_nd = 1.2 max(pfv_1, pfv_2)``, and its fitted median is 1.2 times ``pfv_max``'s with the same ``beta``
+(the lognormal fit is scale-equivariant), given for reading against FEMA P-58's non-directional medians.
+
+Outputs (in ``out_dir``, through a staging folder): ``fits3d.csv`` (:data:`FIT3D_COLUMNS`), ``demands.csv``
+(each motion's measures, as the planar route's) and ``report.md``. The planar route's pelicun folder and
+expected numbers are not written for this route.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from opsrock.errors import InputError
+from opsrock.inventory.motions import paired_motions
+
+#: The solver of the three-dimensional route.
+THREE_D_SOLVER: str = "rigid3d"
+
+#: Default azimuths of the items in plan (deg, from direction 1 to an item's width).
+DEFAULT_AZIMUTHS: tuple[float, ...] = (0.0, 45.0, 90.0)
+
+#: Pelicun's default non-directional multiplier (``NonDirectionalMultipliers = {"ALL": 1.2}``, from FEMA P-58).
+NONDIRECTIONAL_FACTOR: float = 1.2
+
+#: The PFV demand conventions fitted (all m/s).
+PFV_CONVENTIONS: dict[str, str] = {
+    "pfv_1": "PFV of direction 1",
+    "pfv_2": "PFV of direction 2",
+    "pfv_max": "the larger PFV of the two directions",
+    "pfv_nd": f"non-directional: {NONDIRECTIONAL_FACTOR:g} x the larger (pelicun's NonDirectionalMultipliers)",
+}
+
+#: Columns of ``fits3d.csv``, in order: per item, floor and demand convention (``demand``, m/s) the lognormal
+#: median (m/s) and ``beta`` with their 95 % intervals, the cases, the overturnings and how many of them were
+#: over a corner (``n_corner``), the azimuths pooled, and FEMA P-58's median for its item (m/s) where named.
+FIT3D_COLUMNS: tuple[str, ...] = (
+    "item", "description", "floor", "demand", "unit", "method", "median", "median_lo", "median_hi", "beta",
+    "beta_lo", "beta_hi", "n_cases", "n_exceeded", "n_corner", "n_failed", "n_records", "n_azimuths", "ok",
+    "message", "fema_id", "fema_median", "ratio_fema",
+)  # fmt: skip
+
+#: Columns of the campaigns' ``cases.csv`` the route reads.
+CASE_COLUMNS_3D: tuple[str, ...] = ("case_id", "block", "record", "level", "scale", "status", "reason", "overturned",
+                                    "azimuth", "tilt_max", "overturned_over")
+
+#: Files this route writes into its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
+OUTPUTS_3D: tuple[str, ...] = ("report.md", "fits3d.csv", "demands.csv")
+
+
+def check_azimuths(azimuths: tuple) -> tuple[float, ...]:
+    """``azimuths`` as floats: a non-empty tuple of distinct finite angles in [-360, 360] deg; else
+    :class:`InputError` naming ``azimuths``."""
+    values = tuple(azimuths)
+    if not values or any(isinstance(z, bool) or not isinstance(z, (int, float)) or not math.isfinite(z) or abs(z) > 360
+                         for z in values) or len(set(values)) != len(values):
+        raise InputError(f"azimuths must be distinct angles in degrees within [-360, 360], got {azimuths!r}",
+                         argument="azimuths")
+    return tuple(float(z) for z in values)
+
+
+def item_box_spec(item: Any, name: str, seed: int = 0) -> Any:
+    """The campaign entry of ``item`` as a box in three dimensions: its planar direction-1 entry
+    (``Item.block_spec``: width, height, mass distribution, friction) with its ``depth`` (m) and Housner's impact
+    (``rigid3d`` models no other: an item that gives its own ``restitution`` is refused, naming it)."""
+    if item.restitution is not None:
+        raise InputError(f"item {item.id!r} gives restitution = {item.restitution!r}; solver {THREE_D_SOLVER!r} "
+                         "reproduces Housner's impact only (e = e_R): leave its restitution blank", argument="inventory")
+    spec = item.block_spec("1", name, restitution_factor=1.0, seed=seed)
+    return dataclasses.replace(spec, depth=item.depth, reason=f"{item.description} (inventory item {item.id}, "
+                                                                "in three dimensions)")
+
+
+def three_d_scenes(design: Any) -> list:
+    """One record scene in plan per group of items on the same floors and support (the module docstring).
+
+    Parameters
+    ----------
+    design : InventoryDesign
+        Its ``inventory``, ``motions`` (both directions of every record and floor), ``intensity``, ``seed``
+        and ``azimuths`` (deg).
+    """
+    from opsrock.campaign.records import Floor, RecordSet
+    from opsrock.campaign.scene import Scene
+    from opsrock.excitations.building import ShearBuilding
+    from opsrock.excitations.records import safe_name
+    from opsrock.inventory.campaigns import SUPPORT_NAME, Group, GroupScene
+
+    pairs = paired_motions(design.motions)
+    floors = design.motions.floors
+    groups: dict[Any, list] = {}
+    for item in design.inventory.items:
+        own = tuple(f for f in floors if f in item.floors) if item.floors else floors
+        groups.setdefault(Group(own, own == floors, "12", item.support, THREE_D_SOLVER), []).append(item)
+    out = []
+    for g, items in groups.items():
+        chosen = [p for p in pairs if p.floor in g.floors]
+        names = {p: f"{safe_name(p.record)}.{safe_name(p.floor)}" for p in chosen}
+        floor = Floor(None, 0) if g.support is None else Floor(
+            ShearBuilding(SUPPORT_NAME, g.support.period, 1, g.support.damping), 1)
+        records = RecordSet(grounds=tuple(p.first.motion.with_name(names[p]) for p in chosen), floors=(floor,),
+                            source=design.motions.source, intensity=design.intensity,
+                            seconds=tuple(p.second.motion.with_name(names[p] + ".d2") for p in chosen),
+                            second="manifest", azimuth=design.azimuths)
+        blocks = tuple(item_box_spec(it, f"{it.id}-3d", design.seed) for it in items)
+        scene = Scene(name=f"inventory-{g.name}", path="", blocks=blocks, grid=None, solver=THREE_D_SOLVER,
+                      records=records)
+        out.append(GroupScene(g, scene, {b.name: it.id for b, it in zip(blocks, items)},
+                              {names[p]: (p.record, p.floor) for p in chosen}))
+    return out
+
+
+def run_three_d_groups(scenes: list, store: Path, *, workers: int | None, progress: bool,
+                       force: bool) -> tuple[pd.DataFrame, int]:
+    """Run (or resume) every group's campaign into ``store/<group>``; every case (:data:`CASE_COLUMNS_3D`,
+    ``item``, ``floor``, ``record`` as the motions name it, ``overturned`` as bool) and those computed now."""
+    from opsrock._files import read_table
+    from opsrock.campaign import run_campaign
+    from opsrock.campaign.executors import LocalPool
+    from opsrock.inventory.campaigns import BATCH
+
+    frames, computed = [], 0
+    with LocalPool(workers) as pool:
+        for gs in scenes:
+            summary = run_campaign(gs.scene, store / gs.group.name, executor=pool, progress=progress, force=force,
+                                   batch=BATCH)
+            computed += summary.n_computed
+            df = read_table(summary.cases_csv, usecols=list(CASE_COLUMNS_3D), keep_default_na=False,
+                            na_values=[""])
+            df["item"] = df["block"].map(gs.blocks)
+            source = df["record"].map(gs.records)
+            df["record"], df["floor"] = [r for r, _ in source], [f for _, f in source]
+            df["overturned"] = df["overturned"].astype(str).eq("True")
+            df["overturned_over"] = df["overturned_over"].fillna("").astype(str)
+            frames.append(df)
+    return pd.concat(frames, ignore_index=True), computed
+
+
+def pfv_demands(cases: pd.DataFrame, demands: pd.DataFrame) -> pd.DataFrame:
+    """``cases`` with the demand of each convention (:data:`PFV_CONVENTIONS`, m/s): the scale factor times the
+    floor motion's PFV in direction 1 and 2 (:func:`opsrock.inventory.campaigns.floor_demands`), their larger,
+    and :data:`NONDIRECTIONAL_FACTOR` times it."""
+    d = demands.set_index(["record", "floor", "direction"])["pfv"]
+    out = cases.copy()
+    scale = cases["scale"].to_numpy(float)
+    for direction in ("1", "2"):
+        keys = list(zip(cases["record"], cases["floor"], [direction] * len(cases)))
+        out[f"pfv_{direction}"] = scale * d.reindex(keys).to_numpy(float)
+    out["pfv_max"] = np.maximum(out["pfv_1"], out["pfv_2"])
+    out["pfv_nd"] = NONDIRECTIONAL_FACTOR * out["pfv_max"]
+    return out
+
+
+def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers: int | None) -> pd.DataFrame:
+    """Every fit of the route (:data:`FIT3D_COLUMNS`): one row per item, floor and PFV convention, the azimuths
+    pooled; lognormal maximum likelihood with a record bootstrap (:func:`opsrock.fragility.mle.plan_mle`)."""
+    from opsrock.fragility.mle import fit_plans, plan_mle
+    from opsrock.inventory.fits import fema_median
+
+    items = {it.id: it for it in design.inventory.items}
+    scaled = pfv_demands(cases, demands)
+    rows, plans, where = [], [], []
+    for (item_id, floor), g in scaled.groupby(["item", "floor"], sort=False):
+        ok, item = g[g["status"] == "ok"], items[item_id]
+        y = ok["overturned"].to_numpy(bool)
+        for demand in PFV_CONVENTIONS:
+            fema = fema_median(item.fema_id)
+            row = {"item": item_id, "description": item.description, "floor": floor, "demand": demand, "unit": "m/s",
+                   "method": design.method, "n_cases": len(ok), "n_exceeded": int(y.sum()),
+                   "n_corner": int((ok["overturned_over"] == "corner").sum()), "n_failed": len(g) - len(ok),
+                   "n_records": int(ok["record"].nunique()), "n_azimuths": int(ok["azimuth"].nunique()),
+                   "fema_id": item.fema_id, "fema_median": fema if demand == "pfv_nd" else math.nan,
+                   "median": math.nan, "median_lo": math.nan, "median_hi": math.nan, "beta": math.nan,
+                   "beta_lo": math.nan, "beta_hi": math.nan, "ok": False, "message": ""}
+            if not y.any():
+                row["message"] = "never overturned " + ("within the levels" if design.method == "ida"
+                                                         else "under the motions as recorded")
+            else:
+                plans.append(plan_mle(ok[demand].to_numpy(float), y, n_boot=design.n_boot, seed=design.seed,
+                                      groups=ok["record"].to_numpy()))
+                where.append(len(rows))
+            rows.append(row)
+    for i, f in zip(where, fit_plans(plans, workers or 1)):
+        good = bool(f.success and math.isfinite(f.mu))
+        rows[i].update(median=f.mu if good else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
+                       beta=f.beta if good else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=good,
+                       message=f.message)
+    table = pd.DataFrame(rows, columns=list(FIT3D_COLUMNS))
+    table["ratio_fema"] = table["median"] / table["fema_median"]
+    return table
+
+
+def run_three_d_study(design: Any, out_dir: str | Path, *, workers: int | None = None, progress: bool = True,
+                      force: bool = False, store_dir: str | Path | None = None) -> Any:
+    """The route of the module docstring, written into ``out_dir`` (resumable); returns an
+    :class:`opsrock.inventory.study.InventoryStudy` (``tables`` ``fits3d`` and ``demands``, no pelicun files).
+    The parameters are :func:`opsrock.inventory.study.run_inventory_study`'s, which calls it for a ``design``
+    whose ``solver`` is :data:`THREE_D_SOLVER` (its ``azimuths`` in deg)."""
+    from opsrock._files import staged_folder
+    from opsrock.fragility.cases import check_some_finished
+    from opsrock.inventory.campaigns import cached_demands
+    from opsrock.inventory.study import InventoryStudy, workers_of, write_csv
+
+    t_start = time.perf_counter()
+    scenes = three_d_scenes(design)  # every input checked before anything is written
+    out = Path(out_dir)
+    store = Path(store_dir) if store_dir is not None else out / "campaigns"
+    demands = cached_demands(design.motions, store, workers_of(workers))
+    n = sum(s.scene.n_cases for s in scenes)
+    if progress:
+        print(f"contents: {n} cases in three dimensions in {len(scenes)} campaigns into {store}", flush=True,
+              file=sys.stderr)
+    cases, computed = run_three_d_groups(scenes, store, workers=workers, progress=progress, force=force)
+    check_some_finished(cases, str(store))
+    fits = fit3d_table(cases, demands, design, workers_of(workers))
+    with staged_folder(out, OUTPUTS_3D) as stage:
+        paths = {"fits3d": write_csv(fits, stage / "fits3d.csv"), "demands": write_csv(demands, stage / "demands.csv")}
+        report = _write_report(stage / "report.md", design, fits, len(cases))
+        final = {k: out / Path(p).relative_to(stage) for k, p in paths.items()}
+    total = time.perf_counter() - t_start
+    return InventoryStudy(design=design, out_dir=str(out), tables={k: str(p) for k, p in final.items()}, pelicun={},
+                          report=str(out / Path(report).name), n_cases=len(cases), n_computed=computed,
+                          n_failed=int((cases["status"] != "ok").sum()), timings={"total_s": total})
+
+
+def _write_report(path: Path, design: Any, fits: pd.DataFrame, n_cases: int) -> Path:
+    """``report.md``: the fits table as computed (:func:`fit3d_table`), with the conventions named."""
+    from opsrock._files import atomic_write
+    from opsrock.report.markdown import markdown_table
+
+    shown = fits[["item", "floor", "demand", "median", "beta", "n_cases", "n_exceeded", "n_corner", "n_azimuths",
+                  "ok", "message"]]
+    lines = [f"# Contents fragility in three dimensions: {design.inventory.source} on {design.motions.source}", "",
+             f"Solver {THREE_D_SOLVER}; azimuths {', '.join(f'{z:g}' for z in design.azimuths)} deg, pooled; "
+             f"{n_cases} cases; method {design.method}.", "", "Demand conventions (m/s):", ""]
+    lines += [f"- `{k}`: {v}" for k, v in PFV_CONVENTIONS.items()]
+    lines += ["", "Non-directional: pelicun's (NHERI-SimCenter/pelicun, pelicun/model/damage_model.py and "
+              "pelicun/base.py NonDirectionalMultipliers), the larger directional demand times 1.2.", "",
+              markdown_table(shown, floatfmt=".4g"), ""]
+    atomic_write(path, lambda fh: fh.write("\n".join(lines)), durable=False)
+    return path
+
+
+__all__ = ["CASE_COLUMNS_3D", "DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
+           "PFV_CONVENTIONS", "THREE_D_SOLVER", "check_azimuths", "fit3d_table", "item_box_spec", "pfv_demands",
+           "run_three_d_groups", "run_three_d_study", "three_d_scenes"]

@@ -1,0 +1,93 @@
+"""The inventory study in three dimensions (opsrock.inventory.three_d): the demand conventions (PFV of each
+direction, the larger, pelicun's non-directional 1.2 x the larger), the campaigns in plan built from the
+paired motions (every item a box with its depth, Housner's impact, at every azimuth), the refusals naming the
+argument, and one tiny study end to end, stored and resumed."""
+
+from __future__ import annotations
+
+import csv
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from opsrock.errors import InputError
+from opsrock.inventory.items import read_inventory
+from opsrock.inventory.motions import MotionSet, read_motions
+from opsrock.inventory.study import InventoryDesign, run_inventory_study
+from opsrock.inventory.three_d import NONDIRECTIONAL_FACTOR, PFV_CONVENTIONS, pfv_demands, three_d_scenes
+
+
+@pytest.fixture
+def inputs(tmp_path: Path) -> tuple[Path, Path]:
+    """A one-record, one-floor manifest in both directions (2 s of sines, then 1 s at rest, in g at 0.01 s) and a
+    one-item inventory (a 0.4 x 0.6 x 1.2 m cabinet)."""
+    for d, (amp, f) in {"1": (0.25, 1.5), "2": (0.2, 2.0)}.items():
+        vals = [amp * math.sin(2 * math.pi * f * k * 0.01) * (k < 200) for k in range(300)]
+        (tmp_path / f"r-d{d}.txt").write_text("\n".join(f"{v:.6f}" for v in vals) + "\n")
+    (tmp_path / "motions.csv").write_text("record,floor,direction,file,units,dt\nr,1,1,r-d1.txt,g,0.01\n"
+                                          "r,1,2,r-d2.txt,g,0.01\n")
+    (tmp_path / "inv.csv").write_text("id,description,width,depth,height\ncab,a cabinet,0.4,0.6,1.2\n")
+    return tmp_path / "inv.csv", tmp_path / "motions.csv"
+
+
+def _design(inputs, **over) -> InventoryDesign:
+    inv, motions = inputs
+    settings = {"solver": "rigid3d", "azimuths": (0.0, 45.0), "levels": (4.0,), "n_boot": 0, **over}
+    return InventoryDesign(read_inventory(inv), read_motions(motions), **settings)
+
+
+def test_the_demand_conventions_are_pelicuns():
+    cases = pd.DataFrame({"record": ["r", "r"], "floor": ["1", "1"], "scale": [2.0, 0.5]})
+    demands = pd.DataFrame({"record": ["r", "r"], "floor": ["1", "1"], "direction": ["1", "2"], "pfv": [0.3, 0.4]})
+    out = pfv_demands(cases, demands)
+    np.testing.assert_allclose(out["pfv_1"], [0.6, 0.15], rtol=1e-15)  # the scale factor times the floor's PFV
+    np.testing.assert_allclose(out["pfv_2"], [0.8, 0.2], rtol=1e-15)
+    np.testing.assert_allclose(out["pfv_max"], [0.8, 0.2], rtol=1e-15)
+    # pelicun: a non-directional demand is the largest directional one times NonDirectionalMultipliers (1.2)
+    assert NONDIRECTIONAL_FACTOR == 1.2
+    np.testing.assert_allclose(out["pfv_nd"], [0.96, 0.24], rtol=1e-15)
+    assert list(PFV_CONVENTIONS) == ["pfv_1", "pfv_2", "pfv_max", "pfv_nd"]
+
+
+def test_the_campaigns_are_in_plan_with_both_directions(inputs):
+    (gs,) = three_d_scenes(_design(inputs))
+    scene = gs.scene
+    assert scene.solver == "rigid3d" and scene.in_plan and gs.group.name == "d12-rigid3d"
+    assert [r.name for r in scene.records.grounds] == ["r.1"] and [r.name for r in scene.records.seconds] == ["r.1.d2"]
+    block = scene.blocks[0].block
+    assert (block.width, block.depth, block.height, block.restitution_factor) == (0.4, 0.6, 1.2, 1.0)
+    assert [c.case_id for c in scene.cases()] == ["cab-3d/r.1/ground/l01/z01", "cab-3d/r.1/ground/l01/z02"]
+    assert gs.records == {"r.1": ("r", "1")}
+
+
+def test_refusals_name_the_argument(inputs, tmp_path):
+    design = _design(inputs)
+    one = MotionSet(tuple(m for m in design.motions.motions if m.direction == "1"), "one direction")
+    with pytest.raises(InputError, match="has direction 1 only") as info:
+        three_d_scenes(InventoryDesign(design.inventory, one, solver="rigid3d"))
+    assert info.value.argument == "motions"
+    for bad in ((), (0.0, 0.0), (400.0,), (math.nan,)):
+        with pytest.raises(InputError, match="azimuths must be") as info:
+            _design(inputs, azimuths=bad)
+        assert info.value.argument == "azimuths"
+    (tmp_path / "e.csv").write_text("id,description,width,depth,height,restitution\ncab,a cabinet,0.4,0.6,1.2,0.8\n")
+    with pytest.raises(InputError, match="item 'cab' gives restitution = 0.8") as info:
+        three_d_scenes(InventoryDesign(read_inventory(tmp_path / "e.csv"), design.motions, solver="rigid3d"))
+    assert info.value.argument == "inventory"
+
+
+def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_path):
+    """Two cases (one level, azimuths 0 and 45 deg), about a second each with the floor measures."""
+    design = _design(inputs)
+    first = run_inventory_study(design, tmp_path / "out", workers=1, progress=False)
+    again = run_inventory_study(design, tmp_path / "out", workers=1, progress=False)
+    assert (first.n_cases, first.n_computed, again.n_computed) == (2, 2, 0)
+    with open(first.tables["fits3d"], newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert [r["demand"] for r in rows] == list(PFV_CONVENTIONS)
+    assert all(r["item"] == "cab" and r["floor"] == "1" and int(r["n_azimuths"]) == 2 for r in rows)
+    assert all(int(r["n_cases"]) + int(r["n_failed"]) == 2 for r in rows)
+    assert "1.2" in Path(first.report).read_text() and first.pelicun == {}

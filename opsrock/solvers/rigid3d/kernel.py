@@ -351,6 +351,23 @@ def _solve6(A, y):
 
 
 @numba.njit(cache=True)
+def _shift_range(x, z, n):
+    """The ``t`` nearest to 0 with ``x[:n] + t z[:n] >= 0`` (a statically indeterminate normal distribution made
+    compressive along its free direction ``z``), and whether one exists."""
+    lo, hi = -np.inf, np.inf
+    for i in range(n):
+        if z[i] > 0.0:
+            lo = max(lo, -x[i] / z[i])
+        elif z[i] < 0.0:
+            hi = min(hi, -x[i] / z[i])
+        elif x[i] < 0.0:
+            return 0.0, False
+    if lo > hi:
+        return 0.0, False
+    return min(max(0.0, lo), hi), True
+
+
+@numba.njit(cache=True)
 def _stick_flat(act, r, Iw, vf, P, B):
     """Impulses that stop a block standing on three or four corners of its level base: the total impulse
     ``-vf`` (per unit mass) and torque ``-I omega_f`` are fixed; with the corners in one plane (``r_z`` the
@@ -359,7 +376,9 @@ def _stick_flat(act, r, Iw, vf, P, B):
     - T_y``; the tangential impulses are then proportional to the normal ones, ``P_t,i = N_i (c + kappa z x
     (rho_i - rho_bar))`` (a translation and a twist about the centre of pressure ``rho_bar``), ``c`` and
     ``kappa`` from the total and the vertical torque. False if the normal impulses do not add up to a
-    compressive total. ``B`` (6 x 6) is workspace."""
+    compressive total. On four corners a distribution with a pulling corner is moved along the free (alternating)
+    direction to the nearest compressive one where there is one (the least-norm one is compressive only for a
+    centre of pressure inside the base's inscribed diamond). ``B`` (6 x 6) is workspace."""
     F0, F1, F2 = -vf[0], -vf[1], -vf[2]
     T0 = -(Iw[0, 0] * vf[3] + Iw[0, 1] * vf[4] + Iw[0, 2] * vf[5])
     T1 = -(Iw[1, 0] * vf[3] + Iw[1, 1] * vf[4] + Iw[1, 2] * vf[5])
@@ -400,6 +419,24 @@ def _stick_flat(act, r, Iw, vf, P, B):
             cy += P[i, 2] * r[i, 1]
         else:
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+    if n == 4:  # the free direction of four corners of a rectangle: alternating (+, -, +, -)
+        neg = False
+        for i in range(4):
+            neg = neg or P[i, 2] < 0.0
+        if neg:
+            for i in range(4):
+                B[0, i] = P[i, 2]
+                B[1, i] = 1.0 if i % 2 == 0 else -1.0
+            t, ok = _shift_range(B[0], B[1], 4)
+            if ok:
+                total = 0.0
+                cx = 0.0
+                cy = 0.0
+                for i in range(4):
+                    P[i, 2] += t * B[1, i]
+                    total += P[i, 2]
+                    cx += P[i, 2] * r[i, 0]
+                    cy += P[i, 2] * r[i, 1]
     if total <= 0.0:
         return False
     cx /= total
@@ -480,14 +517,19 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
 @numba.njit(cache=True)
 def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
     """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its
-    corners on the floor (``V_z = 0``, no rotation about a horizontal axis) and moves with ``(V_x, V_y,
-    omega_z)``; each corner's impulse is ``N_i (-mu_k s_i, 1)``. For the slip directions ``s_i`` the six momentum
+    corners on the floor (``V_z = 0``, no rotation about a horizontal axis: with the floor's normal ``z`` the
+    corners' normal velocities ``V_z + omega_x r_y - omega_y r_x`` vanish at three corners not in a line iff
+    these do, whatever the tilt) and moves with ``(V_x, V_y, omega_z)``; each corner's impulse is ``N_i (-mu_k s_i, 1)``. For the slip directions ``s_i`` the six momentum
     equations are linear in ``(N_i, V_x, V_y, omega_z)``; their least-norm solution (the indeterminate part of
     the normal impulses, alternating between the corners, left at zero) is iterated with ``s_i`` the direction
-    of each corner's slip velocity (from the free velocity's first) until the directions settle. Accepted, into
+    of each corner's slip velocity (from the free velocity's first) until the directions settle; on four corners a
+    distribution with a pulling corner is moved along the system's free direction to the nearest compressive one. Accepted, into
     ``V``, ``Om`` and ``P``, if the directions settle (each corner then slips along the ``s_i`` its friction
     opposes) and every ``N_i >= 0``; else False (NSGS then solves the step). ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
     idx = np.empty(4, dtype=np.int64)
+    xs = np.empty(7)
+    zs = np.empty(7)
+    wz = 0.0
     n = 0
     for i in range(4):
         if act[i]:
@@ -533,21 +575,29 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
                 A6[a, c] = acc
         if not _solve6(A6, y6):
             return False
-        moved = 0.0
-        wz = 0.0
         for c in range(m):
             x = 0.0
             for a in range(6):
                 x += Am[a, c] * y6[a]
-            if c < n:
-                i = idx[c]
-                P[i, 2] = x
-            elif c == n:
-                V[0] = x
-            elif c == n + 1:
-                V[1] = x
-            else:
-                wz = x
+            xs[c] = x
+        if n == 4 and min(xs[0], xs[1], xs[2], xs[3]) < 0.0:
+            # the free direction (null vector of Am, first entry 1) and the nearest compressive distribution
+            for a in range(6):
+                y6[a] = -Am[a, 0]
+                for c in range(6):
+                    A6[a, c] = Am[a, c + 1]
+            if _solve6(A6, y6):
+                zs[0] = 1.0
+                for c in range(6):
+                    zs[c + 1] = y6[c]
+                t, ok = _shift_range(xs, zs, 4)
+                if ok:
+                    for c in range(m):
+                        xs[c] += t * zs[c]
+        moved = 0.0
+        for k in range(n):
+            P[idx[k], 2] = xs[k]
+        V[0], V[1], wz = xs[n], xs[n + 1], xs[n + 2]
         for k in range(n):
             i = idx[k]
             u0 = V[0] - wz * r[i, 1]
@@ -578,12 +628,6 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
             return False
         P[i, 0], P[i, 1] = -mu_k * N * sdir[i, 0], -mu_k * N * sdir[i, 1]
     return True
-
-
-@numba.njit(cache=True)
-def _flat(s):
-    """True if the base is level (tilt below 1e-9 rad): the corners of a flat slide share the floor's plane."""
-    return s[4] * s[4] + s[5] * s[5] < 2.5e-19
 
 
 @numba.njit(cache=True)
@@ -762,7 +806,7 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
     stick_only = fric[2] > 0.5
     if n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
         sweeps = 1
-    elif n_act >= 3 and not stick_only and _flat(s) and _slide_flat(act, r, Iw, vf, V, Om, P, fric[1], ws[8], ws[7],
+    elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, fric[1], ws[8], ws[7],
                                                                    vec[3], ws[9]):
         sweeps = 1
     elif n_act > 0:
@@ -800,8 +844,8 @@ def _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
 
     A corner with a normal impulse is down (an impact if it was up), slipping if its tangential speed exceeds
     ``vel_tol``. A corner without impulse is up once it moves away from the floor faster than ``vel_tol`` or
-    rises above ``lift_gap``; otherwise it keeps its flags (a pivot constrained at velocity level drifts up and
-    takes an occasional free step)."""
+    rises above ``lift_gap``; otherwise it stays down (a pivot constrained at velocity level drifts up and
+    takes an occasional free step; a level block may rest on three corners), slipping if it moves."""
     impact = False
     V0, V1, V2, w0, w1, w2 = new[7], new[8], new[9], new[10], new[11], new[12]
     for i in range(4):
@@ -820,6 +864,8 @@ def _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
         elif u2 > vel_tol or gap > lift_gap:
             touch[i] = False
             slip[i] = False
+        elif touch[i]:  # down without load (a level block on three corners): slipping if it moves
+            slip[i] = math.hypot(u0, u1) > vel_tol
     return impact
 
 
@@ -870,7 +916,6 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
         A history row every this many steps (and the last state).
     """
     h, Rw = geom[2], geom[7]
-    stick_only = fric[2] > 0.5
     dt, theta_mj, rocked_theta, weak_y = num[0], num[1], num[2], num[3] > 0.5
     max_steps, max_tail, rest_vel = int(limits[0]), int(limits[1]), limits[2]
     rest_steps, vel_tol, lift_gap = int(limits[3]), limits[4], limits[5]

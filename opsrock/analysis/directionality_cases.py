@@ -295,9 +295,9 @@ def study_campaigns(design: Any, items: tuple, motions: StudyMotions) -> list[Ca
 
 
 def _spec(item: Any, model: str, in_plan: bool, spec_class: type) -> Any:
-    """The scene's entry of ``item`` (its depth and supports are in the scene's plan)."""
+    """The scene's entry of ``item`` (with its depth in three dimensions; its support is in the scene's plan)."""
     b = item.block3d if model == "3d" and in_plan else item.planar
-    return spec_class(name=item.id, width=b.width, height=b.height, reason=item.description, mass=b.mass,
+    return spec_class(name=item.id, width=b.width, height=b.height, depth=b.depth, reason=item.description, mass=b.mass,
                       restitution_factor=1.0, friction=b.friction, friction_kinetic=b.friction_kinetic if b.friction
                       is not None else None, cm_height=b.h_cm if b.h_cm != b.h else None,
                       radius_of_gyration=b.r_gyration if not math.isclose(b.r_gyration, _homogeneous_r(b)) else None)

@@ -166,7 +166,8 @@ def test_plan_frame_turn_and_swap_of_width_and_depth():
     """The same floor motion described in motion axes turned by ``delta`` (components rotated accordingly, the
     block's azimuth reduced by ``delta``) gives the same response (the rotation acts on the samples; round-off
     only: 1e-9 relative); so does the box with width and depth swapped and turned by 90 deg with them (the
-    same body, corners numbered differently: 1e-6 relative, the NSGS and stick tolerances)."""
+    same body, corners numbered differently, so NSGS sweeps them in another order: its tolerance, and the
+    infinite-friction limit solves, exact to 1/LIMIT_MU = 1e-6 relative; measured 1.1e-6: 1e-5 relative)."""
     r1, r2 = _two_components(3)
     box = _box(0.5, 1.5, 0.7)
     psi, delta = 25.0, 40.0
@@ -179,8 +180,10 @@ def test_plan_frame_turn_and_swap_of_width_and_depth():
     assert ref.ok and ref.rocked and 0.05 < ref.theta_max_over_alpha < 1.0
     assert turned.theta_max == pytest.approx(ref.theta_max, rel=1e-9)
     assert turned.plan.slide_residual == pytest.approx(ref.plan.slide_residual, rel=1e-6, abs=1e-12)
-    assert swapped.theta_max == pytest.approx(ref.theta_max, rel=1e-6)
-    assert swapped.plan.twist_max == pytest.approx(ref.plan.twist_max, rel=1e-4, abs=1e-9)
+    assert swapped.theta_max == pytest.approx(ref.theta_max, rel=1e-5)
+    # infinite friction: no corner slips, so the twist is the contact solves' tolerance only (measured 1.1e-7 and
+    # 1.8e-7 rad)
+    assert swapped.plan.twist_max < 1e-6 and ref.plan.twist_max < 1e-6
 
 
 # =============================================================================================

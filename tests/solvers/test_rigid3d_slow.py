@@ -37,9 +37,9 @@ def test_planar_limit_on_the_400_pulses(mu):
     below 2e-3 and the 95th percentile below 1e-2 (the moreau_jean docstring: 1e-4 on pulses, with a first-order
     scatter). A difference is one of the model's, not the scheme's: the block left the floor (``time_flight >
     0``: rigid3d's contact is unilateral, housner_fast's pivot holds the block down), or both runs tilted beyond
-    0.95 pi/2 (near pi/2 the pivot's normal impulse vanishes; rigid3d then lets the corner open where the
-    event-driven equation keeps it: measured on bookcase/f01/a07-a10, peaks 8.57-8.70 alpha against
-    overturning at 8.8)."""
+    0.95 pi/2 (near pi/2 the pivot's normal impulse vanishes and the infinite-friction limit slides it, where
+    the event-driven equation holds it; before rigid3d took that limit, bookcase/f01/a07-a10 stopped at
+    8.57-8.70 alpha against overturning at 8.8)."""
     pairs = []
     unexplained = []
     for case in paper_cases():

@@ -82,7 +82,12 @@ OUT_OVER_DIR = ST.OUT_COMMON + 18  # direction of overturning (rad, floor frame)
 OUT_LIMIT_STEPS = ST.OUT_COMMON + 19  # local solves that met the infinite-friction limit (P_N < 0 to stick)
 OUT_CONTACT_STEPS = ST.OUT_COMMON + 20  # steps that solved a contact problem
 OUT_STATE = ST.OUT_COMMON + 21  # final state, 13 slots
-OUT_SIZE = ST.OUT_COMMON + 34
+OUT_STICK_STEPS = ST.OUT_COMMON + 34  # steps solved by the closed-form stick (_stick_all)
+OUT_SLIDE_STEPS = ST.OUT_COMMON + 35  # steps solved by the closed-form flat slide (_slide_flat)
+OUT_SIZE = ST.OUT_COMMON + 36
+
+#: Friction coefficient standing for infinity in the limit solve of :func:`_local` (its relative error 1/LIMIT_MU).
+LIMIT_MU = 1e6
 
 #: Corner signs ``(sx, sy)``: corners 0..3 at (+b, +d), (-b, +d), (-b, -d), (+b, -d) (counter-clockwise).
 CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
@@ -221,12 +226,15 @@ def _slip_direction(a, c, e, r0, r1):
 
 
 @numba.njit(cache=True)
-def _local(W, Winv, q, mu_s, mu_k, stick_only, P):
+def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
     """One corner's impulse ``P`` (tangential x, y, normal z) making ``u = q + W P`` obey ``0 <= u_z _|_ P_z >= 0``
     (Newton, ``e_n = 0``) and Coulomb's law: open if the corner does not approach; else stick (``u = 0``) if that
     impulse lies in the static cone ``|P_t| <= mu_s P_z``; else slip with ``|P_t| = mu_k P_z`` against the slip
-    velocity (maximal dissipation). Returns 0 solved, 1 the infinite-friction limit (sticking needs a pulling
-    impulse: the corner is left open, see ``_nsgs``), 2 no slip solution (``W_zz - mu_k W_zt . s <= 0``)."""
+    velocity (maximal dissipation), the slip direction iterated from that of ``Pw`` (the corner's current
+    impulse). Returns 0 solved, 1 solved by the infinite-friction limit (sticking would need a pulling impulse:
+    the slip solution with ``mu_k = LIMIT_MU``, whose normal impulse tends to 0 with a finite friction impulse
+    and ``u_z = 0``, as moreau_jean's limit status), 2 no slip solution (``W_zz - mu_k W_zt . s <= 0``; the
+    corner is then left open)."""
     if q[2] >= 0.0:
         P[0], P[1], P[2] = 0.0, 0.0, 0.0
         return 0
@@ -234,18 +242,23 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, P):
         P[i] = -(Winv[i, 0] * q[0] + Winv[i, 1] * q[1] + Winv[i, 2] * q[2])
     if P[2] >= 0.0 and (stick_only or math.hypot(P[0], P[1]) <= mu_s * P[2] * (1.0 + 1e-12)):
         return 0
-    if stick_only:
-        P[0], P[1], P[2] = 0.0, 0.0, 0.0
-        return 1
-    # slip: alternate the normal impulse (u_z = 0 for the slip direction s) and the slip direction (secular)
-    ut0 = q[0] - W[0, 2] * q[2] / W[2, 2]
-    ut1 = q[1] - W[1, 2] * q[2] / W[2, 2]
-    nu = math.hypot(ut0, ut1)
+    limit = stick_only
+    if limit:  # the infinite-friction limit of slip: mu_k -> infinity, P_N -> 0 with a finite friction impulse
+        mu_k = LIMIT_MU
+    # slip: alternate the normal impulse (u_z = 0 for the slip direction s) and the slip direction (secular),
+    # from the direction of the previous friction impulse (warm start) or of the velocity with u_z = 0
+    nu = math.hypot(Pw[0], Pw[1])
     if nu > 0.0:
-        s0, s1 = ut0 / nu, ut1 / nu
+        s0, s1 = -Pw[0] / nu, -Pw[1] / nu
     else:
-        nu = math.hypot(P[0], P[1])
-        s0, s1 = (-P[0] / nu, -P[1] / nu) if nu > 0.0 else (1.0, 0.0)
+        ut0 = q[0] - W[0, 2] * q[2] / W[2, 2]
+        ut1 = q[1] - W[1, 2] * q[2] / W[2, 2]
+        nu = math.hypot(ut0, ut1)
+        if nu > 0.0:
+            s0, s1 = ut0 / nu, ut1 / nu
+        else:
+            nu = math.hypot(P[0], P[1])
+            s0, s1 = (-P[0] / nu, -P[1] / nu) if nu > 0.0 else (1.0, 0.0)
     pn = 0.0
     for _ in range(30):
         den = W[2, 2] - mu_k * (W[2, 0] * s0 + W[2, 1] * s1)
@@ -261,12 +274,15 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, P):
         n0, n1 = _slip_direction(c * W[0, 0], c * W[0, 1], c * W[1, 1], r0, r1)
         moved = abs(n0 - s0) + abs(n1 - s1)
         s0, s1 = n0, n1
-        if moved < 1e-13:
+        if moved < 1e-11:
             break
     den = W[2, 2] - mu_k * (W[2, 0] * s0 + W[2, 1] * s1)
     pn = -q[2] / den
+    if den <= 0.0:
+        P[0], P[1], P[2] = 0.0, 0.0, 0.0
+        return 2
     P[0], P[1], P[2] = -mu_k * pn * s0, -mu_k * pn * s1, pn
-    return 0
+    return 1 if limit else 0
 
 
 @numba.njit(cache=True)
@@ -299,7 +315,7 @@ def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter,
             W = Wd[i]
             for a in range(3):
                 q[a] = (u0 if a == 0 else (u1 if a == 1 else u2)) - (W[a, 0] * Pi[0] + W[a, 1] * Pi[1] + W[a, 2] * Pi[2])
-            code = _local(W, Wi[i], q, mu_s, mu_k, stick_only, Pn)
+            code = _local(W, Wi[i], q, mu_s, mu_k, stick_only, Pi, Pn)
             if code == 1:
                 out[OUT_LIMIT_STEPS] += 1.0
             d0, d1, d2 = Pn[0] - Pi[0], Pn[1] - Pi[1], Pn[2] - Pi[2]
@@ -806,9 +822,11 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
     stick_only = fric[2] > 0.5
     if n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
         sweeps = 1
+        out[OUT_STICK_STEPS] += 1.0
     elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, fric[1], ws[8], ws[7],
                                                                    vec[3], ws[9]):
         sweeps = 1
+        out[OUT_SLIDE_STEPS] += 1.0
     elif n_act > 0:
         V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
         for i in range(4):

@@ -225,6 +225,7 @@ def _diagnostics(out: np.ndarray) -> dict[str, Any]:
     steps = max(1.0, out[kn.OUT_CONTACT_STEPS])
     return {"end_time": float(out[kn.OUT_TIME]), "max_penetration": float(out[kn.OUT_MAX_PENETRATION]),
             "contact_steps": int(out[kn.OUT_CONTACT_STEPS]), "rest_skip_steps": int(out[kn.OUT_REST_STEPS]),
+            "stick_steps": int(out[kn.OUT_STICK_STEPS]), "flat_slide_steps": int(out[kn.OUT_SLIDE_STEPS]),
             "nsgs_unconverged_steps": int(out[kn.OUT_NSGS_FAILED]),
             "nsgs_mean_sweeps": float(out[kn.OUT_NSGS_SWEEPS] / steps), "nsgs_max_sweeps": int(out[kn.OUT_NSGS_MAX]),
             "limit_solves": int(out[kn.OUT_LIMIT_STEPS])}
@@ -314,9 +315,10 @@ def solve(block: Block, excitation: PlanMotion | Pulse | Record | None, settings
         (:class:`~opsrock.result.PlanHistory`, with ``record``). A run that did not finish is failed with its
         reason (non-finite state or floor motion, ``max_steps``, still moving at the end of the tail, the contact
         solver unconverged for ``nsgs_fail_steps`` steps in a row). ``diagnostics``: ``end_time`` (s),
-        ``max_penetration`` (m), ``contact_steps``, ``rest_skip_steps``, ``nsgs_unconverged_steps``,
+        ``max_penetration`` (m), ``contact_steps`` (of which ``stick_steps`` and ``flat_slide_steps`` were
+        solved in closed form, the rest by NSGS), ``rest_skip_steps``, ``nsgs_unconverged_steps``,
         ``nsgs_mean_sweeps``, ``nsgs_max_sweeps``, ``limit_solves`` (local solves where sticking with infinite
-        friction needed a pulling impulse: the corner was left open).
+        friction needed a pulling impulse: solved by the infinite-friction limit of slip).
 
     Raises
     ------

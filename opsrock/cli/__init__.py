@@ -13,6 +13,7 @@
     opsrock bench [--quick] [--only NAME]
     opsrock sliding-map [--quick] --out DIR [--workers N]
     opsrock contents [--period T --storeys N --floors ground,roof ...] [--quick] --out DIR
+    opsrock directionality [--quick] --out DIR [--workers N] [--store S] [--force]
 
 The parser is :mod:`opsrock.cli.parser`; each command's handler is a module of this package
 (:data:`HANDLERS`), imported once the command line is parsed, so that ``opsrock --help`` and each command
@@ -57,7 +58,7 @@ HANDLERS: dict[str, str] = {
     "simulate": "simulate:simulate", "threshold": "threshold:threshold", "records": "records:records",
     "run": "run:run", "fragility": "fragility:fragility", "reproduce": "reproduce:reproduce",
     "validate": "validate:validate", "bench": "bench:bench", "sliding-map": "sliding_map:sliding_map",
-    "contents": "contents:contents",
+    "contents": "contents:contents", "directionality": "directionality:directionality",
 }
 
 _KEPT = "finished cases are kept; re-run the same command to resume"
@@ -68,11 +69,11 @@ INTERRUPT_NOTES: dict[str | None, str] = {
     "fragility": "nothing written (the report is written whole or not at all)",
     "bench": "results file not updated",
     "validate": "the cases that had finished wrote their outputs; re-run the command to run the others",
-    "run": _KEPT, "contents": _KEPT, "sliding-map": _KEPT, "reproduce": _KEPT,
+    "run": _KEPT, "contents": _KEPT, "sliding-map": _KEPT, "reproduce": _KEPT, "directionality": _KEPT,
 }
 
 #: Commands whose finished cases survive a stop (a store per campaign): the advice after a full disk says so.
-RESUMABLE = frozenset({"run", "contents", "sliding-map", "reproduce"})
+RESUMABLE = frozenset({"run", "contents", "sliding-map", "reproduce", "directionality"})
 
 #: Causes of an environment fault, by ``errno``, as told to the user (else the system's own words).
 _CAUSES: dict[int, str] = {

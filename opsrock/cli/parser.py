@@ -372,9 +372,25 @@ def _contents(sub) -> None:
                                       "an item's width), comma-separated, pooled in each fit (default 0,45,90)")
 
 
+def _directionality(sub) -> None:
+    p = sub.add_parser("directionality", help="contents under two horizontal components in 3-D, beside planar analysis",
+                       description="Overturning fragility of FEMA P-58's items and the example inventory on the shipped "
+                                   "building's floors under both horizontal components of FEMA P695 records, in three "
+                                   "dimensions (rigid3d) at plan orientations 0-90 deg, in pelicun's demand conventions, "
+                                   "beside the planar fragility of the weaker axis and pelicun's factor 1.2; the map of "
+                                   "where planar analysis suffices; the cost per case. Resumable.")
+    p.add_argument("--out", default="results/directionality", help="output folder (default results/directionality/)")
+    p.add_argument("--quick", action="store_true",
+                   help="a small study (the roof, two record pairs, two orientations, two items: under a minute)")
+    p.add_argument("--workers", type=count("--workers", "workers"), help="local worker processes (default: all cores)")
+    p.add_argument("--store", help="folder of the campaigns' stores (default OUT/campaigns)")
+    p.add_argument("--force", action="store_true", help="discard stored cases of other settings in the campaigns")
+    p.add_argument("--no-progress", action="store_true", help="no progress on stderr")
+
+
 COMMANDS = {"simulate": _simulate, "threshold": _threshold, "records": _records, "run": _run,
             "fragility": _fragility, "reproduce": _reproduce, "validate": _validate, "bench": _bench,
-            "sliding-map": _sliding_map, "contents": _contents}
+            "sliding-map": _sliding_map, "contents": _contents, "directionality": _directionality}
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -1,0 +1,373 @@
+"""The directionality study: contents under both horizontal floor components, in three dimensions, beside the
+planar analysis along the weaker axis and pelicun's non-directional factor 1.2 (``opsrock directionality``).
+
+What it computes (docs/directionality.md):
+
+* the items: FEMA P-58's nine unanchored items (:func:`opsrock.inventory.items.shipped_inventory`
+  ``"fema-p58-nine"``) and the example office inventory (``"example"``), each a box of base ``width x depth``
+  (:attr:`opsrock.block.Block.depth`) with the item's mass distribution and friction (a friction drawn from a
+  distribution at its median), Housner's restitution (``rigid3d`` models Housner's impact only, so the planar
+  runs use it too); an item on a support (a desk) meets the floor motion through the support's oscillator in
+  both directions;
+* the motions: the FEMA P695 far-field records through the shipped shear building
+  (:func:`opsrock.inventory.sources.building_motions`), each recording's two components filtered as two
+  directions of one floor motion (:func:`opsrock.inventory.motions.paired_motions`), named by the first
+  component's record name;
+* the cases: each item on each floor under each record pair at each plan orientation ``azimuth`` (deg, from
+  motion direction 1 to the item's width axis) and each IDA level, solved in three dimensions (``rigid3d``,
+  both components) and in the plane of the weaker axis (``housner_fast``, or ``friction`` for an item with
+  friction) under the component along that axis; the scale factor of a record pair is the same for both
+  components and for both models: ``level x g min(tan alpha, mu) / max(PFA_1, PFA_2)`` of the weaker axis;
+* the campaigns: one per (model, solver), run by the campaign engine (:class:`opsrock.campaign.run.Stage`:
+  resumable, parallel, with progress) into ``store/<campaign>``;
+* the tables (:mod:`opsrock.analysis.directionality_summary`) and the report and figures
+  (:mod:`opsrock.analysis.directionality_report`), which compute nothing.
+
+``solver3d`` is the study's three-dimensional solver (``rigid3d``); a planar solver named there runs the
+three-dimensional cases in the plane of the weaker axis instead (the plumbing of the study, for its tests).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+import pandas as pd
+
+from opsrock._files import atomic_csv, read_table, staged_folder
+from opsrock.analysis import directionality_summary as summary
+from opsrock.analysis.directionality_cases import study_campaigns, study_motions
+from opsrock.analysis.directionality_report import write_figures, write_report
+from opsrock.campaign.executors import LocalPool
+from opsrock.campaign.run import Execution, Stage, case_budget
+from opsrock.errors import InputError
+from opsrock.inventory.items import shipped_inventory
+from opsrock.limits import int_at_least
+from opsrock.solvers.registry import METHODS
+
+#: The record pairs of the full study, by their first component's name (FEMA P695 far-field): eight of the 22, of
+#: 20 to 44 s, chosen to fit the cost budget (a rigid3d case costs about 0.5-0.7 s; docs/directionality.md).
+DEFAULT_PAIRS: tuple[str, ...] = ("NORTHR_MUL009", "NORTHR_LOS000", "KOBE_NIS000", "KOBE_SHI000", "LANDERS_YER270",
+                                  "CAPEMEND_RIO270", "SUPERST_B-POE270", "SFERN_PEL090")
+
+#: The items of the full study, chosen to fit the cost budget: FEMA's 2- and 6-shelf bookcases, its 2-drawer vertical
+#: and 5-drawer lateral filing cabinets (``b/h`` of the weaker axis 0.16 to 0.63: the range of the nine), and the
+#: example's bookcase loaded low (FEMA's bookcase base with a lower centre of mass). Left out: the items with
+#: friction (the example's low cabinet, server rack and printer), whose 3-D cases slide and cost 10 to 30 times a
+#: no-slip case in a pilot (15-29 s against 0.5-2 s), and FEMA's items of the same bases and nearby slenderness.
+DEFAULT_ITEMS: tuple[str, ...] = ("E.20.22.102a", "E.20.22.106a", "E.20.22.112a", "E.20.22.125a", "bookcase")
+
+#: Plan orientations of the full study (deg): 0 to 90 in steps of 22.5 (a box is symmetric about its axes).
+DEFAULT_AZIMUTHS: tuple[float, ...] = (0.0, 22.5, 45.0, 67.5, 90.0)
+
+#: IDA levels of ``max(PFA_1, PFA_2) / (g min(tan alpha, mu))`` of the weaker axis (dimensionless).
+#: Four, from 1.1 to 4: in a pilot (two pairs, the roof) 17 % of the cases overturned at 1.2 and 92-100 % at 3.2.
+DEFAULT_LEVELS: tuple[float, ...] = tuple(float(x) for x in np.geomspace(1.1, 4.0, 4))
+
+#: The shipped inventories of the study.
+INVENTORIES: tuple[str, ...] = ("fema-p58-nine", "example")
+
+#: The models of a case: three dimensions, and the plane of the weaker axis.
+MODELS: tuple[str, ...] = ("3d", "planar")
+
+#: Every output the study owns in its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
+OUTPUTS: tuple[str, ...] = ("report.md", "*.csv", "figures/*.png")
+
+
+@dataclass(frozen=True)
+class DirectionalityDesign:
+    """What the study covers.
+
+    Parameters
+    ----------
+    period : float
+        First period ``T_1`` of the shipped linear shear building (s).
+    storeys : int
+        Its storeys.
+    damping : float
+        Its modal damping ratio (dimensionless).
+    floors : tuple
+        Floors: ``"ground"``, numbers 1..storeys and/or ``"roof"``.
+    record_set : str
+        Library record set (``fema-p695:far-field``).
+    pairs : tuple of str
+        The record pairs, by their first component's name (empty: every pair of the set).
+    azimuths : tuple of float
+        Plan orientations (deg, in [0, 90]: from motion direction 1 to the item's width axis).
+    levels : tuple of float
+        IDA levels of ``max(PFA_1, PFA_2) / (g min(tan alpha, mu))`` of the weaker axis (dimensionless).
+    items : tuple of str
+        Item ids of the shipped inventories (:data:`INVENTORIES`) (empty: all of them; default
+        :data:`DEFAULT_ITEMS`).
+    solver3d : str
+        Solver of the three-dimensional cases (``rigid3d``; a planar solver: the plumbing only).
+    tolerance : float
+        Planar analysis suffices where the three-dimensional median lies within this fraction of the planar
+        one (dimensionless).
+    n_boot : int
+        Record-bootstrap resamples of each fit.
+    seed : int
+        Seed of the resamples.
+    settings3d : Mapping
+        Settings of ``solver3d`` (its ``solve()`` keywords).
+    """
+
+    period: float = 1.0
+    storeys: int = 8
+    damping: float = 0.05
+    floors: tuple = ("ground", "roof")
+    record_set: str = "fema-p695:far-field"
+    pairs: tuple[str, ...] = DEFAULT_PAIRS
+    azimuths: tuple[float, ...] = DEFAULT_AZIMUTHS
+    levels: tuple[float, ...] = DEFAULT_LEVELS
+    items: tuple[str, ...] = DEFAULT_ITEMS
+    solver3d: str = "rigid3d"
+    tolerance: float = 0.10
+    n_boot: int = 40
+    seed: int = 0
+    settings3d: Mapping[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+
+        for name, low, high in (("azimuths", 0.0, 90.0), ("levels", 0.0, math.inf)):
+            values = getattr(self, name)
+            if not values or any(isinstance(x, bool) or not isinstance(x, (int, float)) or not math.isfinite(x)
+                                 or not (low <= x <= high) or (name == "levels" and x <= 0) for x in values):
+                raise InputError(f"{name} must be numbers in [{low:g}, {high:g}]" + (" (positive)" if name == "levels"
+                                 else " deg") + f", got {values!r}", argument=name)
+            if len(set(values)) != len(values):
+                raise InputError(f"{name} name a value twice: {values!r}", argument=name)
+            object.__setattr__(self, name, tuple(float(x) for x in values))
+        if self.solver3d not in METHODS or METHODS[self.solver3d].model == "friction":
+            raise InputError(f"solver3d must be rigid3d or a no-slip planar solver, got {self.solver3d!r}",
+                             argument="solver3d")
+        if isinstance(self.tolerance, bool) or not isinstance(self.tolerance, (int, float)) or not 0 < self.tolerance < 1:
+            raise InputError(f"tolerance must lie in (0, 1), got {self.tolerance!r}", argument="tolerance")
+        int_at_least("n_boot", self.n_boot, 0)
+        int_at_least("seed", self.seed, 0)
+        object.__setattr__(self, "settings3d", dict(self.settings3d))
+
+    @property
+    def in_plan(self) -> bool:
+        """Whether ``solver3d`` solves motion in plan (``rigid3d``); False: the plumbing stand-in."""
+
+        return METHODS[self.solver3d].plan
+
+
+#: Records of the quick study (``--quick``): two pairs.
+QUICK_PAIRS: tuple[str, ...] = ("NORTHR_MUL009", "KOBE_NIS000")
+
+#: Items of the quick study: FEMA's five-shelf bookcase and the example's bookcase loaded low (same base).
+QUICK_ITEMS: tuple[str, ...] = ("E.20.22.105a", "bookcase")
+
+
+def quick(design: DirectionalityDesign) -> DirectionalityDesign:
+    """A small copy of ``design`` for tests and CI (under a minute): the roof, two record pairs, two
+    orientations, three levels, two items (:data:`QUICK_ITEMS`), 10 resamples."""
+    return dataclasses.replace(design, floors=("roof",), pairs=QUICK_PAIRS, azimuths=(0.0, 45.0),
+                               levels=(1.3, 2.2, 3.6), items=QUICK_ITEMS, n_boot=min(design.n_boot, 10))
+
+
+@dataclass(frozen=True)
+class StudyItem:
+    """One item of the study, its blocks and where it stands.
+
+    Parameters
+    ----------
+    id : str
+        The item's id.
+    inventory : str
+        The shipped inventory it comes from.
+    description : str
+        What it is.
+    block3d : Block
+        The box: ``width`` along its x axis, ``depth`` along y (m), Housner's restitution.
+    planar : Block
+        The planar block of the weaker axis (its base the smaller of width and depth, m).
+    weak : str
+        The weaker axis: ``"x"`` (the width) or ``"y"`` (the depth).
+    support : Support or None
+        The support the item stands on (:class:`opsrock.inventory.items.Support`); None: the floor.
+    fema_id : str
+        FEMA P-58's ID, or ``""``.
+    """
+
+    id: str
+    inventory: str
+    description: str
+    block3d: Any
+    planar: Any
+    weak: str
+    support: Any
+    fema_id: str = ""
+
+    @property
+    def b_over_h(self) -> float:
+        """Slenderness of the weaker axis, ``tan alpha = b / h_cm`` (dimensionless)."""
+        return float(self.planar.tan_alpha)
+
+
+def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
+    """The study's items from the shipped inventories (:data:`INVENTORIES`), in inventory order."""
+
+    out = []
+    for name in INVENTORIES:
+        for item in shipped_inventory(name).items:
+            if design.items and item.id not in design.items:
+                continue
+            weak = "1" if item.width <= item.depth else "2"
+            housner = {"restitution": None, "restitution_factor": 1.0}
+            block = dataclasses.replace(item.planar_block("1", 1.0), depth=item.depth, **housner)
+            planar = dataclasses.replace(item.planar_block(weak, 1.0), **housner)
+            out.append(StudyItem(item.id, name, item.description, block, planar, "x" if weak == "1" else "y",
+                                 item.support, item.fema_id))
+    missing = [i for i in design.items if i not in {it.id for it in out}]
+    if missing or len(set(design.items)) != len(design.items):
+        bad = missing or [design.items]
+        raise InputError(f"items {bad!r} are not (each once) among the shipped inventories' ({', '.join(INVENTORIES)})",
+                         argument="items")
+    return tuple(out)
+
+
+def _say(progress: bool, text: str) -> None:
+    if progress:
+        print(f"directionality: {text}", file=sys.stderr, flush=True)
+
+
+@dataclass(frozen=True)
+class DirectionalityStudy:
+    """What :func:`run_directionality_study` computed and wrote.
+
+    Parameters
+    ----------
+    design : DirectionalityDesign
+        The study as run.
+    out_dir : str
+        The output folder.
+    report : str
+        ``report.md``.
+    tables : dict of str to str
+        Table key -> CSV path.
+    figures : list of str
+        PNG paths.
+    headline : dict
+        The numbers the command prints (:func:`opsrock.analysis.directionality_summary.headline`).
+    timings : dict of str to float
+        Wall times (s): ``motions_s``, ``campaigns_s``, ``fits_s``, ``outputs_s``, ``total_s``.
+    """
+
+    design: DirectionalityDesign
+    out_dir: str
+    report: str
+    tables: dict[str, str]
+    figures: list[str]
+    headline: dict[str, Any]
+    timings: dict[str, float]
+
+
+def run_directionality_study(design: DirectionalityDesign, out_dir: str | Path, *, workers: int | None = None,
+                             progress: bool = True, quick_run: bool = False, force: bool = False,
+                             store_dir: str | Path | None = None) -> DirectionalityStudy:
+    """Run (or resume) the study and write its tables, figures and report into ``out_dir``.
+
+    Parameters
+    ----------
+    design : DirectionalityDesign
+        What to cover.
+    out_dir : str or Path
+        Output folder: ``report.md``, the tables (CSV, full precision), ``figures/``.
+    workers : int or None
+        Processes (default: all cores).
+    progress : bool
+        Progress on stderr.
+    quick_run : bool
+        :func:`quick` first.
+    force : bool
+        Discard stored cases of other settings in the campaigns' folders instead of refusing them.
+    store_dir : str or Path, optional
+        The campaigns' folder; default ``out_dir/campaigns``.
+
+    Returns
+    -------
+    DirectionalityStudy
+        The paths written, the headline numbers and the wall times (s).
+    """
+
+    t_start = time.perf_counter()
+    design = quick(design) if quick_run else design
+    items = study_items(design)  # every input checked before anything is computed
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    _say(progress, f"floor motions of {len(design.pairs) or 'every'} record pair(s) in both directions")
+    motions = study_motions(design, items, workers)
+    timings["motions_s"] = time.perf_counter() - t0
+    campaigns = study_campaigns(design, items, motions)
+    out = Path(out_dir)
+    store = Path(store_dir) if store_dir is not None else out / "campaigns"
+    _say(progress, f"{sum(len(c.cases) for c in campaigns)} cases in {len(campaigns)} campaigns into {store}")
+    t0 = time.perf_counter()
+    cases, computed = run_campaigns(campaigns, store, workers=workers, progress=progress, force=force)
+    timings["campaigns_s"] = time.perf_counter() - t0
+    timings["n_computed"] = computed
+    return _fit_and_write(design, items, motions, cases, out,
+                          {"workers": workers, "progress": progress, "timings": timings, "t_start": t_start})
+
+
+def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress: bool,
+                  force: bool) -> tuple[pd.DataFrame, int]:
+    """Every campaign (:class:`opsrock.analysis.directionality_cases.Campaign`) run or resumed by the campaign
+    engine into ``store/<name>`` on one pool of workers: their ``cases.csv`` joined, with ``campaign`` and
+    ``solver_name`` (the campaign's solver), and the number of cases this call computed (the others were
+    stored)."""
+
+    frames, computed = [], 0
+    with LocalPool(workers) as pool:
+        for c in campaigns:
+            how = Execution(workers, pool, force, progress, None, case_budget(c.scene, None))
+            summary, _ = Stage(how)(c.scene, store / c.name, cases=c.cases)
+            frames.append(read_table(summary.cases_csv, keep_default_na=False, na_values=["nan", "NaN", ""])
+                          .assign(campaign=c.name, solver_name=c.scene.solver))
+            computed += summary.n_computed
+    cases = pd.concat(frames, ignore_index=True)
+    cases["overturned"] = cases["overturned"].astype(str).eq("True")
+    cases["overturned_over"] = [v if isinstance(v, str) else "" for v in cases["overturned_over"]]  # empty: NaN
+    return cases, computed
+
+
+def _fit_and_write(design: DirectionalityDesign, items: tuple[StudyItem, ...], motions: Any, cases: pd.DataFrame,
+                   out: Path, run: dict[str, Any]) -> DirectionalityStudy:
+    """Fit, tabulate, draw and report into ``out`` (through a staging folder: all or nothing); ``run`` holds the
+    ``workers``, ``progress``, ``timings`` (s) and ``t_start`` of the run."""
+    workers, progress, timings, t_start = run["workers"], run["progress"], run["timings"], run["t_start"]
+
+    t0 = time.perf_counter()
+    _say(progress, f"fits ({design.n_boot} record resamples each)")
+    fits = summary.fit_table(cases, design, workers or 1)
+    timings["fits_s"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    tables = summary.study_tables(fits, cases, motions.demands, design, items)
+    with staged_folder(out, OUTPUTS) as stage:
+        paths = {k: stage / f"{k}.csv" for k in tables}
+        for k, df in tables.items():
+            atomic_csv(paths[k], df)
+        figures = write_figures(tables, stage / "figures", design.tolerance)
+        timings["outputs_s"] = time.perf_counter() - t0
+        timings["total_s"] = time.perf_counter() - t_start
+        head = summary.headline(tables, cases, timings)
+        report = write_report(stage / "report.md", summary.report_inputs(design, tables, head, figures))
+        final = {p: out / Path(p).relative_to(stage) for p in [report, *paths.values(), *figures]}
+    _say(progress, f"done in {timings['total_s']:.1f} s: {final[report]}")
+    return DirectionalityStudy(design=design, out_dir=str(out), report=str(final[report]),
+                               tables={k: str(final[p]) for k, p in paths.items()},
+                               figures=[str(final[p]) for p in figures], headline=head, timings=timings)
+
+
+__all__ = ["DEFAULT_AZIMUTHS", "DEFAULT_ITEMS", "DEFAULT_LEVELS", "DEFAULT_PAIRS", "QUICK_ITEMS", "INVENTORIES", "MODELS", "OUTPUTS", "QUICK_PAIRS",
+           "DirectionalityDesign", "DirectionalityStudy", "StudyItem", "quick", "run_campaigns",
+           "run_directionality_study", "study_items"]

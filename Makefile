@@ -92,8 +92,8 @@ blas:
 	@sh tools/ensure-blas.sh
 
 # Installs the exact versions of the lock file (see its header); pyproject.toml keeps the ranges.
-# opsrock/__init__.py holds the version, which the installed metadata repeats: a new version reinstalls.
-$(STAMP): pyproject.toml opsrock/__init__.py $(LOCK)
+# pyproject.toml holds the version, which the installed metadata repeats: a new version reinstalls.
+$(STAMP): pyproject.toml $(LOCK)
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet -c $(LOCK) pip
 	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test,dask,records]'

@@ -22,7 +22,7 @@ SOLVER_NAME = "opensees"
 INTEGRATORS: tuple[str, ...] = ("newmark", "hht", "generalized_alpha", "central_difference")
 
 
-#: Equation-solving algorithms. docs/modelling.md section 4: KrylovNewton converged on 60/60 random
+#: Equation-solving algorithms. docs/guide/modelling.md section 4: KrylovNewton converged on 60/60 random
 #: pulses, plain Newton failed on 3/60 (cycling at the stiff-branch corner near rest).
 ALGORITHMS: tuple[str, ...] = ("KrylovNewton", "NewtonLineSearch", "Newton", "ModifiedNewton", "BFGS")
 

@@ -93,7 +93,7 @@ $(DOCS_STAMP): pyproject.toml $(LOCK)
 	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test,dask,records,docs,release]'
 	@touch $@
 
-# A release's sdist and wheel into dist/, built from a fresh copy of the tracked files (python -m build) and
+# A release's sdist and wheel into dist/ (python -m build: the sdist from the checkout, the wheel from the sdist),
 # checked as a package index checks them (twine check --strict).
 dist: install $(DOCS_STAMP)
 	rm -rf dist

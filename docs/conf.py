@@ -85,7 +85,8 @@ API_EXCLUDED = ("opsrock.cli",)
 def public_modules() -> list[str]:
     """The modules of the API reference: ``opsrock``, then every non-private subpackage and module of it except
     :data:`API_EXCLUDED`, where a package that declares ``__all__`` stands for its own modules (its
-    ``__all__`` is its public API) and a package without one is shown through its modules."""
+    ``__all__`` is its public API; a subpackage of it that declares one has its own page, as each solver of
+    :mod:`opsrock.solvers`) and a package without one is shown through its modules."""
     names = ["opsrock"]
     covered: list[str] = []  # packages with an __all__: their inner modules are not shown
 
@@ -93,9 +94,9 @@ def public_modules() -> list[str]:
         name = info.name
         if any(part.startswith("_") for part in name.split(".")) or name.startswith(API_EXCLUDED):
             continue
-        if any(name.startswith(pkg + ".") for pkg in covered):
-            continue
         module = importlib.import_module(name)
+        if any(name.startswith(pkg + ".") for pkg in covered) and not (info.ispkg and hasattr(module, "__all__")):
+            continue
         if info.ispkg and hasattr(module, "__all__"):
             covered.append(name)
         if info.ispkg and not hasattr(module, "__all__"):

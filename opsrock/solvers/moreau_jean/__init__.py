@@ -6,7 +6,7 @@ It is the reference of a different formulation for the event-driven ``friction``
 knows about modes, transitions or impact laws other than through the contact conditions.
 
 Model (docs/guide/friction.md: notation, the impact at ``theta = 0``, the reference ``moreau_jean``)
---------------------------------------------------------------------------------------------
+----------------------------------------------------------------------------------------------------
 State ``q = (x, y, theta)`` of the centre of mass in the floor frame (``theta`` clockwise), ``v = q'``;
 the floor's accelerations act as the body force ``(-m a_h, -m (g + a_v), 0)``. Two corner contacts,
 each with Newton's impact law with ``e_n = 0`` (``0 <= U_N+ _|_ P_N >= 0``) and Coulomb's law on the

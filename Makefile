@@ -11,7 +11,7 @@ STAMP  := $(VENV)/.opsrock-installed
 LOCK   := requirements.lock
 OUT    ?= results
 
-.PHONY: reproduce test test-lowest test-slow test-fuzz test-pelicun test-wheel validate bench blas install lock clean
+.PHONY: reproduce test test-lowest test-slow test-fuzz test-pelicun test-wheel docs dist validate bench blas install lock clean
 
 reproduce: install
 	$(BIN)/opsrock reproduce --out $(OUT)
@@ -80,6 +80,26 @@ test-pelicun: install
 test-wheel: blas
 	sh tools/wheel_check.sh $(PYTHON) $(CURDIR)/$(LOCK)
 
+# The documentation site into docs/_build/html: Sphinx (pydata theme, numpydoc, MyST, sphinx-gallery) with
+# warnings as errors; every example of examples/ is executed; then every relative link of the repository's
+# Markdown files is checked (docs/check_links.py). The docs extra goes into the project venv.
+DOCS_STAMP := $(VENV)/.opsrock-docs-installed
+
+docs: install $(DOCS_STAMP)
+	$(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
+	$(BIN)/python docs/check_links.py
+
+$(DOCS_STAMP): pyproject.toml $(LOCK)
+	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test,dask,records,docs,release]'
+	@touch $@
+
+# A release's sdist and wheel into dist/ (python -m build: the sdist from the checkout, the wheel from the sdist),
+# checked as a package index checks them (twine check --strict).
+dist: install $(DOCS_STAMP)
+	rm -rf dist
+	$(BIN)/python -m build --outdir dist .
+	$(BIN)/python -m twine check --strict dist/*
+
 validate: install
 	$(BIN)/opsrock validate
 
@@ -92,8 +112,8 @@ blas:
 	@sh tools/ensure-blas.sh
 
 # Installs the exact versions of the lock file (see its header); pyproject.toml keeps the ranges.
-# opsrock/__init__.py holds the version, which the installed metadata repeats: a new version reinstalls.
-$(STAMP): pyproject.toml opsrock/__init__.py $(LOCK)
+# pyproject.toml holds the version, which the installed metadata repeats: a new version reinstalls.
+$(STAMP): pyproject.toml $(LOCK)
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet -c $(LOCK) pip
 	$(BIN)/python -m pip install --quiet -c $(LOCK) -e '.[test,dask,records]'
@@ -112,4 +132,5 @@ lock:
 	rm -rf .lock-venv
 
 clean:
-	rm -rf $(VENV) $(LOWEST_VENV) *.egg-info .pytest_cache .hypothesis .lock-venv .pelicun-venv
+	rm -rf $(VENV) $(LOWEST_VENV) *.egg-info .pytest_cache .hypothesis .lock-venv .pelicun-venv dist docs/_build \
+	    docs/api docs/validation docs/studies docs/auto_examples docs/sg_execution_times.rst

@@ -10,6 +10,9 @@ first used (:mod:`opsrock.opensees_session`), so everything else works on a mach
 The names below are imported when first used (PEP 562): ``import opsrock`` itself is light, so that the
 command line (:mod:`opsrock.cli`) starts its handling of Ctrl-C and of the environment's faults before
 numpy and the solvers load. ``from opsrock import Block`` works as before.
+
+``opsrock.__version__`` is the installed distribution's version (:func:`importlib.metadata.version`), whose one
+source is ``pyproject.toml``; ``opsrock --version`` prints the same.
 """
 
 from __future__ import annotations
@@ -25,6 +28,9 @@ _EXPORTS: dict[str, str] = {
 
 
 def __getattr__(name: str):
+    if name == "__version__":  # read from the metadata when first asked: importlib.metadata is not light
+        globals()[name] = value = _installed_version()
+        return value
     module = _EXPORTS.get(name)
     if module is None:
         raise AttributeError(f"module 'opsrock' has no attribute {name!r}")
@@ -34,7 +40,18 @@ def __getattr__(name: str):
 
 
 def __dir__() -> list[str]:
-    return sorted({*globals(), *_EXPORTS})
+    return sorted({*globals(), *_EXPORTS, "__version__"})
+
+
+def _installed_version() -> str:
+    """The version of the installed distribution ``opsrock`` (pyproject.toml's), or ``"0+unknown"`` when the
+    package is imported from a folder that was never installed (no metadata to read)."""
+    from importlib.metadata import PackageNotFoundError, version  # lazy: only when the version is asked for
+
+    try:
+        return version("opsrock")
+    except PackageNotFoundError:
+        return "0+unknown"
 
 
 __all__ = [
@@ -47,4 +64,3 @@ __all__ = [
     "SOLVERS",
     "simulate",
 ]
-__version__ = "0.1.0"

@@ -59,7 +59,7 @@ class Block:
 
     Notes
     -----
-    Derived quantities follow docs/modelling.md section 2, with ``h`` the height of the centre of mass
+    Derived quantities follow docs/guide/modelling.md section 2, with ``h`` the height of the centre of mass
     (:attr:`h_cm`): ``R = sqrt(b² + h²)``, ``alpha = atan(b / h)``, ``I_O = m (r² + R²)``,
     ``p = sqrt(m g R / I_O)``, ``e_R = 1 - 2 m b² / I_O`` (angular momentum about the new pivot kept
     through the impact). For a homogeneous block these are the paper's ``p = sqrt(3 g / 4 R)``,
@@ -68,7 +68,7 @@ class Block:
 
     A block with ``e_R <= 0`` (homogeneous: width/height >= sqrt(2), a desk, a crate) is a valid block: after
     an impact the angular momentum about the striking corner would turn it the wrong way (into the floor),
-    so it lands flat and stops rocking, ``e = 0`` unless ``restitution`` says otherwise (docs/modelling.md,
+    so it lands flat and stops rocking, ``e = 0`` unless ``restitution`` says otherwise (docs/guide/modelling.md,
     "Wide blocks"). With friction
     ``mu < tan(alpha)`` it slides before it can uplift and never rocks under horizontal floor motion.
     """

@@ -6,7 +6,7 @@ literal in the solvers.
 
 from __future__ import annotations
 
-#: Gravitational acceleration (m/s²), the value docs/modelling.md section 2 fixes for the project.
+#: Gravitational acceleration (m/s²), the value docs/guide/modelling.md section 2 fixes for the project.
 G: float = 9.81
 
 #: Ratio of the restitution coefficient used to the rigid-body one, ``e = 0.95 e_R``

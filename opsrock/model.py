@@ -13,9 +13,9 @@ table and the excitation lever ``Lambda``.
   it (:data:`DAMPER_LAWS`): by default (``damper="energy"``) so that a free passage keeps ``e²`` of
   the block's energy, as the rigid body's impact does; ``damper="entry_velocity"`` is the paper's
   Eq. 8 as printed, ``c_D = I_O (1 - e) |theta'_1| / (2 delta alpha)`` from the velocity on entering
-  and set on entry only, which under-dissipates small rocking (docs/modelling.md section 6);
+  and set on entry only, which under-dissipates small rocking (docs/guide/modelling.md section 6);
 * ``Lambda = m R cos(alpha)`` (``lever="housner"``, default) or the paper's printed
-  ``I_O cos(alpha) / R`` (``lever="printed"``); docs/modelling.md section 2 explains the choice.
+  ``I_O cos(alpha) / R`` (``lever="printed"``); docs/guide/modelling.md section 2 explains the choice.
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ from opsrock.limits import in_open_interval, int_at_least, one_of
 #: uplift threshold Eq. 4), ``"printed"`` = ``I_O cos(alpha) / R`` as printed in Eq. 6.
 LEVERS: tuple[str, ...] = ("housner", "printed")
 
-#: How the damper coefficient is set (docs/modelling.md section 6):
+#: How the damper coefficient is set (docs/guide/modelling.md section 6):
 #:
 #: * ``"energy"`` (default): at the start of every passage through the band (entering it, or turning
 #:   inside it), ``c_D`` is chosen so that a free passage with the band's restoring moment keeps
@@ -47,14 +47,14 @@ LEVERS: tuple[str, ...] = ("housner", "printed")
 DAMPER_LAWS: tuple[str, ...] = ("energy", "entry_velocity")
 
 #: Default damper band ``delta`` (fraction of alpha). Chosen by the model-form convergence
-#: study (validation/model_form): see docs/solvers.md.
+#: study (validation/model_form): see docs/guide/solvers.md.
 DEFAULT_DELTA: float = 0.005
 
-#: Default stiff-branch half-width ``theta_e / alpha``. docs/modelling.md section 4: 1e-6 alpha matched
+#: Default stiff-branch half-width ``theta_e / alpha``. docs/guide/modelling.md section 4: 1e-6 alpha matched
 #: the rigid-body first peak to 0.04 %, 1e-4 alpha gave 0.9 % high, 1e-2 alpha 10 % low.
 DEFAULT_THETA_E_RATIO: float = 1e-6
 
-#: Default number of table points per side beyond the stiff branch. docs/modelling.md section 4:
+#: Default number of table points per side beyond the stiff branch. docs/guide/modelling.md section 4:
 #: about 30 points give 0.1-0.2 % of ``m g R sin(alpha)``.
 DEFAULT_TABLE_POINTS: int = 30
 
@@ -188,7 +188,7 @@ class Seat:
     ``k_e = M_s(theta_e) / theta_e``. Once ``|theta_qs| + A < theta_e`` the oscillation is dropped and
     the block follows ``theta_qs`` (seated) until the floor can lift it. An integrator with
     ``omega_e h >> 1`` (OpenSees' Newmark) would otherwise keep the oscillation undamped and could pump
-    it out of the branch (docs/modelling.md section 4).
+    it out of the branch (docs/guide/modelling.md section 4).
 
     Parameters
     ----------

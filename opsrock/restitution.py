@@ -4,13 +4,13 @@ A block's restitution coefficient is ``e = f e_R``, Housner's ``e_R = 1 - 1.5 si
 factor ``f`` (:class:`opsrock.block.Block`). A blocks file may give ``f`` (``restitution_factor``), ``e``
 itself (``restitution``), or a **named law** (``restitution = "<law>"``):
 
-==================== ============================================================================
-``housner``          ``f = 1``: Housner's (1963) angular-momentum law, the rigid block's impact
-``paper``            ``f = 0.95``: the reproduced paper's choice (opsrock's default)
+===================== ===========================================================================
+``housner``           ``f = 1``: Housner's (1963) angular-momentum law, the rigid block's impact
+``paper``             ``f = 0.95``: the reproduced paper's choice (opsrock's default)
 ``colombo-limestone`` ``f`` = the median of measured/``e_R`` over the first ten impacts of 134
-                     free-rocking trials of limestone blocks (Colombo et al., shipped with opsrock;
-                     validation case ``experiments``), computed from the data when first used
-==================== ============================================================================
+                      free-rocking trials of limestone blocks (Colombo et al., shipped with opsrock;
+                      validation case ``experiments``), computed from the data when first used
+===================== ===========================================================================
 
 An uncertain restitution is a table: ``restitution_factor = { distribution = "normal", mean = ..., std
 = ..., low = ..., high = ..., seed = ... }`` (a normal distribution of ``f`` truncated to ``[low,

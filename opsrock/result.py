@@ -17,7 +17,7 @@ STATUSES: tuple[str, ...] = ("ok", "failed")
 #: Verdicts a result can carry (see :attr:`RockingResult.verdict`).
 VERDICTS: tuple[str, ...] = ("no_uplift", "safe", "overturned", "failed")
 
-#: Contact modes of a block on a floor with friction (docs/friction.md): both corners down and
+#: Contact modes of a block on a floor with friction (docs/guide/friction.md): both corners down and
 #: stuck, both down and slipping, one corner up on a stuck pivot, one up on a slipping pivot, none down.
 MODES: tuple[str, ...] = ("rest", "slide", "rock", "slide_rock", "flight")
 
@@ -51,7 +51,7 @@ class ContactSummary:
         The base's velocity relative to the floor (m/s, signed as ``slide_residual``) when the run ended;
         0 for a block at rest. Non-zero only for a block still sliding on the still floor after the
         excitation with a friction too small to stop it within ``max_free_time`` (none at all on a
-        frictionless floor): the run ends there with this velocity (docs/friction.md, the ending rule).
+        frictionless floor): the run ends there with this velocity (docs/guide/friction.md, the ending rule).
     energy : Mapping
         Energy balance of the run in J (per the block's mass): ``input_work`` (work of the floor's
         inertial forces), ``kinetic`` and ``potential`` at the end, ``friction_work`` (dissipated by

@@ -13,7 +13,7 @@ from opsrock.model import lever_coefficient, restoring_moment
 
 
 def test_block_derived_quantities_match_hand_computation():
-    # 2b = 0.6, 2h = 2.0: b = 0.3, h = 1.0 -> R = sqrt(1.09), alpha = atan(0.3) (docs/modelling.md s.2)
+    # 2b = 0.6, 2h = 2.0: b = 0.3, h = 1.0 -> R = sqrt(1.09), alpha = atan(0.3) (docs/guide/modelling.md s.2)
     b = Block(width=0.6, height=2.0, mass=80.0)
     assert b.R == pytest.approx(math.sqrt(1.09), rel=1e-15)
     assert b.alpha == pytest.approx(math.atan(0.3), rel=1e-15)
@@ -53,7 +53,7 @@ def test_block_refuses_non_numbers_and_takes_wide_blocks():
     with pytest.raises(TypeError, match="height"):
         Block(width=0.4, height=True)  # type: ignore[arg-type]
     # e_R = 1 - 1.5 sin²(alpha) <= 0 for alpha >= asin(sqrt(2/3)) = 0.9553 rad (width/height >= 1.414): a valid
-    # block (issue 32) that lands flat, e = 0 (docs/modelling.md, "Wide blocks")
+    # block (issue 32) that lands flat, e = 0 (docs/guide/modelling.md, "Wide blocks")
     wide = Block(width=3.0, height=2.0)
     assert wide.e_R == pytest.approx(1 - 1.5 * math.sin(math.atan(1.5)) ** 2, rel=1e-14) and wide.e_R < 0.0
     assert wide.lands_flat and wide.e == 0.0
@@ -91,7 +91,7 @@ def test_pulse_from_ratios_round_trips_and_derived_values():
     assert pulse.pfa_ratio(b) == pytest.approx(3.0, rel=1e-14)
     assert pulse.freq_ratio(b) == pytest.approx(2.5, rel=1e-14)
     assert pulse.T_p == pytest.approx(2 * math.pi / (2.5 * b.p), rel=1e-14)
-    # PFV conventions (docs/modelling.md s.2): harmonic amplitude PFA/omega_p, and the true peak 2 PFA/omega_p
+    # PFV conventions (docs/guide/modelling.md s.2): harmonic amplitude PFA/omega_p, and the true peak 2 PFA/omega_p
     assert pulse.PFV == pytest.approx(pulse.pfa / pulse.omega_p, rel=1e-15)
     assert pulse.pfv("peak") == pytest.approx(2 * pulse.pfa / pulse.omega_p, rel=1e-15)
     with pytest.raises(ValueError, match="convention"):
@@ -99,7 +99,7 @@ def test_pulse_from_ratios_round_trips_and_derived_values():
 
 
 def test_pulse_peak_velocity_equals_integral_of_acceleration():
-    # The floor velocity from rest peaks at T_p/2 at 2 PFA/omega_p (docs/modelling.md s.2); trapezoid
+    # The floor velocity from rest peaks at T_p/2 at 2 PFA/omega_p (docs/guide/modelling.md s.2); trapezoid
     # integration on 20001 points is accurate to ~1e-8 relative.
     pulse = OneSinePulse(pfa=3.0, omega_p=7.0)
     t = np.linspace(0.0, pulse.T_p, 20001)
@@ -155,7 +155,7 @@ def test_spring_table_follows_sine_law_and_has_stiff_branch():
     assert np.all(np.diff(theta) > 0)
     # tabulated points lie exactly on Eq. 5
     assert np.allclose(moment, restoring_moment(block, theta), rtol=0, atol=1e-12)
-    # the table reaches past pi/2 + alpha so an overturning block never runs off it (docs/modelling.md s.4)
+    # the table reaches past pi/2 + alpha so an overturning block never runs off it (docs/guide/modelling.md s.4)
     assert theta[-1] > math.pi / 2 + block.alpha and theta[0] < -(math.pi / 2 + block.alpha)
     # between tabulated points the chord error of a sine is <= spacing²/8 · m g R (second derivative <= 1)
     fine = np.linspace(model.theta_e(block), theta[-1], 20001)

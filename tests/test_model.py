@@ -1,6 +1,6 @@
 """The SDOF model's damper law (opsrock.model.DAMPER_LAWS): energy lost per impact against e².
 
-Findings pinned here (docs/modelling.md section 6):
+Findings pinned here (docs/guide/modelling.md section 6):
 
 1. The paper's Eq. 8 (``damper="entry_velocity"``) calibrates ``c_D`` on the velocity at the band
    edge, so it removes ``1 - e²`` of the energy only while the entry kinetic energy dwarfs the band's

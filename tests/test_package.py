@@ -1,5 +1,6 @@
 """The package as it is shipped: a wheel built from the checkout holds its data, and the installed
-package finds its scenes without the checkout.
+package finds its scenes without the checkout; its changelog has the current version and its citation file
+parses.
 
 `make test-wheel` (called by CI) installs such a wheel into a fresh venv and runs `opsrock run tiny`,
 `opsrock validate --quick` and `opsrock reproduce` from an empty folder; this test checks the wheel's
@@ -8,6 +9,7 @@ contents and the lookups in seconds, on every `make test`.
 
 from __future__ import annotations
 
+import re
 import shutil
 import subprocess
 import sys
@@ -15,6 +17,8 @@ import zipfile
 from pathlib import Path
 
 import pytest
+
+import opsrock
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = {"paper", "spectrum", "tiny", "fema-far-field-ida", "fema-far-field-ida-b3"}
@@ -73,3 +77,36 @@ def test_installed_package_finds_its_scenes_outside_the_checkout(wheel, tmp_path
     module, scenes, n_cases, blocks_path = proc.stdout.splitlines()
     assert module.startswith(str(unpacked)) and blocks_path.startswith(str(unpacked))
     assert scenes == repr(sorted(SCENES)) and n_cases == "18"
+
+
+def test_changelog_has_a_section_for_the_current_version():
+    # keep-a-changelog form: "## [X.Y.Z] - YYYY-MM-DD", newest first, after an "Unreleased" section
+    text = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    versions = re.findall(r"^## \[(\d+\.\d+\.\d+)\] - \d{4}-\d{2}-\d{2}$", text, flags=re.M)
+    assert versions and versions[0] == opsrock.__version__, versions
+    assert versions == sorted(versions, key=lambda v: tuple(map(int, v.split("."))), reverse=True)
+    assert text.index("## [Unreleased]") < text.index(f"## [{opsrock.__version__}]")
+
+
+def _cff_top_level(text: str) -> dict[str, str]:
+    """The top-level ``key: value`` pairs of a CITATION.cff (YAML is not a dependency: a key at column 0, its
+    scalar value unquoted; nested blocks give ``""``). Fails on a line that is neither."""
+    pairs = {}
+    for line in text.splitlines():
+        if not line.strip() or line.lstrip().startswith("#") or line[0] in " -":
+            continue
+        match = re.fullmatch(r"([a-z][a-z-]*):(?: (.*))?", line)
+        assert match, f"not a key: value line: {line!r}"
+        pairs[match.group(1)] = (match.group(2) or "").strip().strip('"')
+    return pairs
+
+
+def test_citation_cites_this_version_and_the_paper():
+    text = (ROOT / "CITATION.cff").read_text(encoding="utf-8")
+    cff = _cff_top_level(text)
+    assert cff["cff-version"] == "1.2.0"
+    assert {"message", "title", "authors", "type", "version", "preferred-citation"} <= set(cff)
+    assert cff["version"] == opsrock.__version__
+    # the paper opsrock reproduces, with the DOI the README and opsrock.published.liu_huang_liu_2023 give
+    assert "Seismic Overturning Fragility Analysis for Rigid Blocks Subjected to Floor Motions" in text
+    assert re.search(r"^  doi: 10\.3390/su15064945$", text, flags=re.M)

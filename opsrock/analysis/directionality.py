@@ -1,7 +1,7 @@
 """The directionality study: contents under both horizontal floor components, in three dimensions, beside the
 planar analysis along the weaker axis and pelicun's non-directional factor 1.2 (``opsrock directionality``).
 
-What it computes (docs/directionality.md):
+What it computes (docs/guide/directionality.md):
 
 * the items: FEMA P-58's nine unanchored items (:func:`opsrock.inventory.items.shipped_inventory`
   ``"fema-p58-nine"``) and the example office inventory (``"example"``), each a box of base ``width x depth``
@@ -52,7 +52,7 @@ from opsrock.limits import int_at_least
 from opsrock.solvers.registry import METHODS
 
 #: The record pairs of the full study, by their first component's name (FEMA P695 far-field): eight of the 22, of
-#: 20 to 44 s, chosen to fit the cost budget (a rigid3d case costs about 0.5-0.7 s; docs/directionality.md).
+#: 20 to 44 s, chosen to fit the cost budget (a rigid3d case costs about 0.5-0.7 s; docs/guide/directionality.md).
 DEFAULT_PAIRS: tuple[str, ...] = ("NORTHR_MUL009", "NORTHR_LOS000", "KOBE_NIS000", "KOBE_SHI000", "LANDERS_YER270",
                                   "CAPEMEND_RIO270", "SUPERST_B-POE270", "SFERN_PEL090")
 

@@ -9,7 +9,7 @@ the larger of the two (``pfv_max``), the non-directional value (``pfv_nd``: the 
 vector's length), and the velocity along the item's weaker axis (``pfv_weak``, the planar analysis's own).
 
 pelicun assesses a non-directional component with ``1.2 x max(PFV_1, PFV_2)`` (its ``NonDirectionalMultipliers``,
-default ``{"ALL": 1.2}``, docs/directionality.md). A planar fragility of median ``theta_p`` used that way
+default ``{"ALL": 1.2}``, docs/guide/directionality.md). A planar fragility of median ``theta_p`` used that way
 stands for a three-dimensional one of median ``theta_p / 1.2`` in ``pfv_max``; the factor the three-dimensional
 results ask for is ``factor_implied = theta_p / theta_3d(pfv_max)``.
 """

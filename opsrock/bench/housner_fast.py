@@ -1,4 +1,4 @@
-"""Benchmark of the fast rigid-body solver on a dense overturning spectrum (docs/modelling.md section 5).
+"""Benchmark of the fast rigid-body solver on a dense overturning spectrum (docs/guide/modelling.md section 5).
 
     opsrock bench --only housner_fast [--quick]
 
@@ -33,9 +33,9 @@ from opsrock.bench.reference import reference_solve
 from opsrock.block import Block
 from opsrock.excitations import OneSinePulse
 
-#: The four blocks of the dense-spectrum target (docs/modelling.md section 5), (width, height) in m.
+#: The four blocks of the dense-spectrum target (docs/guide/modelling.md section 5), (width, height) in m.
 BLOCKS = [Block(0.40, 2.20), Block(0.60, 2.00), Block(0.50, 1.15), Block(1.00, 2.40)]
-#: Spectrum ranges (docs/modelling.md section 3): omega_p/p and PFA/(g tan alpha).
+#: Spectrum ranges (docs/guide/modelling.md section 3): omega_p/p and PFA/(g tan alpha).
 FREQ_RANGE = (0.5, 10.0)
 PFA_RANGE = (1.0, 10.5)
 

@@ -1,11 +1,11 @@
 """Warnings a finished campaign gives about its own model: where no-slip rocking may not hold.
 
 A block without ``friction`` is solved as if its base could never slip. On a real floor it slides first
-if its friction coefficient is below ``b/h`` (it cannot start rocking: docs/friction.md, mode
+if its friction coefficient is below ``b/h`` (it cannot start rocking: docs/guide/friction.md, mode
 initiation), and friction caps the horizontal force that makes it rock whenever the floor's
 acceleration exceeds ``mu g``. The campaign cannot know the floor's ``mu``; it compares each block
 with :data:`ASSUMED_FRICTION` and says so when the no-slip answer is doubtful (the model-form map in
-docs/friction.md says where it matters for the fragility).
+docs/guide/friction.md says where it matters for the fragility).
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Pulse scenes: blocks x a grid of pulses, the ``[grid]`` and ``[pulse]`` tables of a scene.
 
-Layout (see ``docs/scenes.md``)::
+Layout (see ``docs/guide/scenes.md``)::
 
     [pulse]                             # optional, default shape "one-sine"
     shape = "one-sine"                  # rectangular, half-sine, one-sine, one-cosine, ricker

@@ -12,7 +12,7 @@ CPU-second) of the model asked whose measured numerical error meets the toleranc
 the model exists only in the SDOF model; a block with friction or a floor that moves vertically needs
 the rigid block with friction (solver ``friction``); a scene that turns a block in plan or gives a second
 horizontal component needs three dimensions: the box of solver ``rigid3d``, the only solver in plan (its
-verdicts checked against the planar solvers and Siconos, docs/three-dimensions.md; the evidence table has no
+verdicts checked against the planar solvers and Siconos, docs/guide/three-dimensions.md; the evidence table has no
 row of it yet, so ``tolerance`` is not checked against a measured error). The evidence is shipped with opsrock
 (``opsrock/data/evidence/solvers.csv``, derived from the validation cases' and benchmarks' outputs by
 ``tools/evidence.py``), and the choice with the evidence row goes into the campaign's manifest. With a

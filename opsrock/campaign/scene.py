@@ -9,7 +9,7 @@ non-positive or non-finite numbers, empty grids and unknown solvers or solver se
 (``grid.pfa_ratio.num``) and the offending value. The scenes shipped with opsrock are named without a
 path (:mod:`opsrock.data`: ``paper``, ``tiny``, ...).
 
-Scene file layout (see ``docs/scenes.md``)::
+Scene file layout (see ``docs/guide/scenes.md``)::
 
     name = "paper"                      # optional, default: file stem
     description = "..."                 # optional

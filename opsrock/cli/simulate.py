@@ -355,7 +355,7 @@ def _contact_text(result, out) -> str:
             f"rocking {c.time_rocking:.3g} s, sliding {c.time_sliding:.3g} s; slide peak {c.slide_max:.4g} m, "
             f"residual {c.slide_residual:.4g} m"
             + (f"; still sliding at {c.slip_velocity_end:.4g} m/s when the run ended (friction too small to stop "
-               "it within max_free_time; docs/friction.md)" if c.still_sliding else ""))
+               "it within max_free_time; docs/guide/friction.md)" if c.still_sliding else ""))
 
 
 __all__ = ["simulate"]

@@ -1,6 +1,6 @@
 """What every floor motion offers the solvers: the :class:`Excitation` protocol.
 
-Sign convention (docs/modelling.md section 2): a positive floor acceleration tips the block towards
+Sign convention (docs/guide/modelling.md section 2): a positive floor acceleration tips the block towards
 negative ``theta``. A vertical floor acceleration ``a_v`` (m/s², positive up), where an excitation
 carries one (:attr:`Pulse.vertical`, :attr:`Record.vertical`), adds to gravity: the block feels
 ``g + a_v``.

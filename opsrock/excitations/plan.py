@@ -1,7 +1,7 @@
 """Floor motion in plan: two horizontal components (and the first one's vertical motion) and the block's
 orientation in plan, for the three-dimensional solver ``rigid3d``.
 
-Frames (docs/three-dimensions.md)
+Frames (docs/guide/three-dimensions.md)
 ---------------------------------
 The *motion axes* 1 and 2 are those of the records (a building's two horizontal directions; a recording's two
 components). The *block frame* has ``x`` along the block's width (``2b``), ``y`` along its depth (``2d``) and

@@ -20,7 +20,7 @@ half-sine of the same duration (so ``p t_1 = pi / (omega_p / p)``); for the symm
 is the frequency at which its Fourier amplitude peaks. The Ricker wavelet has infinite support; it is
 cut at ``|t - t_0| = 1.6 T_p``, where it is below ``6e-10 PFA``.
 
-Sign convention (docs/modelling.md section 2): a positive floor acceleration tips the block towards
+Sign convention (docs/guide/modelling.md section 2): a positive floor acceleration tips the block towards
 negative ``theta``.
 """
 
@@ -38,7 +38,7 @@ from opsrock.limits import check, one_of, positive_finite, scaled_input
 if TYPE_CHECKING:
     from opsrock.block import Block
 
-#: Peak-floor-velocity conventions for IM3 and IM8 (docs/modelling.md section 2).
+#: Peak-floor-velocity conventions for IM3 and IM8 (docs/guide/modelling.md section 2).
 #: ``"amplitude"``: the harmonic velocity amplitude ``PFA / omega_p``, which the paper's
 #: Table 3 medians fit; ``"peak"``: the true peak of the floor velocity from rest (for the one-sine
 #: pulse ``2 PFA / omega_p``, reached at ``t = T_p / 2``).

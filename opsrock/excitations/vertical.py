@@ -1,6 +1,6 @@
 """Vertical floor motion beside a horizontal record: from a second record, or synthetic.
 
-A block feels ``g + a_v(t)`` (docs/friction.md). The FEMA P695 record sets hold two horizontal
+A block feels ``g + a_v(t)`` (docs/guide/friction.md). The FEMA P695 record sets hold two horizontal
 components per recording and no vertical one; where a recorded vertical motion is not at hand, opsrock
 builds a synthetic one from the recording's *other* horizontal component, scaled by
 :data:`VERTICAL_TO_HORIZONTAL`:

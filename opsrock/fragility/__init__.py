@@ -4,7 +4,7 @@ The input is a pandas DataFrame of cases, one row a (block, pulse) simulation, w
 columns of the campaign's ``cases.csv`` (``status``, ``rocked``, ``overturned``, ``IM1`` ..
 ``IM9``, ...). No solver runs here.
 
-Choices (docs/modelling.md section 2 "Fragility layer"; each is where the paper is silent or loose):
+Choices (docs/guide/modelling.md section 2 "Fragility layer"; each is where the paper is silent or loose):
 
 * **Which cases count.** Only rocking cases (``status == "ok"`` and ``rocked``) enter any
   statistic: Eq. 13 divides by "the total number of rocking simulations". Cases below the

@@ -1,7 +1,7 @@
 """The nine dimensionless intensity measures of the paper's Table 1.
 
 Every IM is declared once, in :data:`IMS`, with its formula, physical meaning, the paper's
-reference and its orientation. The formulas (Liu, Huang & Liu 2023, Table 1; docs/modelling.md
+reference and its orientation. The formulas (Liu, Huang & Liu 2023, Table 1; docs/guide/modelling.md
 section 2), with ``PFA`` in m/s², ``omega_p`` and ``p`` in rad/s, ``R`` in m:
 
 ======  ==============================================  ======================================

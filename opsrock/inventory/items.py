@@ -1,6 +1,6 @@
 """The inventory: one row per item type, as loss assessors keep them (CSV, or TOML), read into
 :class:`Inventory` (:func:`read_inventory`); the FEMA P-58 nine and an example are shipped inventories
-(:func:`shipped_inventory`). ``docs/inventory.md`` describes the file formats.
+(:func:`shipped_inventory`). ``docs/guide/inventory.md`` describes the file formats.
 
 Columns (SI): ``id, description, width, depth, height`` (m; ``width`` along motion direction 1, ``depth``
 along direction 2), optional ``mass`` (kg), ``cm_height`` (m), ``radius_of_gyration`` (m), ``friction``
@@ -642,7 +642,7 @@ def read_inventory(path: str | Path, *, confirm: bool = False) -> Inventory:
     Parameters
     ----------
     path : str or Path
-        The file (formats: the module docstring, ``docs/inventory.md``).
+        The file (formats: the module docstring, ``docs/guide/inventory.md``).
     confirm : bool
         True: dimensions beyond :data:`opsrock.limits.PLAUSIBLE` ``"block_size"`` are accepted (the user
         confirmed them, ``--accept-implausible``).

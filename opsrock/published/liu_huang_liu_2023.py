@@ -6,7 +6,7 @@ and Table 3 (Section 4.5) are copied digit for digit from the paper's tables (no
 added). Table 3's CV column is the paper's ``beta / mu`` in percent; it is kept as printed,
 not recomputed (recomputing from the 2-decimal mu and beta differs in the last digit).
 
-Comparison caveat (docs/modelling.md section 3): the paper's four blocks are not listed, so these
+Comparison caveat (docs/guide/modelling.md section 3): the paper's four blocks are not listed, so these
 numbers cannot be matched one for one; what carries over is the ranking of the IMs and the
 dimensionless medians of the IMs whose threshold is nearly geometry-free. IM3 and IM8 use
 the paper's PFV convention, ``PFV = PFA / omega_p`` ("amplitude").

@@ -2,7 +2,7 @@
 rigid-plastic sliding block, for a block on a floor with Coulomb friction that cannot rock.
 
 A block whose friction coefficient is below its width-to-height ratio (``mu < b / h``) never tips
-while it slides (docs/friction.md, slide): it moves as a rigid-plastic body.
+while it slides (docs/guide/friction.md, slide): it moves as a rigid-plastic body.
 Relative to the floor, while the base slips in the direction ``sigma``, its displacement ``u`` obeys
 ``u'' = -a(t) - sigma mu g_v``, ``g_v = g + a_v``; it sticks again when ``u' = 0`` and ``|a| <= mu g_v``.
 A constant vertical floor acceleration ``a_v`` only changes the friction capacity, ``g -> g_v``.
@@ -11,7 +11,7 @@ A constant vertical floor acceleration ``a_v`` only changes the friction capacit
   single rectangular pulse, ``u_m = V² / (2 g N) (1 - N / A)`` with the pulse's velocity ``V = a_p t_1``,
   its acceleration ``A g = a_p`` and the yield acceleration ``N g = mu g_v`` (here with ``g -> g_v``).
   Expanded: ``u_m = (a_p - mu g_v) t_1² a_p / (2 mu g_v)``. We quote the relation as it is usually cited
-  (the paper itself was not available to us); it is re-derived in docs/friction.md (rigid-plastic sliding) and checked
+  (the paper itself was not available to us); it is re-derived in docs/guide/friction.md (rigid-plastic sliding) and checked
   against direct integration in ``tests/published/test_friction_closed_forms.py``.
 * **Half-sine pulse** ``a = a_p sin(omega t)`` for ``0 <= t <= pi / omega``: derived here (not in
   Newmark's paper). With ``r = mu g_v / a_p < 1`` and ``psi = asin(r)`` (the slip starts at

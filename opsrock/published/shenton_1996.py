@@ -6,7 +6,7 @@ What we could read of the paper is its abstract: a slide-rock mode can start fro
 when the friction coefficient exceeds the width-to-height ratio but stays below a critical value that
 depends on the floor acceleration; the friction that pure rocking needs grows with the acceleration.
 We could not read the paper's own inequalities. The criteria below are therefore derived here (from
-the first instant of each mode, docs/friction.md: leaving rest), and were checked
+the first instant of each mode, docs/guide/friction.md: leaving rest), and were checked
 against those qualitative statements and against an independent Moreau-Jean time stepper with contact
 and friction at impulse level (:mod:`opsrock.solvers.moreau_jean`, ``tests/solvers/test_moreau_jean.py``); they
 are not a transcription of Shenton's equations.

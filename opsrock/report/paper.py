@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from opsrock.validation.experiments import Headline
 
 #: IMs whose overturning threshold is nearly geometry-free, so their dimensionless medians can
-#: be compared with the paper's even though its blocks are not listed (docs/modelling.md section 3).
+#: be compared with the paper's even though its blocks are not listed (docs/guide/modelling.md section 3).
 GEOMETRY_FREE_IMS: tuple[str, ...] = ("IM3", "IM4", "IM6", "IM7", "IM8", "IM9")
 
 
@@ -178,7 +178,7 @@ def _header(gate, solver: str, pfv_convention: str, timings: Mapping[str, float]
         "",
         f"Solver: **{solver}** (the paper's equivalent SDOF model"
         + (" built in OpenSeesPy" if solver == "opensees" else "") + "), excitation lever "
-        "`Lambda = m R cos(alpha)` (docs/modelling.md section 2: the printed `I_O cos(alpha)/R` would uplift "
+        "`Lambda = m R cos(alpha)` (docs/guide/modelling.md section 2: the printed `I_O cos(alpha)/R` would uplift "
         "blocks at 0.75 g tan(alpha)); PFV convention of IM3 and IM8: "
         f"**{pfv_convention}** (`PFA/omega_p`, the paper's).",
         "",
@@ -314,7 +314,7 @@ def _geometry_free_medians(table3: pd.DataFrame) -> list[str]:
                         "mle_mu_ours": float(row["mle_mu"].iloc[0])})
     if not med:
         return []
-    return ["**Medians of the nearly geometry-free IMs** (docs/modelling.md section 3: the paper's blocks are not "
+    return ["**Medians of the nearly geometry-free IMs** (docs/guide/modelling.md section 3: the paper's blocks are not "
             "listed, so these are the numbers that can be compared):", "", markdown_table(pd.DataFrame(med)), ""]
 
 
@@ -323,7 +323,7 @@ def _differences(cases: pd.DataFrame) -> list[str]:
     return [
         "## 6. What differs from the paper, and why",
         "",
-        "- The four blocks and the exact pulse grid are the project's reconstruction (docs/modelling.md section 3); "
+        "- The four blocks and the exact pulse grid are the project's reconstruction (docs/guide/modelling.md section 3); "
         "Table 2 ranges and Table 3 medians therefore differ in the second digit even where the method is the same.",
         f"- IM8 = e_R^4 IM3: the project's blocks span e_R^4 from {e_r4.min():.2f} to {e_r4.max():.2f} "
         "(the paper's IM8/IM3 medians imply about 0.8: mostly slender furniture), so IM8 spreads one "

@@ -40,9 +40,9 @@ class SolverInfo:
     model : str
         What it solves, one of :data:`MODELS`: ``"rigid"`` (the rigid-body equation, Eq. 1-3),
         ``"sdof"`` (the paper's equivalent SDOF model, Eq. 5-8) or ``"friction"`` (the rigid block with
-        Coulomb friction under horizontal and vertical floor motion, docs/friction.md) or ``"rigid3d"`` (the
+        Coulomb friction under horizontal and vertical floor motion, docs/guide/friction.md) or ``"rigid3d"`` (the
         rigid box on four base corners with isotropic Coulomb friction under two horizontal components and
-        a vertical one, docs/three-dimensions.md).
+        a vertical one, docs/guide/three-dimensions.md).
     friction : bool
         Models a base that slips (``Block.friction``); False: a block with friction is refused.
     vertical : bool

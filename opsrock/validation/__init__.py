@@ -15,7 +15,7 @@ from typing import Callable, Sequence
 
 from opsrock.errors import InputError
 
-#: The cases, in the order the evidence builds up (docs/modelling.md section 5).
+#: The cases, in the order the evidence builds up (docs/guide/modelling.md section 5).
 CASES: tuple[str, ...] = (
     "closed_forms",      # 1. closed forms, all solvers
     "sdof_agreement",    # 2. OpenSees against the scipy SDOF solver (same model)

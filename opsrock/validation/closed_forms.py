@@ -1,5 +1,5 @@
-"""Validation case ``closed_forms`` (docs/modelling.md section 5): every solver against the closed forms
-of free and forced rocking (paper Eq. 1-4, 9; docs/modelling.md section 2).
+"""Validation case ``closed_forms`` (docs/guide/modelling.md section 5): every solver against the closed forms
+of free and forced rocking (paper Eq. 1-4, 9; docs/guide/modelling.md section 2).
 
 Checks, each for ``housner``, ``sdof`` and ``opensees``:
 
@@ -52,7 +52,7 @@ THETA0_RATIO: float = 0.5
 #: Tolerances (relative unless said), per check and solver, with their reasons:
 #: * housner: the event-driven exact solver at rtol 1e-10 -> 1e-7 everywhere;
 #: * sdof: the 30-point spring table misrepresents sin(alpha - theta) by up to ~0.2 %
-#:   (docs/modelling.md section 4), which shifts the fall time by about as much (measured 3e-4) -> 2e-3; the energy
+#:   (docs/guide/modelling.md section 4), which shifts the fall time by about as much (measured 3e-4) -> 2e-3; the energy
 #:   ratio over the band differs from e² by O(delta) because gravity keeps acting inside the
 #:   band (measured 0.3 % for delta = 0.005) -> 0.02 relative; energy (with the table's own
 #:   potential) is conserved to the integrator tolerance -> 1e-7;

@@ -1,4 +1,4 @@
-"""Validation case ``model_form`` (docs/modelling.md section 5): the paper's SDOF model (Eq. 5-8) against
+"""Validation case ``model_form`` (docs/guide/modelling.md section 5): the paper's SDOF model (Eq. 5-8) against
 the exact rigid-body equation (Eq. 1-3) as the damper band ``delta`` and the stiff branch
 ``theta_e`` shrink, for both excitation levers.
 
@@ -24,7 +24,7 @@ from opsrock.block import Block
 from opsrock.excitations import OneSinePulse
 from opsrock.solvers import housner, sdof
 
-#: The four project blocks (width, height) in m, slender to stocky (docs/modelling.md section 3).
+#: The four project blocks (width, height) in m, slender to stocky (docs/guide/modelling.md section 3).
 BLOCKS: tuple[tuple[float, float], ...] = ((0.40, 2.20), (0.60, 2.00), (0.50, 1.15), (1.00, 2.40))
 
 #: Damper bands studied (fraction of alpha), at the default theta_e_ratio 1e-6.

@@ -2,7 +2,7 @@
 
 Both solve the *same* equations (Eq. 6-8: tabulated spring, discrete damper, same lever), so
 any difference is an implementation or discretisation error of the OpenSees model. Targets
-(docs/modelling.md section 5): ``|d theta_max| / alpha <= 1 %`` for at least 99 % of the cases that do not
+(docs/guide/modelling.md section 5): ``|d theta_max| / alpha <= 1 %`` for at least 99 % of the cases that do not
 overturn, the same verdict for at least 99 % of all cases, every disagreement listed with its
 distance to the overturning boundary.
 """
@@ -25,10 +25,10 @@ from opsrock.data import scene_file
 from opsrock.excitations import OneSinePulse
 from opsrock.solvers import simulate
 
-#: Repository scene of the paper's 400 pulses (docs/modelling.md section 3).
+#: Repository scene of the paper's 400 pulses (docs/guide/modelling.md section 3).
 PAPER_SCENE = scene_file("paper")
 
-#: Agreement targets (docs/modelling.md section 5).
+#: Agreement targets (docs/guide/modelling.md section 5).
 THETA_TOLERANCE = 0.01  # |d theta_max| / alpha
 THETA_TARGET_RATE = 0.99  # share of cases safe in both within THETA_TOLERANCE
 VERDICT_TARGET_RATE = 0.99  # share of all cases with the same verdict
@@ -130,7 +130,7 @@ def compare(
 
 
 def summarize(df: pd.DataFrame) -> Agreement:
-    """Agreement figures of a :func:`compare` table against the targets of docs/modelling.md section 5."""
+    """Agreement figures of a :func:`compare` table against the targets of docs/guide/modelling.md section 5."""
     failed = (df["verdict_a"] == "failed") | (df["verdict_b"] == "failed")
     safe = (df["verdict_a"] == "safe") & (df["verdict_b"] == "safe")
     d = df.loc[safe, "dtheta_over_alpha"].to_numpy()

@@ -23,7 +23,7 @@ from opsrock.campaign.cases import PulseCase
 from opsrock.solvers import simulate
 from opsrock.validation.sdof_agreement import paper_cases
 
-#: Error below which a configuration is called accurate (docs/modelling.md section 5: within 0.5 % of alpha).
+#: Error below which a configuration is called accurate (docs/guide/modelling.md section 5: within 0.5 % of alpha).
 ACCURACY_TARGET = 0.005
 
 #: Converged references (solver, settings) per model.

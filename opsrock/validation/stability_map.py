@@ -49,7 +49,7 @@ from opsrock.solvers import simulate
 #: Cell classes, from best to worst for a user (a failed run is honest; a wrong one is not).
 CLASSES: tuple[str, ...] = ("accurate", "converged_but_wrong", "failed", "unstable")
 
-#: Accuracy tolerance on ``|theta_max - theta_max,ref| / alpha`` (docs/modelling.md section 5: 5 % of
+#: Accuracy tolerance on ``|theta_max - theta_max,ref| / alpha`` (docs/guide/modelling.md section 5: 5 % of
 #: alpha separates "usable for a fragility verdict" from "wrong"; the paper's fragility only uses
 #: the overturning verdict, which a 5 % error changes only for pulses within 5 % of the boundary).
 ACCURACY_TOLERANCE: float = 0.05

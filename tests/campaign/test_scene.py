@@ -56,7 +56,7 @@ def write_scene(tmp_path: Path, scene: str = SCENE_TOML, blocks: str = BLOCKS_TO
 
 # --- the shipped models -----------------------------------------------------------------------
 def test_shipped_blocks_span_the_design_ranges():
-    # docs/modelling.md section 3: alpha about 0.18-0.42 rad, R about 0.6-1.3 m; the values these blocks were chosen to span
+    # docs/guide/modelling.md section 3: alpha about 0.18-0.42 rad, R about 0.6-1.3 m; the values these blocks were chosen to span
     # (alpha = atan(b/h), R = hypot(b, h)) to the 3 decimals they are quoted with.
     specs = {s.name: s.block for s in load_blocks(MODELS / "blocks.toml")}
     assert list(specs) == ["bookcase", "wardrobe", "medicine_cabinet", "equipment_rack"]
@@ -77,7 +77,7 @@ def test_shipped_blocks_span_the_design_ranges():
 
 
 def test_paper_scene_is_the_regular_10x10_grid():
-    # docs/modelling.md section 3: omega_p/p 0.5..10, PFA/(g tan alpha) 1.0..10.5, ten equal steps of
+    # docs/guide/modelling.md section 3: omega_p/p 0.5..10, PFA/(g tan alpha) 1.0..10.5, ten equal steps of
     # 9.5/9 each; 4 blocks x 100 = 400 cases, of which the 40 at ratio 1.0 cannot uplift.
     scene = load_scene(MODELS / "scenes" / "paper.toml")
     assert scene.solver == "opensees" and scene.pfv_convention == "amplitude"

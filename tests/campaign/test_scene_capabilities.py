@@ -2,7 +2,7 @@
 combination: each solver x a block that slips x a vertical floor motion x the restitution (default factor,
 Housner's, ``e`` set, a distribution) x ``end_time`` (free rocking's span) -- loading only, nothing solved.
 
-The expectations are written out here from what each solver models (docs/solvers.md), not read from the
+The expectations are written out here from what each solver models (docs/guide/solvers.md), not read from the
 registry, so that a declaration that drifts from what the solvers do fails this test.
 """
 

@@ -21,7 +21,7 @@ def test_simulate_json_has_the_documented_keys(solver, capsys):
     assert rc == 0
     assert REQUIRED_KEYS <= out.keys()
     assert out["solver"] == solver and out["status"] == "ok"
-    # alpha = atan(0.2/1.1) for this block (docs/modelling.md s.2)
+    # alpha = atan(0.2/1.1) for this block (docs/guide/modelling.md s.2)
     assert out["alpha"] == pytest.approx(0.17985349979247828, rel=1e-12)
     assert out["theta_max_over_alpha"] == pytest.approx(out["theta_max"] / out["alpha"], rel=1e-12)
 
@@ -79,7 +79,7 @@ def test_bad_arguments_exit_2_with_one_line(args, needle, capsys):
 @pytest.mark.parametrize("args", [["simulate", "--width", "-1", "--height", "2", "--pfa", "1", "--freq", "1"],
                                   ["simulate", "--width", "3", "--height", "2", "--pfa", "1", "--freq", "1"]])
 def test_console_entry_point_exits_2_without_traceback(args):
-    # The real process: exit status 2, one line on stderr, no traceback (docs/modelling.md section 1).
+    # The real process: exit status 2, one line on stderr, no traceback (docs/guide/modelling.md section 1).
     proc = run_opsrock(args)
     assert proc.returncode == 2
     lines = [ln for ln in proc.stderr.splitlines() if ln.strip() and "Process 0 Terminating" not in ln]

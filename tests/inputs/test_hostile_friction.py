@@ -4,7 +4,7 @@ The table: bad friction values and floor motions no floor makes, on ``simulate``
 refused with exit 2 and one line naming the argument (the promise of ``_hostile``). Then valid inputs that
 must END with a stated result: frictionless and near-frictionless blocks (``--friction 0``, ``1e-320``,
 with a vertical motion, under ``threshold``, in a blocks file run by ``opsrock run``), a block still
-sliding when its floor stops, and a short free flight (docs/friction.md: the ending rule, the flight rule).
+sliding when its floor stops, and a short free flight (docs/guide/friction.md: the ending rule, the flight rule).
 """
 
 from __future__ import annotations

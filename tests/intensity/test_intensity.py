@@ -18,7 +18,7 @@ from opsrock.intensity import (
     intensity_measures_array,
 )
 
-# Hand computation for one block and one pulse (g = 9.81 m/s², docs/modelling.md section 2):
+# Hand computation for one block and one pulse (g = 9.81 m/s², docs/guide/modelling.md section 2):
 # block 0.4 m x 1.6 m: b = 0.2, h = 0.8, tan(alpha) = 0.25,
 #   R = sqrt(0.04 + 0.64) = 0.824621 m, p = sqrt(3 * 9.81 / (4 * 0.824621)) = 2.987018 rad/s,
 #   sin²(alpha) = 0.0625 / 1.0625 = 0.0588235, e_R = 1 - 1.5 * 0.0588235 = 0.9117647;

@@ -3,7 +3,7 @@
 (:mod:`opsrock.published.newmark_1965`).
 
 References are independent of the code under test: algebraic identities of ``mu_crit`` derived in
-docs/friction.md (leaving rest; checked with sympy in the research note behind it), the region table and its seven
+docs/guide/friction.md (leaving rest; checked with sympy in the research note behind it), the region table and its seven
 verification points of that section, and a direct numerical integration (scipy ``solve_ivp`` with a
 terminal event at the end of the slip) of the rigid-plastic equation ``u'' = -a(t) + mu g_v``.
 """
@@ -31,14 +31,14 @@ BETAS = (0.1, 0.2, 0.3, 0.5, 1.0)
 
 @pytest.mark.parametrize("beta", BETAS)
 def test_mu_crit_equals_beta_at_the_uplift_threshold(beta):
-    """mu_crit(beta, beta) = beta: at lambda = beta rocking needs exactly b/h (docs/friction.md, leaving rest). The
+    """mu_crit(beta, beta) = beta: at lambda = beta rocking needs exactly b/h (docs/guide/friction.md, leaving rest). The
     expression is rational, so only round-off separates the two (1e-15 relative)."""
     assert sh.mu_crit(beta, beta) == pytest.approx(beta, rel=1e-15)
 
 
 @pytest.mark.parametrize("beta", BETAS)
 def test_mu_crit_grows_with_lambda_at_the_derived_rate(beta):
-    """d mu_crit / d lambda = 4 (1 + beta²)² / (4 + beta² + 3 lambda beta)² > 0 (docs/friction.md, leaving rest).
+    """d mu_crit / d lambda = 4 (1 + beta²)² / (4 + beta² + 3 lambda beta)² > 0 (docs/guide/friction.md, leaving rest).
     A central difference with step 1e-5 has truncation error ~1e-10 relative and round-off ~1e-11, so
     1e-8 relative separates a wrong formula from a right one."""
     lams = np.linspace(0.0, 5.0, 26)[1:]
@@ -71,7 +71,7 @@ def test_mu_crit_lies_between_beta_and_lambda(beta):
         assert beta < m < lam
 
 
-#: The seven verification points of docs/friction.md, point checks (beta = 0.3): (lambda, mu, mode); the modes were
+#: The seven verification points of docs/guide/friction.md, point checks (beta = 0.3): (lambda, mu, mode); the modes were
 #: also found by the Moreau-Jean prototype there.
 SHENTON_POINTS = [(0.5, 0.25, "slide"), (0.5, 0.32, "slide_rock"), (0.5, 0.38, "rock"), (0.25, 0.20, "slide"),
                   (0.25, 0.28, "rest"), (1.0, 0.45, "slide_rock"), (1.0, 0.55, "rock")]
@@ -167,7 +167,7 @@ def test_newmark_rectangular_equals_direct_integration(a_p_g, t1, mu, a_v_g):
 
 
 def test_newmark_rectangular_documented_values():
-    """The values of docs/friction.md, rigid-plastic sliding (closed form and a Moreau-Jean prototype agreed
+    """The values of docs/guide/friction.md, rigid-plastic sliding (closed form and a Moreau-Jean prototype agreed
     to 7 digits)."""
     assert nm.rectangular_slide(0.5 * G, 0.3, 0.2) == pytest.approx(0.3310875, rel=1e-7)
     assert nm.rectangular_slide(0.5 * G, 0.3, 0.2, -0.3 * G) == pytest.approx(0.5675786, rel=1e-6)
@@ -190,7 +190,7 @@ def test_newmark_half_sine_equals_direct_integration(a_p_g, f_hz, mu, a_v_g, cas
 
 
 def test_newmark_half_sine_case_boundary():
-    """Case B holds above r = mu g_v / a_p = 0.7246 (docs/friction.md, rigid-plastic sliding) and the two
+    """Case B holds above r = mu g_v / a_p = 0.7246 (docs/guide/friction.md, rigid-plastic sliding) and the two
     cases meet there continuously: the slide just above and below the boundary differs by O(dr) (1e-6
     relative for dr = 1e-9 r)."""
     r_b = nm.case_b_ratio()

@@ -8,7 +8,7 @@ Reference values and tolerances:
   error on the peak is below 1e-8 alpha, :class:`HousnerFastSettings`): tolerance 1e-7 alpha;
 * closed forms (rigid-plastic sliding, :mod:`opsrock.published.newmark_1965`; uplift threshold,
   Housner's rectangular pulse with ``g + a_v``, the critical friction of mode initiation, the impact
-  law) are derived in docs/friction.md and validation/friction/README.md; each tolerance is stated
+  law) are derived in docs/guide/friction.md and validation/friction/README.md; each tolerance is stated
   where it is used;
 * the energy balance is an identity of the equations: what is left is the integrator's
   truncation (zero for the piecewise-polynomial sliding equations, O(h^4) for rocking).
@@ -170,7 +170,7 @@ def test_first_mode_from_rest_follows_the_critical_friction(lam, mu, expected):
 
 
 def test_critical_friction_properties():
-    """The closed form's identities (docs/friction.md): mu_crit(beta, beta) = beta; between beta and
+    """The closed form's identities (docs/guide/friction.md): mu_crit(beta, beta) = beta; between beta and
     lambda for lambda > beta; 3 beta / (4 + beta²) at lambda = 0."""
     for beta in (0.15, 0.3, 0.6):
         assert critical_friction(beta, beta, 3.0) == pytest.approx(beta, rel=1e-14)
@@ -196,7 +196,7 @@ def test_sticking_impact_is_housners(b_over_h):
 @pytest.mark.parametrize("b_over_h, mu, ratio", [(0.2, 0.05, 0.84071), (0.2, 0.0, 0.79310), (0.5, 0.12, 0.37363)])
 def test_slipping_impact_ratio(b_over_h, mu, ratio):
     """Below mu = 3 beta / (4 + beta²) the striking corner slips: theta'+/theta'- =
-    (1 - 3 sa² + 3 mu sa ca) / (1 + 3 sa² - 3 mu sa ca) (docs/friction.md); the values were also
+    (1 - 3 sa² + 3 mu sa ca) / (1 + 3 sa² - 3 mu sa ca) (docs/guide/friction.md); the values were also
     obtained by an independent Moreau-Jean step (5 digits printed: tolerance 1e-5)."""
     alpha = math.atan(b_over_h)
     sa, ca = math.sin(alpha), math.cos(alpha)
@@ -229,7 +229,7 @@ def test_impact_never_creates_energy():
 def test_slide_rock_equations_against_newton_euler():
     """Slide-rock under a constant step, followed for a short time by the solver, against scipy's
     solve_ivp on the Newton-Euler equations written as a 3x3 linear system in (x_O'', theta'', N)
-    (docs/friction.md): rotation and slip agree to 1e-8 relative (RK4 at 0.02/p against rtol 1e-12)."""
+    (docs/guide/friction.md): rotation and slip agree to 1e-8 relative (RK4 at 0.02/p against rtol 1e-12)."""
     block = Block(0.6, 2.0, friction=0.32)
     a_h, t_end = 0.5 * G, 0.08
     R, alpha, m = block.R, block.alpha, 1.0
@@ -259,7 +259,7 @@ def test_slide_rock_equations_against_newton_euler():
 
 def test_slide_rock_rotation_does_not_depend_on_a_h():
     """In slide-rock the only horizontal force on the block is friction: theta'' is the same for any
-    a_h at a given state (docs/friction.md)."""
+    a_h at a given state (docs/guide/friction.md)."""
     out = [accelerations(SLIDE_ROCK, 1.0, 1.0, 0.01, 0.2, 0.1, ah, 1.1, 0.3, 0.35, 3.0)[0] for ah in (-2.0, 0.0, 0.7)]
     assert out[0] == out[1] == out[2]
 

@@ -1,5 +1,5 @@
 """The friction solver on frictionless and near-frictionless floors, its ending rule, and free flight,
-against closed forms (docs/friction.md: the ending rule, frictionless floors, the flight rule)."""
+against closed forms (docs/guide/friction.md: the ending rule, frictionless floors, the flight rule)."""
 
 from __future__ import annotations
 

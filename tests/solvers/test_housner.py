@@ -1,4 +1,4 @@
-"""The exact rigid-body solver against closed forms (paper Eq. 1-4, 9; docs/modelling.md section 2)."""
+"""The exact rigid-body solver against closed forms (paper Eq. 1-4, 9; docs/guide/modelling.md section 2)."""
 
 import math
 

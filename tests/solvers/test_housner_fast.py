@@ -22,12 +22,12 @@ from opsrock.excitations import OneSinePulse
 from opsrock.solvers import housner_fast as hf
 from opsrock.solvers import simulate
 
-#: The four blocks of the dense-spectrum benchmark (docs/modelling.md section 5), (width, height) in m.
+#: The four blocks of the dense-spectrum benchmark (docs/guide/modelling.md section 5), (width, height) in m.
 BLOCKS = [Block(0.40, 2.20), Block(0.60, 2.00), Block(0.50, 1.15), Block(1.00, 2.40)]
 
 
 def _energy(alpha: float, p: float, theta: np.ndarray, theta_dot: np.ndarray) -> np.ndarray:
-    """Rocking energy per m g R with a = 0 (docs/modelling.md section 2):
+    """Rocking energy per m g R with a = 0 (docs/guide/modelling.md section 2):
     ``(theta'/p)²/2 + cos(alpha - |theta|) - cos(alpha)``, written here independently."""
     return 0.5 * (theta_dot / p) ** 2 + np.cos(alpha - np.abs(theta)) - math.cos(alpha)
 
@@ -123,7 +123,7 @@ def test_energy_ratio_e_squared_per_impact(block):
 
 @pytest.mark.parametrize("block", BLOCKS, ids=lambda b: f"alpha={b.alpha:.3f}")
 def test_energy_conserved_between_impacts(block):
-    """With a = 0 the energy is constant between impacts (docs/modelling.md section 2). Between the
+    """With a = 0 the energy is constant between impacts (docs/guide/modelling.md section 2). Between the
     start and the first impact, and between the first two impacts, it must stay within
     1e-9 of its value (relative to the barrier 1 - cos alpha): RK4's energy drift at the
     default step is about 1e-11 here, so a wrong sign or lever would fail by orders."""
@@ -359,13 +359,13 @@ def test_matches_housner_solver():
 
 
 # =============================================================================================
-# Dense-spectrum timing (docs/modelling.md section 5)
+# Dense-spectrum timing (docs/guide/modelling.md section 5)
 # =============================================================================================
 
 
 @pytest.mark.slow
 def test_dense_spectrum_40000_cases_under_60_s():
-    """4 blocks x 100 x 100 pulses in under 60 s on the project's 2-core machine (docs/modelling.md section 5),
+    """4 blocks x 100 x 100 pulses in under 60 s on the project's 2-core machine (docs/guide/modelling.md section 5),
     all finishing without failure. Measured about 2-5 s (loaded machine)."""
     hf.solve_grid(0.2, 0.9, 2.0, 2.0)  # compile / load the cache outside the timing
     res = hf.solve_pulses(BLOCKS, np.linspace(1.0, 10.5, 100), np.linspace(0.5, 10.0, 100))

@@ -30,7 +30,7 @@ def _loaded(**kw) -> Block:
 
 
 def test_registry_declares_every_solver():
-    # the audit of each solver (docs/solvers.md): every one takes R, alpha, p, I_O, e_R from the block, and the
+    # the audit of each solver (docs/guide/solvers.md): every one takes R, alpha, p, I_O, e_R from the block, and the
     # kernels that wrote a homogeneous block's inertia (friction, moreau_jean, the OpenSees lumped build) take
     # kappa = R² / r² (opsrock.solvers.common.inertia_ratio)
     assert set(HONOURING) == {"opensees", "sdof", "housner", "housner_fast", "friction", "moreau_jean"}

@@ -4,7 +4,7 @@ Every reference is independent of the solver: Newmark's sliding block and its ha
 (:mod:`opsrock.published.newmark_1965`, themselves checked against direct integration in
 ``tests/published/test_friction_closed_forms.py``), the static uplift threshold ``a_h = (g + a_v) tan(alpha)``,
 Housner's rectangular-pulse threshold with ``g -> g + a_v`` (:mod:`opsrock.published.housner_1963`),
-Housner's ``e_H`` and the slipping-impact ratio of docs/friction.md (a slipping corner), Shenton's
+Housner's ``e_H`` and the slipping-impact ratio of docs/guide/friction.md (a slipping corner), Shenton's
 initiation regions (:mod:`opsrock.published.shenton_1996`), the event-driven rigid-body solver
 ``housner_fast`` (no slip, ``e = e_H``), the event-driven ``friction`` solver with infinite friction
 on noise records, and the first-order decay of the energy residual.
@@ -39,7 +39,7 @@ def _block(width: float = 0.6, height: float = 2.0, mu: float | None = None, mu_
     return Block(width, height, restitution_factor=1.0, friction=mu, friction_kinetic=mu_k)
 
 
-#: A block that cannot rock (mu = 0.2 < b/h = 0.5), as in docs/friction.md (rigid-plastic sliding).
+#: A block that cannot rock (mu = 0.2 < b/h = 0.5), as in docs/guide/friction.md (rigid-plastic sliding).
 SLIDER = _block(0.5, 1.0, mu=0.2)
 
 
@@ -49,7 +49,7 @@ SLIDER = _block(0.5, 1.0, mu=0.2)
 
 
 def test_refuses_a_restitution_other_than_housners():
-    """Moreau-Jean with e_n = 0 gives e_H and cannot give 0.95 e_H (docs/friction.md, the restitution
+    """Moreau-Jean with e_n = 0 gives e_H and cannot give 0.95 e_H (docs/guide/friction.md, the restitution
     factor): refused, naming the argument and its value and how to fix it."""
     pulse = RectangularPulse.from_duration(0.5 * G, 0.3)
     with pytest.raises(InputError, match=r"restitution_factor = 0\.95.*restitution_factor=1\.0"):
@@ -169,7 +169,7 @@ def test_frictionless_base_slides_on_and_the_run_ends_with_the_motion():
 @pytest.mark.parametrize("mu", [None, 0.5])
 @pytest.mark.parametrize("a_v_g", [0.0, -0.3, 0.3])
 def test_uplift_threshold_with_vertical_acceleration(mu, a_v_g):
-    """From rest the block uplifts when |a_h| > (g + a_v) tan(alpha) (docs/friction.md, uplift threshold;
+    """From rest the block uplifts when |a_h| > (g + a_v) tan(alpha) (docs/guide/friction.md, uplift threshold;
     mu >= b/h). The discrete rest state is the static solution exactly (both corners stick, v = 0), so a margin of 1e-6
     either side decides: below, theta stays exactly 0; above, theta grows to about 1e-6 alpha (cosh
     p_v t - 1) over 1 s, far above the rocked threshold 1e-9 rad."""
@@ -326,7 +326,7 @@ def _one_impact(block: Block) -> tuple[float, object]:
 @pytest.mark.parametrize("width", [0.4, 1.0, 1.6])
 def test_single_impact_gives_housner_e_h(width):
     """With mu infinite (and with mu = 2, far above Housner's impulse ratio 3 beta/(4 + beta²)), e_n = 0 at the corners
-    gives theta'+/theta'- = e_H = 1 - 1.5 sin²(alpha) (docs/friction.md, the impact at theta = 0; tolerance 5e-5, see
+    gives theta'+/theta'- = e_H = 1 - 1.5 sin²(alpha) (docs/guide/friction.md, the impact at theta = 0; tolerance 5e-5, see
     _one_impact), and the impact loses (1 - e_H²) of the kinetic energy 1/2 I_O theta'² (tolerance 2e-4: the impact
     step's impulse also carries that step's weight; measured 2e-5 to 7e-5)."""
     for mu in (None, 2.0):
@@ -341,7 +341,7 @@ def test_single_impact_gives_housner_e_h(width):
 @pytest.mark.parametrize("mu", [0.0, 0.05])
 def test_slipping_impact_ratio(mu):
     """mu below 3 beta/(4 + beta²) (b/h = 0.2: 0.148): the landing corner slips, theta'+/theta'- = (1 - 3
-    s² + 3 mu s c)/(1 + 3 s² - 3 mu s c) (docs/friction.md, a slipping corner; 0.79310 and 0.84071), tolerance 5e-5 (see
+    s² + 3 mu s c)/(1 + 3 s² - 3 mu s c) (docs/guide/friction.md, a slipping corner; 0.79310 and 0.84071), tolerance 5e-5 (see
     _one_impact; measured 9e-6 and 1.1e-5)."""
     block = _block(0.4, 2.0, mu=mu)
     s, c = math.sin(block.alpha), math.cos(block.alpha)
@@ -353,7 +353,7 @@ def test_slipping_impact_ratio(mu):
 # Shenton's initiation regions
 # =============================================================================================
 
-#: The seven points of docs/friction.md, point checks (b/h = 0.3): (lambda, mu); the prediction comes from
+#: The seven points of docs/guide/friction.md, point checks (b/h = 0.3): (lambda, mu); the prediction comes from
 #: opsrock.published.shenton_1996.
 SHENTON_POINTS = [(0.5, 0.25), (0.5, 0.32), (0.5, 0.38), (0.25, 0.20), (0.25, 0.28), (1.0, 0.45), (1.0, 0.55)]
 
@@ -395,7 +395,7 @@ def test_first_mode_with_kinetic_below_static(mu_k, mode):
 
 
 def test_energy_residual_is_first_order():
-    """The energy residual (docs/friction.md, energy bookkeeping; module docstring) comes from the O(dt) contact
+    """The energy residual (docs/guide/friction.md, energy bookkeeping; module docstring) comes from the O(dt) contact
     impulses held over steps and the dt/2 terms at impacts: halving the step halves it. Measured ratios 0.48-0.50
     on this slide-rock case with impacts (one-sine pulse, mu = 0.32): accepted 0.4-0.6; and below 1 % of the input
     work at dtau = 5e-4 (measured 0.9 %)."""

@@ -44,7 +44,7 @@ def test_no_uplift_below_eq4_threshold_and_uplift_above():
 
 
 def test_free_rocking_time_to_first_impact_matches_linearised_closed_form():
-    # From rest at theta0 = alpha/2 the linearised rigid-body solution (docs/modelling.md section 2) reaches
+    # From rest at theta0 = alpha/2 the linearised rigid-body solution (docs/guide/modelling.md section 2) reaches
     # theta = 0 at t = arccosh(1/(1 - theta0/alpha)) / p. Linearising sin(alpha - theta) costs
     # O(alpha^2/6) ~ 0.17 % for alpha = 0.0997; the stiff branch (1e-6 alpha) and the table
     # (0.1-0.2 %) add less. Tolerance 0.5 %.

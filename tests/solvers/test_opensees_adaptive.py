@@ -9,7 +9,7 @@ from opsrock.solvers import simulate
 
 pytestmark = pytest.mark.opensees
 
-# Paper-grid pulses (omega_p/p, PFA/(g tan alpha) on the 10 x 10 grid of docs/modelling.md s.3) where the
+# Paper-grid pulses (omega_p/p, PFA/(g tan alpha) on the 10 x 10 grid of docs/guide/modelling.md s.3) where the
 # first adaptive scheme was 2-10 % of alpha off: a long exit step carried half a step of stale
 # damper force (Newmark averages the force at both step ends), and the band edge was overshot.
 CASES = [
@@ -24,7 +24,7 @@ CASES = [
 def test_default_matches_scipy_sdof(size, freq_ratio, pfa_ratio):
     # Same equations, independent numerics (scipy, events at every kink, rtol 1e-10): the
     # difference is OpenSees' discretisation error. Measured over 100 paper pulses: at most
-    # 0.04 % of alpha; tolerance 0.3 % of alpha, well inside the 1 % target of docs/modelling.md section 5.
+    # 0.04 % of alpha; tolerance 0.3 % of alpha, well inside the 1 % target of docs/guide/modelling.md section 5.
     block = Block(*size)
     pulse = OneSinePulse.from_ratios(block, pfa_ratio=pfa_ratio, freq_ratio=freq_ratio)
     ref = simulate(block, pulse, solver="sdof")

@@ -1,4 +1,4 @@
-"""Tests of the three-dimensional solver :mod:`opsrock.solvers.rigid3d` (docs/three-dimensions.md, checks).
+"""Tests of the three-dimensional solver :mod:`opsrock.solvers.rigid3d` (docs/guide/three-dimensions.md, checks).
 
 Every reference is independent of the solver: the planar solvers ``housner_fast`` (event-driven rigid body, no
 slip) and ``friction`` (event-driven, Coulomb friction) in the planar limit; the static uplift threshold in a plan

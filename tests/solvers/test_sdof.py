@@ -16,7 +16,7 @@ FREE = Record(dt=1.0, values=[0.0, 0.0])  # no floor motion
 def test_uplift_threshold(lever, threshold):
     # Eq. 4 with the lever: the stiff branch is left when Lambda |a| > M_s(theta_e), i.e.
     # |a| > g tan(alpha) for Lambda = m R cos(alpha), 0.75 g tan(alpha) for the printed
-    # 4/3 m R cos(alpha) (docs/modelling.md section 2); 1 % either side is far outside theta_e = 1e-6 alpha.
+    # 4/3 m R cos(alpha) (docs/guide/modelling.md section 2); 1 % either side is far outside theta_e = 1e-6 alpha.
     below = OneSinePulse.from_ratios(BLOCK, 0.99 * threshold, 2.0)
     above = OneSinePulse.from_ratios(BLOCK, 1.01 * threshold, 2.0)
     assert not sdof.solve(BLOCK, below, lever=lever, end_time=0.5 * below.T_p).rocked
@@ -27,7 +27,7 @@ def test_free_fall_time_matches_exact_quadrature():
     theta0 = 0.5 * BLOCK.alpha
     r = sdof.solve(BLOCK, FREE, theta0=theta0, end_time=0.6)
     # the 30-point table misstates sin(alpha - theta) by up to ~0.2 % of m g R sin(alpha)
-    # (docs/modelling.md section 4); measured 3e-4 on the fall time, so 2e-3 is a real bound
+    # (docs/guide/modelling.md section 4); measured 3e-4 on the fall time, so 2e-3 is a real bound
     assert first_zero_crossing(r) == pytest.approx(exact_time_to_impact(BLOCK, theta0), rel=2e-3)
 
 

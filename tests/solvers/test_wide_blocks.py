@@ -1,6 +1,6 @@
 """Blocks wider than Housner's rocking model allows (width/height >= sqrt(2) for a homogeneous block, e_R <= 0):
 valid blocks that land flat after an impact (e = 0) and, with friction mu < tan(alpha), can only slide
-(docs/modelling.md, "Wide blocks")."""
+(docs/guide/modelling.md, "Wide blocks")."""
 
 from __future__ import annotations
 

@@ -83,7 +83,7 @@ def test_measured_critical_step_matches_formula(name):
 def test_default_settings_accurate_on_map_pulses(name):
     # Reference: the scipy SDOF solver (same model, independent numerics) at rtol 1e-10; the
     # map's accuracy class: same verdicts on all three pulses and |d theta_max| <= 5 % of alpha.
-    # The solver's own target for its default is 0.5 % of alpha (docs/modelling.md section 5), checked too.
+    # The solver's own target for its default is 0.5 % of alpha (docs/guide/modelling.md section 5), checked too.
     b = BLOCKS[name]
     refs = sm.references(b)
     defaults = osr.OpenSeesSettings()
@@ -124,7 +124,7 @@ def test_classify_orders_unstable_over_failed_over_wrong():
 @pytest.mark.slow
 def test_quick_map_writes_outputs(tmp_path):
     # The quick map (bookcase, dt 1e-2/1e-3/1e-4): every implicit method is accurate at 1e-4 s
-    # (reference: the sdof solver; docs/modelling.md section 4 says dt = 1e-4 gives 0.01-1 % of alpha), and the
+    # (reference: the sdof solver; docs/guide/modelling.md section 4 says dt = 1e-4 gives 0.01-1 % of alpha), and the
     # explicit scheme at 1e-2 s (13 dt_cr) is not accurate (closed-form stability limit).
     metrics = sm.run(tmp_path, quick=True)
     assert (tmp_path / "stability_map.png").stat().st_size > 0

@@ -7,7 +7,7 @@ floor may move vertically (``g`` becomes ``g + a_v(t)`` in every mode). Five con
 slide, rock, slide-rock, flight. The equations of each mode, the rules for leaving rest (the
 critical friction of Shenton's criteria), the stick-slip and loss-of-contact events and the impact
 law (Housner's where the striking corner sticks, Coulomb's impulse where it slips) are in
-docs/friction.md; :mod:`.modes` and :mod:`.impacts` hold them, :mod:`.kernel` steps them.
+docs/guide/friction.md; :mod:`.modes` and :mod:`.impacts` hold them, :mod:`.kernel` steps them.
 
 Method: as :mod:`opsrock.solvers.housner_fast`, fixed-step RK4 inside each forcing segment with every
 event located on the Runge-Kutta map; the block at rest jumps in closed form to the next time the
@@ -18,7 +18,7 @@ turning outwards overturns). A record whose floor accelerates downward faster th
 :data:`opsrock.excitations.vertical.MAX_FREE_FALL` on end is refused. After the excitation the block is
 followed until it is at rest, except a pure slide that friction cannot stop within ``max_free_time``
 (always on a frictionless floor): the run ends there, with status ok and the slip velocity
-(``ContactSummary.slip_velocity_end``); the rest of that slide is a closed form (docs/friction.md, the
+(``ContactSummary.slip_velocity_end``); the rest of that slide is a closed form (docs/guide/friction.md, the
 ending rule). On a frictionless floor the block slides flat: ``u = -x_g`` (plus initial terms).
 
 Without ``friction`` the base never slips and the solver is the no-slip rigid block of

@@ -13,7 +13,7 @@ impulse level (Moreau's impact law with friction for one contact):
   as ``kap = R² / r²`` (:mod:`.modes`), the rotation's entry of the inverse mass matrix;
 * **slip**: ``P_T = -sig mu_k P_N`` with ``P_N = -U_N / (W_NN - sig mu_k W_NT)``, for the slip
   direction ``sig`` whose impulse is compressive and whose slip after is along ``sig``. It conserves
-  nothing but dissipates (docs/friction.md).
+  nothing but dissipates (docs/guide/friction.md).
 
 If the old pivot would then be driven into the floor, both corners land (``theta'+ = 0``): a flat
 landing, with the friction of the summed normal impulse deciding whether the base sticks or slides

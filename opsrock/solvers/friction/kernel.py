@@ -9,7 +9,7 @@ time the floor overcomes it; a block leaving the floor flies ballistically (:fun
 corner lands. After the excitation the block is followed (``a_h = 0``, the vertical acceleration of
 the pulse kept) until it is at rest or has overturned, or, in a pure slide its friction cannot stop
 within ``max_tail`` (:func:`_unstoppable`), until that is known: the case then ends with its slip
-velocity in ``OUT_SLIP_END`` (docs/friction.md, the ending rule).
+velocity in ``OUT_SLIP_END`` (docs/guide/friction.md, the ending rule).
 """
 
 from __future__ import annotations
@@ -478,7 +478,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             continue
         if tail and mode == SLIDE and _unstoppable(w, mu_k, g_tail, max_tail - (tau - tau_end), kap):
             # a pure slide on the still floor stops only after max_tail, or never: the case ends here
-            # (docs/friction.md, the ending rule); a slip slower than rest_velocity is seated
+            # (docs/guide/friction.md, the ending rule); a slip slower than rest_velocity is seated
             if abs(w) < rest_velocity:
                 eimp += 0.5 * (kap / (kap + 1.0)) * w * w
                 mode, w, sig = REST, 0.0, 0.0

@@ -11,7 +11,7 @@ theta'²/kap)`` (``3/8 (x'² + y'² + theta'²/3)`` homogeneous).
 Generalised state of a moving mode: rotation ``th`` and its rate ``om``; the base's horizontal
 displacement relative to the floor ``u`` (the pivot corner's while one corner is up, the whole
 base's while both are down) and its rate ``w`` (the slip velocity). The derivation of every line is
-in docs/friction.md.
+in docs/guide/friction.md.
 """
 
 from __future__ import annotations
@@ -80,7 +80,7 @@ def critical_friction(lam, beta, kap):
     """The static friction a block at rest needs to start rocking without slip when
     ``|a_h| / (g + a_v) = lam`` (``> beta = b/h``): ``[lam (1 + (kap + 1) beta²) + kap beta] / [kap + 1 + beta² +
     kap lam beta]``, ``[lam (1 + 4 beta²) + 3 beta] / [4 + beta² + 3 lam beta]`` for a homogeneous block (``kap =
-    3``; docs/friction.md, mode initiation)."""
+    3``; docs/guide/friction.md, mode initiation)."""
     return (lam * (1.0 + (kap + 1.0) * beta * beta) + kap * beta) / ((kap + 1.0) + beta * beta + kap * lam * beta)
 
 

@@ -39,7 +39,7 @@ class FrictionSettings(SolverSettings):
     max_free_time : float or None
         How long (s) the block is followed after the excitation ends before a case still moving is
         reported as failed; a pure slide whose friction cannot stop it within this time (none on a
-        frictionless floor) ends at once with status ok and its slip velocity (docs/friction.md, the
+        frictionless floor) ends at once with status ok and its slip velocity (docs/guide/friction.md, the
         ending rule). None (default): :data:`DEFAULT_TAIL_DTAU` ``/ p``.
     """
 

@@ -137,7 +137,7 @@ class _FrictionRun(SolverRun):
 def solve(block: Block, excitation: Pulse | Record | None, settings: FrictionSettings | None = None,
           **overrides: Any) -> RockingResult:
     """Response of one block on a floor with Coulomb friction under an analytic pulse or a record,
-    horizontal and vertical (docs/friction.md), or free motion from a start state.
+    horizontal and vertical (docs/guide/friction.md), or free motion from a start state.
 
     Parameters
     ----------

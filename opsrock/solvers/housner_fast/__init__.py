@@ -1,7 +1,7 @@
 """Fast rigid-body rocking solver for dense overturning spectra (numba-compiled).
 
 Solves the same exact rigid-body equation as :mod:`opsrock.solvers.housner` (paper Eq. 1-3,
-docs/modelling.md section 2), written in the dimensionless time ``tau = p t``::
+docs/guide/modelling.md section 2), written in the dimensionless time ``tau = p t``::
 
     d²theta/dtau² = -[ sin(alpha s - theta) + (a(t)/g) cos(alpha s - theta) ],   s = sgn(theta)
 

@@ -32,7 +32,7 @@ class HousnerFastSettings(SolverSettings):
     rest_velocity : float
         Angular velocity, in units of ``p`` rad/s, below which a block leaving an impact
         towards a restoring acceleration is taken as seated. Default 1e-7: the excursions
-        dropped are then below ~1e-14 rad / |theta''| and the chattering tail they would
+        dropped are then below ~1e-14 rad / ``|theta''|`` and the chattering tail they would
         take lasts less than ~1e-6 / p seconds.
     max_impacts : int
         Impacts allowed per case before it is reported as failed. Default 100000. One

@@ -5,8 +5,8 @@ complementarity conditions at impulse level (no modes, no events).
 It is the reference of a different formulation for the event-driven ``friction`` solver: nothing here
 knows about modes, transitions or impact laws other than through the contact conditions.
 
-Model (docs/friction.md: notation, the impact at ``theta = 0``, the reference ``moreau_jean``)
---------------------------------------------------------------------------------------------
+Model (docs/guide/friction.md: notation, the impact at ``theta = 0``, the reference ``moreau_jean``)
+----------------------------------------------------------------------------------------------------
 State ``q = (x, y, theta)`` of the centre of mass in the floor frame (``theta`` clockwise), ``v = q'``;
 the floor's accelerations act as the body force ``(-m a_h, -m (g + a_v), 0)``. Two corner contacts,
 each with Newton's impact law with ``e_n = 0`` (``0 <= U_N+ _|_ P_N >= 0``) and Coulomb's law on the
@@ -32,9 +32,9 @@ impulse between the corners, and with infinite friction it would hold the block 
 (kernel ``_ORDER_FINITE``; before this rule, a block with ``friction=None`` that settled at 1.4e-8 rad
 after a brief uplift never rocked again on a record that rocks it to 0.49 alpha). On random two-contact
 problems the enumeration agreed with projected Gauss-Seidel (the prototype of the research note behind
-docs/friction.md) to 1e-7 wherever the latter converged (19,823 of 20,000; the enumeration solved all).
+docs/guide/friction.md) to 1e-7 wherever the latter converged (19,823 of 20,000; the enumeration solved all).
 With ``e_n = 0`` at both corners a rocking impact gives Housner's ``e_H = 1 - 1.5 sin²(alpha)`` exactly
-(docs/friction.md, the impact at ``theta = 0``): the solver refuses a block with any other restitution.
+(docs/guide/friction.md, the impact at ``theta = 0``): the solver refuses a block with any other restitution.
 
 Outputs
 -------
@@ -51,7 +51,7 @@ Outputs
   accumulation of impacts of a block coming to rest (Zeno) down to the step size, so this count grows
   slowly (logarithmically) as the step shrinks: about 50 on a pulse where the event-driven solver
   counts 1 impact up to its first free peak. Compare it only between runs of one step.
-* Energy (J, for the block's mass; docs/friction.md, energy bookkeeping): ``input_work = -sum m (a_h dx + a_v dy)``
+* Energy (J, for the block's mass; docs/guide/friction.md, energy bookkeeping): ``input_work = -sum m (a_h dx + a_v dy)``
   over the steps, ``kinetic`` and ``potential = m g (y - h)`` at the end, ``friction_work = -sum P_T U_T+`` (the
   impulse times the slip velocity it acts against), ``impact_loss`` = the kinetic energy of the impulses' velocity
   change ``1/2 dv^T M dv`` in the steps with a landing, ``residual = input_work + initial - kinetic - potential -

@@ -1,6 +1,6 @@
 """Compiled kernel of :mod:`opsrock.solvers.moreau_jean` (numba): Moreau-Jean time stepping of a rigid
 rectangular block on a rigid floor with two corner contacts, Newton's impact law with ``e_n = 0`` and
-Coulomb friction (docs/friction.md: notation, the impact at ``theta = 0``, the reference ``moreau_jean``).
+Coulomb friction (docs/guide/friction.md: notation, the impact at ``theta = 0``, the reference ``moreau_jean``).
 
 Everything here is per unit mass (the motion does not depend on the mass): positions in m, velocities
 in m/s and rad/s, impulses in m/s (N s per kg), energies in J/kg. The state is the centre of mass
@@ -102,7 +102,7 @@ def _gap(c, b, h, y, th):
 
 @numba.njit(cache=True)
 def _local(wnn, wnt, wtt, un, ut, mu_s, mu_k, stick_only):
-    """One contact, exactly (docs/friction.md, the impact at ``theta = 0``, with ``e_n = 0``): the impulse
+    """One contact, exactly (docs/guide/friction.md, the impact at ``theta = 0``, with ``e_n = 0``): the impulse
     ``(P_N, P_T)`` making ``U+ = U + W P`` satisfy ``0 <= U_N+ _|_ P_N >= 0`` and Coulomb's law, and a
     code: 0 solved, 1 solved by the infinite-friction limit below, 2 no solution.
 
@@ -407,7 +407,7 @@ def _record(j, cap, t, th, vt, sl, hist_t, hist_th, hist_thd, hist_sl):
 
 @numba.njit(cache=True)
 def _step(state, a_h, a_v, dt, theta_mj, geom, mu_s, mu_k, stick_only, tol, gn, gt, act, vf, pn, pt, new, work):
-    """One Moreau-Jean step (docs/friction.md, the reference ``moreau_jean``) from ``state = (x, y, theta, x', y',
+    """One Moreau-Jean step (docs/guide/friction.md, the reference ``moreau_jean``) from ``state = (x, y, theta, x', y',
     theta')`` into ``new``: free velocity under the step's forces, active corners from the mid-step prediction of
     their gaps, Jacobians at ``q_k``, the contact impulses (:func:`_impulses`), then ``q_{k+1} = q_k + dt [(1 -
     theta_mj) v_k + theta_mj v_{k+1}]``. Returns the status of the contact problem; ``work`` is the workspace of
@@ -538,7 +538,7 @@ def run(geom, fric, num, form, ah, av, sub, n_exc, tail_av, state, limits, hist_
         elif st != STATUS_OK:
             status = st
             break
-        # energy bookkeeping (docs/friction.md, per unit mass): input work over the step's displacement,
+        # energy bookkeeping (docs/guide/friction.md, per unit mass): input work over the step's displacement,
         # friction work in _contacts, and at an impact the kinetic energy of the impulse's velocity change
         out[OUT_INPUT_WORK] -= a_h * (new[0] - state[0]) + a_v * (new[1] - state[1])
         if _contacts(new, geom, gt, act, pn, pt, touch, slip, vel_tol, lift_gap, out):

@@ -4,8 +4,8 @@ OpenSees state is owned by :mod:`opsrock.opensees_session`: every model here is 
 ``fresh_model()`` context, which wipes OpenSees before and after (also on errors), so no state
 leaks from one run into the next.
 
-Model (docs/modelling.md sections 2 and 4)
-----------------------------------
+Model (docs/guide/modelling.md sections 2 and 4)
+------------------------------------------------
 One rotational degree of freedom (a 1-D model, ``ndm=1, ndf=1``: the node's single dof *is*
 the block rotation ``theta``), rotational mass ``I_O``, and two ``zeroLength`` elements between
 a fixed node and the free one:

@@ -22,7 +22,7 @@ SOLVER_NAME = "opensees"
 INTEGRATORS: tuple[str, ...] = ("newmark", "hht", "generalized_alpha", "central_difference")
 
 
-#: Equation-solving algorithms. docs/modelling.md section 4: KrylovNewton converged on 60/60 random
+#: Equation-solving algorithms. docs/guide/modelling.md section 4: KrylovNewton converged on 60/60 random
 #: pulses, plain Newton failed on 3/60 (cycling at the stiff-branch corner near rest).
 ALGORITHMS: tuple[str, ...] = ("KrylovNewton", "NewtonLineSearch", "Newton", "ModifiedNewton", "BFGS")
 
@@ -62,7 +62,7 @@ class OpenSeesSettings(SolverSettings):
         the last step before the floor can lift it (every step there ended seated: the same answer,
         bit for bit, in 21,600 steps instead of 70,300 on the records of ``opsrock bench --only
         records``). Measured on 100 paper pulses
-        against the scipy SDOF solver: max |d theta_max| = 0.04 % of alpha, no verdict
+        against the scipy SDOF solver: max ``|d theta_max|`` = 0.04 % of alpha, no verdict
         changed, ~20x faster than fixed steps of 1e-4 s, whose error reached 4 % of alpha
         (``opsrock bench --only opensees``, validation/sdof_agreement). False: fixed steps of ``step``, the
         literal step-by-step loop.

@@ -1,6 +1,6 @@
 """The three-dimensional rigid-block solver ``rigid3d``: a box on a rigid floor with isotropic Coulomb friction at
 its four base corners, under two horizontal floor components and a vertical one, by Moreau-Jean time stepping
-with contact and friction as complementarity conditions at impulse level (docs/three-dimensions.md).
+with contact and friction as complementarity conditions at impulse level (docs/guide/three-dimensions.md).
 
 Model
 -----

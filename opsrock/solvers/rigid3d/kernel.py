@@ -1,6 +1,6 @@
 """Compiled kernel of :mod:`opsrock.solvers.rigid3d` (numba): Moreau-Jean time stepping of a rigid box on a
 rigid floor with its four base corners as contacts, Newton's impact law with ``e_n = 0`` and isotropic Coulomb
-friction, the contact problem of each step solved by nonsmooth Gauss-Seidel (docs/three-dimensions.md).
+friction, the contact problem of each step solved by nonsmooth Gauss-Seidel (docs/guide/three-dimensions.md).
 
 Everything here is per unit mass: positions in m, velocities in m/s and rad/s, impulses in m/s (N s per kg),
 energies in J/kg, inertias in m² (``I / m``). Frames: the floor frame ``(x, y, z)`` is the block frame at rest
@@ -791,7 +791,7 @@ def _arms(s, geom, Q, r):
 
 @numba.njit(cache=True)
 def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out):
-    """One Moreau-Jean step from ``s`` into ``new`` (docs/three-dimensions.md): the free velocity under the
+    """One Moreau-Jean step from ``s`` into ``new`` (docs/guide/three-dimensions.md): the free velocity under the
     step's forces (gravity and the floor's inertia force on the centre of mass, the gyroscopic torque
     ``-omega x I omega`` at ``t_k``), the active corners from the mid-step prediction of their gaps, the
     corners' Delassus blocks at ``q_k``, the impulses by NSGS (:func:`_nsgs`) warm-started from ``P``, then

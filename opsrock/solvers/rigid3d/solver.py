@@ -50,7 +50,7 @@ class BoxProperties:
 
 
 def box_properties(block: Block) -> BoxProperties:
-    """The block's inertia and weaker axis (docs/three-dimensions.md, the model).
+    """The block's inertia and weaker axis (docs/guide/three-dimensions.md, the model).
 
     A homogeneous box about its centre of mass: ``I_x = m (depth² + height²) / 12``, ``I_y = m (width² + height²)
     / 12``, ``I_z = m (width² + depth²) / 12``; with ``cm_height`` only, the same formulas about that centre of

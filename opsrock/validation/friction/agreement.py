@@ -3,7 +3,7 @@ solver and the Moreau-Jean time stepper ``moreau_jean``, on pulses and on record
 vertical motion.
 
 Both run Housner's impact (``restitution_factor = 1``: the time stepper's zero normal restitution gives
-``e_H`` and cannot give less, docs/friction.md). A case is **ill-conditioned**, and set apart with its
+``e_H`` and cannot give less, docs/guide/friction.md). A case is **ill-conditioned**, and set apart with its
 count, if its answer is not defined to the comparison's tolerance: the ``friction`` solver's
 ``theta_max`` moves by more than :data:`THETA_TOL` alpha, or its slide by more than :data:`SLIDE_TOL`,
 or its response changes, when the floor motion is scaled by ``1 + eps`` for ``eps`` in

@@ -55,7 +55,7 @@ are in units of ``1/p`` of the weaker axis (``p = sqrt(g R / (r² + R²))`` in t
 width is the weaker axis).
 
 Accuracy and cost (measured: ``rigid3d.solve`` at each ``dtau``, CPU time of the solve)
---------------------------------------------------------------------------------------
+----------------------------------------------------------------------------------------
 One-sine pulse ``PFA = 1.35 g tan(alpha)``, ``omega_p / p = 3`` on a 0.3 x 1.2 m block 0.6 m deep
 (``housner_fast``: theta_max/alpha = 0.610130):
 
@@ -89,7 +89,7 @@ rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha 
 record; like it, the rocking peak converges at first order with a scatter (each impact is located to a step).
 Hence the default ``dtau = 1e-4``: about 1e-3 alpha on records, 1e-4 on pulses. Planar limit (slow tier,
 tests/solvers/test_rigid3d_slow.py): the paper's 400 pulses (depth twice the width) against ``housner_fast``
-399/400 verdicts, median |d theta_max|/alpha 3.1e-5, 95th percentile 1.05e-3; the one difference is the
+399/400 verdicts, median ``|d theta_max| / alpha`` 3.1e-5, 95th percentile 1.05e-3; the one difference is the
 model's, not the scheme's: medicine_cabinet/f06/a09 leaves the floor (0.18 s of flight, which housner_fast's
 bilateral pivot cannot) and overturns, as ``moreau_jean`` does. (With infinite friction a corner whose sticking
 impulse would pull slides in the infinite-friction limit; when it was left open instead, bookcase/f01/a07-a10

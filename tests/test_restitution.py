@@ -130,6 +130,7 @@ def test_factor_above_one_is_allowed_up_to_e_equal_one():
         Block(0.4, 1.6, restitution_factor=1.2)
 
 
+@pytest.mark.slow  # about 9 s: a study run end to end; the restitution laws themselves are tested above
 def test_fixed_against_uncertain_restitution_study(tmp_path):
     """The comparison's machinery on a small record scene: three variants, one row per block and floor
     each, the fixed variant inside its own intervals, the uncertain one drawing a spread of e."""

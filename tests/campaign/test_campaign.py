@@ -364,6 +364,9 @@ def slow_fake_solve(block, excitation, solver, **settings) -> RockingResult:
     return fake_solve(block, excitation, solver, **settings)
 
 
+# behind slow to keep make test under 10 minutes on 2 cores (about 10 s): the local pool's dying and hung workers
+# (test_a_dying_worker_loses_only_its_case_and_a_resume_computes_it, tests/campaign/test_executors.py) stay in it
+@pytest.mark.slow
 def test_a_dask_worker_killed_mid_campaign_loses_no_finished_case(tmp_path):
     pytest.importorskip("distributed")
     import threading

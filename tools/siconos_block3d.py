@@ -18,14 +18,16 @@ Usage::
     python tools/siconos_block3d.py CASES.npz --serve      # one case index per stdin line, a JSON line back
 
 ``CASES.npz`` (written by ``opsrock.validation.siconos3d.write_cases``): ``meta`` a JSON list of cases (``b``,
-``d``, ``h`` in m, ``inertia`` (3, m² per unit mass), ``mu`` or null, ``dt`` (s), ``start``, ``n``, ``tail`` (s)),
-and ``ax``, ``ay``, ``av`` (m/s², concatenated samples; linear between samples, zero after the last).
+``d``, ``h`` in m, ``inertia`` (3, m² per unit mass), ``mu`` or null, ``dt`` (s), ``start``, ``n``, ``tail`` (s),
+``av_tail`` (m/s², the vertical acceleration after the last sample: a pulse's constant vertical acts throughout)),
+and ``ax``, ``ay``, ``av`` (m/s², concatenated samples; linear between samples; after the last the horizontal ones
+are zero and the vertical one is ``av_tail``).
 
 Early stop (exact for the verdict and the peak tilt): once the floor motion has ended the block's mechanical
-energy per unit mass ``E = |v|²/2 + I_max |omega|²/2 + g (z - h)`` (an upper bound of it: the largest principal
+energy per unit mass ``E = |v|²/2 + I_max |omega|²/2 + g' (z - h)`` (``g' = g + a_v`` after the motion) (an upper bound of it: the largest principal
 inertia) can only fall (impacts and friction dissipate); at any tilt ``theta`` the centre of mass stands at least
 ``h cos theta + m sin theta`` above the floor (``m = min(b, d)``, the nearest base edge). So when ``E`` is below half of
-``g (h cos theta_max + m sin theta_max - h)`` and the base centre moves slower than 1 mm/s, the block can neither
+``g' (h cos theta_max + m sin theta_max - h)`` and the base centre moves slower than 1 mm/s, the block can neither
 tilt beyond ``theta_max`` nor overturn: the run stops there (``steps`` tells where). The factor 1/2 is a margin:
 without it two probe cases stopped early by 1.5e-4 rad of peak tilt (the Moreau-Jean energy is not exactly
 monotone); with it their outputs equal those of the full-tail run to every digit.
@@ -86,14 +88,16 @@ def _quat_state(q):
     return tilt, twist, col
 
 
-def _energy(q, v, i_max, h):
-    """Upper bound of the mechanical energy per unit mass above rest (m²/s²): see the module docstring."""
-    return 0.5 * (v[0] ** 2 + v[1] ** 2 + v[2] ** 2) + 0.5 * i_max * (v[3] ** 2 + v[4] ** 2 + v[5] ** 2) + G * (q[2] - h)
+def _energy(q, v, i_max, h, g):
+    """Upper bound of the mechanical energy per unit mass above rest (m²/s²) under gravity ``g`` (m/s²): see the
+    module docstring."""
+    return 0.5 * (v[0] ** 2 + v[1] ** 2 + v[2] ** 2) + 0.5 * i_max * (v[3] ** 2 + v[4] ** 2 + v[5] ** 2) + g * (q[2] - h)
 
 
-def _tilt_energy(theta, h, m):
-    """Least energy per unit mass above rest that brings the block to tilt ``theta`` (m²/s²); positive floor 1e-9."""
-    return max(G * (h * math.cos(theta) + m * math.sin(theta) - h), 1e-9)
+def _tilt_energy(theta, h, m, g):
+    """Least energy per unit mass above rest that brings the block to tilt ``theta`` (m²/s²) under gravity ``g``
+    (m/s²); positive floor 1e-9."""
+    return max(g * (h * math.cos(theta) + m * math.sin(theta) - h), 1e-9)
 
 
 def run_case(case, ax, ay, av, step):
@@ -120,11 +124,11 @@ def run_case(case, ax, ay, av, step):
     sim = sk.TimeStepping(nsds, sk.TimeDiscretisation(0.0, step), osi, fc)
     sim.setNewtonMaxIteration(20)
     sim.setNewtonTolerance(1e-10)
-    dt, n = case["dt"], ax.size
+    dt, n, av_tail = case["dt"], ax.size, case.get("av_tail", 0.0)
     t_end = (n - 1) * dt + case["tail"]
     steps = int(math.ceil(t_end / step))
     q, v = body.q(), body.twist()
-    m, i_max, t_motion = min(b, d), max(case["inertia"]), (n - 1) * dt
+    m, i_max, t_motion, g_tail = min(b, d), max(case["inertia"]), (n - 1) * dt, G + av_tail
     s_prev = (0.0, 0.0)
     tilt_max = slide_max = twist_max = 0.0
     overturned, status = False, "ok"
@@ -136,7 +140,7 @@ def run_case(case, ax, ay, av, step):
             f = j - i
             a = ((1 - f) * ax[i] + f * ax[i + 1], (1 - f) * ay[i] + f * ay[i + 1], (1 - f) * av[i] + f * av[i + 1])
         else:
-            a = (0.0, 0.0, 0.0)
+            a = (0.0, 0.0, av_tail)
         fext[0], fext[1], fext[2] = -a[0], -a[1], -(G + a[2])
         body.setFExtPtr(fext)
         try:
@@ -158,7 +162,7 @@ def run_case(case, ax, ay, av, step):
             break
         base_speed = math.hypot(sx - s_prev[0], sy - s_prev[1]) / step
         s_prev = (sx, sy)
-        if t1 > t_motion and base_speed < 1e-3 and _energy(q, v, i_max, h) < 0.5 * _tilt_energy(tilt_max, h, m):
+        if t1 > t_motion and base_speed < 1e-3 and _energy(q, v, i_max, h, g_tail) < 0.5 * _tilt_energy(tilt_max, h, m, g_tail):
             break
     return {"index": case["index"], "overturned": overturned, "tilt_max": tilt_max, "slide_max": slide_max,
             "twist_max": twist_max, "wall_s": time.perf_counter() - t0, "steps": k + 1, "status": status}

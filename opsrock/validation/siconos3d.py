@@ -165,6 +165,13 @@ def _samples(motion: PlanMotion) -> tuple[float, np.ndarray, np.ndarray, np.ndar
     return dt, np.asarray(ax, dtype=float), np.asarray(ay, dtype=float), av
 
 
+def _vertical_after(motion: PlanMotion) -> float:
+    """Vertical floor acceleration after the motion's samples (m/s²): a pulse's constant ``vertical`` acts over the
+    whole run (:class:`opsrock.excitations.Pulse`), a record's vertical samples end with it."""
+    vertical = motion.vertical
+    return float(vertical) if vertical is not None and np.ndim(vertical) == 0 else 0.0
+
+
 def write_cases(path: str | Path, cases: list[Case]) -> Path:
     """Write ``cases`` as the .npz the Siconos model reads (tools/siconos_block3d.py's docstring); return the path."""
     meta, ax, ay, av, start = [], [], [], [], 0
@@ -173,7 +180,7 @@ def write_cases(path: str | Path, cases: list[Case]) -> Path:
         b = case.block
         meta.append({"index": i, "label": case.label, "b": b.b, "d": b.d, "h": b.h_cm,
                      "inertia": list(box_properties(b).inertia), "mu": b.friction, "dt": dt, "start": start,
-                     "n": int(x.size), "tail": TAIL})
+                     "n": int(x.size), "tail": TAIL, "av_tail": _vertical_after(case.motion)})
         ax.append(x)
         ay.append(y)
         av.append(v)

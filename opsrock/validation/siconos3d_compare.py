@@ -71,6 +71,8 @@ class Rigid3DRun:
         The verdict differs at one of :data:`AMPLITUDE_FACTORS`.
     wall_s : float
         Wall time of the unscaled run (s).
+    reason : str
+        Why the run failed ("" if it did not).
     """
 
     overturned: bool
@@ -82,6 +84,7 @@ class Rigid3DRun:
     status: str
     flips: bool
     wall_s: float
+    reason: str = ""
 
 
 @dataclass(frozen=True)
@@ -132,7 +135,7 @@ def run_rigid3d(case: Case) -> Rigid3DRun:
     plan = r.plan
     return Rigid3DRun(bool(r.overturned), float(r.theta_max), float(plan.slide_max if plan else math.nan),
                       float(r.alpha), float(r.time[-1]) if r.time.size else 0.0,
-                      float(plan.time_flight if plan else 0.0), r.status, len(done) > 1, wall)
+                      float(plan.time_flight if plan else 0.0), r.status, len(done) > 1, wall, r.reason)
 
 
 def classify(rigid: Rigid3DRun, siconos: dict, duration: float, step_verdict: bool | None = None) -> str:
@@ -215,7 +218,7 @@ STEP, HALF_STEP = 5e-4, 2.5e-4
 COLUMNS = ("index", "group", "label", "duration_s", "alpha", "ill_conditioned", "difference", "rigid3d_overturned",
            "siconos_overturned", "rigid3d_tilt_max", "siconos_tilt_max", "tilt_diff_over_alpha", "rigid3d_slide_max",
            "siconos_slide_max", "siconos_twist_max", "rigid3d_flight_s", "rigid3d_t_end", "siconos_steps",
-           "rigid3d_wall_s", "siconos_wall_s", "rigid3d_status", "siconos_status")
+           "rigid3d_wall_s", "siconos_wall_s", "rigid3d_status", "siconos_status", "rigid3d_reason")
 
 
 def run_siconos(python: str, cases_npz: Path, out_csv: Path, indices: list[int], *, step: float = STEP,
@@ -269,7 +272,7 @@ def row_values(r: Row) -> dict:
                               r.difference, g.overturned, s["overturned"], repr(g.tilt_max), repr(s["tilt_max"]),
                               repr(abs(g.tilt_max - s["tilt_max"]) / g.alpha), repr(g.slide_max),
                               repr(s["slide_max"]), repr(s["twist_max"]), repr(g.flight), repr(g.t_end), s["steps"],
-                              repr(g.wall_s), repr(s["wall_s"]), g.status, s["status"])))
+                              repr(g.wall_s), repr(s["wall_s"]), g.status, s["status"], g.reason)))
 
 
 def write_tables(rows: list[Row], summary: Agreement, out: Path) -> None:

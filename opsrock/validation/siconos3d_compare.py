@@ -139,7 +139,7 @@ def run_rigid3d(case: Case) -> Rigid3DRun:
 
 
 def classify(rigid: Rigid3DRun, siconos: dict, duration: float, step_verdict: bool | None = None) -> str:
-    """The class (:data:`CLASSES`) of a verdict difference, "" if the verdicts agree.
+    """The class (:data:`CLASSES`) of a verdict difference, "" if the verdicts agree or a run failed.
 
     Parameters
     ----------
@@ -152,8 +152,8 @@ def classify(rigid: Rigid3DRun, siconos: dict, duration: float, step_verdict: bo
     step_verdict : bool or None
         Siconos's verdict at half the step, None if not run.
     """
-    if rigid.overturned == siconos["overturned"]:
-        return ""
+    if rigid.overturned == siconos["overturned"] or "failed" in (rigid.status, siconos["status"]):
+        return ""  # a failed run has no verdict: counted apart (Agreement.n_failed), never classified
     if rigid.flips:
         return CLASSES[0]
     up_tilt = siconos["tilt_max"] if rigid.overturned else rigid.tilt_max
@@ -301,8 +301,21 @@ def format_table(summary: Agreement) -> str:
              f"|d slide_max| where one slid > 1 mm ({s.n_slide} cases): median {s.slide_median_mm:.4g} mm, "
              f"p95 {s.slide_p95_mm:.4g} mm",
              "verdict differences: " + ", ".join(f"{c} {n}" for c, n in s.classes.items()),
-             "PASSED" if s.passed else "BELOW TARGET"]
+             "PASSED" if s.passed else "BELOW TARGET" + (f" ({s.n_failed} failed runs)" if s.n_failed else "")]
     return "\n".join(lines)
+
+
+def _serve(proc: subprocess.Popen, index: int) -> dict:
+    """Case ``index`` through the Siconos ``--serve`` process: its JSON line (Siconos's own messages, also on
+    stdout, skipped)."""
+    proc.stdin.write(f"{index}\n")
+    proc.stdin.flush()
+    while True:
+        line = proc.stdout.readline()
+        if not line:
+            raise RuntimeError("the Siconos model stopped before answering")
+        if line.startswith("{"):
+            return json.loads(line)
 
 
 def interleaved_cost(python: str, cases: list[Case], cases_npz: Path) -> list[tuple[int, float, float]]:
@@ -314,17 +327,13 @@ def interleaved_cost(python: str, cases: list[Case], cases_npz: Path) -> list[tu
                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     try:
         _run(cases[0], cases[0].motion)
-        proc.stdin.write("0\n")
-        proc.stdin.flush()
-        proc.stdout.readline()
+        _serve(proc, 0)
         out = []
         for i, case in enumerate(cases):
             t0 = time.perf_counter()
             _run(case, case.motion)
             t1 = time.perf_counter()
-            proc.stdin.write(f"{i}\n")
-            proc.stdin.flush()
-            proc.stdout.readline()
+            _serve(proc, i)
             out.append((i, t1 - t0, time.perf_counter() - t1))
     finally:
         proc.stdin.close()

@@ -71,6 +71,8 @@ def test_classify_tries_the_classes_in_order():
     assert sc.classify(_rigid(True, math.pi / 2, t_end=2.0), _sic(tilt=0.5 * ALPHA), 1.0, True) == "step size"
     assert sc.classify(_rigid(True, math.pi / 2, t_end=2.0), _sic(tilt=0.5 * ALPHA), 1.0, False) == "unexplained"
     assert sc.classify(_rigid(True, math.pi / 2, t_end=2.0), _sic(tilt=0.5 * ALPHA), 1.0) == "unexplained"
+    # a failed run has no verdict to differ
+    assert sc.classify(_rigid(True, math.pi / 2, t_end=2.0, status="failed"), _sic(tilt=0.5 * ALPHA), 1.0) == ""
 
 
 def _row(i, rigid, sic):

@@ -11,7 +11,7 @@ STAMP  := $(VENV)/.opsrock-installed
 LOCK   := requirements.lock
 OUT    ?= results
 
-.PHONY: reproduce test test-lowest test-slow test-fuzz test-pelicun test-wheel docs dist validate bench blas install lock clean
+.PHONY: reproduce test test-lowest test-slow test-fuzz test-pelicun test-siconos test-wheel docs dist validate bench blas install lock clean
 
 reproduce: install
 	$(BIN)/opsrock reproduce --out $(OUT)
@@ -74,6 +74,21 @@ test-pelicun: install
 	$(BIN)/opsrock contents --inventory $(EXAMPLE_INVENTORY) --motions $(EXAMPLE_MOTIONS) \
 	    --out .pelicun-venv/inventory --quick --no-progress --force
 	.pelicun-venv/bin/python tools/pelicun_inventory.py .pelicun-venv/inventory/pelicun --dl-calculation
+
+# The Siconos model of the 3-D block (tools/siconos_block3d.py, the independent reference of rigid3d): Debian's
+# python3-siconos 4.4 for Debian's own /usr/bin/python3, installed with apt-get when missing (as root; otherwise
+# the line to run is printed), seen by .siconos-venv (--system-site-packages; numpy and siconos only: opsrock needs
+# pandas >= 2, Debian has 1.5). The quick form (21 cases: every tenth of validation/siconos3d's set) runs both
+# solvers, prints the agreement table and fails below its targets; `make test-siconos SICONOS_FULL=1` runs the
+# 208 cases and the interleaved timing run and writes validation/siconos3d/{cases,summary,cost}.csv and tilt.png.
+SICONOS_PY := /usr/bin/python3
+
+test-siconos: install
+	@$(SICONOS_PY) -c "import siconos.kernel" 2>/dev/null || { [ "$$(id -u)" = "0" ] && apt-get update -qq >/dev/null \
+	    && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-siconos >/dev/null; } \
+	    || { echo "opsrock: install Debian's python3-siconos (sudo apt-get install python3-siconos) and retry" >&2; exit 1; }
+	@test -x .siconos-venv/bin/python || $(SICONOS_PY) -m venv --system-site-packages .siconos-venv
+	$(BIN)/python -m opsrock.validation.siconos3d_compare $(if $(SICONOS_FULL),--out validation/siconos3d --cost,--quick)
 
 # A wheel built from this checkout, installed (not editable) into a fresh venv, runs `opsrock run tiny`,
 # `opsrock validate --quick` and `opsrock reproduce` from an empty folder elsewhere (.ci/run calls it).

@@ -22,6 +22,7 @@ it); ``second`` must carry none.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -92,6 +93,12 @@ class PlanMotion:
         """Peak of the first component (m/s²): the quantity a campaign scales, as for a planar motion."""
         return self.first.pfa
 
+    def scaled(self, factor: float) -> "PlanMotion":
+        """Both horizontal components times ``factor`` (dimensionless), the vertical floor motion unchanged: the
+        copy :func:`opsrock.analysis.sensitivity.amplitude_sensitivity` scales."""
+        return PlanMotion(_scaled_horizontal(self.first, factor),
+                          None if self.second is None else _scaled_horizontal(self.second, factor), self.azimuth)
+
     def components(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """Floor acceleration ``(a_x, a_y)`` in the block frame at times ``t`` (m/s²)."""
         a1 = np.asarray(self.first.acceleration(t), dtype=float)
@@ -108,6 +115,14 @@ class PlanMotion:
         """Times where either component is not smooth (s)."""
         parts = [self.first.breakpoints()] + ([] if self.second is None else [self.second.breakpoints()])
         return np.unique(np.concatenate(parts))
+
+
+def _scaled_horizontal(motion: Excitation, factor: float) -> Excitation:
+    """``motion``'s horizontal acceleration times ``factor``, its vertical motion unchanged (a record's
+    ``scaled`` scales both: its vertical samples are put back)."""
+    if hasattr(motion, "scaled"):
+        return motion.scaled(factor).with_vertical(getattr(motion, "vertical", None))
+    return dataclasses.replace(motion, pfa=motion.pfa * real_number("factor", factor))
 
 
 __all__ = ["PlanMotion"]

@@ -208,9 +208,13 @@ QUICK_SCENES: tuple[str, ...] = ("scene_mj_default", "scene_friction_end_time", 
                                  "scene_sdof_slider", "run_slider_housner_fast")
 
 
-def test_hostile_stores_and_scenes(base, tmp_path):
+def _quick(base, tmp_path) -> list:
     cases = [c for c in all_cases(tmp_path, base) if not c.name.startswith(("scene_", "run_")) or c.name in QUICK_SCENES]
     assert len(cases) == 26 + len(QUICK_SCENES)
+    return cases
+
+
+def _sweep_keeping_stores(cases, tmp_path) -> None:
     before = {c.name: (tmp_path / "stores" / c.name[6:] / "results.sqlite").read_bytes()
               for c in cases if c.name.startswith("store_")}
     work = tmp_path / "work"
@@ -222,12 +226,15 @@ def test_hostile_stores_and_scenes(base, tmp_path):
         assert store.read_bytes() == data, name
 
 
+def test_hostile_stores_and_scenes(base, tmp_path):
+    # every other store and quick scene case; the others in the slow test below (make test under 10 minutes)
+    _sweep_keeping_stores(_quick(base, tmp_path)[0::2], tmp_path)
+
+
 @pytest.mark.slow
 def test_every_scene_whose_solver_cannot_meet_a_need_is_refused(base, tmp_path):
-    cases = [c for c in _scene_cases(tmp_path) if c.name not in QUICK_SCENES]
-    work = tmp_path / "work"
-    work.mkdir()
-    assert sweep(cases, work) == []
+    others = [c for c in _scene_cases(tmp_path) if c.name not in QUICK_SCENES]
+    _sweep_keeping_stores(_quick(base, tmp_path)[1::2] + others, tmp_path)
 
 
 def test_store_case_counts(base, tmp_path):

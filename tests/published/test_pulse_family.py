@@ -258,6 +258,7 @@ def cli(*args):
     return subprocess.run(cmd, capture_output=True, text=True, timeout=300)
 
 
+@pytest.mark.slow  # about 8 s: each pulse through the console script; the pulses themselves are tested above
 def test_cli_simulate_each_pulse_json():
     for shape in PULSE_SHAPES:
         freq = ["--duration", "0.4"] if shape == "rectangular" else ["--freq-ratio", "3"]

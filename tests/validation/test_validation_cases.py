@@ -101,6 +101,7 @@ def records_case(record_library, tmp_path_factory):
     return out, m, pd.read_csv(out / "cases.csv", keep_default_na=False, na_values=[""])
 
 
+@pytest.mark.slow  # CI's make test-wheel runs this quick form through opsrock validate --quick
 def test_records_quick(records_case):
     # 18 record cases (1 FEMA P695 component, ground and roof of a 3-storey building, 3 blocks,
     # 3 amplitudes); housner_fast must give housner's verdict on every case and its theta_max to
@@ -114,6 +115,7 @@ def test_records_quick(records_case):
     assert summary["n_failed"].eq(0).all(), summary
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("block, floor, level", RECORD_ROWS,
                          ids=[f"records/{b}/{f}/{lv:g}" for b, f, lv in RECORD_ROWS])
 def test_records_row(records_case, block, floor, level):
@@ -141,6 +143,7 @@ def sdof_agreement_case(tmp_path_factory):
     return out, m, pd.read_csv(out / "agreement_quick.csv", keep_default_na=False, na_values=[""]).set_index("case_id")
 
 
+@pytest.mark.slow  # CI's make test-wheel runs this quick form through opsrock validate --quick
 def test_sdof_agreement_quick(sdof_agreement_case):
     # 24 paper pulses (6 per block): targets 99 % within 1 % of alpha, 99 % same verdict; on 24 pulses that
     # is every one of them (each asserted by test_sdof_agreement_row).
@@ -151,6 +154,7 @@ def test_sdof_agreement_quick(sdof_agreement_case):
     assert list(df.index) == QUICK_PULSES
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case_id", QUICK_PULSES, ids=[f"sdof_agreement/{c}" for c in QUICK_PULSES])
 def test_sdof_agreement_row(sdof_agreement_case, case_id):
     _, _, df = sdof_agreement_case

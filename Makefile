@@ -75,7 +75,7 @@ test-pelicun: install
 	    --out .pelicun-venv/inventory --quick --no-progress --force
 	.pelicun-venv/bin/python tools/pelicun_inventory.py .pelicun-venv/inventory/pelicun --dl-calculation
 
-# The Siconos model of the 3-D block (tools/siconos_block3d.py, the independent reference of rigid3d): Debian's
+# The Siconos model of the 3-D block (opsrock/data/siconos/siconos_block3d.py, the independent reference of rigid3d): Debian's
 # python3-siconos 4.4 for Debian's own /usr/bin/python3, installed with apt-get when missing (as root; otherwise
 # the line to run is printed), seen by .siconos-venv (--system-site-packages; numpy and siconos only: opsrock needs
 # pandas >= 2, Debian has 1.5). The quick form (21 cases: every tenth of validation/siconos3d's set) runs both

@@ -1,4 +1,4 @@
-"""The rigid box of ``rigid3d`` in Siconos (tools/siconos_block3d.py): the cases and the case file the Siconos
+"""The rigid box of ``rigid3d`` in Siconos (opsrock/data/siconos/siconos_block3d.py): the cases and the case file the Siconos
 model reads.
 
 Frames and conventions are opsrock's: the floor accelerations in the block frame from
@@ -173,7 +173,7 @@ def _vertical_after(motion: PlanMotion) -> float:
 
 
 def write_cases(path: str | Path, cases: list[Case]) -> Path:
-    """Write ``cases`` as the .npz the Siconos model reads (tools/siconos_block3d.py's docstring); return the path."""
+    """Write ``cases`` as the .npz the Siconos model reads (opsrock/data/siconos/siconos_block3d.py's docstring); return the path."""
     meta, ax, ay, av, start = [], [], [], [], 0
     for i, case in enumerate(cases):
         dt, x, y, v = _samples(case.motion)

@@ -1,4 +1,4 @@
-"""``rigid3d`` against the same box in Siconos (tools/siconos_block3d.py): the comparison of validation case
+"""``rigid3d`` against the same box in Siconos (opsrock/data/siconos/siconos_block3d.py): the comparison of validation case
 ``siconos3d`` (validation/siconos3d/README.md).
 
 The Siconos model runs outside the project venv and writes one CSV row per case (``index``, ``overturned``,
@@ -187,7 +187,7 @@ def summarize(rows: list[Row]) -> Agreement:
 
 
 def read_siconos(path: str | Path, step: float) -> dict[int, dict]:
-    """Siconos's CSV (tools/siconos_block3d.py) as ``{index: row}`` with typed values and the step (s)."""
+    """Siconos's CSV (opsrock/data/siconos/siconos_block3d.py) as ``{index: row}`` with typed values and the step (s)."""
     out = {}
     with open(path, newline="") as fh:
         for row in csv.DictReader(fh):
@@ -224,7 +224,7 @@ COLUMNS = ("index", "group", "label", "duration_s", "alpha", "ill_conditioned", 
 def run_siconos(python: str, cases_npz: Path, out_csv: Path, indices: list[int], *, step: float = STEP,
                 jobs: int = 1) -> Path:
     """Run the Siconos model on ``indices`` of ``cases_npz`` in ``jobs`` processes; write ``out_csv``."""
-    tool = Path(__file__).resolve().parents[2] / "tools" / "siconos_block3d.py"
+    tool = Path(__file__).resolve().parents[1] / "data" / "siconos" / "siconos_block3d.py"
     parts, procs = [], []
     for j in range(jobs):
         mine = indices[j::jobs]
@@ -322,7 +322,7 @@ def interleaved_cost(python: str, cases: list[Case], cases_npz: Path) -> list[tu
     """One interleaved timing run: per case ``(index, rigid3d wall s, Siconos wall s)``, alternating the two
     (Siconos's ``--serve`` process, started and warmed on case 0 first; rigid3d warmed on case 0 so numba's
     compilation is not counted). Siconos's time is the round trip of one case through its process."""
-    tool = Path(__file__).resolve().parents[2] / "tools" / "siconos_block3d.py"
+    tool = Path(__file__).resolve().parents[1] / "data" / "siconos" / "siconos_block3d.py"
     proc = subprocess.Popen([python, str(tool), str(cases_npz), "--serve"], stdin=subprocess.PIPE,
                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
     try:

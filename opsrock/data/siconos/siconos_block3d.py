@@ -14,8 +14,8 @@ theta-scheme then blends the step's two ends).
 
 Usage::
 
-    python tools/siconos_block3d.py CASES.npz OUT.csv [--step 5e-4] [--only i,j,...]
-    python tools/siconos_block3d.py CASES.npz --serve      # one case index per stdin line, a JSON line back
+    python opsrock/data/siconos/siconos_block3d.py CASES.npz OUT.csv [--step 5e-4] [--only i,j,...]
+    python opsrock/data/siconos/siconos_block3d.py CASES.npz --serve      # one case index per stdin line, a JSON line back
 
 ``CASES.npz`` (written by ``opsrock.validation.siconos3d.write_cases``): ``meta`` a JSON list of cases (``b``,
 ``d``, ``h`` in m, ``inertia`` (3, m² per unit mass), ``mu`` or null, ``dt`` (s), ``start``, ``n``, ``tail`` (s),

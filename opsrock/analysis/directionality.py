@@ -115,7 +115,8 @@ class DirectionalityDesign:
     seed : int
         Seed of the resamples.
     settings3d : Mapping
-        Settings of ``solver3d`` (its ``solve()`` keywords).
+        Settings of ``solver3d`` (its ``solve()`` keywords). Default ``{"tail": "peak"}``: a case ends once its
+        verdict and peak tilt are final (the fragility needs no more), as the planar ``housner_fast`` does.
     """
 
     period: float = 1.0
@@ -131,7 +132,7 @@ class DirectionalityDesign:
     tolerance: float = 0.10
     n_boot: int = 40
     seed: int = 0
-    settings3d: Mapping[str, Any] = field(default_factory=dict)
+    settings3d: Mapping[str, Any] = field(default_factory=lambda: {"tail": "peak"})
 
     def __post_init__(self) -> None:
 

@@ -28,6 +28,7 @@ import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers import status as ST
+from opsrock.solvers.rigid3d import pivot as PV
 
 # --- status codes: the shared ones (:mod:`opsrock.solvers.status`) ------------------------------------
 STATUS_OK = ST.OK
@@ -84,7 +85,19 @@ OUT_CONTACT_STEPS = ST.OUT_COMMON + 20  # steps that solved a contact problem
 OUT_STATE = ST.OUT_COMMON + 21  # final state, 13 slots
 OUT_STICK_STEPS = ST.OUT_COMMON + 34  # steps solved by the closed-form stick (_stick_all)
 OUT_SLIDE_STEPS = ST.OUT_COMMON + 35  # steps solved by the closed-form flat slide (_slide_flat)
-OUT_SIZE = ST.OUT_COMMON + 36
+OUT_SMOOTH_STEPS = ST.OUT_COMMON + 36  # Runge-Kutta steps about stuck corners kept (:mod:`.pivot`)
+OUT_SMOOTH_SPAN = ST.OUT_COMMON + 37  # Moreau-Jean steps those spanned
+OUT_SMOOTH_TRIED = ST.OUT_COMMON + 38  # Runge-Kutta steps tried (kept or halved)
+OUT_PEAK_STOP = ST.OUT_COMMON + 39  # 1.0: the run ended by the tail rule "peak"
+OUT_NSGS_LOOSE = ST.OUT_COMMON + 40  # steps whose NSGS met only the looser tolerance (:func:`_solve_contacts`)
+OUT_NSGS_EXTRA = ST.OUT_COMMON + 41  # the sweeps those took beyond nsgs_max_sweeps
+OUT_COARSE_STEPS = ST.OUT_COMMON + 42  # coarse Moreau-Jean steps of a block sliding flat (_coarse_slide)
+OUT_COARSE_SPAN = ST.OUT_COMMON + 43  # Moreau-Jean steps those spanned
+OUT_SIZE = ST.OUT_COMMON + 44
+
+#: Speed of the base (m/s) below which the tail rule "peak" may end a run: a block on its base sliding at
+#: 1 mm/s under friction ``mu`` stops within ``(1e-3)² / (2 mu g)``, 5e-8/mu m.
+PEAK_BASE_SPEED = 1e-3
 
 #: Friction coefficient standing for infinity in the limit solve of :func:`_local` (its relative error 1/LIMIT_MU).
 LIMIT_MU = 1e6
@@ -335,6 +348,26 @@ def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter,
 
 
 @numba.njit(cache=True)
+def _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, nsgs, q, Pn, out, single):
+    """NSGS (:func:`_nsgs`) to ``tol`` in ``nsgs[1]`` sweeps; failing that, on for up to ``nsgs[4]`` sweeps more
+    (at least one) to the looser ``tol * nsgs[3] / nsgs[0]`` (a block at the stick-slip limit on three or four corners, whose
+    impulses are statically indeterminate, makes Gauss-Seidel converge slowly, not fail), counted in
+    ``OUT_NSGS_LOOSE``. Returns the sweeps (``nsgs[1] + 1``: not converged)."""
+    max_iter = int(nsgs[1])
+    sweeps = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter, q, Pn, out, single)
+    if sweeps <= max_iter:
+        return sweeps
+    extra = max(1, int(nsgs[4]))
+    more = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol * nsgs[3] / nsgs[0], extra,
+                 q, Pn, out, single)
+    if more > extra:
+        return max_iter + 1
+    out[OUT_NSGS_LOOSE] += 1.0
+    out[OUT_NSGS_EXTRA] += more
+    return max_iter
+
+
+@numba.njit(cache=True)
 def _solve6(A, y):
     """Solve ``A y_new = y`` in place (6 x 6, Gaussian elimination with partial pivoting; ``A`` is overwritten);
     False if a pivot is below 1e-13 of the largest entry."""
@@ -476,8 +509,8 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
     """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
     through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
     it stops; the impulses are the least-norm ones that make that velocity change (no self-equilibrated
-    friction "squeeze": the statically indeterminate part is left at zero), on three or four corners with the
-    friction split in proportion to the normal impulses (:func:`_stick_flat`). Accepted, into ``V``, ``Om`` and
+    friction "squeeze": the statically indeterminate part is left at zero), with the friction along an edge,
+    and on three or four corners all of it, split in proportion to the normal impulses (:func:`_stick_flat`). Accepted, into ``V``, ``Om`` and
     ``P``, if every normal impulse is compressive and every tangential one lies in the static cone; else False
     (NSGS then solves the step). ``A6`` (6 x 6) and ``y6`` (6) are workspace."""
     i1 = -1
@@ -516,6 +549,16 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
         P[i1, 0], P[i1, 1], P[i1, 2] = 0.5 * F0 + D0, 0.5 * F1 + D1, 0.5 * F2 + D2
         P[i2, 0], P[i2, 1], P[i2, 2] = 0.5 * F0 - D0, 0.5 * F1 - D1, 0.5 * F2 - D2
+        # the part along the edge is statically indeterminate (equal and opposite impulses along the line
+        # through the two corners change neither the force nor the moment): split it in proportion to the
+        # normal impulses, as on a level base, so that a lightly loaded corner is not asked for half of it
+        n1, n2 = P[i1, 2], P[i2, 2]
+        if n1 > 0.0 and n2 > 0.0:
+            c1 = P[i1, 0] * e0 + P[i1, 1] * e1 + P[i1, 2] * e2
+            c2 = P[i2, 0] * e0 + P[i2, 1] * e1 + P[i2, 2] * e2
+            dl = (c1 + c2) * n1 / (n1 + n2) - c1
+            P[i1, 0], P[i1, 1], P[i1, 2] = P[i1, 0] + dl * e0, P[i1, 1] + dl * e1, P[i1, 2] + dl * e2
+            P[i2, 0], P[i2, 1], P[i2, 2] = P[i2, 0] - dl * e0, P[i2, 1] - dl * e1, P[i2, 2] - dl * e2
     else:  # three or four corners (a level base): the block stops
         if not _stick_flat(act, r, Iw, vf, P, A6):
             return False
@@ -790,14 +833,99 @@ def _arms(s, geom, Q, r):
 
 
 @numba.njit(cache=True)
-def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out):
+def _stick_subset(act, guess, landing, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+    """The active corners that were down (``act`` and ``guess``; with ``landing`` those that were not: a rocking
+    impact, where the landing edge takes the load and the pivot lifts), one or two of them and fewer than
+    ``n_act``, stuck and loaded, the other active corners without impulse: accepted, into ``V``, ``Om``, ``P``
+    and ``act`` (the others dropped), if those others separate, ``u_n >= -tol`` (m/s), which with the stuck
+    corners' loads in their cones solves the step's contact problem. One corner: ``P = -W^-1 u_free``; two:
+    :func:`_stick_all`."""
+    sub = ws[14]
+    n_sub = 0
+    for i in range(4):
+        sub[i] = act[i] and (guess[i] != landing)
+        n_sub += sub[i]
+    if n_sub == 0 or n_sub > 2 or n_sub == n_act:
+        return False
+    return _stick_mask(act, sub, n_sub, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6)
+
+
+@numba.njit(cache=True)
+def _stick_mask(act, sub, n_sub, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+    """The corners of ``sub`` (one or two of the active ones) stuck and loaded, the other active corners
+    separating (:func:`_stick_subset`)."""
+    if n_sub == 2:
+        if not _stick_all(sub, 2, r, Iw, vf, V, Om, P, mu_s, stick_only, ws[7], y6):
+            return False
+    else:
+        i = 0
+        while not sub[i]:
+            i += 1
+        W, Wi = ws[4][i], ws[5][i]
+        _delassus(r[i], Iinv, W)
+        if not _inv3(W, Wi):
+            return False
+        ri = r[i]
+        u0 = vf[0] + vf[4] * ri[2] - vf[5] * ri[1]
+        u1 = vf[1] + vf[5] * ri[0] - vf[3] * ri[2]
+        u2 = vf[2] + vf[3] * ri[1] - vf[4] * ri[0]
+        for c in range(4):
+            P[c, 0], P[c, 1], P[c, 2] = 0.0, 0.0, 0.0
+        for a in range(3):
+            P[i, a] = -(Wi[a, 0] * u0 + Wi[a, 1] * u1 + Wi[a, 2] * u2)
+        if P[i, 2] <= 0.0 or (not stick_only and math.hypot(P[i, 0], P[i, 1]) > mu_s * P[i, 2]):
+            return False
+        V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0] + P[i, 0], vf[1] + P[i, 1], vf[2] + P[i, 2], vf[3], vf[4], vf[5]
+        _cross_add(ri, P[i], Iinv, Om, 1.0)
+    for j in range(4):
+        if act[j] and not sub[j]:
+            rj = r[j]
+            if V[2] + Om[0] * rj[1] - Om[1] * rj[0] < -tol:
+                return False
+    for j in range(4):
+        if act[j] and not sub[j]:
+            act[j] = False
+            P[j, 0], P[j, 1], P[j, 2] = 0.0, 0.0, 0.0
+    return True
+
+
+@numba.njit(cache=True)
+def _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+    """Two active corners whose edge cannot carry the step stuck (a corner pulls): each alone stuck, the other
+    separating (:func:`_stick_mask`), the lower one first (a block turning about a corner with the edge's other
+    corner grazing the floor)."""
+    i1 = -1
+    i2 = -1
+    for i in range(4):
+        if act[i]:
+            if i1 < 0:
+                i1 = i
+            else:
+                i2 = i
+    if r[i2, 2] < r[i1, 2]:
+        i1, i2 = i2, i1
+    sub = ws[14]
+    for first in (i1, i2):
+        for i in range(4):
+            sub[i] = i == first
+        if _stick_mask(act, sub, 1, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+            return True
+    return False
+
+
+@numba.njit(cache=True)
+def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out, guess):
     """One Moreau-Jean step from ``s`` into ``new`` (docs/guide/three-dimensions.md): the free velocity under the
     step's forces (gravity and the floor's inertia force on the centre of mass, the gyroscopic torque
     ``-omega x I omega`` at ``t_k``), the active corners from the mid-step prediction of their gaps, the
     corners' Delassus blocks at ``q_k``, the impulses by NSGS (:func:`_nsgs`) warm-started from ``P``, then
     ``X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]`` and the quaternion turned by ``dt`` times the
     same blend of the angular velocities. Returns the sweeps NSGS took (0: no contact;
-    ``nsgs[1] + 1``: it did not converge). ``ws`` holds the workspace (see :func:`run`)."""
+    ``nsgs[1] + 1``: it did not converge). ``ws`` holds the workspace (see :func:`run`).
+
+    Before the closed forms and NSGS, the corners that were down (``guess``) are tried alone, stuck
+    (:func:`_stick_subset`): a block rocking on an edge just after an impact has its other corners still
+    predicted active, unloaded and separating."""
     Q, Iinv, Iw, r, Wd, Wi, vec = ws[0], ws[1], ws[2], ws[3], ws[4], ws[5], ws[6]
     g = geom[3]
     _geometry(s, geom, ib, Q, Iinv, Iw, r)
@@ -822,7 +950,18 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
         n_act += act[i]
     sweeps = 0
     stick_only = fric[2] > 0.5
-    if n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
+    scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), geom[7] * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
+    if n_act >= 2 and (_stick_subset(act, guess, False, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0], stick_only,
+                                     nsgs[0] * scale, ws, vec[3])
+                       or _stick_subset(act, guess, True, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0], stick_only,
+                                        nsgs[0] * scale, ws, vec[3])):
+        sweeps = 1
+        out[OUT_STICK_STEPS] += 1.0
+    elif n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
+        sweeps = 1
+        out[OUT_STICK_STEPS] += 1.0
+    elif n_act == 2 and _stick_single(act, r, Iinv, Iw, vf, V, Om, P, fric[0], stick_only, nsgs[0] * scale, ws,
+                                      vec[3]):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
     elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, fric[1], ws[8], ws[7],
@@ -841,9 +980,8 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
                 _cross_add(r[i], P[i], Iinv, Om, 1.0)
             else:
                 P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
-        scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), geom[7] * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
-        sweeps = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, fric[0], fric[1], stick_only, nsgs[0] * scale,
-                       int(nsgs[1]), vec[3], vec[4], out, n_act == 1)
+        sweeps = _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, fric[0], fric[1], stick_only, nsgs[0] * scale,
+                                 nsgs, vec[3], vec[4], out, n_act == 1)
     else:
         for i in range(4):
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
@@ -904,6 +1042,211 @@ def _rest_holds(a_x, a_y, a_v, geom, fric):
 
 
 @numba.njit(cache=True)
+def _fine_step(state, a, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out, touch, slip, vel_tol, lift_gap):
+    """One Moreau-Jean step (:func:`_step`) with its bookkeeping: the contact solver's counts, the input work,
+    the corners' flags (:func:`_contacts`) and an impact's loss. Returns ``(impact, converged)``."""
+    sweeps = _step(state, a[0], a[1], a[2], dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out, touch)
+    if sweeps > 0:
+        out[OUT_CONTACT_STEPS] += 1.0
+        out[OUT_NSGS_SWEEPS] += min(sweeps, nsgs[1])
+        out[OUT_NSGS_MAX] = max(out[OUT_NSGS_MAX], min(sweeps, nsgs[1]))
+    converged = sweeps <= nsgs[1]
+    if not converged:
+        out[OUT_NSGS_FAILED] += 1.0
+    return _book(state, a, ws, act, P, new, out, touch, slip, vel_tol, lift_gap, geom), converged
+
+
+@numba.njit(cache=True)
+def _book(state, a, ws, act, P, new, out, touch, slip, vel_tol, lift_gap, geom):
+    """The bookkeeping of a Moreau-Jean step from ``state`` to ``new`` under the accelerations ``a`` with the
+    impulses ``P``: input work, the corners' flags and friction work (:func:`_contacts`), an impact's loss.
+    Returns True at an impact."""
+    # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
+    # _contacts, and at an impact the kinetic energy of the impulses' velocity change
+    out[OUT_INPUT_WORK] -= a[0] * (new[0] - state[0]) + a[1] * (new[1] - state[1]) + a[2] * (new[2] - state[2])
+    Q1, r1, r, Iw = ws[10], ws[11], ws[3], ws[2]
+    _arms(new, geom, Q1, r1)
+    impact = _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out)
+    if impact:
+        vf = ws[6][2]
+        e = 0.0
+        for c in range(3):
+            dv = new[7 + c] - vf[c]
+            e += 0.5 * dv * dv
+            for c2 in range(3):
+                e += 0.5 * (new[10 + c] - vf[3 + c]) * Iw[c, c2] * (new[10 + c2] - vf[3 + c2])
+        out[OUT_IMPACT_LOSS] += e
+        out[OUT_IMPACTS] += 1.0
+    return impact
+
+
+@numba.njit(cache=True)
+def _flat_slip(act, touch, slip):
+    """After a Moreau-Jean step: all four corners active and down, some slipping (a block sliding flat)."""
+    sl = False
+    for i in range(4):
+        if not (act[i] and touch[i]):
+            return False
+        sl = sl or slip[i]
+    return sl
+
+
+@numba.njit(cache=True)
+def _stuck_pivot(act, touch, slip, P):
+    """After a Moreau-Jean step: one corner or two down, exactly those solved in contact, loaded, none slipping
+    (the phase :mod:`.pivot` integrates)."""
+    n = 0
+    for i in range(4):
+        if act[i] != touch[i] or (touch[i] and (slip[i] or P[i, 2] <= 0.0)):
+            return False
+        n += touch[i]
+    return n == 1 or n == 2
+
+
+@numba.njit(cache=True)
+def _rest_span(k, form, ax, ay, av, sub, n_exc, tail_av, geom, fric, tail_left, max_steps):
+    """Steps a seated block whose load the base carries at step ``k`` stays at rest (>= 1): a record's whole
+    sample interval from its start if the base carries the load at both samples, the tail's remaining rest
+    steps ``tail_left`` under a still floor, else one."""
+    if k >= n_exc:
+        return max(1, min(tail_left, max_steps - k))
+    if form == FORCING_LINEAR and k % sub == 0:
+        jj = k // sub
+        if _rest_holds(ax[jj], ay[jj], av[jj], geom, fric) and _rest_holds(ax[jj + 1], ay[jj + 1], av[jj + 1],
+                                                                            geom, fric):
+            return sub
+    return 1
+
+
+@numba.njit(cache=True)
+def _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, lift_gap, vel_tol):
+    """Is the end state ``new`` of a smooth step still in its phase? Every other corner above ``lift_gap``, and
+    a Moreau-Jean probe step from it (``a``: the floor's accelerations of that step) solved with exactly the
+    pivots active, each loaded and stuck. ``probe`` is ``(act, P, state, out)`` scratch (``P`` holds the warm
+    start on entry and the probe's impulses on return)."""
+    actp, Pp, sp, outp = probe
+    Q1, r1 = ws[10], ws[11]
+    _arms(new, geom, Q1, r1)
+    for i in range(4):
+        mine = i == piv[0] or (n_piv == 2 and i == piv[1])
+        if not mine and new[2] + r1[i, 2] <= lift_gap:
+            return False
+    outp[:] = 0.0
+    guess = ws[14]
+    for i in range(4):
+        guess[i] = i == piv[0] or (n_piv == 2 and i == piv[1])
+    sweeps = _step(new, a[0], a[1], a[2], dt, theta_mj, geom, ib, fric, nsgs, ws, actp, Pp, sp, outp, guess)
+    if sweeps == 0 or sweeps > nsgs[1]:
+        return False
+    for i in range(4):
+        mine = i == piv[0] or (n_piv == 2 and i == piv[1])
+        if actp[i] != mine or (mine and Pp[i, 2] <= 0.0):
+            return False
+    if n_piv == 2:
+        return outp[OUT_STICK_STEPS] > 0.5
+    ri = ws[3][piv[0]]  # the probe's arms
+    u0 = sp[7] + sp[11] * ri[2] - sp[12] * ri[1]
+    u1 = sp[8] + sp[12] * ri[0] - sp[10] * ri[2]
+    return math.hypot(u0, u1) <= vel_tol
+
+
+@numba.njit(cache=True)
+def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, wk, probe, P, new,
+            lift_gap, vel_tol, out):
+    """A smooth step (:mod:`opsrock.solvers.rigid3d.pivot`) about the corners down: from ``k`` to the next
+    sample (at most ``n_max`` steps), halved while it leaves its phase, down to ``pivot.MIN_STEPS``. Returns
+    ``(steps, largest tilt)``; 0 steps if none was kept, -1 if none could be tried (fewer than two steps to
+    the next sample, or not one corner or two down); the Moreau-Jean steps then go on."""
+    form, ax, ay, av, sub, n_exc, tail_av = forcing
+    piv = ws[12]
+    n_piv = 0
+    for i in range(4):
+        if touch[i]:
+            if n_piv == 2:
+                return 0, 0.0
+            piv[n_piv] = i
+            n_piv += 1
+    if n_piv == 0:
+        return 0, 0.0
+    n = PV.step_end(k, n_max, sub, n_exc, form) - k
+    if n < 2:
+        return -1, 0.0
+    a = ws[13]
+    Pp = probe[1]
+    while True:
+        out[OUT_SMOOTH_TRIED] += 1.0
+        tilt = PV.integrate(state, piv, n_piv, k, n, dt, theta_mj, geom, forcing, ib, new, wk)
+        a[0], a[1], a[2] = _floor(k + n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av)
+        Pp[:, :] = P
+        if tilt < OVERTURNING_ANGLE and _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws,
+                                                    probe, lift_gap, vel_tol):
+            P[:, :] = Pp
+            out[OUT_SMOOTH_STEPS] += 1.0
+            out[OUT_SMOOTH_SPAN] += n
+            return n, tilt
+        if n <= PV.MIN_STEPS:
+            return 0, 0.0
+        n = max(PV.MIN_STEPS, n // 2)
+
+
+@numba.njit(cache=True)
+def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, probe, P, new, out, touch,
+                  slip, vel_tol, lift_gap):
+    """A block sliding flat on its four corners: one Moreau-Jean step of up to ``n_max`` steps (to the next
+    sample), kept if its contact problem is the same, all four corners active and solved by the closed-form
+    flat slide or stick (:mod:`.pivot`, ``SLIDE_DTAU``). Returns the steps taken (0: none kept, -1: none
+    tried)."""
+    form, ax, ay, av, sub, n_exc, tail_av = forcing
+    n = PV.step_end(k, n_max, sub, n_exc, form) - k
+    if n < 2:
+        return -1
+    a = ws[13]
+    PV.mean_floor(k, n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, a)
+    actp, Pp, _, outp = probe
+    for i in range(4):
+        for c in range(3):
+            Pp[i, c] = P[i, c] * n
+    outp[:] = 0.0
+    sweeps = _step(state, a[0], a[1], a[2], n * dt, theta_mj, geom, ib, fric, nsgs, ws, actp, Pp, new, outp, touch)
+    if sweeps != 1 or outp[OUT_SLIDE_STEPS] + outp[OUT_STICK_STEPS] < 0.5:
+        return 0
+    for i in range(4):
+        if not actp[i] or Pp[i, 2] <= 0.0:
+            return 0
+    _book(state, a, ws, actp, Pp, new, out, touch, slip, vel_tol, lift_gap, geom)
+    for i in range(4):
+        for c in range(3):
+            P[i, c] = Pp[i, c] / n
+    out[OUT_SLIDE_STEPS] += outp[OUT_SLIDE_STEPS]
+    out[OUT_STICK_STEPS] += outp[OUT_STICK_STEPS]
+    out[OUT_COARSE_STEPS] += 1.0
+    out[OUT_COARSE_SPAN] += n
+    return n
+
+
+@numba.njit(cache=True)
+def _peak_reached(s, geom, ib, tilt_max, tail_av):
+    """The tail rule "peak": after the excitation (a still floor, ``g' = g + tail_av``), the block's energy per
+    unit mass above rest, bounded above by ``|V|²/2 + I_max |omega|²/2 + g' (z - h)``, can only fall; at a tilt
+    ``theta`` its centre of mass stands at least ``h cos theta + min(b, d) sin theta`` above the floor. Once the
+    bound is below half of ``g' (h cos theta_max + min(b, d) sin theta_max - h)`` (half: a margin for the
+    scheme's energy error) and the base moves slower than :data:`PEAK_BASE_SPEED`, neither the verdict nor
+    ``theta_max`` can change."""
+    b, d, h = geom[0], geom[1], geom[2]
+    gp = geom[3] + tail_av
+    i_max = max(ib[0], max(ib[1], ib[2]))
+    w0, w1, w2 = s[10], s[11], s[12]
+    e = 0.5 * (s[7] * s[7] + s[8] * s[8] + s[9] * s[9]) + 0.5 * i_max * (w0 * w0 + w1 * w1 + w2 * w2)
+    e += gp * (s[2] - h)
+    m = min(b, d)
+    if e >= 0.5 * gp * (h * math.cos(tilt_max) + m * math.sin(tilt_max) - h):
+        return False
+    w, x, y, z = s[3], s[4], s[5], s[6]
+    c0, c1, c2 = -h * 2.0 * (x * z + w * y), -h * 2.0 * (y * z - w * x), -h * (1.0 - 2.0 * (x * x + y * y))
+    return math.hypot(s[7] + w1 * c2 - w2 * c1, s[8] + w2 * c0 - w0 * c2) < PEAK_BASE_SPEED
+
+
+@numba.njit(cache=True)
 def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state, limits, hist_every, hist, out):
     """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history rows ``hist`` (columns ``H_*``);
     returns the status.
@@ -921,17 +1264,19 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     num : float64[4]
         ``(dt, theta_mj, rocked_theta, weak_y)``: step (s), theta-method parameter, tilt (rad) above which the
         block rocked, 1.0 if the weaker axis is ``y`` (the sign of ``theta``).
-    nsgs : float64[3]
-        ``(tol, max_sweeps, fail_steps)``: NSGS tolerance relative to the step's velocity scale, sweeps per
-        step, and consecutive unconverged steps after which the run fails.
+    nsgs : float64[5]
+        ``(tol, max_sweeps, fail_steps, loose_tol, extra_sweeps)``: NSGS tolerance relative to the step's
+        velocity scale, sweeps per step, consecutive unconverged steps after which the run fails, and the
+        looser tolerance and further sweeps of :func:`_solve_contacts`.
     form, ax, ay, av, sub, n_exc, tail_av
         Floor motion in the block frame: :data:`FORCING_STEPWISE` or :data:`FORCING_LINEAR` (samples, ``sub``
         steps per interval), for ``n_exc`` steps; after them no horizontal motion and ``a_v = tail_av`` (m/s²).
     state : float64[13]
         Initial state; holds the final one on return.
-    limits : float64[6]
+    limits : float64[8]
         ``(max_steps, max_tail_steps (< 0: no tail), rest_velocity (m/s), rest_steps, velocity_tol (m/s),
-        lift_gap (m))``.
+        lift_gap (m), peak (1.0: the tail rule "peak", :func:`_peak_reached`), smooth (1.0: smooth steps about
+        stuck corners, :mod:`.pivot`))``.
     hist_every : int
         A history row every this many steps (and the last state).
     """
@@ -939,18 +1284,25 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     dt, theta_mj, rocked_theta, weak_y = num[0], num[1], num[2], num[3] > 0.5
     max_steps, max_tail, rest_vel = int(limits[0]), int(limits[1]), limits[2]
     rest_steps, vel_tol, lift_gap = int(limits[3]), limits[4], limits[5]
+    peak_rule, smooth_on = limits[6] > 0.5, limits[7] > 0.5
     fail_steps = int(nsgs[2])
+    forcing = (form, ax, ay, av, sub, n_exc, tail_av)
+    n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (geom[4] * dt)))
     out[:] = 0.0
     out[OUT_FIRST_MODE] = -1.0
     ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
-          np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)))
+          np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)),
+          np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3), np.zeros(4, dtype=np.bool_))
     Q, Iinv, Iw, r = ws[0], ws[1], ws[2], ws[3]
+    wk = (np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
+          np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
+    probe = (np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), np.zeros(OUT_SIZE))
     act = np.zeros(4, dtype=np.bool_)
     touch = np.zeros(4, dtype=np.bool_)
     slip = np.zeros(4, dtype=np.bool_)
     P = np.zeros((4, 3))
     new = np.zeros(13)
-    Q1, r1 = np.zeros((3, 3)), np.zeros((4, 3))
+    r1 = ws[11]
     cap = hist.shape[0]
     _geometry(state, geom, ib, Q, Iinv, Iw, r)
     for i in range(4):
@@ -969,6 +1321,9 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     outside = False
     over_kind = 0.0
     last_down = n_down
+    calm = 0
+    sliding = 0
+    n_slide = max(2, int(PV.SLIDE_DTAU / (geom[4] * dt)))
     k = 0
     while True:
         if k >= n_exc and (max_tail < 0 or resting >= rest_steps):
@@ -981,48 +1336,66 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
             status = STATUS_NONFINITE
             break
         if seated and _rest_holds(a_x, a_y, a_v, geom, fric):
-            # the rest skip: a seated, stuck block whose load the base carries stays at rest this step
-            out[OUT_REST_STEPS] += 1.0
-            k += 1
-            _tally(MODE_REST, 4, dt, out)
-            resting = resting + 1 if k >= n_exc else 0
-            if k % hist_every == 0:
-                j = _record(j, cap, k * dt, state, theta, 0.0, 4, h, hist)
+            # the rest skip: a seated, stuck block whose load the base carries stays at rest this step, and
+            # a whole sample interval of a record if it does at both its samples (the accelerations are
+            # linear in between and the set of loads the base carries is convex), and the whole rest of
+            # a still tail
+            n = _rest_span(k, form, ax, ay, av, sub, n_exc, tail_av, geom, fric, rest_steps - resting,
+                           max_steps)
+            out[OUT_REST_STEPS] += n
+            _tally(MODE_REST, 4, n * dt, out)
+            for kk in range(k + 1, k + n + 1):
+                if kk % hist_every == 0:
+                    j = _record(j, cap, kk * dt, state, theta, 0.0, 4, h, hist)
+            k += n
+            resting = resting + min(n, k - n_exc + 1) if k >= n_exc else 0
             continue
         if seated:  # leaving rest: warm start from the static impulses of the step's load
             seated = False
             gz = geom[3] + a_v
             for i in range(4):
                 P[i, 0], P[i, 1], P[i, 2] = 0.25 * a_x * dt, 0.25 * a_y * dt, 0.25 * gz * dt
-        sweeps = _step(state, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out)
-        if sweeps > 0:
-            out[OUT_CONTACT_STEPS] += 1.0
-            out[OUT_NSGS_SWEEPS] += min(sweeps, nsgs[1])
-            out[OUT_NSGS_MAX] = max(out[OUT_NSGS_MAX], min(sweeps, nsgs[1]))
-        if sweeps > nsgs[1]:
-            out[OUT_NSGS_FAILED] += 1.0
-            unconverged += 1
-            if unconverged > fail_steps:
-                status = STATUS_CONTACT
-                break
-        else:
-            unconverged = 0
-        # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
-        # _contacts, and at an impact the kinetic energy of the impulses' velocity change
-        out[OUT_INPUT_WORK] -= a_x * (new[0] - state[0]) + a_y * (new[1] - state[1]) + a_v * (new[2] - state[2])
-        _arms(new, geom, Q1, r1)
-        if _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
-            vf = ws[6][2]
-            e = 0.0
-            for a in range(3):
-                dv = new[7 + a] - vf[a]
-                e += 0.5 * dv * dv
-                for c in range(3):
-                    e += 0.5 * (new[10 + a] - vf[3 + a]) * Iw[a, c] * (new[10 + c] - vf[3 + c])
-            out[OUT_IMPACT_LOSS] += e
-            out[OUT_IMPACTS] += 1.0
+        n, tilt_sub = 0, 0.0
+        if smooth_on and calm >= PV.CALM_STEPS:
+            n, tilt_sub = _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, wk,
+                                  probe, P, new, lift_gap, vel_tol, out)
+            if n > 0:
+                F = wk[4]
+                PV.floor_at(k + 0.5 * n, k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, geom[3])
+                out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
+                    (F[2] + geom[3]) * (new[2] - state[2])
+            elif n == 0:
+                calm = -4 * PV.MIN_STEPS  # none kept: the Moreau-Jean steps locate the event first
+        elif smooth_on and sliding >= PV.CALM_STEPS:
+            n = _coarse_slide(state, k, n_slide, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, probe, P, new, out,
+                              touch, slip, vel_tol, lift_gap)
+            if n == 0:
+                sliding = -n_slide
+        if n <= 0:
+            n = 1
+            impact, converged = _fine_step(state, (a_x, a_y, a_v), dt, theta_mj, geom, ib, fric, nsgs, ws, act, P,
+                                           new, out, touch, slip, vel_tol, lift_gap)
+            if not converged:
+                unconverged += 1
+                if unconverged > fail_steps:
+                    status = STATUS_CONTACT
+                    break
+            else:
+                unconverged = 0
+            if calm < 0:
+                calm += 1
+            elif not impact and _stuck_pivot(act, touch, slip, P):
+                calm += 1
+            else:
+                calm = 0
+            if sliding < 0:
+                sliding += 1
+            elif not impact and _flat_slip(act, touch, slip):
+                sliding += 1
+            else:
+                sliding = 0
         state[:] = new
-        k += 1
+        k += n
         fin = 0.0
         for a in range(13):
             fin += state[a]
@@ -1030,20 +1403,20 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
             status = STATUS_NONFINITE
             break
         mode, n_down = _mode(touch, slip)
-        _tally(mode, n_down, dt, out)
+        _tally(mode, n_down, n * dt, out)
         if n_down > 0:
             last_down = n_down
         tilt, theta, lx, ly = _tilt(state, weak_y)
         sx, sy = state[0] - h * lx, state[1] - h * ly
         slide_max = max(slide_max, math.hypot(sx, sy))
         twist_max = max(twist_max, abs(_twist(state)))
-        theta_max = max(theta_max, tilt)
+        theta_max = max(theta_max, tilt, tilt_sub)
         now_out = _cm_outside(state, r1)
         if now_out and not outside:
             over_kind = 1.0 if last_down >= 2 else 2.0
         outside = now_out
         theta_dot = -state[10] if weak_y else state[11]
-        if k % hist_every == 0:
+        if k // hist_every != (k - n) // hist_every:
             j = _record(j, cap, k * dt, state, theta, theta_dot, n_down, h, hist)
         if theta_max >= OVERTURNING_ANGLE:
             out[OUT_OVERTURNED] = 1.0
@@ -1053,7 +1426,10 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
         speed = max(abs(state[7]), abs(state[8]), abs(state[9]),
                     Rw * (abs(state[10]) + abs(state[11]) + abs(state[12])))
         still = speed < rest_vel
-        resting = resting + 1 if (k >= n_exc and mode == MODE_REST and still) else 0
+        resting = resting + min(n, k - n_exc + 1) if (k >= n_exc and mode == MODE_REST and still) else 0
+        if peak_rule and k >= n_exc and _peak_reached(state, geom, ib, theta_max, tail_av):
+            out[OUT_PEAK_STOP] = 1.0
+            break
         if mode == MODE_REST and n_down == 4 and speed < vel_tol:
             seated = True
             for a in range(7, 13):

@@ -178,12 +178,14 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
                      1.0 if mu_inf else 0.0])
     geom = np.array([block.b, block.d, block.h_cm, G, p, 0.0, 0.0, R])
     num = np.array([dt, settings.theta_mj, settings.rocked_theta, 1.0 if box.weak_y else 0.0])
-    nsgs = np.array([settings.nsgs_tol, settings.nsgs_max_sweeps, settings.nsgs_fail_steps], dtype=float)
+    nsgs = np.array([settings.nsgs_tol, settings.nsgs_max_sweeps, settings.nsgs_fail_steps, settings.nsgs_loose_tol,
+                     settings.nsgs_extra_sweeps], dtype=float)
     tail_dtau = DEFAULT_TAIL_DTAU if settings.max_free_time is None else settings.max_free_time * p
     max_tail = math.ceil(tail_dtau / (p * dt)) if tail else -1
     limits = np.array([settings.step_limit, max_tail, settings.rest_velocity * p * R,
                        max(1, math.ceil(settings.rest_duration / (p * dt))), settings.velocity_tol * p * R,
-                       settings.contact_gap * (G + forcing.peak) * dt * dt])
+                       settings.contact_gap * (G + forcing.peak) * dt * dt,
+                       1.0 if settings.tail == "peak" else 0.0, 1.0 if settings.smooth else 0.0])
     every = max(1, round(settings.history_dtau / (p * dt)))
     cap = min(forcing.n_exc + max(max_tail, 0), settings.step_limit) // every + 3 if settings.record else 0
     hist = np.zeros((cap, kn.H_SIZE))
@@ -228,7 +230,11 @@ def _diagnostics(out: np.ndarray) -> dict[str, Any]:
             "stick_steps": int(out[kn.OUT_STICK_STEPS]), "flat_slide_steps": int(out[kn.OUT_SLIDE_STEPS]),
             "nsgs_unconverged_steps": int(out[kn.OUT_NSGS_FAILED]),
             "nsgs_mean_sweeps": float(out[kn.OUT_NSGS_SWEEPS] / steps), "nsgs_max_sweeps": int(out[kn.OUT_NSGS_MAX]),
-            "limit_solves": int(out[kn.OUT_LIMIT_STEPS])}
+            "limit_solves": int(out[kn.OUT_LIMIT_STEPS]), "smooth_steps": int(out[kn.OUT_SMOOTH_STEPS]),
+            "smooth_span_steps": int(out[kn.OUT_SMOOTH_SPAN]), "smooth_tried": int(out[kn.OUT_SMOOTH_TRIED]),
+            "peak_stop": bool(out[kn.OUT_PEAK_STOP] > 0.5), "nsgs_loose_steps": int(out[kn.OUT_NSGS_LOOSE]),
+            "nsgs_extra_sweeps": int(out[kn.OUT_NSGS_EXTRA]), "coarse_slide_steps": int(out[kn.OUT_COARSE_STEPS]),
+            "coarse_slide_span_steps": int(out[kn.OUT_COARSE_SPAN])}
 
 
 def _result(run: SolverRun, box: BoxProperties, out: np.ndarray, hist: np.ndarray, record: dict[str, Any],

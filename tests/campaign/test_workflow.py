@@ -69,9 +69,12 @@ def test_an_unguarded_script_stops_at_once_with_one_error_naming_the_fix(tmp_pat
     assert last.startswith("opsrock.errors.UnguardedScriptError: the worker processes re-ran the script ")
     assert "script.py" in last and 'if __name__ == "__main__":' in last and "workers=1" in last
     # the old code re-ran every case alone in a new worker (each a new start of the script) and stored all four
-    # failed; now each of the two workers stops as soon as the script reaches run_campaign, and nothing is stored
-    assert starts <= 3 and read_rows(tmp_path / "out") == {}
-    assert wall < 60.0  # two interpreter start-ups (measured about 4 s on a loaded 2-core machine); the old way: minutes
+    # failed; now each of the two workers stops as soon as the script reaches run_campaign, and nothing is stored.
+    # The user's start and the two workers', and the pool may start a replacement before it reads a stopped
+    # worker's exit status (as in the one-worker test below): a few, never a loop
+    assert starts <= 4 and read_rows(tmp_path / "out") == {}
+    # a few interpreter start-ups (measured about 4 s on a loaded 2-core machine); the old way: minutes
+    assert wall < 120.0
 
 
 @pytest.mark.slow  # make test runs guarded main modules through spawn in every `opsrock run --workers 2` test

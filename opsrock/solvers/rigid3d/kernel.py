@@ -122,16 +122,7 @@ def _floor(k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av):
 @numba.njit(cache=True)
 def _rotmat(s, Q):
     """Rotation matrix ``Q`` (body to floor) of the unit quaternion ``s[3:7]``."""
-    w, x, y, z = s[3], s[4], s[5], s[6]
-    Q[0, 0] = 1.0 - 2.0 * (y * y + z * z)
-    Q[0, 1] = 2.0 * (x * y - w * z)
-    Q[0, 2] = 2.0 * (x * z + w * y)
-    Q[1, 0] = 2.0 * (x * y + w * z)
-    Q[1, 1] = 1.0 - 2.0 * (x * x + z * z)
-    Q[1, 2] = 2.0 * (y * z - w * x)
-    Q[2, 0] = 2.0 * (x * z - w * y)
-    Q[2, 1] = 2.0 * (y * z + w * x)
-    Q[2, 2] = 1.0 - 2.0 * (x * x + y * y)
+    PV.quat_matrix(s, 3, Q)
 
 
 @numba.njit(cache=True)
@@ -505,14 +496,8 @@ def _stick_flat(act, r, Iw, vf, P, B):
 
 
 @numba.njit(cache=True)
-def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
-    """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
-    through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
-    it stops; the impulses are the least-norm ones that make that velocity change (no self-equilibrated
-    friction "squeeze": the statically indeterminate part is left at zero), with the friction along an edge,
-    and on three or four corners all of it, split in proportion to the normal impulses (:func:`_stick_flat`). Accepted, into ``V``, ``Om`` and
-    ``P``, if every normal impulse is compressive and every tangential one lies in the static cone; else False
-    (NSGS then solves the step). ``A6`` (6 x 6) and ``y6`` (6) are workspace."""
+def _first_two(act):
+    """The first two active corners' indices (-1 where fewer)."""
     i1 = -1
     i2 = -1
     for i in range(4):
@@ -521,6 +506,19 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
                 i1 = i
             elif i2 < 0:
                 i2 = i
+    return i1, i2
+
+
+@numba.njit(cache=True)
+def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
+    """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
+    through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
+    it stops; the impulses are the least-norm ones that make that velocity change (no self-equilibrated
+    friction "squeeze": the statically indeterminate part is left at zero), with the friction along an edge,
+    and on three or four corners all of it, split in proportion to the normal impulses (:func:`_stick_flat`). Accepted, into ``V``, ``Om`` and
+    ``P``, if every normal impulse is compressive and every tangential one lies in the static cone; else False
+    (NSGS then solves the step). ``A6`` (6 x 6) and ``y6`` (6) are workspace."""
+    i1, i2 = _first_two(act)
     if n_act == 2:
         ra, rb = r[i1], r[i2]
         L0, L1, L2 = ra[0] - rb[0], ra[1] - rb[1], ra[2] - rb[2]
@@ -894,14 +892,7 @@ def _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6)
     """Two active corners whose edge cannot carry the step stuck (a corner pulls): each alone stuck, the other
     separating (:func:`_stick_mask`), the lower one first (a block turning about a corner with the edge's other
     corner grazing the floor)."""
-    i1 = -1
-    i2 = -1
-    for i in range(4):
-        if act[i]:
-            if i1 < 0:
-                i1 = i
-            else:
-                i2 = i
+    i1, i2 = _first_two(act)
     if r[i2, 2] < r[i1, 2]:
         i1, i2 = i2, i1
     sub = ws[14]

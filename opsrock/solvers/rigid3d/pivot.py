@@ -103,25 +103,25 @@ def floor_at(kf, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g):
 
 
 @numba.njit(cache=True)
-def _quat_matrix(y, Q):
-    """Rotation matrix of the unit quaternion ``y[0:4]``."""
-    w, x, yy, z = y[0], y[1], y[2], y[3]
-    Q[0, 0] = 1.0 - 2.0 * (yy * yy + z * z)
-    Q[0, 1] = 2.0 * (x * yy - w * z)
-    Q[0, 2] = 2.0 * (x * z + w * yy)
-    Q[1, 0] = 2.0 * (x * yy + w * z)
+def quat_matrix(v, o, Q):
+    """Rotation matrix ``Q`` of the unit quaternion ``v[o:o + 4] = (w, x, y, z)``."""
+    w, x, y, z = v[o], v[o + 1], v[o + 2], v[o + 3]
+    Q[0, 0] = 1.0 - 2.0 * (y * y + z * z)
+    Q[0, 1] = 2.0 * (x * y - w * z)
+    Q[0, 2] = 2.0 * (x * z + w * y)
+    Q[1, 0] = 2.0 * (x * y + w * z)
     Q[1, 1] = 1.0 - 2.0 * (x * x + z * z)
-    Q[1, 2] = 2.0 * (yy * z - w * x)
-    Q[2, 0] = 2.0 * (x * z - w * yy)
-    Q[2, 1] = 2.0 * (yy * z + w * x)
-    Q[2, 2] = 1.0 - 2.0 * (x * x + yy * yy)
+    Q[1, 2] = 2.0 * (y * z - w * x)
+    Q[2, 0] = 2.0 * (x * z - w * y)
+    Q[2, 1] = 2.0 * (y * z + w * x)
+    Q[2, 2] = 1.0 - 2.0 * (x * x + y * y)
 
 
 @numba.njit(cache=True)
 def _arm(y, cb, Q, r):
     """``r = X - O = -Q c_b``: from the pivot corner (body coordinates ``cb`` from the centre of mass) to the
     centre of mass, floor frame."""
-    _quat_matrix(y, Q)
+    quat_matrix(y, 0, Q)
     for a in range(3):
         r[a] = -(Q[a, 0] * cb[0] + Q[a, 1] * cb[1] + Q[a, 2] * cb[2])
 
@@ -255,4 +255,4 @@ def step_end(k, n_steps_max, sub, n_exc, form):
 
 
 __all__ = ["CALM_STEPS", "MAX_DTAU", "MIN_STEPS", "RK_DTAU", "SLIDE_DTAU", "floor_at", "integrate", "mean_floor",
-           "step_end"]
+           "quat_matrix", "step_end"]

@@ -99,41 +99,42 @@ CPU-second:
 dtau     smooth  mu = None       mu = 0.32       speed    two components, mu = 0.32:        speed
                  theta_max/a     theta_max/a              theta_max/a, slide_max (m)
 =======  ======  ==============  ==============  =======  ================================  =======
-1e-3     False   0.901102        0.866976        315      0.015860, 0.03518                 187
-1e-3     True    0.901344        0.870326        1437     0.015845, 0.03525                 216
-5e-4     False   0.899872        0.882513        145      0.015829, 0.03524                 76
-5e-4     True    0.901415        0.882238        1276     0.015829, 0.03525                 90
-2.5e-4   False   0.896300        0.895276        70       0.015967, 0.03526                 44
-2.5e-4   True    0.896262        0.895099        899      0.015968, 0.03528                 48
-1e-4     False   0.908043        0.908082        31       0.015898, 0.03528                 24
-1e-4     True    0.908040        0.908094        1138     0.015897, 0.03530                 27
+1e-3     False   0.901102        0.866976        342      0.015860, 0.03518                 205
+1e-3     True    0.901344        0.870326        1582     0.015845, 0.03525                 249
+5e-4     False   0.899872        0.882513        162      0.015829, 0.03524                 86
+5e-4     True    0.901415        0.882238        1424     0.015829, 0.03525                 106
+2.5e-4   False   0.896300        0.895276        83       0.015967, 0.03526                 49
+2.5e-4   True    0.896262        0.895099        957      0.015968, 0.03528                 55
+1e-4     False   0.908043        0.908082        30       0.015898, 0.03528                 23
+1e-4     True    0.908040        0.908094        830      0.015897, 0.03530                 25
 5e-5     False   0.906304        0.906364        15       0.015888, 0.03529                 10
-5e-5     True    0.906302        0.906369        1060     0.015887, 0.03532                 14
+5e-5     True    0.906302        0.906369        696      0.015887, 0.03532                 16
 =======  ======  ==============  ==============  =======  ================================  =======
 
 The smooth steps leave the answers where Moreau-Jean puts them (to 3e-6 alpha on the record at the default
-step, 4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps) and make a rocking case 37 times faster
-at the default step (1138 against 31), nearly independent of ``dtau``: the Moreau-Jean steps left are those
-around impacts. A case that slides and rocks on slipping corners gains little (27 against 24): its steps are
+step, 4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps) and make a rocking case 28 times faster
+at the default step (830 against 30), nearly independent of ``dtau``: the Moreau-Jean steps left are those
+around impacts. A case that slides and rocks on slipping corners gains little (25 against 23): its steps are
 Moreau-Jean steps with NSGS.
 
 rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha on the pulse and 1e-5 on the
 record; like it, the rocking peak converges at first order with a scatter (each impact is located to a step).
 Hence the default ``dtau = 1e-4``: about 1e-3 alpha on records, 1e-4 on pulses. Planar limit (slow tier,
 tests/solvers/test_rigid3d_slow.py): the paper's 400 pulses (depth twice the width) against ``housner_fast``
-399/400 verdicts, median ``|d theta_max| / alpha`` 3.1e-5, 95th percentile 1.05e-3; the one difference is the
-model's, not the scheme's: medicine_cabinet/f06/a09 leaves the floor (0.18 s of flight, which housner_fast's
-bilateral pivot cannot) and overturns, as ``moreau_jean`` does. (With infinite friction a corner whose sticking
+399/400 verdicts, median ``|d theta_max| / alpha`` 3.3e-5, 95th percentile 2.2e-4; the one difference is the
+model's, not the scheme's: medicine_cabinet/f06/a09 leaves the floor (0.19 s of flight, which housner_fast's
+bilateral pivot cannot) and overturns, as ``moreau_jean`` does (a smooth step that held the pivot through that
+flight agreed with housner_fast instead: hence the load check of every Runge-Kutta sub-step). (With infinite friction a corner whose sticking
 impulse would pull slides in the infinite-friction limit; when it was left open instead, bookcase/f01/a07-a10
 stopped at 8.57-8.70 alpha, short of overturning at 8.8.) Against ``friction`` (mu = 0.5, which models
-flight): 400/400, median 5.0e-5, 95th percentile 3.3e-4. Twelve FEMA P695 far-field records at 0.45 g along
-``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 4.2e-4, 95th
-percentile 1.3e-3.
+flight): 400/400, median 5.4e-5, 95th percentile 3.2e-4. Twelve FEMA P695 far-field records at 0.45 g along
+``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 3.8e-4, 95th
+percentile 1.2e-3 (``pytest -s -m slow tests/solvers/test_rigid3d_slow.py`` prints them).
 
 Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms),
 5-20 µs an NSGS step (slipping on one or two corners), 20 ns a rest-skipped step; a smooth step spans up to a
-sample interval (hundreds of Moreau-Jean steps); 1138 record-seconds per CPU-second on the rocking
-record above, 27 on the sliding two-component one (2-core project machine; one run, the speeds scatter by
+sample interval (hundreds of Moreau-Jean steps); 830 record-seconds per CPU-second on the rocking
+record above, 25 on the sliding two-component one (2-core project machine; one run, the speeds scatter by
 about 20 % between runs). The kernel is compiled once and cached (``cache=True``): about 30 s cold, 0.3 s to
 load the cache.
 """

@@ -1166,10 +1166,10 @@ def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing,
     Pp = probe[1]
     while True:
         out[OUT_SMOOTH_TRIED] += 1.0
-        tilt = PV.integrate(state, piv, n_piv, k, n, dt, theta_mj, geom, forcing, ib, new, wk)
+        tilt = PV.integrate(state, piv, n_piv, k, n, dt, theta_mj, geom, forcing, ib, fric, new, wk)
         a[0], a[1], a[2] = _floor(k + n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av)
         Pp[:, :] = P
-        if tilt < OVERTURNING_ANGLE and _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws,
+        if 0.0 <= tilt < OVERTURNING_ANGLE and _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws,
                                                     probe, lift_gap, vel_tol):
             P[:, :] = Pp
             out[OUT_SMOOTH_STEPS] += 1.0

@@ -14,11 +14,13 @@ The quaternion follows ``q' = [0, omega] q / 2``. Moreau-Jean integrates the sam
 error (its contact impulse carries the gravity torque of the step's start); this is fourth-order, so a phase
 is crossed in steps of :data:`RK_DTAU` instead of ``dtau``.
 
-A smooth step is only taken, and only kept, where it is the same phase throughout (:func:`try_step`): the step
-ends on a sample of the floor motion or the end of the excitation (the floor's acceleration is linear between
-samples, a pulse smooth), every other corner stays above the floor with room for a Moreau-Jean step (no
-impact inside), the tilt stays below pi/2, and a Moreau-Jean probe step from the end state solves the contact
-problem with the same corners, stuck and loaded. Otherwise the step is halved, down to :data:`MIN_STEPS`
+A smooth step is only taken, and only kept, where it is the same phase throughout
+(:func:`opsrock.solvers.rigid3d.kernel._smooth`): the step ends on a sample of the floor motion or the end of
+the excitation (the floor's acceleration is linear between samples, a pulse smooth), at the end of every
+Runge-Kutta sub-step the pivots' reaction presses on the floor within the static cone (:func:`_loads_hold`;
+without this check a smooth step held a pivot through 0.19 s of flight), every other corner stays above the
+floor (no impact inside), the tilt stays below pi/2, and a Moreau-Jean probe step from the end state solves the
+contact problem with the same corners, stuck and loaded. Otherwise the step is halved, down to :data:`MIN_STEPS`
 Moreau-Jean steps, and then the Moreau-Jean steps take over (impacts, lift-off, slip, flight and overturning
 are always theirs).
 
@@ -179,9 +181,40 @@ def _tilt_of(y):
 
 
 @numba.njit(cache=True)
-def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, new, wk):
+def _loads_hold(y, dy, r, IO, F, edge, e, length, fric):
+    """Do the pivots carry the motion ``(y, dy)`` (the arm ``r`` and ``I_O`` of ``y``, body force ``F``)? The
+    reaction per unit mass ``R = omega' x r + omega x (omega x r) - F`` presses on the floor (``R_z > 0``) within
+    the static cone (``hypot(R_x, R_y) <= mu_s R_z``; always with infinite friction); on an edge of direction
+    ``e`` and ``length`` from the pivot ``O`` to the other corner, each corner presses: the other's share
+    ``R_Bz = (e_y m_x - e_x m_y) / length`` from the moment about ``O``, ``length e x R_B = m = I_O omega' +
+    omega x I_O omega - r x F``. A block that would lift a pivot or slip leaves the smooth phase here, between
+    two Moreau-Jean probes."""
+    w0, w1, w2 = y[4], y[5], y[6]
+    a0, a1, a2 = dy[4], dy[5], dy[6]
+    r0, r1, r2 = r[0], r[1], r[2]
+    v0, v1, v2 = w1 * r2 - w2 * r1, w2 * r0 - w0 * r2, w0 * r1 - w1 * r0  # omega x r
+    R0 = a1 * r2 - a2 * r1 + w1 * v2 - w2 * v1 - F[0]
+    R1 = a2 * r0 - a0 * r2 + w2 * v0 - w0 * v2 - F[1]
+    R2 = a0 * r1 - a1 * r0 + w0 * v1 - w1 * v0 - F[2]
+    if R2 <= 0.0 or (fric[2] < 0.5 and math.hypot(R0, R1) > fric[0] * R2):
+        return False
+    if not edge:
+        return True
+    L0 = IO[0, 0] * w0 + IO[0, 1] * w1 + IO[0, 2] * w2
+    L1 = IO[1, 0] * w0 + IO[1, 1] * w1 + IO[1, 2] * w2
+    L2 = IO[2, 0] * w0 + IO[2, 1] * w1 + IO[2, 2] * w2
+    m0 = IO[0, 0] * a0 + IO[0, 1] * a1 + IO[0, 2] * a2 + w1 * L2 - w2 * L1 - (r1 * F[2] - r2 * F[1])
+    m1 = IO[1, 0] * a0 + IO[1, 1] * a1 + IO[1, 2] * a2 + w2 * L0 - w0 * L2 - (r2 * F[0] - r0 * F[2])
+    rb = (e[1] * m0 - e[0] * m1) / length
+    return rb > 0.0 and R2 - rb > 0.0
+
+
+@numba.njit(cache=True)
+def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, fric, new, wk):
     """Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps about the stuck
-    ``pivots[:n_piv]`` (one corner or two) into ``new``; returns the largest tilt (rad) at the sub-steps' ends.
+    ``pivots[:n_piv]`` (one corner or two) into ``new``; returns the largest tilt (rad) at the sub-steps' ends, or
+    -1 as soon as the pivots' loads stop holding the block there (:func:`_loads_hold`, ``fric`` the kernel's
+    ``(mu_s, mu_k, infinite)``).
     ``forcing`` is ``(form, ax, ay, av, sub, n_exc, tail_av)``; ``wk`` the workspace ``(y, dy, acc, ytmp)`` (7 each),
     ``(F, cb, e, r)`` (3 each), ``(Q, IO)`` (3 x 3 each)."""
     form, ax, ay, av, sub, n_exc, tail_av = forcing
@@ -196,6 +229,7 @@ def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, ne
     _arm(y, cb, Q, r)
     o0, o1, o2 = s[0] - r[0], s[1] - r[1], s[2] - r[2]  # the pivot, fixed in the floor frame
     edge = n_piv == 2
+    n = 1.0
     if edge:
         i1 = pivots[1]
         tx = (1.0 if i1 == 0 or i1 == 3 else -1.0) * b - cb[0]
@@ -211,28 +245,31 @@ def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, ne
     hs = n_steps / n_sub  # sub-step in Moreau-Jean steps
     hdt = hs * dt
     tilt_max = _tilt_of(y)
+    floor_at(k0, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+    _rhs(y, cb, ib, F, edge, e, dy, Q, IO, r)
     for m in range(n_sub):
         kf = k0 + m * hs
-        for stage in range(4):
-            if stage == 0:
-                c, w = 0.0, 1.0 / 6.0
-                for a in range(7):
-                    ytmp[a] = y[a]
-            else:
-                c = 0.5 if stage < 3 else 1.0
-                w = 1.0 / 3.0 if stage < 3 else 1.0 / 6.0
-                for a in range(7):
-                    ytmp[a] = y[a] + c * hdt * dy[a]
+        for a in range(7):
+            acc[a] = dy[a] / 6.0  # the first stage: the derivative at the sub-step's start
+        for stage in range(1, 4):
+            c = 0.5 if stage < 3 else 1.0
+            w = 1.0 / 3.0 if stage < 3 else 1.0 / 6.0
+            for a in range(7):
+                ytmp[a] = y[a] + c * hdt * dy[a]
             floor_at(kf + c * hs, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
             _rhs(ytmp, cb, ib, F, edge, e, dy, Q, IO, r)
             for a in range(7):
-                acc[a] = (0.0 if stage == 0 else acc[a]) + w * dy[a]
+                acc[a] += w * dy[a]
         for a in range(7):
             y[a] += hdt * acc[a]
         nq = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2] + y[3] * y[3])
         for a in range(4):
             y[a] /= nq
         tilt_max = max(tilt_max, _tilt_of(y))
+        floor_at(kf + hs, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+        _rhs(y, cb, ib, F, edge, e, dy, Q, IO, r)  # also the next sub-step's first stage
+        if not _loads_hold(y, dy, r, IO, F, edge, e, n if edge else 1.0, fric):
+            return -1.0
     _arm(y, cb, Q, r)
     new[0], new[1], new[2] = o0 + r[0], o1 + r[1], o2 + r[2]
     new[3], new[4], new[5], new[6] = y[0], y[1], y[2], y[3]

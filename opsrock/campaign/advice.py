@@ -22,7 +22,7 @@ ASSUMED_FRICTION: float = 0.5
 
 
 def sliding_warnings(blocks: Sequence[Any], table: Sequence[Mapping[str, Any]],
-                     mu: float = ASSUMED_FRICTION) -> list[str]:
+                     mu: float = ASSUMED_FRICTION, solver: str | None = None) -> list[str]:
     """One line per block without friction whose no-slip result a floor of friction ``mu`` would change.
 
     Parameters
@@ -33,13 +33,19 @@ def sliding_warnings(blocks: Sequence[Any], table: Sequence[Mapping[str, Any]],
         The rows of ``cases.csv`` (``block``, ``pfa`` in m/s², ``overturned``).
     mu : float
         Assumed floor friction coefficient (dimensionless).
+    solver : str or None
+        The scene's solver: with ``rigid3d`` (which models friction itself) the fix named is the block's friction
+        alone, and ``b/h`` is that of the weaker axis (``min(width, depth) / height``).
     """
     out = []
+    three_d = solver == "rigid3d"
     for spec in blocks:
         if spec.friction is not None:
             continue
-        ratio = spec.width / spec.height
-        fix = "give the block friction (and solver 'friction') to model it"
+        base = min(spec.width, spec.depth) if three_d and getattr(spec, "depth", None) else spec.width
+        ratio = base / spec.height
+        fix = ("give the block friction to model it (rigid3d models it)" if three_d
+               else "give the block friction (and solver 'friction') to model it")
         if ratio > mu:
             out.append(f"block {spec.name}: b/h = {ratio:.3g} > {mu:g}: on a floor with friction below b/h it "
                        f"slides and cannot start rocking; it was solved as never slipping; {fix}")

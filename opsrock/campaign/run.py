@@ -343,7 +343,7 @@ class _Run:
             n_failed=sum(r["status"] == "failed" for r in table), wall_time_s=wall_time_s, out_dir=str(out),
             n_lost=sum(r["status"] == "failed" and is_lost(r["reason"]) for r in table),
             store_path=str(out / STORE_FILE), cases_csv=str(out / CASES_FILE), manifest_path=str(out / MANIFEST_FILE),
-            digest=self.digest, solver=self.scene.solver, warnings=tuple(sliding_warnings(self.scene.blocks, table)),
+            digest=self.digest, solver=self.scene.solver, warnings=tuple(sliding_warnings(self.scene.blocks, table, solver=self.scene.solver)),
             choice=self.scene.choice.reason if self.scene.choice is not None else "")
 
     def open(self, store: ResultStore, manifest: dict, force: bool) -> None:

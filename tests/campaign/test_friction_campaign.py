@@ -146,6 +146,19 @@ def test_warnings_for_blocks_without_friction():
     assert len(out) == 2
     assert out[0].startswith("block stocky: b/h = 0.667 > 0.5")
     assert out[1].startswith("block slender: it overturned only under floor accelerations of 0.917 g")
+    assert "solver 'friction'" in out[0]
+
+
+def test_warnings_in_three_dimensions_name_the_weaker_axis_and_no_other_solver():
+    class Spec:
+        def __init__(self, name, width, height, depth):
+            self.name, self.width, self.height, self.depth, self.friction = name, width, height, depth, None
+
+    # wide along x but shallow: the weaker axis is the depth, 0.6/1.8 = 0.333 < 0.5, so no "b/h > mu" line
+    out = sliding_warnings([Spec("shallow", 1.2, 1.8, 0.6), Spec("square", 1.2, 1.8, 1.2)], [], solver="rigid3d")
+    assert out == ["block square: b/h = 0.667 > 0.5: on a floor with friction below b/h it slides and cannot start "
+                   "rocking; it was solved as never slipping; give the block friction to model it (rigid3d models "
+                   "it)"]
 
 
 # --- vertical motion ------------------------------------------------------------------------------------------

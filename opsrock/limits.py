@@ -395,6 +395,15 @@ def positive_finite(name: str, value: object) -> float:
     return v
 
 
+def positive_at_most(name: str, value: object, high: float, unit: str = "") -> float:
+    """Return ``value`` as a positive finite float not above ``high``, else raise naming ``name`` (``unit``: the
+    bound's unit in the message, e.g. ``" (units of 1/p)"``)."""
+    v = positive_finite(name, value)
+    if v > high:
+        raise InputError(f"{name} must be <= {high:g}{unit}, got {value!r}")
+    return v
+
+
 def in_open_interval(name: str, value: object, low: float, high: float) -> float:
     """Return ``value`` as a float if ``low < value < high``, else raise naming ``name``."""
     v = real_number(name, value)
@@ -431,4 +440,4 @@ def bool_fields(obj: object) -> None:
 
 __all__ = ["ACCEPT_KEY", "ACCEPT_OPTION", "G_LIKE_PEAK", "LIKELY_UNITS", "LIMITS", "Limit", "PLAUSIBLE", "Plausible", "UNIT_WORDS", "check_plausible",
            "check_plausible_sizes", "implausible_message", "likely_unit", "unit_symbol", "bool_fields", "check", "check_count", "compiled_stepping", "in_open_interval", "initial_state", "int_at_least", "one_of",
-           "positive_finite", "real_number", "scaled_input", "shown"]
+           "positive_at_most", "positive_finite", "real_number", "scaled_input", "shown"]

@@ -5,19 +5,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from opsrock.errors import InputError
-from opsrock.limits import positive_finite, real_number
+from opsrock.limits import positive_at_most, positive_finite, real_number
 from opsrock.solvers.common import SolverSettings, refuse_value
 
 #: Longest tail after the excitation when ``max_free_time`` is None, in units of ``1/p``.
 DEFAULT_TAIL_DTAU: float = 2000.0
-
-
-def _at_most(name: str, value: object, high: float, unit: str) -> float:
-    """``value`` as a positive finite float not above ``high``; the message names ``name``."""
-    v = positive_finite(name, value)
-    if v > high:
-        raise InputError(f"{name} must be <= {high:g}{unit}, got {value!r}")
-    return v
 
 
 @dataclass(frozen=True)
@@ -105,19 +97,19 @@ class MoreauJeanSettings(SolverSettings):
         super().__post_init__()
         refuse_value("moreau_jean", self, "tail", ("rest",))
         refuse_value("moreau_jean", self, "stop_at_rest", (True,))
-        _at_most("dtau", self.dtau, 0.05, " (units of 1/p)")
+        positive_at_most("dtau", self.dtau, 0.05, " (units of 1/p)")
         theta = real_number("theta_mj", self.theta_mj)
         if not 0.5 <= theta <= 1.0:
             raise InputError(f"theta_mj must lie in [0.5, 1], got {self.theta_mj!r}")
-        _at_most("local_tol", self.local_tol, 1e-6, "")
-        _at_most("rest_velocity", self.rest_velocity, 1e-3, " (units of p R)")
-        _at_most("rest_duration", self.rest_duration, 1e3, " (units of 1/p)")
-        _at_most("history_dtau", self.history_dtau, 10.0, " (units of 1/p)")
-        _at_most("velocity_tol", self.velocity_tol, 1e-3, " (units of p R)")
+        positive_at_most("local_tol", self.local_tol, 1e-6, "")
+        positive_at_most("rest_velocity", self.rest_velocity, 1e-3, " (units of p R)")
+        positive_at_most("rest_duration", self.rest_duration, 1e3, " (units of 1/p)")
+        positive_at_most("history_dtau", self.history_dtau, 10.0, " (units of 1/p)")
+        positive_at_most("velocity_tol", self.velocity_tol, 1e-3, " (units of p R)")
         c = positive_finite("contact_gap", self.contact_gap)
         if not 2.0 <= c <= 1e4:
             raise InputError(f"contact_gap must lie in [2, 1e4], got {self.contact_gap!r}")
-        _at_most("rocked_theta", self.rocked_theta, 1e-3, " rad")
+        positive_at_most("rocked_theta", self.rocked_theta, 1e-3, " rad")
 
 
 __all__ = ["DEFAULT_TAIL_DTAU", "MoreauJeanSettings"]

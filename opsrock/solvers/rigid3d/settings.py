@@ -5,19 +5,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from opsrock.errors import InputError
-from opsrock.limits import int_at_least, positive_finite, real_number
+from opsrock.limits import int_at_least, positive_at_most, positive_finite, real_number
 from opsrock.solvers.common import SolverSettings, refuse_value
 
 #: Longest tail after the excitation when ``max_free_time`` is None, in units of ``1/p`` of the weaker axis.
 DEFAULT_TAIL_DTAU: float = 2000.0
-
-
-def _at_most(name: str, value: object, high: float, unit: str) -> float:
-    """``value`` as a positive finite float not above ``high``; the message names ``name``."""
-    v = positive_finite(name, value)
-    if v > high:
-        raise InputError(f"{name} must be <= {high:g}{unit}, got {value!r}")
-    return v
 
 
 @dataclass(frozen=True)
@@ -125,25 +117,25 @@ class Rigid3DSettings(SolverSettings):
         if not isinstance(self.smooth, bool):
             raise InputError(f"smooth must be True or False, got {self.smooth!r}")
         refuse_value("rigid3d", self, "stop_at_rest", (True,))
-        _at_most("dtau", self.dtau, 0.05, " (units of 1/p)")
+        positive_at_most("dtau", self.dtau, 0.05, " (units of 1/p)")
         theta = real_number("theta_mj", self.theta_mj)
         if not 0.5 <= theta <= 1.0:
             raise InputError(f"theta_mj must lie in [0.5, 1], got {self.theta_mj!r}")
-        _at_most("nsgs_tol", self.nsgs_tol, 1e-4, "")
+        positive_at_most("nsgs_tol", self.nsgs_tol, 1e-4, "")
         int_at_least("nsgs_max_sweeps", self.nsgs_max_sweeps, 1)
         int_at_least("nsgs_fail_steps", self.nsgs_fail_steps, 1)
-        loose = _at_most("nsgs_loose_tol", self.nsgs_loose_tol, 1e-4, "")
+        loose = positive_at_most("nsgs_loose_tol", self.nsgs_loose_tol, 1e-4, "")
         if loose < self.nsgs_tol:
             raise InputError(f"nsgs_loose_tol must be >= nsgs_tol ({self.nsgs_tol!r}), got {self.nsgs_loose_tol!r}")
         int_at_least("nsgs_extra_sweeps", self.nsgs_extra_sweeps, 0)
-        _at_most("rest_velocity", self.rest_velocity, 1e-3, " (units of p R)")
-        _at_most("rest_duration", self.rest_duration, 1e3, " (units of 1/p)")
-        _at_most("history_dtau", self.history_dtau, 10.0, " (units of 1/p)")
-        _at_most("velocity_tol", self.velocity_tol, 1e-3, " (units of p R)")
+        positive_at_most("rest_velocity", self.rest_velocity, 1e-3, " (units of p R)")
+        positive_at_most("rest_duration", self.rest_duration, 1e3, " (units of 1/p)")
+        positive_at_most("history_dtau", self.history_dtau, 10.0, " (units of 1/p)")
+        positive_at_most("velocity_tol", self.velocity_tol, 1e-3, " (units of p R)")
         c = positive_finite("contact_gap", self.contact_gap)
         if not 2.0 <= c <= 1e4:
             raise InputError(f"contact_gap must lie in [2, 1e4], got {self.contact_gap!r}")
-        _at_most("rocked_theta", self.rocked_theta, 1e-3, " rad")
+        positive_at_most("rocked_theta", self.rocked_theta, 1e-3, " rad")
 
 
 __all__ = ["DEFAULT_TAIL_DTAU", "Rigid3DSettings"]

@@ -135,8 +135,9 @@ Cost at the default step: about 1 µs a contact step rocking on an edge or slidi
 5-20 µs an NSGS step (slipping on one or two corners), 20 ns a rest-skipped step; a smooth step spans up to a
 sample interval (hundreds of Moreau-Jean steps); 830 record-seconds per CPU-second on the rocking
 record above, 25 on the sliding two-component one (2-core project machine; one run, the speeds scatter by
-about 20 % between runs). The kernel is compiled once and cached (``cache=True``): about 30 s cold, 0.3 s to
-load the cache.
+about 20 % between runs). The kernel is compiled once and cached (``cache=True``): about 70 s cold (once, after
+the smooth steps were added: tests/solvers/test_rigid3d.py took 73 s against 3 s warm), 0.3 s to load the
+cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings

@@ -27,6 +27,7 @@ import subprocess
 import sys
 import time
 from dataclasses import dataclass
+from importlib.resources import as_file, files
 from pathlib import Path
 
 import numpy as np
@@ -34,6 +35,9 @@ import numpy as np
 from opsrock.solvers import simulate
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings
 from opsrock.validation.siconos3d import Case, all_cases, quick_cases, write_cases
+
+#: The Siconos model, shipped as package data (``opsrock/data/siconos/``: a pip-installed opsrock has it too).
+SICONOS_MODEL = files("opsrock.data").joinpath("siconos", "siconos_block3d.py")
 
 #: Target: share of equal verdicts on the well-conditioned cases (issue 33).
 AGREEMENT_TARGET = 0.95
@@ -226,7 +230,13 @@ COLUMNS = ("index", "group", "label", "duration_s", "alpha", "ill_conditioned", 
 def run_siconos(python: str, cases_npz: Path, out_csv: Path, indices: list[int], *, step: float = STEP,
                 jobs: int = 1) -> Path:
     """Run the Siconos model on ``indices`` of ``cases_npz`` in ``jobs`` processes; write ``out_csv``."""
-    tool = Path(__file__).resolve().parents[1] / "data" / "siconos" / "siconos_block3d.py"
+    with as_file(SICONOS_MODEL) as tool:
+        return _run_parts(python, tool, cases_npz, out_csv, indices, step, jobs)
+
+
+def _run_parts(python: str, tool: Path, cases_npz: Path, out_csv: Path, indices: list[int], step: float,
+               jobs: int) -> Path:
+    """:func:`run_siconos` with the model's file at ``tool``."""
     parts, procs = [], []
     for j in range(jobs):
         mine = indices[j::jobs]
@@ -324,9 +334,13 @@ def interleaved_cost(python: str, cases: list[Case], cases_npz: Path) -> list[tu
     """One interleaved timing run: per case ``(index, rigid3d wall s, Siconos wall s)``, alternating the two
     (Siconos's ``--serve`` process, started and warmed on case 0 first; rigid3d warmed on case 0 so numba's
     compilation is not counted). Siconos's time is the round trip of one case through its process."""
-    tool = Path(__file__).resolve().parents[1] / "data" / "siconos" / "siconos_block3d.py"
-    proc = subprocess.Popen([python, str(tool), str(cases_npz), "--serve"], stdin=subprocess.PIPE,
-                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    with as_file(SICONOS_MODEL) as tool:
+        return _interleave(subprocess.Popen([python, str(tool), str(cases_npz), "--serve"], stdin=subprocess.PIPE,
+                                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True), cases)
+
+
+def _interleave(proc: subprocess.Popen, cases: list[Case]) -> list[tuple[int, float, float]]:
+    """The timing loop of :func:`interleaved_cost` with the Siconos ``--serve`` process ``proc``."""
     try:
         _run(cases[0], cases[0].motion)
         _serve(proc, 0)

@@ -102,6 +102,10 @@ PEAK_BASE_SPEED = 1e-3
 #: Friction coefficient standing for infinity in the limit solve of :func:`_local` (its relative error 1/LIMIT_MU).
 LIMIT_MU = 1e6
 
+#: Normal impulses of the closed-form flat slide down to ``-FLAT_ROUNDOFF`` times their sum count as zero (round-off
+#: of its least-squares solve): a block with ``mu_k = b/h`` slides with its trailing corners exactly unloaded.
+FLAT_ROUNDOFF = 1e-10
+
 #: Corner signs ``(sx, sy)``: corners 0..3 at (+b, +d), (-b, +d), (-b, -d), (+b, -d) (counter-clockwise).
 CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
 CORNER_SY = np.array([1.0, 1.0, -1.0, -1.0])
@@ -583,7 +587,7 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
     iterated with ``s_i`` the direction of each corner's slip velocity (from the free velocity's first) until the
     directions settle; on four corners a distribution with a pulling corner is moved along the system's free
     direction to the nearest compressive one. Accepted, into ``V``, ``Om`` and ``P``, if the directions settle (each
-    corner then slips along the ``s_i`` its friction opposes) and every ``N_i >= 0``; else False (NSGS then solves
+    corner then slips along the ``s_i`` its friction opposes) and every ``N_i >= 0`` (to ``FLAT_ROUNDOFF``); else False (NSGS then solves
     the step). ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
     idx = np.empty(4, dtype=np.int64)
     xs = np.empty(7)
@@ -673,13 +677,18 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
         return False
     V[2] = 0.0
     Om[0], Om[1], Om[2] = 0.0, 0.0, wz
+    total = 0.0
+    for k in range(n):
+        total += abs(xs[k])
     for i in range(4):
         if not act[i]:
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
             continue
         N = P[i, 2]
-        if N < 0.0:
+        if N < -FLAT_ROUNDOFF * total:
             return False
+        N = max(N, 0.0)
+        P[i, 2] = N
         u0 = V[0] - wz * r[i, 1]
         u1 = V[1] + wz * r[i, 0]
         nu = math.hypot(u0, u1)
@@ -1184,8 +1193,9 @@ def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing,
 def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, probe, P, new, out, touch,
                   slip, vel_tol, lift_gap):
     """A block sliding flat on its four corners: one Moreau-Jean step of up to ``n_max`` steps (to the next
-    sample), kept if its contact problem is the same, all four corners active and solved by the closed-form
-    flat slide or stick (:mod:`.pivot`, ``SLIDE_DTAU``). Returns the steps taken (0: none kept, -1: none
+    sample), kept if its contact problem is the same, all four corners active, solved by the closed-form
+    flat slide or stick (:mod:`.pivot`, ``SLIDE_DTAU``) and kept on the floor (no corner's normal velocity above
+    ``vel_tol``; a corner may carry none of the load, the four corners' loads being indeterminate). Returns the steps taken (0: none kept, -1: none
     tried)."""
     form, ax, ay, av, sub, n_exc, tail_av = forcing
     n = PV.step_end(k, n_max, sub, n_exc, form) - k
@@ -1201,8 +1211,9 @@ def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, 
     sweeps = _step(state, a[0], a[1], a[2], n * dt, theta_mj, geom, ib, fric, nsgs, ws, actp, Pp, new, outp, touch)
     if sweeps != 1 or outp[OUT_SLIDE_STEPS] + outp[OUT_STICK_STEPS] < 0.5:
         return 0
-    for i in range(4):
-        if not actp[i] or Pp[i, 2] <= 0.0:
+    for i in range(4):  # every corner active and kept on the floor (a corner may carry no load: see _slide_flat)
+        ri = ws[3][i]
+        if not actp[i] or abs(new[9] + new[10] * ri[1] - new[11] * ri[0]) > vel_tol:
             return 0
     _book(state, a, ws, actp, Pp, new, out, touch, slip, vel_tol, lift_gap, geom)
     for i in range(4):

@@ -214,6 +214,24 @@ def test_newmark_slide_in_an_oblique_direction(phi):
     assert e["friction_work"] == pytest.approx(e["input_work"], rel=1e-6)
 
 
+@pytest.mark.parametrize("phi", [0.0, 90.0])
+def test_a_slide_at_mu_equal_b_over_h_stays_in_closed_form(phi):
+    """mu = b/h (here 0.5 = 0.3/0.6 along the pulse): friction's moment on the sliding block equals gravity's, so
+    the trailing corners carry exactly nothing while it slides flat. Newmark's slide to 1e-6 relative (as
+    above), no tilt; and the whole slide in closed form, in coarse steps but for 1 % of it: no step needs more than one
+    sweep (a load of -1e-17 at the trailing corners, round-off, sent every step of such a slide to
+    Gauss-Seidel, and a corner without load stopped the coarse steps)."""
+    box = _box(0.6, 1.2, 0.9, mu=0.5) if phi == 0.0 else _box(1.2, 1.2, 0.6, mu=0.5)
+    a_p, t1 = 0.8 * G, 0.3
+    r = rigid3d.solve(box, PlanMotion.along(RectangularPulse(pfa=a_p, omega_p=math.pi / t1), phi))
+    assert r.ok and not r.rocked and r.plan.tilt_max < 1e-12
+    assert math.hypot(*r.plan.slide_residual) == pytest.approx(nm.rectangular_slide(a_p, t1, 0.5), rel=1e-6)
+    d = r.diagnostics
+    assert d["nsgs_max_sweeps"] <= 1
+    fine = d["flat_slide_steps"] - d["coarse_slide_steps"]  # closed-form slides in fine steps
+    assert fine < 0.01 * d["coarse_slide_span_steps"]
+
+
 # =============================================================================================
 # 5. Energy and the impact law
 # =============================================================================================

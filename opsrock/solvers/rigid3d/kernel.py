@@ -93,7 +93,8 @@ OUT_NSGS_LOOSE = ST.OUT_COMMON + 40  # steps whose NSGS met only the looser tole
 OUT_NSGS_EXTRA = ST.OUT_COMMON + 41  # the sweeps those took beyond nsgs_max_sweeps
 OUT_COARSE_STEPS = ST.OUT_COMMON + 42  # coarse Moreau-Jean steps of a block sliding flat (_coarse_slide)
 OUT_COARSE_SPAN = ST.OUT_COMMON + 43  # Moreau-Jean steps those spanned
-OUT_SIZE = ST.OUT_COMMON + 44
+OUT_EDGE_SLIP = ST.OUT_COMMON + 44  # steps solved by the closed-form slip on two corners (_edge_slip)
+OUT_SIZE = ST.OUT_COMMON + 45
 
 #: Speed of the base (m/s) below which the tail rule "peak" may end a run: a block on its base sliding at
 #: 1 mm/s under friction ``mu`` stops within ``(1e-3)² / (2 mu g)``, 5e-8/mu m.
@@ -160,6 +161,22 @@ def _delassus(r, Iinv, W):
         W[0, j] = (1.0 if j == 0 else 0.0) + r1 * t2 - r2 * t1
         W[1, j] = (1.0 if j == 1 else 0.0) + r2 * t0 - r0 * t2
         W[2, j] = (1.0 if j == 2 else 0.0) + r0 * t1 - r1 * t0
+
+
+@numba.njit(cache=True)
+def _delassus_pair(rk, rl, Iinv, W):
+    """``W`` (3 x 3): the change of corner ``k``'s velocity (arm ``rk``) per unit impulse at corner ``l`` (arm
+    ``rl``), ``W e = e + (I^-1 (rl x e)) x rk`` (:func:`_delassus` is ``rk = rl``)."""
+    for j in range(3):
+        c0 = 0.0 if j == 0 else (-rl[2] if j == 1 else rl[1])
+        c1 = rl[2] if j == 0 else (0.0 if j == 1 else -rl[0])
+        c2 = -rl[1] if j == 0 else (rl[0] if j == 1 else 0.0)
+        t0 = Iinv[0, 0] * c0 + Iinv[0, 1] * c1 + Iinv[0, 2] * c2
+        t1 = Iinv[1, 0] * c0 + Iinv[1, 1] * c1 + Iinv[1, 2] * c2
+        t2 = Iinv[2, 0] * c0 + Iinv[2, 1] * c1 + Iinv[2, 2] * c2
+        W[0, j] = (1.0 if j == 0 else 0.0) + t1 * rk[2] - t2 * rk[1]
+        W[1, j] = (1.0 if j == 1 else 0.0) + t2 * rk[0] - t0 * rk[2]
+        W[2, j] = (1.0 if j == 2 else 0.0) + t0 * rk[1] - t1 * rk[0]
 
 
 @numba.njit(cache=True)
@@ -699,6 +716,143 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
 
 
 @numba.njit(cache=True)
+def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
+    """The linear system of :func:`_edge_slip` for the statuses ``st`` (0 stick, 1 slip) and the slip directions
+    ``sdir``: the unknowns are a stuck corner's impulse (3) and a slipping corner's normal impulse ``N`` (its impulse
+    ``N (-mu_k s, 1)``); the equations a stuck corner's velocity ``u = 0`` (3) and a slipping corner's normal
+    velocity ``u_z = 0``, with ``u = q + D P``. ``A`` and ``y`` (6 x 6, 6) padded with the identity; ``cols``
+    (6 x 6) holds ``P`` per unknown. Returns the number of unknowns."""
+    m = 0
+    for c in range(6):
+        for a in range(6):
+            cols[c, a] = 0.0
+    for k in range(2):
+        if st[k] == 0:
+            for i in range(3):
+                cols[m, 3 * k + i] = 1.0
+                m += 1
+        else:
+            cols[m, 3 * k], cols[m, 3 * k + 1], cols[m, 3 * k + 2] = -mu_k * sdir[k, 0], -mu_k * sdir[k, 1], 1.0
+            m += 1
+    row = 0
+    for k in range(2):
+        for i in range(3):
+            if st[k] == 1 and i < 2:
+                continue
+            e = 3 * k + i
+            for c in range(m):
+                acc = 0.0
+                for a in range(6):
+                    acc += D[e, a] * cols[c, a]
+                A[row, c] = acc
+            y[row] = -q[e]
+            row += 1
+    for a in range(m, 6):
+        for c in range(6):
+            A[a, c] = 1.0 if a == c else 0.0
+            A[c, a] = 1.0 if a == c else 0.0
+        y[a] = 0.0
+    return m
+
+
+@numba.njit(cache=True)
+def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
+    """One status pair of :func:`_edge_slip`: the slip directions iterated to their fixed point (each the direction
+    of that corner's tangential velocity), then the statuses checked (a stuck corner pressing inside the static
+    cone, a slipping one pressing). Returns True with the impulses ``P6`` and velocities ``u`` of the two corners."""
+    for it in range(30):
+        m = _edge_system(st, sdir, mu_k, D, q, A, y, cols)
+        if not _solve6(A, y):
+            return False
+        for a in range(6):
+            acc = 0.0
+            for c in range(m):
+                acc += cols[c, a] * y[c]
+            P6[a] = acc
+        for e in range(6):
+            acc = q[e]
+            for a in range(6):
+                acc += D[e, a] * P6[a]
+            u[e] = acc
+        moved = 0.0
+        for k in range(2):
+            if st[k] == 1:
+                nu = math.hypot(u[3 * k], u[3 * k + 1])
+                if nu == 0.0:
+                    return False
+                moved = max(moved, abs(u[3 * k] / nu - sdir[k, 0]), abs(u[3 * k + 1] / nu - sdir[k, 1]))
+                sdir[k, 0], sdir[k, 1] = u[3 * k] / nu, u[3 * k + 1] / nu
+        if moved < 1e-12:
+            for k in range(2):
+                pz = P6[3 * k + 2]
+                if pz < 0.0 or (st[k] == 0 and math.hypot(P6[3 * k], P6[3 * k + 1]) > mu_s * pz * (1.0 + 1e-12)):
+                    return False
+            return True
+    return False
+
+
+@numba.njit(cache=True)
+def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
+    """Two active corners, one stuck and one slipping or both slipping, pressing on the floor, in closed form for
+    settled slip directions (a block rocking on an edge while the edge slips or twists about one of its
+    corners; Gauss-Seidel converges slowly there, the two corners being strongly coupled through the body).
+    The status pairs are tried in turn (stick-slip, slip-stick, slip-slip), the slip directions from those of the
+    corners' friction impulses ``P`` (warm start) or free velocities; the first whose statuses hold is the
+    step's solution of the contact problem (into ``V``, ``Om``, ``P``), else False (NSGS then solves it). With
+    infinite friction (``stick_only``) a slipping corner is :func:`_local`'s infinite-friction limit (``mu_k =
+    LIMIT_MU``, counted in ``OUT_LIMIT_STEPS``) and a stuck one needs only to press.
+    ``ew`` is the workspace ``(D, A, cols, q | y | P6 | u, sdir)``."""
+    if stick_only:
+        mu_s, mu_k = np.inf, LIMIT_MU
+    D, A, cols, vecs = ew[0], ew[1], ew[2], ew[3]
+    q, y, P6, u = vecs[0], vecs[1], vecs[2], vecs[3]
+    sdir = ew[4]
+    st = np.empty(2, dtype=np.int64)
+    idx = np.empty(2, dtype=np.int64)
+    n = 0
+    for i in range(4):
+        if act[i]:
+            idx[n] = i
+            n += 1
+    for a in range(2):
+        ra = r[idx[a]]
+        for b in range(2):
+            _delassus_pair(ra, r[idx[b]], Iinv, D[3 * a:3 * a + 3, 3 * b:3 * b + 3])
+        q[3 * a] = vf[0] + vf[4] * ra[2] - vf[5] * ra[1]
+        q[3 * a + 1] = vf[1] + vf[5] * ra[0] - vf[3] * ra[2]
+        q[3 * a + 2] = vf[2] + vf[3] * ra[1] - vf[4] * ra[0]
+    for combo in range(3):
+        st[0], st[1] = (0, 1) if combo == 0 else ((1, 0) if combo == 1 else (1, 1))
+        ok = True
+        for k in range(2):
+            i = idx[k]
+            nu = math.hypot(P[i, 0], P[i, 1])
+            if nu > 0.0:
+                sdir[k, 0], sdir[k, 1] = -P[i, 0] / nu, -P[i, 1] / nu
+            else:
+                nu = math.hypot(q[3 * k], q[3 * k + 1])
+                if nu == 0.0:
+                    ok = False
+                    break
+                sdir[k, 0], sdir[k, 1] = q[3 * k] / nu, q[3 * k + 1] / nu
+        if ok and _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
+            V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
+            for i in range(4):
+                P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+            if stick_only:
+                out[OUT_LIMIT_STEPS] += st[0] + st[1]
+            for k in range(2):
+                i = idx[k]
+                P[i, 0], P[i, 1], P[i, 2] = P6[3 * k], P6[3 * k + 1], P6[3 * k + 2]
+                V[0] += P[i, 0]
+                V[1] += P[i, 1]
+                V[2] += P[i, 2]
+                _cross_add(r[i], P[i], Iinv, Om, 1.0)
+            return True
+    return False
+
+
+@numba.njit(cache=True)
 def _quat_step(s, w0, w1, w2, dt, new):
     """``new[3:7] = exp(dt omega / 2) * s[3:7]``, renormalised (``omega`` in the floor frame)."""
     ang = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2) * dt
@@ -964,6 +1118,9 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
                                       vec[3]):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
+    elif n_act == 2 and _edge_slip(act, r, Iinv, vf, V, Om, P, fric[0], fric[1], stick_only, ws[15], out):
+        sweeps = 1
+        out[OUT_EDGE_SLIP] += 1.0
     elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, fric[1], ws[8], ws[7],
                                                                    vec[3], ws[9]):
         sweeps = 1
@@ -1294,7 +1451,8 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     out[OUT_FIRST_MODE] = -1.0
     ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
           np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)),
-          np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3), np.zeros(4, dtype=np.bool_))
+          np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3), np.zeros(4, dtype=np.bool_),
+          (np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2))))
     Q, Iinv, Iw, r = ws[0], ws[1], ws[2], ws[3]
     wk = (np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
           np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))

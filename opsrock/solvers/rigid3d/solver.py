@@ -234,7 +234,7 @@ def _diagnostics(out: np.ndarray) -> dict[str, Any]:
             "smooth_span_steps": int(out[kn.OUT_SMOOTH_SPAN]), "smooth_tried": int(out[kn.OUT_SMOOTH_TRIED]),
             "peak_stop": bool(out[kn.OUT_PEAK_STOP] > 0.5), "nsgs_loose_steps": int(out[kn.OUT_NSGS_LOOSE]),
             "nsgs_extra_sweeps": int(out[kn.OUT_NSGS_EXTRA]), "coarse_slide_steps": int(out[kn.OUT_COARSE_STEPS]),
-            "coarse_slide_span_steps": int(out[kn.OUT_COARSE_SPAN])}
+            "coarse_slide_span_steps": int(out[kn.OUT_COARSE_SPAN]), "edge_slip_steps": int(out[kn.OUT_EDGE_SLIP])}
 
 
 def _result(run: SolverRun, box: BoxProperties, out: np.ndarray, hist: np.ndarray, record: dict[str, Any],
@@ -321,8 +321,8 @@ def solve(block: Block, excitation: PlanMotion | Pulse | Record | None, settings
         (:class:`~opsrock.result.PlanHistory`, with ``record``). A run that did not finish is failed with its
         reason (non-finite state or floor motion, ``max_steps``, still moving at the end of the tail, the contact
         solver unconverged for ``nsgs_fail_steps`` steps in a row). ``diagnostics``: ``end_time`` (s),
-        ``max_penetration`` (m), ``contact_steps`` (of which ``stick_steps`` and ``flat_slide_steps`` were
-        solved in closed form, the rest by NSGS), ``rest_skip_steps``, ``nsgs_unconverged_steps``,
+        ``max_penetration`` (m), ``contact_steps`` (of which ``stick_steps``, ``flat_slide_steps`` and ``edge_slip_steps``
+        were solved in closed form, the rest by NSGS), ``rest_skip_steps``, ``nsgs_unconverged_steps``,
         ``nsgs_mean_sweeps``, ``nsgs_max_sweeps``, ``limit_solves`` (local solves where sticking with infinite
         friction needed a pulling impulse: solved by the infinite-friction limit of slip).
 

@@ -531,6 +531,36 @@ def _first_two(act):
 
 
 @numba.njit(cache=True)
+def _cone_interval(P, e0, e1, e2, x0, mu):
+    """The values ``x`` of the component along the unit ``e`` for which the impulse ``P + (x - x0) e`` (``x0`` its
+    present component along ``e``) lies in the static cone ``hypot(P_x, P_y) <= mu P_z``: ``(lo, hi)``, empty
+    (``lo > hi``) if none."""
+    b0, b1, b2 = P[0] - x0 * e0, P[1] - x0 * e1, P[2] - x0 * e2
+    a = e0 * e0 + e1 * e1 - mu * mu * e2 * e2
+    bc = b0 * e0 + b1 * e1 - mu * mu * b2 * e2
+    cc = b0 * b0 + b1 * b1 - mu * mu * b2 * b2
+    disc = bc * bc - a * cc
+    if a <= 0.0 or disc < 0.0:
+        return 1.0, -1.0
+    w = math.sqrt(disc)
+    return (-bc - w) / a, (-bc + w) / a
+
+
+@numba.njit(cache=True)
+def _edge_split(Pa, Pb, e0, e1, e2, ca, cb, xa, mu):
+    """Corner ``a``'s share of the impulse along an edge ``e`` shared by two stuck corners (which may carry any split
+    of it): the share nearest ``xa`` that keeps both impulses in the static cone, ``xa`` if none does. ``Pa``,
+    ``Pb`` are the impulses, ``ca``, ``cb`` their components along ``e``."""
+    la, ha = _cone_interval(Pa, e0, e1, e2, ca, mu)
+    lb, hb = _cone_interval(Pb, e0, e1, e2, cb, mu)
+    total = ca + cb
+    lo, hi = max(la, total - hb), min(ha, total - lb)
+    if lo > hi:
+        return xa
+    return min(max(xa, lo), hi)
+
+
+@numba.njit(cache=True)
 def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
     """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
     through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
@@ -576,6 +606,8 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
             c1 = P[i1, 0] * e0 + P[i1, 1] * e1 + P[i1, 2] * e2
             c2 = P[i2, 0] * e0 + P[i2, 1] * e1 + P[i2, 2] * e2
             dl = (c1 + c2) * n1 / (n1 + n2) - c1
+            if not stick_only:  # a split that keeps both in their static cones, if that one does not
+                dl = _edge_split(P[i1], P[i2], e0, e1, e2, c1, c2, c1 + dl, mu_s) - c1
             P[i1, 0], P[i1, 1], P[i1, 2] = P[i1, 0] + dl * e0, P[i1, 1] + dl * e1, P[i1, 2] + dl * e2
             P[i2, 0], P[i2, 1], P[i2, 2] = P[i2, 0] - dl * e0, P[i2, 1] - dl * e1, P[i2, 2] - dl * e2
     else:  # three or four corners (a level base): the block stops

@@ -107,6 +107,9 @@ LIMIT_MU = 1e6
 #: of its least-squares solve): a block with ``mu_k = b/h`` slides with its trailing corners exactly unloaded.
 FLAT_ROUNDOFF = 1e-10
 
+#: The status pairs :func:`_edge_slip` tries, in order (0 stick, 1 slip, 2 open).
+EDGE_STATUSES = np.array([[0, 1], [1, 0], [1, 1], [2, 1], [1, 2]], dtype=np.int64)
+
 #: Corner signs ``(sx, sy)``: corners 0..3 at (+b, +d), (-b, +d), (-b, -d), (+b, -d) (counter-clockwise).
 CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
 CORNER_SY = np.array([1.0, 1.0, -1.0, -1.0])
@@ -749,10 +752,10 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
 
 @numba.njit(cache=True)
 def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
-    """The linear system of :func:`_edge_slip` for the statuses ``st`` (0 stick, 1 slip) and the slip directions
-    ``sdir``: the unknowns are a stuck corner's impulse (3) and a slipping corner's normal impulse ``N`` (its impulse
-    ``N (-mu_k s, 1)``); the equations a stuck corner's velocity ``u = 0`` (3) and a slipping corner's normal
-    velocity ``u_z = 0``, with ``u = q + D P``. ``A`` and ``y`` (6 x 6, 6) padded with the identity; ``cols``
+    """The linear system of :func:`_edge_slip` for the statuses ``st`` (0 stick, 1 slip, 2 open) and the slip
+    directions ``sdir``: the unknowns are a stuck corner's impulse (3) and a slipping corner's normal impulse ``N``
+    (its impulse ``N (-mu_k s, 1)``; an open corner has none); the equations a stuck corner's velocity ``u = 0`` (3)
+    and a slipping corner's normal velocity ``u_z = 0``, with ``u = q + D P``. ``A`` and ``y`` (6 x 6, 6) padded with the identity; ``cols``
     (6 x 6) holds ``P`` per unknown. Returns the number of unknowns."""
     m = 0
     for c in range(6):
@@ -763,13 +766,13 @@ def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
             for i in range(3):
                 cols[m, 3 * k + i] = 1.0
                 m += 1
-        else:
+        elif st[k] == 1:
             cols[m, 3 * k], cols[m, 3 * k + 1], cols[m, 3 * k + 2] = -mu_k * sdir[k, 0], -mu_k * sdir[k, 1], 1.0
             m += 1
     row = 0
     for k in range(2):
         for i in range(3):
-            if st[k] == 1 and i < 2:
+            if st[k] == 2 or (st[k] == 1 and i < 2):
                 continue
             e = 3 * k + i
             for c in range(m):
@@ -788,24 +791,48 @@ def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
 
 
 @numba.njit(cache=True)
-def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
-    """One status pair of :func:`_edge_slip`: the slip directions iterated to their fixed point (each the direction
-    of that corner's tangential velocity), then the statuses checked (a stuck corner pressing inside the static
-    cone, a slipping one pressing). Returns True with the impulses ``P6`` and velocities ``u`` of the two corners."""
-    for it in range(30):
-        m = _edge_system(st, sdir, mu_k, D, q, A, y, cols)
-        if not _solve6(A, y):
-            return False
+def _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
+    """The impulses ``P6`` and corner velocities ``u`` of :func:`_edge_system` for the slip directions ``sdir``,
+    and per slipping corner ``k`` the angle from its direction ``s`` to its tangential velocity, ``f[k]`` in
+    (-pi, pi] (zero where the friction opposes the slip). False if the system is singular."""
+    m = _edge_system(st, sdir, mu_k, D, q, A, y, cols)
+    if not _solve6(A, y):
+        return False
+    for a in range(6):
+        acc = 0.0
+        for c in range(m):
+            acc += cols[c, a] * y[c]
+        P6[a] = acc
+    for e in range(6):
+        acc = q[e]
         for a in range(6):
-            acc = 0.0
-            for c in range(m):
-                acc += cols[c, a] * y[c]
-            P6[a] = acc
-        for e in range(6):
-            acc = q[e]
-            for a in range(6):
-                acc += D[e, a] * P6[a]
-            u[e] = acc
+            acc += D[e, a] * P6[a]
+        u[e] = acc
+    for k in range(2):
+        if st[k] == 1:
+            f[k] = math.atan2(sdir[k, 0] * u[3 * k + 1] - sdir[k, 1] * u[3 * k],
+                              sdir[k, 0] * u[3 * k] + sdir[k, 1] * u[3 * k + 1])
+        else:
+            f[k] = 0.0
+    return True
+
+
+@numba.njit(cache=True)
+def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
+    """One status pair of :func:`_edge_slip`: the slip directions brought to consistency (each along that corner's
+    tangential velocity; a few fixed-point steps ``s <- u_t / |u_t|``, then Newton on the directions' angles with
+    a finite-difference Jacobian and step halving, the fixed point alone stalling or flipping where the two
+    corners' slips are strongly coupled), then the statuses checked (a stuck corner pressing inside the static
+    cone, a slipping one pressing and slipping along its ``s``, an open one not approaching). Returns True with the impulses ``P6`` and
+    velocities ``u`` of the two corners."""
+    f = np.zeros(2)
+    f1 = np.zeros(2)
+    ang = np.zeros(2)
+    J = np.zeros((2, 2))
+    done = False
+    for it in range(5):
+        if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
+            return False
         moved = 0.0
         for k in range(2):
             if st[k] == 1:
@@ -815,25 +842,76 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
                 moved = max(moved, abs(u[3 * k] / nu - sdir[k, 0]), abs(u[3 * k + 1] / nu - sdir[k, 1]))
                 sdir[k, 0], sdir[k, 1] = u[3 * k] / nu, u[3 * k + 1] / nu
         if moved < 1e-12:
-            for k in range(2):
-                pz = P6[3 * k + 2]
-                if pz < 0.0 or (st[k] == 0 and math.hypot(P6[3 * k], P6[3 * k + 1]) > mu_s * pz * (1.0 + 1e-12)):
+            done = True
+            break
+    if not done:
+        for k in range(2):
+            ang[k] = math.atan2(sdir[k, 1], sdir[k, 0])
+        if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
+            return False
+        for it in range(20):
+            res = max(abs(f[0]), abs(f[1]))
+            if res <= 1e-12:
+                done = True
+                break
+            for j in range(2):  # the Jacobian by forward differences
+                if st[j] != 1:
+                    J[0, j], J[1, j] = 0.0, 0.0
+                    continue
+                sdir[j, 0], sdir[j, 1] = math.cos(ang[j] + 1e-7), math.sin(ang[j] + 1e-7)
+                if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f1):
                     return False
-            return True
-    return False
+                J[0, j], J[1, j] = (f1[0] - f[0]) / 1e-7, (f1[1] - f[1]) / 1e-7
+                sdir[j, 0], sdir[j, 1] = math.cos(ang[j]), math.sin(ang[j])
+            for k in range(2):
+                if st[k] != 1:
+                    J[k, k] = 1.0
+            det = J[0, 0] * J[1, 1] - J[0, 1] * J[1, 0]
+            if det == 0.0:
+                return False
+            d0 = -(J[1, 1] * f[0] - J[0, 1] * f[1]) / det
+            d1 = -(J[0, 0] * f[1] - J[1, 0] * f[0]) / det
+            lam = 1.0
+            for half in range(8):
+                for k in range(2):
+                    a = ang[k] + lam * (d0 if k == 0 else d1)
+                    sdir[k, 0], sdir[k, 1] = math.cos(a), math.sin(a)
+                if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f1):
+                    return False
+                if max(abs(f1[0]), abs(f1[1])) < res or half == 7:
+                    break
+                lam *= 0.5
+            ang[0] += lam * d0
+            ang[1] += lam * d1
+            f[0], f[1] = f1[0], f1[1]
+    if not done:
+        return False
+    for k in range(2):
+        pz = P6[3 * k + 2]
+        if pz < 0.0:
+            return False
+        if st[k] == 0 and math.hypot(P6[3 * k], P6[3 * k + 1]) > mu_s * pz * (1.0 + 1e-12):
+            return False
+        if st[k] == 1 and u[3 * k] * sdir[k, 0] + u[3 * k + 1] * sdir[k, 1] <= 0.0:
+            return False
+        if st[k] == 2 and u[3 * k + 2] < 0.0:
+            return False
+    return True
 
 
 @numba.njit(cache=True)
 def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
-    """Two active corners, one stuck and one slipping or both slipping, pressing on the floor, in closed form for
-    settled slip directions (a block rocking on an edge while the edge slips or twists about one of its
-    corners; Gauss-Seidel converges slowly there, the two corners being strongly coupled through the body).
-    The status pairs are tried in turn (stick-slip, slip-stick, slip-slip), the slip directions from those of the
+    """Two active corners, one stuck and one slipping, both slipping, or one slipping and the other leaving the
+    floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or
+    twists about one of its corners; Gauss-Seidel converges slowly there, the two corners being strongly coupled
+    through the body). The status pairs are tried in turn (stick-slip, slip-stick, slip-slip, open-slip,
+    slip-open; the pairs stick-stick and stick-open have closed forms of their own), the slip directions from those of the
     corners' friction impulses ``P`` (warm start) or free velocities; the first whose statuses hold is the
     step's solution of the contact problem (into ``V``, ``Om``, ``P``), else False (NSGS then solves it). With
     infinite friction (``stick_only``) a slipping corner is :func:`_local`'s infinite-friction limit (``mu_k =
     LIMIT_MU``, counted in ``OUT_LIMIT_STEPS``) and a stuck one needs only to press.
-    ``ew`` is the workspace ``(D, A, cols, q | y | P6 | u, sdir)``."""
+    ``ew`` is the workspace ``(D, A, cols, q | y | P6 | u, sdir, last)``, ``last[0]`` the pair that held last (tried
+    first)."""
     if stick_only:
         mu_s, mu_k = np.inf, LIMIT_MU
     D, A, cols, vecs = ew[0], ew[1], ew[2], ew[3]
@@ -853,10 +931,14 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
         q[3 * a] = vf[0] + vf[4] * ra[2] - vf[5] * ra[1]
         q[3 * a + 1] = vf[1] + vf[5] * ra[0] - vf[3] * ra[2]
         q[3 * a + 2] = vf[2] + vf[3] * ra[1] - vf[4] * ra[0]
-    for combo in range(3):
-        st[0], st[1] = (0, 1) if combo == 0 else ((1, 0) if combo == 1 else (1, 1))
+    last = ew[5]
+    for c in range(5):
+        combo = last[0] if c == 0 else (c - 1 if c - 1 < last[0] else c)  # the last pair that held first
+        st[0], st[1] = EDGE_STATUSES[combo, 0], EDGE_STATUSES[combo, 1]
         ok = True
         for k in range(2):
+            if st[k] != 1:
+                continue
             i = idx[k]
             nu = math.hypot(P[i, 0], P[i, 1])
             if nu > 0.0:
@@ -868,11 +950,12 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
                     break
                 sdir[k, 0], sdir[k, 1] = q[3 * k] / nu, q[3 * k + 1] / nu
         if ok and _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
+            last[0] = combo
             V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
             for i in range(4):
                 P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
             if stick_only:
-                out[OUT_LIMIT_STEPS] += st[0] + st[1]
+                out[OUT_LIMIT_STEPS] += (st[0] == 1) + (st[1] == 1)
             for k in range(2):
                 i = idx[k]
                 P[i, 0], P[i, 1], P[i, 2] = P6[3 * k], P6[3 * k + 1], P6[3 * k + 2]
@@ -1484,7 +1567,8 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
           np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)),
           np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3), np.zeros(4, dtype=np.bool_),
-          (np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2))))
+          (np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
+           np.zeros(1, dtype=np.int64)))
     Q, Iinv, Iw, r = ws[0], ws[1], ws[2], ws[3]
     wk = (np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
           np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))

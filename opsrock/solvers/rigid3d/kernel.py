@@ -629,6 +629,126 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
 
 
 @numba.njit(cache=True)
+def _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
+    """The linear momentum equations of :func:`_slide_flat` for the slip directions ``sdir``: ``xs`` gets the
+    normal impulses of the ``n`` corners ``idx`` and ``(V_x, V_y, omega_z)``; False if singular."""
+    m = n + 3
+    # rows: force x, y, z; torque x, y, z. Columns: N of each active corner, then V_x, V_y, omega_z
+    for a in range(6):
+        for c in range(7):
+            Am[a, c] = 0.0
+    for k in range(n):
+        i = idx[k]
+        p0, p1 = -mu_k * sdir[i, 0], -mu_k * sdir[i, 1]
+        x0, x1, x2 = r[i, 0], r[i, 1], r[i, 2]
+        # V - vf = sum P  ->  V_x - sum N p0 = vf_x; V_y - sum N p1 = vf_y; - sum N = vf_z (V_z = 0)
+        Am[0, k] = -p0
+        Am[1, k] = -p1
+        Am[2, k] = -1.0
+        # Iw (Om - Omf) = sum r x P  ->  Iw[:, 2] omega_z - sum N (r x p) = Iw Omf
+        Am[3, k] = -(x1 * 1.0 - x2 * p1)
+        Am[4, k] = -(x2 * p0 - x0 * 1.0)
+        Am[5, k] = -(x0 * p1 - x1 * p0)
+    Am[0, n] = 1.0
+    Am[1, n + 1] = 1.0
+    for a in range(3):
+        Am[3 + a, n + 2] = Iw[a, 2]
+    y6[0], y6[1], y6[2] = vf[0], vf[1], vf[2]
+    for a in range(3):
+        y6[3 + a] = Iw[a, 0] * vf[3] + Iw[a, 1] * vf[4] + Iw[a, 2] * vf[5]
+    for a in range(6):
+        for c in range(6):
+            acc = 0.0
+            for k in range(m):
+                acc += Am[a, k] * Am[c, k]
+            A6[a, c] = acc
+    if not _solve6(A6, y6):
+        return False
+    for c in range(m):
+        x = 0.0
+        for a in range(6):
+            x += Am[a, c] * y6[a]
+        xs[c] = x
+    if n == 4 and min(xs[0], xs[1], xs[2], xs[3]) < 0.0:
+        # the free direction (null vector of Am, first entry 1) and the nearest compressive distribution
+        for a in range(6):
+            y6[a] = -Am[a, 0]
+            for c in range(6):
+                A6[a, c] = Am[a, c + 1]
+        if _solve6(A6, y6):
+            zs[0] = 1.0
+            for c in range(6):
+                zs[c + 1] = y6[c]
+            t, ok = _shift_range(xs, zs, 4)
+            if ok:
+                for c in range(m):
+                    xs[c] += t * zs[c]
+    return True
+
+
+@numba.njit(cache=True)
+def _flat_eval(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g):
+    """``g = G(x) - x`` for the velocities ``x = (V_x, V_y, omega_z)``: the slip directions of ``x``, then the
+    velocities :func:`_flat_system` gives for them. False if a corner does not slip or the system is singular."""
+    for k in range(n):
+        i = idx[k]
+        u0 = x[0] - x[2] * r[i, 1]
+        u1 = x[1] + x[2] * r[i, 0]
+        nu = math.hypot(u0, u1)
+        if nu == 0.0:
+            return False
+        sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+    if not _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
+        return False
+    for a in range(3):
+        g[a] = xs[n + a] - x[a]
+    return True
+
+
+@numba.njit(cache=True)
+def _flat_newton(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
+    """Newton on ``G(x) = x`` (:func:`_flat_eval`) from ``x``, with a forward-difference Jacobian and step
+    halving, to ``1e-12`` of the velocities' scale. Returns True with ``xs`` and ``sdir`` of the solution."""
+    g = np.zeros(3)
+    g1 = np.zeros(3)
+    x1 = np.zeros(3)
+    J = np.zeros((3, 3))
+    Ji = np.zeros((3, 3))
+    scale = max(abs(x[0]), abs(x[1]), abs(vf[0]), abs(vf[1]), abs(vf[2]))
+    arm = math.sqrt(r[idx[0], 0] ** 2 + r[idx[0], 1] ** 2)
+    if not _flat_eval(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g):
+        return False
+    for it in range(20):
+        res = max(abs(g[0]), abs(g[1]), arm * abs(g[2]))
+        if res <= 1e-12 * scale:
+            return _flat_eval(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g)
+        for j in range(3):
+            hj = 1e-7 * (scale / arm if j == 2 else scale)
+            for a in range(3):
+                x1[a] = x[a] + (hj if a == j else 0.0)
+            if not _flat_eval(x1, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g1):
+                return False
+            for a in range(3):
+                J[a, j] = (g1[a] - g[a]) / hj
+        if not _inv3(J, Ji):
+            return False
+        lam = 1.0
+        for half in range(8):
+            for a in range(3):
+                x1[a] = x[a] - lam * (Ji[a, 0] * g[0] + Ji[a, 1] * g[1] + Ji[a, 2] * g[2])
+            ok = _flat_eval(x1, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g1)
+            if ok and max(abs(g1[0]), abs(g1[1]), arm * abs(g1[2])) < res:
+                break
+            lam *= 0.5
+        if not ok:
+            return False
+        for a in range(3):
+            x[a] = x1[a]
+            g[a] = g1[a]
+    return False
+
+
+@numba.njit(cache=True)
 def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
     """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its corners
     on the floor (``V_z = 0``, no rotation about a horizontal axis: with the floor's normal ``z`` the corners'
@@ -637,14 +757,14 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
     the slip directions ``s_i`` the six momentum equations are linear in ``(N_i, V_x, V_y, omega_z)``; their least-
     norm solution (the indeterminate part of the normal impulses, alternating between the corners, left at zero) is
     iterated with ``s_i`` the direction of each corner's slip velocity (from the free velocity's first) until the
-    directions settle; on four corners a distribution with a pulling corner is moved along the system's free
+    directions settle (where that fixed point stalls, as a twisting block comes to a stop, by Newton on the
+    velocities ``(V_x, V_y, omega_z)`` that give the directions, :func:`_flat_newton`); on four corners a distribution with a pulling corner is moved along the system's free
     direction to the nearest compressive one. Accepted, into ``V``, ``Om`` and ``P``, if the directions settle (each
     corner then slips along the ``s_i`` its friction opposes) and every ``N_i >= 0`` (to ``FLAT_ROUNDOFF``); else False (NSGS then solves
     the step). ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
     idx = np.empty(4, dtype=np.int64)
     xs = np.empty(7)
     zs = np.empty(7)
-    wz = 0.0
     n = 0
     for i in range(4):
         if act[i]:
@@ -656,67 +776,15 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
             if nu == 0.0:
                 return False
             sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
-    m = n + 3
     settled = False
     for it in range(30):
-        # rows: force x, y, z; torque x, y, z. Columns: N of each active corner, then V_x, V_y, omega_z
-        for a in range(6):
-            for c in range(7):
-                Am[a, c] = 0.0
-        for k in range(n):
-            i = idx[k]
-            p0, p1 = -mu_k * sdir[i, 0], -mu_k * sdir[i, 1]
-            x0, x1, x2 = r[i, 0], r[i, 1], r[i, 2]
-            # V - vf = sum P  ->  V_x - sum N p0 = vf_x; V_y - sum N p1 = vf_y; - sum N = vf_z (V_z = 0)
-            Am[0, k] = -p0
-            Am[1, k] = -p1
-            Am[2, k] = -1.0
-            # Iw (Om - Omf) = sum r x P  ->  Iw[:, 2] omega_z - sum N (r x p) = Iw Omf
-            Am[3, k] = -(x1 * 1.0 - x2 * p1)
-            Am[4, k] = -(x2 * p0 - x0 * 1.0)
-            Am[5, k] = -(x0 * p1 - x1 * p0)
-        Am[0, n] = 1.0
-        Am[1, n + 1] = 1.0
-        for a in range(3):
-            Am[3 + a, n + 2] = Iw[a, 2]
-        y6[0], y6[1], y6[2] = vf[0], vf[1], vf[2]
-        for a in range(3):
-            y6[3 + a] = Iw[a, 0] * vf[3] + Iw[a, 1] * vf[4] + Iw[a, 2] * vf[5]
-        for a in range(6):
-            for c in range(6):
-                acc = 0.0
-                for k in range(m):
-                    acc += Am[a, k] * Am[c, k]
-                A6[a, c] = acc
-        if not _solve6(A6, y6):
+        if not _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
             return False
-        for c in range(m):
-            x = 0.0
-            for a in range(6):
-                x += Am[a, c] * y6[a]
-            xs[c] = x
-        if n == 4 and min(xs[0], xs[1], xs[2], xs[3]) < 0.0:
-            # the free direction (null vector of Am, first entry 1) and the nearest compressive distribution
-            for a in range(6):
-                y6[a] = -Am[a, 0]
-                for c in range(6):
-                    A6[a, c] = Am[a, c + 1]
-            if _solve6(A6, y6):
-                zs[0] = 1.0
-                for c in range(6):
-                    zs[c + 1] = y6[c]
-                t, ok = _shift_range(xs, zs, 4)
-                if ok:
-                    for c in range(m):
-                        xs[c] += t * zs[c]
         moved = 0.0
         for k in range(n):
-            P[idx[k], 2] = xs[k]
-        V[0], V[1], wz = xs[n], xs[n + 1], xs[n + 2]
-        for k in range(n):
             i = idx[k]
-            u0 = V[0] - wz * r[i, 1]
-            u1 = V[1] + wz * r[i, 0]
+            u0 = xs[n] - xs[n + 2] * r[i, 1]
+            u1 = xs[n + 1] + xs[n + 2] * r[i, 0]
             nu = math.hypot(u0, u1)
             if nu == 0.0:
                 return False
@@ -726,7 +794,12 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
             settled = True
             break
     if not settled:
-        return False
+        x = np.array([xs[n], xs[n + 1], xs[n + 2]])
+        if not _flat_newton(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
+            return False
+    for k in range(n):
+        P[idx[k], 2] = xs[k]
+    V[0], V[1], wz = xs[n], xs[n + 1], xs[n + 2]
     V[2] = 0.0
     Om[0], Om[1], Om[2] = 0.0, 0.0, wz
     total = 0.0
@@ -745,6 +818,8 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
         u1 = V[1] + wz * r[i, 0]
         nu = math.hypot(u0, u1)
         if nu == 0.0:
+            return False
+        if u0 * sdir[i, 0] + u1 * sdir[i, 1] < (1.0 - 1e-9) * nu:
             return False
         P[i, 0], P[i, 1] = -mu_k * N * sdir[i, 0], -mu_k * N * sdir[i, 1]
     return True

@@ -34,13 +34,16 @@ The contact problem of a step (4 corners x 3 impulses; the Delassus matrix is 12
 solved (0) by the active corners that were down, or else those that were not (a rocking impact: the landing
 edge takes the load, the pivot lifts), stuck alone in closed form while the other active corners separate;
 (1) by every active corner stuck in closed form (two corners: the one turning freedom about the line
-through them, the friction along it split by their normal impulses; three/four: the block stops, least-norm
-normal impulses moved along the indeterminate direction to the nearest compressive ones, friction in
-proportion to them), accepted if the impulses lie in the static cones; two corners that cannot both carry
-it: each alone stuck, the other separating; else (2) three or four corners all slipping in closed form for
-settled slip directions; else (3) nonsmooth Gauss-Seidel (Jean & Moreau) warm-started from the previous
-impulses, with an exact local solver per corner (stick in the static cone, else slip with ``mu_k``: the slip
-direction from the trust-region "secular" equation). An NSGS step that does not converge in ``nsgs_max_sweeps``
+through them, the friction along it split by their normal impulses, or the nearest split that keeps both in
+their cones; three/four: the block stops, least-norm normal impulses moved along the indeterminate direction
+to the nearest compressive ones, friction in proportion to them), accepted if the impulses lie in the static
+cones; two corners that cannot both carry it: each alone stuck, the other separating; else (2) two corners of
+which one slips (stick-slip, slip-slip, or slipping with the other leaving the floor) in closed form for
+consistent slip directions (fixed point, then Newton on their angles: ``diagnostics["edge_slip_steps"]``);
+else (3) three or four corners all slipping in closed form for settled slip directions (Newton on
+``(V_x, V_y, omega_z)`` where the fixed point stalls); else (4) nonsmooth Gauss-Seidel (Jean & Moreau)
+warm-started from the previous impulses, with an exact local solver per corner (stick in the static cone,
+else slip with ``mu_k``: the slip direction from the trust-region "secular" equation). An NSGS step that does not converge in ``nsgs_max_sweeps``
 goes on for up to ``nsgs_extra_sweeps`` to the looser ``nsgs_loose_tol`` (three or four corners at the
 stick-slip limit, whose impulses are indeterminate, converge slowly: ``diagnostics["nsgs_loose_steps"]``);
 one that does not meet that either keeps its last sweep and is counted
@@ -59,7 +62,7 @@ other corner stays up, the tilt stays below pi/2 and a Moreau-Jean probe step fr
 contact, else halved down to ``pivot.MIN_STEPS`` Moreau-Jean steps, which then locate the event (impacts,
 lift-off, slip, flight and overturning are always theirs). A block sliding flat on its four corners takes
 coarse Moreau-Jean steps of up to ``pivot.SLIDE_DTAU``, kept while they are solved by the closed-form flat
-slide or stick. With ``tail="peak"`` the run ends after the excitation once an energy bound shows that
+slide or stick and every corner stays on the floor. With ``tail="peak"`` the run ends after the excitation once an energy bound shows that
 neither the verdict nor the peak tilt can change (the Siconos model's rule,
 :func:`~opsrock.solvers.rigid3d.kernel._peak_reached`).
 
@@ -99,23 +102,24 @@ CPU-second:
 dtau     smooth  mu = None       mu = 0.32       speed    two components, mu = 0.32:        speed
                  theta_max/a     theta_max/a              theta_max/a, slide_max (m)
 =======  ======  ==============  ==============  =======  ================================  =======
-1e-3     False   0.901102        0.866976        342      0.015860, 0.03518                 205
-1e-3     True    0.901344        0.870326        1582     0.015845, 0.03525                 249
-5e-4     False   0.899872        0.882513        162      0.015829, 0.03524                 86
-5e-4     True    0.901415        0.882238        1424     0.015829, 0.03525                 106
-2.5e-4   False   0.896300        0.895276        83       0.015967, 0.03526                 49
-2.5e-4   True    0.896262        0.895099        957      0.015968, 0.03528                 55
-1e-4     False   0.908043        0.908082        30       0.015898, 0.03528                 23
-1e-4     True    0.908040        0.908094        830      0.015897, 0.03530                 25
-5e-5     False   0.906304        0.906364        15       0.015888, 0.03529                 10
-5e-5     True    0.906302        0.906369        696      0.015887, 0.03532                 16
+1e-3     False   0.901102        0.866958        201      0.015860, 0.03518                 197
+1e-3     True    0.901344        0.870326        947      0.015862, 0.03519                 293
+5e-4     False   0.899872        0.882513        101      0.015829, 0.03524                 124
+5e-4     True    0.901415        0.882238        898      0.015858, 0.03528                 266
+2.5e-4   False   0.896300        0.895276        61       0.015968, 0.03526                 98
+2.5e-4   True    0.896262        0.895099        795      0.015810, 0.03530                 183
+1e-4     False   0.908043        0.908082        26       0.015901, 0.03528                 40
+1e-4     True    0.908040        0.908094        951      0.015780, 0.03531                 86
+5e-5     False   0.906304        0.906364        14       0.015888, 0.03529                 22
+5e-5     True    0.906302        0.906369        745      0.015885, 0.03533                 46
 =======  ======  ==============  ==============  =======  ================================  =======
 
 The smooth steps leave the answers where Moreau-Jean puts them (to 3e-6 alpha on the record at the default
-step, 4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps) and make a rocking case 28 times faster
-at the default step (830 against 30), nearly independent of ``dtau``: the Moreau-Jean steps left are those
-around impacts. A case that slides and rocks on slipping corners gains little (25 against 23): its steps are
-Moreau-Jean steps with NSGS.
+step, 4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps) and make a rocking case 37 times faster
+at the default step (951 against 26), nearly independent of ``dtau``: the Moreau-Jean steps left are those
+around impacts. A case that slides and rocks on slipping corners gains about 2 times (86 against 40): its steps
+on slipping corners are Moreau-Jean steps (their contact problems in closed form, steps 1-3 above; with NSGS
+instead, before those closed forms, the same case ran at 25 and 23).
 
 rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha on the pulse and 1e-5 on the
 record; like it, the rocking peak converges at first order with a scatter (each impact is located to a step).
@@ -131,13 +135,13 @@ flight): 400/400, median 5.4e-5, 95th percentile 3.2e-4. Twelve FEMA P695 far-fi
 ``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 3.8e-4, 95th
 percentile 1.2e-3 (``pytest -s -m slow tests/solvers/test_rigid3d_slow.py`` prints them).
 
-Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms),
-5-20 µs an NSGS step (slipping on one or two corners), 20 ns a rest-skipped step; a smooth step spans up to a
-sample interval (hundreds of Moreau-Jean steps); 830 record-seconds per CPU-second on the rocking
-record above, 25 on the sliding two-component one (2-core project machine; one run, the speeds scatter by
-about 20 % between runs). The kernel is compiled once and cached (``cache=True``): about 70 s cold (once, after
-the smooth steps were added: tests/solvers/test_rigid3d.py took 73 s against 3 s warm), 0.3 s to load the
-cache.
+Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms), a few
+µs one slipping on one or two corners (closed forms with Newton on the slip directions), 5-20 µs an NSGS step,
+20 ns a rest-skipped step; a smooth step spans up to a sample interval (hundreds of Moreau-Jean steps); 951
+record-seconds per CPU-second on the rocking record above, 86 on the sliding two-component one (2-core project
+machine; one run, the speeds scatter by 20 % or more between runs: the rocking record, whose steps these closed
+forms leave as they were (the same peak tilt to 1e-6), gave 830 in the run before them). The kernel is compiled once and cached (``cache=True``): about 70 s cold (a solve of
+a quick Siconos case took 73 s cold), 0.3 s to load the cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings

@@ -687,17 +687,29 @@ def _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
 
 
 @numba.njit(cache=True)
+def _flat_directions(v0, v1, wz, idx, n, r, sdir):
+    """Each of the ``n`` corners ``idx``'s slip direction ``sdir`` for the level block's velocities ``(V_x, V_y,
+    omega_z) = (v0, v1, wz)``; returns the largest change of a direction's component, or -1 if a corner does not
+    slip."""
+    moved = 0.0
+    for k in range(n):
+        i = idx[k]
+        u0 = v0 - wz * r[i, 1]
+        u1 = v1 + wz * r[i, 0]
+        nu = math.hypot(u0, u1)
+        if nu == 0.0:
+            return -1.0
+        moved = max(moved, abs(u0 / nu - sdir[i, 0]), abs(u1 / nu - sdir[i, 1]))
+        sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+    return moved
+
+
+@numba.njit(cache=True)
 def _flat_eval(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g):
     """``g = G(x) - x`` for the velocities ``x = (V_x, V_y, omega_z)``: the slip directions of ``x``, then the
     velocities :func:`_flat_system` gives for them. False if a corner does not slip or the system is singular."""
-    for k in range(n):
-        i = idx[k]
-        u0 = x[0] - x[2] * r[i, 1]
-        u1 = x[1] + x[2] * r[i, 0]
-        nu = math.hypot(u0, u1)
-        if nu == 0.0:
-            return False
-        sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+    if _flat_directions(x[0], x[1], x[2], idx, n, r, sdir) < 0.0:
+        return False
     if not _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
         return False
     for a in range(3):
@@ -770,26 +782,15 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
         if act[i]:
             idx[n] = i
             n += 1
-            u0 = vf[0] - vf[5] * r[i, 1]
-            u1 = vf[1] + vf[5] * r[i, 0]
-            nu = math.hypot(u0, u1)
-            if nu == 0.0:
-                return False
-            sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+    if _flat_directions(vf[0], vf[1], vf[5], idx, n, r, sdir) < 0.0:
+        return False
     settled = False
     for it in range(30):
         if not _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
             return False
-        moved = 0.0
-        for k in range(n):
-            i = idx[k]
-            u0 = xs[n] - xs[n + 2] * r[i, 1]
-            u1 = xs[n + 1] + xs[n + 2] * r[i, 0]
-            nu = math.hypot(u0, u1)
-            if nu == 0.0:
-                return False
-            moved = max(moved, abs(u0 / nu - sdir[i, 0]), abs(u1 / nu - sdir[i, 1]))
-            sdir[i, 0], sdir[i, 1] = u0 / nu, u1 / nu
+        moved = _flat_directions(xs[n], xs[n + 1], xs[n + 2], idx, n, r, sdir)
+        if moved < 0.0:
+            return False
         if moved < 1e-12:
             settled = True
             break

@@ -44,7 +44,9 @@ class Rigid3DSettings(SolverSettings):
         contact problem have no solution for a while (the infinite-friction limit slides it with a vanishing
         normal impulse); in a run of the directionality study 27 of 4,160 cases met 50 such steps in a row and
         failed, and three of them rerun went through 108 to 223 such steps in all (their runs of them shorter
-        than 500) and overturned; 3 of the committed study's 6,240 cases meet 500 in a row; a step that does not converge keeps its last sweep and is counted
+        than 500) and overturned; with the closed form for two corners in the infinite-friction limit
+        (``diagnostics["edge_slip_steps"]``) none of the study's 6,240 cases meets 500 in a row (3 did without
+        it); a step that does not converge keeps its last sweep and is counted
         (``diagnostics["nsgs_unconverged_steps"]``).
     nsgs_loose_tol : float
         A step that has not met ``nsgs_tol`` in ``nsgs_max_sweeps`` sweeps goes on for up to

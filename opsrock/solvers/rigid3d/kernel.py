@@ -384,9 +384,14 @@ def _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol,
 
 @numba.njit(cache=True)
 def _solve6(A, y):
-    """Solve ``A y_new = y`` in place (6 x 6, Gaussian elimination with partial pivoting; ``A`` is overwritten);
-    False if a pivot is below 1e-13 of the largest entry."""
-    n = 6
+    """Solve ``A y_new = y`` in place (6 x 6, :func:`_solve_n`)."""
+    return _solve_n(A, y, 6)
+
+
+@numba.njit(cache=True)
+def _solve_n(A, y, n):
+    """Solve ``A[:n, :n] y_new = y[:n]`` in place (Gaussian elimination with partial pivoting; ``A`` is
+    overwritten); False if a pivot is below 1e-13 of the largest entry."""
     big = 0.0
     for i in range(n):
         for j in range(n):
@@ -831,8 +836,8 @@ def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
     """The linear system of :func:`_edge_slip` for the statuses ``st`` (0 stick, 1 slip, 2 open) and the slip
     directions ``sdir``: the unknowns are a stuck corner's impulse (3) and a slipping corner's normal impulse ``N``
     (its impulse ``N (-mu_k s, 1)``; an open corner has none); the equations a stuck corner's velocity ``u = 0`` (3)
-    and a slipping corner's normal velocity ``u_z = 0``, with ``u = q + D P``. ``A`` and ``y`` (6 x 6, 6) padded with the identity; ``cols``
-    (6 x 6) holds ``P`` per unknown. Returns the number of unknowns."""
+    and a slipping corner's normal velocity ``u_z = 0``, with ``u = q + D P``, into the leading ``m x m`` of ``A``
+    and ``m`` of ``y``; ``cols`` (6 x 6) holds ``P`` per unknown. Returns the number of unknowns ``m``."""
     m = 0
     for c in range(6):
         for a in range(6):
@@ -858,11 +863,6 @@ def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
                 A[row, c] = acc
             y[row] = -q[e]
             row += 1
-    for a in range(m, 6):
-        for c in range(6):
-            A[a, c] = 1.0 if a == c else 0.0
-            A[c, a] = 1.0 if a == c else 0.0
-        y[a] = 0.0
     return m
 
 
@@ -872,7 +872,7 @@ def _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
     and per slipping corner ``k`` the angle from its direction ``s`` to its tangential velocity, ``f[k]`` in
     (-pi, pi] (zero where the friction opposes the slip). False if the system is singular."""
     m = _edge_system(st, sdir, mu_k, D, q, A, y, cols)
-    if not _solve6(A, y):
+    if not _solve_n(A, y, m):
         return False
     for a in range(6):
         acc = 0.0

@@ -30,23 +30,22 @@ Scheme (theta-method, ``theta_mj = 1/2``)::
     v_{k+1} = v_free + M^-1 sum_i H_i^T P_i                            (Jacobians at q_k)
     X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]; the quaternion turned by the same blend of omega
 
-The contact problem of a step (4 corners x 3 impulses; the Delassus matrix is 12 x 12 of rank at most 6) is
-solved (0) by the active corners that were down, or else those that were not (a rocking impact: the landing
-edge takes the load, the pivot lifts), stuck alone in closed form while the other active corners separate;
-(1) by every active corner stuck in closed form (two corners: the one turning freedom about the line
-through them, the friction along it split by their normal impulses, or the nearest split that keeps both in
-their cones; three/four: the block stops, least-norm normal impulses moved along the indeterminate direction
-to the nearest compressive ones, friction in proportion to them), accepted if the impulses lie in the static
-cones; two corners that cannot both carry it: each alone stuck, the other separating; else (2) two corners of
-which one slips (stick-slip, slip-slip, or slipping with the other leaving the floor) in closed form for
-consistent slip directions (fixed point, then Newton on their angles: ``diagnostics["edge_slip_steps"]``);
-else (3) three or four corners all slipping in closed form for settled slip directions (Newton on
-``(V_x, V_y, omega_z)`` where the fixed point stalls); else (4) nonsmooth Gauss-Seidel (Jean & Moreau)
-warm-started from the previous impulses, with an exact local solver per corner (stick in the static cone,
-else slip with ``mu_k``: the slip direction from the trust-region "secular" equation). An NSGS step that does not converge in ``nsgs_max_sweeps``
-goes on for up to ``nsgs_extra_sweeps`` to the looser ``nsgs_loose_tol`` (three or four corners at the
-stick-slip limit, whose impulses are indeterminate, converge slowly: ``diagnostics["nsgs_loose_steps"]``);
-one that does not meet that either keeps its last sweep and is counted
+The contact problem of a step (4 corners x 3 impulses; the Delassus matrix is 12 x 12 of rank at most 6) is solved
+(0) by the active corners that were down, or else those that were not (a rocking impact: the landing edge takes the
+load, the pivot lifts), stuck alone in closed form while the other active corners separate; (1) by every active
+corner stuck in closed form (two corners: the one turning freedom about the line through them, the friction along it
+split by their normal impulses, or the nearest split that keeps both in their cones; three/four: the block stops,
+least-norm normal impulses moved along the indeterminate direction to the nearest compressive ones, friction in
+proportion to them), accepted if the impulses lie in the static cones; two corners that cannot both carry it: each
+alone stuck, the other separating; else (2) two corners of which one slips (stick-slip, slip-slip, or slipping with
+the other leaving the floor) in closed form for consistent slip directions (fixed point, then Newton on their
+angles: ``diagnostics["edge_slip_steps"]``); else (3) three or four corners all slipping in closed form for settled
+slip directions (Newton on ``(V_x, V_y, omega_z)`` where the fixed point stalls); else (4) nonsmooth Gauss-Seidel
+(Jean & Moreau) warm-started from the previous impulses, with an exact local solver per corner (stick in the static
+cone, else slip with ``mu_k``: the slip direction from the trust-region "secular" equation). An NSGS step that does
+not converge in ``nsgs_max_sweeps`` goes on for up to ``nsgs_extra_sweeps`` to the looser ``nsgs_loose_tol`` (three
+or four corners at the stick-slip limit, whose impulses are indeterminate, converge slowly:
+``diagnostics["nsgs_loose_steps"]``); one that does not meet that either keeps its last sweep and is counted
 (``diagnostics["nsgs_unconverged_steps"]``); ``nsgs_fail_steps`` in a row fail the run with that reason.
 The **rest skip** takes a step of a block seated on its four stuck corners in O(1) while the floor's load is
 carried: ``g + a_v > 0``, the centre of pressure ``(a_x, a_y) h / (g + a_v)`` in ``[-b, b] x [-d, d]``,
@@ -55,15 +54,15 @@ min(b/|cos phi|, d/|sin phi|)``, exact. It skips a record's whole sample interva
 both its samples (the accelerations are linear in between, the set of carried loads convex).
 
 **Smooth steps** (``smooth=True``, :mod:`opsrock.solvers.rigid3d.pivot`): while the block turns about one or two
-stuck corners (after ``pivot.CALM_STEPS`` Moreau-Jean steps in that contact without an impact), the motion about
-the fixed pivot is integrated by the classical fourth-order Runge-Kutta method in steps up to the next sample
-of the floor motion (at most ``pivot.MAX_DTAU``; sub-steps of ``pivot.RK_DTAU``), each kept only if every
-other corner stays up, the tilt stays below pi/2 and a Moreau-Jean probe step from its end solves the same
-contact, else halved down to ``pivot.MIN_STEPS`` Moreau-Jean steps, which then locate the event (impacts,
-lift-off, slip, flight and overturning are always theirs). A block sliding flat on its four corners takes
-coarse Moreau-Jean steps of up to ``pivot.SLIDE_DTAU``, kept while they are solved by the closed-form flat
-slide or stick and every corner stays on the floor. With ``tail="peak"`` the run ends after the excitation once an energy bound shows that
-neither the verdict nor the peak tilt can change (the Siconos model's rule,
+stuck corners (after ``pivot.CALM_STEPS`` Moreau-Jean steps in that contact without an impact), the motion about the
+fixed pivot is integrated by the classical fourth-order Runge-Kutta method in steps up to the next sample of the
+floor motion (at most ``pivot.MAX_DTAU``; sub-steps of ``pivot.RK_DTAU``), each kept only if every other corner
+stays up, the tilt stays below pi/2 and a Moreau-Jean probe step from its end solves the same contact, else halved
+down to ``pivot.MIN_STEPS`` Moreau-Jean steps, which then locate the event (impacts, lift-off, slip, flight and
+overturning are always theirs). A block sliding flat on its four corners takes coarse Moreau-Jean steps of up to
+``pivot.SLIDE_DTAU``, kept while they are solved by the closed-form flat slide or stick and every corner stays on
+the floor. With ``tail="peak"`` the run ends after the excitation once an energy bound shows that neither the
+verdict nor the peak tilt can change (the Siconos model's rule,
 :func:`~opsrock.solvers.rigid3d.kernel._peak_reached`).
 
 Outputs: ``theta`` the tilt (rad) signed by the lean along the weaker axis, ``theta_max`` the peak tilt,
@@ -114,34 +113,34 @@ dtau     smooth  mu = None       mu = 0.32       speed    two components, mu = 0
 5e-5     True    0.906302        0.906369        745      0.015885, 0.03533                 46
 =======  ======  ==============  ==============  =======  ================================  =======
 
-The smooth steps leave the answers where Moreau-Jean puts them (to 3e-6 alpha on the record at the default
-step, 4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps) and make a rocking case 37 times faster
-at the default step (951 against 26), nearly independent of ``dtau``: the Moreau-Jean steps left are those
-around impacts. A case that slides and rocks on slipping corners gains about 2 times (86 against 40): its steps
-on slipping corners are Moreau-Jean steps (their contact problems in closed form, steps 1-3 above; with NSGS
-instead, before those closed forms, the same case ran at 25 and 23).
+The smooth steps leave the answers where Moreau-Jean puts them (to 3e-6 alpha on the record at the default step,
+4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps) and make a rocking case 37 times faster at the
+default step (951 against 26), nearly independent of ``dtau``: the Moreau-Jean steps left are those around impacts.
+A case that slides and rocks on slipping corners gains about 2 times (86 against 40): its steps on slipping corners
+are Moreau-Jean steps (their contact problems in closed form, steps 1-3 above; with NSGS instead, before those
+closed forms, the same case ran at 25 and 23).
 
-rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha on the pulse and 1e-5 on the
-record; like it, the rocking peak converges at first order with a scatter (each impact is located to a step).
-Hence the default ``dtau = 1e-4``: about 1e-3 alpha on records, 1e-4 on pulses. Planar limit (slow tier,
-tests/solvers/test_rigid3d_slow.py): the paper's 400 pulses (depth twice the width) against ``housner_fast``
-399/400 verdicts, median ``|d theta_max| / alpha`` 3.3e-5, 95th percentile 2.2e-4; the one difference is the
-model's, not the scheme's: medicine_cabinet/f06/a09 leaves the floor (0.19 s of flight, which housner_fast's
-bilateral pivot cannot) and overturns, as ``moreau_jean`` does (a smooth step that held the pivot through that
-flight agreed with housner_fast instead: hence the load check of every Runge-Kutta sub-step). (With infinite friction a corner whose sticking
-impulse would pull slides in the infinite-friction limit; when it was left open instead, bookcase/f01/a07-a10
-stopped at 8.57-8.70 alpha, short of overturning at 8.8.) Against ``friction`` (mu = 0.5, which models
-flight): 400/400, median 5.4e-5, 95th percentile 3.2e-4. Twelve FEMA P695 far-field records at 0.45 g along
-``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 3.8e-4, 95th
-percentile 1.2e-3 (``pytest -s -m slow tests/solvers/test_rigid3d_slow.py`` prints them).
+rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha on the pulse and 1e-5 on the record;
+like it, the rocking peak converges at first order with a scatter (each impact is located to a step). Hence the
+default ``dtau = 1e-4``: about 1e-3 alpha on records, 1e-4 on pulses. Planar limit (slow tier,
+tests/solvers/test_rigid3d_slow.py): the paper's 400 pulses (depth twice the width) against ``housner_fast`` 399/400
+verdicts, median ``|d theta_max| / alpha`` 3.3e-5, 95th percentile 2.2e-4; the one difference is the model's, not
+the scheme's: medicine_cabinet/f06/a09 leaves the floor (0.19 s of flight, which housner_fast's bilateral pivot
+cannot) and overturns, as ``moreau_jean`` does (a smooth step that held the pivot through that flight agreed with
+housner_fast instead: hence the load check of every Runge-Kutta sub-step). (With infinite friction a corner whose
+sticking impulse would pull slides in the infinite-friction limit; when it was left open instead,
+bookcase/f01/a07-a10 stopped at 8.57-8.70 alpha, short of overturning at 8.8.) Against ``friction`` (mu = 0.5, which
+models flight): 400/400, median 5.4e-5, 95th percentile 3.2e-4. Twelve FEMA P695 far-field records at 0.45 g along
+``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 3.8e-4, 95th percentile
+1.2e-3 (``pytest -s -m slow tests/solvers/test_rigid3d_slow.py`` prints them).
 
-Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms), a few
-µs one slipping on one or two corners (closed forms with Newton on the slip directions), 5-20 µs an NSGS step,
-20 ns a rest-skipped step; a smooth step spans up to a sample interval (hundreds of Moreau-Jean steps); 951
-record-seconds per CPU-second on the rocking record above, 86 on the sliding two-component one (2-core project
-machine; one run, the speeds scatter by 20 % or more between runs: the rocking record, whose steps these closed
-forms leave as they were (the same peak tilt to 1e-6), gave 830 in the run before them). The kernel is compiled once and cached (``cache=True``): about 70 s cold (a solve of
-a quick Siconos case took 73 s cold), 0.3 s to load the cache.
+Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms), a few µs one
+slipping on one or two corners (closed forms with Newton on the slip directions), 5-20 µs an NSGS step, 20 ns a
+rest-skipped step; a smooth step spans up to a sample interval (hundreds of Moreau-Jean steps); 951 record-seconds
+per CPU-second on the rocking record above, 86 on the sliding two-component one (2-core project machine; one run,
+the speeds scatter by 20 % or more between runs: the rocking record, whose steps these closed forms leave as they
+were (the same peak tilt to 1e-6), gave 830 in the run before them). The kernel is compiled once and cached
+(``cache=True``): about 70 s cold (a solve of a quick Siconos case took 73 s cold), 0.3 s to load the cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings

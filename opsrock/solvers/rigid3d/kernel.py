@@ -169,7 +169,8 @@ def _delassus(r, Iinv, W):
 @numba.njit(cache=True)
 def _delassus_pair(rk, rl, Iinv, W):
     """``W`` (3 x 3): the change of corner ``k``'s velocity (arm ``rk``) per unit impulse at corner ``l`` (arm
-    ``rl``), ``W e = e + (I^-1 (rl x e)) x rk`` (:func:`_delassus` is ``rk = rl``)."""
+    ``rl``), ``W e = e + (I^-1 (rl x e)) x rk`` (:func:`_delassus` is ``rk = rl``, its sums in another order, kept
+    so that results stay bitwise those of the validation runs)."""
     for j in range(3):
         c0 = 0.0 if j == 0 else (-rl[2] if j == 1 else rl[1])
         c1 = rl[2] if j == 0 else (0.0 if j == 1 else -rl[0])
@@ -775,10 +776,11 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
     norm solution (the indeterminate part of the normal impulses, alternating between the corners, left at zero) is
     iterated with ``s_i`` the direction of each corner's slip velocity (from the free velocity's first) until the
     directions settle (where that fixed point stalls, as a twisting block comes to a stop, by Newton on the
-    velocities ``(V_x, V_y, omega_z)`` that give the directions, :func:`_flat_newton`); on four corners a distribution with a pulling corner is moved along the system's free
-    direction to the nearest compressive one. Accepted, into ``V``, ``Om`` and ``P``, if the directions settle (each
-    corner then slips along the ``s_i`` its friction opposes) and every ``N_i >= 0`` (to ``FLAT_ROUNDOFF``); else False (NSGS then solves
-    the step). ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
+    velocities ``(V_x, V_y, omega_z)`` that give the directions, :func:`_flat_newton`); on four corners a
+    distribution with a pulling corner is moved along the system's free direction to the nearest compressive one.
+    Accepted, into ``V``, ``Om`` and ``P``, if the directions settle (each corner then slips along the ``s_i`` its
+    friction opposes) and every ``N_i >= 0`` (to ``FLAT_ROUNDOFF``); else False (NSGS then solves the step).
+    ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
     idx = np.empty(4, dtype=np.int64)
     xs = np.empty(7)
     zs = np.empty(7)
@@ -896,11 +898,11 @@ def _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
 @numba.njit(cache=True)
 def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
     """One status pair of :func:`_edge_slip`: the slip directions brought to consistency (each along that corner's
-    tangential velocity; a few fixed-point steps ``s <- u_t / |u_t|``, then Newton on the directions' angles with
-    a finite-difference Jacobian and step halving, the fixed point alone stalling or flipping where the two
-    corners' slips are strongly coupled), then the statuses checked (a stuck corner pressing inside the static
-    cone, a slipping one pressing and slipping along its ``s``, an open one not approaching). Returns True with the impulses ``P6`` and
-    velocities ``u`` of the two corners."""
+    tangential velocity; a few fixed-point steps ``s <- u_t / |u_t|``, then Newton on the directions' angles with a
+    finite-difference Jacobian and step halving, the fixed point alone stalling or flipping where the two corners'
+    slips are strongly coupled), then the statuses checked (a stuck corner pressing inside the static cone, a
+    slipping one pressing and slipping along its ``s``, an open one not approaching). Returns True with the impulses
+    ``P6`` and velocities ``u`` of the two corners."""
     f = np.zeros(2)
     f1 = np.zeros(2)
     ang = np.zeros(2)
@@ -978,16 +980,15 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
 @numba.njit(cache=True)
 def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
     """Two active corners, one stuck and one slipping, both slipping, or one slipping and the other leaving the
-    floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or
-    twists about one of its corners; Gauss-Seidel converges slowly there, the two corners being strongly coupled
-    through the body). The status pairs are tried in turn (stick-slip, slip-stick, slip-slip, open-slip,
-    slip-open; the pairs stick-stick and stick-open have closed forms of their own), the slip directions from those of the
-    corners' friction impulses ``P`` (warm start) or free velocities; the first whose statuses hold is the
-    step's solution of the contact problem (into ``V``, ``Om``, ``P``), else False (NSGS then solves it). With
-    infinite friction (``stick_only``) a slipping corner is :func:`_local`'s infinite-friction limit (``mu_k =
-    LIMIT_MU``, counted in ``OUT_LIMIT_STEPS``) and a stuck one needs only to press.
-    ``ew`` is the workspace ``(D, A, cols, q | y | P6 | u, sdir, last)``, ``last[0]`` the pair that held last (tried
-    first)."""
+    floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or twists
+    about one of its corners; Gauss-Seidel converges slowly there, the two corners being strongly coupled through
+    the body). The status pairs are tried in turn (stick-slip, slip-stick, slip-slip, open-slip, slip-open; the
+    pairs stick-stick and stick-open have closed forms of their own), the slip directions from those of the corners'
+    friction impulses ``P`` (warm start) or free velocities; the first whose statuses hold is the step's solution of
+    the contact problem (into ``V``, ``Om``, ``P``), else False (NSGS then solves it). With infinite friction
+    (``stick_only``) a slipping corner is :func:`_local`'s infinite-friction limit (``mu_k = LIMIT_MU``, counted in
+    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``ew`` is the workspace ``(D, A, cols, q | y | P6 | u,
+    sdir, last)``, ``last[0]`` the pair that held last (tried first)."""
     if stick_only:
         mu_s, mu_k = np.inf, LIMIT_MU
     D, A, cols, vecs = ew[0], ew[1], ew[2], ew[3]

@@ -94,7 +94,10 @@ OUT_NSGS_EXTRA = ST.OUT_COMMON + 41  # the sweeps those took beyond nsgs_max_swe
 OUT_COARSE_STEPS = ST.OUT_COMMON + 42  # coarse Moreau-Jean steps of a block sliding flat (_coarse_slide)
 OUT_COARSE_SPAN = ST.OUT_COMMON + 43  # Moreau-Jean steps those spanned
 OUT_EDGE_SLIP = ST.OUT_COMMON + 44  # steps solved by the closed-form slip on two corners (_edge_slip)
-OUT_SIZE = ST.OUT_COMMON + 45
+OUT_SLIP_STEPS = ST.OUT_COMMON + 45  # Runge-Kutta steps on slipping corners kept (_smooth_slip)
+OUT_SLIP_SPAN = ST.OUT_COMMON + 46  # Moreau-Jean steps those spanned
+OUT_SLIP_TRIED = ST.OUT_COMMON + 47  # Runge-Kutta steps on slipping corners tried (kept or halved)
+OUT_SIZE = ST.OUT_COMMON + 48
 
 #: Speed of the base (m/s) below which the tail rule "peak" may end a run: a block on its base sliding at
 #: 1 mm/s under friction ``mu`` stops within ``(1e-3)² / (2 mu g)``, 5e-8/mu m.
@@ -109,6 +112,15 @@ FLAT_ROUNDOFF = 1e-10
 
 #: The status pairs :func:`_edge_slip` tries, in order (0 stick, 1 slip, 2 open).
 EDGE_STATUSES = np.array([[0, 1], [1, 0], [1, 1], [2, 1], [1, 2]], dtype=np.int64)
+
+#: A smooth step on slipping corners (:func:`_smooth_slip`) takes Runge-Kutta sub-steps no longer than
+#: ``1/SLIP_TURN`` of each slipping corner's speed over its tangential acceleration: its slip direction turns by at
+#: most about ``1/SLIP_TURN`` rad a sub-step, and it cannot stop or reverse inside one.
+SLIP_TURN = 20.0
+
+#: The shortest Runge-Kutta sub-step on slipping corners, in Moreau-Jean steps (shorter: the Moreau-Jean steps
+#: go on).
+SLIP_MIN_SUB = 2.0
 
 #: Corner signs ``(sx, sy)``: corners 0..3 at (+b, +d), (-b, +d), (-b, -d), (+b, -d) (counter-clockwise).
 CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
@@ -135,16 +147,14 @@ def _rotmat(s, Q):
 
 @numba.njit(cache=True)
 def _inv_inertia(Q, ib, Iinv, Iw):
-    """Inverse inertia ``Q I_b^-1 Q^T`` and inertia ``Q I_b Q^T`` in the floor frame (per unit mass)."""
+    """Inverse inertia ``Q I_b^-1 Q^T`` and inertia ``Q I_b Q^T`` in the floor frame (per unit mass; both
+    symmetric)."""
+    v0, v1, v2 = 1.0 / ib[0], 1.0 / ib[1], 1.0 / ib[2]
     for i in range(3):
-        for j in range(3):
-            a = 0.0
-            c = 0.0
-            for k in range(3):
-                a += Q[i, k] * Q[j, k] / ib[k]
-                c += Q[i, k] * Q[j, k] * ib[k]
-            Iinv[i, j] = a
-            Iw[i, j] = c
+        for j in range(i, 3):
+            q0, q1, q2 = Q[i, 0] * Q[j, 0], Q[i, 1] * Q[j, 1], Q[i, 2] * Q[j, 2]
+            Iinv[i, j] = Iinv[j, i] = q0 * v0 + q1 * v1 + q2 * v2
+            Iw[i, j] = Iw[j, i] = q0 * ib[0] + q1 * ib[1] + q2 * ib[2]
 
 
 @numba.njit(cache=True)
@@ -255,6 +265,51 @@ def _slip_direction(a, c, e, r0, r1):
 
 
 @numba.njit(cache=True)
+def _slip_newton(W, q, mu_k, s0, s1):
+    """The slip direction ``s`` of one corner slipping with ``mu_k`` (:func:`_local`) by Newton's method on its angle
+    ``phi`` from the warm start ``s``: for a given ``s`` the normal impulse ``N = -q_z / (W_zz - mu_k W_zt . s)``
+    makes ``u_z = 0``, the friction impulse is ``-mu_k N s``, and the residual is the angle from ``s`` to the
+    corner's tangential velocity ``u_t`` (zero where the friction opposes the slip; the antiparallel root is
+    excluded), differentiated exactly. Returns ``(converged, s_x, s_y)``; not converged (the fixed point of
+    :func:`_local` then takes over) if ``W_zz - mu_k W_zt . s`` leaves the positive or 30 steps do not do."""
+    phi = math.atan2(s1, s0)
+    for _ in range(30):
+        c0, c1 = math.cos(phi), math.sin(phi)
+        den = W[2, 2] - mu_k * (W[2, 0] * c0 + W[2, 1] * c1)
+        if den <= 0.0:
+            return False, s0, s1
+        pn = -q[2] / den
+        p0, p1 = -mu_k * pn * c0, -mu_k * pn * c1
+        u0 = q[0] + W[0, 0] * p0 + W[0, 1] * p1 + W[0, 2] * pn
+        u1 = q[1] + W[1, 0] * p0 + W[1, 1] * p1 + W[1, 2] * pn
+        cr = c0 * u1 - c1 * u0
+        dt = c0 * u0 + c1 * u1
+        res = math.atan2(cr, dt)
+        if abs(res) <= 1e-13:
+            return True, c0, c1
+        dden = -mu_k * (-W[2, 0] * c1 + W[2, 1] * c0)
+        dpn = -pn * dden / den
+        dp0 = -mu_k * (dpn * c0 - pn * c1)
+        dp1 = -mu_k * (dpn * c1 + pn * c0)
+        du0 = W[0, 0] * dp0 + W[0, 1] * dp1 + W[0, 2] * dpn
+        du1 = W[1, 0] * dp0 + W[1, 1] * dp1 + W[1, 2] * dpn
+        dcr = -dt + c0 * du1 - c1 * du0
+        ddt = cr + c0 * du0 + c1 * du1
+        nrm = cr * cr + dt * dt
+        if nrm == 0.0:
+            return False, s0, s1
+        dres = (dt * dcr - cr * ddt) / nrm
+        if dres == 0.0:
+            return False, s0, s1
+        step = -res / dres
+        step = max(-0.5, min(0.5, step))
+        phi += step
+        if abs(step) <= 1e-14:
+            return True, math.cos(phi), math.sin(phi)
+    return False, s0, s1
+
+
+@numba.njit(cache=True)
 def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
     """One corner's impulse ``P`` (tangential x, y, normal z) making ``u = q + W P`` obey ``0 <= u_z _|_ P_z >= 0``
     (Newton, ``e_n = 0``) and Coulomb's law: open if the corner does not approach; else stick (``u = 0``) if that
@@ -288,8 +343,11 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
         else:
             nu = math.hypot(P[0], P[1])
             s0, s1 = (-P[0] / nu, -P[1] / nu) if nu > 0.0 else (1.0, 0.0)
+    ok, n0, n1 = _slip_newton(W, q, mu_k, s0, s1)
+    if ok:
+        s0, s1 = n0, n1
     pn = 0.0
-    for _ in range(30):
+    for _ in range(0 if ok else 30):
         den = W[2, 2] - mu_k * (W[2, 0] * s0 + W[2, 1] * s1)
         if den <= 0.0:
             P[0], P[1], P[2] = 0.0, 0.0, 0.0
@@ -896,17 +954,14 @@ def _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
 
 
 @numba.njit(cache=True)
-def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
+def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
     """One status pair of :func:`_edge_slip`: the slip directions brought to consistency (each along that corner's
     tangential velocity; a few fixed-point steps ``s <- u_t / |u_t|``, then Newton on the directions' angles with a
     finite-difference Jacobian and step halving, the fixed point alone stalling or flipping where the two corners'
     slips are strongly coupled), then the statuses checked (a stuck corner pressing inside the static cone, a
     slipping one pressing and slipping along its ``s``, an open one not approaching). Returns True with the impulses
-    ``P6`` and velocities ``u`` of the two corners."""
-    f = np.zeros(2)
-    f1 = np.zeros(2)
-    ang = np.zeros(2)
-    J = np.zeros((2, 2))
+    ``P6`` and velocities ``u`` of the two corners; ``fw`` (5 x 2) is workspace."""
+    f, f1, ang, J = fw[0], fw[1], fw[2], fw[3:5]
     done = False
     for it in range(5):
         if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
@@ -978,6 +1033,14 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
 
 
 @numba.njit(cache=True)
+def _edge_workspace():
+    """The workspace of :func:`_edge_slip`: ``(D, A, cols)`` (6 x 6 each), ``q | y | P6 | u`` (4 x 6), ``sdir``
+    (2 x 2), ``last`` (1, int: the status pair that held last), :func:`_edge_try`'s (5 x 2), ``st | idx`` (4, int)."""
+    return (np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
+            np.zeros(1, dtype=np.int64), np.zeros((5, 2)), np.zeros(4, dtype=np.int64))
+
+
+@numba.njit(cache=True)
 def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
     """Two active corners, one stuck and one slipping, both slipping, or one slipping and the other leaving the
     floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or twists
@@ -987,15 +1050,14 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
     friction impulses ``P`` (warm start) or free velocities; the first whose statuses hold is the step's solution of
     the contact problem (into ``V``, ``Om``, ``P``), else False (NSGS then solves it). With infinite friction
     (``stick_only``) a slipping corner is :func:`_local`'s infinite-friction limit (``mu_k = LIMIT_MU``, counted in
-    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``ew`` is the workspace ``(D, A, cols, q | y | P6 | u,
-    sdir, last)``, ``last[0]`` the pair that held last (tried first)."""
+    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``ew`` is the workspace of :func:`_edge_workspace`,
+    ``last[0]`` the pair that held last (tried first)."""
     if stick_only:
         mu_s, mu_k = np.inf, LIMIT_MU
     D, A, cols, vecs = ew[0], ew[1], ew[2], ew[3]
     q, y, P6, u = vecs[0], vecs[1], vecs[2], vecs[3]
     sdir = ew[4]
-    st = np.empty(2, dtype=np.int64)
-    idx = np.empty(2, dtype=np.int64)
+    st, idx = ew[7][0:2], ew[7][2:4]
     n = 0
     for i in range(4):
         if act[i]:
@@ -1026,7 +1088,7 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
                     ok = False
                     break
                 sdir[k, 0], sdir[k, 1] = q[3 * k] / nu, q[3 * k + 1] / nu
-        if ok and _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u):
+        if ok and _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, ew[6]):
             last[0] = combo
             V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
             for i in range(4):
@@ -1297,10 +1359,15 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
     sweeps = 0
     stick_only = fric[2] > 0.5
     scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), geom[7] * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
-    if n_act >= 2 and (_stick_subset(act, guess, False, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0], stick_only,
-                                     nsgs[0] * scale, ws, vec[3])
-                       or _stick_subset(act, guess, True, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0], stick_only,
-                                        nsgs[0] * scale, ws, vec[3])):
+    n_down = 0  # the active corners that were down: a subset to try alone (_stick_subset) if one or two, not all
+    for i in range(4):
+        n_down += act[i] and guess[i]
+    try_down = 0 < n_down <= 2 and n_down < n_act
+    try_landing = 0 < n_act - n_down <= 2 and n_down > 0
+    if n_act >= 2 and ((try_down and _stick_subset(act, guess, False, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0],
+                                                    stick_only, nsgs[0] * scale, ws, vec[3]))
+                       or (try_landing and _stick_subset(act, guess, True, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0],
+                                                         stick_only, nsgs[0] * scale, ws, vec[3]))):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
     elif n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
@@ -1402,22 +1469,22 @@ def _fine_step(state, a, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, ou
     converged = sweeps <= nsgs[1]
     if not converged:
         out[OUT_NSGS_FAILED] += 1.0
-    return _book(state, a, ws, act, P, new, out, touch, slip, vel_tol, lift_gap, geom), converged
+    return _book(state, a, ws[10], ws[11], ws[3], ws[2], ws[6][2], act, P, new, out, touch, slip, vel_tol, lift_gap,
+                 geom), converged
 
 
 @numba.njit(cache=True)
-def _book(state, a, ws, act, P, new, out, touch, slip, vel_tol, lift_gap, geom):
+def _book(state, a, Q1, r1, r, Iw, vf, act, P, new, out, touch, slip, vel_tol, lift_gap, geom):
     """The bookkeeping of a Moreau-Jean step from ``state`` to ``new`` under the accelerations ``a`` with the
     impulses ``P``: input work, the corners' flags and friction work (:func:`_contacts`), an impact's loss.
-    Returns True at an impact."""
+    ``r`` and ``Iw`` are the step's arms and inertia, ``vf`` its free velocity; ``Q1`` and ``r1`` workspace (the
+    arms of ``new`` on return). Returns True at an impact."""
     # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
     # _contacts, and at an impact the kinetic energy of the impulses' velocity change
     out[OUT_INPUT_WORK] -= a[0] * (new[0] - state[0]) + a[1] * (new[1] - state[1]) + a[2] * (new[2] - state[2])
-    Q1, r1, r, Iw = ws[10], ws[11], ws[3], ws[2]
     _arms(new, geom, Q1, r1)
     impact = _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out)
     if impact:
-        vf = ws[6][2]
         e = 0.0
         for c in range(3):
             dv = new[7 + c] - vf[c]
@@ -1538,6 +1605,257 @@ def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing,
         n = max(PV.MIN_STEPS, n // 2)
 
 
+# --- smooth steps on slipping corners: the contact forces at acceleration level --------------------------------
+
+
+@numba.njit(cache=True)
+def _slip_rhs(y, F, idx, st, geom, ib, fric, sw, dy):
+    """Time derivative ``dy`` of the state ``y`` (13) of a block on the corners ``idx[:2]`` with the statuses
+    ``st`` (0 stuck, 1 slipping, 2 not in contact) under the body force ``F`` (m/s², per unit mass): the contact
+    forces per unit mass solve :func:`_edge_system` at acceleration level (a stuck corner's acceleration zero, a
+    slipping corner's normal acceleration zero and its force ``N (-mu_k s, 1)``, ``s`` its slip velocity's
+    direction; with infinite friction :func:`_local`'s limit, ``mu_k = LIMIT_MU``), the corners' free
+    accelerations ``F + alpha_f x r + omega x (omega x r)`` with ``alpha_f = -I^-1 (omega x I omega)``. Returns
+    ``(holds, friction power, stop time)``: ``holds`` False unless every contact presses (``N > 0``) and a stuck
+    corner's force lies in its static cone; the power (W/kg) the slipping corners' friction dissipates; the
+    smallest of the slipping corners' speed over tangential acceleration (s)."""
+    Q, Iinv, Iw, r, D, A, cols, vecs, sdir = sw[0], sw[1], sw[2], sw[3], sw[4], sw[5], sw[6], sw[7], sw[8]
+    q, yv, P6, u = vecs[0], vecs[1], vecs[2], vecs[3]
+    stick_only = fric[2] > 0.5
+    mu_s, mu_k = (np.inf, LIMIT_MU) if stick_only else (fric[0], fric[1])
+    _arms(y, geom, Q, r)
+    _inv_inertia(Q, ib, Iinv, Iw)
+    w0, w1, w2 = y[10], y[11], y[12]
+    L0 = Iw[0, 0] * w0 + Iw[0, 1] * w1 + Iw[0, 2] * w2
+    L1 = Iw[1, 0] * w0 + Iw[1, 1] * w1 + Iw[1, 2] * w2
+    L2 = Iw[2, 0] * w0 + Iw[2, 1] * w1 + Iw[2, 2] * w2
+    g0, g1, g2 = -(w1 * L2 - w2 * L1), -(w2 * L0 - w0 * L2), -(w0 * L1 - w1 * L0)
+    al0 = Iinv[0, 0] * g0 + Iinv[0, 1] * g1 + Iinv[0, 2] * g2
+    al1 = Iinv[1, 0] * g0 + Iinv[1, 1] * g1 + Iinv[1, 2] * g2
+    al2 = Iinv[2, 0] * g0 + Iinv[2, 1] * g1 + Iinv[2, 2] * g2
+    for k in range(2):
+        ri = r[idx[k]]
+        x0, x1, x2 = w1 * ri[2] - w2 * ri[1], w2 * ri[0] - w0 * ri[2], w0 * ri[1] - w1 * ri[0]
+        u[3 * k], u[3 * k + 1], u[3 * k + 2] = y[7] + x0, y[8] + x1, y[9] + x2
+        q[3 * k] = F[0] + al1 * ri[2] - al2 * ri[1] + w1 * x2 - w2 * x1
+        q[3 * k + 1] = F[1] + al2 * ri[0] - al0 * ri[2] + w2 * x0 - w0 * x2
+        q[3 * k + 2] = F[2] + al0 * ri[1] - al1 * ri[0] + w0 * x1 - w1 * x0
+        for b in range(2):
+            _delassus_pair(ri, r[idx[b]], Iinv, D[3 * k:3 * k + 3, 3 * b:3 * b + 3])
+        if st[k] == 1:
+            nu = math.hypot(u[3 * k], u[3 * k + 1])
+            if nu == 0.0:
+                return False, 0.0, 0.0
+            sdir[k, 0], sdir[k, 1] = u[3 * k] / nu, u[3 * k + 1] / nu
+    m = _edge_system(st, sdir, mu_k, D, q, A, yv, cols)
+    if not _solve_n(A, yv, m):
+        return False, 0.0, 0.0
+    for a in range(6):
+        acc = 0.0
+        for c in range(m):
+            acc += cols[c, a] * yv[c]
+        P6[a] = acc
+    holds = True
+    power = 0.0
+    t_stop = np.inf
+    for k in range(2):
+        if st[k] == 2:
+            continue
+        pz = P6[3 * k + 2]
+        if pz <= 0.0 or (st[k] == 0 and math.hypot(P6[3 * k], P6[3 * k + 1]) > mu_s * pz):
+            holds = False
+        if st[k] == 1:
+            at0, at1 = q[3 * k], q[3 * k + 1]
+            for a in range(6):
+                at0 += D[3 * k, a] * P6[a]
+                at1 += D[3 * k + 1, a] * P6[a]
+            a_t = math.hypot(at0, at1)
+            if a_t > 0.0:
+                t_stop = min(t_stop, math.hypot(u[3 * k], u[3 * k + 1]) / a_t)
+            power -= P6[3 * k] * u[3 * k] + P6[3 * k + 1] * u[3 * k + 1]
+    t0, t1, t2 = 0.0, 0.0, 0.0
+    dy[7], dy[8], dy[9] = F[0], F[1], F[2]
+    for k in range(2):
+        if st[k] == 2:
+            continue
+        ri = r[idx[k]]
+        p0, p1, p2 = P6[3 * k], P6[3 * k + 1], P6[3 * k + 2]
+        dy[7] += p0
+        dy[8] += p1
+        dy[9] += p2
+        t0 += ri[1] * p2 - ri[2] * p1
+        t1 += ri[2] * p0 - ri[0] * p2
+        t2 += ri[0] * p1 - ri[1] * p0
+    dy[10] = al0 + Iinv[0, 0] * t0 + Iinv[0, 1] * t1 + Iinv[0, 2] * t2
+    dy[11] = al1 + Iinv[1, 0] * t0 + Iinv[1, 1] * t1 + Iinv[1, 2] * t2
+    dy[12] = al2 + Iinv[2, 0] * t0 + Iinv[2, 1] * t1 + Iinv[2, 2] * t2
+    dy[0], dy[1], dy[2] = y[7], y[8], y[9]
+    qw, qx, qy, qz = y[3], y[4], y[5], y[6]
+    dy[3] = -0.5 * (w0 * qx + w1 * qy + w2 * qz)
+    dy[4] = 0.5 * (qw * w0 + w1 * qz - w2 * qy)
+    dy[5] = 0.5 * (qw * w1 + w2 * qx - w0 * qz)
+    dy[6] = 0.5 * (qw * w2 + w0 * qy - w1 * qx)
+    return holds, power, t_stop
+
+
+@numba.njit(cache=True)
+def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fric, new, sw):
+    """Classical Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps on the slipping
+    (and stuck) corners ``idx`` / ``st`` (:func:`_slip_rhs`) into ``new``, in sub-steps of at most
+    ``pivot.RK_DTAU``. Returns ``(largest tilt at the sub-steps' ends (rad), friction work (J/kg))``, the tilt -1
+    as soon as a stage's forces stop holding (:func:`_slip_rhs`), a corner not in contact reaches the floor or
+    the tilt reaches pi/2. ``sw`` is the workspace of :func:`_slip_rhs` and ``(dy, acc, ytmp, F)``."""
+    form, ax, ay, av, sub, n_exc, tail_av = forcing
+    dy, acc, ytmp, F = sw[9], sw[10], sw[11], sw[12]
+    r = sw[3]
+    g = geom[3]
+    new[:] = s
+    PV.floor_at(k0, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+    holds, _, t_stop = _slip_rhs(new, F, idx, st, geom, ib, fric, sw, dy)
+    span = n_steps * dt
+    n_sub = max(1, int(math.ceil(span * geom[4] / PV.RK_DTAU)), int(math.ceil(span * SLIP_TURN / t_stop)))
+    hs = n_steps / n_sub
+    hdt = hs * dt
+    if not holds or hs < SLIP_MIN_SUB:
+        return -1.0, 0.0
+    work = 0.0
+    tilt_max = _tilt(new, False)[0]
+    for m in range(n_sub):
+        kf = k0 + m * hs
+        for stage in range(4):
+            c = 0.0 if stage == 0 else (0.5 if stage < 3 else 1.0)
+            w = 1.0 / 6.0 if (stage == 0 or stage == 3) else 1.0 / 3.0
+            for a in range(13):
+                ytmp[a] = new[a] + (c * hdt * dy[a] if stage > 0 else 0.0)
+            PV.floor_at(kf + c * hs, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+            holds, power, t_stop = _slip_rhs(ytmp, F, idx, st, geom, ib, fric, sw, dy)
+            if not holds or 0.5 * SLIP_TURN * hdt > t_stop:
+                return -1.0, 0.0
+            work += w * hdt * power
+            for a in range(13):
+                acc[a] = (w * dy[a]) if stage == 0 else acc[a] + w * dy[a]
+        for a in range(13):
+            new[a] += hdt * acc[a]
+        nq = math.sqrt(new[3] * new[3] + new[4] * new[4] + new[5] * new[5] + new[6] * new[6])
+        for a in range(3, 7):
+            new[a] /= nq
+        tilt = _tilt(new, False)[0]
+        if tilt >= OVERTURNING_ANGLE:
+            return -1.0, 0.0
+        tilt_max = max(tilt_max, tilt)
+        _arms(new, geom, sw[0], r)
+        for i in range(4):
+            mine = (i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)
+            if not mine and new[2] + r[i, 2] <= 0.0:
+                return -1.0, 0.0
+    # the contact corners back on the floor as the next Moreau-Jean step predicts them (their normal
+    # acceleration is zero, so their gaps drift only by the initial normal velocity and round-off)
+    shift = 0.0
+    for k in range(2):
+        if st[k] != 2:
+            ri = r[idx[k]]
+            un = new[9] + new[10] * ri[1] - new[11] * ri[0]
+            shift = max(shift, new[2] + ri[2] + 0.5 * dt * un)
+    if shift > 0.0:
+        new[2] -= shift + 1e-13
+    return tilt_max, work
+
+
+@numba.njit(cache=True)
+def _slip_pivot(act, touch, slip, P):
+    """After a Moreau-Jean step: one corner or two down, exactly those solved in contact, loaded, at least one
+    slipping (the phase :func:`_smooth_slip` integrates)."""
+    n = 0
+    sl = False
+    for i in range(4):
+        if act[i] != touch[i] or (touch[i] and P[i, 2] <= 0.0):
+            return False
+        n += touch[i]
+        sl = sl or (touch[i] and slip[i])
+    return sl and (n == 1 or n == 2)
+
+
+@numba.njit(cache=True)
+def _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, sw, lift_gap, vel_tol):
+    """Is the end state ``new`` of a smooth step on slipping corners still in its phase? Every corner not in
+    contact above ``lift_gap``, and a Moreau-Jean probe step from it (``a``: its floor accelerations) solved with
+    exactly the contact corners active, each loaded, slipping where it slipped (along the direction it slipped,
+    in the half-plane of the end state's slip velocity) and stuck where it stuck. ``probe`` as in
+    :func:`_same_phase`."""
+    actp, Pp, sp, outp = probe
+    guess = ws[14]
+    for i in range(4):
+        guess[i] = (i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)
+    _arms(new, geom, ws[10], ws[11])
+    for i in range(4):
+        if not guess[i] and new[2] + ws[11][i, 2] <= lift_gap:
+            return False
+    outp[:] = 0.0
+    sweeps = _step(new, a[0], a[1], a[2], dt, theta_mj, geom, ib, fric, nsgs, ws, actp, Pp, sp, outp, guess)
+    if sweeps == 0 or sweeps > nsgs[1]:
+        return False
+    u = sw[7][3]  # the end state's corner velocities, from its last _slip_rhs (the arms of ``new``)
+    for k in range(2):
+        i = idx[k]
+        if st[k] == 2:
+            continue
+        if not actp[i] or Pp[i, 2] <= 0.0:
+            return False
+        ri = ws[3][i]  # the probe's arms
+        u0 = sp[7] + sp[11] * ri[2] - sp[12] * ri[1]
+        u1 = sp[8] + sp[12] * ri[0] - sp[10] * ri[2]
+        sl = math.hypot(u0, u1) > vel_tol
+        if sl != (st[k] == 1) or (sl and u0 * u[3 * k] + u1 * u[3 * k + 1] <= 0.0):
+            return False
+    for i in range(4):  # (``guess`` is the contact solver's workspace: the membership again)
+        if actp[i] and not ((i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)):
+            return False
+    return True
+
+
+@numba.njit(cache=True)
+def _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, sw, probe, P, new,
+                 lift_gap, vel_tol, out):
+    """A smooth step on one or two corners of which at least one slips (:func:`_slip_integrate`): from ``k`` to
+    the next sample (at most ``n_max`` steps), halved while it leaves its phase (:func:`_same_slip`), down to
+    ``pivot.MIN_STEPS``. Returns ``(steps, largest tilt)`` as :func:`_smooth` does; the friction work into
+    ``out``."""
+    form, ax, ay, av, sub, n_exc, tail_av = forcing
+    idx, st = sw[13], sw[14]
+    n_c = 0
+    for i in range(4):
+        if touch[i]:
+            if n_c == 2:
+                return 0, 0.0
+            idx[n_c] = i
+            st[n_c] = 1 if slip[i] else 0
+            n_c += 1
+    if n_c == 0:
+        return 0, 0.0
+    if n_c == 1:
+        idx[1], st[1] = (idx[0] + 1) % 4, 2
+    n = PV.step_end(k, n_max, sub, n_exc, form) - k
+    if n < 2:
+        return -1, 0.0
+    a = ws[13]
+    Pp = probe[1]
+    while True:
+        out[OUT_SLIP_TRIED] += 1.0
+        tilt, work = _slip_integrate(state, idx, st, k, n, dt, theta_mj, geom, forcing, ib, fric, new, sw)
+        if tilt >= 0.0:
+            a[0], a[1], a[2] = _floor(k + n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av)
+            Pp[:, :] = P
+            if _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, sw, lift_gap, vel_tol):
+                P[:, :] = Pp
+                out[OUT_SLIP_STEPS] += 1.0
+                out[OUT_SLIP_SPAN] += n
+                out[OUT_FRICTION_WORK] += work
+                return n, tilt
+        if n <= PV.MIN_STEPS:
+            return 0, 0.0
+        n = max(PV.MIN_STEPS, n // 2)
+
+
 @numba.njit(cache=True)
 def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, probe, P, new, out, touch,
                   slip, vel_tol, lift_gap):
@@ -1564,7 +1882,7 @@ def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, 
         ri = ws[3][i]
         if not actp[i] or abs(new[9] + new[10] * ri[1] - new[11] * ri[0]) > vel_tol:
             return 0
-    _book(state, a, ws, actp, Pp, new, out, touch, slip, vel_tol, lift_gap, geom)
+    _book(state, a, ws[10], ws[11], ws[3], ws[2], ws[6][2], actp, Pp, new, out, touch, slip, vel_tol, lift_gap, geom)
     for i in range(4):
         for c in range(3):
             P[i, c] = Pp[i, c] / n
@@ -1644,12 +1962,14 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
           np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)),
           np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3), np.zeros(4, dtype=np.bool_),
-          (np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
-           np.zeros(1, dtype=np.int64)))
+          _edge_workspace())
     Q, Iinv, Iw, r = ws[0], ws[1], ws[2], ws[3]
     wk = (np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
           np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
     probe = (np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), np.zeros(OUT_SIZE))
+    sw = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((6, 6)), np.zeros((6, 6)),
+          np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)), np.zeros(13), np.zeros(13), np.zeros(13), np.zeros(3),
+          np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64))
     act = np.zeros(4, dtype=np.bool_)
     touch = np.zeros(4, dtype=np.bool_)
     slip = np.zeros(4, dtype=np.bool_)
@@ -1675,6 +1995,7 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     over_kind = 0.0
     last_down = n_down
     calm = 0
+    slipc = 0
     sliding = 0
     n_slide = max(2, int(PV.SLIDE_DTAU / (geom[4] * dt)))
     k = 0
@@ -1708,22 +2029,29 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
             gz = geom[3] + a_v
             for i in range(4):
                 P[i, 0], P[i, 1], P[i, 2] = 0.25 * a_x * dt, 0.25 * a_y * dt, 0.25 * gz * dt
-        n, tilt_sub = 0, 0.0
+        n, tilt_sub, smoothed = 0, 0.0, False
         if smooth_on and calm >= PV.CALM_STEPS:
             n, tilt_sub = _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, wk,
                                   probe, P, new, lift_gap, vel_tol, out)
-            if n > 0:
-                F = wk[4]
-                PV.floor_at(k + 0.5 * n, k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, geom[3])
-                out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
-                    (F[2] + geom[3]) * (new[2] - state[2])
-            elif n == 0:
+            smoothed = n > 0
+            if n == 0:
                 calm = -4 * PV.MIN_STEPS  # none kept: the Moreau-Jean steps locate the event first
+        elif smooth_on and slipc >= PV.CALM_STEPS:
+            n, tilt_sub = _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws,
+                                       sw, probe, P, new, lift_gap, vel_tol, out)
+            smoothed = n > 0
+            if n == 0:
+                slipc = -4 * PV.MIN_STEPS
         elif smooth_on and sliding >= PV.CALM_STEPS:
             n = _coarse_slide(state, k, n_slide, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, probe, P, new, out,
                               touch, slip, vel_tol, lift_gap)
             if n == 0:
                 sliding = -n_slide
+        if smoothed:  # a smooth step's input work (the floor's force at its middle)
+            F = wk[4]
+            PV.floor_at(k + 0.5 * n, k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, geom[3])
+            out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
+                (F[2] + geom[3]) * (new[2] - state[2])
         if n <= 0:
             n = 1
             impact, converged = _fine_step(state, (a_x, a_y, a_v), dt, theta_mj, geom, ib, fric, nsgs, ws, act, P,
@@ -1741,6 +2069,12 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
                 calm += 1
             else:
                 calm = 0
+            if slipc < 0:
+                slipc += 1
+            elif not impact and _slip_pivot(act, touch, slip, P):
+                slipc += 1
+            else:
+                slipc = 0
             if sliding < 0:
                 sliding += 1
             elif not impact and _flat_slip(act, touch, slip):

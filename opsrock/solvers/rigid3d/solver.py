@@ -234,7 +234,9 @@ def _diagnostics(out: np.ndarray) -> dict[str, Any]:
             "smooth_span_steps": int(out[kn.OUT_SMOOTH_SPAN]), "smooth_tried": int(out[kn.OUT_SMOOTH_TRIED]),
             "peak_stop": bool(out[kn.OUT_PEAK_STOP] > 0.5), "nsgs_loose_steps": int(out[kn.OUT_NSGS_LOOSE]),
             "nsgs_extra_sweeps": int(out[kn.OUT_NSGS_EXTRA]), "coarse_slide_steps": int(out[kn.OUT_COARSE_STEPS]),
-            "coarse_slide_span_steps": int(out[kn.OUT_COARSE_SPAN]), "edge_slip_steps": int(out[kn.OUT_EDGE_SLIP])}
+            "coarse_slide_span_steps": int(out[kn.OUT_COARSE_SPAN]), "edge_slip_steps": int(out[kn.OUT_EDGE_SLIP]),
+            "slip_smooth_steps": int(out[kn.OUT_SLIP_STEPS]), "slip_smooth_span_steps": int(out[kn.OUT_SLIP_SPAN]),
+            "slip_smooth_tried": int(out[kn.OUT_SLIP_TRIED])}
 
 
 def _result(run: SolverRun, box: BoxProperties, out: np.ndarray, hist: np.ndarray, record: dict[str, Any],

@@ -97,7 +97,9 @@ OUT_EDGE_SLIP = ST.OUT_COMMON + 44  # steps solved by the closed-form slip on tw
 OUT_SLIP_STEPS = ST.OUT_COMMON + 45  # Runge-Kutta steps on slipping corners kept (_smooth_slip)
 OUT_SLIP_SPAN = ST.OUT_COMMON + 46  # Moreau-Jean steps those spanned
 OUT_SLIP_TRIED = ST.OUT_COMMON + 47  # Runge-Kutta steps on slipping corners tried (kept or halved)
-OUT_SIZE = ST.OUT_COMMON + 48
+OUT_SETTLED = ST.OUT_COMMON + 48  # times a block at rest on three corners was set down on four (_settle)
+OUT_SETTLE_GAP = ST.OUT_COMMON + 49  # the largest gap (m) of a fourth corner so set down
+OUT_SIZE = ST.OUT_COMMON + 50
 
 #: Speed of the base (m/s) below which the tail rule "peak" may end a run: a block on its base sliding at
 #: 1 mm/s under friction ``mu`` stops within ``(1e-3)² / (2 mu g)``, 5e-8/mu m.
@@ -121,6 +123,10 @@ SLIP_TURN = 20.0
 #: The shortest Runge-Kutta sub-step on slipping corners, in Moreau-Jean steps (shorter: the Moreau-Jean steps
 #: go on).
 SLIP_MIN_SUB = 2.0
+
+#: A block at rest on three stuck corners whose fourth hangs above the floor by at most ``SETTLE_GAP`` times the
+#: contact gap (the Moreau-Jean steps' drift; ``limits[5]``) is set down level on all four (:func:`_settle`).
+SETTLE_GAP = 10.0
 
 #: Corner signs ``(sx, sy)``: corners 0..3 at (+b, +d), (-b, +d), (-b, -d), (+b, -d) (counter-clockwise).
 CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
@@ -1894,6 +1900,35 @@ def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, 
 
 
 @numba.njit(cache=True)
+def _settle(state, touch, geom, Q, r, gap_max, out):
+    """A block at rest on three corners (``touch``) whose fourth hangs above the floor by at most ``gap_max`` (m):
+    the gap is the Moreau-Jean steps' drift (a corner that rose above the contact gap while the block came to rest
+    stays up, and the block would never be seated), so the block is set down level on all four, its base centre
+    and twist kept (its centre of mass moves by at most ``gap_max``, its tilt by ``gap_max / min(2b, 2d)``). Returns
+    True if it was (then seated by the caller). ``Q`` and ``r`` are workspace."""
+    _arms(state, geom, Q, r)
+    up = -1
+    for i in range(4):
+        if not touch[i]:
+            up = i
+    if up < 0:
+        return True
+    gap = state[2] + r[up, 2]
+    if not gap <= gap_max:
+        return False
+    h = geom[2]
+    w, x, y, z = state[3], state[4], state[5], state[6]
+    bx, by = state[0] - h * 2.0 * (x * z + w * y), state[1] - h * 2.0 * (y * z - w * x)
+    tw = _twist(state)
+    state[0], state[1], state[2] = bx, by, h
+    state[3], state[4], state[5], state[6] = math.cos(0.5 * tw), 0.0, 0.0, math.sin(0.5 * tw)
+    touch[up] = True
+    out[OUT_SETTLED] += 1.0
+    out[OUT_SETTLE_GAP] = max(out[OUT_SETTLE_GAP], gap)
+    return True
+
+
+@numba.njit(cache=True)
 def _peak_reached(s, geom, ib, tilt_max, tail_av):
     """The tail rule "peak": after the excitation (a still floor, ``g' = g + tail_av``), the block's energy per
     unit mass above rest, bounded above by ``|V|²/2 + I_max |omega|²/2 + g' (z - h)``, can only fall; at a tilt
@@ -2117,7 +2152,8 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
         if peak_rule and k >= n_exc and _peak_reached(state, geom, ib, theta_max, tail_av):
             out[OUT_PEAK_STOP] = 1.0
             break
-        if mode == MODE_REST and n_down == 4 and speed < vel_tol:
+        if mode == MODE_REST and speed < vel_tol and (n_down == 4 or _settle(state, touch, geom, ws[10], ws[11],
+                                                                               SETTLE_GAP * lift_gap, out)):
             seated = True
             for a in range(7, 13):
                 state[a] = 0.0

@@ -58,11 +58,18 @@ stuck corners (after ``pivot.CALM_STEPS`` Moreau-Jean steps in that contact with
 fixed pivot is integrated by the classical fourth-order Runge-Kutta method in steps up to the next sample of the
 floor motion (at most ``pivot.MAX_DTAU``; sub-steps of ``pivot.RK_DTAU``), each kept only if every other corner
 stays up, the tilt stays below pi/2 and a Moreau-Jean probe step from its end solves the same contact, else halved
-down to ``pivot.MIN_STEPS`` Moreau-Jean steps, which then locate the event (impacts, lift-off, slip, flight and
-overturning are always theirs). A block sliding flat on its four corners takes coarse Moreau-Jean steps of up to
-``pivot.SLIDE_DTAU``, kept while they are solved by the closed-form flat slide or stick and every corner stays on
-the floor. With ``tail="peak"`` the run ends after the excitation once an energy bound shows that neither the
-verdict nor the peak tilt can change (the Siconos model's rule,
+down to ``pivot.MIN_STEPS`` Moreau-Jean steps, which then locate the event (impacts, lift-off, the onset and end of
+slip, flight and overturning are always theirs). While the block rocks on one or two corners of which one slips (or
+is in the infinite-friction limit), the whole body is integrated by the same method with the contact forces at
+acceleration level (the linear system of ``_edge_slip`` with the slip directions those of the slip velocities;
+sub-steps also under ``1/kernel.SLIP_TURN`` of each slipping corner's speed over its tangential acceleration), kept
+on the same checks at every stage (pressing corners, stuck ones in their cones) and a probe that solves the same
+statuses (:func:`~opsrock.solvers.rigid3d.kernel._smooth_slip`). A block sliding flat on its four corners takes
+coarse Moreau-Jean steps of up to ``pivot.SLIDE_DTAU``, kept while they are solved by the closed-form flat slide or
+stick and every corner stays on the floor. A block at rest on three stuck corners whose fourth hangs within
+``kernel.SETTLE_GAP`` contact gaps of the floor (the Moreau-Jean steps' drift) is set down on all four and seated
+(:func:`~opsrock.solvers.rigid3d.kernel._settle`). With ``tail="peak"`` the run ends after the excitation once an
+energy bound shows that neither the verdict nor the peak tilt can change (the Siconos model's rule,
 :func:`~opsrock.solvers.rigid3d.kernel._peak_reached`).
 
 Outputs: ``theta`` the tilt (rad) signed by the lean along the weaker axis, ``theta_max`` the peak tilt,
@@ -101,24 +108,25 @@ CPU-second:
 dtau     smooth  mu = None       mu = 0.32       speed    two components, mu = 0.32:        speed
                  theta_max/a     theta_max/a              theta_max/a, slide_max (m)
 =======  ======  ==============  ==============  =======  ================================  =======
-1e-3     False   0.901102        0.866958        201      0.015860, 0.03518                 197
-1e-3     True    0.901344        0.870326        947      0.015862, 0.03519                 293
-5e-4     False   0.899872        0.882513        101      0.015829, 0.03524                 124
-5e-4     True    0.901415        0.882238        898      0.015858, 0.03528                 266
-2.5e-4   False   0.896300        0.895276        61       0.015968, 0.03526                 98
-2.5e-4   True    0.896262        0.895099        795      0.015810, 0.03530                 183
-1e-4     False   0.908043        0.908082        26       0.015901, 0.03528                 40
-1e-4     True    0.908040        0.908094        951      0.015780, 0.03531                 86
-5e-5     False   0.906304        0.906364        14       0.015888, 0.03529                 22
-5e-5     True    0.906302        0.906369        745      0.015885, 0.03533                 46
+1e-3     False   0.901102        0.866958        420      0.015873, 0.03577                 438
+1e-3     True    0.901344        0.870326        1775     0.015859, 0.03551                 738
+5e-4     False   0.899872        0.882513        197      0.015835, 0.03532                 242
+5e-4     True    0.901415        0.882238        1740     0.015846, 0.03527                 552
+2.5e-4   False   0.896300        0.895276        103      0.015967, 0.03523                 131
+2.5e-4   True    0.896262        0.895097        1500     0.015813, 0.03529                 407
+1e-4     False   0.908043        0.908082        41       0.015901, 0.03528                 40
+1e-4     True    0.908040        0.908080        867      0.015779, 0.03532                 191
+5e-5     False   0.906304        0.906364        15       0.015886, 0.03529                 23
+5e-5     True    0.906302        0.906361        821      0.015809, 0.03531                 145
 =======  ======  ==============  ==============  =======  ================================  =======
 
-The smooth steps leave the answers where Moreau-Jean puts them (to 3e-6 alpha on the record at the default step,
-4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps) and make a rocking case 37 times faster at the
-default step (951 against 26), nearly independent of ``dtau``: the Moreau-Jean steps left are those around impacts.
-A case that slides and rocks on slipping corners gains about 2 times (86 against 40): its steps on slipping corners
-are Moreau-Jean steps (their contact problems in closed form, steps 1-3 above; with NSGS instead, before those
-closed forms, the same case ran at 25 and 23).
+The smooth steps leave the answers where Moreau-Jean puts them (to 3e-6 alpha on the rocking record at the default
+step, 4e-5 on the pulse, whose peak is read at Runge-Kutta sub-steps; on the two-component record to 1.2e-4 alpha,
+within the 1.3e-4 that Moreau-Jean's own answers scatter over the steps of the table) and make a rocking case 21
+times faster at the default step (867 against 41), nearly independent of ``dtau``: the Moreau-Jean steps left are
+those around impacts. A case that slides and rocks on slipping corners gains about 5 times (191 against 40): the
+smooth steps on slipping corners cross its slip phases (before them it ran at 86, its slip steps Moreau-Jean steps
+with their contact problems in closed form, steps 1-3 above; with NSGS instead, before those closed forms, at 25).
 
 rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha on the pulse and 1e-5 on the record;
 like it, the rocking peak converges at first order with a scatter (each impact is located to a step). Hence the
@@ -130,17 +138,18 @@ cannot) and overturns, as ``moreau_jean`` does (a smooth step that held the pivo
 housner_fast instead: hence the load check of every Runge-Kutta sub-step). (With infinite friction a corner whose
 sticking impulse would pull slides in the infinite-friction limit; when it was left open instead,
 bookcase/f01/a07-a10 stopped at 8.57-8.70 alpha, short of overturning at 8.8.) Against ``friction`` (mu = 0.5, which
-models flight): 400/400, median 5.4e-5, 95th percentile 3.2e-4. Twelve FEMA P695 far-field records at 0.45 g along
+models flight): 400/400, median 6.2e-5, 95th percentile 2.3e-4. Twelve FEMA P695 far-field records at 0.45 g along
 ``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 3.8e-4, 95th percentile
 1.2e-3 (``pytest -s -m slow tests/solvers/test_rigid3d_slow.py`` prints them).
 
-Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms), a few µs one
-slipping on one or two corners (closed forms with Newton on the slip directions), 5-20 µs an NSGS step, 20 ns a
-rest-skipped step; a smooth step spans up to a sample interval (hundreds of Moreau-Jean steps); 951 record-seconds
-per CPU-second on the rocking record above, 86 on the sliding two-component one (2-core project machine; one run,
-the speeds scatter by 20 % or more between runs: the rocking record, whose steps these closed forms leave as they
-were (the same peak tilt to 1e-6), gave 830 in the run before them). The kernel is compiled once and cached
-(``cache=True``): about 70 s cold (a solve of a quick Siconos case took 73 s cold), 0.3 s to load the cache.
+Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms; a third of it
+numba's reference counting of the arrays passed between the kernel's functions), a few µs one slipping on one or two
+corners (closed forms with Newton on the slip directions), 5-20 µs an NSGS step, 20 ns a rest-skipped step; a smooth
+step spans up to a sample interval (hundreds of Moreau-Jean steps); 867 record-seconds per CPU-second on the
+rocking record above, 191 on the sliding two-component one (2-core project machine; one run, the speeds scatter by
+20 % or more between runs: the rocking record gave 951 and 830 in two runs of an earlier kernel with the same
+steps there). The kernel is compiled once and cached (``cache=True``): about 110 s cold (a solve of a quick Siconos
+case took 109 s cold), 0.3 s to load the cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings

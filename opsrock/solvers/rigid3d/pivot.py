@@ -21,8 +21,9 @@ Runge-Kutta sub-step the pivots' reaction presses on the floor within the static
 without this check a smooth step held a pivot through 0.19 s of flight), every other corner stays above the
 floor (no impact inside), the tilt stays below pi/2, and a Moreau-Jean probe step from the end state solves the
 contact problem with the same corners, stuck and loaded. Otherwise the step is halved, down to :data:`MIN_STEPS`
-Moreau-Jean steps, and then the Moreau-Jean steps take over (impacts, lift-off, slip, flight and overturning
-are always theirs).
+Moreau-Jean steps, and then the Moreau-Jean steps take over (impacts, lift-off, the onset of slip, flight and
+overturning are always theirs; a block rocking on slipping corners has smooth steps of its own,
+:func:`opsrock.solvers.rigid3d.kernel._smooth_slip`).
 
 Units as in :mod:`opsrock.solvers.rigid3d.kernel` (per unit mass, SI).
 """

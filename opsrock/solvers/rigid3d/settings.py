@@ -83,9 +83,11 @@ class Rigid3DSettings(SolverSettings):
     rocked_theta : float
         The block *rocked* if its tilt ever exceeds this (rad). Default 1e-9.
     smooth : bool
-        Cross the phases in which the block turns about one or two stuck corners with fourth-order Runge-Kutta
-        steps of up to a sample interval (:mod:`opsrock.solvers.rigid3d.pivot`), the Moreau-Jean steps keeping
-        impacts, lift-off, slip, flight and overturning (True, default); False: Moreau-Jean steps throughout.
+        Cross the phases in which the block turns about one or two stuck corners
+        (:mod:`opsrock.solvers.rigid3d.pivot`), or rocks on one or two corners of which one slips (the contact
+        forces at acceleration level), with
+        fourth-order Runge-Kutta steps of up to a sample interval, the Moreau-Jean steps keeping impacts, lift-off,
+        the onset and end of slip, flight and overturning (True, default); False: Moreau-Jean steps throughout.
 
     The tail rule ``tail="peak"`` ends the run after the excitation once the block's energy can no longer bring
     its tilt to ``theta_max`` (an energy bound with a factor-2 margin, the base slower than 1 mm/s): the verdict

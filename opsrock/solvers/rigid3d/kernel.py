@@ -289,8 +289,8 @@ def _slip_newton(W, q, mu_k, s0, s1):
         u0 = q[0] + W[0, 0] * p0 + W[0, 1] * p1 + W[0, 2] * pn
         u1 = q[1] + W[1, 0] * p0 + W[1, 1] * p1 + W[1, 2] * pn
         cr = c0 * u1 - c1 * u0
-        dt = c0 * u0 + c1 * u1
-        res = math.atan2(cr, dt)
+        dot = c0 * u0 + c1 * u1
+        res = math.atan2(cr, dot)
         if abs(res) <= 1e-13:
             return True, c0, c1
         dden = -mu_k * (-W[2, 0] * c1 + W[2, 1] * c0)
@@ -299,12 +299,12 @@ def _slip_newton(W, q, mu_k, s0, s1):
         dp1 = -mu_k * (dpn * c1 + pn * c0)
         du0 = W[0, 0] * dp0 + W[0, 1] * dp1 + W[0, 2] * dpn
         du1 = W[1, 0] * dp0 + W[1, 1] * dp1 + W[1, 2] * dpn
-        dcr = -dt + c0 * du1 - c1 * du0
-        ddt = cr + c0 * du0 + c1 * du1
-        nrm = cr * cr + dt * dt
+        dcr = -dot + c0 * du1 - c1 * du0
+        ddot = cr + c0 * du0 + c1 * du1
+        nrm = cr * cr + dot * dot
         if nrm == 0.0:
             return False, s0, s1
-        dres = (dt * dcr - cr * ddt) / nrm
+        dres = (dot * dcr - cr * ddot) / nrm
         if dres == 0.0:
             return False, s0, s1
         step = -res / dres
@@ -1719,10 +1719,12 @@ def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
     PV.floor_at(k0, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
     holds, _, t_stop = _slip_rhs(new, F, idx, st, geom, ib, fric, sw, dy)
     span = n_steps * dt
+    if not holds or t_stop <= 0.0 or span * SLIP_TURN > n_steps * t_stop:  # (the last: a sub-step under dt)
+        return -1.0, 0.0
     n_sub = max(1, int(math.ceil(span * geom[4] / PV.RK_DTAU)), int(math.ceil(span * SLIP_TURN / t_stop)))
     hs = n_steps / n_sub
     hdt = hs * dt
-    if not holds or hs < SLIP_MIN_SUB:
+    if hs < SLIP_MIN_SUB:
         return -1.0, 0.0
     work = 0.0
     tilt_max = _tilt(new, False)[0]

@@ -227,20 +227,21 @@ class LocalPool(_Closing):
         return True
 
     def _kill_pool(self) -> None:
-        """Kill the worker processes (a hung native call cannot be stopped otherwise), then wait for the pool's
-        manager thread, which ends at once without workers: left running, it closed its wake-up pipe while the
-        interpreter's exit handler of ``concurrent.futures`` wrote to it, and a SIGTERM-stopped run printed
-        "Exception ignored ... OSError: [Errno 9] Bad file descriptor" after its one line (CPython 3.11; seen
-        once in a fresh clone's ``make test``)."""
+        """Kill the worker processes (a hung native call cannot be stopped otherwise)."""
         if self._pool is not None:
             for proc in list(getattr(self._pool, "_processes", {}).values()):
                 proc.kill()
-            self._pool.shutdown(wait=True, cancel_futures=True)
-            self._pool = None
+        self._shutdown_pool()
 
     def _shutdown_pool(self) -> None:
+        """Shut the pool down and wait for its manager thread: it is only called with the workers idle (the
+        batches done), dead (a broken pool) or killed (:meth:`_kill_pool`), so the wait is short. Left running,
+        the manager thread closed its wake-up pipe while the interpreter's exit handler of
+        ``concurrent.futures`` wrote to it, and a run that stopped (SIGTERM, an unwritable standard output)
+        printed "Exception ignored ... OSError: [Errno 9] Bad file descriptor" after its one line (CPython 3.11;
+        twice in fresh clones' ``make test``)."""
         if self._pool is not None:
-            self._pool.shutdown(wait=False, cancel_futures=True)
+            self._pool.shutdown(wait=True, cancel_futures=True)
             self._pool = None
 
     def close(self) -> None:

@@ -2,12 +2,13 @@
 
 Prints, for the package folder (default ``opsrock/`` of this checkout): modules at its top level,
 the longest function and every function over 80 lines (compiled kernels, decorated with a numba
-``jit``/``njit``, counted apart), import cycles between its modules (every ``import``, at module
+``jit``/``njit``, counted with the rest and also listed apart), import cycles between its modules (every ``import``, at module
 level or inside a function: a cycle is a cycle either way), imports of a private name of another
 module outside the importer's own method package (see ``_shares_method_package``), and lines of Python. Used for the before/after table of the restructuring.
 
 Also, for the contracts between the pieces: functions with more than 8 parameters (``self``/``cls`` not
-counted; compiled kernels apart), the lines and function-level imports of ``cli/``, function-level
+counted; compiled kernels included, and also listed apart: :func:`compiled_functions`, which the test suite
+holds to both limits), the lines and function-level imports of ``cli/``, function-level
 imports in the whole package, and imports of a private scipy name (``scipy.x._y`` or ``_name`` from
 scipy). With ``--tests DIR`` and ``--duplicates`` it adds the test files under DIR and the number of
 pairs the ``duplicates`` command reports for the package.
@@ -32,6 +33,25 @@ def _parameters(node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
     names = [x.arg for x in a.posonlyargs + a.args + a.kwonlyargs]
     names += [x.arg for x in (a.vararg, a.kwarg) if x is not None]
     return len([n for n in names if n not in ("self", "cls")])
+
+
+def _is_compiled(node: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
+    """Decorated with a numba ``jit``/``njit`` (``@numba.njit(...)``, ``@njit``, ``@numba.jit``...)."""
+    return any("jit" in ast.unparse(d) for d in node.decorator_list)
+
+
+def compiled_functions(root: Path) -> list[dict]:
+    """Every compiled (numba) function under the package folder ``root``: its qualified name
+    (``opsrock.solvers.friction.kernel.solve_case``), ``file:line``, lines and parameters (the limits the
+    package holds them to are :data:`LONG` and :data:`MANY_PARAMETERS`, as every other function)."""
+    found = []
+    for f in sorted(root.rglob("*.py")):
+        module = _module_name(root, f)
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and _is_compiled(node):
+                found.append({"name": f"{module}.{node.name}", "where": f"{f.relative_to(root.parent)}:{node.lineno}",
+                              "lines": node.end_lineno - node.lineno + 1, "parameters": _parameters(node)})
+    return found
 
 
 def _function_level_imports(tree: ast.AST) -> int:
@@ -157,11 +177,9 @@ def metrics(root: Path) -> dict:
         for node in ast.walk(tree):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 n = node.end_lineno - node.lineno + 1
-                deco = " ".join(ast.unparse(d) for d in node.decorator_list)
                 where = f"{f.relative_to(root.parent)}:{node.lineno} {node.name} ({n})"
-                if "jit" in deco:
+                if _is_compiled(node):
                     kernels.append(where)
-                    continue
                 if _parameters(node) > MANY_PARAMETERS:
                     many_parameters.append(f"{f.relative_to(root.parent)}:{node.lineno} {node.name} "
                                            f"({_parameters(node)} parameters)")
@@ -199,6 +217,9 @@ def metrics(root: Path) -> dict:
         "private_imports_across_packages": sorted(set(private)),
         "lines": lines,
         "functions_over_8_parameters": many_parameters,
+        "compiled_kernels_over_8_parameters": [f"{k['where']} {k['name'].rpartition('.')[2]} ({k['parameters']} "
+                                               f"parameters)" for k in compiled_functions(root)
+                                               if k["parameters"] > MANY_PARAMETERS],
         "cli_lines": cli_lines,
         "cli_function_level_imports": cli_imports,
         "function_level_imports": local_imports,

@@ -1,0 +1,128 @@
+"""The compiled (numba) kernels keep the package's limits on every function: at most 8 parameters and at most
+80 lines (issue 43; ``tools/structure_metrics.py`` counts them with the rest). Pure AST, no kernel compiled."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+#: Compiled functions still over a limit, by qualified name, while the kernels they belong to are being
+#: restructured (issue 43). The list may only shrink: the test fails when a function listed here no longer exists
+#: or now keeps both limits, so that it is struck off at once.
+#:
+#: ``rigid3d``'s kernel, being split into one module per part of the physics (issue 43); the lead empties this
+#: part when that lands.
+ALLOWED_RIGID3D = frozenset({
+    "opsrock.solvers.rigid3d.kernel._floor",
+    "opsrock.solvers.rigid3d.kernel._nsgs",
+    "opsrock.solvers.rigid3d.kernel._solve_contacts",
+    "opsrock.solvers.rigid3d.kernel._stick_flat",
+    "opsrock.solvers.rigid3d.kernel._edge_split",
+    "opsrock.solvers.rigid3d.kernel._stick_all",
+    "opsrock.solvers.rigid3d.kernel._flat_system",
+    "opsrock.solvers.rigid3d.kernel._flat_eval",
+    "opsrock.solvers.rigid3d.kernel._flat_newton",
+    "opsrock.solvers.rigid3d.kernel._slide_flat",
+    "opsrock.solvers.rigid3d.kernel._edge_eval",
+    "opsrock.solvers.rigid3d.kernel._edge_try",
+    "opsrock.solvers.rigid3d.kernel._edge_slip",
+    "opsrock.solvers.rigid3d.kernel._record",
+    "opsrock.solvers.rigid3d.kernel._stick_subset",
+    "opsrock.solvers.rigid3d.kernel._stick_mask",
+    "opsrock.solvers.rigid3d.kernel._stick_single",
+    "opsrock.solvers.rigid3d.kernel._step",
+    "opsrock.solvers.rigid3d.kernel._contacts",
+    "opsrock.solvers.rigid3d.kernel._book",
+    "opsrock.solvers.rigid3d.kernel._rest_span",
+    "opsrock.solvers.rigid3d.kernel._same_phase",
+    "opsrock.solvers.rigid3d.kernel._smooth",
+    "opsrock.solvers.rigid3d.kernel._slip_rhs",
+    "opsrock.solvers.rigid3d.kernel._slip_integrate",
+    "opsrock.solvers.rigid3d.kernel._same_slip",
+    "opsrock.solvers.rigid3d.kernel._smooth_slip",
+    "opsrock.solvers.rigid3d.kernel._coarse_slide",
+    "opsrock.solvers.rigid3d.kernel.run",
+    "opsrock.solvers.rigid3d.pivot.mean_floor",
+    "opsrock.solvers.rigid3d.pivot.floor_at",
+    "opsrock.solvers.rigid3d.pivot._rhs",
+    "opsrock.solvers.rigid3d.pivot._loads_hold",
+    "opsrock.solvers.rigid3d.pivot.integrate",
+})
+#: The planar kernels (``friction``, ``housner_fast``, ``moreau_jean``) and the shared forcing helpers not yet
+#: passed their named tuples.
+ALLOWED_PLANAR = frozenset({
+    "opsrock.solvers.forcing.next_exceedance",
+    "opsrock.solvers.forcing.segment",
+    "opsrock.solvers.friction.impacts.contact_at_zero",
+    "opsrock.solvers.friction.impacts.impact",
+    "opsrock.solvers.friction.impacts.landing",
+    "opsrock.solvers.friction.kernel._deriv",
+    "opsrock.solvers.friction.kernel._rk4",
+    "opsrock.solvers.friction.kernel._event",
+    "opsrock.solvers.friction.kernel._event_after",
+    "opsrock.solvers.friction.kernel._locate",
+    "opsrock.solvers.friction.kernel._set_segment",
+    "opsrock.solvers.friction.kernel._next_departure",
+    "opsrock.solvers.friction.kernel._settle",
+    "opsrock.solvers.friction.kernel._takeoff",
+    "opsrock.solvers.friction.kernel._locate_landing",
+    "opsrock.solvers.friction.kernel._fly",
+    "opsrock.solvers.friction.kernel._record",
+    "opsrock.solvers.friction.kernel._first_event",
+    "opsrock.solvers.friction.kernel._peak",
+    "opsrock.solvers.friction.kernel._energy",
+    "opsrock.solvers.friction.kernel.solve_case",
+    "opsrock.solvers.friction.modes.accelerations",
+    "opsrock.solvers.housner_fast.kernel._accel",
+    "opsrock.solvers.housner_fast.kernel._rk4",
+    "opsrock.solvers.housner_fast.kernel._locate",
+    "opsrock.solvers.housner_fast.kernel._solve_case",
+    "opsrock.solvers.housner_fast.kernel._solve_chunk",
+    "opsrock.solvers.moreau_jean.kernel._try_pair",
+    "opsrock.solvers.moreau_jean.kernel._stick_both",
+    "opsrock.solvers.moreau_jean.kernel._try",
+    "opsrock.solvers.moreau_jean.kernel._impulses",
+    "opsrock.solvers.moreau_jean.kernel._record",
+    "opsrock.solvers.moreau_jean.kernel._step",
+    "opsrock.solvers.moreau_jean.kernel._contacts",
+    "opsrock.solvers.moreau_jean.kernel.run",
+})
+ALLOWED = ALLOWED_RIGID3D | ALLOWED_PLANAR
+
+
+def _metrics():
+    spec = importlib.util.spec_from_file_location("structure_metrics", ROOT / "tools" / "structure_metrics.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _offences():
+    m = _metrics()
+    kernels = m.compiled_functions(ROOT / "opsrock")
+    over = {k["name"]: f"{k['where']}: {k['lines']} lines, {k['parameters']} parameters" for k in kernels
+            if k["lines"] > m.LONG or k["parameters"] > m.MANY_PARAMETERS}
+    return kernels, over
+
+
+def test_the_metrics_find_the_compiled_kernels():
+    """The AST walk sees the kernels at all (a decorator spelt differently would make the next test pass vacuously):
+    the shared forcing helpers and every compiled solver's kernel module are among them."""
+    names = {k["name"] for k in _offences()[0]}
+    assert "opsrock.solvers.forcing.forcing" in names
+    for solver in ("friction", "housner_fast", "moreau_jean", "rigid3d"):
+        assert any(n.startswith(f"opsrock.solvers.{solver}.") for n in names), solver
+
+
+def test_no_compiled_function_over_8_parameters_or_80_lines():
+    _, over = _offences()
+    assert sorted(set(over) - ALLOWED) == [], "compiled functions over 8 parameters or 80 lines"
+
+
+def test_the_allow_list_only_shrinks():
+    """Every allow-listed function still exists and still breaks a limit: one that was split or fixed is struck
+    off the list (which then only shrinks)."""
+    _, over = _offences()
+    assert sorted(ALLOWED - set(over)) == [], "allow-listed but gone or now within the limits: strike it off"

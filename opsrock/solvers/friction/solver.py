@@ -14,6 +14,7 @@ from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
 from opsrock.excitations.vertical import check_free_fall
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
+from opsrock.solvers._compile import announce_compile
 from opsrock.solvers.common import SolverRun, check_inputs, inertia_ratio, make_settings, settings_record
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, pulse_forcing
 from opsrock.solvers.friction import kernel as K
@@ -112,6 +113,7 @@ class _FrictionRun(SolverRun):
         cap = math.ceil(params[K.P_TAU_END] / params[K.P_H_NOM]) + _HISTORY_EXTRA if settings.record else 0
         hist = [np.zeros(cap) for _ in range(4)] + [np.zeros(cap, dtype=np.int64)]
         out = np.zeros(K.OUT_SIZE)
+        announce_compile(K.solve_case, SOLVER_NAME)
         try:
             K.solve_case(params, kvals, gvals, out, *hist)
         except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result

@@ -19,6 +19,7 @@ from opsrock.block import Block
 from opsrock.errors import InputError, InputTypeError
 from opsrock.excitations import PULSE_SHAPES
 from opsrock.limits import int_at_least, one_of
+from opsrock.solvers._compile import announce_compile
 from opsrock.solvers.common import make_settings
 from opsrock.solvers.forcing import PULSE_IDS
 from opsrock.solvers.housner_fast.kernel import STATUS_OK, _solve_chunk
@@ -162,6 +163,7 @@ def _cases(alpha: Any, e: Any, pfa_ratio: Any, freq_ratio: Any) -> tuple[tuple, 
 def _run_chunks(args: tuple, outs: tuple, n: int, threads: int) -> None:
     """The kernel over chunks of :data:`_CHUNK` cases, on ``threads`` threads (it releases the GIL)."""
     bounds = [(i, min(i + _CHUNK, n)) for i in range(0, n, _CHUNK)]
+    announce_compile(_solve_chunk, "housner_fast")
     if threads == 1 or len(bounds) <= 1:
         for lo, hi in bounds:
             _solve_chunk(*args, lo, hi, *outs)

@@ -13,6 +13,7 @@ from opsrock.errors import InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.records import check_sampling
 from opsrock.result import RockingResult, failed_result
+from opsrock.solvers._compile import announce_compile
 from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
 from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, PULSE_ONE_SINE, pulse_forcing
 from opsrock.solvers.housner_fast import kernel as K
@@ -89,6 +90,7 @@ class _HousnerFastRun(SolverRun):
         cap = int(math.ceil(params[K.P_TAU_END] / params[K.P_H_NOM])) + _HISTORY_EXTRA if settings.record else 0
         hist = [np.zeros(cap) for _ in range(3)]
         out = np.zeros(K.OUT_SIZE)
+        announce_compile(K.solve_case, SOLVER_NAME)
         try:
             K.solve_case(params, kvals, out, *hist)
         except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result

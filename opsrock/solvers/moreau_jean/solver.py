@@ -13,6 +13,7 @@ from opsrock.constants import OVERTURNING_ANGLE, G
 from opsrock.errors import InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.result import MODES, ContactSummary, RockingResult, failed_result
+from opsrock.solvers._compile import announce_compile
 from opsrock.solvers.common import SolverRun, check_inputs, inertia_ratio, make_settings, settings_record
 from opsrock.solvers.moreau_jean import kernel as kn
 from opsrock.solvers.moreau_jean.settings import DEFAULT_TAIL_DTAU, MoreauJeanSettings
@@ -90,6 +91,7 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     hist = [np.zeros(cap) for _ in range(4)]
     out = np.zeros(kn.OUT_SIZE)
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": dt}
+    announce_compile(kn.run, SOLVER_NAME)
     try:
         kn.run(np.array([block.b, block.h_cm, R, G, inertia_ratio(block)]), fric, num, forcing.form, forcing.ah, forcing.av, forcing.sub,
                forcing.n_exc, forcing.tail_av, state.copy(), limits, every, *hist, out)

@@ -15,6 +15,7 @@ from opsrock.errors import InputError, InputTypeError, ModelNotSupported
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.plan import PlanMotion
 from opsrock.result import MODES, ContactSummary, PlanHistory, PlanSummary, RockingResult, failed_result
+from opsrock.solvers._compile import announce_compile
 from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
 from opsrock.solvers.rigid3d import kernel as kn
 from opsrock.solvers.rigid3d.settings import DEFAULT_TAIL_DTAU, Rigid3DSettings
@@ -191,6 +192,7 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     hist = np.empty((cap, kn.H_SIZE))  # the kernel writes the rows it returns; zeroing them cost about 2 ms a case
     out = np.zeros(kn.OUT_SIZE)
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": dt}
+    announce_compile(kn.run, SOLVER_NAME)
     try:
         kn.run(geom, np.array(box.inertia), fric, num, nsgs, forcing.form, forcing.ax, forcing.ay, forcing.av,
                forcing.sub, forcing.n_exc, forcing.tail_av, state.copy(), limits, every, hist, out)

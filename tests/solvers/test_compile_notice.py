@@ -1,0 +1,114 @@
+"""The one-line notice while a numba kernel compiles (:mod:`opsrock.solvers._compile`), and the cold start of a
+first planar solve (issue 43).
+
+The fast tests use a one-line kernel of their own in a temporary module, compiled in fresh processes with an
+empty ``NUMBA_CACHE_DIR`` of the test's own (a second process loads it from that cache); the slow test runs the
+real solvers' kernels from an empty cache through the console script.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import resource
+import subprocess
+import sys
+import textwrap
+
+import pytest
+from _support import run_opsrock
+
+NOTICE = "opsrock: compiling the "
+
+KERNEL_MODULE = textwrap.dedent("""
+    import numba
+
+    @numba.njit(cache=True)
+    def twice(x):
+        return 2.0 * x
+""")
+
+#: Announces, calls, announces again (warm in-process now: no second line), prints the answer on stdout.
+CALLER = textwrap.dedent("""
+    import tiny_kernel
+    from opsrock.solvers._compile import announce_compile, cache_is_cold
+    announce_compile(tiny_kernel.twice, "tiny")
+    value = tiny_kernel.twice(21.0)
+    assert not cache_is_cold(tiny_kernel.twice)
+    announce_compile(tiny_kernel.twice, "tiny")
+    print(value)
+""")
+
+
+def _run(tmp_path, cache):
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(cache), "PYTHONPATH": str(tmp_path)}
+    return subprocess.run([sys.executable, "-c", CALLER], capture_output=True, text=True, env=env, timeout=300,
+                          stdin=subprocess.DEVNULL, cwd=tmp_path)
+
+
+def test_notice_on_a_cold_cache_only_once_and_never_on_stdout(tmp_path):
+    (tmp_path / "tiny_kernel.py").write_text(KERNEL_MODULE)
+    cache = tmp_path / "cache"
+    cold = _run(tmp_path, cache)
+    assert cold.returncode == 0, cold.stderr
+    assert cold.stdout == "42.0\n"
+    lines = [x for x in cold.stderr.splitlines() if x.startswith(NOTICE)]
+    assert lines == ["opsrock: compiling the tiny kernel (numba, once: later runs load it from the cache); a while"]
+    # a second process finds the kernel in the cache: silent
+    warm = _run(tmp_path, cache)
+    assert warm.returncode == 0, warm.stderr
+    assert warm.stdout == "42.0\n" and NOTICE not in warm.stderr
+
+
+def test_every_compiled_solver_declares_its_compile_time():
+    from opsrock.solvers import SOLVERS
+    from opsrock.solvers._compile import COMPILE_CPU_S
+
+    compiled = {"friction", "housner_fast", "moreau_jean", "rigid3d"}
+    assert compiled <= set(SOLVERS)
+    assert set(COMPILE_CPU_S) == compiled and all(v > 0.0 for v in COMPILE_CPU_S.values())
+
+
+# --- cold start of a first planar solve -------------------------------------------------------------------------
+#: Issue 43: the first planar solve in a fresh process with an empty numba cache spends at most this much CPU
+#: (s), compile included.
+PLANAR_COLD_CPU_S = 10.0
+#: The block and pulse of issue 43's measurement; ``moreau_jean`` takes Housner's impact only.
+CASE = ["simulate", "--json", "--width", "0.4", "--height", "2.2", "--pfa-ratio", "4", "--freq-ratio", "6"]
+EXTRA = {"housner_fast": [], "friction": [], "moreau_jean": ["--restitution-law", "housner"]}
+#: Solvers whose cold start is still over the limit (issue 43 open): expected to fail, strictly, so that the
+#: marker goes as soon as one meets it. Measured before the kernels' restructuring (``/usr/bin/time``, user +
+#: system): friction 19.2 s, moreau_jean 16.3 s, housner_fast 8.0 s.
+OVER_LIMIT = {"friction", "moreau_jean"}
+
+
+def _child_cpu(run):
+    """``run()``'s result and the CPU time (user + system, s) of the children it waited for.
+
+    CPU time, not wall time: on a shared machine the wall time of the same compile varies by a factor of two
+    or more with the load of the other cores (measured 27 s against 8 s of CPU for ``housner_fast``), while
+    the CPU time the compiler needs is fixed by the work it does, so the limit holds or fails alike
+    however loaded the machine is."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    result = run()
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return result, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("solver", [
+    pytest.param(s, marks=pytest.mark.xfail(strict=True, reason="issue 43: cold start over the limit"))
+    if s in OVER_LIMIT else s for s in sorted(EXTRA)])
+def test_first_planar_solve_from_an_empty_cache(solver, tmp_path):
+    """A fresh process, an empty ``NUMBA_CACHE_DIR``: the answer within :data:`PLANAR_COLD_CPU_S` of CPU, the
+    notice on stderr and the JSON alone on stdout; a second process, warm, prints no notice."""
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    args = [*CASE, "--solver", solver, *EXTRA[solver]]
+    cold, cpu = _child_cpu(lambda: run_opsrock(args, tmp_path, env=env, timeout=900))
+    assert cold.returncode == 0, cold.stderr
+    assert json.loads(cold.stdout)["solver"] == solver
+    assert f"{NOTICE}{solver} kernel" in cold.stderr
+    warm = run_opsrock(args, tmp_path, env=env, timeout=900)
+    assert warm.returncode == 0 and json.loads(warm.stdout)["theta_max"] == json.loads(cold.stdout)["theta_max"]
+    assert NOTICE not in warm.stderr
+    assert cpu <= PLANAR_COLD_CPU_S, f"{solver}: {cpu:.1f} s of CPU from an empty cache"

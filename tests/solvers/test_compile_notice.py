@@ -16,9 +16,8 @@ import sys
 import textwrap
 
 import pytest
+from _support import COMPILE_NOTICE as NOTICE
 from _support import run_opsrock
-
-NOTICE = "opsrock: compiling the "
 
 KERNEL_MODULE = textwrap.dedent("""
     import numba

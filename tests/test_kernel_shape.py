@@ -53,8 +53,6 @@ ALLOWED_RIGID3D = frozenset({
 #: The planar kernels (``friction``, ``housner_fast``, ``moreau_jean``) and the shared forcing helpers not yet
 #: passed their named tuples.
 ALLOWED_PLANAR = frozenset({
-    "opsrock.solvers.forcing.next_exceedance",
-    "opsrock.solvers.forcing.segment",
     "opsrock.solvers.friction.impacts.contact_at_zero",
     "opsrock.solvers.friction.impacts.impact",
     "opsrock.solvers.friction.impacts.landing",
@@ -63,8 +61,6 @@ ALLOWED_PLANAR = frozenset({
     "opsrock.solvers.friction.kernel._event",
     "opsrock.solvers.friction.kernel._event_after",
     "opsrock.solvers.friction.kernel._locate",
-    "opsrock.solvers.friction.kernel._set_segment",
-    "opsrock.solvers.friction.kernel._next_departure",
     "opsrock.solvers.friction.kernel._settle",
     "opsrock.solvers.friction.kernel._takeoff",
     "opsrock.solvers.friction.kernel._locate_landing",
@@ -75,11 +71,6 @@ ALLOWED_PLANAR = frozenset({
     "opsrock.solvers.friction.kernel._energy",
     "opsrock.solvers.friction.kernel.solve_case",
     "opsrock.solvers.friction.modes.accelerations",
-    "opsrock.solvers.housner_fast.kernel._accel",
-    "opsrock.solvers.housner_fast.kernel._rk4",
-    "opsrock.solvers.housner_fast.kernel._locate",
-    "opsrock.solvers.housner_fast.kernel._solve_case",
-    "opsrock.solvers.housner_fast.kernel._solve_chunk",
     "opsrock.solvers.moreau_jean.kernel._try_pair",
     "opsrock.solvers.moreau_jean.kernel._stick_both",
     "opsrock.solvers.moreau_jean.kernel._try",

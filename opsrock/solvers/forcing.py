@@ -15,6 +15,7 @@ Shared by :mod:`opsrock.solvers.housner_fast` and :mod:`opsrock.solvers.friction
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numba
 import numpy as np
@@ -45,6 +46,20 @@ PULSE_RICKER = 4
 PULSE_IDS: dict[str, int] = {"rectangular": PULSE_RECTANGULAR, "half-sine": PULSE_HALF_SINE,
                              "one-sine": PULSE_ONE_SINE, "one-cosine": PULSE_ONE_COSINE,
                              "ricker": PULSE_RICKER}
+
+
+#: A horizontal floor motion as the kernels take it (``tau = p t``): the ``form`` and coefficients ``(c0, c1, c2)``
+#: of :func:`forcing` of an analytic pulse (one segment, :func:`pulse_forcing`), or a record's samples ``kvals``
+#: (``a/g`` at ``tau = i dtau``, linear between, :func:`record_forcing`), ending at ``tau_end`` (units of 1/p).
+Excitation = namedtuple("Excitation", ["form", "c0", "c1", "c2", "tau_end", "kvals", "dtau"])
+
+
+def record_forcing(kvals: np.ndarray, dtau: float, tau_end: float) -> Excitation:
+    """The :class:`Excitation` of a record: samples ``kvals`` (``a/g``, dimensionless) every ``dtau``, ending at
+    ``tau_end`` (units of ``1/p``). Typed as :func:`pulse_forcing` types a pulse's (one compiled kernel for both:
+    a writable float array, float scalars)."""
+    kvals = np.require(kvals, dtype=np.float64, requirements=["C", "W"])
+    return Excitation(FORM_LINEAR, 0.0, 0.0, 0.0, float(tau_end), kvals, float(dtau))
 
 
 @numba.njit(cache=True)
@@ -186,48 +201,51 @@ def next_exceedance_scaled(tau, level, kvals, gvals, dtau):
 
 
 @numba.njit(cache=True)
-def next_exceedance(tau, level, form, c0, c1, c2, tau_end, kvals, dtau):
-    """First uplift time >= tau (``|a|/g > level``) and the sign of a there, for any form."""
-    if form == FORM_LINEAR:
-        return next_exceedance_record(tau, level, kvals, dtau)
-    if form == FORM_SINE:
-        return next_exceedance_sine(tau, level, c0, c1, c2, tau_end)
-    return next_exceedance_ricker(tau, level, c0, c1, c2, tau_end)
+def next_exceedance(tau, level, exc):
+    """First uplift time >= tau (``|a|/g > level``) and the sign of a there, for any form of the
+    :class:`Excitation` ``exc``."""
+    if exc.form == FORM_LINEAR:
+        return next_exceedance_record(tau, level, exc.kvals, exc.dtau)
+    if exc.form == FORM_SINE:
+        return next_exceedance_sine(tau, level, exc.c0, exc.c1, exc.c2, exc.tau_end)
+    return next_exceedance_ricker(tau, level, exc.c0, exc.c1, exc.c2, exc.tau_end)
 
 
 @numba.njit(cache=True)
-def segment(form, tau, i, c0, c1, c2, tau_end, kvals, dtau):
-    """Forcing on the segment that holds ``tau``: (segment index, c0, c1, c2, segment end) with
-    ``(c0, c1, c2)`` the coefficients of :func:`_forcing`. An analytic pulse is one segment; a
-    record (``FORM_LINEAR``) has one per sample interval (its acceleration has a kink at each)."""
-    if form != FORM_LINEAR:
-        return 0, c0, c1, c2, tau_end
+def segment(exc, tau, i):
+    """Forcing of the :class:`Excitation` ``exc`` on the segment that holds ``tau`` (the search starts at segment
+    ``i``): (segment index, c0, c1, c2, segment end) with ``(c0, c1, c2)`` the coefficients of :func:`forcing`. An
+    analytic pulse is one segment; a record (``FORM_LINEAR``) has one per sample interval (its acceleration has a
+    kink at each)."""
+    if exc.form != FORM_LINEAR:
+        return 0, exc.c0, exc.c1, exc.c2, exc.tau_end
+    kvals, dtau = exc.kvals, exc.dtau
     n = kvals.shape[0]
     while i < n - 2 and tau >= (i + 1) * dtau:
         i += 1
-    end = tau_end if i == n - 2 else (i + 1) * dtau
+    end = exc.tau_end if i == n - 2 else (i + 1) * dtau
     return i, kvals[i], (kvals[i + 1] - kvals[i]) / dtau, i * dtau, end
 
 
 @numba.njit(cache=True)
 def pulse_forcing(pulse, k, nu):
-    """Forcing of an analytic pulse of peak ``k = PFA/g`` and ``nu = omega_p/p``:
-    (form, c0, c1, c2, tau_end, kvals, dtau), in the dimensionless time ``tau = p t``."""
+    """The :class:`Excitation` of an analytic pulse of peak ``k = PFA/g`` and ``nu = omega_p/p``, in the
+    dimensionless time ``tau = p t``."""
     empty = np.zeros(0)
     if pulse == PULSE_RECTANGULAR:
         tau_end = math.pi / nu
-        return FORM_LINEAR, 0.0, 0.0, 0.0, tau_end, np.array([k, k]), tau_end
+        return Excitation(FORM_LINEAR, 0.0, 0.0, 0.0, tau_end, np.array([k, k]), tau_end)
     if pulse == PULSE_HALF_SINE:
-        return FORM_SINE, k, nu, 0.0, math.pi / nu, empty, 1.0
+        return Excitation(FORM_SINE, k, nu, 0.0, math.pi / nu, empty, 1.0)
     if pulse == PULSE_ONE_COSINE:
-        return FORM_SINE, k, nu, 0.5 * math.pi, 2.0 * math.pi / nu, empty, 1.0
+        return Excitation(FORM_SINE, k, nu, 0.5 * math.pi, 2.0 * math.pi / nu, empty, 1.0)
     if pulse == PULSE_RICKER:
         t0 = RICKER_HALF_WIDTH * 2.0 * math.pi / nu
-        return FORM_RICKER, k, 0.5 * nu, t0, 2.0 * t0, empty, 1.0
-    return FORM_SINE, k, nu, 0.0, 2.0 * math.pi / nu, empty, 1.0
+        return Excitation(FORM_RICKER, k, 0.5 * nu, t0, 2.0 * t0, empty, 1.0)
+    return Excitation(FORM_SINE, k, nu, 0.0, 2.0 * math.pi / nu, empty, 1.0)
 
 
-__all__ = ["EXCEEDANCE_RTOL", "FORM_LINEAR", "FORM_RICKER", "FORM_SINE", "PULSE_HALF_SINE", "PULSE_IDS",
+__all__ = ["EXCEEDANCE_RTOL", "Excitation", "FORM_LINEAR", "FORM_RICKER", "FORM_SINE", "PULSE_HALF_SINE", "PULSE_IDS",
            "PULSE_ONE_COSINE", "PULSE_ONE_SINE", "PULSE_RECTANGULAR", "PULSE_RICKER", "forcing", "next_exceedance",
            "next_exceedance_record", "next_exceedance_ricker", "next_exceedance_scaled", "next_exceedance_sine",
-           "pulse_forcing", "segment"]
+           "pulse_forcing", "record_forcing", "segment"]

@@ -21,7 +21,7 @@ import numpy as np
 
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers import status as ST
-from opsrock.solvers.forcing import forcing, next_exceedance, next_exceedance_scaled, segment
+from opsrock.solvers.forcing import Excitation, forcing, next_exceedance, next_exceedance_scaled, segment
 from opsrock.solvers.friction.impacts import impact, landing
 from opsrock.solvers.friction.modes import (
     FLIGHT,
@@ -177,10 +177,11 @@ def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, 
 
 
 @numba.njit(cache=True)
-def _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau):
+def _set_segment(fc, tau, seg, exc, gvals, g_const):
     """Load the forcing segment holding ``tau`` into ``fc``; returns ``(segment index, segment end)``."""
-    seg, c0, c1, c2, seg_end = segment(form, tau, seg, k, nu, phase, tau_end, kvals, dtau)
-    fc[_FC_FORM] = form
+    seg, c0, c1, c2, seg_end = segment(exc, tau, seg)
+    dtau = exc.dtau
+    fc[_FC_FORM] = exc.form
     fc[_FC_C0], fc[_FC_C1], fc[_FC_C2] = c0, c1, c2
     if gvals.shape[0] > 0:
         fc[_FC_G0] = gvals[seg]
@@ -192,11 +193,11 @@ def _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_cons
 
 
 @numba.njit(cache=True)
-def _next_departure(tau, level, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau):
+def _next_departure(tau, level, exc, gvals, g_const):
     """First time >= tau at which a block at rest is overcome (``|a_h| > level (g + a_v)``)."""
     if gvals.shape[0] > 0:
-        return next_exceedance_scaled(tau, level, kvals, gvals, dtau)
-    return next_exceedance(tau, level * g_const, form, k, nu, phase, tau_end, kvals, dtau)
+        return next_exceedance_scaled(tau, level, exc.kvals, gvals, exc.dtau)
+    return next_exceedance(tau, level * g_const, exc)
 
 
 @numba.njit(cache=True)
@@ -410,6 +411,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     h_nom, h_tail, rest_velocity = params[P_H_NOM], params[P_H_TAIL], params[P_REST_VELOCITY]
     max_impacts, max_steps, max_tail = int(params[P_MAX_IMPACTS]), int(params[P_MAX_STEPS]), params[P_MAX_TAIL]
     theta0, omega0, kap = params[P_THETA0], params[P_OMEGA0], params[P_KAPPA]
+    exc = Excitation(form, k, nu, phase, tau_end, kvals, dtau)
     sa, ca, beta = math.sin(alpha), math.cos(alpha), math.tan(alpha)
     level = min(mu_s, beta)
     fc = np.zeros(9)
@@ -428,7 +430,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     theta_max, u_max = abs(theta0), 0.0
     win = wfr = eimp = t_slide = t_rock = t_fly = 0.0
     n_imp = n_steps = 0
-    seg, seg_end = _set_segment(fc, 0.0, 0, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+    seg, seg_end = _set_segment(fc, 0.0, 0, exc, gvals, g_const)
     sig = _start_slip(mode, s, th, om, tau, fc, alpha, mu_s)
     if sig != 0.0:  # the pivot cannot hold (e.g. a frictionless floor): the block starts slide-rocking
         mode, first_mode, fresh_w = SLIDE_ROCK, SLIDE_ROCK, True
@@ -453,12 +455,12 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
         if mode == REST:
             if tail:
                 break
-            t_up, _ = _next_departure(tau, level, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+            t_up, _ = _next_departure(tau, level, exc, gvals, g_const)
             n_steps += 1
             if t_up < 0.0:
                 break
             tau = t_up
-            seg, seg_end = _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+            seg, seg_end = _set_segment(fc, tau, seg, exc, gvals, g_const)
             ah, gv = _floor(tau, fc)
             mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k, kap)
             if mode == REST:  # at the threshold to round-off: leave by the level that was exceeded
@@ -488,7 +490,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             status = STATUS_TAIL
             break
         if not tail and tau >= seg_end:
-            seg, seg_end = _set_segment(fc, tau, seg, form, k, nu, phase, tau_end, kvals, gvals, g_const, dtau)
+            seg, seg_end = _set_segment(fc, tau, seg, exc, gvals, g_const)
         h = min(h_tail if tail else h_nom, seg_end - tau)
         last = h == seg_end - tau
         if mode == FLIGHT:

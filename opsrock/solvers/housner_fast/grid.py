@@ -22,7 +22,7 @@ from opsrock.limits import int_at_least, one_of
 from opsrock.solvers._compile import announce_compile
 from opsrock.solvers.common import make_settings
 from opsrock.solvers.forcing import PULSE_IDS
-from opsrock.solvers.housner_fast.kernel import STATUS_OK, _solve_chunk
+from opsrock.solvers.housner_fast.kernel import STATUS_OK, Answers, BatchSettings, Cases, _solve_chunk
 from opsrock.solvers.housner_fast.settings import HousnerFastSettings
 
 
@@ -137,13 +137,14 @@ def solve_grid(
     threads = default_threads() if threads is None else int_at_least("threads", threads, 1)
     shape, (a_, e_, r_, f_) = _cases(alpha, e, pfa_ratio, freq_ratio)
     n = a_.size
-    outs = (np.empty(n), np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.int8),
-            np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64))
-    args = (a_, e_, r_ * np.tan(a_), f_, PULSE_IDS[pulse], settings.equations == "linearised",  # PFA / g
-            float(settings.max_dtau), int(settings.steps_per_pulse),
-            float(settings.rest_velocity), int(settings.max_impacts), settings.step_limit)
+    outs = Answers(np.empty(n), np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.int8),
+                   np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64))
+    cases = Cases(a_, e_, r_ * np.tan(a_), f_)  # k = PFA / g
+    opts = BatchSettings(PULSE_IDS[pulse], settings.equations == "linearised", float(settings.max_dtau),
+                         int(settings.steps_per_pulse), float(settings.rest_velocity), int(settings.max_impacts),
+                         int(settings.step_limit))
     t0 = _time.perf_counter()
-    _run_chunks(args, outs, n, threads)
+    _run_chunks((cases, opts), outs, n, threads)
     wall = _time.perf_counter() - t0
     theta_max, overturned, rocked, status, n_impacts, n_steps = (x.reshape(shape) for x in outs)
     return GridResult(theta_max=theta_max, overturned=overturned, rocked=rocked, status=status,
@@ -166,10 +167,10 @@ def _run_chunks(args: tuple, outs: tuple, n: int, threads: int) -> None:
     announce_compile(_solve_chunk, "housner_fast")
     if threads == 1 or len(bounds) <= 1:
         for lo, hi in bounds:
-            _solve_chunk(*args, lo, hi, *outs)
+            _solve_chunk(*args, lo, hi, outs)
         return
     with ThreadPoolExecutor(max_workers=threads) as pool:
-        for fut in [pool.submit(_solve_chunk, *args, lo, hi, *outs) for lo, hi in bounds]:
+        for fut in [pool.submit(_solve_chunk, *args, lo, hi, outs) for lo, hi in bounds]:
             fut.result()
 
 

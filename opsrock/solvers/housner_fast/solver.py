@@ -15,22 +15,10 @@ from opsrock.excitations.records import check_sampling
 from opsrock.result import RockingResult, failed_result
 from opsrock.solvers._compile import announce_compile
 from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
-from opsrock.solvers.forcing import FORM_LINEAR, PULSE_IDS, PULSE_ONE_SINE, pulse_forcing
+from opsrock.solvers.forcing import PULSE_IDS, PULSE_ONE_SINE, Excitation, pulse_forcing, record_forcing
 from opsrock.solvers.housner_fast import kernel as K
 from opsrock.solvers.housner_fast.settings import HousnerFastSettings
-from opsrock.solvers.status import (
-    NONFINITE,
-    OK,
-    OUT_IMPACTS,
-    OUT_N_HIST,
-    OUT_OVERTURNED,
-    OUT_ROCKED,
-    OUT_STATUS,
-    OUT_STEPS,
-    OUT_THETA_MAX,
-    REASONS,
-    failure_of,
-)
+from opsrock.solvers.status import NONFINITE, OK, REASONS, failure_of
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "housner_fast"
@@ -42,19 +30,17 @@ _HISTORY_EXTRA = 20_000
 
 
 def case_parameters(block: Block, excitation: Pulse | Record | None,
-                    settings: HousnerFastSettings) -> tuple[np.ndarray, np.ndarray]:
-    """The kernel's inputs ``(params, kvals)`` (slots ``P_*`` of :mod:`.kernel`) for one case.
+                    settings: HousnerFastSettings) -> tuple[K.Params, Excitation]:
+    """The kernel's inputs for one case: its :class:`~.kernel.Params` and the floor motion.
 
     ``excitation=None`` is a still floor integrated for ``end_time`` (s), after which the exact energy
     verdict of a pulse's end applies (an analytic pulse of zero amplitude whose period is ``end_time``).
     """
-    params = np.zeros(K.P_SIZE)
     p = block.p
     if isinstance(excitation, Record):
         check_sampling(excitation, block)
-        form, c0, c1, c2 = FORM_LINEAR, 0.0, 0.0, 0.0
-        kvals, dtau = excitation.values / G, excitation.dt * p
-        tau_end = excitation.duration * p
+        dtau = excitation.dt * p
+        exc = record_forcing(excitation.values / G, dtau, excitation.duration * p)
         h_nom = min(settings.max_dtau, dtau)
     else:
         if excitation is None:
@@ -65,16 +51,11 @@ def case_parameters(block: Block, excitation: Pulse | Record | None,
             raise InputTypeError(
                 f"housner_fast solves the pulses of PULSE_SHAPES and records (Pulse, Record), got "
                 f"{type(excitation).__name__}; use solver='housner' for other excitations")
-        form, c0, c1, c2, tau_end, kvals, dtau = pulse_forcing(pulse, k, nu)
+        exc = pulse_forcing(pulse, k, nu)
         h_nom = min(settings.max_dtau, 2.0 * math.pi / nu / settings.steps_per_pulse)
-    values = {K.P_ALPHA: block.alpha, K.P_E: block.e, K.P_FORM: form, K.P_K: c0, K.P_NU: c1, K.P_PHASE: c2,
-              K.P_TAU_END: tau_end, K.P_DTAU: dtau, K.P_H_NOM: h_nom,
-              K.P_LINEQ: float(settings.equations == "linearised"), K.P_REST_VELOCITY: settings.rest_velocity,
-              K.P_MAX_IMPACTS: settings.max_impacts, K.P_MAX_STEPS: settings.step_limit,
-              K.P_THETA0: settings.theta0, K.P_OMEGA0: settings.theta_dot0 / p}
-    for slot, value in values.items():
-        params[slot] = value
-    return params, np.asarray(kvals, dtype=float)
+    par = K.case_params(block.alpha, block.e, settings.equations == "linearised", h_nom, settings.rest_velocity,
+                        settings.max_impacts, settings.step_limit)
+    return par, exc
 
 
 class _HousnerFastRun(SolverRun):
@@ -86,28 +67,27 @@ class _HousnerFastRun(SolverRun):
         block, settings = self.block, self.settings
         settings_dict = {"solver": SOLVER_NAME, **settings_record(settings)}
         alpha, p = block.alpha, block.p
-        params, kvals = case_parameters(block, self.excitation, settings)
-        cap = int(math.ceil(params[K.P_TAU_END] / params[K.P_H_NOM])) + _HISTORY_EXTRA if settings.record else 0
-        hist = [np.zeros(cap) for _ in range(3)]
-        out = np.zeros(K.OUT_SIZE)
+        par, exc = case_parameters(block, self.excitation, settings)
+        cap = int(math.ceil(exc.tau_end / par.h_nom)) + _HISTORY_EXTRA if settings.record else 0
+        hist = K.History(np.zeros(cap), np.zeros(cap), np.zeros(cap))
         announce_compile(K.solve_case, SOLVER_NAME)
         try:
-            K.solve_case(params, kvals, out, *hist)
+            out = K.solve_case(par, exc, float(settings.theta0), float(settings.theta_dot0 / p), hist)
         except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
             return failed_result(SOLVER_NAME, settings_dict, alpha, f"{type(exc).__name__}: {exc}",
                                  wall_time_s=self.elapsed())
         wall = self.elapsed()
-        nh, st, tm = int(out[OUT_N_HIST]), int(out[OUT_STATUS]), float(out[OUT_THETA_MAX])
-        time_s, theta, theta_dot = hist[0][:nh] / p, hist[1][:nh], hist[2][:nh] * p
+        nh, st, tm = int(out.n_hist), int(out.status), float(out.theta_max)
+        time_s, theta, theta_dot = hist.tau[:nh] / p, hist.theta[:nh], hist.omega[:nh] * p
         if st != OK or not math.isfinite(tm):
             reason = REASONS[st] if st != OK else f"non-finite theta_max {tm!r}"
             return failed_result(SOLVER_NAME, settings_dict, alpha, reason, time=time_s, theta=theta,
-                                 theta_dot=theta_dot, n_steps=int(out[OUT_STEPS]), wall_time_s=wall,
+                                 theta_dot=theta_dot, n_steps=int(out.n_steps), wall_time_s=wall,
                                  failure=failure_of(st if st != OK else NONFINITE))
         return RockingResult(
             solver=SOLVER_NAME, settings=settings_dict, alpha=alpha, time=time_s, theta=theta, theta_dot=theta_dot,
-            theta_max=tm, overturned=bool(out[OUT_OVERTURNED]), rocked=bool(out[OUT_ROCKED]),
-            n_steps=int(out[OUT_STEPS]), wall_time_s=wall, n_impacts=int(out[OUT_IMPACTS]))
+            theta_max=tm, overturned=bool(out.overturned), rocked=bool(out.rocked),
+            n_steps=int(out.n_steps), wall_time_s=wall, n_impacts=int(out.n_impacts))
 
 
 def solve(block: Block, excitation: Pulse | Record | None, settings: HousnerFastSettings | None = None,

@@ -40,10 +40,11 @@ from typing import Any, Mapping
 import numpy as np
 import pandas as pd
 
-from opsrock._files import atomic_csv, read_table, staged_folder
+from opsrock._files import atomic_csv, staged_folder
 from opsrock.analysis import directionality_summary as summary
 from opsrock.analysis.directionality_cases import study_campaigns, study_motions
 from opsrock.analysis.directionality_report import write_figures, write_report
+from opsrock.campaign.cases import read_cases
 from opsrock.campaign.executors import LocalPool
 from opsrock.campaign.run import Execution, Stage, case_budget
 from opsrock.errors import InputError
@@ -331,12 +332,10 @@ def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress
         for c in campaigns:
             how = Execution(workers, pool, force, progress, None, case_budget(c.scene, None))
             summary, _ = Stage(how)(c.scene, store / c.name, cases=c.cases)
-            frames.append(read_table(summary.cases_csv, keep_default_na=False, na_values=["nan", "NaN", ""])
+            frames.append(read_cases(summary.cases_csv)
                           .assign(campaign=c.name, solver_name=c.scene.solver))
             computed += summary.n_computed
     cases = pd.concat(frames, ignore_index=True)
-    cases["overturned"] = cases["overturned"].astype(str).eq("True")
-    cases["overturned_over"] = [v if isinstance(v, str) else "" for v in cases["overturned_over"]]  # empty: NaN
     return cases, computed
 
 

@@ -179,10 +179,12 @@ def record_fits(blocks: pd.DataFrame, cases: pd.DataFrame, method: str) -> pd.Da
     form (:func:`opsrock.inventory.summary.item_floor_table` reads it): PFA in g, PFV in m/s, the failed
     cases of each block and floor counted from ``cases``, the pelicun ID of each row."""
     from opsrock.fragility.pelicun_export import component_id
+    from opsrock.inventory.fits import fit_status
 
     failed = cases[cases["status"] != "ok"].groupby(["block", "floor"]).size()
     rows = []
     for _, r in blocks.iterrows():
+        ok = bool(r["success"]) and math.isfinite(r["mu"])
         to_unit = 1.0 / G if r["demand"] == "pfa" else 1.0
         rows.append({"item": r["block"], "description": r["block"], "floor": str(r["floor"]), "direction": "1",
                      "outcome": "overturning", "demand": r["demand"], "unit": "g" if r["demand"] == "pfa" else "m/s",
@@ -191,7 +193,8 @@ def record_fits(blocks: pd.DataFrame, cases: pd.DataFrame, method: str) -> pd.Da
                      "beta": float(r["beta"]), "beta_lo": float(r["beta_lo"]), "beta_hi": float(r["beta_hi"]),
                      "n_cases": int(r["n_cases"]), "n_exceeded": int(r["n_overturned"]),
                      "n_failed": int(failed.get((r["block"], r["floor"]), 0)), "n_records": int(r["n_records"]),
-                     "ok": bool(r["success"]) and math.isfinite(r["mu"]), "message": str(r["message"]),
+                     "ok": ok, "message": str(r["message"]),
+                     "status": fit_status(ok, r["mu"], math.inf, int(r["n_overturned"]), int(r["n_cases"])),
                      "fema_id": "", "fema_median": math.nan, "ratio_fema": math.nan,
                      "pelicun_id": component_id(r["block"], str(r["floor"]), r["demand"])})
     return pd.DataFrame(rows)

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from opsrock._files import read_table
+from opsrock.campaign.cases import read_cases
 
 #: The scene compared.
 SCENE: str = "fema-far-field-ida"
@@ -61,7 +61,7 @@ def _fit(group: pd.DataFrame, measure: str) -> dict:
     from opsrock.fragility.mle import fit_lognormal_mle
 
     ok = group[group["status"] == "ok"]
-    y = ok["overturned"].astype(str).eq("True").to_numpy()
+    y = ok["overturned"].to_numpy(bool)
     fit = fit_lognormal_mle(ok[measure].to_numpy(), y, n_boot=N_BOOT, seed=SEED, groups=ok["record"].to_numpy())
     return {"median": fit.mu, "median_lo": fit.mu_lo, "median_hi": fit.mu_hi, "beta": fit.beta,
             "beta_lo": fit.beta_lo, "beta_hi": fit.beta_hi, "n_cases": int(len(ok)), "n_overturned": int(y.sum()),
@@ -76,7 +76,7 @@ def compare(out_dir: str | Path, *, workers: int | None = None, progress: bool =
     rows = []
     for name in VARIANTS:
         summary = run_campaign(variant_scene(name, scene), Path(out_dir) / name, workers=workers, progress=progress)
-        cases = read_table(summary.cases_csv)
+        cases = read_cases(summary.cases_csv)
         for (block, floor), group in cases.groupby(["block", "floor"], sort=True):
             rows.append({"variant": name, "block": block, "floor": floor, "measure": "level_value",
                          "mean_e": float(group["e"].mean()), "std_e": float(group["e"].std()),

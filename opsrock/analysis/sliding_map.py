@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from opsrock._files import read_table
+from opsrock.campaign.cases import read_cases
 from opsrock.constants import G
 
 #: Reference friction label: the no-slip block.
@@ -138,7 +138,7 @@ def run_map(design: SlidingMapDesign, out_dir: str | Path, *, workers: int | Non
     frames = []
     for part, (_, vertical) in CAMPAIGNS.items():
         summary = run_campaign(map_scene(design, part), Path(out_dir) / part, workers=workers, progress=progress)
-        df = read_table(summary.cases_csv)
+        df = read_cases(summary.cases_csv)
         df["part"], df["vertical"] = part, vertical
         if "friction" not in df:
             df["friction"], df["response"] = math.nan, np.where(df["overturned"], "overturned", "rocked")
@@ -175,7 +175,7 @@ def _fit(group: pd.DataFrame, n_boot: int, seed: int) -> _Fit:
     from opsrock.fragility.mle import fit_lognormal_mle
 
     ok = group[group["status"] == "ok"]
-    y = ok["overturned"].astype(str).eq("True").to_numpy()
+    y = ok["overturned"].to_numpy(bool)
     counts = {"n_overturned": int(y.sum()), "n_cases": int(len(ok)), "n_failed": int(len(group) - len(ok))}
     if y.sum() == 0:
         return _Fit(message="never overturned", **counts)

@@ -299,6 +299,65 @@ def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], column
     atomic_write(Path(path), write)
 
 
-__all__ = ["BLOCK_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PLAN_COLUMNS", "PULSE_COLUMNS",
+#: Boolean columns of ``cases.csv`` (written ``True``/``False``): read back as booleans.
+BOOL_COLUMNS: tuple[str, ...] = ("overturned", "rocked")
+
+#: Text columns of ``cases.csv`` that may be empty (read back as ``""``, never NaN).
+TEXT_COLUMNS: tuple[str, ...] = ("status", "reason", "verdict", "solver", "record", "record2", "response",
+                                 "first_mode", "overturned_over", "block")
+
+
+def as_bool(values: Any, name: str) -> "Any":
+    """``values`` (a pandas Series) as a boolean NumPy array: booleans as they are; the text ``True``/``False``
+    (any case), ``1``/``0`` parsed; anything else refused with :class:`~opsrock.errors.InputError` naming
+    column ``name``."""
+    from opsrock.errors import InputError
+
+    if values.dtype == bool:
+        return values.to_numpy()
+    mapping = {"true": True, "false": False, "1": True, "0": False, "1.0": True, "0.0": False}
+    out = values.astype(str).str.strip().str.lower().map(mapping)
+    if out.isna().any():
+        bad = values[out.isna()].iloc[0]
+        raise InputError(f"column {name!r} must hold booleans, got {bad!r}")
+    return out.to_numpy(dtype=bool)
+
+
+def read_cases(path: str | Path, usecols: Sequence[str] | None = None) -> "Any":
+    """A ``cases.csv`` read back with its types: every float exactly as written
+    (:func:`opsrock._files.read_table`), :data:`BOOL_COLUMNS` as booleans, :data:`TEXT_COLUMNS` as text with
+    ``""`` where empty. The one reader of a campaign's cases: nothing downstream parses them again.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``cases.csv`` of a campaign.
+    usecols : sequence of str, optional
+        The columns to read (default: all).
+
+    Returns
+    -------
+    pandas.DataFrame
+    """
+    from opsrock._files import read_table
+
+    df = read_table(path, usecols=None if usecols is None else list(usecols), dtype=dict.fromkeys(TEXT_COLUMNS, str))
+    return typed_cases(df)
+
+
+def typed_cases(df: "Any") -> "Any":
+    """``df`` (a case table read as text or as pandas guessed) with :data:`BOOL_COLUMNS` booleans and
+    :data:`TEXT_COLUMNS` text (``""`` where empty), in place; returned for chaining."""
+    for col in BOOL_COLUMNS:
+        if col in df.columns:
+            df[col] = as_bool(df[col], col)
+    for col in TEXT_COLUMNS:
+        if col in df.columns:
+            df[col] = [v if isinstance(v, str) else "" if v is None or v != v else str(v) for v in df[col]]
+    return df
+
+
+__all__ = ["BLOCK_COLUMNS", "BOOL_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PLAN_COLUMNS", "PULSE_COLUMNS",
            "PulseCase", "RECORD_COLUMNS",
-           "RESULT_COLUMNS", "RecordCase", "case_table", "failed_row", "result_row", "write_cases_csv"]
+           "RESULT_COLUMNS", "RecordCase", "TEXT_COLUMNS", "as_bool", "case_table", "failed_row", "read_cases", "result_row",
+           "typed_cases", "write_cases_csv"]

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from opsrock._files import read_table
+from opsrock.campaign.cases import read_cases
 from opsrock.contents.design import split_block_name
 from opsrock.fragility.cases import check_some_finished
 
@@ -84,7 +84,7 @@ def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, p
         t0 = time.perf_counter()
         summary = run_campaign(scene, folder, workers=workers, progress=progress, force=force, batch=BATCH)
         if summary.n_failed == summary.n_cases:  # nothing to fit: one line (AllCasesFailedError), exit 2
-            check_some_finished(read_table(summary.cases_csv, usecols=["status", "reason"]), str(folder))
+            check_some_finished(read_cases(summary.cases_csv, usecols=["status", "reason"]), str(folder))
         timings[f"{name}_s"] = time.perf_counter() - t0
         timings[f"{name}_cases"] = summary.n_cases
         timings[f"{name}_computed"] = summary.n_computed
@@ -94,7 +94,7 @@ def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, p
 
 def _read_cases(path: str, campaign: str, scene) -> pd.DataFrame:
     cols = list(CASE_COLUMNS) + (["response"] if campaign == "friction" else [])
-    df = read_table(path, usecols=cols)
+    df = read_cases(path, usecols=cols)
     df["campaign"] = campaign
     parts = df["block"].map(split_block_name)
     df["item"] = [p[0] for p in parts]
@@ -102,7 +102,6 @@ def _read_cases(path: str, campaign: str, scene) -> pd.DataFrame:
     floors = _floor_numbers(scene)
     df["floor_number"] = df["floor"].map(lambda f: floors[f][0]).astype(int)
     df["building_period"] = df["floor"].map(lambda f: floors[f][1]).astype(float)
-    df["overturned"] = df["overturned"].astype(str).eq("True")
     if "response" not in df:
         df["response"] = np.where(df["overturned"], "overturned", "rocked")
     return df

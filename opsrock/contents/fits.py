@@ -13,7 +13,6 @@ import math
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any
 
-import numpy as np
 import pandas as pd
 
 from opsrock.constants import G
@@ -92,11 +91,4 @@ def fit_table(tasks: list[tuple], workers: int | None = None) -> pd.DataFrame:
         [*order, "floor_number", "building_period", "unit", *FIT_COLUMNS]]
 
 
-def lognormal_cdf(x: np.ndarray, median: float, beta: float) -> np.ndarray:
-    """``Phi(ln(x / median) / beta)``."""
-    from scipy.special import ndtr
-
-    return ndtr(np.log(np.asarray(x, float) / median) / beta)
-
-
-__all__ = ["DEMANDS", "FIT_COLUMNS", "fit_table", "fit_tasks", "lognormal_cdf"]
+__all__ = ["DEMANDS", "FIT_COLUMNS", "fit_table", "fit_tasks"]

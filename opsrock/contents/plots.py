@@ -11,7 +11,7 @@ import pandas as pd
 
 from opsrock.constants import G
 from opsrock.contents.design import ContentsDesign, floor_name
-from opsrock.contents.fits import lognormal_cdf
+from opsrock.fragility.lognormal import fragility_probability
 from opsrock.published import fema_p58
 
 #: Colours of the variants.
@@ -48,12 +48,12 @@ def _panel(ax, fits: pd.DataFrame, fema: list[tuple[str, float, float, str]], gr
         if not math.isfinite(r["median"]):
             continue
         c = COLOURS.get(r["variant"], "grey")
-        ax.plot(grid, lognormal_cdf(grid, r["median"], r["beta"]), STYLES.get(r["variant"], "-"), color=c, lw=1.6,
+        ax.plot(grid, fragility_probability(grid, r["median"], r["beta"]), STYLES.get(r["variant"], "-"), color=c, lw=1.6,
                 label=f"opsrock {r['variant']}: {r['median']:.3g}, beta {r['beta']:.2f}")
         if math.isfinite(r["median_lo"]):
             ax.plot([r["median_lo"], r["median_hi"]], [0.5, 0.5], "|-", color=c, lw=1, ms=6)
     for label, median, beta, style in fema:
-        ax.plot(grid, lognormal_cdf(grid, median, beta), style, color="k", lw=1.2, label=f"{label}: {median:.3g}")
+        ax.plot(grid, fragility_probability(grid, median, beta), style, color="k", lw=1.2, label=f"{label}: {median:.3g}")
     ax.set_xscale("log")
     ax.set_ylim(-0.02, 1.02)
     ax.grid(alpha=0.3)

@@ -13,19 +13,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from opsrock.campaign.cases import as_bool
 from opsrock.campaign.executors import is_lost
 from opsrock.errors import AllCasesFailedError, InputError
-
-
-def _as_bool(series: pd.Series, name: str) -> np.ndarray:
-    if series.dtype == bool:
-        return series.to_numpy()
-    mapping = {"true": True, "false": False, "1": True, "0": False, "1.0": True, "0.0": False}
-    out = series.astype(str).str.strip().str.lower().map(mapping)
-    if out.isna().any():
-        bad = series[out.isna()].iloc[0]
-        raise InputError(f"column {name!r} must hold booleans, got {bad!r}")
-    return out.to_numpy(dtype=bool)
 
 
 @dataclass(frozen=True)
@@ -77,8 +67,8 @@ def split_cases(cases: pd.DataFrame) -> CaseSplit:
     if bad.any():
         raise InputError(f"column 'status' must be 'ok' or 'failed', got {status[bad][0]!r}")
     ok = status == "ok"
-    rocked = _as_bool(cases["rocked"], "rocked")
-    overturned = _as_bool(cases["overturned"], "overturned")
+    rocked = as_bool(cases["rocked"], "rocked")
+    overturned = as_bool(cases["overturned"], "overturned")
     rocking = ok & rocked
     if np.any(ok & ~rocked & overturned):
         i = int(np.flatnonzero(ok & ~rocked & overturned)[0])

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from opsrock.campaign.cases import as_bool
 from opsrock.errors import InputError
 
 #: What a slide is measured by: the peak, or the residual, displacement of the base on the floor.
@@ -68,7 +69,7 @@ def slid_beyond(cases: pd.DataFrame, distance: float, measure: str = "slide_max"
         raise InputError(f"the cases have no {measure} column: sliding needs a campaign solved with friction "
                          "(solver friction)")
     slide = np.abs(pd.to_numeric(cases[measure], errors="coerce").to_numpy(float))
-    over = cases["overturned"].astype(str).eq("True").to_numpy()
+    over = as_bool(cases["overturned"], "overturned")
     return over | (slide > distance)
 
 

@@ -372,17 +372,16 @@ def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, 
 
 
 def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
-    from opsrock._files import read_table
+    from opsrock.campaign.cases import read_cases
 
     friction = "slide_max" in gs.scene.columns
-    df = read_table(path, usecols=list(CASE_COLUMNS) + (["slide_max"] if friction else []))
+    df = read_cases(path, usecols=list(CASE_COLUMNS) + (["slide_max"] if friction else []))
     if not friction:
         df["slide_max"] = math.nan
     df["item"] = df["block"].map(gs.blocks)
     source = df["record"].map(gs.records)
     df["record"], df["floor"] = [r for r, _ in source], [f for _, f in source]
     df["direction"], df["group"] = gs.group.direction, gs.group.name
-    df["overturned"] = df["overturned"].astype(str).eq("True")
     return df
 
 

@@ -9,7 +9,7 @@ on a support (whose campaign scaled the floor motion before its oscillator), so 
 demand pelicun assesses.
 
 A fit whose median lies beyond the largest demand of its cases (a few exceedances at the top levels) is kept,
-with a message that says it is an extrapolation.
+with the status ``extrapolated`` (column ``status``, :data:`FIT_STATUSES`) and a message that says so.
 
 Sliding "beyond ``slide_distance``" is ``slide_max >= slide_distance``: the peak displacement of the base
 relative to the floor (m), whether the item then overturned or not.
@@ -28,6 +28,7 @@ import numpy as np
 import pandas as pd
 
 from opsrock.constants import G
+from opsrock.fragility.lognormal import fragility_probability
 
 #: Demands fitted: name -> (unit, column of the floor demands, divisor).
 DEMANDS: dict[str, tuple[str, str, float]] = {"pfv": ("m/s", "pfv", 1.0), "pfa": ("g", "pfa", G)}
@@ -35,9 +36,24 @@ DEMANDS: dict[str, tuple[str, str, float]] = {"pfv": ("m/s", "pfv", 1.0), "pfa":
 #: Columns of ``fits.csv``, in order (the report reads them).
 FIT_COLUMNS: tuple[str, ...] = (
     "item", "description", "floor", "direction", "outcome", "demand", "unit", "method", "median", "median_lo",
-    "median_hi", "beta", "beta_lo", "beta_hi", "n_cases", "n_exceeded", "n_failed", "n_records", "ok", "message",
+    "median_hi", "beta", "beta_lo", "beta_hi", "n_cases", "n_exceeded", "n_failed", "n_records", "ok", "status", "message",
     "fema_id", "fema_median", "ratio_fema", "pelicun_id",
 )  # fmt: skip
+
+
+#: A fit's ``status``: ``fitted``; ``extrapolated`` (fitted, the median beyond the largest demand of its cases);
+#: ``never`` (no case exceeded); ``always`` (every case did); ``no fit`` (the fit failed).
+FIT_STATUSES: tuple[str, ...] = ("fitted", "extrapolated", "never", "always", "no fit")
+
+
+def fit_status(ok: bool, median: float, x_max: float, n_exceeded: int, n_cases: int) -> str:
+    """The :data:`FIT_STATUSES` entry of one fit: ``ok`` and its ``median`` (any unit), the largest demand of its
+    cases ``x_max`` (that unit), the cases that exceeded and the finished cases."""
+    if ok and math.isfinite(median):
+        return "extrapolated" if median > x_max else "fitted"
+    if n_exceeded == 0:
+        return "never"
+    return "always" if n_exceeded >= n_cases > 0 else "no fit"
 
 
 def outcomes(cases: pd.DataFrame, slide_distance: float) -> dict[str, pd.Series]:
@@ -76,6 +92,7 @@ def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: i
                 row = _row_keys(items[item], floor, direction, outcome, demand, unit, study.method)
                 row.update(n_cases=len(ok), n_exceeded=int(y.sum()), n_failed=len(g) - len(ok),
                            n_records=int(ok["record"].nunique()))
+                row["status"] = fit_status(False, math.nan, math.nan, row["n_exceeded"], row["n_cases"])
                 if not y.any():
                     row.update(_no_fit(f"never {_verb(outcome)} {_within(study.method)}"))
                 else:
@@ -88,7 +105,8 @@ def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: i
         ok = bool(f.success and math.isfinite(f.mu))
         rows[i].update(median=f.mu if ok else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
                        beta=f.beta if ok else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=ok,
-                       message=_extrapolated(f.mu, x_max, rows[i]) if ok and f.mu > x_max else f.message)
+                       status=fit_status(ok, f.mu, x_max, rows[i]["n_exceeded"], rows[i]["n_cases"]))
+        rows[i]["message"] = _extrapolated(f.mu, x_max, rows[i]) if rows[i]["status"] == "extrapolated" else f.message
     table = pd.DataFrame(rows, columns=list(FIT_COLUMNS))
     table["ratio_fema"] = table["median"] / table["fema_median"]
     return table
@@ -138,13 +156,6 @@ def _no_fit(message: str) -> dict[str, Any]:
             "ok": False, "message": message}
 
 
-def lognormal_cdf(x: np.ndarray, median: float, beta: float) -> np.ndarray:
-    """``Phi(ln(x / median) / beta)`` (``x`` and ``median`` in one unit; ``beta`` dimensionless)."""
-    from scipy.special import ndtr
-
-    return ndtr(np.log(np.asarray(x, float) / median) / beta)
-
-
 def expected_table(fits: pd.DataFrame, cases: pd.DataFrame, demands: pd.DataFrame, study: Any) -> pd.DataFrame:
     """The expected number of each item overturned per floor and direction under the motions as recorded.
 
@@ -159,7 +170,7 @@ def expected_table(fits: pd.DataFrame, cases: pd.DataFrame, demands: pd.DataFram
         item = items[r["item"]]
         d = demands[(demands["floor"] == r["floor"]) & (demands["direction"] == r["direction"])]["pfv"].to_numpy(float)
         if r["ok"]:
-            p = float(np.mean(lognormal_cdf(d, r["median"], r["beta"])))
+            p = float(np.mean(fragility_probability(d, r["median"], r["beta"])))
         else:
             p = 0.0 if r["n_exceeded"] == 0 and r["n_cases"] > 0 else math.nan
         row = {"item": r["item"], "floor": r["floor"], "direction": r["direction"], "quantity": item.quantity,
@@ -173,4 +184,4 @@ def expected_table(fits: pd.DataFrame, cases: pd.DataFrame, demands: pd.DataFram
                                        "empirical_overturned"])
 
 
-__all__ = ["DEMANDS", "FIT_COLUMNS", "expected_table", "fema_median", "fit_table", "lognormal_cdf", "outcomes"]
+__all__ = ["DEMANDS", "FIT_COLUMNS", "FIT_STATUSES", "fit_status", "expected_table", "fema_median", "fit_table", "outcomes"]

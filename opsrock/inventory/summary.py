@@ -24,9 +24,9 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.stats import norm
 
 from opsrock.constants import G
+from opsrock.fragility.lognormal import fragility_probability
 
 #: Demands of the report, in its order: column -> (abbreviation, unit, definition).
 DEMANDS: dict[str, tuple[str, str, str]] = {
@@ -104,22 +104,13 @@ def probability(x: np.ndarray | float, median: float, beta: float) -> np.ndarray
     x = np.asarray(x, dtype=float)
     if not (math.isfinite(median) and math.isfinite(beta) and median > 0 and beta > 0):
         return np.full(x.shape, math.nan)
-    return norm.cdf(np.log(x / median) / beta)
-
-
-#: How :mod:`opsrock.inventory.fits` starts the message of a median beyond the largest demand of the cases.
-EXTRAPOLATED: str = "extrapolated:"
+    return fragility_probability(x, median, beta)
 
 
 def _status(r: pd.Series) -> str:
-    """``fitted``, ``never`` (no case exceeded), ``always`` (every case did) or ``no fit``."""
-    if bool(r["ok"]) and math.isfinite(r["median"]):
-        return "fitted"
-    if int(r["n_exceeded"]) == 0:
-        return "never"
-    if int(r["n_exceeded"]) >= int(r["n_cases"]) > 0:
-        return "always"
-    return "no fit"
+    """``fitted`` (extrapolated or not), ``never`` (no case exceeded), ``always`` (every case did) or ``no fit``:
+    the fit's own ``status`` (:data:`opsrock.inventory.fits.FIT_STATUSES`)."""
+    return "fitted" if r["status"] == "extrapolated" else str(r["status"])
 
 
 def _demand_part(r: pd.Series, levels: tuple[float, ...]) -> dict:
@@ -129,7 +120,7 @@ def _demand_part(r: pd.Series, levels: tuple[float, ...]) -> dict:
     part[f"message_{d}"] = str(r["message"]) if isinstance(r["message"], str) else ""
     part[f"median_outside_{d}"] = outside_interval(r["median"], r["median_lo"], r["median_hi"])
     part[f"beta_outside_{d}"] = outside_interval(r["beta"], r["beta_lo"], r["beta_hi"])
-    part[f"median_extrapolated_{d}"] = part[f"message_{d}"].startswith(EXTRAPOLATED)
+    part[f"median_extrapolated_{d}"] = r["status"] == "extrapolated"
     for level in levels:
         part[level_column(d, level)] = float(probability(level, r["median"], r["beta"]))
     return part
@@ -197,13 +188,13 @@ def _missing_demand(d: str, levels: tuple[float, ...]) -> dict:
 def default_grid(fits: pd.DataFrame, n: int = 120) -> dict[str, np.ndarray]:
     """Per demand, ``n`` log-spaced values spanning ``median · exp(±2.5 beta)`` of every fitted row of ``fits``
     (where such a curve runs from P = 0.006 to 0.994): PFV in m/s, PFA in g. Medians extrapolated beyond the
-    demands tested (:data:`EXTRAPOLATED`) are left out when any other row has a fit, so that one poorly
+    demands tested (status ``extrapolated``) are left out when any other row has a fit, so that one poorly
     determined curve does not stretch the axis of the others over decades."""
     grid = {}
     for d in DEMANDS:
         sel = fits[(fits["demand"] == d) & np.isfinite(fits["median"].astype(float))
                    & np.isfinite(fits["beta"].astype(float)) & (fits["median"].astype(float) > 0)]
-        measured = sel[~sel["message"].fillna("").astype(str).str.startswith(EXTRAPOLATED)]
+        measured = sel[sel["status"] != "extrapolated"]
         sel = measured if len(measured) else sel
         med, beta = sel["median"].to_numpy(float), sel["beta"].to_numpy(float)
         lo, hi = ((med * np.exp(-2.5 * beta)).min(), (med * np.exp(2.5 * beta)).max()) if med.size else (0.01, 10.0)
@@ -383,6 +374,6 @@ def report_tables(fits: pd.DataFrame, demand_levels: dict[str, tuple[float, ...]
             "sliding": item_floor_table(fits, demand_levels, "sliding") if has_sliding else None}
 
 
-__all__ = ["DEFAULT_LEVELS", "DEMANDS", "EXTRAPOLATED", "Finding", "curve_table", "default_grid", "demand_table", "failure_table",
+__all__ = ["DEFAULT_LEVELS", "DEMANDS", "Finding", "curve_table", "default_grid", "demand_table", "failure_table",
            "floor_findings", "floor_order", "floors_are_numbered", "item_floor_table", "level_column", "outside_interval",
            "probability", "report_tables"]

@@ -141,8 +141,8 @@ def run_three_d_groups(scenes: list, store: Path, *, workers: int | None, progre
                        force: bool) -> tuple[pd.DataFrame, int]:
     """Run (or resume) every group's campaign into ``store/<group>``; every case (:data:`CASE_COLUMNS_3D`,
     ``item``, ``floor``, ``record`` as the motions name it, ``overturned`` as bool) and those computed now."""
-    from opsrock._files import read_table
     from opsrock.campaign import run_campaign
+    from opsrock.campaign.cases import read_cases
     from opsrock.campaign.executors import LocalPool
     from opsrock.inventory.campaigns import BATCH
 
@@ -152,13 +152,10 @@ def run_three_d_groups(scenes: list, store: Path, *, workers: int | None, progre
             summary = run_campaign(gs.scene, store / gs.group.name, executor=pool, progress=progress, force=force,
                                    batch=BATCH)
             computed += summary.n_computed
-            df = read_table(summary.cases_csv, usecols=list(CASE_COLUMNS_3D), keep_default_na=False,
-                            na_values=[""])
+            df = read_cases(summary.cases_csv, usecols=CASE_COLUMNS_3D)
             df["item"] = df["block"].map(gs.blocks)
             source = df["record"].map(gs.records)
             df["record"], df["floor"] = [r for r, _ in source], [f for _, f in source]
-            df["overturned"] = df["overturned"].astype(str).eq("True")
-            df["overturned_over"] = df["overturned_over"].fillna("").astype(str)
             frames.append(df)
     return pd.concat(frames, ignore_index=True), computed
 

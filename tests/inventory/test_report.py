@@ -44,7 +44,7 @@ def _fit_row(item, floor, demand, values):
             "demand": demand, "unit": "g" if demand == "pfa" else "m/s", "method": "ida",
             "median": med * scale, "median_lo": lo * scale, "median_hi": hi * scale, "beta": beta, "beta_lo": blo,
             "beta_hi": bhi, "n_cases": 80, "n_exceeded": 30 if ok else 0, "n_failed": 2 if item == "rack" else 0,
-            "n_records": 5, "ok": ok, "message": "" if ok else "no case overturned",
+            "n_records": 5, "ok": ok, "status": "fitted" if ok else "never", "message": "" if ok else "no case overturned",
             "fema_id": fema_id if demand == "pfv" else fema_id, "fema_median": fema_median if demand == "pfv" else math.nan,
             "ratio_fema": med / fema_median if demand == "pfv" and fema_id else math.nan,
             "pelicun_id": f"opsrock.{item}.{floor}.{demand.upper()}"}
@@ -220,13 +220,13 @@ def test_sliding_gets_its_own_table_after_overturning(tmp_path):
 
 
 def test_an_extrapolated_median_is_marked_and_explained():
-    """A median beyond every demand tested (fits.py's message starts with summary.EXTRAPOLATED) gets its own
+    """A median beyond every demand tested (fits.py's status ``extrapolated``) gets its own
     mark in the table and a note saying it is extrapolated; the other rows stay unmarked."""
     from opsrock.inventory.report import EXTRAPOLATED_MARK, footnotes, formatted_table
 
     fits = synthetic_fits()
     rack3 = (fits["item"] == "rack") & (fits["floor"] == "3") & (fits["demand"] == "pfv")
-    fits.loc[rack3, "message"] = f"{summary.EXTRAPOLATED} the median 0.4 m/s lies beyond the largest demand"
+    fits.loc[rack3, "status"] = "extrapolated"
     table = summary.item_floor_table(fits)
     cells = formatted_table(table).set_index(["item", "floor"])
     assert EXTRAPOLATED_MARK in cells.loc[("rack", "3"), "median PFV (m/s) [95 %]"]
@@ -242,7 +242,7 @@ def test_each_item_figure_spans_its_own_curves():
     keep it out of its grid too."""
     fits = synthetic_fits()
     rack3 = (fits["item"] == "rack") & (fits["floor"] == "3") & (fits["demand"] == "pfv")
-    fits.loc[rack3, ["median", "message"]] = [1e6, f"{summary.EXTRAPOLATED} beyond every demand"]
+    fits.loc[rack3, ["median", "status"]] = [1e6, "extrapolated"]
     curves = summary.curve_table(fits)
     pfv = curves[curves["demand"] == "pfv"]
     cabinet = pfv[pfv["item"] == "cabinet"]["x"]

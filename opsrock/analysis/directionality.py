@@ -50,7 +50,7 @@ from opsrock.campaign.run import Execution, Stage, case_budget
 from opsrock.errors import InputError
 from opsrock.inventory.items import shipped_inventory
 from opsrock.limits import int_at_least
-from opsrock.solvers.registry import METHODS
+from opsrock.solvers.registry import METHODS, plan_solver
 
 #: The record pairs of the full study, by their first component's name (FEMA P695 far-field): twelve of the 22, of
 #: 20 to 44 s, one or two per event, chosen to fit the cost budget of 15 minutes on 2 cores
@@ -128,7 +128,7 @@ class DirectionalityDesign:
     azimuths: tuple[float, ...] = DEFAULT_AZIMUTHS
     levels: tuple[float, ...] = DEFAULT_LEVELS
     items: tuple[str, ...] = DEFAULT_ITEMS
-    solver3d: str = "rigid3d"
+    solver3d: str = field(default_factory=plan_solver)
     tolerance: float = 0.10
     n_boot: int = 40
     seed: int = 0

@@ -250,9 +250,12 @@ class Campaign:
 
 
 def _solver(model: str, item: Any, design: Any) -> str:
-    """The solver of ``item``'s cases of ``model``: ``rigid3d`` in three dimensions (or, for the plumbing, the
-    planar one), in the plane ``friction`` for an item with friction, else ``housner_fast``."""
-    planar = "friction" if item.planar.friction is not None else "housner_fast"
+    """The solver of ``item``'s cases of ``model``: the design's ``solver3d`` in three dimensions (or, for the
+    plumbing, the planar one), in the plane the registry's planar solver for a base that slips or not
+    (:func:`opsrock.solvers.registry.planar_solver`)."""
+    from opsrock.solvers.registry import planar_solver
+
+    planar = planar_solver(item.planar.friction is not None)
     if model == "3d":
         return design.solver3d if design.in_plan else (planar if item.planar.friction is not None else design.solver3d)
     return planar

@@ -14,6 +14,7 @@ import math
 from typing import Any, Mapping, Sequence
 
 from opsrock.constants import G
+from opsrock.solvers.registry import METHODS, solver_names
 
 #: The floor friction coefficient the warnings assume for a block that has none (dimensionless): an
 #: assumption of this project, at the high end of what is usually quoted for furniture on common floor
@@ -34,18 +35,19 @@ def sliding_warnings(blocks: Sequence[Any], table: Sequence[Mapping[str, Any]],
     mu : float
         Assumed floor friction coefficient (dimensionless).
     solver : str or None
-        The scene's solver: with ``rigid3d`` (which models friction itself) the fix named is the block's friction
-        alone, and ``b/h`` is that of the weaker axis (``min(width, depth) / height``).
+        The scene's solver, as its registry entry declares it: with one that models friction the fix named is the
+        block's friction alone; with one in plan ``b/h`` is that of the weaker axis (``min(width, depth) / height``).
     """
     out = []
-    three_d = solver == "rigid3d"
+    entry = METHODS.get(solver) if solver is not None else None
+    in_plan, slips = bool(entry and entry.plan), bool(entry and entry.friction)
+    fix = (f"give the block friction to model it ({solver} models it)" if slips
+           else f"give the block friction (and solver {solver_names(friction=True, plan=False)[0]!r}) to model it")
     for spec in blocks:
         if spec.friction is not None:
             continue
-        base = min(spec.width, spec.depth) if three_d and getattr(spec, "depth", None) else spec.width
+        base = min(spec.width, spec.depth) if in_plan and getattr(spec, "depth", None) else spec.width
         ratio = base / spec.height
-        fix = ("give the block friction to model it (rigid3d models it)" if three_d
-               else "give the block friction (and solver 'friction') to model it")
         if ratio > mu:
             out.append(f"block {spec.name}: b/h = {ratio:.3g} > {mu:g}: on a floor with friction below b/h it "
                        f"slides and cannot start rocking; it was solved as never slipping; {fix}")

@@ -31,6 +31,7 @@ from pathlib import Path
 from typing import Any
 
 from opsrock.errors import InputError
+from opsrock.solvers.registry import METHODS, plan_solver, solver_names
 
 #: What a scene may ask for.
 ANSWERS: tuple[str, ...] = ("verdicts", "theta_max", "histories", "hysteresis")
@@ -126,24 +127,22 @@ def _candidates(needs: Needs, friction: bool) -> list[dict]:
     return [r for r in evidence() if r["model"] in models]
 
 
-#: The solver of a scene that needs three dimensions.
-PLAN_SOLVER: str = "rigid3d"
-
-
 def _plan_choice(needs: Needs) -> Choice:
-    """``rigid3d`` for a scene in three dimensions, or :class:`InputError` if ``needs`` asks what it has not."""
+    """The solver in plan (:func:`opsrock.solvers.registry.plan_solver`) for a scene in three dimensions, or
+    :class:`InputError` if ``needs`` asks what it has not."""
+    solver = plan_solver()
     if needs.model == "sdof" or needs.answer == "hysteresis":
         raise InputError(f"needs.model = {needs.model!r}, answer {needs.answer!r}: the scene turns a block in plan or "
-                         "gives a second horizontal component, and only the rigid box of solver 'rigid3d' moves in "
+                         f"gives a second horizontal component, and only the rigid box of solver {solver!r} moves in "
                          "plan (no SDOF model, no hysteresis); use model 'rigid' or 'either'")
-    return Choice(PLAN_SOLVER, f"{PLAN_SOLVER}: the scene needs three dimensions (a block turned in plan or a second "
+    return Choice(solver, f"{solver}: the scene needs three dimensions (a block turned in plan or a second "
                                "horizontal component) and it is the only solver in plan; no measured error of it in "
                                "the evidence table yet")
 
 
 def choose(needs: Needs, *, friction: bool = False, n_cases: int = 0, plan: bool = False) -> Choice:
     """The cheapest solver meeting ``needs`` (``friction``: the scene's blocks slide or its floor moves
-    vertically; ``plan``: the scene needs three dimensions, :data:`PLAN_SOLVER`); the SDOF model's verdicts for
+    vertically; ``plan``: the scene needs three dimensions, :func:`opsrock.solvers.registry.plan_solver`); the SDOF model's verdicts for
     :data:`MULTIFIDELITY_MIN_CASES` cases or more (``n_cases``) are asked of a multi-fidelity campaign.
 
     Raises
@@ -165,18 +164,20 @@ def choose(needs: Needs, *, friction: bool = False, n_cases: int = 0, plan: bool
               f"{needs.tolerance:g}, {pick['record_seconds_per_cpu_second']:.4g} record-seconds per CPU-second, the "
               f"cheapest of {', '.join(r['solver'] for r in ok)}")
     if pick["model"] == "sdof" and needs.answer == "verdicts" and n_cases >= MULTIFIDELITY_MIN_CASES:
-        return Choice(pick["solver"], reason + f"; {n_cases} cases: screened by housner_fast, {pick['solver']} "
-                      "where the verdict can differ (multi-fidelity)", pick, "multifidelity", "housner_fast")
+        screen = solver_names(model="rigid", compiled=True)[0]
+        return Choice(pick["solver"], reason + f"; {n_cases} cases: screened by {screen}, {pick['solver']} "
+                      "where the verdict can differ (multi-fidelity)", pick, "multifidelity", screen)
     return Choice(pick["solver"], reason, pick)
 
 
 def check(solver: str, needs: Needs, *, friction: bool = False, plan: bool = False) -> Choice:
     """A named ``solver`` against ``needs`` (``plan``: the scene needs three dimensions): its evidence row, or
     :class:`InputError` saying why it cannot answer."""
-    if plan or solver == PLAN_SOLVER:
-        if solver != PLAN_SOLVER:
+    entry = METHODS.get(solver)
+    if plan or (entry is not None and entry.plan):
+        if entry is None or not entry.plan:
             raise InputError(f"solver {solver!r} is planar and the scene needs three dimensions (a block turned in "
-                             f"plan or a second horizontal component): use {PLAN_SOLVER!r} or 'auto'")
+                             f"plan or a second horizontal component): use {plan_solver()!r} or 'auto'")
         return _plan_choice(needs)
     rows = {r["solver"]: r for r in _candidates(needs, friction)}
     if solver not in rows:
@@ -190,6 +191,6 @@ def check(solver: str, needs: Needs, *, friction: bool = False, plan: bool = Fal
                           f"{needs.tolerance:g}", r)
 
 
-__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "HISTORY_ANSWERS", "MULTIFIDELITY_MIN_CASES", "NEEDED_MODELS", "Needs", "PLAN_SOLVER", "check",
+__all__ = ["ANSWERS", "Choice", "EVIDENCE_FILE", "HISTORY_ANSWERS", "MULTIFIDELITY_MIN_CASES", "NEEDED_MODELS", "Needs", "check",
            "choose",
            "evidence"]

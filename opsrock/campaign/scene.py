@@ -261,7 +261,7 @@ class Scene:
                              f"horizontal floor motion only (registry: vertical = False); use one of "
                              f"{_having('vertical')}, or drop the vertical motion")
         for spec in self.blocks:
-            if caps["plan"] and spec.depth is None:
+            if "depth" in caps["block_needs"] and spec.depth is None:
                 raise SceneError(where, "solver.name", solver, f"solver {solver!r} models a box in three dimensions "
                                  f"and block {spec.name!r} has no depth: give it depth (m) in the blocks file")
             if spec.restitution_distribution is not None and not caps["restitution"]:
@@ -309,14 +309,11 @@ class Scene:
 
     @property
     def columns(self) -> tuple[str, ...]:
-        """Columns of the scene's ``cases.csv``: with the contact columns for a solver of the ``friction``
-        model (:data:`opsrock.campaign.cases.CONTACT_COLUMNS`)."""
-        model = METHODS.get(self.solver).model
-        if model == "friction":
-            return (*self.design.columns, *CONTACT_COLUMNS)
-        if model == "rigid3d":
-            return (*self.design.columns, *CONTACT_COLUMNS, *PLAN_COLUMNS)
-        return self.design.columns
+        """Columns of the scene's ``cases.csv``: the design's, then the result columns its solver declares
+        (registry ``result_columns``: :data:`opsrock.campaign.cases.CONTACT_COLUMNS`,
+        :data:`opsrock.campaign.cases.PLAN_COLUMNS`)."""
+        groups = {"contact": CONTACT_COLUMNS, "plan": PLAN_COLUMNS}
+        return (*self.design.columns, *(c for g in METHODS.get(self.solver).result_columns for c in groups[g]))
 
     @property
     def n_cases(self) -> int:

@@ -116,7 +116,7 @@ def _inventory(args: argparse.Namespace) -> int:
     """The route of ``--inventory``/``--motions``: the design is read and checked by the library."""
     from opsrock.inventory.sources import BuildingSource
     from opsrock.inventory.study import inventory_design, run_inventory_study
-    from opsrock.inventory.three_d import THREE_D_SOLVER
+    from opsrock.solvers.registry import METHODS, plan_solver
 
     _refuse(args, _FEMA_ONLY, "with --inventory or --motions (it is an option of FEMA P-58's study)")
     if args.motions is not None:
@@ -127,8 +127,9 @@ def _inventory(args: argparse.Namespace) -> int:
         "demand_levels_pfa": _numbers("--demand-levels-pfa", args.demand_levels_pfa),
         "slide_distance": args.slide_distance, "n_boot": args.n_boot, "seed": args.seed, "solver": args.solver,
         "azimuths": _numbers("--azimuths", args.azimuths)}.items() if v is not None}
-    if args.azimuths is not None and args.solver != THREE_D_SOLVER:
-        raise UsageError(f"--azimuths applies to --solver {THREE_D_SOLVER} (the items in three dimensions)")
+    if args.azimuths is not None and not (args.solver in METHODS and METHODS[args.solver].plan):
+        raise UsageError(f"--azimuths applies to a solver in plan, --solver {plan_solver()} (the items in three "
+                         "dimensions)")
     settings["accept_implausible"] = args.accept_implausible
     try:
         with named_options(INVENTORY_OPTIONS):

@@ -39,7 +39,7 @@ from opsrock.excitations.vertical import synthetic_vertical, with_vertical
 from opsrock.limits import ACCEPT_OPTION, check_plausible, check_plausible_sizes, scaled_input
 from opsrock.solvers import simulate as solve
 from opsrock.solvers.common import LONG_SOLVE_S, event_driven_estimate
-from opsrock.solvers.registry import METHODS, solver_names
+from opsrock.solvers.registry import METHODS, plan_solver, solver_names
 
 #: The mass-distribution options of ``opsrock simulate`` by the :class:`Block` argument they set.
 MASS_OPTIONS: dict[str, str] = {"cm_height": "--cm-height", "radius_of_gyration": "--radius-of-gyration"}
@@ -50,24 +50,20 @@ RECORD_ONLY = ("units", "dt", "building_period", "storeys", "damping", "floor", 
 #: The options of a box in three dimensions by the argument they set.
 PLAN_OPTIONS: dict[str, str] = {"depth": "--depth", "record2": "--record2", "azimuth": "--azimuth"}
 
-#: Solver of ``opsrock simulate`` when a plan option is given and ``--solver`` is not.
-PLAN_SOLVER: str = "rigid3d"
-
-
 def _check_plan_args(args: argparse.Namespace) -> None:
-    """The plan options against the solver: ``rigid3d`` by default when one is given; a solver in plan needs
-    ``--depth``; a planar one refuses ``--depth``, ``--record2`` and an ``--azimuth`` that turns the block."""
+    """The plan options against the solver: the solver in plan by default when one is given
+    (:func:`~opsrock.solvers.registry.plan_solver`); a solver that needs a block's depth needs ``--depth``; a planar one refuses ``--depth``, ``--record2`` and an ``--azimuth`` that turns the block."""
     if args.record2 is not None and args.record is None:
         raise UsageError("--record2 applies to --record only (its second horizontal component); a pulse has one "
                          "direction, turned in the block's plan by --azimuth")
     given = [o for name, o in PLAN_OPTIONS.items() if getattr(args, name) is not None]
     if args.solver is None and given:
-        args.solver = PLAN_SOLVER
+        args.solver = plan_solver()
     info = METHODS.get(args.solver)
     if info is None:
         return  # check_model_args names the unknown solver
     in_plan = ", ".join(solver_names(plan=True))
-    if info.plan and args.depth is None:
+    if "depth" in info.block_needs and args.depth is None:
         raise UsageError(f"--solver {args.solver} needs --depth: the full depth 2d (m) of the block's base, across "
                          "--width")
     law = args.restitution_law
@@ -191,13 +187,15 @@ def _record(args: argparse.Namespace, block: Block) -> tuple[Record, float]:
 def _block(args: argparse.Namespace) -> Block:
     """The block of the block options, with the mass distribution of ``--cm-height`` and
     ``--radius-of-gyration`` (None: a homogeneous block's) and the depth of ``--depth``; the block checks them.
-    A solver in plan reproduces Housner's impact only: its block's default restitution is ``e_R``."""
+    A solver that models Housner's impact only gives its block its declared default restitution (registry
+    :attr:`~opsrock.solvers.registry.SolverInfo.default_restitution_factor`: ``e_R``)."""
     block = make_block(args)
     given = {name: getattr(args, name) for name in MASS_OPTIONS if getattr(args, name) is not None}
     if args.depth is not None:
         given["depth"] = args.depth
-    if METHODS[args.solver].plan and args.restitution is None and args.restitution_law is None:
-        given["restitution_factor"] = 1.0
+    factor = METHODS[args.solver].default_restitution_factor
+    if factor is not None and args.restitution is None and args.restitution_law is None:
+        given["restitution_factor"] = factor
     if not given:
         return block
     with named_options({**MASS_OPTIONS, "depth": "--depth"}):

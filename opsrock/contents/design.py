@@ -71,8 +71,6 @@ class Variant:
         Key of :data:`VARIANTS`, part of the campaign's block names.
     label : str
         One line for tables and figures.
-    solver : str
-        The opsrock solver.
     restitution_factor : float
         ``e / e_R`` (dimensionless).
     friction : float or None
@@ -83,7 +81,6 @@ class Variant:
 
     name: str
     label: str
-    solver: str
     restitution_factor: float
     friction: float | None = None
     friction_kinetic: float | None = None
@@ -93,6 +90,14 @@ class Variant:
         """Folder of the campaign that computes it: ``rocking`` (no slip) or ``friction``."""
         return "rocking" if self.friction is None else "friction"
 
+    @property
+    def solver(self) -> str:
+        """The solver of its campaign: the planar one the registry declares for a base that slips or not
+        (:func:`opsrock.solvers.registry.planar_solver`)."""
+        from opsrock.solvers.registry import planar_solver
+
+        return planar_solver(self.friction is not None)
+
 
 def _friction_label(mu_s: float, mu_k: float, library: bool) -> str:
     mu = f"mu = {mu_s:g}" if mu_s == mu_k else f"mu_s = {mu_s:g}, mu_k = {mu_k:g}"
@@ -101,9 +106,9 @@ def _friction_label(mu_s: float, mu_k: float, library: bool) -> str:
 
 #: The variants a study can ask for.
 VARIANTS: dict[str, Variant] = {
-    "default": Variant("default", "no slip, e = 0.95 e_R", "housner_fast", 0.95),
-    "housner": Variant("housner", "no slip, e = e_R (Housner)", "housner_fast", 1.0),
-    "friction": Variant("friction", _friction_label(DEFAULT_FRICTION, DEFAULT_FRICTION_KINETIC, True), "friction",
+    "default": Variant("default", "no slip, e = 0.95 e_R", 0.95),
+    "housner": Variant("housner", "no slip, e = e_R (Housner)", 1.0),
+    "friction": Variant("friction", _friction_label(DEFAULT_FRICTION, DEFAULT_FRICTION_KINETIC, True),
                         0.95, DEFAULT_FRICTION, DEFAULT_FRICTION_KINETIC),
 }
 
@@ -307,9 +312,10 @@ def campaign_scenes(design: ContentsDesign) -> dict[str, Any]:
     intensity = Intensity("ida", "pfa_ratio", tuple(float(x) for x in design.levels))
     records = RecordSet(grounds=grounds, floors=floors, source=design.record_set, intensity=intensity)
     scenes: dict[str, Any] = {}
-    for campaign, solver in (("rocking", "housner_fast"), ("friction", "friction")):
+    for campaign in ("rocking", "friction"):
         variants = [design.variant(v) for v in design.variants if VARIANTS[v].campaign == campaign]
         if variants:
+            solver = variants[0].solver
             blocks = tuple(dataclasses.replace(s, name=block_name(s.name, v.name), restitution_factor=v.restitution_factor,
                                                friction=v.friction, friction_kinetic=v.friction_kinetic)
                            for v in variants for s in specs)
@@ -320,7 +326,7 @@ def campaign_scenes(design: ContentsDesign) -> dict[str, Any]:
         roofs = tuple(Floor(ShearBuilding(sweep_name(t), t, n, design.damping), n) for t, n in sweep)
         roof_set = RecordSet(grounds=grounds, floors=roofs, source=design.record_set, intensity=intensity)
         blocks = tuple(dataclasses.replace(s, name=block_name(s.name, "default")) for s in specs)
-        scenes["sweep"] = Scene(name="contents-sweep", path="", blocks=blocks, grid=None, solver="housner_fast",
+        scenes["sweep"] = Scene(name="contents-sweep", path="", blocks=blocks, grid=None, solver=VARIANTS["default"].solver,
                                 records=roof_set)
     return scenes
 

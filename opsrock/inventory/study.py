@@ -34,7 +34,9 @@ from opsrock.errors import InputError
 from opsrock.fragility.cases import check_some_finished
 from opsrock.inventory.items import Inventory
 from opsrock.inventory.motions import MotionSet
-from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, THREE_D_SOLVER, check_azimuths, run_three_d_study
+from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, check_azimuths, run_three_d_study
+from opsrock.solvers.registry import METHODS as SOLVER_INFO
+from opsrock.solvers.registry import planar_solver
 
 #: Intensity methods: IDA on the given motions, or the motions as given (a cloud).
 METHODS: tuple[str, ...] = ("ida", "cloud")
@@ -86,14 +88,16 @@ class InventoryDesign:
     slide_distance : float
         Sliding beyond it (m) is an outcome where friction is modelled.
     solver : str
-        Solver of the items without friction (no slip; default ``housner_fast``); ``rigid3d``: every item a box in
+        Solver of the items without friction (no slip; default the registry's,
+        :func:`~opsrock.solvers.registry.planar_solver`); a solver in plan (registry ``plan``): every item a box in
         three dimensions under both directions at once (:mod:`opsrock.inventory.three_d`).
     friction_solver : str
-        Solver of the items with friction (a solver of the ``friction`` model; default ``friction``).
+        Solver of the items with friction (a solver of the ``friction`` model; default the registry's,
+        :func:`~opsrock.solvers.registry.planar_solver`).
     accept_implausible : bool
         Run a block larger than :data:`opsrock.limits.PLAUSIBLE` or a motion beyond its PFA bound anyway.
     azimuths : tuple of float
-        With ``solver = "rigid3d"``: the items' azimuths in plan (deg, from direction 1 to an item's width),
+        With a solver in plan: the items' azimuths in plan (deg, from direction 1 to an item's width),
         pooled in each fit (:data:`opsrock.inventory.three_d.DEFAULT_AZIMUTHS`); unused by the planar route.
     """
 
@@ -106,8 +110,8 @@ class InventoryDesign:
     demand_levels_pfv: tuple[float, ...] = DEFAULT_DEMAND_LEVELS_PFV
     demand_levels_pfa: tuple[float, ...] = DEFAULT_DEMAND_LEVELS_PFA
     slide_distance: float = DEFAULT_SLIDE_DISTANCE
-    solver: str = "housner_fast"
-    friction_solver: str = "friction"
+    solver: str = field(default_factory=lambda: planar_solver(False))
+    friction_solver: str = field(default_factory=lambda: planar_solver(True))
     accept_implausible: bool = False
     azimuths: tuple[float, ...] = DEFAULT_AZIMUTHS
 
@@ -281,7 +285,7 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     """
     from opsrock.inventory.campaigns import cached_demands, group_scenes, groups_of, run_groups
 
-    if design.solver == THREE_D_SOLVER:
+    if SOLVER_INFO[design.solver].plan:
         return run_three_d_study(design, out_dir, workers=workers, progress=progress, force=force,
                                  store_dir=store_dir)
     t_start = time.perf_counter()

@@ -40,9 +40,7 @@ import pandas as pd
 
 from opsrock.errors import InputError
 from opsrock.inventory.motions import paired_motions
-
-#: The solver of the three-dimensional route.
-THREE_D_SOLVER: str = "rigid3d"
+from opsrock.solvers.registry import METHODS, plan_solver
 
 #: Default azimuths of the items in plan (deg, from direction 1 to an item's width).
 DEFAULT_AZIMUTHS: tuple[float, ...] = (0.0, 45.0, 90.0)
@@ -86,14 +84,17 @@ def check_azimuths(azimuths: tuple) -> tuple[float, ...]:
     return tuple(float(z) for z in values)
 
 
-def item_box_spec(item: Any, name: str, seed: int = 0) -> Any:
+def item_box_spec(item: Any, name: str, seed: int = 0, solver: str | None = None) -> Any:
     """The campaign entry of ``item`` as a box in three dimensions: its planar direction-1 entry
     (``Item.block_spec``: width, height, mass distribution, friction) with its ``depth`` (m) and Housner's impact
-    (``rigid3d`` models no other: an item that gives its own ``restitution`` is refused, naming it)."""
+    (the solver in plan, ``solver``, default :func:`~opsrock.solvers.registry.plan_solver`, models no other: an
+    item that gives its own ``restitution`` is refused, naming it)."""
+    solver = solver or plan_solver()
     if item.restitution is not None:
-        raise InputError(f"item {item.id!r} gives restitution = {item.restitution!r}; solver {THREE_D_SOLVER!r} "
+        raise InputError(f"item {item.id!r} gives restitution = {item.restitution!r}; solver {solver!r} "
                          "reproduces Housner's impact only (e = e_R): leave its restitution blank", argument="inventory")
-    spec = item.block_spec("1", name, restitution_factor=1.0, seed=seed)
+    factor = METHODS[solver].default_restitution_factor
+    spec = item.block_spec("1", name, seed=seed, **({} if factor is None else {"restitution_factor": factor}))
     return dataclasses.replace(spec, depth=item.depth, reason=f"{item.description} (inventory item {item.id}, "
                                                                 "in three dimensions)")
 
@@ -118,7 +119,7 @@ def three_d_scenes(design: Any) -> list:
     groups: dict[Any, list] = {}
     for item in design.inventory.items:
         own = tuple(f for f in floors if f in item.floors) if item.floors else floors
-        groups.setdefault(Group(own, own == floors, "12", item.support, THREE_D_SOLVER), []).append(item)
+        groups.setdefault(Group(own, own == floors, "12", item.support, design.solver), []).append(item)
     out = []
     for g, items in groups.items():
         chosen = [p for p in pairs if p.floor in g.floors]
@@ -129,8 +130,8 @@ def three_d_scenes(design: Any) -> list:
                             source=design.motions.source, intensity=design.intensity,
                             seconds=tuple(p.second.motion.with_name(names[p] + ".d2") for p in chosen),
                             second="manifest", azimuth=design.azimuths)
-        blocks = tuple(item_box_spec(it, f"{it.id}-3d", design.seed) for it in items)
-        scene = Scene(name=f"inventory-{g.name}", path="", blocks=blocks, grid=None, solver=THREE_D_SOLVER,
+        blocks = tuple(item_box_spec(it, f"{it.id}-3d", design.seed, design.solver) for it in items)
+        scene = Scene(name=f"inventory-{g.name}", path="", blocks=blocks, grid=None, solver=design.solver,
                       records=records)
         out.append(GroupScene(g, scene, {b.name: it.id for b, it in zip(blocks, items)},
                               {names[p]: (p.record, p.floor) for p in chosen}))
@@ -219,7 +220,7 @@ def run_three_d_study(design: Any, out_dir: str | Path, *, workers: int | None =
     """The route of the module docstring, written into ``out_dir`` (resumable); returns an
     :class:`opsrock.inventory.study.InventoryStudy` (``tables`` ``fits3d`` and ``demands``, no pelicun files).
     The parameters are :func:`opsrock.inventory.study.run_inventory_study`'s, which calls it for a ``design``
-    whose ``solver`` is :data:`THREE_D_SOLVER` (its ``azimuths`` in deg)."""
+    whose ``solver`` is in plan (registry ``plan``) (its ``azimuths`` in deg)."""
     from opsrock._files import staged_folder
     from opsrock.fragility.cases import check_some_finished
     from opsrock.inventory.campaigns import cached_demands
@@ -255,7 +256,7 @@ def _write_report(path: Path, design: Any, fits: pd.DataFrame, n_cases: int) -> 
     shown = fits[["item", "floor", "demand", "median", "beta", "n_cases", "n_exceeded", "n_corner", "n_azimuths",
                   "ok", "message"]]
     lines = [f"# Contents fragility in three dimensions: {design.inventory.source} on {design.motions.source}", "",
-             f"Solver {THREE_D_SOLVER}; azimuths {', '.join(f'{z:g}' for z in design.azimuths)} deg, pooled; "
+             f"Solver {design.solver}; azimuths {', '.join(f'{z:g}' for z in design.azimuths)} deg, pooled; "
              f"{n_cases} cases; method {design.method}.", "", "Demand conventions (m/s):", ""]
     lines += [f"- `{k}`: {v}" for k, v in PFV_CONVENTIONS.items()]
     lines += ["", "Non-directional: pelicun's (NHERI-SimCenter/pelicun, pelicun/model/damage_model.py and "
@@ -266,5 +267,5 @@ def _write_report(path: Path, design: Any, fits: pd.DataFrame, n_cases: int) -> 
 
 
 __all__ = ["CASE_COLUMNS_3D", "DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
-           "PFV_CONVENTIONS", "THREE_D_SOLVER", "check_azimuths", "fit3d_table", "item_box_spec", "pfv_demands",
+           "PFV_CONVENTIONS", "check_azimuths", "fit3d_table", "item_box_spec", "pfv_demands",
            "run_three_d_groups", "run_three_d_study", "three_d_scenes"]

@@ -14,11 +14,15 @@ errors; tests/solvers/test_contract.py checks every registered solver against it
 * ``friction``: the rigid block on a floor with Coulomb friction and vertical motion (rest, slide,
   rock, slide-rock), event-driven and compiled;
 * ``moreau_jean``: the same block by Moreau-Jean time stepping with contact and friction as
-  complementarity conditions: the reference of a different formulation for ``friction``.
+  complementarity conditions: the reference of a different formulation for ``friction``;
+* ``rigid3d``: a rigid box on its four base corners in three dimensions (two horizontal components and a
+  vertical one, isotropic Coulomb friction, Housner's impact), compiled; the only solver in plan.
 
 The registry (:mod:`~opsrock.solvers.registry`) declares what each solver models and needs
-(:class:`SolverInfo`); :func:`solver_names` and :func:`capabilities` read it for the command line and
-the campaign, :func:`check_model` refuses what a solver does not model.
+(:class:`SolverInfo`: planar or in plan, the restitution it models, the result columns it writes, what it
+needs of a scene's blocks); :func:`solver_names` and :func:`capabilities` read it for the command line, the
+campaign and the studies, which choose a solver by what it declares, never by its name;
+:func:`check_model` refuses what a solver does not model.
 """
 
 from __future__ import annotations

@@ -63,6 +63,7 @@ from scipy.optimize import brentq, minimize_scalar
 from opsrock.block import Block
 from opsrock.constants import G
 from opsrock.errors import InputError, InputTypeError, ModelNotSupported, UnknownSettingError
+from opsrock.excitations.plan import PlanMotion
 from opsrock.limits import bool_fields, initial_state, int_at_least, one_of, positive_finite, real_number
 from opsrock.result import ImpactLog, RockingResult, failed_result
 from opsrock.solvers.registry import check_model
@@ -362,7 +363,15 @@ def timed_out(result: RockingResult, settings: SolverSettings) -> RockingResult:
 
 def first_nonfinite_sample(excitation: Any) -> float | None:
     """Time (s) of the first non-finite sample of a sampled floor motion (its ``values`` and, where given,
-    ``vertical``, m/s², every ``dt`` s), or None: finite, not sampled (a pulse's closed form), or absent."""
+    ``vertical``, m/s², every ``dt`` s), or None: finite, not sampled (a pulse's closed form), or absent. A
+    :class:`~opsrock.excitations.plan.PlanMotion` is checked component by component: the first component's
+    first non-finite sample, else the second's."""
+    if isinstance(excitation, PlanMotion):
+        for part in (excitation.first, excitation.second):
+            bad = first_nonfinite_sample(part)
+            if bad is not None:
+                return bad
+        return None
     values, dt = getattr(excitation, "values", None), getattr(excitation, "dt", None)
     if values is None or dt is None:
         return None

@@ -20,6 +20,14 @@ from opsrock.limits import one_of
 #: The models a solver may solve (:attr:`SolverInfo.model`).
 MODELS: tuple[str, ...] = ("rigid", "sdof", "friction", "rigid3d")
 
+#: Groups of result columns a solver may write beyond every solver's (:attr:`SolverInfo.result_columns`):
+#: ``contact`` (the base's friction and what it did, :data:`opsrock.campaign.cases.CONTACT_COLUMNS`) and
+#: ``plan`` (a box in plan, :data:`opsrock.campaign.cases.PLAN_COLUMNS`).
+RESULT_COLUMN_GROUPS: tuple[str, ...] = ("contact", "plan")
+
+#: What a solver may need of each block of a scene (:attr:`SolverInfo.block_needs`): ``depth`` (m).
+BLOCK_NEEDS: tuple[str, ...] = ("depth",)
+
 #: What a solver takes as excitation (:attr:`SolverInfo.excitations`): any :class:`Excitation`, or the
 #: analytic pulses of ``PULSE_SHAPES`` and records only (the compiled kernels).
 EXCITATION_KINDS: tuple[str, ...] = ("any", "pulses_records")
@@ -64,13 +72,19 @@ class SolverInfo:
         passage through its band, and no finite damper keeps none).
     restitution : bool
         Takes any restitution of the block (``restitution``, ``restitution_factor``, so the campaign's
-        restitution laws and distributions); False: Housner's ``e_H`` only.
+        restitution laws and distributions); False: Housner's ``e_H`` only (the restitution it models: a block
+        built for it takes ``restitution_factor = 1``, :attr:`default_restitution_factor`).
     excitations : str
         What it takes as excitation, one of :data:`EXCITATION_KINDS`.
     plan : bool
         Models motion in plan: takes a :class:`~opsrock.excitations.plan.PlanMotion` with a second horizontal
         component or a block turned in plan (``azimuth``), and a block's ``depth``; False: planar motion along
         the block's width only (a :class:`PlanMotion` that is not planar is refused).
+    result_columns : tuple of str
+        The groups of :data:`RESULT_COLUMN_GROUPS` its cases write beyond every solver's columns (a campaign's
+        ``cases.csv`` has them).
+    block_needs : tuple of str
+        What it needs of each block of a scene, among :data:`BLOCK_NEEDS` (a block without it is refused).
     compiled : bool
         Runs a numba kernel (compiled once and cached on first use).
     needs_opensees : bool
@@ -91,12 +105,24 @@ class SolverInfo:
     restitution: bool = True
     excitations: str = "any"
     plan: bool = False
+    result_columns: tuple[str, ...] = ()
+    block_needs: tuple[str, ...] = ()
     compiled: bool = False
     needs_opensees: bool = False
 
     def __post_init__(self) -> None:
         one_of("model", self.model, MODELS)
         one_of("excitations", self.excitations, EXCITATION_KINDS)
+        for group in self.result_columns:
+            one_of("result_columns", group, RESULT_COLUMN_GROUPS)
+        for need in self.block_needs:
+            one_of("block_needs", need, BLOCK_NEEDS)
+
+    @property
+    def default_restitution_factor(self) -> float | None:
+        """The ``restitution_factor`` a block built for this solver takes when none is given (dimensionless):
+        1 (Housner's ``e_R``) for a solver that models no other restitution; None: the block's own default."""
+        return None if self.restitution else 1.0
 
     def load(self):
         """The solver package."""
@@ -126,12 +152,14 @@ METHODS: dict[str, SolverInfo] = {
     "housner_fast": _entry("housner_fast", "HousnerFastSettings", "rigid", excitations="pulses_records",
                            compiled=True, end_time_under_motion=False, mass_distribution=True),
     "friction": _entry("friction", "FrictionSettings", "friction", friction=True, vertical=True, mass_distribution=True,
-                       excitations="pulses_records", compiled=True, end_time_under_motion=False),
+                       excitations="pulses_records", compiled=True, end_time_under_motion=False,
+                       result_columns=("contact",)),
     "moreau_jean": _entry("moreau_jean", "MoreauJeanSettings", "friction", friction=True, vertical=True,
-                          restitution=False, mass_distribution=True, excitations="pulses_records", compiled=True, end_time_under_motion=False),
+                          restitution=False, mass_distribution=True, excitations="pulses_records", compiled=True,
+                          end_time_under_motion=False, result_columns=("contact",)),
     "rigid3d": _entry("rigid3d", "Rigid3DSettings", "rigid3d", friction=True, vertical=True, restitution=False,
                       mass_distribution=True, excitations="pulses_records", plan=True, compiled=True,
-                      end_time_under_motion=False),
+                      end_time_under_motion=False, result_columns=("contact", "plan"), block_needs=("depth",)),
 }
 
 #: Solver names accepted by :func:`opsrock.solvers.simulate` and the command line.
@@ -162,6 +190,17 @@ def solver_names(**declared: Any) -> tuple[str, ...]:
     if unknown:
         raise InputError(f"unknown solver capability {unknown[0]!r}; known: {', '.join(sorted(known))}")
     return tuple(n for n, e in METHODS.items() if all(getattr(e, k) == v for k, v in declared.items()))
+
+
+def plan_solver() -> str:
+    """The solver in plan (the first that declares ``plan``): the one a scene in three dimensions takes."""
+    return solver_names(plan=True)[0]
+
+
+def planar_solver(friction: bool) -> str:
+    """The first compiled planar solver that takes any restitution and models a slipping base (``friction``
+    True) or a base that never slips (False): the one a study solves planar items with by default."""
+    return solver_names(plan=False, compiled=True, restitution=True, friction=friction)[0]
 
 
 def check_model(name: str, block: Block, excitation: object) -> None:
@@ -230,5 +269,5 @@ def _alternative(capability: str) -> str:
     return repr(solver_names(**{capability: True})[0])
 
 
-__all__ = ["EXCITATION_KINDS", "METHODS", "MODELS", "SOLVERS", "SolverInfo", "capabilities", "check_model", "info",
-           "solver_names"]
+__all__ = ["BLOCK_NEEDS", "EXCITATION_KINDS", "METHODS", "MODELS", "RESULT_COLUMN_GROUPS", "SOLVERS", "SolverInfo",
+           "capabilities", "check_model", "info", "plan_solver", "planar_solver", "solver_names"]

@@ -11,10 +11,11 @@ from pathlib import Path
 import pytest
 
 from opsrock.campaign import run_campaign
-from opsrock.campaign.needs import PLAN_SOLVER, Needs, check, choose, evidence
+from opsrock.campaign.needs import Needs, check, choose, evidence
 from opsrock.campaign.scene import load_scene
 from opsrock.errors import InputError, SceneError
 from opsrock.solvers import SOLVERS
+from opsrock.solvers.registry import plan_solver
 from _support import ROOT
 
 
@@ -26,7 +27,7 @@ def test_the_shipped_evidence_is_what_the_validation_outputs_give():
     assert proc.returncode == 0, "opsrock/data/evidence/solvers.csv is stale: run tools/evidence.py"
     # every planar solver has its row; rigid3d, the only solver in plan, is chosen by the scene's plan need and has
     # no row yet (no benchmark of it in bench/results.json: opsrock.campaign.needs says so)
-    assert {r["solver"] for r in evidence()} == set(SOLVERS) - {PLAN_SOLVER}
+    assert {r["solver"] for r in evidence()} == set(SOLVERS) - {plan_solver()}
 
 
 def test_cheapest_solver_meeting_the_need():

@@ -354,18 +354,6 @@ class _Rigid3DRun(SolverRun):
 
     name = SOLVER_NAME
 
-    def run(self) -> RockingResult:
-        """The shared skeleton, with each record component's non-finite samples checked (the skeleton checks a
-        bare record's only)."""
-        plan = self.excitation
-        if plan is not None and isinstance(plan.first, Record):
-            for part in (plan.first, plan.second):
-                if part is not None and not (np.all(np.isfinite(part.values)) and
-                                             (part.vertical is None or np.all(np.isfinite(part.vertical)))):
-                    self.excitation = part  # the skeleton reports its first non-finite sample
-                    return super().run()
-        return super().run()
-
     def _run_impl(self) -> RockingResult:
         s, plan = self.settings, self.excitation
         dt_nom = s.dtau / box_properties(self.block).p

@@ -128,8 +128,7 @@ def _inventory(args: argparse.Namespace) -> int:
         "slide_distance": args.slide_distance, "n_boot": args.n_boot, "seed": args.seed, "solver": args.solver,
         "azimuths": _numbers("--azimuths", args.azimuths)}.items() if v is not None}
     if args.azimuths is not None and not (args.solver in METHODS and METHODS[args.solver].plan):
-        raise UsageError(f"--azimuths applies to a solver in plan, --solver {plan_solver()} (the items in three "
-                         "dimensions)")
+        raise UsageError(f"--azimuths applies to --solver {plan_solver()} (the items in three dimensions)")
     settings["accept_implausible"] = args.accept_implausible
     try:
         with named_options(INVENTORY_OPTIONS):

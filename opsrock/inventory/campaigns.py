@@ -42,6 +42,7 @@ import numpy as np
 import pandas as pd
 
 from opsrock.errors import InputError
+from opsrock.inventory.friction import FrictionDistribution
 from opsrock.inventory.items import Item, Support
 from opsrock.inventory.motions import MotionSet
 
@@ -124,61 +125,55 @@ def block_name(item_id: str, direction: str) -> str:
     return f"{item_id}-d{direction}"
 
 
-def item_block_spec(item: Item, direction: str, name: str, seed: int = 0) -> Any:
-    """The planar block of ``item`` under motion direction ``direction``, as a campaign's
-    :class:`~opsrock.campaign.scene.BlockSpec`: the item's own ``block_spec`` where the installed
-    :class:`~opsrock.inventory.items.Item` has one (friction drawn per case from ``seed`` and the case id), else
-    built here.
+def item_block_spec(item: Item, direction: str, name: str, seed: int = 0, solver: str | None = None) -> Any:
+    """The campaign entry (:class:`~opsrock.campaign.scene.BlockSpec`) of ``item``: the one place an item
+    becomes a block spec, planar or a box in plan as the solver declares (registry ``plan``, ``restitution``).
 
     Parameters
     ----------
     item : Item
         The inventory row (SI: m, kg).
     direction : str
-        ``"1"``: the block's base is the item's ``width``; ``"2"``: its ``depth`` (m).
+        ``"1"``: the block's base is the item's ``width``; ``"2"``: its ``depth`` (m). A box in plan takes
+        ``"1"`` (its width along direction 1 at azimuth 0, its ``depth`` across).
     name : str
-        The block's label (:func:`block_name`).
+        The entry's name (first part of its case ids; letters, digits, ``_ . -``).
     seed : int
-        Seed of friction drawn per case.
+        Seed of friction drawn per case (with each case id), within ``LIMITS["seed"]``.
+    solver : str or None
+        The solver the entry is for (None: a planar one that takes any restitution). One that models Housner's
+        impact only gives the entry its declared restitution (``e_R``) and refuses an item that gives its own
+        ``restitution``; one in plan gives it the item's ``depth``.
 
     Returns
     -------
     BlockSpec
-        Base (m), height (m), mass (kg; 1 when not given: rocking does not depend on it), the item's own
-        restitution ``e`` if given (else the project's ``0.95 e_R``), its friction (static, kinetic) or None.
-        Built here, a friction distribution is refused, and a centre of mass or radius of gyration is passed
-        on where the installed BlockSpec has the field and refused otherwise.
+        The planar block of :meth:`~opsrock.inventory.items.Item.planar_block` (base, height, mass, the item's
+        own restitution ``e`` if given, else the project's ``0.95 e_R``), its friction fixed or drawn per case
+        from ``seed`` and the case id (``friction_distribution``), its mass distribution where given.
     """
     from opsrock.campaign.scene import BlockSpec
+    from opsrock.solvers.registry import METHODS
 
-    if direction not in ("1", "2"):
-        raise InputError(f"direction must be '1' or '2', got {direction!r}", argument="direction")
-    if hasattr(item, "block_spec"):
-        return item.block_spec(direction, name, seed=seed)
-    fields = {f.name for f in dataclasses.fields(BlockSpec)}
-    extra = {k: getattr(item, k) for k in ("cm_height", "radius_of_gyration") if getattr(item, k) is not None}
-    missing = sorted(set(extra) - fields)
-    if missing:
-        raise InputError(f"item {item.id!r}: {', '.join(missing)} cannot be run by this build's campaigns "
-                         f"(BlockSpec has no such field)", argument="inventory")
-    mu, mu_k = _friction(item)
-    return BlockSpec(name=name, width=item.width if direction == "1" else item.depth, height=item.height,
-                     reason=item.description, mass=item.mass if item.mass is not None else 1.0,
-                     restitution=item.restitution, friction=mu, friction_kinetic=mu_k, **extra)
-
-
-def _friction(item: Item) -> tuple[float | None, float | None]:
-    """``(mu_s, mu_k)`` of a fixed friction (None, None without friction); a distribution is refused."""
+    entry = METHODS[solver] if solver is not None else None
+    factor = entry.default_restitution_factor if entry is not None else None
+    if factor is not None and item.restitution is not None:
+        raise InputError(f"item {item.id!r} gives restitution = {item.restitution!r}; solver {solver!r} reproduces "
+                         "Housner's impact only (e = e_R): leave its restitution blank", argument="inventory")
+    block = item.planar_block(direction, *(() if factor is None else (factor,)))
     law = item.friction
-    if law is None:
-        return None, None
-    if law.distribution != "fixed":
-        raise InputError(f"item {item.id!r}: friction drawn from a {law.distribution!r} distribution is not "
-                         "supported by this build's campaigns (give a fixed friction)", argument="inventory")
-    mu = float(law.parameters[0])
-    kinetic = item.friction_kinetic if item.friction_kinetic is not None else (
-        mu * law.kinetic_ratio if law.kinetic_ratio is not None else mu)
-    return mu, float(kinetic)
+    extra: dict[str, Any] = {k: getattr(item, k) for k in ("cm_height", "radius_of_gyration")
+                             if getattr(item, k) is not None}  # only when given: a homogeneous entry as ever
+    if law is not None and not law.fixed:
+        extra["friction_distribution"] = FrictionDistribution(law, seed)
+    reason = f"{item.description} (inventory item {item.id}, direction {direction})"
+    if entry is not None and entry.plan:
+        extra["depth"] = item.depth
+        reason = f"{item.description} (inventory item {item.id}, in three dimensions)"
+    return BlockSpec(name=name, width=block.width, height=block.height, reason=reason, mass=block.mass,
+                     restitution_factor=block.restitution_factor, restitution=block.restitution,
+                     friction=block.friction, friction_kinetic=block.friction_kinetic if law is not None else None,
+                     **extra)
 
 
 def groups_of(items: tuple[Item, ...], motions: MotionSet, solver: str,
@@ -232,7 +227,7 @@ def group_scenes(groups: dict[Group, list[Item]], motions: MotionSet, intensity:
         floor = Floor(None, 0) if g.support is None else Floor(
             ShearBuilding(SUPPORT_NAME, g.support.period, 1, g.support.damping), 1)
         records = RecordSet(grounds=grounds, floors=(floor,), source=motions.source, intensity=intensity)
-        blocks = tuple(item_block_spec(it, g.direction, block_name(it.id, g.direction), seed) for it in items)
+        blocks = tuple(item_block_spec(it, g.direction, block_name(it.id, g.direction), seed, g.solver) for it in items)
         for b in blocks:
             for rec in grounds:
                 try:

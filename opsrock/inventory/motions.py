@@ -3,7 +3,7 @@
 histories in any format :func:`opsrock.excitations.readers.read_record` reads. Each motion is checked
 for plausibility (:data:`opsrock.limits.PLAUSIBLE`) unless confirmed.
 
-The manifest is read like an inventory (:func:`opsrock.inventory.items.read_csv_rows`: a header row, ``#``
+The manifest is read like an inventory (:func:`opsrock.inventory.readers.read_csv_rows`: a header row, ``#``
 comments, blank lines, spaces trimmed, UTF-8 with or without a byte-order mark). Per row:
 
 ``record``
@@ -45,7 +45,8 @@ from opsrock.errors import MISSING, InputError, OpsrockError
 from opsrock.excitations.plan import PlanMotion
 from opsrock.excitations.readers import UNITS, read_record
 from opsrock.excitations.records import Record, check_plausible_record
-from opsrock.inventory.items import DIRECTIONS, Row, TableFileError, number_cell, read_csv_rows
+from opsrock.inventory.items import DIRECTIONS
+from opsrock.inventory.readers import Row, TableFileError, number_cell, read_csv_rows
 from opsrock.limits import check
 
 #: The manifest's columns.

@@ -34,6 +34,7 @@ from opsrock.errors import InputError
 from opsrock.fragility.cases import check_some_finished
 from opsrock.inventory.items import Inventory
 from opsrock.inventory.motions import MotionSet
+from opsrock.inventory.outputs import InventoryStudy, workers_of, write_csv
 from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, check_azimuths, run_three_d_study
 from opsrock.solvers.registry import METHODS as SOLVER_INFO
 from opsrock.solvers.registry import planar_solver
@@ -214,39 +215,6 @@ def inventory_design(inventory: str | Path | None, motions: str | Path | None, s
     return quick(design) if quick_run else design
 
 
-@dataclass(frozen=True)
-class InventoryStudy:
-    """What :func:`run_inventory_study` computed and wrote.
-
-    Parameters
-    ----------
-    design : InventoryDesign
-        The study as run.
-    out_dir : str
-        The output folder.
-    tables : dict of str to str
-        Key of :data:`TABLES` -> CSV path.
-    pelicun : dict of str to str
-        pelicun file key -> path (:func:`opsrock.inventory.pelicun.write_pelicun_folder`).
-    report : str
-        ``report.md``.
-    n_cases, n_computed, n_failed : int
-        Cases of the campaigns, those computed by this call (0 on a resume with nothing missing), those failed.
-    timings : dict of str to float
-        Wall times (s): ``demands_s``, ``campaigns_s``, ``fits_s``, ``outputs_s``, ``total_s``.
-    """
-
-    design: InventoryDesign
-    out_dir: str
-    tables: dict[str, str]
-    pelicun: dict[str, str]
-    report: str
-    n_cases: int
-    n_computed: int
-    n_failed: int
-    timings: dict[str, float]
-
-
 def _say(progress: bool, text: str) -> None:
     if progress:
         print(f"contents: {text}", file=sys.stderr, flush=True)
@@ -305,15 +273,6 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
                           {"timings": timings, "t_start": t_start, "n_computed": t_camp["n_computed"]})
 
 
-def workers_of(workers: int | None) -> int:
-    """``workers``, or every core this process may use."""
-    import os
-
-    if workers is not None:
-        return workers
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-
-
 def _fit_and_write(design: InventoryDesign, cases: pd.DataFrame, demands: pd.DataFrame, out: Path,
                    workers: int | None, progress: bool, run: dict) -> InventoryStudy:
     from opsrock._files import staged_folder
@@ -341,14 +300,6 @@ def _fit_and_write(design: InventoryDesign, cases: pd.DataFrame, demands: pd.Dat
     return InventoryStudy(design=design, out_dir=str(out), tables={k: str(final[p]) for k, p in paths.items()},
                           pelicun={k: str(final[p]) for k, p in pel.items()}, report=str(final[report]),
                           n_cases=len(cases), n_computed=int(run["n_computed"]), n_failed=n_failed, timings=timings)
-
-
-def write_csv(df: pd.DataFrame, path: Path) -> Path:
-    """``df`` as CSV at full precision."""
-    from opsrock._files import atomic_write
-
-    atomic_write(path, lambda fh: df.to_csv(fh, index=False), durable=False)
-    return path
 
 
 def _write_report(stage: Path, study_tables: dict[str, Any]) -> Path:
@@ -379,5 +330,4 @@ def _write_report(stage: Path, study_tables: dict[str, Any]) -> Path:
 
 
 __all__ = ["DEFAULT_DEMAND_LEVELS_PFA", "DEFAULT_DEMAND_LEVELS_PFV", "DEFAULT_SLIDE_DISTANCE", "METHODS", "OUTPUTS",
-           "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study",
-           "workers_of", "write_csv"]
+           "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study"]

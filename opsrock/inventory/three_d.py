@@ -28,7 +28,6 @@ expected numbers are not written for this route.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import sys
 import time
@@ -40,7 +39,6 @@ import pandas as pd
 
 from opsrock.errors import InputError
 from opsrock.inventory.motions import paired_motions
-from opsrock.solvers.registry import METHODS, plan_solver
 
 #: Default azimuths of the items in plan (deg, from direction 1 to an item's width).
 DEFAULT_AZIMUTHS: tuple[float, ...] = (0.0, 45.0, 90.0)
@@ -84,21 +82,6 @@ def check_azimuths(azimuths: tuple) -> tuple[float, ...]:
     return tuple(float(z) for z in values)
 
 
-def item_box_spec(item: Any, name: str, seed: int = 0, solver: str | None = None) -> Any:
-    """The campaign entry of ``item`` as a box in three dimensions: its planar direction-1 entry
-    (``Item.block_spec``: width, height, mass distribution, friction) with its ``depth`` (m) and Housner's impact
-    (the solver in plan, ``solver``, default :func:`~opsrock.solvers.registry.plan_solver`, models no other: an
-    item that gives its own ``restitution`` is refused, naming it)."""
-    solver = solver or plan_solver()
-    if item.restitution is not None:
-        raise InputError(f"item {item.id!r} gives restitution = {item.restitution!r}; solver {solver!r} "
-                         "reproduces Housner's impact only (e = e_R): leave its restitution blank", argument="inventory")
-    factor = METHODS[solver].default_restitution_factor
-    spec = item.block_spec("1", name, seed=seed, **({} if factor is None else {"restitution_factor": factor}))
-    return dataclasses.replace(spec, depth=item.depth, reason=f"{item.description} (inventory item {item.id}, "
-                                                                "in three dimensions)")
-
-
 def three_d_scenes(design: Any) -> list:
     """One record scene in plan per group of items on the same floors and support (the module docstring).
 
@@ -112,7 +95,7 @@ def three_d_scenes(design: Any) -> list:
     from opsrock.campaign.scene import Scene
     from opsrock.excitations.building import ShearBuilding
     from opsrock.excitations.records import safe_name
-    from opsrock.inventory.campaigns import SUPPORT_NAME, Group, GroupScene
+    from opsrock.inventory.campaigns import SUPPORT_NAME, Group, GroupScene, item_block_spec
 
     pairs = paired_motions(design.motions)
     floors = design.motions.floors
@@ -130,7 +113,7 @@ def three_d_scenes(design: Any) -> list:
                             source=design.motions.source, intensity=design.intensity,
                             seconds=tuple(p.second.motion.with_name(names[p] + ".d2") for p in chosen),
                             second="manifest", azimuth=design.azimuths)
-        blocks = tuple(item_box_spec(it, f"{it.id}-3d", design.seed, design.solver) for it in items)
+        blocks = tuple(item_block_spec(it, "1", f"{it.id}-3d", design.seed, design.solver) for it in items)
         scene = Scene(name=f"inventory-{g.name}", path="", blocks=blocks, grid=None, solver=design.solver,
                       records=records)
         out.append(GroupScene(g, scene, {b.name: it.id for b, it in zip(blocks, items)},
@@ -218,13 +201,13 @@ def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers
 def run_three_d_study(design: Any, out_dir: str | Path, *, workers: int | None = None, progress: bool = True,
                       force: bool = False, store_dir: str | Path | None = None) -> Any:
     """The route of the module docstring, written into ``out_dir`` (resumable); returns an
-    :class:`opsrock.inventory.study.InventoryStudy` (``tables`` ``fits3d`` and ``demands``, no pelicun files).
+    :class:`opsrock.inventory.outputs.InventoryStudy` (``tables`` ``fits3d`` and ``demands``, no pelicun files).
     The parameters are :func:`opsrock.inventory.study.run_inventory_study`'s, which calls it for a ``design``
     whose ``solver`` is in plan (registry ``plan``) (its ``azimuths`` in deg)."""
     from opsrock._files import staged_folder
     from opsrock.fragility.cases import check_some_finished
     from opsrock.inventory.campaigns import cached_demands
-    from opsrock.inventory.study import InventoryStudy, workers_of, write_csv
+    from opsrock.inventory.outputs import InventoryStudy, workers_of, write_csv
 
     t_start = time.perf_counter()
     scenes = three_d_scenes(design)  # every input checked before anything is written
@@ -267,5 +250,5 @@ def _write_report(path: Path, design: Any, fits: pd.DataFrame, n_cases: int) -> 
 
 
 __all__ = ["CASE_COLUMNS_3D", "DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
-           "PFV_CONVENTIONS", "check_azimuths", "fit3d_table", "item_box_spec", "pfv_demands",
+           "PFV_CONVENTIONS", "check_azimuths", "fit3d_table", "pfv_demands",
            "run_three_d_groups", "run_three_d_study", "three_d_scenes"]

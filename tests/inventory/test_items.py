@@ -20,8 +20,10 @@ from opsrock.campaign.scene import BlockSpec, Scene, load_blocks
 from opsrock.data import block_library
 from opsrock.errors import ImplausibleInputError, InputError
 from opsrock.inventory.friction import MU_MAX, FrictionDistribution, FrictionLaw, parse_friction, unit_draw
-from opsrock.inventory.items import (COLUMNS, Inventory, Item, Support, TableFileError, item_cells, read_inventory,
-                                     shipped_inventory, write_inventory)
+from opsrock.inventory.items import (COLUMNS, Inventory, Item, Support, item_cells, read_inventory, shipped_inventory,
+                                     write_inventory)
+from opsrock.inventory.campaigns import item_block_spec
+from opsrock.inventory.readers import TableFileError
 
 #: Does Block accept a block with e_R <= 0 (width/height above sqrt 2)? Helper "physics" of issue 32 makes it
 #: valid (it lands flat); on a branch without that change the example's low cabinet is refused by Block itself.
@@ -213,7 +215,7 @@ def test_the_lognormal_quantile_is_scipy_s(u):
 
 def test_a_kinetic_coefficient_with_a_distribution_scales_with_each_draw(tmp_path):
     item = Item("cab", "cabinet", 0.4, 0.5, 0.75, friction=parse_friction("uniform(0.3, 0.5)"), friction_kinetic=0.32)
-    spec = item.block_spec("1", "cab.d1", seed=5)
+    spec = item_block_spec(item, "1", "cab.d1", seed=5)
     block = spec.block_for("cab.d1/r/f/l1")
     mu = item.friction.draw("cab.d1/r/f/l1", 5)
     assert block.friction == mu and block.friction_kinetic == pytest.approx(mu * 0.32 / 0.4, rel=1e-12)
@@ -234,17 +236,17 @@ def test_friction_texts_parse(text, law):
 def test_block_spec_puts_width_along_direction_1_and_depth_along_2():
     item = Item("rack", "rack", 0.6, 1.07, 2.0, mass=450, friction=FrictionLaw("fixed", (0.5,)), friction_kinetic=0.45,
                 restitution=0.7)
-    one, two = item.block_spec("1", "rack.d1"), item.block_spec("2", "rack.d2")
+    one, two = item_block_spec(item, "1", "rack.d1"), item_block_spec(item, "2", "rack.d2")
     assert (one.width, two.width, one.height, two.height) == (0.6, 1.07, 2.0, 2.0)
     assert (one.friction, one.friction_kinetic, one.restitution, one.mass) == (0.5, 0.45, 0.7, 450.0)
     assert one.friction_distribution is None and one.block_for("x") == one.block
     with pytest.raises(InputError, match="direction = '3'"):
-        item.block_spec("3", "rack.d3")
+        item_block_spec(item, "3", "rack.d3")
 
 
 def test_block_spec_draws_a_friction_distribution_per_case():
     item = Item("cab", "cabinet", 0.4, 0.5, 0.75, friction=parse_friction("normal(0.4, 0.05)"))
-    spec = item.block_spec("2", "cab.d2", seed=11)
+    spec = item_block_spec(item, "2", "cab.d2", seed=11)
     assert spec.friction_distribution == FrictionDistribution(item.friction, 11)
     assert spec.friction == pytest.approx(0.4, abs=1e-12)  # the median of a normal barely truncated
     draws = {spec.block_for(f"cab.d2/r{k}/f1/l00").friction for k in range(5)}
@@ -253,7 +255,7 @@ def test_block_spec_draws_a_friction_distribution_per_case():
 
 def test_a_scene_s_digest_sees_the_friction_distribution():
     grid = Grid(freq_ratio=(2.0,), pfa_ratio=(1.5,))
-    specs = [Item("cab", "c", 0.4, 0.5, 0.75, friction=parse_friction(text)).block_spec("1", "cab")
+    specs = [item_block_spec(Item("cab", "c", 0.4, 0.5, 0.75, friction=parse_friction(text)), "1", "cab")
              for text in ("normal(0.4, 0.05)", "normal(0.4, 0.1)")]
     digests = {Scene("s", "", (spec,), grid, solver="friction").digest() for spec in specs}
     assert len(digests) == 2  # the same median, another spread: another campaign
@@ -262,7 +264,7 @@ def test_a_scene_s_digest_sees_the_friction_distribution():
 @pytest.mark.skipif(not MASS_SPECS, reason="BlockSpec has no cm_height on this branch (issue 32 physics)")
 def test_block_spec_carries_the_mass_distribution():
     item = Item("book", "bookcase", 0.32, 0.91, 1.8, cm_height=0.78, radius_of_gyration=0.5)
-    spec = item.block_spec("1", "book.d1")
+    spec = item_block_spec(item, "1", "book.d1")
     assert spec.block == dataclasses.replace(item.planar_block("1"), name="book.d1")
     assert spec.block.h_cm == 0.78 and spec.block.r_gyration == 0.5
 
@@ -283,7 +285,7 @@ def test_fema_p58_nine_is_the_blocks_library():
     for item, spec in zip(inv.items, library):
         assert (item.id, item.fema_id, item.width, item.height) == (spec.name, spec.name, spec.width, spec.height)
         assert item.friction is None and item.floors == () and item.quantity == 1.0
-        assert item.block_spec("1", spec.name).block == spec.block  # the same rocking block in direction 1
+        assert item_block_spec(item, "1", spec.name).block == spec.block  # the same rocking block in direction 1
 
 
 @needs_wide

@@ -16,7 +16,7 @@ from opsrock.constants import G
 from opsrock.data import example_motions_manifest
 from opsrock.errors import ImplausibleInputError, InputError
 from opsrock.inventory.motions import FloorMotion, MotionSet, header_dt, motion_name, read_motions
-from opsrock.inventory.items import TableFileError
+from opsrock.inventory.readers import TableFileError
 
 #: One motion (m/s²), 0.01 s apart: 2 s of a 2-Hz sine of 3 m/s², the values of every file below.
 DT = 0.01

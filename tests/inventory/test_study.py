@@ -138,9 +138,8 @@ def test_a_block_spec_takes_width_or_depth_and_fixed_friction():
     spec = item_block_spec(rack, "1", "rack-d1")
     assert (spec.friction, spec.friction_kinetic) == (0.3, 0.25)
     drawn = Item("crate", "crate", 0.6, 0.6, 0.5, friction=FrictionLaw("uniform", (0.3, 0.5)))
-    if not hasattr(drawn, "block_spec"):  # the inventory's own block_spec draws it per case
-        with pytest.raises(InputError, match="distribution"):
-            item_block_spec(drawn, "1", "crate-d1")
+    spec = item_block_spec(drawn, "1", "crate-d1", seed=3)  # the friction drawn per case
+    assert spec.friction_distribution is not None and spec.friction_distribution.law == drawn.friction
 
 
 def test_groups_keep_items_on_their_floors_and_a_support_is_a_one_storey_building():

@@ -132,6 +132,13 @@ SETTLE_GAP = 10.0
 CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
 CORNER_SY = np.array([1.0, 1.0, -1.0, -1.0])
 
+#: Non-literal constants for counters and flags passed to compiled functions: numba types a counter that starts
+#: at ``0`` (or an argument written ``True``) as a literal while it infers a caller's types, and compiles the
+#: callee, with everything it calls, once more for that literal (a fifth of the cold compile, measured).
+ZERO, ONE, TWO, FOUR, SIX = np.int64(0), np.int64(1), np.int64(2), np.int64(4), np.int64(6)
+REST_MODE = np.int64(MODE_REST)
+NO, YES = np.bool_(False), np.bool_(True)
+
 
 @numba.njit(cache=True)
 def _floor(k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av):
@@ -450,7 +457,7 @@ def _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol,
 @numba.njit(cache=True)
 def _solve6(A, y):
     """Solve ``A y_new = y`` in place (6 x 6, :func:`_solve_n`)."""
-    return _solve_n(A, y, 6)
+    return _solve_n(A, y, SIX)
 
 
 @numba.njit(cache=True)
@@ -848,7 +855,7 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
     idx = np.empty(4, dtype=np.int64)
     xs = np.empty(7)
     zs = np.empty(7)
-    n = 0
+    n = ZERO
     for i in range(4):
         if act[i]:
             idx[n] = i
@@ -1262,7 +1269,7 @@ def _stick_subset(act, guess, landing, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s, s
     corners' loads in their cones solves the step's contact problem. One corner: ``P = -W^-1 u_free``; two:
     :func:`_stick_all`."""
     sub = ws[14]
-    n_sub = 0
+    n_sub = ZERO
     for i in range(4):
         sub[i] = act[i] and (guess[i] != landing)
         n_sub += sub[i]
@@ -1276,7 +1283,7 @@ def _stick_mask(act, sub, n_sub, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, to
     """The corners of ``sub`` (one or two of the active ones) stuck and loaded, the other active corners
     separating (:func:`_stick_subset`)."""
     if n_sub == 2:
-        if not _stick_all(sub, 2, r, Iw, vf, V, Om, P, mu_s, stick_only, ws[7], y6):
+        if not _stick_all(sub, TWO, r, Iw, vf, V, Om, P, mu_s, stick_only, ws[7], y6):
             return False
     else:
         i = 0
@@ -1322,7 +1329,7 @@ def _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6)
     for first in (i1, i2):
         for i in range(4):
             sub[i] = i == first
-        if _stick_mask(act, sub, 1, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+        if _stick_mask(act, sub, ONE, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
             return True
     return False
 
@@ -1356,7 +1363,7 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
         Om[a] = s[10 + a] + dt * (Iinv[a, 0] * g0 + Iinv[a, 1] * g1 + Iinv[a, 2] * g2)
     vf = vec[2]
     vf[0], vf[1], vf[2], vf[3], vf[4], vf[5] = V[0], V[1], V[2], Om[0], Om[1], Om[2]
-    n_act = 0
+    n_act = ZERO
     for i in range(4):
         ri = r[i]
         un = s[9] + s[10] * ri[1] - s[11] * ri[0]
@@ -1370,9 +1377,9 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
         n_down += act[i] and guess[i]
     try_down = 0 < n_down <= 2 and n_down < n_act
     try_landing = 0 < n_act - n_down <= 2 and n_down > 0
-    if n_act >= 2 and ((try_down and _stick_subset(act, guess, False, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0],
+    if n_act >= 2 and ((try_down and _stick_subset(act, guess, NO, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0],
                                                     stick_only, nsgs[0] * scale, ws, vec[3]))
-                       or (try_landing and _stick_subset(act, guess, True, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0],
+                       or (try_landing and _stick_subset(act, guess, YES, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0],
                                                          stick_only, nsgs[0] * scale, ws, vec[3]))):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
@@ -1540,7 +1547,7 @@ def _rest_span(k, form, ax, ay, av, sub, n_exc, tail_av, geom, fric, tail_left, 
     return 1
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, lift_gap, vel_tol):
     """Is the end state ``new`` of a smooth step still in its phase? Every other corner above ``lift_gap``, and
     a Moreau-Jean probe step from it (``a``: the floor's accelerations of that step) solved with exactly the
@@ -1572,7 +1579,7 @@ def _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws, prob
     return math.hypot(u0, u1) <= vel_tol
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, wk, probe, P, new,
             lift_gap, vel_tol, out):
     """A smooth step (:mod:`opsrock.solvers.rigid3d.pivot`) about the corners down: from ``k`` to the next
@@ -1581,7 +1588,7 @@ def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing,
     the next sample, or not one corner or two down); the Moreau-Jean steps then go on."""
     form, ax, ay, av, sub, n_exc, tail_av = forcing
     piv = ws[12]
-    n_piv = 0
+    n_piv = ZERO
     for i in range(4):
         if touch[i]:
             if n_piv == 2:
@@ -1716,7 +1723,7 @@ def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
     r = sw[3]
     g = geom[3]
     new[:] = s
-    PV.floor_at(k0, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+    PV.floor_at(float(k0), k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
     holds, _, t_stop = _slip_rhs(new, F, idx, st, geom, ib, fric, sw, dy)
     span = n_steps * dt
     if not holds or t_stop <= 0.0 or span * SLIP_TURN > n_steps * t_stop:  # (the last: a sub-step under dt)
@@ -1727,7 +1734,7 @@ def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
     if hs < SLIP_MIN_SUB:
         return -1.0, 0.0
     work = 0.0
-    tilt_max = _tilt(new, False)[0]
+    tilt_max = _tilt(new, NO)[0]
     for m in range(n_sub):
         kf = k0 + m * hs
         for stage in range(4):
@@ -1747,7 +1754,7 @@ def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
         nq = math.sqrt(new[3] * new[3] + new[4] * new[4] + new[5] * new[5] + new[6] * new[6])
         for a in range(3, 7):
             new[a] /= nq
-        tilt = _tilt(new, False)[0]
+        tilt = _tilt(new, NO)[0]
         if tilt >= OVERTURNING_ANGLE:
             return -1.0, 0.0
         tilt_max = max(tilt_max, tilt)
@@ -1783,7 +1790,7 @@ def _slip_pivot(act, touch, slip, P):
     return sl and (n == 1 or n == 2)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, sw, lift_gap, vel_tol):
     """Is the end state ``new`` of a smooth step on slipping corners still in its phase? Every corner not in
     contact above ``lift_gap``, and a Moreau-Jean probe step from it (``a``: its floor accelerations) solved with
@@ -1821,7 +1828,7 @@ def _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, s
     return True
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, sw, probe, P, new,
                  lift_gap, vel_tol, out):
     """A smooth step on one or two corners of which at least one slips (:func:`_slip_integrate`): from ``k`` to
@@ -1830,7 +1837,7 @@ def _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsg
     ``out``."""
     form, ax, ay, av, sub, n_exc, tail_av = forcing
     idx, st = sw[13], sw[14]
-    n_c = 0
+    n_c = ZERO
     for i in range(4):
         if touch[i]:
             if n_c == 2:
@@ -1864,7 +1871,7 @@ def _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsg
         n = max(PV.MIN_STEPS, n // 2)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, probe, P, new, out, touch,
                   slip, vel_tol, lift_gap):
     """A block sliding flat on its four corners: one Moreau-Jean step of up to ``n_max`` steps (to the next
@@ -2019,7 +2026,7 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
         touch[i] = state[2] + r[i, 2] <= lift_gap
     tilt, theta, _, _ = _tilt(state, weak_y)
     mode, n_down = _mode(touch, slip)
-    j = _record(0, cap, 0.0, state, theta, state[10 + (0 if weak_y else 1)] * (-1.0 if weak_y else 1.0),
+    j = _record(ZERO, cap, 0.0, state, theta, state[10 + (0 if weak_y else 1)] * (-1.0 if weak_y else 1.0),
                 n_down, h, hist)
     theta_max = tilt
     slide_max = 0.0
@@ -2035,7 +2042,7 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     slipc = 0
     sliding = 0
     n_slide = max(2, int(PV.SLIDE_DTAU / (geom[4] * dt)))
-    k = 0
+    k = ZERO
     while True:
         if k >= n_exc and (max_tail < 0 or resting >= rest_steps):
             break
@@ -2054,10 +2061,10 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
             n = _rest_span(k, form, ax, ay, av, sub, n_exc, tail_av, geom, fric, rest_steps - resting,
                            max_steps)
             out[OUT_REST_STEPS] += n
-            _tally(MODE_REST, 4, n * dt, out)
+            _tally(REST_MODE, FOUR, n * dt, out)
             for kk in range(k + 1, k + n + 1):
                 if kk % hist_every == 0:
-                    j = _record(j, cap, kk * dt, state, theta, 0.0, 4, h, hist)
+                    j = _record(j, cap, kk * dt, state, theta, 0.0, FOUR, h, hist)
             k += n
             resting = resting + min(n, k - n_exc + 1) if k >= n_exc else 0
             continue
@@ -2093,7 +2100,9 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
             n = 1
             converged = _count_sweeps(_step(state, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P,
                                             new, out, touch), nsgs, out)
-            impact = _book(state, (a_x, a_y, a_v), ws[10], ws[11], ws[3], ws[2], ws[6][2], act, P, new, out, touch,
+            a_step = ws[13]  # (an array, as _coarse_slide passes it: one specialisation of _book)
+            a_step[0], a_step[1], a_step[2] = a_x, a_y, a_v
+            impact = _book(state, a_step, ws[10], ws[11], ws[3], ws[2], ws[6][2], act, P, new, out, touch,
                            slip, vel_tol, lift_gap, geom)
             if not converged:
                 unconverged += 1

@@ -246,7 +246,7 @@ def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
     hs = n_steps / n_sub  # sub-step in Moreau-Jean steps
     hdt = hs * dt
     tilt_max = _tilt_of(y)
-    floor_at(k0, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+    floor_at(float(k0), k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
     _rhs(y, cb, ib, F, edge, e, dy, Q, IO, r)
     for m in range(n_sub):
         kf = k0 + m * hs

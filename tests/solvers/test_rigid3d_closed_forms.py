@@ -18,9 +18,12 @@ import numpy as np
 import pytest
 
 from opsrock.solvers.rigid3d import kernel as kn
+from opsrock.solvers.rigid3d.model import Body, ContactSolver
 
 B, D, H = 0.2, 0.3, 0.8
-IB = np.array([(0.6**2 + 1.6**2) / 12, (0.4**2 + 1.6**2) / 12, (0.4**2 + 0.6**2) / 12])
+IB = ((0.6**2 + 1.6**2) / 12, (0.4**2 + 1.6**2) / 12, (0.4**2 + 0.6**2) / 12)
+#: The box (p and R are not read by the functions tested).
+BODY = Body(b=B, d=D, h=H, g=9.81, p=3.0, R=1.0, inertia=IB, weak_y=False)
 EDGE = (0, 3)  # the corners (+b, +d) and (+b, -d): the edge x = +b
 
 
@@ -39,7 +42,7 @@ def _problem(rng):
     s = np.zeros(13)
     s[3:7] = _quat(rng.uniform(0.02, 0.4), rng.uniform(-math.pi, math.pi))
     Q, Iinv, Iw, r = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3))
-    kn._geometry(s, np.array([B, D, H, 9.81, 3.0, 0.0, 0.0, 1.0]), IB, Q, Iinv, Iw, r)
+    kn._geometry(s, BODY, Q, Iinv, Iw, r)
     assert abs(r[0, 2] - r[3, 2]) < 1e-12  # both corners of the edge at one height
     while True:
         vf = rng.normal(0.0, 0.3, 6)
@@ -86,10 +89,10 @@ def _nsgs(r, Iinv, vf, mu):
         kn._delassus(r[i], Iinv, Wd[i])
         kn._inv3(Wd[i], Wi[i])
     V, Om, P = vf[:3].copy(), vf[3:].copy(), np.zeros((4, 3))
-    nsgs = np.array([1e-13, 20000.0, 1.0, 1e-13, 0.0])
+    nsgs = ContactSolver(tol=1e-13, max_sweeps=20000, fail_steps=1, loose_tol=1e-13, extra_sweeps=0)
     sweeps = kn._solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu, mu, False, 1e-13, nsgs, np.zeros(3),
                                 np.zeros(3), np.zeros(kn.OUT_SIZE), False)
-    return V, Om, P, sweeps <= nsgs[1]
+    return V, Om, P, sweeps <= nsgs.max_sweeps
 
 
 def test_edge_slip_obeys_coulomb_and_agrees_with_gauss_seidel():
@@ -167,7 +170,7 @@ def test_flat_slide_obeys_coulomb_and_newton_finds_it_again():
         s = np.zeros(13)
         s[3:7] = _quat(0.0, rng.uniform(-math.pi, math.pi))
         Q, Iinv, Iw, r = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3))
-        kn._geometry(s, np.array([B, D, H, 9.81, 3.0, 0.0, 0.0, 1.0]), IB, Q, Iinv, Iw, r)
+        kn._geometry(s, BODY, Q, Iinv, Iw, r)
         vf = np.array([*rng.normal(0.0, 0.01, 2), -9.81e-3, 0.0, 0.0, rng.normal(0.0, 0.05)])
         V, Om, P, sdir = np.zeros(3), np.zeros(3), np.zeros((4, 3)), np.zeros((4, 2))
         work = (np.zeros((6, 6)), np.zeros(6), np.zeros((6, 7)))
@@ -234,7 +237,7 @@ def test_settle_sets_a_block_at_rest_on_three_corners_down_on_four():
     down) is set down level on all four corners, its base centre and twist kept to round-off; one whose corner
     hangs by more than ``gap_max`` (here 1e-6 m) is left as it is."""
     b, d, h = B, D, H
-    geom = np.array([b, d, h, 9.81, 3.0, 0.0, 0.0, 1.0])
+    body = Body(b=b, d=d, h=h, g=9.81, p=3.0, R=1.0, inertia=IB, weak_y=False)
     for gap, settles in ((1e-9, True), (1e-5, False)):
         tilt = gap / math.hypot(2 * b, 2 * d)  # about the diagonal through corners 1 and 3
         axis = np.array([-2 * d, 2 * b, 0.0]) / math.hypot(2 * b, 2 * d)  # tips corner 2 up
@@ -247,10 +250,10 @@ def test_settle_sets_a_block_at_rest_on_three_corners_down_on_four():
         s[3:7] = [w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
                   w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2]
         Q, r = np.zeros((3, 3)), np.zeros((4, 3))
-        kn._arms(s, geom, Q, r)
+        kn._arms(s, body, Q, r)
         s[2] = -min(r[:, 2])
         s[0], s[1] = 0.1, -0.2
-        kn._arms(s, geom, Q, r)
+        kn._arms(s, body, Q, r)
         gaps = s[2] + r[:, 2]
         up = int(np.argmax(gaps))
         assert up == 2 and gaps[up] == pytest.approx(gap, rel=1e-6) and abs(gaps[0]) < 1e-15
@@ -259,11 +262,11 @@ def test_settle_sets_a_block_at_rest_on_three_corners_down_on_four():
         before = s.copy()
         base = s[:2] - h * Q[:2, 2]
         out = np.zeros(kn.OUT_SIZE)
-        assert kn._settle(s, touch, geom, Q, r, 1e-6, out) == settles
+        assert kn._settle(s, touch, body, Q, r, 1e-6, out) == settles
         if not settles:
             assert np.array_equal(s, before) and not touch[up]
             continue
-        kn._arms(s, geom, Q, r)
+        kn._arms(s, body, Q, r)
         assert touch.all() and np.allclose(s[2] + r[:, 2], 0.0, atol=1e-15)
         assert np.allclose(s[:2] - h * Q[:2, 2], base, atol=1e-12)
         assert kn._twist(s) == pytest.approx(tw, abs=1e-12)

@@ -47,7 +47,7 @@ MODE_FLIGHT = 4
 
 # --- forcing forms ---------------------------------------------------------------------------------
 FORCING_STEPWISE = 0
-FORCING_LINEAR = 1
+FORCING_LINEAR = PV.FORCING_LINEAR
 
 # --- history columns --------------------------------------------------------------------------------
 H_T, H_THETA, H_THETA_DOT = 0, 1, 2
@@ -125,8 +125,29 @@ SLIP_TURN = 20.0
 SLIP_MIN_SUB = 2.0
 
 #: A block at rest on three stuck corners whose fourth hangs above the floor by at most ``SETTLE_GAP`` times the
-#: contact gap (the Moreau-Jean steps' drift; ``limits[5]``) is set down level on all four (:func:`_settle`).
+#: contact gap (the Moreau-Jean steps' drift; ``Limits.lift_gap``) is set down level on all four (:func:`_settle`).
 SETTLE_GAP = 10.0
+
+# --- tolerances of the iterations and tests (dimensionless unless stated) ------------------------------------
+#: Relative change of the multiplier at which the secular equation's Newton iteration stops (:func:`_slip_direction`).
+SECULAR_TOL = 1e-15
+#: Residual angle (rad) and angle step (rad) at which Newton on one corner's slip angle stops (:func:`_slip_newton`).
+SLIP_ANGLE_TOL, SLIP_STEP_TOL = 1e-13, 1e-14
+#: Change of a slip direction's components at which the fixed point of :func:`_local` stops.
+DIRECTION_TOL = 1e-11
+#: A closed form's friction impulse lies in the static cone up to this relative round-off.
+CONE_SLACK = 1e-12
+#: Gaussian elimination refuses a pivot below this fraction of the matrix's largest entry (:func:`_solve_n`).
+PIVOT_TOL = 1e-13
+#: Newton's and the fixed points' stopping tolerance in :func:`_flat_newton` (relative to the velocities' scale)
+#: and :func:`_edge_try` (the directions' components and angles, rad).
+NEWTON_TOL = 1e-12
+#: Forward-difference step of the Jacobians of :func:`_flat_newton` (relative) and :func:`_edge_try` (rad).
+FD_STEP = 1e-7
+#: A flat-sliding corner's velocity must lie along its slip direction to within this (``1 - cos``).
+ALIGN_TOL = 1e-9
+#: Extra margin (m) by which a smooth step on slipping corners sets its contact corners onto the floor.
+SETDOWN_MARGIN = 1e-13
 
 #: Corner signs ``(sx, sy)``: corners 0..3 at (+b, +d), (-b, +d), (-b, -d), (+b, -d) (counter-clockwise).
 CORNER_SX = np.array([1.0, -1.0, -1.0, 1.0])
@@ -141,11 +162,13 @@ NO, YES = np.bool_(False), np.bool_(True)
 
 
 @numba.njit(cache=True)
-def _floor(k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av):
-    """Floor accelerations ``(a_x, a_y, a_v)`` (m/s²) at the evaluation time ``(k + theta_mj) dt`` of step ``k``."""
-    if k >= n_exc:
-        return 0.0, 0.0, tail_av
-    if form == FORCING_STEPWISE:
+def _floor(floor, k, theta_mj):
+    """Floor accelerations ``(a_x, a_y, a_v)`` (m/s²) of ``floor`` (:class:`.model.Floor`) at the evaluation time
+    ``(k + theta_mj) dt`` of step ``k``."""
+    ax, ay, av, sub = floor.ax, floor.ay, floor.av, floor.sub
+    if k >= floor.n_exc:
+        return 0.0, 0.0, floor.tail_av
+    if floor.form == FORCING_STEPWISE:
         return ax[k], ay[k], av[k]
     j = k // sub
     f = (k - j * sub + theta_mj) / sub
@@ -264,7 +287,7 @@ def _slip_direction(a, c, e, r0, r1):
         lam_new = lam - step
         if lam_new < 0.0:
             lam_new = 0.0
-        if abs(lam_new - lam) <= 1e-15 * (lam + l1):
+        if abs(lam_new - lam) <= SECULAR_TOL * (lam + l1):
             lam = lam_new
             break
         lam = lam_new
@@ -298,7 +321,7 @@ def _slip_newton(W, q, mu_k, s0, s1):
         cr = c0 * u1 - c1 * u0
         dot = c0 * u0 + c1 * u1
         res = math.atan2(cr, dot)
-        if abs(res) <= 1e-13:
+        if abs(res) <= SLIP_ANGLE_TOL:
             return True, c0, c1
         dden = -mu_k * (-W[2, 0] * c1 + W[2, 1] * c0)
         dpn = -pn * dden / den
@@ -317,7 +340,7 @@ def _slip_newton(W, q, mu_k, s0, s1):
         step = -res / dres
         step = max(-0.5, min(0.5, step))
         phi += step
-        if abs(step) <= 1e-14:
+        if abs(step) <= SLIP_STEP_TOL:
             return True, math.cos(phi), math.sin(phi)
     return False, s0, s1
 
@@ -337,7 +360,7 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
         return 0
     for i in range(3):
         P[i] = -(Winv[i, 0] * q[0] + Winv[i, 1] * q[1] + Winv[i, 2] * q[2])
-    if P[2] >= 0.0 and (stick_only or math.hypot(P[0], P[1]) <= mu_s * P[2] * (1.0 + 1e-12)):
+    if P[2] >= 0.0 and (stick_only or math.hypot(P[0], P[1]) <= mu_s * P[2] * (1.0 + CONE_SLACK)):
         return 0
     limit = stick_only
     if limit:  # the infinite-friction limit of slip: mu_k -> infinity, P_N -> 0 with a finite friction impulse
@@ -374,7 +397,7 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
         n0, n1 = _slip_direction(c * W[0, 0], c * W[0, 1], c * W[1, 1], r0, r1)
         moved = abs(n0 - s0) + abs(n1 - s1)
         s0, s1 = n0, n1
-        if moved < 1e-11:
+        if moved < DIRECTION_TOL:
             break
     den = W[2, 2] - mu_k * (W[2, 0] * s0 + W[2, 1] * s1)
     pn = -q[2] / den
@@ -436,16 +459,16 @@ def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter,
 
 @numba.njit(cache=True)
 def _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, nsgs, q, Pn, out, single):
-    """NSGS (:func:`_nsgs`) to ``tol`` in ``nsgs[1]`` sweeps; failing that, on for up to ``nsgs[4]`` sweeps more
-    (at least one) to the looser ``tol * nsgs[3] / nsgs[0]`` (a block at the stick-slip limit on three or four corners, whose
+    """NSGS (:func:`_nsgs`) to ``tol`` in ``nsgs.max_sweeps`` sweeps; failing that, on for up to ``nsgs.extra_sweeps``
+    sweeps more (at least one) to the looser ``tol * nsgs.loose_tol / nsgs.tol`` (a block at the stick-slip limit on three or four corners, whose
     impulses are statically indeterminate, makes Gauss-Seidel converge slowly, not fail), counted in
-    ``OUT_NSGS_LOOSE``. Returns the sweeps (``nsgs[1] + 1``: not converged)."""
-    max_iter = int(nsgs[1])
+    ``OUT_NSGS_LOOSE``. Returns the sweeps (``nsgs.max_sweeps + 1``: not converged)."""
+    max_iter = nsgs.max_sweeps
     sweeps = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter, q, Pn, out, single)
     if sweeps <= max_iter:
         return sweeps
-    extra = max(1, int(nsgs[4]))
-    more = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol * nsgs[3] / nsgs[0], extra,
+    extra = max(1, nsgs.extra_sweeps)
+    more = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol * nsgs.loose_tol / nsgs.tol, extra,
                  q, Pn, out, single)
     if more > extra:
         return max_iter + 1
@@ -473,7 +496,7 @@ def _solve_n(A, y, n):
         for i in range(col + 1, n):
             if abs(A[i, col]) > abs(A[piv, col]):
                 piv = i
-        if abs(A[piv, col]) <= 1e-13 * big:
+        if abs(A[piv, col]) <= PIVOT_TOL * big:
             return False
         if piv != col:
             for j in range(n):
@@ -700,7 +723,7 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
         if act[i]:
             if P[i, 2] < 0.0:
                 return False
-            if not stick_only and math.hypot(P[i, 0], P[i, 1]) > mu_s * P[i, 2] * (1.0 + 1e-12):
+            if not stick_only and math.hypot(P[i, 0], P[i, 1]) > mu_s * P[i, 2] * (1.0 + CONE_SLACK):
                 return False
     return True
 
@@ -809,10 +832,10 @@ def _flat_newton(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
         return False
     for it in range(20):
         res = max(abs(g[0]), abs(g[1]), arm * abs(g[2]))
-        if res <= 1e-12 * scale:
+        if res <= NEWTON_TOL * scale:
             return _flat_eval(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g)
         for j in range(3):
-            hj = 1e-7 * (scale / arm if j == 2 else scale)
+            hj = FD_STEP * (scale / arm if j == 2 else scale)
             for a in range(3):
                 x1[a] = x[a] + (hj if a == j else 0.0)
             if not _flat_eval(x1, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g1):
@@ -869,7 +892,7 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
         moved = _flat_directions(xs[n], xs[n + 1], xs[n + 2], idx, n, r, sdir)
         if moved < 0.0:
             return False
-        if moved < 1e-12:
+        if moved < NEWTON_TOL:
             settled = True
             break
     if not settled:
@@ -898,7 +921,7 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
         nu = math.hypot(u0, u1)
         if nu == 0.0:
             return False
-        if u0 * sdir[i, 0] + u1 * sdir[i, 1] < (1.0 - 1e-9) * nu:
+        if u0 * sdir[i, 0] + u1 * sdir[i, 1] < (1.0 - ALIGN_TOL) * nu:
             return False
         P[i, 0], P[i, 1] = -mu_k * N * sdir[i, 0], -mu_k * N * sdir[i, 1]
     return True
@@ -987,7 +1010,7 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
                     return False
                 moved = max(moved, abs(u[3 * k] / nu - sdir[k, 0]), abs(u[3 * k + 1] / nu - sdir[k, 1]))
                 sdir[k, 0], sdir[k, 1] = u[3 * k] / nu, u[3 * k + 1] / nu
-        if moved < 1e-12:
+        if moved < NEWTON_TOL:
             done = True
             break
     if not done:
@@ -997,17 +1020,17 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
             return False
         for it in range(20):
             res = max(abs(f[0]), abs(f[1]))
-            if res <= 1e-12:
+            if res <= NEWTON_TOL:
                 done = True
                 break
             for j in range(2):  # the Jacobian by forward differences
                 if st[j] != 1:
                     J[0, j], J[1, j] = 0.0, 0.0
                     continue
-                sdir[j, 0], sdir[j, 1] = math.cos(ang[j] + 1e-7), math.sin(ang[j] + 1e-7)
+                sdir[j, 0], sdir[j, 1] = math.cos(ang[j] + FD_STEP), math.sin(ang[j] + FD_STEP)
                 if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f1):
                     return False
-                J[0, j], J[1, j] = (f1[0] - f[0]) / 1e-7, (f1[1] - f[1]) / 1e-7
+                J[0, j], J[1, j] = (f1[0] - f[0]) / FD_STEP, (f1[1] - f[1]) / FD_STEP
                 sdir[j, 0], sdir[j, 1] = math.cos(ang[j]), math.sin(ang[j])
             for k in range(2):
                 if st[k] != 1:
@@ -1036,7 +1059,7 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
         pz = P6[3 * k + 2]
         if pz < 0.0:
             return False
-        if st[k] == 0 and math.hypot(P6[3 * k], P6[3 * k + 1]) > mu_s * pz * (1.0 + 1e-12):
+        if st[k] == 0 and math.hypot(P6[3 * k], P6[3 * k + 1]) > mu_s * pz * (1.0 + CONE_SLACK):
             return False
         if st[k] == 1 and u[3 * k] * sdir[k, 0] + u[3 * k + 1] * sdir[k, 1] <= 0.0:
             return False
@@ -1243,16 +1266,17 @@ def _tally(mode, n_down, dt, out):
 
 
 @numba.njit(cache=True)
-def _geometry(s, geom, ib, Q, Iinv, Iw, r):
-    """Rotation, floor-frame inertia and the corners' arms ``r`` (4 x 3) of state ``s``."""
-    _arms(s, geom, Q, r)
-    _inv_inertia(Q, ib, Iinv, Iw)
+def _geometry(s, body, Q, Iinv, Iw, r):
+    """Rotation, floor-frame inertia and the corners' arms ``r`` (4 x 3) of state ``s`` (``body``:
+    :class:`.model.Body`)."""
+    _arms(s, body, Q, r)
+    _inv_inertia(Q, body.inertia, Iinv, Iw)
 
 
 @numba.njit(cache=True)
-def _arms(s, geom, Q, r):
+def _arms(s, body, Q, r):
     """The corners' arms ``r`` (4 x 3, from the centre of mass, floor frame) of state ``s``; ``Q`` is workspace."""
-    b, d, h = geom[0], geom[1], geom[2]
+    b, d, h = body.b, body.d, body.h
     _rotmat(s, Q)
     for i in range(4):
         cx, cy = CORNER_SX[i] * b, CORNER_SY[i] * d
@@ -1335,21 +1359,22 @@ def _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6)
 
 
 @numba.njit(cache=True)
-def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new, out, guess):
+def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
     """One Moreau-Jean step from ``s`` into ``new`` (docs/guide/three-dimensions.md): the free velocity under the
     step's forces (gravity and the floor's inertia force on the centre of mass, the gyroscopic torque
     ``-omega x I omega`` at ``t_k``), the active corners from the mid-step prediction of their gaps, the
     corners' Delassus blocks at ``q_k``, the impulses by NSGS (:func:`_nsgs`) warm-started from ``P``, then
     ``X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]`` and the quaternion turned by ``dt`` times the
     same blend of the angular velocities. Returns the sweeps NSGS took (0: no contact;
-    ``nsgs[1] + 1``: it did not converge). ``ws`` holds the workspace (see :func:`run`).
+    ``model.nsgs.max_sweeps + 1``: it did not converge). ``ws`` holds the workspace (see :func:`run`).
 
     Before the closed forms and NSGS, the corners that were down (``guess``) are tried alone, stuck
     (:func:`_stick_subset`): a block rocking on an edge just after an impact has its other corners still
     predicted active, unloaded and separating."""
     Q, Iinv, Iw, r, Wd, Wi, vec = ws[0], ws[1], ws[2], ws[3], ws[4], ws[5], ws[6]
-    g = geom[3]
-    _geometry(s, geom, ib, Q, Iinv, Iw, r)
+    body, fric, nsgs, theta_mj = model.body, model.friction, model.nsgs, model.numerics.theta_mj
+    g = body.g
+    _geometry(s, body, Q, Iinv, Iw, r)
     V = vec[0]
     Om = vec[1]
     # free velocity
@@ -1370,30 +1395,31 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
         act[i] = s[2] + ri[2] + 0.5 * dt * un <= 0.0
         n_act += act[i]
     sweeps = 0
-    stick_only = fric[2] > 0.5
-    scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), geom[7] * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
+    stick_only, mu_s, mu_k = fric.infinite, fric.mu_s, fric.mu_k
+    scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), body.R * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
+    tol = nsgs.tol * scale
     n_down = 0  # the active corners that were down: a subset to try alone (_stick_subset) if one or two, not all
     for i in range(4):
         n_down += act[i] and guess[i]
     try_down = 0 < n_down <= 2 and n_down < n_act
     try_landing = 0 < n_act - n_down <= 2 and n_down > 0
-    if n_act >= 2 and ((try_down and _stick_subset(act, guess, NO, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0],
-                                                    stick_only, nsgs[0] * scale, ws, vec[3]))
-                       or (try_landing and _stick_subset(act, guess, YES, n_act, r, Iinv, Iw, vf, V, Om, P, fric[0],
-                                                         stick_only, nsgs[0] * scale, ws, vec[3]))):
+    if n_act >= 2 and ((try_down and _stick_subset(act, guess, NO, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s,
+                                                    stick_only, tol, ws, vec[3]))
+                       or (try_landing and _stick_subset(act, guess, YES, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s,
+                                                         stick_only, tol, ws, vec[3]))):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
-    elif n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, fric[0], stick_only, ws[7], vec[3]):
+    elif n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, ws[7], vec[3]):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
-    elif n_act == 2 and _stick_single(act, r, Iinv, Iw, vf, V, Om, P, fric[0], stick_only, nsgs[0] * scale, ws,
+    elif n_act == 2 and _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws,
                                       vec[3]):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
-    elif n_act == 2 and _edge_slip(act, r, Iinv, vf, V, Om, P, fric[0], fric[1], stick_only, ws[15], out):
+    elif n_act == 2 and _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ws[15], out):
         sweeps = 1
         out[OUT_EDGE_SLIP] += 1.0
-    elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, fric[1], ws[8], ws[7],
+    elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, ws[8], ws[7],
                                                                    vec[3], ws[9]):
         sweeps = 1
         out[OUT_SLIDE_STEPS] += 1.0
@@ -1409,7 +1435,7 @@ def _step(s, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P, new,
                 _cross_add(r[i], P[i], Iinv, Om, 1.0)
             else:
                 P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
-        sweeps = _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, fric[0], fric[1], stick_only, nsgs[0] * scale,
+        sweeps = _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol,
                                  nsgs, vec[3], vec[4], out, n_act == 1)
     else:
         for i in range(4):
@@ -1457,17 +1483,17 @@ def _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
 
 
 @numba.njit(cache=True)
-def _rest_holds(a_x, a_y, a_v, geom, fric):
+def _rest_holds(a_x, a_y, a_v, body, fric):
     """Does a block at rest on its four corners, stuck, stay at rest under the floor accelerations? Iff
     ``g + a_v > 0``, the centre of pressure ``(a_x, a_y) h / (g + a_v)`` lies in the base ``[-b, b] x [-d, d]``
     and friction carries the load, ``hypot(a_x, a_y) <= mu (g + a_v)``."""
-    gz = geom[3] + a_v
+    gz = body.g + a_v
     if gz <= 0.0:
         return False
-    h = geom[2]
-    if abs(a_x) * h > geom[0] * gz or abs(a_y) * h > geom[1] * gz:
+    h = body.h
+    if abs(a_x) * h > body.b * gz or abs(a_y) * h > body.d * gz:
         return False
-    return fric[2] > 0.5 or math.hypot(a_x, a_y) <= fric[0] * gz
+    return fric.infinite or math.hypot(a_x, a_y) <= fric.mu_s * gz
 
 
 @numba.njit(cache=True)
@@ -1478,16 +1504,16 @@ def _count_sweeps(sweeps, nsgs, out):
     counting of its arrays.)"""
     if sweeps > 0:
         out[OUT_CONTACT_STEPS] += 1.0
-        out[OUT_NSGS_SWEEPS] += min(sweeps, nsgs[1])
-        out[OUT_NSGS_MAX] = max(out[OUT_NSGS_MAX], min(sweeps, nsgs[1]))
-    converged = sweeps <= nsgs[1]
+        out[OUT_NSGS_SWEEPS] += min(sweeps, nsgs.max_sweeps)
+        out[OUT_NSGS_MAX] = max(out[OUT_NSGS_MAX], min(sweeps, nsgs.max_sweeps))
+    converged = sweeps <= nsgs.max_sweeps
     if not converged:
         out[OUT_NSGS_FAILED] += 1.0
     return converged
 
 
 @numba.njit(cache=True)
-def _book(state, a, Q1, r1, r, Iw, vf, act, P, new, out, touch, slip, vel_tol, lift_gap, geom):
+def _book(state, a, Q1, r1, r, Iw, vf, act, P, new, out, touch, slip, vel_tol, lift_gap, body):
     """The bookkeeping of a Moreau-Jean step from ``state`` to ``new`` under the accelerations ``a`` with the
     impulses ``P``: input work, the corners' flags and friction work (:func:`_contacts`), an impact's loss.
     ``r`` and ``Iw`` are the step's arms and inertia, ``vf`` its free velocity; ``Q1`` and ``r1`` workspace (the
@@ -1495,7 +1521,7 @@ def _book(state, a, Q1, r1, r, Iw, vf, act, P, new, out, touch, slip, vel_tol, l
     # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
     # _contacts, and at an impact the kinetic energy of the impulses' velocity change
     out[OUT_INPUT_WORK] -= a[0] * (new[0] - state[0]) + a[1] * (new[1] - state[1]) + a[2] * (new[2] - state[2])
-    _arms(new, geom, Q1, r1)
+    _arms(new, body, Q1, r1)
     impact = _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out)
     if impact:
         e = 0.0
@@ -1533,29 +1559,31 @@ def _stuck_pivot(act, touch, slip, P):
 
 
 @numba.njit(cache=True)
-def _rest_span(k, form, ax, ay, av, sub, n_exc, tail_av, geom, fric, tail_left, max_steps):
+def _rest_span(model, floor, k, tail_left):
     """Steps a seated block whose load the base carries at step ``k`` stays at rest (>= 1): a record's whole
     sample interval from its start if the base carries the load at both samples, the tail's remaining rest
     steps ``tail_left`` under a still floor, else one."""
-    if k >= n_exc:
-        return max(1, min(tail_left, max_steps - k))
-    if form == FORCING_LINEAR and k % sub == 0:
+    ax, ay, av, sub, body, fric = floor.ax, floor.ay, floor.av, floor.sub, model.body, model.friction
+    if k >= floor.n_exc:
+        return max(1, min(tail_left, model.limits.max_steps - k))
+    if floor.form == FORCING_LINEAR and k % sub == 0:
         jj = k // sub
-        if _rest_holds(ax[jj], ay[jj], av[jj], geom, fric) and _rest_holds(ax[jj + 1], ay[jj + 1], av[jj + 1],
-                                                                            geom, fric):
+        if _rest_holds(ax[jj], ay[jj], av[jj], body, fric) and _rest_holds(ax[jj + 1], ay[jj + 1], av[jj + 1],
+                                                                            body, fric):
             return sub
     return 1
 
 
 @numba.njit(cache=True, inline='always')
-def _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, lift_gap, vel_tol):
+def _same_phase(model, new, piv, n_piv, a, ws, probe):
     """Is the end state ``new`` of a smooth step still in its phase? Every other corner above ``lift_gap``, and
     a Moreau-Jean probe step from it (``a``: the floor's accelerations of that step) solved with exactly the
     pivots active, each loaded and stuck. ``probe`` is ``(act, P, state, out)`` scratch (``P`` holds the warm
     start on entry and the probe's impulses on return)."""
     actp, Pp, sp, outp = probe
     Q1, r1 = ws[10], ws[11]
-    _arms(new, geom, Q1, r1)
+    lift_gap, vel_tol = model.limits.lift_gap, model.limits.velocity_tol
+    _arms(new, model.body, Q1, r1)
     for i in range(4):
         mine = i == piv[0] or (n_piv == 2 and i == piv[1])
         if not mine and new[2] + r1[i, 2] <= lift_gap:
@@ -1564,8 +1592,8 @@ def _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws, prob
     guess = ws[14]
     for i in range(4):
         guess[i] = i == piv[0] or (n_piv == 2 and i == piv[1])
-    sweeps = _step(new, a[0], a[1], a[2], dt, theta_mj, geom, ib, fric, nsgs, ws, actp, Pp, sp, outp, guess)
-    if sweeps == 0 or sweeps > nsgs[1]:
+    sweeps = _step(model, new, a[0], a[1], a[2], model.numerics.dt, ws, actp, Pp, sp, outp, guess)
+    if sweeps == 0 or sweeps > model.nsgs.max_sweeps:
         return False
     for i in range(4):
         mine = i == piv[0] or (n_piv == 2 and i == piv[1])
@@ -1580,13 +1608,11 @@ def _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws, prob
 
 
 @numba.njit(cache=True, inline='always')
-def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, wk, probe, P, new,
-            lift_gap, vel_tol, out):
+def _smooth(model, floor, state, touch, k, n_max, ws, wk, probe, P, new, out):
     """A smooth step (:mod:`opsrock.solvers.rigid3d.pivot`) about the corners down: from ``k`` to the next
     sample (at most ``n_max`` steps), halved while it leaves its phase, down to ``pivot.MIN_STEPS``. Returns
     ``(steps, largest tilt)``; 0 steps if none was kept, -1 if none could be tried (fewer than two steps to
     the next sample, or not one corner or two down); the Moreau-Jean steps then go on."""
-    form, ax, ay, av, sub, n_exc, tail_av = forcing
     piv = ws[12]
     n_piv = ZERO
     for i in range(4):
@@ -1597,18 +1623,17 @@ def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing,
             n_piv += 1
     if n_piv == 0:
         return 0, 0.0
-    n = PV.step_end(k, n_max, sub, n_exc, form) - k
+    n = PV.step_end(floor, k, n_max) - k
     if n < 2:
         return -1, 0.0
     a = ws[13]
     Pp = probe[1]
     while True:
         out[OUT_SMOOTH_TRIED] += 1.0
-        tilt = PV.integrate(state, piv, n_piv, k, n, dt, theta_mj, geom, forcing, ib, fric, new, wk)
-        a[0], a[1], a[2] = _floor(k + n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av)
+        tilt = PV.integrate(model, floor, state, piv, n_piv, k, n, new, wk)
+        a[0], a[1], a[2] = _floor(floor, k + n, model.numerics.theta_mj)
         Pp[:, :] = P
-        if 0.0 <= tilt < OVERTURNING_ANGLE and _same_phase(new, piv, n_piv, a, dt, theta_mj, geom, ib, fric, nsgs, ws,
-                                                    probe, lift_gap, vel_tol):
+        if 0.0 <= tilt < OVERTURNING_ANGLE and _same_phase(model, new, piv, n_piv, a, ws, probe):
             P[:, :] = Pp
             out[OUT_SMOOTH_STEPS] += 1.0
             out[OUT_SMOOTH_SPAN] += n
@@ -1622,7 +1647,7 @@ def _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing,
 
 
 @numba.njit(cache=True)
-def _slip_rhs(y, F, idx, st, geom, ib, fric, sw, dy):
+def _slip_rhs(model, y, F, idx, st, sw, dy):
     """Time derivative ``dy`` of the state ``y`` (13) of a block on the corners ``idx[:2]`` with the statuses
     ``st`` (0 stuck, 1 slipping, 2 not in contact) under the body force ``F`` (m/s², per unit mass): the contact
     forces per unit mass solve :func:`_edge_system` at acceleration level (a stuck corner's acceleration zero, a
@@ -1634,10 +1659,10 @@ def _slip_rhs(y, F, idx, st, geom, ib, fric, sw, dy):
     smallest of the slipping corners' speed over tangential acceleration (s)."""
     Q, Iinv, Iw, r, D, A, cols, vecs, sdir = sw[0], sw[1], sw[2], sw[3], sw[4], sw[5], sw[6], sw[7], sw[8]
     q, yv, P6, u = vecs[0], vecs[1], vecs[2], vecs[3]
-    stick_only = fric[2] > 0.5
-    mu_s, mu_k = (np.inf, LIMIT_MU) if stick_only else (fric[0], fric[1])
-    _arms(y, geom, Q, r)
-    _inv_inertia(Q, ib, Iinv, Iw)
+    fric = model.friction
+    mu_s, mu_k = (np.inf, LIMIT_MU) if fric.infinite else (fric.mu_s, fric.mu_k)
+    _arms(y, model.body, Q, r)
+    _inv_inertia(Q, model.body.inertia, Iinv, Iw)
     w0, w1, w2 = y[10], y[11], y[12]
     L0 = Iw[0, 0] * w0 + Iw[0, 1] * w1 + Iw[0, 2] * w2
     L1 = Iw[1, 0] * w0 + Iw[1, 1] * w1 + Iw[1, 2] * w2
@@ -1712,23 +1737,22 @@ def _slip_rhs(y, F, idx, st, geom, ib, fric, sw, dy):
 
 
 @numba.njit(cache=True)
-def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fric, new, sw):
+def _slip_integrate(model, floor, s, idx, st, k0, n_steps, new, sw):
     """Classical Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps on the slipping
     (and stuck) corners ``idx`` / ``st`` (:func:`_slip_rhs`) into ``new``, in sub-steps of at most
     ``pivot.RK_DTAU``. Returns ``(largest tilt at the sub-steps' ends (rad), friction work (J/kg))``, the tilt -1
     as soon as a stage's forces stop holding (:func:`_slip_rhs`), a corner not in contact reaches the floor or
     the tilt reaches pi/2. ``sw`` is the workspace of :func:`_slip_rhs` and ``(dy, acc, ytmp, F)``."""
-    form, ax, ay, av, sub, n_exc, tail_av = forcing
     dy, acc, ytmp, F = sw[9], sw[10], sw[11], sw[12]
     r = sw[3]
-    g = geom[3]
+    g, dt, theta_mj = model.body.g, model.numerics.dt, model.numerics.theta_mj
     new[:] = s
-    PV.floor_at(float(k0), k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
-    holds, _, t_stop = _slip_rhs(new, F, idx, st, geom, ib, fric, sw, dy)
+    PV.floor_at(floor, float(k0), k0, theta_mj, F, g)
+    holds, _, t_stop = _slip_rhs(model, new, F, idx, st, sw, dy)
     span = n_steps * dt
     if not holds or t_stop <= 0.0 or span * SLIP_TURN > n_steps * t_stop:  # (the last: a sub-step under dt)
         return -1.0, 0.0
-    n_sub = max(1, int(math.ceil(span * geom[4] / PV.RK_DTAU)), int(math.ceil(span * SLIP_TURN / t_stop)))
+    n_sub = max(1, int(math.ceil(span * model.body.p / PV.RK_DTAU)), int(math.ceil(span * SLIP_TURN / t_stop)))
     hs = n_steps / n_sub
     hdt = hs * dt
     if hs < SLIP_MIN_SUB:
@@ -1742,8 +1766,8 @@ def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
             w = 1.0 / 6.0 if (stage == 0 or stage == 3) else 1.0 / 3.0
             for a in range(13):
                 ytmp[a] = new[a] + (c * hdt * dy[a] if stage > 0 else 0.0)
-            PV.floor_at(kf + c * hs, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
-            holds, power, t_stop = _slip_rhs(ytmp, F, idx, st, geom, ib, fric, sw, dy)
+            PV.floor_at(floor, kf + c * hs, k0, theta_mj, F, g)
+            holds, power, t_stop = _slip_rhs(model, ytmp, F, idx, st, sw, dy)
             if not holds or 0.5 * SLIP_TURN * hdt > t_stop:
                 return -1.0, 0.0
             work += w * hdt * power
@@ -1758,7 +1782,7 @@ def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
         if tilt >= OVERTURNING_ANGLE:
             return -1.0, 0.0
         tilt_max = max(tilt_max, tilt)
-        _arms(new, geom, sw[0], r)
+        _arms(new, model.body, sw[0], r)
         for i in range(4):
             mine = (i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)
             if not mine and new[2] + r[i, 2] <= 0.0:
@@ -1772,7 +1796,7 @@ def _slip_integrate(s, idx, st, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
             un = new[9] + new[10] * ri[1] - new[11] * ri[0]
             shift = max(shift, new[2] + ri[2] + 0.5 * dt * un)
     if shift > 0.0:
-        new[2] -= shift + 1e-13
+        new[2] -= shift + SETDOWN_MARGIN
     return tilt_max, work
 
 
@@ -1791,7 +1815,7 @@ def _slip_pivot(act, touch, slip, P):
 
 
 @numba.njit(cache=True, inline='always')
-def _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, sw, lift_gap, vel_tol):
+def _same_slip(model, new, idx, st, a, ws, probe, sw):
     """Is the end state ``new`` of a smooth step on slipping corners still in its phase? Every corner not in
     contact above ``lift_gap``, and a Moreau-Jean probe step from it (``a``: its floor accelerations) solved with
     exactly the contact corners active, each loaded, slipping where it slipped (along the direction it slipped,
@@ -1801,13 +1825,13 @@ def _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, s
     guess = ws[14]
     for i in range(4):
         guess[i] = (i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)
-    _arms(new, geom, ws[10], ws[11])
+    _arms(new, model.body, ws[10], ws[11])
     for i in range(4):
-        if not guess[i] and new[2] + ws[11][i, 2] <= lift_gap:
+        if not guess[i] and new[2] + ws[11][i, 2] <= model.limits.lift_gap:
             return False
     outp[:] = 0.0
-    sweeps = _step(new, a[0], a[1], a[2], dt, theta_mj, geom, ib, fric, nsgs, ws, actp, Pp, sp, outp, guess)
-    if sweeps == 0 or sweeps > nsgs[1]:
+    sweeps = _step(model, new, a[0], a[1], a[2], model.numerics.dt, ws, actp, Pp, sp, outp, guess)
+    if sweeps == 0 or sweeps > model.nsgs.max_sweeps:
         return False
     u = sw[7][3]  # the end state's corner velocities, from its last _slip_rhs (the arms of ``new``)
     for k in range(2):
@@ -1819,7 +1843,7 @@ def _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, s
         ri = ws[3][i]  # the probe's arms
         u0 = sp[7] + sp[11] * ri[2] - sp[12] * ri[1]
         u1 = sp[8] + sp[12] * ri[0] - sp[10] * ri[2]
-        sl = math.hypot(u0, u1) > vel_tol
+        sl = math.hypot(u0, u1) > model.limits.velocity_tol
         if sl != (st[k] == 1) or (sl and u0 * u[3 * k] + u1 * u[3 * k + 1] <= 0.0):
             return False
     for i in range(4):  # (``guess`` is the contact solver's workspace: the membership again)
@@ -1829,13 +1853,11 @@ def _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, s
 
 
 @numba.njit(cache=True, inline='always')
-def _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, sw, probe, P, new,
-                 lift_gap, vel_tol, out):
+def _smooth_slip(model, floor, state, touch, slip, k, n_max, ws, sw, probe, P, new, out):
     """A smooth step on one or two corners of which at least one slips (:func:`_slip_integrate`): from ``k`` to
     the next sample (at most ``n_max`` steps), halved while it leaves its phase (:func:`_same_slip`), down to
     ``pivot.MIN_STEPS``. Returns ``(steps, largest tilt)`` as :func:`_smooth` does; the friction work into
     ``out``."""
-    form, ax, ay, av, sub, n_exc, tail_av = forcing
     idx, st = sw[13], sw[14]
     n_c = ZERO
     for i in range(4):
@@ -1849,18 +1871,18 @@ def _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsg
         return 0, 0.0
     if n_c == 1:
         idx[1], st[1] = (idx[0] + 1) % 4, 2
-    n = PV.step_end(k, n_max, sub, n_exc, form) - k
+    n = PV.step_end(floor, k, n_max) - k
     if n < 2:
         return -1, 0.0
     a = ws[13]
     Pp = probe[1]
     while True:
         out[OUT_SLIP_TRIED] += 1.0
-        tilt, work = _slip_integrate(state, idx, st, k, n, dt, theta_mj, geom, forcing, ib, fric, new, sw)
+        tilt, work = _slip_integrate(model, floor, state, idx, st, k, n, new, sw)
         if tilt >= 0.0:
-            a[0], a[1], a[2] = _floor(k + n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av)
+            a[0], a[1], a[2] = _floor(floor, k + n, model.numerics.theta_mj)
             Pp[:, :] = P
-            if _same_slip(new, idx, st, a, dt, theta_mj, geom, ib, fric, nsgs, ws, probe, sw, lift_gap, vel_tol):
+            if _same_slip(model, new, idx, st, a, ws, probe, sw):
                 P[:, :] = Pp
                 out[OUT_SLIP_STEPS] += 1.0
                 out[OUT_SLIP_SPAN] += n
@@ -1872,32 +1894,32 @@ def _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsg
 
 
 @numba.njit(cache=True, inline='always')
-def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, probe, P, new, out, touch,
-                  slip, vel_tol, lift_gap):
+def _coarse_slide(model, floor, state, k, n_max, ws, probe, P, new, out, touch, slip):
     """A block sliding flat on its four corners: one Moreau-Jean step of up to ``n_max`` steps (to the next
     sample), kept if its contact problem is the same, all four corners active, solved by the closed-form
     flat slide or stick (:mod:`.pivot`, ``SLIDE_DTAU``) and kept on the floor (no corner's normal velocity above
     ``vel_tol``; a corner may carry none of the load, the four corners' loads being indeterminate). Returns the steps taken (0: none kept, -1: none
     tried)."""
-    form, ax, ay, av, sub, n_exc, tail_av = forcing
-    n = PV.step_end(k, n_max, sub, n_exc, form) - k
+    vel_tol, lift_gap = model.limits.velocity_tol, model.limits.lift_gap
+    n = PV.step_end(floor, k, n_max) - k
     if n < 2:
         return -1
     a = ws[13]
-    PV.mean_floor(k, n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, a)
+    PV.mean_floor(floor, k, n, model.numerics.theta_mj, a)
     actp, Pp, _, outp = probe
     for i in range(4):
         for c in range(3):
             Pp[i, c] = P[i, c] * n
     outp[:] = 0.0
-    sweeps = _step(state, a[0], a[1], a[2], n * dt, theta_mj, geom, ib, fric, nsgs, ws, actp, Pp, new, outp, touch)
+    sweeps = _step(model, state, a[0], a[1], a[2], n * model.numerics.dt, ws, actp, Pp, new, outp, touch)
     if sweeps != 1 or outp[OUT_SLIDE_STEPS] + outp[OUT_STICK_STEPS] < 0.5:
         return 0
     for i in range(4):  # every corner active and kept on the floor (a corner may carry no load: see _slide_flat)
         ri = ws[3][i]
         if not actp[i] or abs(new[9] + new[10] * ri[1] - new[11] * ri[0]) > vel_tol:
             return 0
-    _book(state, a, ws[10], ws[11], ws[3], ws[2], ws[6][2], actp, Pp, new, out, touch, slip, vel_tol, lift_gap, geom)
+    _book(state, a, ws[10], ws[11], ws[3], ws[2], ws[6][2], actp, Pp, new, out, touch, slip, vel_tol, lift_gap,
+          model.body)
     for i in range(4):
         for c in range(3):
             P[i, c] = Pp[i, c] / n
@@ -1909,13 +1931,13 @@ def _coarse_slide(state, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, 
 
 
 @numba.njit(cache=True)
-def _settle(state, touch, geom, Q, r, gap_max, out):
+def _settle(state, touch, body, Q, r, gap_max, out):
     """A block at rest on three corners (``touch``) whose fourth hangs above the floor by at most ``gap_max`` (m):
     the gap is the Moreau-Jean steps' drift (a corner that rose above the contact gap while the block came to rest
     stays up, and the block would never be seated), so the block is set down level on all four, its base centre
     and twist kept (its centre of mass moves by at most ``gap_max``, its tilt by ``gap_max / min(2b, 2d)``). Returns
     True if it was (then seated by the caller). ``Q`` and ``r`` are workspace."""
-    _arms(state, geom, Q, r)
+    _arms(state, body, Q, r)
     up = -1
     for i in range(4):
         if not touch[i]:
@@ -1925,7 +1947,7 @@ def _settle(state, touch, geom, Q, r, gap_max, out):
     gap = state[2] + r[up, 2]
     if not gap <= gap_max:
         return False
-    h = geom[2]
+    h = body.h
     w, x, y, z = state[3], state[4], state[5], state[6]
     bx, by = state[0] - h * 2.0 * (x * z + w * y), state[1] - h * 2.0 * (y * z - w * x)
     tw = _twist(state)
@@ -1938,15 +1960,15 @@ def _settle(state, touch, geom, Q, r, gap_max, out):
 
 
 @numba.njit(cache=True)
-def _peak_reached(s, geom, ib, tilt_max, tail_av):
+def _peak_reached(s, body, tilt_max, tail_av):
     """The tail rule "peak": after the excitation (a still floor, ``g' = g + tail_av``), the block's energy per
     unit mass above rest, bounded above by ``|V|²/2 + I_max |omega|²/2 + g' (z - h)``, can only fall; at a tilt
     ``theta`` its centre of mass stands at least ``h cos theta + min(b, d) sin theta`` above the floor. Once the
     bound is below half of ``g' (h cos theta_max + min(b, d) sin theta_max - h)`` (half: a margin for the
     scheme's energy error) and the base moves slower than :data:`PEAK_BASE_SPEED`, neither the verdict nor
     ``theta_max`` can change."""
-    b, d, h = geom[0], geom[1], geom[2]
-    gp = geom[3] + tail_av
+    b, d, h, ib = body.b, body.d, body.h, body.inertia
+    gp = body.g + tail_av
     i_max = max(ib[0], max(ib[1], ib[2]))
     w0, w1, w2 = s[10], s[11], s[12]
     e = 0.5 * (s[7] * s[7] + s[8] * s[8] + s[9] * s[9]) + 0.5 * i_max * (w0 * w0 + w1 * w1 + w2 * w2)
@@ -1960,47 +1982,35 @@ def _peak_reached(s, geom, ib, tilt_max, tail_av):
 
 
 @numba.njit(cache=True)
-def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state, limits, hist_every, hist, out):
+def run(model, floor, state, hist, out):
     """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history rows ``hist`` (columns ``H_*``);
     returns the status.
 
     Parameters
     ----------
-    geom : float64[8]
-        ``(b, d, h, g, p_w, 0, 0, R_w)``: half-width, half-depth, height of the centre of mass above the base
-        (m), gravity (m/s²), the weaker axis's ``p`` (rad/s, the time unit of ``OUT_EVENT_TIME``), two unused
-        slots, and the weaker axis's ``R`` (m, the velocity scale ``R omega``).
-    ib : float64[3]
-        Body-frame inertia per unit mass about the centre of mass ``(I_x, I_y, I_z)`` (m²).
-    fric : float64[3]
-        ``(mu_s, mu_k, infinite)``; ``infinite`` 1.0 for ``mu = infinity`` (corners stick only).
-    num : float64[4]
-        ``(dt, theta_mj, rocked_theta, weak_y)``: step (s), theta-method parameter, tilt (rad) above which the
-        block rocked, 1.0 if the weaker axis is ``y`` (the sign of ``theta``).
-    nsgs : float64[5]
-        ``(tol, max_sweeps, fail_steps, loose_tol, extra_sweeps)``: NSGS tolerance relative to the step's
-        velocity scale, sweeps per step, consecutive unconverged steps after which the run fails, and the
-        looser tolerance and further sweeps of :func:`_solve_contacts`.
-    form, ax, ay, av, sub, n_exc, tail_av
-        Floor motion in the block frame: :data:`FORCING_STEPWISE` or :data:`FORCING_LINEAR` (samples, ``sub``
-        steps per interval), for ``n_exc`` steps; after them no horizontal motion and ``a_v = tail_av`` (m/s²).
+    model : Model
+        The block, its friction and the numerical settings and limits (:class:`.model.Model`, built by
+        :func:`.model.make_model`).
+    floor : Floor
+        The floor motion in the block frame (:class:`.model.Floor`): :data:`FORCING_STEPWISE` or
+        :data:`FORCING_LINEAR` (samples, ``sub`` steps per interval), for ``n_exc`` steps; after them no
+        horizontal motion and ``a_v = tail_av`` (m/s²).
     state : float64[13]
         Initial state; holds the final one on return.
-    limits : float64[8]
-        ``(max_steps, max_tail_steps (< 0: no tail), rest_velocity (m/s), rest_steps, velocity_tol (m/s),
-        lift_gap (m), peak (1.0: the tail rule "peak", :func:`_peak_reached`), smooth (1.0: smooth steps about
-        stuck corners, :mod:`.pivot`))``.
-    hist_every : int
-        A history row every this many steps (and the last state).
+    hist : float64[n, H_SIZE]
+        History rows, one every ``model.numerics.hist_every`` steps (and the last state).
+    out : float64[OUT_SIZE]
+        The run's results and bookkeeping.
     """
-    h, Rw = geom[2], geom[7]
-    dt, theta_mj, rocked_theta, weak_y = num[0], num[1], num[2], num[3] > 0.5
-    max_steps, max_tail, rest_vel = int(limits[0]), int(limits[1]), limits[2]
-    rest_steps, vel_tol, lift_gap = int(limits[3]), limits[4], limits[5]
-    peak_rule, smooth_on = limits[6] > 0.5, limits[7] > 0.5
-    fail_steps = int(nsgs[2])
-    forcing = (form, ax, ay, av, sub, n_exc, tail_av)
-    n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (geom[4] * dt)))
+    body, num, lim = model.body, model.numerics, model.limits
+    h, Rw, weak_y = body.h, body.R, body.weak_y
+    dt, theta_mj, hist_every = num.dt, num.theta_mj, num.hist_every
+    max_steps, max_tail, rest_vel = lim.max_steps, lim.max_tail, lim.rest_velocity
+    rest_steps, vel_tol, lift_gap = lim.rest_steps, lim.velocity_tol, lim.lift_gap
+    peak_rule, smooth_on = lim.peak_rule, num.smooth
+    fail_steps = model.nsgs.fail_steps
+    n_exc, tail_av = floor.n_exc, floor.tail_av
+    n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (body.p * dt)))
     out[:] = 0.0
     out[OUT_FIRST_MODE] = -1.0
     ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
@@ -2021,7 +2031,7 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     new = np.zeros(13)
     r1 = ws[11]
     cap = hist.shape[0]
-    _geometry(state, geom, ib, Q, Iinv, Iw, r)
+    _geometry(state, body, Q, Iinv, Iw, r)
     for i in range(4):
         touch[i] = state[2] + r[i, 2] <= lift_gap
     tilt, theta, _, _ = _tilt(state, weak_y)
@@ -2041,7 +2051,7 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     calm = 0
     slipc = 0
     sliding = 0
-    n_slide = max(2, int(PV.SLIDE_DTAU / (geom[4] * dt)))
+    n_slide = max(2, int(PV.SLIDE_DTAU / (body.p * dt)))
     k = ZERO
     while True:
         if k >= n_exc and (max_tail < 0 or resting >= rest_steps):
@@ -2049,17 +2059,16 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
         if k >= n_exc + max(max_tail, 0) or k >= max_steps:
             status = STATUS_TAIL if k < max_steps else STATUS_MAX_STEPS
             break
-        a_x, a_y, a_v = _floor(k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av)
+        a_x, a_y, a_v = _floor(floor, k, theta_mj)
         if not math.isfinite(a_x + a_y + a_v):
             status = STATUS_NONFINITE
             break
-        if seated and _rest_holds(a_x, a_y, a_v, geom, fric):
+        if seated and _rest_holds(a_x, a_y, a_v, body, model.friction):
             # the rest skip: a seated, stuck block whose load the base carries stays at rest this step, and
             # a whole sample interval of a record if it does at both its samples (the accelerations are
             # linear in between and the set of loads the base carries is convex), and the whole rest of
             # a still tail
-            n = _rest_span(k, form, ax, ay, av, sub, n_exc, tail_av, geom, fric, rest_steps - resting,
-                           max_steps)
+            n = _rest_span(model, floor, k, rest_steps - resting)
             out[OUT_REST_STEPS] += n
             _tally(REST_MODE, FOUR, n * dt, out)
             for kk in range(k + 1, k + n + 1):
@@ -2070,40 +2079,37 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
             continue
         if seated:  # leaving rest: warm start from the static impulses of the step's load
             seated = False
-            gz = geom[3] + a_v
+            gz = body.g + a_v
             for i in range(4):
                 P[i, 0], P[i, 1], P[i, 2] = 0.25 * a_x * dt, 0.25 * a_y * dt, 0.25 * gz * dt
         n, tilt_sub, smoothed = 0, 0.0, False
         if smooth_on and calm >= PV.CALM_STEPS:
-            n, tilt_sub = _smooth(state, touch, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, wk,
-                                  probe, P, new, lift_gap, vel_tol, out)
+            n, tilt_sub = _smooth(model, floor, state, touch, k, n_max, ws, wk, probe, P, new, out)
             smoothed = n > 0
             if n == 0:
                 calm = -4 * PV.MIN_STEPS  # none kept: the Moreau-Jean steps locate the event first
         elif smooth_on and slipc >= PV.CALM_STEPS:
-            n, tilt_sub = _smooth_slip(state, touch, slip, k, n_max, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws,
-                                       sw, probe, P, new, lift_gap, vel_tol, out)
+            n, tilt_sub = _smooth_slip(model, floor, state, touch, slip, k, n_max, ws, sw, probe, P, new, out)
             smoothed = n > 0
             if n == 0:
                 slipc = -4 * PV.MIN_STEPS
         elif smooth_on and sliding >= PV.CALM_STEPS:
-            n = _coarse_slide(state, k, n_slide, dt, theta_mj, geom, ib, fric, nsgs, forcing, ws, probe, P, new, out,
-                              touch, slip, vel_tol, lift_gap)
+            n = _coarse_slide(model, floor, state, k, n_slide, ws, probe, P, new, out, touch, slip)
             if n == 0:
                 sliding = -n_slide
         if smoothed:  # a smooth step's input work (the floor's force at its middle)
             F = wk[4]
-            PV.floor_at(k + 0.5 * n, k, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, geom[3])
+            PV.floor_at(floor, k + 0.5 * n, k, theta_mj, F, body.g)
             out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
-                (F[2] + geom[3]) * (new[2] - state[2])
+                (F[2] + body.g) * (new[2] - state[2])
         if n <= 0:
             n = 1
-            converged = _count_sweeps(_step(state, a_x, a_y, a_v, dt, theta_mj, geom, ib, fric, nsgs, ws, act, P,
-                                            new, out, touch), nsgs, out)
+            converged = _count_sweeps(_step(model, state, a_x, a_y, a_v, dt, ws, act, P, new, out, touch),
+                                      model.nsgs, out)
             a_step = ws[13]  # (an array, as _coarse_slide passes it: one specialisation of _book)
             a_step[0], a_step[1], a_step[2] = a_x, a_y, a_v
             impact = _book(state, a_step, ws[10], ws[11], ws[3], ws[2], ws[6][2], act, P, new, out, touch,
-                           slip, vel_tol, lift_gap, geom)
+                           slip, vel_tol, lift_gap, body)
             if not converged:
                 unconverged += 1
                 if unconverged > fail_steps:
@@ -2162,10 +2168,10 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
                     Rw * (abs(state[10]) + abs(state[11]) + abs(state[12])))
         still = speed < rest_vel
         resting = resting + min(n, k - n_exc + 1) if (k >= n_exc and mode == MODE_REST and still) else 0
-        if peak_rule and k >= n_exc and _peak_reached(state, geom, ib, theta_max, tail_av):
+        if peak_rule and k >= n_exc and _peak_reached(state, body, theta_max, tail_av):
             out[OUT_PEAK_STOP] = 1.0
             break
-        if mode == MODE_REST and speed < vel_tol and (n_down == 4 or _settle(state, touch, geom, ws[10], ws[11],
+        if mode == MODE_REST and speed < vel_tol and (n_down == 4 or _settle(state, touch, body, ws[10], ws[11],
                                                                                SETTLE_GAP * lift_gap, out)):
             seated = True
             for a in range(7, 13):
@@ -2176,11 +2182,11 @@ def run(geom, ib, fric, num, nsgs, form, ax, ay, av, sub, n_exc, tail_av, state,
     out[OUT_STATUS] = status
     out[OUT_STEPS] = k
     out[OUT_THETA_MAX] = theta_max
-    out[OUT_ROCKED] = 1.0 if theta_max > rocked_theta else 0.0
+    out[OUT_ROCKED] = 1.0 if theta_max > lim.rocked_theta else 0.0
     out[OUT_SLIDE_MAX] = slide_max
     out[OUT_TWIST_MAX] = twist_max
     out[OUT_STATE:OUT_STATE + 13] = state
     out[OUT_N_HIST] = j
     out[OUT_TIME] = k * dt
-    out[OUT_EVENT_TIME] = k * dt * geom[4]
+    out[OUT_EVENT_TIME] = k * dt * body.p
     return status

@@ -53,15 +53,20 @@ CALM_STEPS = 4
 #: transition inside a coarse step moves the slide by about ``mu g (SLIDE_DTAU / p)² / 8``, 1e-7 m.
 SLIDE_DTAU = 2e-3
 
+#: The floor motion's form of a record (samples, linear between them): ``kernel.FORCING_LINEAR``.
+FORCING_LINEAR = 1
+
 
 @numba.njit(cache=True)
-def mean_floor(k0, n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, a):
-    """Mean floor accelerations ``a`` (m/s²) over steps ``k0 .. k0 + n - 1`` (within one sample interval of a
-    record, where they are linear: the value at ``k0 + theta_mj n``; a pulse's samples averaged)."""
+def mean_floor(floor, k0, n, theta_mj, a):
+    """Mean floor accelerations ``a`` (m/s²) of the floor motion ``floor`` (:class:`.model.Floor`) over steps ``k0
+    .. k0 + n - 1`` (within one sample interval of a record, where they are linear: the value at ``k0 + theta_mj
+    n``; a pulse's samples averaged)."""
+    ax, ay, av, sub, n_exc = floor.ax, floor.ay, floor.av, floor.sub, floor.n_exc
     if k0 >= n_exc:
-        a[0], a[1], a[2] = 0.0, 0.0, tail_av
+        a[0], a[1], a[2] = 0.0, 0.0, floor.tail_av
         return
-    if form == 1:
+    if floor.form == FORCING_LINEAR:
         j = k0 // sub
         f = (k0 + theta_mj * n - j * sub) / sub
         a[0] = ax[j] + f * (ax[j + 1] - ax[j])
@@ -77,14 +82,15 @@ def mean_floor(k0, n, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, a):
 
 
 @numba.njit(cache=True)
-def floor_at(kf, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g):
-    """Body force ``F = (-a_x, -a_y, -(g + a_v))`` (m/s²) at time ``kf`` (units of the Moreau-Jean step) of a
-    smooth step that starts at step ``k0``: records linear within the sample interval of ``k0``, pulses
-    (sampled at ``(i + theta_mj) dt``) interpolated linearly between their samples."""
+def floor_at(floor, kf, k0, theta_mj, F, g):
+    """Body force ``F = (-a_x, -a_y, -(g + a_v))`` (m/s²) of the floor motion ``floor`` at time ``kf`` (units of
+    the Moreau-Jean step) of a smooth step that starts at step ``k0``: records linear within the sample interval
+    of ``k0``, pulses (sampled at ``(i + theta_mj) dt``) interpolated linearly between their samples."""
+    ax, ay, av, sub, n_exc = floor.ax, floor.ay, floor.av, floor.sub, floor.n_exc
     if k0 >= n_exc:
-        F[0], F[1], F[2] = 0.0, 0.0, -(g + tail_av)
+        F[0], F[1], F[2] = 0.0, 0.0, -(g + floor.tail_av)
         return
-    if form == 1:  # FORCING_LINEAR
+    if floor.form == FORCING_LINEAR:
         j = k0 // sub
         f = (kf - j * sub) / sub
         F[0] = -(ax[j] + f * (ax[j + 1] - ax[j]))
@@ -182,7 +188,7 @@ def _tilt_of(y):
 
 
 @numba.njit(cache=True)
-def _loads_hold(y, dy, r, IO, F, edge, e, length, fric):
+def _loads_hold(y, dy, r, IO, F, edge, e, length, friction):
     """Do the pivots carry the motion ``(y, dy)`` (the arm ``r`` and ``I_O`` of ``y``, body force ``F``)? The
     reaction per unit mass ``R = omega' x r + omega x (omega x r) - F`` presses on the floor (``R_z > 0``) within
     the static cone (``hypot(R_x, R_y) <= mu_s R_z``; always with infinite friction); on an edge of direction
@@ -197,7 +203,7 @@ def _loads_hold(y, dy, r, IO, F, edge, e, length, fric):
     R0 = a1 * r2 - a2 * r1 + w1 * v2 - w2 * v1 - F[0]
     R1 = a2 * r0 - a0 * r2 + w2 * v0 - w0 * v2 - F[1]
     R2 = a0 * r1 - a1 * r0 + w0 * v1 - w1 * v0 - F[2]
-    if R2 <= 0.0 or (fric[2] < 0.5 and math.hypot(R0, R1) > fric[0] * R2):
+    if R2 <= 0.0 or (not friction.infinite and math.hypot(R0, R1) > friction.mu_s * R2):
         return False
     if not edge:
         return True
@@ -211,16 +217,15 @@ def _loads_hold(y, dy, r, IO, F, edge, e, length, fric):
 
 
 @numba.njit(cache=True)
-def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, fric, new, wk):
+def integrate(model, floor, s, pivots, n_piv, k0, n_steps, new, wk):
     """Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps about the stuck
     ``pivots[:n_piv]`` (one corner or two) into ``new``; returns the largest tilt (rad) at the sub-steps' ends, or
-    -1 as soon as the pivots' loads stop holding the block there (:func:`_loads_hold`, ``fric`` the kernel's
-    ``(mu_s, mu_k, infinite)``).
-    ``forcing`` is ``(form, ax, ay, av, sub, n_exc, tail_av)``; ``wk`` the workspace ``(y, dy, acc, ytmp)`` (7 each),
+    -1 as soon as the pivots' loads stop holding the block there (:func:`_loads_hold`).
+    ``model`` and ``floor`` are the kernel's (:mod:`.model`); ``wk`` the workspace ``(y, dy, acc, ytmp)`` (7 each),
     ``(F, cb, e, r)`` (3 each), ``(Q, IO)`` (3 x 3 each)."""
-    form, ax, ay, av, sub, n_exc, tail_av = forcing
     y, dy, acc, ytmp, F, cb, e, r, Q, IO = wk
-    b, d, h, g = geom[0], geom[1], geom[2], geom[3]
+    body, dt, theta_mj = model.body, model.numerics.dt, model.numerics.theta_mj
+    b, d, h, g, ib = body.b, body.d, body.h, body.g, body.inertia
     i0 = pivots[0]
     sx = 1.0 if i0 == 0 or i0 == 3 else -1.0
     sy = 1.0 if i0 == 0 or i0 == 1 else -1.0
@@ -242,11 +247,11 @@ def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
         e[0], e[1], e[2] = e0 / n, e1 / n, e2 / n
         we = y[4] * e[0] + y[5] * e[1] + y[6] * e[2]
         y[4], y[5], y[6] = we * e[0], we * e[1], we * e[2]
-    n_sub = max(1, int(math.ceil(n_steps * dt * geom[4] / RK_DTAU)))
+    n_sub = max(1, int(math.ceil(n_steps * dt * body.p / RK_DTAU)))
     hs = n_steps / n_sub  # sub-step in Moreau-Jean steps
     hdt = hs * dt
     tilt_max = _tilt_of(y)
-    floor_at(float(k0), k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+    floor_at(floor, float(k0), k0, theta_mj, F, g)
     _rhs(y, cb, ib, F, edge, e, dy, Q, IO, r)
     for m in range(n_sub):
         kf = k0 + m * hs
@@ -257,7 +262,7 @@ def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
             w = 1.0 / 3.0 if stage < 3 else 1.0 / 6.0
             for a in range(7):
                 ytmp[a] = y[a] + c * hdt * dy[a]
-            floor_at(kf + c * hs, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+            floor_at(floor, kf + c * hs, k0, theta_mj, F, g)
             _rhs(ytmp, cb, ib, F, edge, e, dy, Q, IO, r)
             for a in range(7):
                 acc[a] += w * dy[a]
@@ -267,9 +272,9 @@ def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
         for a in range(4):
             y[a] /= nq
         tilt_max = max(tilt_max, _tilt_of(y))
-        floor_at(kf + hs, k0, theta_mj, form, ax, ay, av, sub, n_exc, tail_av, F, g)
+        floor_at(floor, kf + hs, k0, theta_mj, F, g)
         _rhs(y, cb, ib, F, edge, e, dy, Q, IO, r)  # also the next sub-step's first stage
-        if not _loads_hold(y, dy, r, IO, F, edge, e, n if edge else 1.0, fric):
+        if not _loads_hold(y, dy, r, IO, F, edge, e, n if edge else 1.0, model.friction):
             return -1.0
     _arm(y, cb, Q, r)
     new[0], new[1], new[2] = o0 + r[0], o1 + r[1], o2 + r[2]
@@ -281,14 +286,14 @@ def integrate(s, pivots, n_piv, k0, n_steps, dt, theta_mj, geom, forcing, ib, fr
 
 
 @numba.njit(cache=True)
-def step_end(k, n_steps_max, sub, n_exc, form):
+def step_end(floor, k, n_steps_max):
     """Where a smooth step from step ``k`` may end: at most ``n_steps_max`` steps on, never past the end of the
     excitation or (records) the next sample."""
     end = k + n_steps_max
-    if k < n_exc:
-        end = min(end, n_exc)
-        if form == 1:
-            end = min(end, (k // sub + 1) * sub)
+    if k < floor.n_exc:
+        end = min(end, floor.n_exc)
+        if floor.form == FORCING_LINEAR:
+            end = min(end, (k // floor.sub + 1) * floor.sub)
     return end
 
 

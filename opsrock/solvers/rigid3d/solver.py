@@ -18,7 +18,8 @@ from opsrock.result import MODES, ContactSummary, PlanHistory, PlanSummary, Rock
 from opsrock.solvers._compile import announce_compile
 from opsrock.solvers.common import SolverRun, check_inputs, make_settings, settings_record
 from opsrock.solvers.rigid3d import kernel as kn
-from opsrock.solvers.rigid3d.settings import DEFAULT_TAIL_DTAU, Rigid3DSettings
+from opsrock.solvers.rigid3d.model import make_floor, make_model
+from opsrock.solvers.rigid3d.settings import Rigid3DSettings
 from opsrock.solvers.status import REASONS, failure_of
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
@@ -173,29 +174,16 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     """Run the kernel on one case and build the result."""
     block, settings = run.block, run.settings
     box = box_properties(block)
-    p, R, dt = box.p, box.R, forcing.dt
-    mu_inf = block.friction is None
-    fric = np.array([0.0 if mu_inf else block.friction, 0.0 if mu_inf else block.friction_kinetic,
-                     1.0 if mu_inf else 0.0])
-    geom = np.array([block.b, block.d, block.h_cm, G, p, 0.0, 0.0, R])
-    num = np.array([dt, settings.theta_mj, settings.rocked_theta, 1.0 if box.weak_y else 0.0])
-    nsgs = np.array([settings.nsgs_tol, settings.nsgs_max_sweeps, settings.nsgs_fail_steps, settings.nsgs_loose_tol,
-                     settings.nsgs_extra_sweeps], dtype=float)
-    tail_dtau = DEFAULT_TAIL_DTAU if settings.max_free_time is None else settings.max_free_time * p
-    max_tail = math.ceil(tail_dtau / (p * dt)) if tail else -1
-    limits = np.array([settings.step_limit, max_tail, settings.rest_velocity * p * R,
-                       max(1, math.ceil(settings.rest_duration / (p * dt))), settings.velocity_tol * p * R,
-                       settings.contact_gap * (G + forcing.peak) * dt * dt,
-                       1.0 if settings.tail == "peak" else 0.0, 1.0 if settings.smooth else 0.0])
-    every = max(1, round(settings.history_dtau / (p * dt)))
+    model = make_model(block, box, settings, forcing.dt, forcing.peak, tail)
+    floor = make_floor(forcing.form, forcing.ax, forcing.ay, forcing.av, forcing.sub, forcing.n_exc, forcing.tail_av)
+    every, max_tail = model.numerics.hist_every, model.limits.max_tail
     cap = min(forcing.n_exc + max(max_tail, 0), settings.step_limit) // every + 3 if settings.record else 0
     hist = np.empty((cap, kn.H_SIZE))  # the kernel writes the rows it returns; zeroing them cost about 2 ms a case
     out = np.zeros(kn.OUT_SIZE)
-    record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": dt}
+    record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": forcing.dt}
     announce_compile(kn.run, SOLVER_NAME)
     try:
-        kn.run(geom, np.array(box.inertia), fric, num, nsgs, forcing.form, forcing.ax, forcing.ay, forcing.av,
-               forcing.sub, forcing.n_exc, forcing.tail_av, state.copy(), limits, every, hist, out)
+        kn.run(model, floor, state.copy(), hist, out)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, box.alpha, f"{type(exc).__name__}: {exc}",
                              wall_time_s=run.elapsed())

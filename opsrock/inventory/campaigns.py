@@ -43,7 +43,7 @@ import pandas as pd
 
 from opsrock.errors import InputError
 from opsrock.inventory.friction import FrictionDistribution
-from opsrock.inventory.items import Item, Support
+from opsrock.inventory.items import DIRECTIONS, Item, Support
 from opsrock.inventory.motions import MotionSet
 
 #: Label of the one-storey building that stands for a support (its top is the floor label ``support.f1``).
@@ -53,9 +53,14 @@ SUPPORT_NAME: str = "support"
 #: batch costs a round trip and a store commit).
 BATCH: int = 256
 
-#: Columns of a campaign's ``cases.csv`` the study reads (``slide_max`` too where friction is modelled).
+#: Columns of a campaign's ``cases.csv`` the study reads (and :data:`OPTIONAL_CASE_COLUMNS` where written).
 CASE_COLUMNS: tuple[str, ...] = ("case_id", "block", "record", "level", "level_value", "scale", "status",
                                  "reason", "overturned")
+
+#: Columns the study reads where the scene's solver writes them (registry ``result_columns``): ``slide_max`` (m)
+#: where friction is modelled (NaN otherwise); a box in plan's ``azimuth`` (deg), ``tilt_max`` (rad) and
+#: ``overturned_over``.
+OPTIONAL_CASE_COLUMNS: tuple[str, ...] = ("slide_max", "azimuth", "tilt_max", "overturned_over")
 
 
 @dataclass(frozen=True)
@@ -320,12 +325,13 @@ def cached_demands(motions: MotionSet, store: Path, workers: int | None = 1) -> 
 def seed_motions(gs: GroupScene, folder: Path, demands: pd.DataFrame) -> bool:
     """Give an unfiltered group's campaign the floor motions and their measures (:func:`floor_demands`)
     through its floor-motion cache (:data:`opsrock.campaign.motions.MOTIONS_FILE`), so that it computes
-    none; a group on a support computes its filtered motions itself. Returns whether it seeded."""
+    none; a group on a support computes its filtered motions itself, and a group in both directions at once (a
+    box in plan, direction ``"12"``) its motion pairs. Returns whether it seeded."""
     from opsrock._files import atomic_write
     from opsrock.campaign.motions import MOTIONS_FILE
     from opsrock.intensity.records import MotionMeasures
 
-    if gs.group.support is not None or (folder / MOTIONS_FILE).exists():
+    if gs.group.support is not None or gs.group.direction not in DIRECTIONS or (folder / MOTIONS_FILE).exists():
         return False
     d = demands[demands["direction"] == gs.group.direction].set_index(["record", "floor"])
     keys = [f.name for f in dataclasses.fields(MotionMeasures)]
@@ -369,9 +375,9 @@ def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, 
 def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
     from opsrock.campaign.cases import read_cases
 
-    friction = "slide_max" in gs.scene.columns
-    df = read_cases(path, usecols=list(CASE_COLUMNS) + (["slide_max"] if friction else []))
-    if not friction:
+    extra = [c for c in OPTIONAL_CASE_COLUMNS if c in gs.scene.columns]  # as the scene's solver declares
+    df = read_cases(path, usecols=list(CASE_COLUMNS) + extra)
+    if "slide_max" not in extra:
         df["slide_max"] = math.nan
     df["item"] = df["block"].map(gs.blocks)
     source = df["record"].map(gs.records)
@@ -380,6 +386,6 @@ def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
     return df
 
 
-__all__ = ["BATCH", "CASE_COLUMNS", "DEMANDS_FILE", "SUPPORT_NAME", "Group", "GroupScene", "block_name",
+__all__ = ["BATCH", "CASE_COLUMNS", "OPTIONAL_CASE_COLUMNS", "DEMANDS_FILE", "SUPPORT_NAME", "Group", "GroupScene", "block_name",
            "cached_demands", "floor_demands", "group_scenes", "groups_of", "item_block_spec", "motions_digest",
            "run_groups", "seed_motions"]

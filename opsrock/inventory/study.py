@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -31,11 +30,11 @@ import pandas as pd
 
 from opsrock.contents.design import DEFAULT_LEVELS
 from opsrock.errors import InputError
-from opsrock.fragility.cases import check_some_finished
 from opsrock.inventory.items import Inventory
 from opsrock.inventory.motions import MotionSet
 from opsrock.inventory.outputs import InventoryStudy, workers_of, write_csv
-from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, check_azimuths, run_three_d_study
+from opsrock.inventory.stages import Route
+from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, THREE_D, check_azimuths
 from opsrock.solvers.registry import METHODS as SOLVER_INFO
 from opsrock.solvers.registry import planar_solver
 
@@ -215,16 +214,13 @@ def inventory_design(inventory: str | Path | None, motions: str | Path | None, s
     return quick(design) if quick_run else design
 
 
-def _say(progress: bool, text: str) -> None:
-    if progress:
-        print(f"contents: {text}", file=sys.stderr, flush=True)
-
-
 def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers: int | None = None,
                         progress: bool = True, force: bool = False,
                         store_dir: str | Path | None = None) -> InventoryStudy:
     """Each item's overturning (and sliding) fragility per floor and direction, the expected numbers
-    overturned, and a pelicun folder, written into ``out_dir`` (resumable).
+    overturned, and a pelicun folder, written into ``out_dir`` (resumable): the stages of
+    :class:`opsrock.inventory.stages.Assessment` on the route of the design's solver (:data:`PLANAR`, or
+    :data:`opsrock.inventory.three_d.THREE_D` for a solver in plan).
 
     Parameters
     ----------
@@ -251,55 +247,43 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     InputError
         Bad inputs (before anything is written), or every case failed (nothing written).
     """
-    from opsrock.inventory.campaigns import cached_demands, group_scenes, groups_of, run_groups
+    from opsrock.inventory.stages import Assessment
 
-    if SOLVER_INFO[design.solver].plan:
-        return run_three_d_study(design, out_dir, workers=workers, progress=progress, force=force,
-                                 store_dir=store_dir)
-    t_start = time.perf_counter()
-    groups = groups_of(design.inventory.items, design.motions, design.solver, design.friction_solver)
-    scenes = group_scenes(groups, design.motions, design.intensity, design.seed)  # every input checked first
     out = Path(out_dir)
     store = Path(store_dir) if store_dir is not None else out / "campaigns"
-    timings: dict[str, float] = {}
-    t0 = time.perf_counter()
-    demands = cached_demands(design.motions, store, workers_of(workers))
-    timings["demands_s"] = time.perf_counter() - t0
-    _say(progress, f"{sum(s.scene.n_cases for s in scenes)} cases in {len(scenes)} campaigns into {store}")
-    cases, t_camp = run_groups(scenes, store, demands, workers=workers, progress=progress, force=force)
-    timings["campaigns_s"] = t_camp["campaigns_s"]
-    check_some_finished(cases, str(store))
-    return _fit_and_write(design, cases, demands, out, workers, progress,
-                          {"timings": timings, "t_start": t_start, "n_computed": t_camp["n_computed"]})
+    route = THREE_D if SOLVER_INFO[design.solver].plan else PLANAR
+    return Assessment(design, route, out, store, workers=workers, progress=progress, force=force).run()
 
 
-def _fit_and_write(design: InventoryDesign, cases: pd.DataFrame, demands: pd.DataFrame, out: Path,
-                   workers: int | None, progress: bool, run: dict) -> InventoryStudy:
-    from opsrock._files import staged_folder
+def _planar_scenes(design: InventoryDesign) -> list:
+    """One campaign per group of items on the same floors, direction, support and solver."""
+    from opsrock.inventory.campaigns import group_scenes, groups_of
+
+    groups = groups_of(design.inventory.items, design.motions, design.solver, design.friction_solver)
+    return group_scenes(groups, design.motions, design.intensity, design.seed)
+
+
+def _planar_fit(a: Any) -> dict[str, pd.DataFrame]:
+    """``fits`` (with their pelicun IDs), ``demands`` and ``expected`` (:data:`TABLES`)."""
     from opsrock.inventory.fits import expected_table, fit_table
-    from opsrock.inventory.pelicun import with_pelicun_ids, write_pelicun_folder
+    from opsrock.inventory.pelicun import with_pelicun_ids
 
-    timings = run["timings"]
+    fits = with_pelicun_ids(fit_table(a.cases, a.demands, a.design, workers_of(a.workers)), a.design.motions.directions)
+    return {"fits": fits, "demands": a.demands, "expected": expected_table(fits, a.cases, a.demands, a.design)}
+
+
+def _planar_write(a: Any, stage: Path) -> tuple[dict[str, Path], dict[str, Path], Path]:
+    """The tables, the pelicun folder, then the report (which shows the wall times)."""
+    from opsrock.inventory.pelicun import write_pelicun_folder
+
     t0 = time.perf_counter()
-    _say(progress, f"fits ({design.n_boot} record resamples each)")
-    fits = with_pelicun_ids(fit_table(cases, demands, design, workers_of(workers)), design.motions.directions)
-    expected = expected_table(fits, cases, demands, design)
-    timings["fits_s"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    tables = {"fits": fits, "demands": demands, "expected": expected}
-    with staged_folder(out, OUTPUTS) as stage:
-        paths = {k: write_csv(df, stage / TABLES[k]) for k, df in tables.items()}
-        pel = write_pelicun_folder(fits, demands, design, stage / "pelicun")
-        timings["outputs_s"] = time.perf_counter() - t0
-        timings["total_s"] = time.perf_counter() - run["t_start"]
-        report = _write_report(stage, {**tables, "design": design, "cases": cases, "timings": timings,
-                                       "pelicun": pel, "n_computed": run["n_computed"]})
-        final = {p: out / Path(p).relative_to(stage) for p in [report, *paths.values(), *pel.values()]}
-    n_failed = int((cases["status"] != "ok").sum())
-    _say(progress, f"done in {timings['total_s']:.1f} s: {final[report]}")
-    return InventoryStudy(design=design, out_dir=str(out), tables={k: str(final[p]) for k, p in paths.items()},
-                          pelicun={k: str(final[p]) for k, p in pel.items()}, report=str(final[report]),
-                          n_cases=len(cases), n_computed=int(run["n_computed"]), n_failed=n_failed, timings=timings)
+    paths = {k: write_csv(df, stage / TABLES[k]) for k, df in a.tables.items()}
+    pel = write_pelicun_folder(a.tables["fits"], a.demands, a.design, stage / "pelicun")
+    a.timings["outputs_s"] = time.perf_counter() - t0
+    a.timings["total_s"] = time.perf_counter() - a.t_start
+    report = _write_report(stage, {**a.tables, "design": a.design, "cases": a.cases, "timings": a.timings,
+                                   "pelicun": pel, "n_computed": a.n_computed})
+    return paths, pel, report
 
 
 def _write_report(stage: Path, study_tables: dict[str, Any]) -> Path:
@@ -329,5 +313,8 @@ def _write_report(stage: Path, study_tables: dict[str, Any]) -> Path:
     return write_report(stage / "report.md", inputs)
 
 
+#: The planar route: each item along each direction of the motions, its own campaign per group.
+PLANAR: Route = Route("planar", _planar_scenes, _planar_fit, _planar_write, OUTPUTS)
+
 __all__ = ["DEFAULT_DEMAND_LEVELS_PFA", "DEFAULT_DEMAND_LEVELS_PFV", "DEFAULT_SLIDE_DISTANCE", "METHODS", "OUTPUTS",
-           "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study"]
+           "PLANAR", "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study"]

@@ -29,8 +29,6 @@ expected numbers are not written for this route.
 from __future__ import annotations
 
 import math
-import sys
-import time
 from pathlib import Path
 from typing import Any
 
@@ -39,6 +37,7 @@ import pandas as pd
 
 from opsrock.errors import InputError
 from opsrock.inventory.motions import paired_motions
+from opsrock.inventory.stages import Route
 
 #: Default azimuths of the items in plan (deg, from direction 1 to an item's width).
 DEFAULT_AZIMUTHS: tuple[float, ...] = (0.0, 45.0, 90.0)
@@ -62,10 +61,6 @@ FIT3D_COLUMNS: tuple[str, ...] = (
     "beta_lo", "beta_hi", "n_cases", "n_exceeded", "n_corner", "n_failed", "n_records", "n_azimuths", "ok",
     "message", "fema_id", "fema_median", "ratio_fema",
 )  # fmt: skip
-
-#: Columns of the campaigns' ``cases.csv`` the route reads.
-CASE_COLUMNS_3D: tuple[str, ...] = ("case_id", "block", "record", "level", "scale", "status", "reason", "overturned",
-                                    "azimuth", "tilt_max", "overturned_over")
 
 #: Files this route writes into its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
 OUTPUTS_3D: tuple[str, ...] = ("report.md", "fits3d.csv", "demands.csv")
@@ -119,29 +114,6 @@ def three_d_scenes(design: Any) -> list:
         out.append(GroupScene(g, scene, {b.name: it.id for b, it in zip(blocks, items)},
                               {names[p]: (p.record, p.floor) for p in chosen}))
     return out
-
-
-def run_three_d_groups(scenes: list, store: Path, *, workers: int | None, progress: bool,
-                       force: bool) -> tuple[pd.DataFrame, int]:
-    """Run (or resume) every group's campaign into ``store/<group>``; every case (:data:`CASE_COLUMNS_3D`,
-    ``item``, ``floor``, ``record`` as the motions name it, ``overturned`` as bool) and those computed now."""
-    from opsrock.campaign import run_campaign
-    from opsrock.campaign.cases import read_cases
-    from opsrock.campaign.executors import LocalPool
-    from opsrock.inventory.campaigns import BATCH
-
-    frames, computed = [], 0
-    with LocalPool(workers) as pool:
-        for gs in scenes:
-            summary = run_campaign(gs.scene, store / gs.group.name, executor=pool, progress=progress, force=force,
-                                   batch=BATCH)
-            computed += summary.n_computed
-            df = read_cases(summary.cases_csv, usecols=CASE_COLUMNS_3D)
-            df["item"] = df["block"].map(gs.blocks)
-            source = df["record"].map(gs.records)
-            df["record"], df["floor"] = [r for r, _ in source], [f for _, f in source]
-            frames.append(df)
-    return pd.concat(frames, ignore_index=True), computed
 
 
 def pfv_demands(cases: pd.DataFrame, demands: pd.DataFrame) -> pd.DataFrame:
@@ -198,37 +170,19 @@ def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers
     return table
 
 
-def run_three_d_study(design: Any, out_dir: str | Path, *, workers: int | None = None, progress: bool = True,
-                      force: bool = False, store_dir: str | Path | None = None) -> Any:
-    """The route of the module docstring, written into ``out_dir`` (resumable); returns an
-    :class:`opsrock.inventory.outputs.InventoryStudy` (``tables`` ``fits3d`` and ``demands``, no pelicun files).
-    The parameters are :func:`opsrock.inventory.study.run_inventory_study`'s, which calls it for a ``design``
-    whose ``solver`` is in plan (registry ``plan``) (its ``azimuths`` in deg)."""
-    from opsrock._files import staged_folder
-    from opsrock.fragility.cases import check_some_finished
-    from opsrock.inventory.campaigns import cached_demands
-    from opsrock.inventory.outputs import InventoryStudy, workers_of, write_csv
+def _fit(a: Any) -> dict[str, pd.DataFrame]:
+    """``fits3d`` (:func:`fit3d_table`) and ``demands``."""
+    from opsrock.inventory.outputs import workers_of
 
-    t_start = time.perf_counter()
-    scenes = three_d_scenes(design)  # every input checked before anything is written
-    out = Path(out_dir)
-    store = Path(store_dir) if store_dir is not None else out / "campaigns"
-    demands = cached_demands(design.motions, store, workers_of(workers))
-    n = sum(s.scene.n_cases for s in scenes)
-    if progress:
-        print(f"contents: {n} cases in three dimensions in {len(scenes)} campaigns into {store}", flush=True,
-              file=sys.stderr)
-    cases, computed = run_three_d_groups(scenes, store, workers=workers, progress=progress, force=force)
-    check_some_finished(cases, str(store))
-    fits = fit3d_table(cases, demands, design, workers_of(workers))
-    with staged_folder(out, OUTPUTS_3D) as stage:
-        paths = {"fits3d": write_csv(fits, stage / "fits3d.csv"), "demands": write_csv(demands, stage / "demands.csv")}
-        report = _write_report(stage / "report.md", design, fits, len(cases))
-        final = {k: out / Path(p).relative_to(stage) for k, p in paths.items()}
-    total = time.perf_counter() - t_start
-    return InventoryStudy(design=design, out_dir=str(out), tables={k: str(p) for k, p in final.items()}, pelicun={},
-                          report=str(out / Path(report).name), n_cases=len(cases), n_computed=computed,
-                          n_failed=int((cases["status"] != "ok").sum()), timings={"total_s": total})
+    return {"fits3d": fit3d_table(a.cases, a.demands, a.design, workers_of(a.workers)), "demands": a.demands}
+
+
+def _write(a: Any, stage: Path) -> tuple[dict[str, Path], dict[str, Path], Path]:
+    """``fits3d.csv``, ``demands.csv`` and the report; no pelicun folder yet."""
+    from opsrock.inventory.outputs import write_csv
+
+    paths = {k: write_csv(df, stage / f"{k}.csv") for k, df in a.tables.items()}
+    return paths, {}, _write_report(stage / "report.md", a.design, a.tables["fits3d"], len(a.cases))
 
 
 def _write_report(path: Path, design: Any, fits: pd.DataFrame, n_cases: int) -> Path:
@@ -249,6 +203,9 @@ def _write_report(path: Path, design: Any, fits: pd.DataFrame, n_cases: int) -> 
     return path
 
 
-__all__ = ["CASE_COLUMNS_3D", "DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
+#: The route in three dimensions (:class:`opsrock.inventory.stages.Route`).
+THREE_D: Route = Route("3d", three_d_scenes, _fit, _write, OUTPUTS_3D)
+
+__all__ = ["DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
            "PFV_CONVENTIONS", "check_azimuths", "fit3d_table", "pfv_demands",
-           "run_three_d_groups", "run_three_d_study", "three_d_scenes"]
+           "THREE_D", "three_d_scenes"]

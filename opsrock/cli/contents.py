@@ -143,8 +143,7 @@ def _inventory(args: argparse.Namespace) -> int:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)
         return EXIT_INTERRUPTED
-    where = (f"fits in {res.tables['fits3d']}" if "fits3d" in res.tables
-             else f"fits in {res.tables['fits']}, pelicun folder {Path(res.out_dir) / 'pelicun'}")
+    where = f"fits in {res.tables['fits']}, pelicun folder {Path(res.out_dir) / 'pelicun'}"
     print(f"opsrock contents: {len(design.inventory.items)} items, {res.n_cases} cases ({res.n_computed} computed now, "
           f"{res.n_failed} failed) in {res.timings['total_s']:.1f} s; {where}; see {res.report}")
     return 0

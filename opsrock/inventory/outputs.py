@@ -4,11 +4,18 @@ which both import it and neither each other."""
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
+
+#: Files the study writes into its folder (besides ``campaigns/``).
+TABLES: dict[str, str] = {"fits": "fits.csv", "demands": "demands.csv", "expected": "expected.csv"}
+
+#: Every output the study owns in its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
+OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pelicun/*.csv", "pelicun/*.json")
 
 
 @dataclass(frozen=True)
@@ -22,7 +29,7 @@ class InventoryStudy:
     out_dir : str
         The output folder.
     tables : dict of str to str
-        Key of :data:`opsrock.inventory.study.TABLES` -> CSV path.
+        Key of :data:`TABLES` -> CSV path.
     pelicun : dict of str to str
         pelicun file key -> path (:func:`opsrock.inventory.pelicun.write_pelicun_folder`).
     report : str
@@ -61,4 +68,56 @@ def write_csv(df: pd.DataFrame, path: Path) -> Path:
     return path
 
 
-__all__ = ["InventoryStudy", "workers_of", "write_csv"]
+def study_tables(a: Any, cases: pd.DataFrame) -> dict[str, pd.DataFrame]:
+    """``fits`` (with their pelicun IDs), ``demands`` and ``expected`` (:data:`TABLES`) of the assessment ``a``
+    (:class:`opsrock.inventory.stages.Assessment`) from ``cases``: one row per item, floor and direction."""
+    from opsrock.inventory.fits import expected_table, fit_table
+    from opsrock.inventory.pelicun import with_pelicun_ids
+
+    fits = with_pelicun_ids(fit_table(cases, a.demands, a.design, workers_of(a.workers)), a.design.motions.directions)
+    return {"fits": fits, "demands": a.demands, "expected": expected_table(fits, cases, a.demands, a.design)}
+
+
+def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> tuple[dict[str, Path], dict[str, Path], Path]:
+    """The tables of the assessment ``a`` (:data:`TABLES`, and any other ``<key>.csv``), its pelicun folder, then its report (which shows the
+    wall times), into the staging folder ``stage``; ``notes``: lines the route adds to the report."""
+    from opsrock.inventory.pelicun import write_pelicun_folder
+
+    t0 = time.perf_counter()
+    paths = {k: write_csv(df, stage / TABLES.get(k, f"{k}.csv")) for k, df in a.tables.items()}
+    pel = write_pelicun_folder(a.tables["fits"], a.demands, a.design, stage / "pelicun")
+    a.timings["outputs_s"] = time.perf_counter() - t0
+    a.timings["total_s"] = time.perf_counter() - a.t_start
+    report = _write_report(stage, {**a.tables, "design": a.design, "cases": a.cases, "timings": a.timings,
+                                   "pelicun": pel, "n_computed": a.n_computed}, notes)
+    return paths, pel, report
+
+
+def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[str, ...] = ()) -> Path:
+    """``report.md`` and its figures (:mod:`opsrock.inventory.report`, :mod:`opsrock.inventory.plots`) from the
+    study's tables; every number the report shows is computed in :mod:`opsrock.inventory.summary`."""
+    from opsrock.inventory.items import item_cells
+    from opsrock.inventory.plots import item_figures, plot_floor_demands
+    from opsrock.inventory.report import ReportInputs, write_report
+    from opsrock.inventory.summary import demand_table, report_tables
+
+    design, fits, cases = study_tables["design"], study_tables["fits"], study_tables["cases"]
+    levels = {"pfv": design.demand_levels_pfv, "pfa": design.demand_levels_pfa}
+    computed = report_tables(fits, levels, cases)
+    figures = {item: f"figures/{p.name}" for item, p in item_figures(computed["curves"], stage / "figures").items()}
+    figures["demands"] = f"figures/{plot_floor_demands(demand_table(study_tables['demands']), stage / 'figures' / 'demands.png').name}"
+    t = study_tables["timings"]
+    notes = (f"{len(cases)} cases, {int((cases['status'] != 'ok').sum())} failed; "
+             f"{study_tables['n_computed']} computed in this run.",
+             f"Wall time (s): demands {t.get('demands_s', 0.0):.1f}, campaigns {t.get('campaigns_s', 0.0):.1f}, "
+             f"fits {t.get('fits_s', 0.0):.1f}.", *route_notes)
+    pelicun = {key: f"pelicun/{Path(path).name}" for key, path in study_tables["pelicun"].items()}
+    inputs = ReportInputs(title=f"Contents fragility: {design.inventory.source} on {design.motions.source}",
+                          method=design.method, fits=fits, demands=study_tables["demands"],
+                          expected=study_tables["expected"],
+                          inventory=pd.DataFrame([item_cells(i) for i in design.inventory.items]),
+                          figures=figures, notes=notes, pelicun=pelicun, **computed)
+    return write_report(stage / "report.md", inputs)
+
+
+__all__ = ["OUTPUTS", "TABLES", "InventoryStudy", "study_tables", "workers_of", "write_csv", "write_outputs"]

@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -32,7 +31,7 @@ from opsrock.contents.design import DEFAULT_LEVELS
 from opsrock.errors import InputError
 from opsrock.inventory.items import Inventory
 from opsrock.inventory.motions import MotionSet
-from opsrock.inventory.outputs import InventoryStudy, workers_of, write_csv
+from opsrock.inventory.outputs import OUTPUTS, TABLES, InventoryStudy, study_tables, write_outputs
 from opsrock.inventory.stages import Route
 from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, THREE_D, check_azimuths
 from opsrock.solvers.registry import METHODS as SOLVER_INFO
@@ -48,11 +47,6 @@ DEFAULT_DEMAND_LEVELS_PFA: tuple[float, ...] = (0.25, 0.5, 1.0)
 #: Sliding beyond this distance (m) is counted where friction is modelled.
 DEFAULT_SLIDE_DISTANCE: float = 0.05
 
-#: Files the study writes into its folder (besides ``campaigns/``).
-TABLES: dict[str, str] = {"fits": "fits.csv", "demands": "demands.csv", "expected": "expected.csv"}
-
-#: Every output the study owns in its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
-OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pelicun/*.csv", "pelicun/*.json")
 
 
 def _positive(name: str, values: tuple, what: str) -> tuple[float, ...]:
@@ -263,58 +257,8 @@ def _planar_scenes(design: InventoryDesign) -> list:
     return group_scenes(groups, design.motions, design.intensity, design.seed)
 
 
-def _planar_fit(a: Any) -> dict[str, pd.DataFrame]:
-    """``fits`` (with their pelicun IDs), ``demands`` and ``expected`` (:data:`TABLES`)."""
-    from opsrock.inventory.fits import expected_table, fit_table
-    from opsrock.inventory.pelicun import with_pelicun_ids
-
-    fits = with_pelicun_ids(fit_table(a.cases, a.demands, a.design, workers_of(a.workers)), a.design.motions.directions)
-    return {"fits": fits, "demands": a.demands, "expected": expected_table(fits, a.cases, a.demands, a.design)}
-
-
-def _planar_write(a: Any, stage: Path) -> tuple[dict[str, Path], dict[str, Path], Path]:
-    """The tables, the pelicun folder, then the report (which shows the wall times)."""
-    from opsrock.inventory.pelicun import write_pelicun_folder
-
-    t0 = time.perf_counter()
-    paths = {k: write_csv(df, stage / TABLES[k]) for k, df in a.tables.items()}
-    pel = write_pelicun_folder(a.tables["fits"], a.demands, a.design, stage / "pelicun")
-    a.timings["outputs_s"] = time.perf_counter() - t0
-    a.timings["total_s"] = time.perf_counter() - a.t_start
-    report = _write_report(stage, {**a.tables, "design": a.design, "cases": a.cases, "timings": a.timings,
-                                   "pelicun": pel, "n_computed": a.n_computed})
-    return paths, pel, report
-
-
-def _write_report(stage: Path, study_tables: dict[str, Any]) -> Path:
-    """``report.md`` and its figures (:mod:`opsrock.inventory.report`, :mod:`opsrock.inventory.plots`) from the
-    study's tables; every number the report shows is computed in :mod:`opsrock.inventory.summary`."""
-    from opsrock.inventory.items import item_cells
-    from opsrock.inventory.plots import item_figures, plot_floor_demands
-    from opsrock.inventory.report import ReportInputs, write_report
-    from opsrock.inventory.summary import demand_table, report_tables
-
-    design, fits, cases = study_tables["design"], study_tables["fits"], study_tables["cases"]
-    levels = {"pfv": design.demand_levels_pfv, "pfa": design.demand_levels_pfa}
-    computed = report_tables(fits, levels, cases)
-    figures = {item: f"figures/{p.name}" for item, p in item_figures(computed["curves"], stage / "figures").items()}
-    figures["demands"] = f"figures/{plot_floor_demands(demand_table(study_tables['demands']), stage / 'figures' / 'demands.png').name}"
-    t = study_tables["timings"]
-    notes = (f"{len(cases)} cases, {int((cases['status'] != 'ok').sum())} failed; "
-             f"{study_tables['n_computed']} computed in this run.",
-             f"Wall time (s): demands {t.get('demands_s', 0.0):.1f}, campaigns {t.get('campaigns_s', 0.0):.1f}, "
-             f"fits {t.get('fits_s', 0.0):.1f}.")
-    pelicun = {key: f"pelicun/{Path(path).name}" for key, path in study_tables["pelicun"].items()}
-    inputs = ReportInputs(title=f"Contents fragility: {design.inventory.source} on {design.motions.source}",
-                          method=design.method, fits=fits, demands=study_tables["demands"],
-                          expected=study_tables["expected"],
-                          inventory=pd.DataFrame([item_cells(i) for i in design.inventory.items]),
-                          figures=figures, notes=notes, pelicun=pelicun, **computed)
-    return write_report(stage / "report.md", inputs)
-
-
 #: The planar route: each item along each direction of the motions, its own campaign per group.
-PLANAR: Route = Route("planar", _planar_scenes, _planar_fit, _planar_write, OUTPUTS)
+PLANAR: Route = Route("planar", _planar_scenes, lambda a: study_tables(a, a.cases), write_outputs, OUTPUTS)
 
 __all__ = ["DEFAULT_DEMAND_LEVELS_PFA", "DEFAULT_DEMAND_LEVELS_PFV", "DEFAULT_SLIDE_DISTANCE", "METHODS", "OUTPUTS",
            "PLANAR", "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study"]

@@ -21,9 +21,10 @@ maximum of all available directions" scaled by ``nondir_multi``); neither the ge
 ``pfv_nd = 1.2 max(pfv_1, pfv_2)``, and its fitted median is 1.2 times ``pfv_max``'s with the same ``beta``
 (the lognormal fit is scale-equivariant), given for reading against FEMA P-58's non-directional medians.
 
-Outputs (in ``out_dir``, through a staging folder): ``fits3d.csv`` (:data:`FIT3D_COLUMNS`), ``demands.csv``
-(each motion's measures, as the planar route's) and ``report.md``. The planar route's pelicun folder and
-expected numbers are not written for this route.
+Outputs (in ``out_dir``, through a staging folder): the planar route's (:data:`opsrock.inventory.outputs.OUTPUTS`:
+``fits.csv``, ``demands.csv``, ``expected.csv``, ``report.md`` with its figures, the pelicun folder), each case
+read once per direction against that direction's demand (:func:`per_direction`), and ``fits3d.csv``
+(:data:`FIT3D_COLUMNS`, the PFV conventions).
 """
 
 from __future__ import annotations
@@ -37,6 +38,7 @@ import pandas as pd
 
 from opsrock.errors import InputError
 from opsrock.inventory.motions import paired_motions
+from opsrock.inventory.outputs import OUTPUTS
 from opsrock.inventory.stages import Route
 
 #: Default azimuths of the items in plan (deg, from direction 1 to an item's width).
@@ -62,8 +64,9 @@ FIT3D_COLUMNS: tuple[str, ...] = (
     "message", "fema_id", "fema_median", "ratio_fema",
 )  # fmt: skip
 
-#: Files this route writes into its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
-OUTPUTS_3D: tuple[str, ...] = ("report.md", "fits3d.csv", "demands.csv")
+#: Files this route writes into its folder (globs relative to it; :func:`opsrock._files.staged_folder`): the
+#: planar route's and ``fits3d.csv``.
+OUTPUTS_3D: tuple[str, ...] = (*OUTPUTS, "fits3d.csv")
 
 
 def check_azimuths(azimuths: tuple) -> tuple[float, ...]:
@@ -170,42 +173,38 @@ def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers
     return table
 
 
-def _fit(a: Any) -> dict[str, pd.DataFrame]:
-    """``fits3d`` (:func:`fit3d_table`) and ``demands``."""
-    from opsrock.inventory.outputs import workers_of
+def per_direction(cases: pd.DataFrame) -> pd.DataFrame:
+    """Each case of a box in plan once per horizontal direction (``direction`` ``"1"`` and ``"2"``): its outcome
+    read against the demand of that direction, so that the planar route's tables, report and pelicun folder
+    (:func:`opsrock.inventory.outputs.study_tables`) take it as they are."""
+    return pd.concat([cases.assign(direction=d) for d in ("1", "2")], ignore_index=True)
 
-    return {"fits3d": fit3d_table(a.cases, a.demands, a.design, workers_of(a.workers)), "demands": a.demands}
+
+def _fit(a: Any) -> dict[str, pd.DataFrame]:
+    """The planar route's tables from :func:`per_direction` cases, and ``fits3d`` (:func:`fit3d_table`)."""
+    from opsrock.inventory.outputs import study_tables, workers_of
+
+    return {**study_tables(a, per_direction(a.cases)),
+            "fits3d": fit3d_table(a.cases, a.demands, a.design, workers_of(a.workers))}
 
 
 def _write(a: Any, stage: Path) -> tuple[dict[str, Path], dict[str, Path], Path]:
-    """``fits3d.csv``, ``demands.csv`` and the report; no pelicun folder yet."""
-    from opsrock.inventory.outputs import write_csv
+    """The planar route's outputs (:func:`opsrock.inventory.outputs.write_outputs`), ``fits3d.csv``, and the
+    report's lines on the model in three dimensions."""
+    from opsrock.inventory.outputs import write_outputs
 
-    paths = {k: write_csv(df, stage / f"{k}.csv") for k, df in a.tables.items()}
-    return paths, {}, _write_report(stage / "report.md", a.design, a.tables["fits3d"], len(a.cases))
-
-
-def _write_report(path: Path, design: Any, fits: pd.DataFrame, n_cases: int) -> Path:
-    """``report.md``: the fits table as computed (:func:`fit3d_table`), with the conventions named."""
-    from opsrock._files import atomic_write
-    from opsrock.report.markdown import markdown_table
-
-    shown = fits[["item", "floor", "demand", "median", "beta", "n_cases", "n_exceeded", "n_corner", "n_azimuths",
-                  "ok", "message"]]
-    lines = [f"# Contents fragility in three dimensions: {design.inventory.source} on {design.motions.source}", "",
-             f"Solver {design.solver}; azimuths {', '.join(f'{z:g}' for z in design.azimuths)} deg, pooled; "
-             f"{n_cases} cases; method {design.method}.", "", "Demand conventions (m/s):", ""]
-    lines += [f"- `{k}`: {v}" for k, v in PFV_CONVENTIONS.items()]
-    lines += ["", "Non-directional: pelicun's (NHERI-SimCenter/pelicun, pelicun/model/damage_model.py and "
-              "pelicun/base.py NonDirectionalMultipliers), the larger directional demand times 1.2.", "",
-              markdown_table(shown, floatfmt=".4g"), ""]
-    atomic_write(path, lambda fh: fh.write("\n".join(lines)), durable=False)
-    return path
+    notes = (f"Model: every item a box in three dimensions (solver {a.design.solver}) under both horizontal "
+             f"components at once, turned in plan to {', '.join(f'{z:g}' for z in a.design.azimuths)} deg, the "
+             "azimuths pooled; the rows of direction 1 (2) read each case against the PFV and PFA of direction 1 (2).",
+             "fits3d.csv: the PFV medians in each convention, "
+             + "; ".join(f"`{k}` {v}" for k, v in PFV_CONVENTIONS.items()) + " (pelicun's non-directional demand: "
+             "NHERI-SimCenter/pelicun, pelicun/base.py NonDirectionalMultipliers).")
+    return write_outputs(a, stage, notes)
 
 
 #: The route in three dimensions (:class:`opsrock.inventory.stages.Route`).
 THREE_D: Route = Route("3d", three_d_scenes, _fit, _write, OUTPUTS_3D)
 
 __all__ = ["DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
-           "PFV_CONVENTIONS", "check_azimuths", "fit3d_table", "pfv_demands",
+           "PFV_CONVENTIONS", "check_azimuths", "fit3d_table", "per_direction", "pfv_demands",
            "THREE_D", "three_d_scenes"]

@@ -90,4 +90,9 @@ def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_pat
     assert [r["demand"] for r in rows] == list(PFV_CONVENTIONS)
     assert all(r["item"] == "cab" and r["floor"] == "1" and int(r["n_azimuths"]) == 2 for r in rows)
     assert all(int(r["n_cases"]) + int(r["n_failed"]) == 2 for r in rows)
-    assert "1.2" in Path(first.report).read_text() and first.pelicun == {}
+    assert "1.2" in Path(first.report).read_text()
+    # the planar route's outputs too (the same stages): fits per direction, expected numbers, a pelicun folder
+    assert set(first.tables) == {"fits", "demands", "expected", "fits3d"} and first.pelicun
+    fits = pd.read_csv(first.tables["fits"], dtype={"direction": str, "floor": str})
+    assert set(fits["direction"]) == {"1", "2"} and set(fits["item"]) == {"cab"}
+    assert (fits["n_cases"] + fits["n_failed"] == 2).all()  # each case once per direction, not twice

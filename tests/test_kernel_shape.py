@@ -71,14 +71,6 @@ ALLOWED_PLANAR = frozenset({
     "opsrock.solvers.friction.kernel._energy",
     "opsrock.solvers.friction.kernel.solve_case",
     "opsrock.solvers.friction.modes.accelerations",
-    "opsrock.solvers.moreau_jean.kernel._try_pair",
-    "opsrock.solvers.moreau_jean.kernel._stick_both",
-    "opsrock.solvers.moreau_jean.kernel._try",
-    "opsrock.solvers.moreau_jean.kernel._impulses",
-    "opsrock.solvers.moreau_jean.kernel._record",
-    "opsrock.solvers.moreau_jean.kernel._step",
-    "opsrock.solvers.moreau_jean.kernel._contacts",
-    "opsrock.solvers.moreau_jean.kernel.run",
 })
 ALLOWED = ALLOWED_RIGID3D | ALLOWED_PLANAR
 

@@ -22,7 +22,7 @@ from typing import Any
 COMPILE_CPU_S: dict[str, float] = {
     "friction": 17.0,
     "housner_fast": 6.0,
-    "moreau_jean": 15.0,
+    "moreau_jean": 8.0,
     "rigid3d": 150.0,
 }
 

@@ -236,12 +236,10 @@ def _two_contact_step(theta_k: float, lam: float, previous_pair: int):
     for i, c in enumerate((1.0, -1.0)):
         gn[i], gt[i] = kn._rows(c, b, h, theta_k)
     vf = np.array([-dt * lam * G * block.tan_alpha, -dt * G, 0.0])
-    pn, pt, v = np.zeros(2), np.zeros(2), np.zeros(3)
-    work = (np.zeros((4, 3, 3)), np.zeros((2, 3), dtype=np.int64), np.zeros((2, 4)))
-    last = np.full(1, previous_pair, dtype=np.int64)
-    st = kn._impulses(vf, gn, gt, np.ones(2, dtype=np.bool_), 3.0 / R**2, R, math.inf, 0.0, True, 1e-10,
-                      dt * G, pn, pt, v, *work, last)
-    return st, pn, pt, v
+    sol = kn.Solution(np.zeros(2), np.zeros(2), np.zeros(3))
+    st = kn._impulses(kn.Problem(vf, gn, gt, 3.0 / R**2), np.ones(2, dtype=np.bool_), R, kn.friction(0.0, 0.0, True),
+                      1e-10, dt * G, sol, kn.scratch(previous_pair))
+    return st, sol.pn, sol.pt, sol.v
 
 
 @pytest.mark.parametrize("theta_k", [0.0, 1.4e-8, -1e-5])

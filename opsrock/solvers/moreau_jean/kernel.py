@@ -19,6 +19,7 @@ Corner ``c = +1`` (right) / ``-1`` (left), with ``s = sin(theta)``, ``co = cos(t
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numba
 import numpy as np
@@ -73,13 +74,99 @@ OUT_FLICKER_STEPS = ST.OUT_COMMON + 17
 OUT_SLIP_END = ST.OUT_COMMON + 18
 OUT_SIZE = ST.OUT_COMMON + 19
 
+# --- the named tuples the kernel passes (QuantEcon's layout: one builder each) ------------------------------
+#: The block, per unit mass: half-width ``b``, height of the centre of mass above the base ``h``, ``R = hypot(b,
+#: h)`` (m), gravity ``g`` (m/s²), ``kappa = R² / r²`` (dimensionless; ``r`` the radius of gyration about the
+#: centre of mass, 3 for a homogeneous block). Built by :func:`body`.
+Body = namedtuple("Body", ["b", "h", "R", "g", "kappa"])
+#: The floor's friction: static and kinetic coefficients, and ``stick_only`` (``mu`` infinite: then ``mu_s = inf``
+#: and ``mu_k = 0``). Built by :func:`friction`.
+Friction = namedtuple("Friction", ["mu_s", "mu_k", "stick_only"])
+#: The numerics: step ``dt`` (s), theta-method parameter, relative slack ``tol`` of the contact laws, rotation
+#: (rad) above which the block rocked. Built by :func:`numerics`.
+Numerics = namedtuple("Numerics", ["dt", "theta_mj", "tol", "rocked_theta"])
+#: When the run ends and what counts as contact: steps allowed, steps after the excitation (< 0: no tail), rest
+#: velocity (m/s) and the steps at rest that end a tail, the velocity (m/s) and gap (m) of a corner's lift-off.
+#: Built by :func:`limits`.
+Limits = namedtuple("Limits", ["max_steps", "max_tail", "rest_velocity", "rest_steps", "velocity_tol", "lift_gap"])
+#: Floor motion: :data:`FORCING_STEPWISE` (``ah[k]``, ``av[k]`` at step ``k``'s evaluation time) or
+#: :data:`FORCING_LINEAR` (samples, ``sub`` steps per interval), for ``n_exc`` steps; after them ``a_h = 0`` and
+#: ``a_v = tail_av`` (m/s²). Built by :func:`floor_motion`.
+FloorMotion = namedtuple("FloorMotion", ["form", "ah", "av", "sub", "n_exc", "tail_av"])
+#: The history: a row every ``every`` steps (and the last state): time (s), ``theta`` (rad), ``theta'`` (rad/s),
+#: the base's slide (m); arrays of length 0: none. Built by :func:`history`.
+History = namedtuple("History", ["every", "t", "theta", "theta_dot", "slide"])
+#: One step's contact problem: the free velocity ``vf`` (``x'``, ``y'``, ``theta'``), the rotation entries ``gn``,
+#: ``gt`` of each corner's Jacobian rows, and ``k3 = kappa / R²`` (the rotation's inverse mass, 1/m²).
+Problem = namedtuple("Problem", ["vf", "gn", "gt", "k3"])
+#: Its answer: normal and tangential impulses of each corner (m/s) and the velocity at the step's end.
+Solution = namedtuple("Solution", ["pn", "pt", "v"])
+#: Scratch of the two-contact enumeration: ``ws`` (float, 4 x 3 x 3), ``wi`` (int, 2 x 3), ``wb`` (float, 2 x 4),
+#: and ``last[0]``, the previous step's status pair. Built by :func:`scratch`.
+Scratch = namedtuple("Scratch", ["ws", "wi", "wb", "last"])
+#: The arrays a step works in: its contact :class:`Problem` and :class:`Solution` (whose ``v`` is a view of
+#: ``new``), whether each corner is active this step (``act``), touches and slips (``touch``, ``slip``, kept between
+#: steps), the new state ``new`` and the :class:`Scratch`. Built by :func:`workspace`.
+Workspace = namedtuple("Workspace", ["prob", "sol", "act", "touch", "slip", "new", "scratch"])
+
+
+def body(b, h, R, g, kappa):
+    """The :class:`Body` (m, m, m, m/s², dimensionless), typed as the kernel is compiled for (plain floats)."""
+    return Body(float(b), float(h), float(R), float(g), float(kappa))
+
+
+def friction(mu_s, mu_k, infinite):
+    """The :class:`Friction` of coefficients ``mu_s``, ``mu_k``, or of infinite friction."""
+    if infinite:
+        return Friction(math.inf, 0.0, True)
+    return Friction(float(mu_s), float(mu_k), False)
+
+
+def numerics(dt, theta_mj, tol, rocked_theta):
+    """The :class:`Numerics` (s, dimensionless, dimensionless, rad)."""
+    return Numerics(float(dt), float(theta_mj), float(tol), float(rocked_theta))
+
+
+def limits(max_steps, max_tail, rest_velocity, rest_steps, velocity_tol, lift_gap):
+    """The :class:`Limits` (counts, m/s, count, m/s, m)."""
+    return Limits(int(max_steps), int(max_tail), float(rest_velocity), int(rest_steps), float(velocity_tol),
+                  float(lift_gap))
+
+
+def floor_motion(form, ah, av, sub, n_exc, tail_av):
+    """The :class:`FloorMotion` (``ah``, ``av`` m/s², writable float arrays; ``tail_av`` m/s²)."""
+    return FloorMotion(int(form), ah, av, int(sub), int(n_exc), float(tail_av))
+
+
+def history(every, cap):
+    """A :class:`History` of ``cap`` rows, one every ``every`` steps (``cap`` 0: none)."""
+    return History(int(every), np.zeros(cap), np.zeros(cap), np.zeros(cap), np.zeros(cap))
+
 
 @numba.njit(cache=True)
-def _floor(k, theta_mj, form, ah, av, sub, n_exc, tail_av):
-    """Floor accelerations ``(a_h, a_v)`` (m/s²) at the evaluation time ``(k + theta_mj) dt`` of step ``k``."""
-    if k >= n_exc:
-        return 0.0, tail_av
-    if form == FORCING_STEPWISE:
+def scratch(previous_pair):
+    """A :class:`Scratch`, ``previous_pair`` the status pair taken last (-1: none)."""
+    return Scratch(np.zeros((4, 3, 3)), np.zeros((2, 3), dtype=np.int64), np.zeros((2, 4)),
+                   np.full(1, previous_pair, dtype=np.int64))
+
+
+@numba.njit(cache=True)
+def workspace(bd):
+    """A fresh :class:`Workspace` for the :class:`Body` ``bd``."""
+    new = np.zeros(6)
+    return Workspace(Problem(np.zeros(3), np.zeros(2), np.zeros(2), bd.kappa / (bd.R * bd.R)),
+                     Solution(np.zeros(2), np.zeros(2), new[3:]), np.zeros(2, dtype=np.bool_),
+                     np.zeros(2, dtype=np.bool_), np.zeros(2, dtype=np.bool_), new, scratch(-1))
+
+
+@numba.njit(cache=True, inline="always")
+def _floor(k, theta_mj, fm):
+    """Floor accelerations ``(a_h, a_v)`` (m/s²) of :class:`FloorMotion` ``fm`` at the evaluation time ``(k +
+    theta_mj) dt`` of step ``k``."""
+    if k >= fm.n_exc:
+        return 0.0, fm.tail_av
+    ah, av, sub = fm.ah, fm.av, fm.sub
+    if fm.form == FORCING_STEPWISE:
         return ah[k], av[k]
     j = k // sub
     f = (k - j * sub + theta_mj) / sub
@@ -211,16 +298,20 @@ def _check(st, pn, pt, un, ut, mu_s, eps):
 
 
 @numba.njit(cache=True)
-def _try_pair(sr, sl, vf, gn, gt, k3, mu_s, mu_k, eps, pn, pt, v, ws, wi):
+def _try_pair(sr, sl, prob, fr, eps, sol, sc):
     """Impulses of both contacts for the status pair ``(sr, sl)`` (not both stick), by one small linear
     system: each status adds its unknowns (stick: ``P_N``, ``P_T``; slip ``sigma``: ``P_N`` with ``P_T = -sigma
     mu_k P_N``; limit: ``P_T`` with ``P_N = 0``) and its equations (``U_N = 0``, and ``U_T = 0`` for stick).
-    Fills ``pn``, ``pt``, ``v`` and returns True if the pair obeys every contact's law. ``ws`` (float,
-    4 x 3 x 3) and ``wi`` (int, 2 x 3) are workspace."""
+    Fills the :class:`Solution` ``sol`` and returns True if the pair obeys every contact's law; works in the
+    :class:`Scratch` ``sc``."""
+    vf, gn, gt, k3 = prob.vf, prob.gn, prob.gt, prob.k3
+    mu_s, mu_k = fr.mu_s, fr.mu_k
+    pn, pt, v = sol.pn, sol.pt, sol.v
+    ws, wi = sc.ws, sc.wi
     cols, rows, a = ws[0], ws[1], ws[2]  # impulse direction of each unknown, velocity row of each equation
     r = ws[3, 0]
     who, kind = wi[0], wi[1]  # kind 0: a P_N unknown (with the slip's P_T), 1: a P_T unknown
-    n = 0
+    n = np.int64(0)  # not a literal 0: numba would compile _solve_small for Literal[int](0) as well
     sts = (sr, sl)
     for i in range(2):
         st = sts[i]
@@ -265,7 +356,7 @@ def _try_pair(sr, sl, vf, gn, gt, k3, mu_s, mu_k, eps, pn, pt, v, ws, wi):
 
 
 @numba.njit(cache=True)
-def _stick_both(vf, gn, gt, k3, mu_s, stick_only, strict, eps, pn, pt, v, wb):
+def _stick_both(prob, fr, strict, eps, sol, wb):
     """Both corners stick: then ``v = 0`` (their four velocity rows span the three freedoms) and the
     impulses solve ``G^T P = -M v_free``, a one-parameter family ``P(s)``, ``s = P_T`` of the left corner
     (the split of friction between the corners, free at ``theta = 0``). Keeps the ``s`` nearest to the
@@ -273,6 +364,9 @@ def _stick_both(vf, gn, gt, k3, mu_s, stick_only, strict, eps, pn, pt, v, wb):
     With ``strict``, only the proportional split itself is accepted: no self-equilibrated friction
     "squeeze" away from it, which at ``theta_k != 0`` can hold the block against any load (see
     ``_ORDER_FINITE``). ``wb`` (2 x 4) is workspace."""
+    vf, gn, gt, k3 = prob.vf, prob.gn, prob.gt, prob.k3
+    mu_s, stick_only = fr.mu_s, fr.stick_only
+    pn, pt, v = sol.pn, sol.pt, sol.v
     dgn = gn[1] - gn[0]  # 2 b cos(theta) > 0
     dgt = gt[1] - gt[0]  # 2 b sin(theta)
     rhs = -vf[2] / k3 + gn[0] * vf[1] + gt[0] * vf[0]
@@ -312,17 +406,18 @@ def _stick_both(vf, gn, gt, k3, mu_s, stick_only, strict, eps, pn, pt, v, wb):
 
 
 @numba.njit(cache=True)
-def _try(k, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, strict, eps, pn, pt, v, ws, wi, wb):
+def _try(k, order, prob, fr, strict, eps, sol, sc):
     """Try status pair ``order[k]`` (:func:`_stick_both`, with ``strict``, or :func:`_try_pair`)."""
     sr, sl = order[k, 0], order[k, 1]
     if sr == _STICK and sl == _STICK:
-        return _stick_both(vf, gn, gt, k3, mu_s, stick_only, strict, eps, pn, pt, v, wb)
-    return _try_pair(sr, sl, vf, gn, gt, k3, mu_s, mu_k, eps, pn, pt, v, ws, wi)
+        return _stick_both(prob, fr, strict, eps, sol, sc.wb)
+    return _try_pair(sr, sl, prob, fr, eps, sol, sc)
 
 
-@numba.njit(cache=True)
-def _impulses(vf, gn, gt, act, k3, R, mu_s, mu_k, stick_only, tol, scale, pn, pt, v, ws, wi, wb, last):
-    """Contact impulses of one step and the end-of-step velocity ``v`` from the free velocity ``vf``.
+@numba.njit(cache=True, inline="always")
+def _impulses(prob, act, R, fr, tol, scale, sol, sc):
+    """Contact impulses of one step and the end-of-step velocity ``v`` (:class:`Solution` ``sol``) from the
+    free velocity ``vf`` of the :class:`Problem` ``prob``, the corners ``act`` active.
 
     One active contact: the closed form :func:`_local`. Two: enumeration of the status pairs (open,
     stick, slip +/-, and with infinite friction the limit status), in the order of ``_ORDER_*``; the
@@ -339,9 +434,12 @@ def _impulses(vf, gn, gt, act, k3, R, mu_s, mu_k, stick_only, tol, scale, pn, pt
     limit pairs squeeze too; the one-contact pairs come first anyway). Accepting the previous both-stick
     pair with a squeeze once wedged a resting block for good: on a record, a block that settled at
     ``theta_k = 1.4e-8`` after a brief uplift was held at 1.16 times the uplift acceleration by friction
-    impulses of 2e3 m/s a step and never rocked again. ``ws`` (float, 4 x 3 x 3), ``wi`` (int, 2 x 3) and
-    ``wb`` (float, 2 x 4) are workspace.
+    impulses of 2e3 m/s a step and never rocked again. ``sc`` is the :class:`Scratch` (``last`` in it).
     """
+    vf, gn, gt, k3 = prob.vf, prob.gn, prob.gt, prob.k3
+    mu_s, mu_k, stick_only = fr.mu_s, fr.mu_k, fr.stick_only
+    pn, pt, v = sol.pn, sol.pt, sol.v
+    last = sc.last
     pn[0], pt[0], pn[1], pt[1] = 0.0, 0.0, 0.0, 0.0
     v[0], v[1], v[2] = vf[0], vf[1], vf[2]
     if act[0] != act[1]:
@@ -361,13 +459,15 @@ def _impulses(vf, gn, gt, act, k3, R, mu_s, mu_k, stick_only, tol, scale, pn, pt
     if prev >= 0 and (stick_only or mu_s == mu_k):
         both = order[prev, 0] == _STICK and order[prev, 1] == _STICK
         if both or not stick_only:
-            if _try(prev, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, both, eps, pn, pt, v, ws, wi, wb):
+            if _try(prev, order, prob, fr, both, eps, sol, sc):
                 return STATUS_OK  # never a limit pair: those are not tried first
             skip = -1 if both else prev  # a failed strict both-stick is tried again in the order
     for k in range(order.shape[0]):
         if k == skip:
             continue
-        if _try(k, order, vf, gn, gt, k3, mu_s, mu_k, stick_only, False, eps, pn, pt, v, ws, wi, wb):
+        # not strict: ``k < 0`` is False, computed, so that numba compiles one _try (a literal False would be a
+        # second specialisation of _try and _stick_both, about 1 s of a cold compile)
+        if _try(k, order, prob, fr, k < 0, eps, sol, sc):
             last[0] = k
             return -1 if (order[k, 0] == _LIMIT or order[k, 1] == _LIMIT) else STATUS_OK
     return STATUS_LOCAL
@@ -393,26 +493,37 @@ def _mode(touch, slip):
     return MODE_FLIGHT
 
 
-@numba.njit(cache=True)
-def _record(j, cap, t, th, vt, sl, hist_t, hist_th, hist_thd, hist_sl):
-    """Store one history row if there is room; returns the next free row."""
-    if j < cap:
-        hist_t[j] = t
-        hist_th[j] = th
-        hist_thd[j] = vt
-        hist_sl[j] = sl
+@numba.njit(cache=True, inline="always")
+def _copy(src, dst, at):
+    """``dst[at:at + len(src)] = src``, element by element: a slice assignment would compile numba's shape-mismatch
+    error message (string formatting: about 1.5 s of CPU of a cold compile) for a mismatch that cannot happen."""
+    for i in range(src.shape[0]):
+        dst[at + i] = src[i]
+
+
+@numba.njit(cache=True, inline="always")
+def _record(hist, j, t, th, vt, sl):
+    """Store one row of the :class:`History` if there is room; returns the next free row."""
+    if j < hist.t.size:
+        hist.t[j] = t
+        hist.theta[j] = th
+        hist.theta_dot[j] = vt
+        hist.slide[j] = sl
         return j + 1
     return j
 
 
-@numba.njit(cache=True)
-def _step(state, a_h, a_v, dt, theta_mj, geom, mu_s, mu_k, stick_only, tol, gn, gt, act, vf, pn, pt, new, work):
-    """One Moreau-Jean step (docs/guide/friction.md, the reference ``moreau_jean``) from ``state = (x, y, theta, x', y',
-    theta')`` into ``new``: free velocity under the step's forces, active corners from the mid-step prediction of
-    their gaps, Jacobians at ``q_k``, the contact impulses (:func:`_impulses`), then ``q_{k+1} = q_k + dt [(1 -
-    theta_mj) v_k + theta_mj v_{k+1}]``. Returns the status of the contact problem; ``work`` is the workspace of
-    :func:`_impulses` (``ws, wi, wb, last``)."""
-    b, h, R, g = geom[0], geom[1], geom[2], geom[3]
+@numba.njit(cache=True, inline="always")
+def _step(state, a_h, a_v, bd, fr, num, wk):
+    """One Moreau-Jean step (docs/guide/friction.md, the reference ``moreau_jean``) from ``state = (x, y, theta, x',
+    y', theta')`` into ``wk.new``: free velocity under the step's forces, active corners from the mid-step
+    prediction of their gaps, Jacobians at ``q_k``, the contact impulses (:func:`_impulses`), then ``q_{k+1} = q_k
+    + dt [(1 - theta_mj) v_k + theta_mj v_{k+1}]``. Returns the status of the contact problem; works in the
+    :class:`Workspace` ``wk``."""
+    b, h, R, g = bd.b, bd.h, bd.R, bd.g
+    dt, theta_mj = num.dt, num.theta_mj
+    prob, sol, act, new = wk.prob, wk.sol, wk.act, wk.new
+    vf, gn, gt, v = prob.vf, prob.gn, prob.gt, sol.v
     y, th, vx, vy, vt = state[1], state[2], state[3], state[4], state[5]
     vf[0], vf[1], vf[2] = vx - dt * a_h, vy - dt * (g + a_v), vt
     ym, tm = y + 0.5 * dt * vy, th + 0.5 * dt * vt
@@ -420,26 +531,24 @@ def _step(state, a_h, a_v, dt, theta_mj, geom, mu_s, mu_k, stick_only, tol, gn, 
         c = 1.0 - 2.0 * i
         act[i] = _gap(c, b, h, ym, tm) <= 0.0
         gn[i], gt[i] = _rows(c, b, h, th)
-    v = new[3:]
-    ws, wi, wb, last = work
-    st = _impulses(vf, gn, gt, act, geom[4] / (R * R), R, mu_s, mu_k, stick_only, tol, dt * g, pn, pt, v, ws, wi, wb,
-                   last)
+    st = _impulses(prob, act, R, fr, num.tol, dt * g, sol, wk.scratch)
     for i in range(3):
         new[i] = state[i] + dt * ((1.0 - theta_mj) * state[3 + i] + theta_mj * v[i])
     return st
 
 
-@numba.njit(cache=True)
-def _contacts(new, geom, gt, act, pn, pt, touch, slip, vel_tol, lift_gap, out):
+@numba.njit(cache=True, inline="always")
+def _contacts(bd, lim, wk, out):
     """After a step: friction work of the impulses, and each corner's contact and slip flags; returns
     True if a corner landed (an impact).
 
     A corner with a normal impulse is down (an impact if it was up), slipping if its tangential velocity
-    (the row the solver enforced) exceeds ``vel_tol``. A corner without impulse is up once it moves away
-    from the floor faster than ``vel_tol`` or rises above ``lift_gap``; otherwise it keeps its flags (a
+    (the row the solver enforced) exceeds ``velocity_tol``. A corner without impulse is up once it moves away
+    from the floor faster than ``velocity_tol`` or rises above ``lift_gap``; otherwise it keeps its flags (a
     rotating pivot, constrained at velocity level, drifts up and takes an occasional free step; the
     flags ignore that "flicker", counted in ``out``)."""
-    b, h = geom[0], geom[1]
+    b, h = bd.b, bd.h
+    new, gt, act, pn, pt, touch, slip = wk.new, wk.prob.gt, wk.act, wk.sol.pn, wk.sol.pt, wk.touch, wk.slip
     y1, th1, nx, ny, nt = new[1], new[2], new[3], new[4], new[5]
     impact = False
     for i in range(2):
@@ -451,15 +560,28 @@ def _contacts(new, geom, gt, act, pn, pt, touch, slip, vel_tol, lift_gap, out):
         if pn[i] > 0.0:
             impact = impact or not touch[i]
             touch[i] = True
-            slip[i] = abs(nx + gt[i] * nt) > vel_tol
+            slip[i] = abs(nx + gt[i] * nt) > lim.velocity_tol
             out[OUT_MAX_PENETRATION] = max(out[OUT_MAX_PENETRATION], -gap1)
-        elif ny + gn1 * nt > vel_tol or gap1 > lift_gap:
+        elif ny + gn1 * nt > lim.velocity_tol or gap1 > lim.lift_gap:
             touch[i] = False
             slip[i] = False
         elif touch[i]:
             out[OUT_FLICKER_STEPS] += 1.0
             out[OUT_MAX_FLICKER_GAP] = max(out[OUT_MAX_FLICKER_GAP], gap1)
     return impact
+
+
+@numba.njit(cache=True, inline="always")
+def _book(state, a_h, a_v, bd, lim, wk, out):
+    """Energy bookkeeping of the step from ``state`` to ``wk.new`` (docs/guide/friction.md, per unit mass): input
+    work over the step's displacement, friction work in :func:`_contacts`, and at an impact the kinetic energy of
+    the impulse's velocity change."""
+    new, vf = wk.new, wk.prob.vf
+    out[OUT_INPUT_WORK] -= a_h * (new[0] - state[0]) + a_v * (new[1] - state[1])
+    if _contacts(bd, lim, wk, out):
+        dvx, dvy, dvt = new[3] - vf[0], new[4] - vf[1], new[5] - vf[2]
+        out[OUT_IMPACT_LOSS] += 0.5 * (dvx * dvx + dvy * dvy + bd.R * bd.R * dvt * dvt / bd.kappa)
+        out[OUT_IMPACTS] += 1.0
 
 
 @numba.njit(cache=True)
@@ -473,112 +595,78 @@ def _tally(mode, dt, out):
         out[OUT_TIME_ROCKING] += dt
 
 
-@numba.njit(cache=True)
-def run(geom, fric, num, form, ah, av, sub, n_exc, tail_av, state, limits, hist_every,
-        hist_t, hist_th, hist_thd, hist_sl, out):
-    """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history arrays; returns the status.
+@numba.njit(cache=True, inline="always")
+def _slides_on(k, state, mode, bd, fr, fm, num, lim):
+    """After step ``k`` of the tail: sliding flat on a still floor, decelerated by ``mu_k (g + a_v)`` without tipping
+    (``mu_k <= b / h``), the block would still slide when the tail ends (a frictionless block, always)."""
+    return (k >= fm.n_exc and lim.max_tail >= 0 and not fr.stick_only and mode == MODE_SLIDE
+            and fr.mu_k * bd.h <= bd.b
+            and fr.mu_k * (bd.g + fm.tail_av) * (fm.n_exc + lim.max_tail - k) * num.dt < abs(state[3]))
 
-    Parameters
-    ----------
-    geom : float64[5]
-        ``(b, h, R, g, kappa)``: half-width, height of the centre of mass above the base, ``hypot(b, h)`` (m),
-        gravity (m/s²), ``kappa = R² / r²`` (dimensionless; ``r`` the radius of gyration about the centre of
-        mass, ``kappa = 3`` for a homogeneous block).
-    fric : float64[3]
-        ``(mu_s, mu_k, infinite)``: static and kinetic coefficients; ``infinite`` 1.0 for ``mu = infinity``.
-    num : float64[4]
-        ``(dt, theta_mj, local_tol, rocked_theta)``: step (s), theta-method parameter, relative slack of
-        the contact laws, rotation (rad) above which the block rocked.
-    form, ah, av, sub, n_exc, tail_av
-        Floor motion: :data:`FORCING_STEPWISE` (``ah[k]``, ``av[k]`` at step ``k``'s evaluation time) or
-        :data:`FORCING_LINEAR` (samples, ``sub`` steps per interval), for ``n_exc`` steps; after them
-        ``a_h = 0`` and ``a_v = tail_av`` (m/s²).
-    state : float64[6]
-        Initial ``(x, y, theta, x', y', theta')``; holds the final state on return.
-    limits : float64[6]
-        ``(max_steps, max_tail_steps (< 0: no tail), rest_velocity (m/s), rest_steps, velocity_tol (m/s),
-        lift_gap (m))``.
-    hist_every : int
-        A history row every this many steps (and the last state).
-    """
-    b, h, R = geom[0], geom[1], geom[2]
-    stick_only = fric[2] > 0.5
-    mu_s, mu_k = (math.inf, 0.0) if stick_only else (fric[0], fric[1])
-    dt, theta_mj, tol, rocked_theta = num[0], num[1], num[2], num[3]
-    max_steps, max_tail, rest_vel = int(limits[0]), int(limits[1]), limits[2]
-    rest_steps, vel_tol, lift_gap = int(limits[3]), limits[4], limits[5]
+
+@numba.njit(cache=True)
+def run(bd, fr, num, fm, state, lim, hist, out):
+    """Integrate one case of the :class:`Body` ``bd`` with :class:`Friction` ``fr``, :class:`Numerics` ``num``
+    under the :class:`FloorMotion` ``fm`` from ``state`` (``(x, y, theta, x', y', theta')``, m and m/s, rad and
+    rad/s; it holds the final state on return), within the :class:`Limits` ``lim``; fills ``out`` (layout
+    ``OUT_*``) and the :class:`History`; returns the status."""
+    wk = workspace(bd)
+    b, h, R, dt = bd.b, bd.h, bd.R, num.dt
     out[:] = 0.0
     out[OUT_FIRST_MODE] = -1.0
-    gn, gt, pn, pt, vf = np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(2), np.zeros(3)
-    new = np.zeros(6)
-    work = (np.zeros((4, 3, 3)), np.zeros((2, 3), dtype=np.int64), np.zeros((2, 4)), np.full(1, -1, dtype=np.int64))
-    act = np.zeros(2, dtype=np.bool_)
-    touch = np.zeros(2, dtype=np.bool_)
-    slip = np.zeros(2, dtype=np.bool_)
     for i in range(2):
-        touch[i] = _gap(1.0 - 2.0 * i, b, h, state[1], state[2]) <= lift_gap
-    j = _record(0, hist_t.size, 0.0, state[2], state[5], _slide_of(b, h, state[0], state[2]),
-                hist_t, hist_th, hist_thd, hist_sl)
+        wk.touch[i] = _gap(1.0 - 2.0 * i, b, h, state[1], state[2]) <= lim.lift_gap
+    j = _record(hist, 0, 0.0, state[2], state[5], _slide_of(b, h, state[0], state[2]))
     theta_max = abs(state[2])
     slide_max = abs(_slide_of(b, h, state[0], state[2]))
     status = STATUS_OK
     resting = 0
     k = 0
+    n_exc, max_tail = fm.n_exc, lim.max_tail
     while True:
-        if k >= n_exc and (max_tail < 0 or resting >= rest_steps):
+        if k >= n_exc and (max_tail < 0 or resting >= lim.rest_steps):
             break
-        if k >= n_exc + max(max_tail, 0) or k >= max_steps:
-            status = STATUS_TAIL if k < max_steps else STATUS_MAX_STEPS
+        if k >= n_exc + max(max_tail, 0) or k >= lim.max_steps:
+            status = STATUS_TAIL if k < lim.max_steps else STATUS_MAX_STEPS
             break
-        a_h, a_v = _floor(k, theta_mj, form, ah, av, sub, n_exc, tail_av)
-        st = _step(state, a_h, a_v, dt, theta_mj, geom, mu_s, mu_k, stick_only, tol, gn, gt, act, vf, pn, pt,
-                   new, work)
+        a_h, a_v = _floor(k, num.theta_mj, fm)
+        st = _step(state, a_h, a_v, bd, fr, num, wk)
         if st == -1:
             out[OUT_LIMIT_STEPS] += 1.0
         elif st != STATUS_OK:
             status = st
             break
-        # energy bookkeeping (docs/guide/friction.md, per unit mass): input work over the step's displacement,
-        # friction work in _contacts, and at an impact the kinetic energy of the impulse's velocity change
-        out[OUT_INPUT_WORK] -= a_h * (new[0] - state[0]) + a_v * (new[1] - state[1])
-        if _contacts(new, geom, gt, act, pn, pt, touch, slip, vel_tol, lift_gap, out):
-            dvx, dvy, dvt = new[3] - vf[0], new[4] - vf[1], new[5] - vf[2]
-            out[OUT_IMPACT_LOSS] += 0.5 * (dvx * dvx + dvy * dvy + R * R * dvt * dvt / geom[4])
-            out[OUT_IMPACTS] += 1.0
-        state[:] = new
+        _book(state, a_h, a_v, bd, lim, wk, out)
+        _copy(wk.new, state, 0)
         k += 1
         if not math.isfinite(state[0] + state[1] + state[2] + state[3] + state[4] + state[5]):
             status = STATUS_NONFINITE
             break
-        mode = _mode(touch, slip)
+        mode = _mode(wk.touch, wk.slip)
         _tally(mode, dt, out)
         sl = _slide_of(b, h, state[0], state[2])
         slide_max = max(slide_max, abs(sl))
         theta_max = max(theta_max, abs(state[2]))
-        if k % hist_every == 0:
-            j = _record(j, hist_t.size, k * dt, state[2], state[5], sl, hist_t, hist_th, hist_thd, hist_sl)
+        if k % hist.every == 0:
+            j = _record(hist, j, k * dt, state[2], state[5], sl)
         if theta_max >= OVERTURNING_ANGLE:
             out[OUT_OVERTURNED] = 1.0
             break
-        still = max(abs(state[3]), abs(state[4]), R * abs(state[5])) < rest_vel
+        still = max(abs(state[3]), abs(state[4]), R * abs(state[5])) < lim.rest_velocity
         resting = resting + 1 if (k >= n_exc and mode == MODE_REST and still) else 0
-        if k >= n_exc and max_tail >= 0 and not stick_only and mode == MODE_SLIDE and mu_k * h <= b and \
-                mu_k * (geom[3] + tail_av) * (n_exc + max_tail - k) * dt < abs(state[3]):
-            # sliding flat on a still floor, decelerated by mu_k (g + a_v) without tipping (mu_k <= b / h): it would
-            # still slide when the tail ends (a frictionless block, always): the run ends with the motion
-            out[OUT_SLIP_END] = state[3]
+        if _slides_on(k, state, mode, bd, fr, fm, num, lim):
+            out[OUT_SLIP_END] = state[3]  # the run ends with the motion
             break
-    if k % hist_every != 0:
-        j = _record(j, hist_t.size, k * dt, state[2], state[5], _slide_of(b, h, state[0], state[2]),
-                    hist_t, hist_th, hist_thd, hist_sl)
+    if k % hist.every != 0:
+        j = _record(hist, j, k * dt, state[2], state[5], _slide_of(b, h, state[0], state[2]))
     out[OUT_STATUS] = status
     out[OUT_STEPS] = k
     out[OUT_THETA_MAX] = theta_max
-    out[OUT_ROCKED] = 1.0 if theta_max > rocked_theta else 0.0
+    out[OUT_ROCKED] = 1.0 if theta_max > num.rocked_theta else 0.0
     out[OUT_SLIDE_MAX] = slide_max
-    out[OUT_X:OUT_X + 6] = state
+    _copy(state, out, OUT_X)
     out[OUT_N_HIST] = j
     out[OUT_TIME] = k * dt
     # in units of 1/p, p = sqrt(g R / (r² + R²)) = sqrt(kappa / (kappa + 1) g / R) (sqrt(3 g / 4 R) homogeneous)
-    out[OUT_EVENT_TIME] = k * dt * math.sqrt(geom[4] / (geom[4] + 1.0) * geom[3] / R)
+    out[OUT_EVENT_TIME] = k * dt * math.sqrt(bd.kappa / (bd.kappa + 1.0) * bd.g / R)
     return status

@@ -78,23 +78,23 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     block, settings = run.block, run.settings
     p, R, dt = block.p, block.R, forcing.dt
     mu_inf = block.friction is None
-    fric = np.array([0.0 if mu_inf else block.friction, 0.0 if mu_inf else block.friction_kinetic,
-                     1.0 if mu_inf else 0.0])
-    num = np.array([dt, settings.theta_mj, settings.local_tol, settings.rocked_theta])
+    fric = kn.friction(0.0 if mu_inf else block.friction, 0.0 if mu_inf else block.friction_kinetic, mu_inf)
+    num = kn.numerics(dt, settings.theta_mj, settings.local_tol, settings.rocked_theta)
     tail_dtau = DEFAULT_TAIL_DTAU if settings.max_free_time is None else settings.max_free_time * p
     max_tail = math.ceil(tail_dtau / (p * dt)) if tail else -1
-    limits = np.array([settings.step_limit, max_tail, settings.rest_velocity * p * R,
+    limits = kn.limits(settings.step_limit, max_tail, settings.rest_velocity * p * R,
                        max(1, math.ceil(settings.rest_duration / (p * dt))), settings.velocity_tol * p * R,
-                       settings.contact_gap * (G + forcing.peak) * dt * dt])
+                       settings.contact_gap * (G + forcing.peak) * dt * dt)
     every = max(1, round(settings.history_dtau / (p * dt)))
     cap = min(forcing.n_exc + max(max_tail, 0), settings.step_limit) // every + 3 if settings.record else 0
-    hist = [np.zeros(cap) for _ in range(4)]
+    hist = kn.history(every, cap)
     out = np.zeros(kn.OUT_SIZE)
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": dt}
+    floor = kn.floor_motion(forcing.form, forcing.ah, forcing.av, forcing.sub, forcing.n_exc, forcing.tail_av)
     announce_compile(kn.run, SOLVER_NAME)
     try:
-        kn.run(np.array([block.b, block.h_cm, R, G, inertia_ratio(block)]), fric, num, forcing.form, forcing.ah, forcing.av, forcing.sub,
-               forcing.n_exc, forcing.tail_av, state.copy(), limits, every, *hist, out)
+        kn.run(kn.body(block.b, block.h_cm, R, G, inertia_ratio(block)), fric, num, floor, state.copy(), limits, hist,
+               out)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, block.alpha, f"{type(exc).__name__}: {exc}",
                              wall_time_s=run.elapsed())
@@ -119,11 +119,11 @@ def _energy(block: Block, out: np.ndarray, state0: np.ndarray) -> dict[str, floa
             "residual": float(work + initial - kinetic - potential - fric - imp)}
 
 
-def _result(block: Block, out: np.ndarray, hist: list[np.ndarray], record: dict[str, Any],
+def _result(block: Block, out: np.ndarray, hist: kn.History, record: dict[str, Any],
             wall: float, state0: np.ndarray) -> RockingResult:
     """The :class:`RockingResult` of a finished kernel run."""
     n = int(out[kn.OUT_N_HIST])
-    time_s, theta, theta_dot, slide = (a[:n].copy() for a in hist)
+    time_s, theta, theta_dot, slide = (a[:n].copy() for a in (hist.t, hist.theta, hist.theta_dot, hist.slide))
     status = int(out[kn.OUT_STATUS])
     steps = int(out[kn.OUT_STEPS])
     diagnostics = {"end_time": float(out[kn.OUT_TIME]), "max_penetration": float(out[kn.OUT_MAX_PENETRATION]),

@@ -15,7 +15,6 @@ ROOT = Path(__file__).resolve().parents[1]
 #: ``rigid3d``'s kernel, being split into one module per part of the physics (issue 43); the lead empties this
 #: part when that lands.
 ALLOWED_RIGID3D = frozenset({
-    "opsrock.solvers.rigid3d.kernel._floor",
     "opsrock.solvers.rigid3d.kernel._nsgs",
     "opsrock.solvers.rigid3d.kernel._solve_contacts",
     "opsrock.solvers.rigid3d.kernel._stick_flat",
@@ -35,17 +34,12 @@ ALLOWED_RIGID3D = frozenset({
     "opsrock.solvers.rigid3d.kernel._step",
     "opsrock.solvers.rigid3d.kernel._contacts",
     "opsrock.solvers.rigid3d.kernel._book",
-    "opsrock.solvers.rigid3d.kernel._rest_span",
-    "opsrock.solvers.rigid3d.kernel._same_phase",
     "opsrock.solvers.rigid3d.kernel._smooth",
     "opsrock.solvers.rigid3d.kernel._slip_rhs",
     "opsrock.solvers.rigid3d.kernel._slip_integrate",
-    "opsrock.solvers.rigid3d.kernel._same_slip",
     "opsrock.solvers.rigid3d.kernel._smooth_slip",
     "opsrock.solvers.rigid3d.kernel._coarse_slide",
     "opsrock.solvers.rigid3d.kernel.run",
-    "opsrock.solvers.rigid3d.pivot.mean_floor",
-    "opsrock.solvers.rigid3d.pivot.floor_at",
     "opsrock.solvers.rigid3d.pivot._rhs",
     "opsrock.solvers.rigid3d.pivot._loads_hold",
     "opsrock.solvers.rigid3d.pivot.integrate",

@@ -20,8 +20,8 @@ from typing import Any
 #: ``rigid3d`` issue 43's measurement) less that of the same command with the cache warm, measured on the
 #: project's 2-core development machine (numba 0.68, Python 3.11). The wall time is longer on a loaded machine.
 COMPILE_CPU_S: dict[str, float] = {
-    "friction": 17.0,
-    "housner_fast": 6.0,
+    "friction": 10.0,
+    "housner_fast": 4.0,
     "moreau_jean": 8.0,
     "rigid3d": 150.0,
 }

@@ -36,6 +36,10 @@ FORM_SINE = 1
 #: ``a/g = c0 (1 - 2 x²) exp(-x²)``, ``x = c1 (tau - c2)``: the Ricker wavelet.
 FORM_RICKER = 2
 
+#: :data:`FORM_RICKER` as a non-literal: numba compiles a callee once more for a literal argument met while it
+#: infers a caller (issue 43: cold compile time).
+_RICKER = np.int64(FORM_RICKER)
+
 # --- analytic pulses known to the kernel (ids of :func:`pulse_forcing`) -------------------------
 PULSE_RECTANGULAR = 0
 PULSE_HALF_SINE = 1
@@ -116,12 +120,12 @@ def next_exceedance_ricker(tau, level, k, c, t0, tau_end):
         if tb <= tau:
             continue
         s = max(tau, ta)
-        fa = forcing(s, FORM_RICKER, k, c, t0)
+        fa = forcing(s, _RICKER, k, c, t0)
         if fa > thr:
             return s, 1.0
         if fa < -thr:
             return s, -1.0
-        fb = forcing(tb, FORM_RICKER, k, c, t0)
+        fb = forcing(tb, _RICKER, k, c, t0)
         if fb > thr:
             sgn = 1.0
         elif fb < -thr:
@@ -134,7 +138,7 @@ def next_exceedance_ricker(tau, level, k, c, t0, tau_end):
             mid = 0.5 * (lo + hi)
             if mid <= lo or mid >= hi:
                 break
-            if sgn * forcing(mid, FORM_RICKER, k, c, t0) > thr:
+            if sgn * forcing(mid, _RICKER, k, c, t0) > thr:
                 hi = mid
             else:
                 lo = mid

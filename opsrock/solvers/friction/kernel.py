@@ -77,6 +77,11 @@ P_SIZE = 21
 # block's kap (it travels with the context to every function that evaluates the equations)
 _FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL, _FC_KAPPA = 0, 1, 2, 3, 4, 5, 6, 7, 8
 
+#: Non-literal ``0`` (a start index) and the peak event's id: numba compiles a callee, and all it calls, once more
+#: for a literal argument met while it infers a caller (issue 43: cold compile time).
+_ZERO = np.int64(0)
+_EV_PEAK = np.int64(3)
+
 #: Iterations allowed to an event location (Illinois with a bisection every fourth step).
 _EVENT_MAX_ITER = 100
 #: Shortest step (units of 1/p) before a mode that does not develop is dropped.
@@ -160,7 +165,7 @@ def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, 
     round-off, given ``f_lo > 0`` at 0 and ``f_hi <= 0`` at ``h``: Illinois regula falsi with a
     bisection every fourth iteration. Returns ``(d, ok)``."""
     lo, hi = 0.0, h
-    side = 0
+    side = _ZERO
     tol = 4e-16 * max(1.0, tau + h)
     flat = 1e-14 * max(abs(f_lo), abs(f_hi))  # a value this small is the event to round-off
     for it in range(_EVENT_MAX_ITER):
@@ -280,7 +285,7 @@ def _locate_landing(c, f_lo, f_hi, th, om, x, vx, y, vy, tau, h, fc, sa, ca):
     """Smallest flight time ``d`` in (0, h] after which corner ``c`` touches the floor: Illinois regula
     falsi with a bisection every fourth iteration, on the RK4 flight map. Returns ``(d, ok)``."""
     lo, hi = 0.0, h
-    side = 0
+    side = _ZERO
     tol = 4e-16 * max(1.0, tau + h)
     for it in range(_EVENT_MAX_ITER):
         if hi - lo <= tol:
@@ -357,7 +362,7 @@ def _peak(mode, s, sig, th, om, u, w, tau, d, om_end, fc, alpha, mu_s, mu_k):
     if mode == SLIDE or om * om_end >= 0.0 or om == 0.0:
         return 0.0, True
     sgn = 1.0 if om > 0.0 else -1.0
-    d_p, ok = _locate(3, sgn, abs(om), -abs(om_end), mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k)
+    d_p, ok = _locate(_EV_PEAK, sgn, abs(om), -abs(om_end), mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k)
     th_p = _rk4(mode, s, sig, th, om, u, w, tau, d_p, fc, alpha, mu_k)[0]
     return abs(th_p), ok
 
@@ -430,11 +435,11 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     theta_max, u_max = abs(theta0), 0.0
     win = wfr = eimp = t_slide = t_rock = t_fly = 0.0
     n_imp = n_steps = 0
-    seg, seg_end = _set_segment(fc, 0.0, 0, exc, gvals, g_const)
+    seg, seg_end = _set_segment(fc, 0.0, _ZERO, exc, gvals, g_const)
     sig = _start_slip(mode, s, th, om, tau, fc, alpha, mu_s)
     if sig != 0.0:  # the pivot cannot hold (e.g. a frictionless floor): the block starts slide-rocking
         mode, first_mode, fresh_w = SLIDE_ROCK, SLIDE_ROCK, True
-    n_hist = _record(0, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+    n_hist = _record(_ZERO, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
     status = STATUS_OK
     tail = False
     takeoff = False

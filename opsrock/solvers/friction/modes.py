@@ -19,13 +19,16 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 
-#: Mode ids; their order is :data:`opsrock.result.MODES`.
-REST = 0
-SLIDE = 1
-ROCK = 2
-SLIDE_ROCK = 3
-FLIGHT = 4
+#: Mode ids; their order is :data:`opsrock.result.MODES`. numpy integers, so that numba types them as ``int64``, not
+#: as literals: a literal mode passed to a compiled function (``_energy(FLIGHT, ...)``) made numba compile it, and
+#: all it calls, once more (issue 43: cold compile time).
+REST = np.int64(0)
+SLIDE = np.int64(1)
+ROCK = np.int64(2)
+SLIDE_ROCK = np.int64(3)
+FLIGHT = np.int64(4)
 
 
 @numba.njit(cache=True)

@@ -77,6 +77,12 @@ _MIN_STEP = 1e-14
 #: Relative width (of ``max(1, tau)``) to which an event is located: a few ulps of the time.
 _EVENT_TOL = 4e-16
 
+#: Non-literal constants for arguments of compiled functions: numba compiles a callee (and all it calls) once more
+#: for each literal argument it meets while it infers a caller (issue 43: cold compile time). The events
+#: :func:`_locate` finds (``theta = 0``, ``omega = 0``), a zero count, a flag and the statuses a case ends with.
+_THETA_ZERO, _OMEGA_ZERO, _ZERO, _NO = np.int64(0), np.int64(1), np.int64(0), np.bool_(False)
+_OK, _MAX_STEPS, _EVENT_FAILED = np.int64(STATUS_OK), np.int64(STATUS_MAX_STEPS), np.int64(STATUS_EVENT_FAILED)
+
 
 @numba.njit(cache=True)
 def case_params(alpha, e, lineq, h_nom, rest_velocity, max_impacts, max_steps):
@@ -213,7 +219,7 @@ def _outcome(tl, overturned, status):
 @numba.njit(cache=True)
 def _start(theta0, omega0, hist):
     """The :class:`State` and :class:`Tally` of a case starting from ``theta0`` (rad), ``omega0`` (units of p)."""
-    n_hist = _record(hist, 0, 0.0, theta0, omega0)
+    n_hist = _record(hist, _ZERO, 0.0, theta0, omega0)
     side = 0.0  # 0: seated; +1/-1: rocking on that pivot
     rocked = False
     fresh = False
@@ -268,14 +274,14 @@ def _impact(par, pc, st, tl, tr, hist):
     block seated if it leaves too slowly towards a restoring acceleration. ``(state, tally, end)``: ``end`` -1
     goes on, else the status the case ends with."""
     theta_max, n_imp, n_steps = tl.theta_max, tl.n_imp, tl.n_steps
-    d, ok = _locate(0, st, tr.h, par, pc)
+    d, ok = _locate(_THETA_ZERO, st, tr.h, par, pc)
     if not ok:
         return st, Tally(theta_max, tl.rocked, n_imp, n_steps, tl.n_hist), STATUS_EVENT_FAILED
     th_d, w_d = _rk4(st.theta, st.omega, st.tau, d, st.side, par, pc)
     n_steps += 1
     # a peak may lie between the start of the step and the impact
     if st.omega * w_d < 0.0:
-        dp, ok = _locate(1, st, d, par, pc)
+        dp, ok = _locate(_OMEGA_ZERO, st, d, par, pc)
         if not ok:
             return st, Tally(theta_max, tl.rocked, n_imp, n_steps, tl.n_hist), STATUS_EVENT_FAILED
         th_p, _ = _rk4(st.theta, st.omega, st.tau, dp, st.side, par, pc)
@@ -306,7 +312,7 @@ def _ordinary(par, pc, st, tl, tr, hist):
     tally, end)`` as :func:`_impact`."""
     theta_max = tl.theta_max
     if st.omega * tr.w1 < 0.0:
-        dp, ok = _locate(1, st, tr.h, par, pc)
+        dp, ok = _locate(_OMEGA_ZERO, st, tr.h, par, pc)
         if not ok:
             return st, tl, STATUS_EVENT_FAILED
         th_p, _ = _rk4(st.theta, st.omega, st.tau, dp, st.side, par, pc)
@@ -349,25 +355,25 @@ def solve_case(par, exc, theta0, omega0, hist):
         if st.side == 0.0:
             t_up, sgn_a = next_exceedance(st.tau, par.level, exc)
             if t_up < 0.0:
-                return _outcome(tl, False, STATUS_OK)
+                return _outcome(tl, _NO, _OK)
             n_hist = _record(hist, tl.n_hist, t_up, 0.0, 0.0)
             st = State(t_up, 0.0, 0.0, -sgn_a, True, st.seg)
             tl = Tally(tl.theta_max, True, tl.n_imp, tl.n_steps, n_hist)
         if st.tau >= exc.tau_end:
             break
         if tl.n_steps >= par.max_steps:
-            return _outcome(tl, False, STATUS_MAX_STEPS)
+            return _outcome(tl, _NO, _MAX_STEPS)
         st, tl, end = _step(par, exc, st, tl, hist)
         if end >= 0:
             return _outcome(tl, end == STATUS_OK, end)
     # ---- pulse over, block rocking: exact free-rocking verdict from the energy -------------
     if st.side == 0.0:
-        return _outcome(tl, False, STATUS_OK)
+        return _outcome(tl, _NO, _OK)
     ov, peak, extra, ok = _free_verdict(par, st)
     tl = Tally(tl.theta_max, tl.rocked, tl.n_imp + extra, tl.n_steps, tl.n_hist)
     if not ok:
-        return _outcome(tl, False, STATUS_EVENT_FAILED)
-    return _outcome(Tally(max(tl.theta_max, peak), tl.rocked, tl.n_imp, tl.n_steps, tl.n_hist), ov, STATUS_OK)
+        return _outcome(tl, _NO, _EVENT_FAILED)
+    return _outcome(Tally(max(tl.theta_max, peak), tl.rocked, tl.n_imp, tl.n_steps, tl.n_hist), ov, _OK)
 
 
 @numba.njit(cache=True, nogil=True)

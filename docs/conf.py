@@ -81,6 +81,29 @@ sphinx_gallery_conf = {
 #: Packages whose modules are not public API pages: the command line (its page is ``opsrock --help``).
 API_EXCLUDED = ("opsrock.cli",)
 
+#: The API reference's sections, by what a user does: heading -> the modules (and, with a trailing ``.``, the
+#: packages) it holds, first match wins. A module in none of them is an internal (the report writers, the
+#: plots, the limits and statistics helpers, the OpenSees session) and has no page.
+API_GROUPS: dict[str, tuple[str, ...]] = {
+    "One block": ("opsrock", "opsrock.block", "opsrock.constants", "opsrock.errors", "opsrock.excitations",
+                  "opsrock.excitations.", "opsrock.model", "opsrock.restitution", "opsrock.result",
+                  "opsrock.solvers", "opsrock.solvers."),
+    "Campaigns": ("opsrock.campaign", "opsrock.campaign."),
+    "Fragility": ("opsrock.fragility", "opsrock.fragility.", "opsrock.intensity", "opsrock.intensity."),
+    "Contents studies": ("opsrock.inventory.", "opsrock.contents", "opsrock.contents.",
+                         "opsrock.analysis.directionality", "opsrock.analysis.directionality_"),
+    "Validation": ("opsrock.validation", "opsrock.validation.", "opsrock.bench", "opsrock.bench.",
+                   "opsrock.published", "opsrock.published.", "opsrock.analysis."),
+}
+
+
+def api_group(name: str) -> str | None:
+    """The :data:`API_GROUPS` heading of module ``name``, or None for an internal."""
+    for heading, members in API_GROUPS.items():
+        if any(name == m or (m.endswith(".") or m.endswith("_")) and name.startswith(m) for m in members):
+            return heading
+    return None
+
 
 def public_modules() -> list[str]:
     """The modules of the API reference: ``opsrock``, then every non-private subpackage and module of it except
@@ -145,15 +168,24 @@ def api_pages() -> None:
     """Writes ``api/index.rst`` and a page per public module."""
     out = DOCS / "api"
     out.mkdir(parents=True)
-    modules = public_modules()
+    groups: dict[str, list[str]] = {heading: [] for heading in API_GROUPS}
+    for name in public_modules():
+        heading = api_group(name)
+        if heading is not None:
+            groups[heading].append(name)
     shown: dict[int, str] = {}
     index = [_title("API reference"),
-             "The public API of opsrock, generated from its docstrings (numpydoc): for each package that declares",
+             "The public API of opsrock, generated from its docstrings (numpydoc), by what you do: one block under",
+             "one floor motion (:func:`opsrock.simulate`), a campaign of many cases (:func:`opsrock.run_campaign`),",
+             "fragility, a contents study (:func:`opsrock.run_study`), validation. For each package that declares",
              "``__all__``, the names it exports; for the others, each module's. Units are SI unless a parameter",
-             "says otherwise.", "", ".. toctree::", "   :maxdepth: 1", ""]
-    for name in modules:
-        (out / f"{name}.rst").write_text(api_page(name, shown))
-        index.append(f"   {name}")
+             "says otherwise. Internals (report writers, plots, helpers) are left out.", ""]
+    for heading, names in groups.items():
+        index += [_title(heading, "-"), ".. toctree::", "   :maxdepth: 1", ""]
+        for name in names:
+            (out / f"{name}.rst").write_text(api_page(name, shown))
+            index.append(f"   {name}")
+        index.append("")
     (out / "index.rst").write_text("\n".join(index) + "\n")
 
 

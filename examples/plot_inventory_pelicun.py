@@ -7,7 +7,7 @@ floor, quantity, FEMA P-58 ID, repair cost) and a **motions manifest** (the floo
 their own response-history analysis), give each item's overturning and sliding fragility on each floor and
 direction, and a ``pelicun/`` folder that pelicun 3.10 runs as it is. This is
 ``opsrock contents --inventory FILE --motions FILE --quick`` from Python
-(:func:`opsrock.inventory.study.run_inventory_study`), on the example inventory and floor motions shipped
+(:func:`opsrock.run_study`), on the example inventory and floor motions shipped
 with opsrock; the quick form runs fewer IDA levels and bootstrap resamples than the full study.
 """
 
@@ -18,18 +18,15 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from opsrock.inventory.sources import BuildingSource
-from opsrock.inventory.study import inventory_design, run_inventory_study
+import opsrock
 
 data = files("opsrock.data")
 inventory = data / "inventories" / "example.csv"
 motions = data / "examples" / "floor-motions" / "motions.csv"
 print(pd.read_csv(inventory, comment="#")[["id", "width", "depth", "height"]].to_string(index=False))
 
-# source: the shipped shear building, used only when no motions manifest is given
-design = inventory_design(inventory, motions, BuildingSource(), {}, quick_run=True)
 out = Path(tempfile.mkdtemp()) / "my-building"
-study = run_inventory_study(design, out, progress=False)  # on every core
+study = opsrock.run_study(inventory, motions, out, quick=True, progress=False)  # on every core
 print(f"{study.n_cases} cases ({study.n_failed} failed); report: {Path(study.report).name}")
 print("pelicun folder:", sorted(p.name for p in (out / "pelicun").iterdir()))
 

@@ -11,6 +11,14 @@ The names below are imported when first used (PEP 562): ``import opsrock`` itsel
 command line (:mod:`opsrock.cli`) starts its handling of Ctrl-C and of the environment's faults before
 numpy and the solvers load. ``from opsrock import Block`` works as before.
 
+One way in from Python, by what you do:
+
+* one block under one floor motion: :func:`simulate` (a :class:`Block`, a :class:`OneSinePulse` or
+  :class:`Record`, a solver of :data:`SOLVERS`);
+* a campaign of many cases, stored and resumable: :func:`run_campaign` (a scene file or a
+  :class:`~opsrock.campaign.scene.Scene`);
+* a contents study from an inventory and floor motions to a pelicun folder: :func:`run_study`.
+
 ``opsrock.__version__`` is the installed distribution's version (:func:`importlib.metadata.version`), whose one
 source is ``pyproject.toml``; ``opsrock --version`` prints the same.
 """
@@ -23,7 +31,8 @@ import importlib
 _EXPORTS: dict[str, str] = {
     "Block": "opsrock.block", "G": "opsrock.constants", "OneSinePulse": "opsrock.excitations",
     "Record": "opsrock.excitations", "SDOFModel": "opsrock.model", "RockingResult": "opsrock.result",
-    "SOLVERS": "opsrock.solvers", "simulate": "opsrock.solvers",
+    "SOLVERS": "opsrock.solvers", "simulate": "opsrock.solvers", "run_campaign": "opsrock.campaign.workflow",
+    "run_study": "opsrock.inventory.study",
 }
 
 
@@ -62,5 +71,7 @@ __all__ = [
     "RockingResult",
     "SDOFModel",
     "SOLVERS",
+    "run_campaign",
+    "run_study",
     "simulate",
 ]

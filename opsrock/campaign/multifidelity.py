@@ -137,9 +137,6 @@ class ModelFormEvidence:
         return self.n_overturned_to_safe / self.n_screen_overturned if self.n_screen_overturned else math.nan
 
 
-_RIGID = ("housner_fast", "housner")
-
-
 def _load_evidence() -> dict[str, ModelFormEvidence]:
     """The measured model-form error by expensive solver, from the table shipped in the package
     (``opsrock/data/evidence/model_form.csv``, written by ``tools/evidence.py`` from the validation cases'
@@ -255,7 +252,7 @@ def derive_rule(solver: str, screen_solver: str, settings: Mapping[str, Any] | N
         if METHODS.get(name) is None:
             raise InputError(f"unknown solver {name!r} (known: {', '.join(solver_names())})")
     if METHODS.get(screen_solver).model != "rigid":
-        raise InputError(f"screen_solver must solve the rigid body ({', '.join(_RIGID)}), got {screen_solver!r}")
+        raise InputError(f"screen_solver must solve the rigid body ({', '.join(solver_names(model='rigid'))}), got {screen_solver!r}")
     model = _sdof_model(solver, settings or {})
     uplift_q = 0.0
     if model is not None:
@@ -476,8 +473,9 @@ class MultiFidelity:
     Parameters
     ----------
     screen_solver, solver : str
-        The screen (a rigid-body solver) and the expensive solver. A solver that is the scene's own keeps
-        the scene's settings; another runs with its defaults (:meth:`Scene.with_solver`).
+        The screen (a rigid-body solver; default the registry's first compiled one) and the expensive solver
+        (default the registry's SDOF model in OpenSees). A solver that is the scene's own keeps the scene's
+        settings; another runs with its defaults (:meth:`Scene.with_solver`).
     margin : float or None
         Margin on ``theta_max / alpha`` (dimensionless); None: the ``percentile`` of :data:`EVIDENCE`
         (:func:`derive_rule`).
@@ -491,8 +489,8 @@ class MultiFidelity:
         Seed of the audit.
     """
 
-    screen_solver: str = "housner_fast"
-    solver: str = "opensees"
+    screen_solver: str = field(default_factory=lambda: solver_names(model="rigid", compiled=True)[0])
+    solver: str = field(default_factory=lambda: solver_names(model="sdof", needs_opensees=True)[0])
     margin: float | None = None
     percentile: int = DEFAULT_PERCENTILE
     escalate_overturned: bool | None = None

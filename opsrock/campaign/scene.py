@@ -81,7 +81,7 @@ if TYPE_CHECKING:
 SCENE_FORMAT: int = 1
 
 #: Solver used when a scene has no ``[solver]`` table: the paper's OpenSees SDOF model.
-DEFAULT_SOLVER: str = "opensees"
+DEFAULT_SOLVER: str = solver_names(model="sdof", needs_opensees=True)[0]
 
 #: ``[solver] name`` that picks the solver from ``[needs]`` (:mod:`opsrock.campaign.needs`).
 AUTO: str = "auto"

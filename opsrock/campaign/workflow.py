@@ -97,6 +97,16 @@ def run_campaign(
         script again, and would start its campaign again), or it runs inside a worker process with more
         than one worker: at once, no case stored. The message names the fix: the guard, or ``workers=1``
         (which runs the cases in this process).
+
+    Examples
+    --------
+    The shipped scene ``tiny`` (2 blocks x 3 x 3 one-sine pulses), stored in a folder; run it again and
+    nothing is computed twice (in a script, under ``if __name__ == "__main__":``):
+
+    >>> import opsrock
+    >>> summary = opsrock.run_campaign("tiny", "results/tiny", workers=1, progress=False)  # doctest: +SKIP
+    >>> summary.n_cases, summary.n_failed  # doctest: +SKIP
+    (18, 0)
     """
     leave_if_reimported()  # a worker process re-running an unguarded script ends here, quietly
     scene = scene if isinstance(scene, Scene) else load_scene(scene)

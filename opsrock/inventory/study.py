@@ -249,6 +249,61 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     return Assessment(design, route, out, store, workers=workers, progress=progress, force=force).run()
 
 
+def run_study(inventory: str | Path | None = None, motions: str | Path | None = None, out_dir: str | Path = "contents",
+              *, building: Any = None, quick: bool = False, workers: int | None = None, progress: bool = True,
+              force: bool = False, store_dir: str | Path | None = None, **settings: Any) -> InventoryStudy:
+    """One contents study from Python, as ``opsrock contents --inventory --motions`` runs it: each item's
+    fragility per floor and direction, the expected numbers damaged and a pelicun folder, in ``out_dir``.
+
+    Parameters
+    ----------
+    inventory : str, Path or None
+        An inventory file (CSV or TOML; m, kg); None: FEMA P-58's nine unanchored items.
+    motions : str, Path or None
+        A motions manifest (floor accelerations, m/s² or g as it says); None: the floor motions of the shipped
+        shear building ``building``.
+    out_dir : str or Path
+        The output folder (resumable: a second run computes only what is missing).
+    building : BuildingSource, optional
+        The shipped building, its floors and records when ``motions`` is None
+        (:class:`opsrock.inventory.sources.BuildingSource`; default its defaults).
+    quick : bool
+        A quick study (fewer levels and resamples; :func:`quick`).
+    workers : int or None
+        Processes (default: every core).
+    progress : bool
+        Progress on stderr.
+    force : bool
+        Delete stored results of other settings in the campaigns' folders instead of refusing them.
+    store_dir : str or Path, optional
+        Where the campaigns keep their stores (default ``out_dir/campaigns``).
+    **settings
+        Fields of :class:`InventoryDesign`: ``method`` (``"ida"`` or ``"cloud"``), ``solver`` (a solver in plan
+        for every item a box in three dimensions), ``levels``, ``n_boot``, ``seed``, ``slide_distance`` (m), ...
+
+    Returns
+    -------
+    InventoryStudy
+        The paths written (``tables``, ``pelicun``, ``report``), the case counts and the wall times (s).
+
+    Examples
+    --------
+    >>> import opsrock
+    >>> from importlib.resources import files
+    >>> data = files("opsrock.data")
+    >>> study = opsrock.run_study(data / "inventories" / "example.csv",
+    ...                           data / "examples" / "floor-motions" / "motions.csv", "my-building",
+    ...                           quick=True, progress=False)  # doctest: +SKIP
+    >>> sorted(study.tables)  # doctest: +SKIP
+    ['demands', 'expected', 'fits']
+    """
+    from opsrock.inventory.sources import BuildingSource
+
+    design = inventory_design(inventory, motions, building if building is not None else BuildingSource(), settings,
+                              quick_run=quick, workers=workers)
+    return run_inventory_study(design, out_dir, workers=workers, progress=progress, force=force, store_dir=store_dir)
+
+
 def _planar_scenes(design: InventoryDesign) -> list:
     """One campaign per group of items on the same floors, direction, support and solver."""
     from opsrock.inventory.campaigns import group_scenes, groups_of
@@ -261,4 +316,4 @@ def _planar_scenes(design: InventoryDesign) -> list:
 PLANAR: Route = Route("planar", _planar_scenes, lambda a: study_tables(a, a.cases), write_outputs, OUTPUTS)
 
 __all__ = ["DEFAULT_DEMAND_LEVELS_PFA", "DEFAULT_DEMAND_LEVELS_PFV", "DEFAULT_SLIDE_DISTANCE", "METHODS", "OUTPUTS",
-           "PLANAR", "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study"]
+           "PLANAR", "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study", "run_study"]

@@ -83,6 +83,18 @@ def simulate(block: Block, excitation: Excitation | PlanMotion | None, solver: s
         One of :data:`SOLVERS`.
     **settings
         Keyword settings of that solver's ``solve`` (model and numerics).
+
+    Examples
+    --------
+    A 0.4 m x 1.6 m block under a one-sine pulse of 3 times its frequency parameter and twice its uplift
+    acceleration, by the event-driven rigid-body solver:
+
+    >>> import opsrock
+    >>> block = opsrock.Block(width=0.4, height=1.6)
+    >>> pulse = opsrock.OneSinePulse.from_ratios(block, 3.0, 2.0)
+    >>> result = opsrock.simulate(block, pulse, solver="housner")
+    >>> result.status, result.overturned
+    ('ok', True)
     """
     if not isinstance(block, Block):
         raise InputTypeError(f"block must be a Block, got {block!r}")

@@ -19,6 +19,7 @@ import pytest
 
 from opsrock.solvers.rigid3d import kernel as kn
 from opsrock.solvers.rigid3d.model import Body, ContactSolver
+from opsrock.solvers.rigid3d.workspace import make_edge_work
 
 B, D, H = 0.2, 0.3, 0.8
 IB = ((0.6**2 + 1.6**2) / 12, (0.4**2 + 1.6**2) / 12, (0.4**2 + 0.6**2) / 12)
@@ -110,7 +111,7 @@ def test_edge_slip_obeys_coulomb_and_agrees_with_gauss_seidel():
         scale = np.abs(vf).max()
         slips = any(Pn[i, 2] > 0.0 and math.hypot(*(Vn + np.cross(Omn, r[i]))[:2]) > 1e-9 * scale for i in EDGE)
         V, Om, P = np.zeros(3), np.zeros(3), np.zeros((4, 3))
-        if not kn._edge_slip(act, r, Iinv, vf, V, Om, P, mu, mu, False, kn._edge_workspace(), np.zeros(kn.OUT_SIZE)):
+        if not kn._edge_slip(act, r, Iinv, vf, V, Om, P, mu, mu, False, make_edge_work(), np.zeros(kn.OUT_SIZE)):
             assert not slips
             continue
         answered += 1

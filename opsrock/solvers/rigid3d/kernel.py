@@ -29,6 +29,8 @@ import numpy as np
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers import status as ST
 from opsrock.solvers.rigid3d import pivot as PV
+from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y, VEC_OM, VEC_PN, VEC_V, VEC_VF, VEC_Y6,
+                                              make_workspace)
 
 # --- status codes: the shared ones (:mod:`opsrock.solvers.status`) ------------------------------------
 STATUS_OK = ST.OK
@@ -1069,14 +1071,6 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
 
 
 @numba.njit(cache=True)
-def _edge_workspace():
-    """The workspace of :func:`_edge_slip`: ``(D, A, cols)`` (6 x 6 each), ``q | y | P6 | u`` (4 x 6), ``sdir``
-    (2 x 2), ``last`` (1, int: the status pair that held last), :func:`_edge_try`'s (5 x 2), ``st | idx`` (4, int)."""
-    return (np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
-            np.zeros(1, dtype=np.int64), np.zeros((5, 2)), np.zeros(4, dtype=np.int64))
-
-
-@numba.njit(cache=True)
 def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
     """Two active corners, one stuck and one slipping, both slipping, or one slipping and the other leaving the
     floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or twists
@@ -1086,14 +1080,14 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
     friction impulses ``P`` (warm start) or free velocities; the first whose statuses hold is the step's solution of
     the contact problem (into ``V``, ``Om``, ``P``), else False (NSGS then solves it). With infinite friction
     (``stick_only``) a slipping corner is :func:`_local`'s infinite-friction limit (``mu_k = LIMIT_MU``, counted in
-    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``ew`` is the workspace of :func:`_edge_workspace`,
+    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``ew`` is its scratch (:class:`.workspace.EdgeWork`),
     ``last[0]`` the pair that held last (tried first)."""
     if stick_only:
         mu_s, mu_k = np.inf, LIMIT_MU
-    D, A, cols, vecs = ew[0], ew[1], ew[2], ew[3]
-    q, y, P6, u = vecs[0], vecs[1], vecs[2], vecs[3]
-    sdir = ew[4]
-    st, idx = ew[7][0:2], ew[7][2:4]
+    D, A, cols, vecs = ew.D, ew.A, ew.cols, ew.vec
+    q, y, P6, u = vecs[EVEC_Q], vecs[EVEC_Y], vecs[EVEC_P6], vecs[EVEC_U]
+    sdir = ew.sdir
+    st, idx = ew.stidx[0:2], ew.stidx[2:4]
     n = 0
     for i in range(4):
         if act[i]:
@@ -1106,7 +1100,7 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
         q[3 * a] = vf[0] + vf[4] * ra[2] - vf[5] * ra[1]
         q[3 * a + 1] = vf[1] + vf[5] * ra[0] - vf[3] * ra[2]
         q[3 * a + 2] = vf[2] + vf[3] * ra[1] - vf[4] * ra[0]
-    last = ew[5]
+    last = ew.last
     for c in range(5):
         combo = last[0] if c == 0 else (c - 1 if c - 1 < last[0] else c)  # the last pair that held first
         st[0], st[1] = EDGE_STATUSES[combo, 0], EDGE_STATUSES[combo, 1]
@@ -1124,7 +1118,7 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
                     ok = False
                     break
                 sdir[k, 0], sdir[k, 1] = q[3 * k] / nu, q[3 * k + 1] / nu
-        if ok and _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, ew[6]):
+        if ok and _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, ew.fw):
             last[0] = combo
             V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
             for i in range(4):
@@ -1292,7 +1286,7 @@ def _stick_subset(act, guess, landing, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s, s
     and ``act`` (the others dropped), if those others separate, ``u_n >= -tol`` (m/s), which with the stuck
     corners' loads in their cones solves the step's contact problem. One corner: ``P = -W^-1 u_free``; two:
     :func:`_stick_all`."""
-    sub = ws[14]
+    sub = ws.mask
     n_sub = ZERO
     for i in range(4):
         sub[i] = act[i] and (guess[i] != landing)
@@ -1307,13 +1301,13 @@ def _stick_mask(act, sub, n_sub, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, to
     """The corners of ``sub`` (one or two of the active ones) stuck and loaded, the other active corners
     separating (:func:`_stick_subset`)."""
     if n_sub == 2:
-        if not _stick_all(sub, TWO, r, Iw, vf, V, Om, P, mu_s, stick_only, ws[7], y6):
+        if not _stick_all(sub, TWO, r, Iw, vf, V, Om, P, mu_s, stick_only, ws.A6, y6):
             return False
     else:
         i = 0
         while not sub[i]:
             i += 1
-        W, Wi = ws[4][i], ws[5][i]
+        W, Wi = ws.Wd[i], ws.Wi[i]
         _delassus(r[i], Iinv, W)
         if not _inv3(W, Wi):
             return False
@@ -1349,7 +1343,7 @@ def _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6)
     i1, i2 = _first_two(act)
     if r[i2, 2] < r[i1, 2]:
         i1, i2 = i2, i1
-    sub = ws[14]
+    sub = ws.mask
     for first in (i1, i2):
         for i in range(4):
             sub[i] = i == first
@@ -1371,12 +1365,12 @@ def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
     Before the closed forms and NSGS, the corners that were down (``guess``) are tried alone, stuck
     (:func:`_stick_subset`): a block rocking on an edge just after an impact has its other corners still
     predicted active, unloaded and separating."""
-    Q, Iinv, Iw, r, Wd, Wi, vec = ws[0], ws[1], ws[2], ws[3], ws[4], ws[5], ws[6]
+    Q, Iinv, Iw, r, Wd, Wi, vec = ws.Q, ws.Iinv, ws.Iw, ws.r, ws.Wd, ws.Wi, ws.vec
     body, fric, nsgs, theta_mj = model.body, model.friction, model.nsgs, model.numerics.theta_mj
     g = body.g
     _geometry(s, body, Q, Iinv, Iw, r)
-    V = vec[0]
-    Om = vec[1]
+    V = vec[VEC_V]
+    Om = vec[VEC_OM]
     # free velocity
     V[0], V[1], V[2] = s[7] - dt * a_x, s[8] - dt * a_y, s[9] - dt * (g + a_v)
     w0, w1, w2 = s[10], s[11], s[12]
@@ -1386,7 +1380,7 @@ def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
     g0, g1, g2 = -(w1 * L2 - w2 * L1), -(w2 * L0 - w0 * L2), -(w0 * L1 - w1 * L0)
     for a in range(3):
         Om[a] = s[10 + a] + dt * (Iinv[a, 0] * g0 + Iinv[a, 1] * g1 + Iinv[a, 2] * g2)
-    vf = vec[2]
+    vf = vec[VEC_VF]
     vf[0], vf[1], vf[2], vf[3], vf[4], vf[5] = V[0], V[1], V[2], Om[0], Om[1], Om[2]
     n_act = ZERO
     for i in range(4):
@@ -1404,23 +1398,23 @@ def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
     try_down = 0 < n_down <= 2 and n_down < n_act
     try_landing = 0 < n_act - n_down <= 2 and n_down > 0
     if n_act >= 2 and ((try_down and _stick_subset(act, guess, NO, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s,
-                                                    stick_only, tol, ws, vec[3]))
+                                                    stick_only, tol, ws, vec[VEC_Y6]))
                        or (try_landing and _stick_subset(act, guess, YES, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s,
-                                                         stick_only, tol, ws, vec[3]))):
+                                                         stick_only, tol, ws, vec[VEC_Y6]))):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
-    elif n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, ws[7], vec[3]):
+    elif n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, ws.A6, vec[VEC_Y6]):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
     elif n_act == 2 and _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws,
-                                      vec[3]):
+                                      vec[VEC_Y6]):
         sweeps = 1
         out[OUT_STICK_STEPS] += 1.0
-    elif n_act == 2 and _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ws[15], out):
+    elif n_act == 2 and _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ws.edge, out):
         sweeps = 1
         out[OUT_EDGE_SLIP] += 1.0
-    elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, ws[8], ws[7],
-                                                                   vec[3], ws[9]):
+    elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, ws.sdir, ws.A6,
+                                                                   vec[VEC_Y6], ws.Am):
         sweeps = 1
         out[OUT_SLIDE_STEPS] += 1.0
     elif n_act > 0:
@@ -1436,7 +1430,7 @@ def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
             else:
                 P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
         sweeps = _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol,
-                                 nsgs, vec[3], vec[4], out, n_act == 1)
+                                 nsgs, vec[VEC_Y6], vec[VEC_PN], out, n_act == 1)
     else:
         for i in range(4):
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
@@ -1580,8 +1574,8 @@ def _same_phase(model, new, piv, n_piv, a, ws, probe):
     a Moreau-Jean probe step from it (``a``: the floor's accelerations of that step) solved with exactly the
     pivots active, each loaded and stuck. ``probe`` is ``(act, P, state, out)`` scratch (``P`` holds the warm
     start on entry and the probe's impulses on return)."""
-    actp, Pp, sp, outp = probe
-    Q1, r1 = ws[10], ws[11]
+    actp, Pp, sp, outp = probe.act, probe.P, probe.state, probe.out
+    Q1, r1 = ws.Q1, ws.r1
     lift_gap, vel_tol = model.limits.lift_gap, model.limits.velocity_tol
     _arms(new, model.body, Q1, r1)
     for i in range(4):
@@ -1589,7 +1583,7 @@ def _same_phase(model, new, piv, n_piv, a, ws, probe):
         if not mine and new[2] + r1[i, 2] <= lift_gap:
             return False
     outp[:] = 0.0
-    guess = ws[14]
+    guess = ws.mask
     for i in range(4):
         guess[i] = i == piv[0] or (n_piv == 2 and i == piv[1])
     sweeps = _step(model, new, a[0], a[1], a[2], model.numerics.dt, ws, actp, Pp, sp, outp, guess)
@@ -1601,7 +1595,7 @@ def _same_phase(model, new, piv, n_piv, a, ws, probe):
             return False
     if n_piv == 2:
         return outp[OUT_STICK_STEPS] > 0.5
-    ri = ws[3][piv[0]]  # the probe's arms
+    ri = ws.r[piv[0]]  # the probe's arms
     u0 = sp[7] + sp[11] * ri[2] - sp[12] * ri[1]
     u1 = sp[8] + sp[12] * ri[0] - sp[10] * ri[2]
     return math.hypot(u0, u1) <= vel_tol
@@ -1613,7 +1607,7 @@ def _smooth(model, floor, state, touch, k, n_max, ws, wk, probe, P, new, out):
     sample (at most ``n_max`` steps), halved while it leaves its phase, down to ``pivot.MIN_STEPS``. Returns
     ``(steps, largest tilt)``; 0 steps if none was kept, -1 if none could be tried (fewer than two steps to
     the next sample, or not one corner or two down); the Moreau-Jean steps then go on."""
-    piv = ws[12]
+    piv = ws.piv
     n_piv = ZERO
     for i in range(4):
         if touch[i]:
@@ -1626,8 +1620,8 @@ def _smooth(model, floor, state, touch, k, n_max, ws, wk, probe, P, new, out):
     n = PV.step_end(floor, k, n_max) - k
     if n < 2:
         return -1, 0.0
-    a = ws[13]
-    Pp = probe[1]
+    a = ws.a
+    Pp = probe.P
     while True:
         out[OUT_SMOOTH_TRIED] += 1.0
         tilt = PV.integrate(model, floor, state, piv, n_piv, k, n, new, wk)
@@ -1657,8 +1651,8 @@ def _slip_rhs(model, y, F, idx, st, sw, dy):
     ``(holds, friction power, stop time)``: ``holds`` False unless every contact presses (``N > 0``) and a stuck
     corner's force lies in its static cone; the power (W/kg) the slipping corners' friction dissipates; the
     smallest of the slipping corners' speed over tangential acceleration (s)."""
-    Q, Iinv, Iw, r, D, A, cols, vecs, sdir = sw[0], sw[1], sw[2], sw[3], sw[4], sw[5], sw[6], sw[7], sw[8]
-    q, yv, P6, u = vecs[0], vecs[1], vecs[2], vecs[3]
+    Q, Iinv, Iw, r, D, A, cols, vecs, sdir = sw.Q, sw.Iinv, sw.Iw, sw.r, sw.D, sw.A, sw.cols, sw.vec, sw.sdir
+    q, yv, P6, u = vecs[EVEC_Q], vecs[EVEC_Y], vecs[EVEC_P6], vecs[EVEC_U]
     fric = model.friction
     mu_s, mu_k = (np.inf, LIMIT_MU) if fric.infinite else (fric.mu_s, fric.mu_k)
     _arms(y, model.body, Q, r)
@@ -1743,8 +1737,8 @@ def _slip_integrate(model, floor, s, idx, st, k0, n_steps, new, sw):
     ``pivot.RK_DTAU``. Returns ``(largest tilt at the sub-steps' ends (rad), friction work (J/kg))``, the tilt -1
     as soon as a stage's forces stop holding (:func:`_slip_rhs`), a corner not in contact reaches the floor or
     the tilt reaches pi/2. ``sw`` is the workspace of :func:`_slip_rhs` and ``(dy, acc, ytmp, F)``."""
-    dy, acc, ytmp, F = sw[9], sw[10], sw[11], sw[12]
-    r = sw[3]
+    dy, acc, ytmp, F = sw.dy, sw.acc, sw.ytmp, sw.F
+    r = sw.r
     g, dt, theta_mj = model.body.g, model.numerics.dt, model.numerics.theta_mj
     new[:] = s
     PV.floor_at(floor, float(k0), k0, theta_mj, F, g)
@@ -1782,7 +1776,7 @@ def _slip_integrate(model, floor, s, idx, st, k0, n_steps, new, sw):
         if tilt >= OVERTURNING_ANGLE:
             return -1.0, 0.0
         tilt_max = max(tilt_max, tilt)
-        _arms(new, model.body, sw[0], r)
+        _arms(new, model.body, sw.Q, r)
         for i in range(4):
             mine = (i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)
             if not mine and new[2] + r[i, 2] <= 0.0:
@@ -1821,26 +1815,26 @@ def _same_slip(model, new, idx, st, a, ws, probe, sw):
     exactly the contact corners active, each loaded, slipping where it slipped (along the direction it slipped,
     in the half-plane of the end state's slip velocity) and stuck where it stuck. ``probe`` as in
     :func:`_same_phase`."""
-    actp, Pp, sp, outp = probe
-    guess = ws[14]
+    actp, Pp, sp, outp = probe.act, probe.P, probe.state, probe.out
+    guess = ws.mask
     for i in range(4):
         guess[i] = (i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)
-    _arms(new, model.body, ws[10], ws[11])
+    _arms(new, model.body, ws.Q1, ws.r1)
     for i in range(4):
-        if not guess[i] and new[2] + ws[11][i, 2] <= model.limits.lift_gap:
+        if not guess[i] and new[2] + ws.r1[i, 2] <= model.limits.lift_gap:
             return False
     outp[:] = 0.0
     sweeps = _step(model, new, a[0], a[1], a[2], model.numerics.dt, ws, actp, Pp, sp, outp, guess)
     if sweeps == 0 or sweeps > model.nsgs.max_sweeps:
         return False
-    u = sw[7][3]  # the end state's corner velocities, from its last _slip_rhs (the arms of ``new``)
+    u = sw.vec[EVEC_U]  # the end state's corner velocities, from its last _slip_rhs (the arms of ``new``)
     for k in range(2):
         i = idx[k]
         if st[k] == 2:
             continue
         if not actp[i] or Pp[i, 2] <= 0.0:
             return False
-        ri = ws[3][i]  # the probe's arms
+        ri = ws.r[i]  # the probe's arms
         u0 = sp[7] + sp[11] * ri[2] - sp[12] * ri[1]
         u1 = sp[8] + sp[12] * ri[0] - sp[10] * ri[2]
         sl = math.hypot(u0, u1) > model.limits.velocity_tol
@@ -1858,7 +1852,7 @@ def _smooth_slip(model, floor, state, touch, slip, k, n_max, ws, sw, probe, P, n
     the next sample (at most ``n_max`` steps), halved while it leaves its phase (:func:`_same_slip`), down to
     ``pivot.MIN_STEPS``. Returns ``(steps, largest tilt)`` as :func:`_smooth` does; the friction work into
     ``out``."""
-    idx, st = sw[13], sw[14]
+    idx, st = sw.idx, sw.st
     n_c = ZERO
     for i in range(4):
         if touch[i]:
@@ -1874,8 +1868,8 @@ def _smooth_slip(model, floor, state, touch, slip, k, n_max, ws, sw, probe, P, n
     n = PV.step_end(floor, k, n_max) - k
     if n < 2:
         return -1, 0.0
-    a = ws[13]
-    Pp = probe[1]
+    a = ws.a
+    Pp = probe.P
     while True:
         out[OUT_SLIP_TRIED] += 1.0
         tilt, work = _slip_integrate(model, floor, state, idx, st, k, n, new, sw)
@@ -1904,9 +1898,9 @@ def _coarse_slide(model, floor, state, k, n_max, ws, probe, P, new, out, touch, 
     n = PV.step_end(floor, k, n_max) - k
     if n < 2:
         return -1
-    a = ws[13]
+    a = ws.a
     PV.mean_floor(floor, k, n, model.numerics.theta_mj, a)
-    actp, Pp, _, outp = probe
+    actp, Pp, outp = probe.act, probe.P, probe.out
     for i in range(4):
         for c in range(3):
             Pp[i, c] = P[i, c] * n
@@ -1915,10 +1909,10 @@ def _coarse_slide(model, floor, state, k, n_max, ws, probe, P, new, out, touch, 
     if sweeps != 1 or outp[OUT_SLIDE_STEPS] + outp[OUT_STICK_STEPS] < 0.5:
         return 0
     for i in range(4):  # every corner active and kept on the floor (a corner may carry no load: see _slide_flat)
-        ri = ws[3][i]
+        ri = ws.r[i]
         if not actp[i] or abs(new[9] + new[10] * ri[1] - new[11] * ri[0]) > vel_tol:
             return 0
-    _book(state, a, ws[10], ws[11], ws[3], ws[2], ws[6][2], actp, Pp, new, out, touch, slip, vel_tol, lift_gap,
+    _book(state, a, ws.Q1, ws.r1, ws.r, ws.Iw, ws.vec[VEC_VF], actp, Pp, new, out, touch, slip, vel_tol, lift_gap,
           model.body)
     for i in range(4):
         for c in range(3):
@@ -2013,23 +2007,14 @@ def run(model, floor, state, hist, out):
     n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (body.p * dt)))
     out[:] = 0.0
     out[OUT_FIRST_MODE] = -1.0
-    ws = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
-          np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)),
-          np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3), np.zeros(4, dtype=np.bool_),
-          _edge_workspace())
-    Q, Iinv, Iw, r = ws[0], ws[1], ws[2], ws[3]
-    wk = (np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
-          np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
-    probe = (np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), np.zeros(OUT_SIZE))
-    sw = (np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((6, 6)), np.zeros((6, 6)),
-          np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)), np.zeros(13), np.zeros(13), np.zeros(13), np.zeros(3),
-          np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64))
+    ws, wk, probe, sw = make_workspace(OUT_SIZE)
+    Q, Iinv, Iw, r = ws.Q, ws.Iinv, ws.Iw, ws.r
     act = np.zeros(4, dtype=np.bool_)
     touch = np.zeros(4, dtype=np.bool_)
     slip = np.zeros(4, dtype=np.bool_)
     P = np.zeros((4, 3))
     new = np.zeros(13)
-    r1 = ws[11]
+    r1 = ws.r1
     cap = hist.shape[0]
     _geometry(state, body, Q, Iinv, Iw, r)
     for i in range(4):
@@ -2098,7 +2083,7 @@ def run(model, floor, state, hist, out):
             if n == 0:
                 sliding = -n_slide
         if smoothed:  # a smooth step's input work (the floor's force at its middle)
-            F = wk[4]
+            F = wk.F
             PV.floor_at(floor, k + 0.5 * n, k, theta_mj, F, body.g)
             out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
                 (F[2] + body.g) * (new[2] - state[2])
@@ -2106,9 +2091,9 @@ def run(model, floor, state, hist, out):
             n = 1
             converged = _count_sweeps(_step(model, state, a_x, a_y, a_v, dt, ws, act, P, new, out, touch),
                                       model.nsgs, out)
-            a_step = ws[13]  # (an array, as _coarse_slide passes it: one specialisation of _book)
+            a_step = ws.a  # (an array, as _coarse_slide passes it: one specialisation of _book)
             a_step[0], a_step[1], a_step[2] = a_x, a_y, a_v
-            impact = _book(state, a_step, ws[10], ws[11], ws[3], ws[2], ws[6][2], act, P, new, out, touch,
+            impact = _book(state, a_step, ws.Q1, ws.r1, ws.r, ws.Iw, ws.vec[VEC_VF], act, P, new, out, touch,
                            slip, vel_tol, lift_gap, body)
             if not converged:
                 unconverged += 1
@@ -2171,7 +2156,7 @@ def run(model, floor, state, hist, out):
         if peak_rule and k >= n_exc and _peak_reached(state, body, theta_max, tail_av):
             out[OUT_PEAK_STOP] = 1.0
             break
-        if mode == MODE_REST and speed < vel_tol and (n_down == 4 or _settle(state, touch, body, ws[10], ws[11],
+        if mode == MODE_REST and speed < vel_tol and (n_down == 4 or _settle(state, touch, body, ws.Q1, ws.r1,
                                                                                SETTLE_GAP * lift_gap, out)):
             seated = True
             for a in range(7, 13):

@@ -221,9 +221,8 @@ def integrate(model, floor, s, pivots, n_piv, k0, n_steps, new, wk):
     """Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps about the stuck
     ``pivots[:n_piv]`` (one corner or two) into ``new``; returns the largest tilt (rad) at the sub-steps' ends, or
     -1 as soon as the pivots' loads stop holding the block there (:func:`_loads_hold`).
-    ``model`` and ``floor`` are the kernel's (:mod:`.model`); ``wk`` the workspace ``(y, dy, acc, ytmp)`` (7 each),
-    ``(F, cb, e, r)`` (3 each), ``(Q, IO)`` (3 x 3 each)."""
-    y, dy, acc, ytmp, F, cb, e, r, Q, IO = wk
+    ``model`` and ``floor`` are the kernel's (:mod:`.model`); ``wk`` its scratch (:class:`.workspace.PivotWork`)."""
+    y, dy, acc, ytmp, F, cb, e, r, Q, IO = wk.y, wk.dy, wk.acc, wk.ytmp, wk.F, wk.cb, wk.e, wk.r, wk.Q, wk.IO
     body, dt, theta_mj = model.body, model.numerics.dt, model.numerics.theta_mj
     b, d, h, g, ib = body.b, body.d, body.h, body.g, body.inertia
     i0 = pivots[0]

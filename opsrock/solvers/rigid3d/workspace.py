@@ -1,0 +1,146 @@
+"""The scratch arrays of :mod:`opsrock.solvers.rigid3d`'s kernel as typed named tuples (numba), read by name
+(``ws.Iinv``), built once a run by :func:`make_workspace`: the Moreau-Jean step's (:class:`StepWork`, with the
+closed-form slip on two corners' :class:`EdgeWork`), the smooth steps' about stuck corners (:class:`PivotWork`),
+those on slipping corners (:class:`SlipWork`), and a probe step's (:class:`Probe`).
+
+A named tuple is the same structure to numba as a plain tuple of the same arrays (its fields are read by a constant
+offset), so passing one costs what passing the tuple did: commit 671beba measured about a third of a microsecond a
+step for each function a workspace passes through, in numba's reference counting of its arrays. The 6-vectors of
+one role share a 2-D array (rows named ``VEC_*``, ``EVEC_*``) for that reason: fewer arrays to count.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numba
+import numpy as np
+
+#: Rows of :attr:`StepWork.vec`: the velocities ``V`` and ``omega`` after the impulses, the free velocity
+#: ``(V_f, omega_f)`` (6), a 6-vector of scratch for the closed forms (``y6``) and NSGS's local velocity ``q``, and
+#: NSGS's new impulse.
+VEC_V, VEC_OM, VEC_VF, VEC_Y6, VEC_PN = 0, 1, 2, 3, 4
+
+#: Rows of :attr:`EdgeWork.vec` and :attr:`SlipWork.vec`: the two corners' free velocities (or accelerations) ``q``,
+#: the linear system's right-hand side ``y``, the impulses (or forces) ``P6`` and the corners' velocities ``u``.
+EVEC_Q, EVEC_Y, EVEC_P6, EVEC_U = 0, 1, 2, 3
+
+
+
+class EdgeWork(NamedTuple):
+    """Scratch of the closed-form slip on two corners (``kernel._edge_slip``): ``D``, ``A``, ``cols`` (6 x 6),
+    ``vec`` (4 x 6, rows ``EVEC_*``), ``sdir`` (2 x 2), ``last`` (1, int: the status pair that held last), ``fw``
+    (5 x 2: ``_edge_try``'s residuals, angles and Jacobian), ``stidx`` (4, int: the statuses, then the corners)."""
+
+    D: np.ndarray
+    A: np.ndarray
+    cols: np.ndarray
+    vec: np.ndarray
+    sdir: np.ndarray
+    last: np.ndarray
+    fw: np.ndarray
+    stidx: np.ndarray
+
+
+class StepWork(NamedTuple):
+    """Scratch of a Moreau-Jean step (``kernel._step``): rotation ``Q``, floor-frame inverse inertia ``Iinv`` and
+    inertia ``Iw`` (3 x 3), the corners' arms ``r`` (4 x 3), the Delassus blocks ``Wd`` and their inverses ``Wi``
+    (4 x 3 x 3), ``vec`` (5 x 6, rows ``VEC_*``), the closed forms' ``A6`` (6 x 6), slip directions ``sdir`` (4 x 2)
+    and ``Am`` (6 x 7), the end state's rotation ``Q1`` and arms ``r1``, the smooth step's pivots ``piv`` (2, int),
+    floor accelerations ``a`` (3), a corner mask ``mask`` (4, bool), and :class:`EdgeWork`."""
+
+    Q: np.ndarray
+    Iinv: np.ndarray
+    Iw: np.ndarray
+    r: np.ndarray
+    Wd: np.ndarray
+    Wi: np.ndarray
+    vec: np.ndarray
+    A6: np.ndarray
+    sdir: np.ndarray
+    Am: np.ndarray
+    Q1: np.ndarray
+    r1: np.ndarray
+    piv: np.ndarray
+    a: np.ndarray
+    mask: np.ndarray
+    edge: EdgeWork
+
+
+class PivotWork(NamedTuple):
+    """Scratch of a smooth step about stuck corners (``pivot.integrate``): the state ``y`` (quaternion, omega), its
+    derivative ``dy``, the Runge-Kutta sum ``acc`` and stage state ``ytmp`` (7 each), the body force ``F``, the pivot
+    ``cb`` (body frame), the edge's direction ``e`` and the arm ``r`` (3 each), ``Q`` and ``I_O`` (3 x 3)."""
+
+    y: np.ndarray
+    dy: np.ndarray
+    acc: np.ndarray
+    ytmp: np.ndarray
+    F: np.ndarray
+    cb: np.ndarray
+    e: np.ndarray
+    r: np.ndarray
+    Q: np.ndarray
+    IO: np.ndarray
+
+
+class SlipWork(NamedTuple):
+    """Scratch of a smooth step on slipping corners (``kernel._slip_integrate``): ``Q``, ``Iinv``, ``Iw`` (3 x 3),
+    the arms ``r`` (4 x 3), ``D``, ``A``, ``cols`` (6 x 6), ``vec`` (4 x 6, rows ``EVEC_*``), ``sdir`` (2 x 2), the
+    Runge-Kutta ``dy``, ``acc``, ``ytmp`` (13 each), the body force ``F`` (3), and the contact corners ``idx`` and
+    their statuses ``st`` (2 each, int)."""
+
+    Q: np.ndarray
+    Iinv: np.ndarray
+    Iw: np.ndarray
+    r: np.ndarray
+    D: np.ndarray
+    A: np.ndarray
+    cols: np.ndarray
+    vec: np.ndarray
+    sdir: np.ndarray
+    dy: np.ndarray
+    acc: np.ndarray
+    ytmp: np.ndarray
+    F: np.ndarray
+    idx: np.ndarray
+    st: np.ndarray
+
+
+class Probe(NamedTuple):
+    """A probe Moreau-Jean step's active corners ``act`` (4, bool), impulses ``P`` (4 x 3), end state ``state``
+    (13) and bookkeeping ``out``."""
+
+    act: np.ndarray
+    P: np.ndarray
+    state: np.ndarray
+    out: np.ndarray
+
+
+@numba.njit(cache=True)
+def make_edge_work():
+    """The scratch of the closed-form slip on two corners (:class:`EdgeWork`), zeroed."""
+    return EdgeWork(np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
+                    np.zeros(1, dtype=np.int64), np.zeros((5, 2)), np.zeros(4, dtype=np.int64))
+
+
+@numba.njit(cache=True)
+def make_workspace(out_size):
+    """The kernel's scratch, zeroed: ``(StepWork, PivotWork, Probe, SlipWork)`` (``out_size``: the length of the
+    kernel's output vector, for the probe's)."""
+    edge = make_edge_work()
+    ws = StepWork(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
+                  np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)),
+                  np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3),
+                  np.zeros(4, dtype=np.bool_), edge)
+    wk = PivotWork(np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
+                   np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
+    probe = Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), np.zeros(out_size))
+    sw = SlipWork(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((6, 6)),
+                  np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)), np.zeros(13), np.zeros(13),
+                  np.zeros(13), np.zeros(3), np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64))
+    return ws, wk, probe, sw
+
+
+__all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "EdgeWork",
+           "PivotWork", "Probe", "SlipWork", "StepWork", "make_edge_work", "make_workspace"]

@@ -146,7 +146,7 @@ class DirectionalityDesign:
                 raise InputError(f"{name} name a value twice: {values!r}", argument=name)
             object.__setattr__(self, name, tuple(float(x) for x in values))
         if self.solver3d not in METHODS or METHODS[self.solver3d].model == "friction":
-            raise InputError(f"solver3d must be rigid3d or a no-slip planar solver, got {self.solver3d!r}",
+            raise InputError(f"solver3d must be {plan_solver()} or a no-slip planar solver, got {self.solver3d!r}",
                              argument="solver3d")
         if isinstance(self.tolerance, bool) or not isinstance(self.tolerance, (int, float)) or not 0 < self.tolerance < 1:
             raise InputError(f"tolerance must lie in (0, 1), got {self.tolerance!r}", argument="tolerance")

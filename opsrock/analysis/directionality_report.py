@@ -18,6 +18,7 @@ import pandas as pd
 from opsrock._files import atomic_text
 from opsrock.plots import save_figure
 from opsrock.report.markdown import markdown_table
+from opsrock.solvers.registry import planar_solver
 
 #: Smallest tick and legend text (pt).
 MIN_FONT: float = 9.0
@@ -122,8 +123,8 @@ def _design_lines(d: Any) -> list[str]:
         f"* orientations (azimuth, deg): {', '.join(f'{a:g}' for a in d.azimuths)}",
         f"* IDA levels of max(PFA_1, PFA_2) / (g min(tan alpha, mu)) of the weaker axis: "
         f"{', '.join(f'{x:.3g}' for x in d.levels)}",
-        f"* 3-D solver: {d.solver3d} {dict(d.settings3d) or ''}; planar: housner_fast (no slip), friction (items with "
-        "friction); Housner's restitution throughout (rigid3d models no other)",
+        f"* 3-D solver: {d.solver3d} {dict(d.settings3d) or ''}; planar: {planar_solver(False)} (no slip), "
+        f"{planar_solver(True)} (items with friction); Housner's restitution throughout ({d.solver3d} models no other)",
         f"* fits: lognormal MLE, 95 % intervals from {d.n_boot} resamples of whole record pairs (seed {d.seed}); "
         f"planar analysis suffices within {d.tolerance:.0%}",
     ]

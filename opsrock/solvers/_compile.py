@@ -23,7 +23,7 @@ COMPILE_CPU_S: dict[str, float] = {
     "friction": 10.0,
     "housner_fast": 4.0,
     "moreau_jean": 8.0,
-    "rigid3d": 150.0,
+    "rigid3d": 60.0,
 }
 
 

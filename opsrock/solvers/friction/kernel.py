@@ -15,6 +15,7 @@ velocity in ``OUT_SLIP_END`` (docs/guide/friction.md, the ending rule).
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numba
 import numpy as np
@@ -77,10 +78,30 @@ P_SIZE = 21
 # block's kap (it travels with the context to every function that evaluates the equations)
 _FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL, _FC_KAPPA = 0, 1, 2, 3, 4, 5, 6, 7, 8
 
+# --- the named tuples the kernel passes (QuantEcon's layout) ------------------------------------------------
+#: The block as the equations take it: ``alpha`` (rad), its sine, cosine and tangent (``b/h``), static and kinetic
+#: friction (``inf``: no slip), ``kap = R² / r²`` (:mod:`.modes`). Built by :func:`_body` from the parameters.
+Body = namedtuple("Body", ["alpha", "sa", "ca", "beta", "mu_s", "mu_k", "kap"])
+#: The state of a moving mode at time ``tau`` (units of 1/p): ``mode``, pivot ``s`` and slip direction ``sig``
+#: (+-1 or 0), rotation ``th`` (rad) and its rate ``om`` (units of p), the base's displacement ``u`` (units of R)
+#: and slip velocity ``w`` (units of R p).
+Motion = namedtuple("Motion", ["mode", "s", "sig", "th", "om", "u", "w", "tau"])
+#: A block in free flight at ``tau``: rotation ``th`` (rad) and rate ``om`` (units of p), the centre of mass's
+#: horizontal position and velocity ``x``, ``vx`` and height and vertical velocity ``y``, ``vy`` (units of R, R p).
+Flight = namedtuple("Flight", ["th", "om", "x", "vx", "y", "vy", "tau"])
+#: Where the history goes: ``tau`` (units of 1/p), ``theta`` (rad), ``omega`` (units of p), ``u`` (units of R) and
+#: the mode; arrays of length 0: none. Built by :func:`history`.
+History = namedtuple("History", ["tau", "theta", "omega", "u", "mode"])
+
 #: Non-literal ``0`` (a start index) and the peak event's id: numba compiles a callee, and all it calls, once more
 #: for a literal argument met while it infers a caller (issue 43: cold compile time).
 _ZERO = np.int64(0)
 _EV_PEAK = np.int64(3)
+
+#: Width of an event's bracket, relative to ``max(1, tau)``, at which it is located: a few ulps of the time.
+_EVENT_TOL = 4e-16
+#: An event location out of iterations still counts as found if its bracket is within this many widths.
+_EVENT_SLACK = 1e3
 
 #: Iterations allowed to an event location (Illinois with a bisection every fourth step).
 _EVENT_MAX_ITER = 100
@@ -98,21 +119,36 @@ def _floor(tau, fc):
 
 
 @numba.njit(cache=True)
-def _deriv(mode, s, sig, th, om, w, tau, fc, alpha, mu_k):
-    ah, gv = _floor(tau, fc)
-    return accelerations(mode, s, sig, th, om, w, ah, gv, alpha, mu_k, fc[_FC_KAPPA])
+def _body(params):
+    """The :class:`Body` of the parameter vector (slots ``P_*``)."""
+    alpha = params[P_ALPHA]
+    return Body(alpha, math.sin(alpha), math.cos(alpha), math.tan(alpha), params[P_MU_S], params[P_MU_K],
+                params[P_KAPPA])
+
+
+def history(cap):
+    """A :class:`History` of ``cap`` rows (0: none)."""
+    return History(np.zeros(cap), np.zeros(cap), np.zeros(cap), np.zeros(cap), np.zeros(cap, dtype=np.int64))
 
 
 @numba.njit(cache=True)
-def _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k):
-    """One RK4 step of a moving mode: ``(th, om, u, w, input work, friction work)`` after ``h``."""
-    a1, b1, p1, q1 = _deriv(mode, s, sig, th, om, w, tau, fc, alpha, mu_k)
+def _deriv(m, fc, bd):
+    """:func:`opsrock.solvers.friction.modes.accelerations` at the :class:`Motion` ``m``."""
+    ah, gv = _floor(m.tau, fc)
+    return accelerations(m.mode, m.s, m.sig, m.th, m.om, m.w, ah, gv, bd.alpha, bd.mu_k, fc[_FC_KAPPA])
+
+
+@numba.njit(cache=True)
+def _rk4(m, h, fc, bd):
+    """One RK4 step of the :class:`Motion` ``m``: ``(th, om, u, w, input work, friction work)`` after ``h``."""
+    mode, s, sig, th, om, u, w, tau = m.mode, m.s, m.sig, m.th, m.om, m.u, m.w, m.tau
+    a1, b1, p1, q1 = _deriv(m, fc, bd)
     th2, om2, w2 = th + 0.5 * h * om, om + 0.5 * h * a1, w + 0.5 * h * b1
-    a2, b2, p2, q2 = _deriv(mode, s, sig, th2, om2, w2, tau + 0.5 * h, fc, alpha, mu_k)
+    a2, b2, p2, q2 = _deriv(Motion(mode, s, sig, th2, om2, u, w2, tau + 0.5 * h), fc, bd)
     th3, om3, w3 = th + 0.5 * h * om2, om + 0.5 * h * a2, w + 0.5 * h * b2
-    a3, b3, p3, q3 = _deriv(mode, s, sig, th3, om3, w3, tau + 0.5 * h, fc, alpha, mu_k)
+    a3, b3, p3, q3 = _deriv(Motion(mode, s, sig, th3, om3, u, w3, tau + 0.5 * h), fc, bd)
     th4, om4, w4 = th + h * om3, om + h * a3, w + h * b3
-    a4, b4, p4, q4 = _deriv(mode, s, sig, th4, om4, w4, tau + h, fc, alpha, mu_k)
+    a4, b4, p4, q4 = _deriv(Motion(mode, s, sig, th4, om4, u, w4, tau + h), fc, bd)
     k = h / 6.0
     return (th + k * (om + 2.0 * om2 + 2.0 * om3 + om4), om + k * (a1 + 2.0 * a2 + 2.0 * a3 + a4),
             u + k * (w + 2.0 * w2 + 2.0 * w3 + w4), w + k * (b1 + 2.0 * b2 + 2.0 * b3 + b4),
@@ -120,10 +156,13 @@ def _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k):
 
 
 @numba.njit(cache=True)
-def _event(ev, mode, s, sig, th, om, w, tau, fc, alpha, mu_s, mu_k):
+def _event(ev, m, fc, bd):
     """Value of event ``ev`` (it happens when the value falls to zero from above): 0 impact (``s theta``),
     1 stick-slip (rock: ``mu_s N - |F|``; slide, slide-rock: ``sig w``), 2 contact (``N``; slide:
-    ``1 + a_v/g``), 3 peak (``s omega``, with ``s`` the sign of omega at the step's start)."""
+    ``1 + a_v/g``), 3 peak (``s omega``, with ``s`` the sign of omega at the step's start); at the
+    :class:`Motion` ``m``."""
+    mode, s, sig, th, om, w, tau = m.mode, m.s, m.sig, m.th, m.om, m.w, m.tau
+    alpha, mu_s, mu_k = bd.alpha, bd.mu_s, bd.mu_k
     if ev == 0:
         return s * th
     if ev == 3:
@@ -140,10 +179,10 @@ def _event(ev, mode, s, sig, th, om, w, tau, fc, alpha, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
-def _event_after(ev, sgn, mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k):
-    """Value of event ``ev`` on the RK4 map after a step of length ``d``."""
-    th1, om1, _, w1, _, _ = _rk4(mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_k)
-    return _event(ev, mode, sgn if ev == 3 else s, sig, th1, om1, w1, tau + d, fc, alpha, mu_s, mu_k)
+def _event_after(ev, sgn, m, d, fc, bd):
+    """Value of event ``ev`` on the RK4 map after a step of length ``d`` from the :class:`Motion` ``m``."""
+    th1, om1, u1, w1, _, _ = _rk4(m, d, fc, bd)
+    return _event(ev, Motion(m.mode, sgn if ev == 3 else m.s, m.sig, th1, om1, u1, w1, m.tau + d), fc, bd)
 
 
 @numba.njit(cache=True)
@@ -160,13 +199,13 @@ def _illinois(d, f, lo, hi, f_lo, f_hi, side):
 
 
 @numba.njit(cache=True)
-def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_s, mu_k):
+def _locate(ev, sgn, f_lo, f_hi, m, h, fc, bd):
     """Smallest step ``d`` in (0, h] after which event ``ev`` has happened (its value <= 0), to
     round-off, given ``f_lo > 0`` at 0 and ``f_hi <= 0`` at ``h``: Illinois regula falsi with a
-    bisection every fourth iteration. Returns ``(d, ok)``."""
+    bisection every fourth iteration, from the :class:`Motion` ``m``. Returns ``(d, ok)``."""
     lo, hi = 0.0, h
     side = _ZERO
-    tol = 4e-16 * max(1.0, tau + h)
+    tol = _EVENT_TOL * max(1.0, m.tau + h)
     flat = 1e-14 * max(abs(f_lo), abs(f_hi))  # a value this small is the event to round-off
     for it in range(_EVENT_MAX_ITER):
         if hi - lo <= tol:
@@ -174,11 +213,11 @@ def _locate(ev, sgn, f_lo, f_hi, mode, s, sig, th, om, u, w, tau, h, fc, alpha, 
         d = hi - f_hi * (hi - lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
         if it % 4 == 3 or not (lo < d < hi):
             d = 0.5 * (lo + hi)
-        f = _event_after(ev, sgn, mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k)
+        f = _event_after(ev, sgn, m, d, fc, bd)
         if abs(f) <= flat:  # zero to round-off: the event is at d
             return d, True
         lo, hi, f_lo, f_hi, side = _illinois(d, f, lo, hi, f_lo, f_hi, side)
-    return hi, hi - lo <= 1e3 * tol
+    return hi, hi - lo <= _EVENT_SLACK * tol
 
 
 @numba.njit(cache=True)
@@ -206,11 +245,14 @@ def _next_departure(tau, level, exc, gvals, g_const):
 
 
 @numba.njit(cache=True)
-def _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity, kap):
+def _settle(m, ah, gv, bd, rest_velocity):
     """The mode a block takes after an impact or a landing: seated if, at ``theta = 0``, the rotation
     left is below ``rest_velocity`` and pulled back; slide-rock if a stuck pivot cannot hold; a
     slide that tips (``mu_k > b/h``) turns into slide-rock. Returns ``(mode, s, sig, om, w, ok)``
-    (``ok`` False: the contact force would be negative, the block takes off)."""
+    (``ok`` False: the contact force would be negative, the block takes off); ``m`` the :class:`Motion` at the
+    impact or landing."""
+    mode, s, sig, th, om, w = m.mode, m.s, m.sig, m.th, m.om, m.w
+    alpha, beta, mu_s, mu_k, kap = bd.alpha, bd.beta, bd.mu_s, bd.mu_k, bd.kap
     if th == 0.0 and (mode == ROCK or mode == SLIDE_ROCK) and abs(om) < rest_velocity:
         thdd = accelerations(mode, s, sig, 0.0, om, w, ah, gv, alpha, mu_k, kap)[0]
         if s * thdd <= 0.0:
@@ -271,9 +313,12 @@ def _gap(c, th, y, sa, ca):
 
 
 @numba.njit(cache=True)
-def _takeoff(mode, s, th, om, u, w, sa, ca, alpha):
+def _takeoff(m, bd):
     """The centre of mass's ``(x, vx, y, vy)`` (units of ``R``, ``R p``) of a block leaving the floor in
-    ``mode``; ``x`` is measured from the centre's position at rest, as the base displacement ``u``."""
+    the :class:`Motion` ``m``; ``x`` is measured from the centre's position at rest, as the base displacement
+    ``u``."""
+    mode, s, th, om, u, w = m.mode, m.s, m.th, m.om, m.u, m.w
+    sa, ca, alpha = bd.sa, bd.ca, bd.alpha
     if mode == ROCK or mode == SLIDE_ROCK:
         phi = s * alpha - th
         return s * sa + u - math.sin(phi), w + math.cos(phi) * om, math.cos(phi), math.sin(phi) * om
@@ -281,12 +326,15 @@ def _takeoff(mode, s, th, om, u, w, sa, ca, alpha):
 
 
 @numba.njit(cache=True)
-def _locate_landing(c, f_lo, f_hi, th, om, x, vx, y, vy, tau, h, fc, sa, ca):
+def _locate_landing(c, f_lo, f_hi, fl, h, fc, bd):
     """Smallest flight time ``d`` in (0, h] after which corner ``c`` touches the floor: Illinois regula
-    falsi with a bisection every fourth iteration, on the RK4 flight map. Returns ``(d, ok)``."""
+    falsi with a bisection every fourth iteration, on the RK4 flight map from the :class:`Flight` ``fl``.
+    Returns ``(d, ok)``."""
+    th, om, x, vx, y, vy, tau = fl.th, fl.om, fl.x, fl.vx, fl.y, fl.vy, fl.tau
+    sa, ca = bd.sa, bd.ca
     lo, hi = 0.0, h
     side = _ZERO
-    tol = 4e-16 * max(1.0, tau + h)
+    tol = _EVENT_TOL * max(1.0, tau + h)
     for it in range(_EVENT_MAX_ITER):
         if hi - lo <= tol:
             return hi, True
@@ -295,14 +343,16 @@ def _locate_landing(c, f_lo, f_hi, th, om, x, vx, y, vy, tau, h, fc, sa, ca):
             d = 0.5 * (lo + hi)
         f = _gap(c, th + d * om, _rk4_flight(x, vx, y, vy, tau, d, fc)[2], sa, ca)
         lo, hi, f_lo, f_hi, side = _illinois(d, f, lo, hi, f_lo, f_hi, side)
-    return hi, hi - lo <= 1e3 * tol
+    return hi, hi - lo <= _EVENT_SLACK * tol
 
 
 @numba.njit(cache=True)
-def _fly(th, om, x, vx, y, vy, tau, h, fc, fresh, sa, ca):
-    """One step of free flight of at most ``h``: ``(th, om, x, vx, y, vy, d, input work, landed, ok)``;
-    ``landed``: a corner reached the floor after ``d`` (``d = 0``: a lift-off that does not develop
-    within 1e-14/p lands back at once)."""
+def _fly(fl, h, fc, fresh, bd):
+    """One step of free flight of at most ``h`` from the :class:`Flight` ``fl``: ``(th, om, x, vx, y, vy, d, input
+    work, landed, ok)``; ``landed``: a corner reached the floor after ``d`` (``d = 0``: a lift-off that does not
+    develop within 1e-14/p lands back at once)."""
+    th, om, x, vx, y, vy, tau = fl.th, fl.om, fl.x, fl.vx, fl.y, fl.vy, fl.tau
+    sa, ca = bd.sa, bd.ca
     f1 = _rk4_flight(x, vx, y, vy, tau, h, fc)
     while fresh and min(_gap(1.0, th + h * om, f1[2], sa, ca), _gap(-1.0, th + h * om, f1[2], sa, ca)) <= 0.0:
         h *= 0.5
@@ -314,7 +364,7 @@ def _fly(th, om, x, vx, y, vy, tau, h, fc, fresh, sa, ca):
         g0 = _gap(c, th, y, sa, ca)
         g1 = _gap(c, th + h * om, f1[2], sa, ca)
         if g0 > 0.0 and g1 <= 0.0:
-            dc, ok = _locate_landing(c, g0, g1, th, om, x, vx, y, vy, tau, h, fc, sa, ca)
+            dc, ok = _locate_landing(c, g0, g1, fl, h, fc, bd)
             if not ok:
                 return th, om, x, vx, y, vy, 0.0, 0.0, False, False
             if dc < d:
@@ -325,30 +375,31 @@ def _fly(th, om, x, vx, y, vy, tau, h, fc, fresh, sa, ca):
 
 
 @numba.njit(cache=True)
-def _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode):
-    """Append one state to the history if it has room; returns the new length."""
-    if n_hist < hist_tau.shape[0]:
-        hist_tau[n_hist] = tau
-        hist_theta[n_hist] = th
-        hist_omega[n_hist] = om
-        hist_u[n_hist] = u
-        hist_mode[n_hist] = mode
+def _record(hist, n_hist, tau, th, om, u, mode):
+    """Append one state to the :class:`History` if it has room; returns the new length."""
+    if n_hist < hist.tau.shape[0]:
+        hist.tau[n_hist] = tau
+        hist.theta[n_hist] = th
+        hist.omega[n_hist] = om
+        hist.u[n_hist] = u
+        hist.mode[n_hist] = mode
         return n_hist + 1
     return n_hist
 
 
 @numba.njit(cache=True)
-def _first_event(mode, s, sig, th, om, u, w, tau, h, y1, fc, alpha, mu_s, mu_k):
-    """The earliest event inside a step of length ``h`` ending in the state ``y1``: ``(event, d, ok)``,
-    ``event = -1`` if none (then ``d = h``)."""
+def _first_event(m, h, y1, fc, bd):
+    """The earliest event inside a step of length ``h`` from the :class:`Motion` ``m`` ending in the state
+    ``y1``: ``(event, d, ok)``, ``event = -1`` if none (then ``d = h``)."""
     best, d_best = -1, h
+    end = Motion(m.mode, m.s, m.sig, y1[0], y1[1], y1[2], y1[3], m.tau + h)
     for ev in range(3):
-        if mode == SLIDE and ev == 0:
+        if m.mode == SLIDE and ev == 0:
             continue
-        f0 = _event(ev, mode, s, sig, th, om, w, tau, fc, alpha, mu_s, mu_k)
-        f1 = _event(ev, mode, s, sig, y1[0], y1[1], y1[3], tau + h, fc, alpha, mu_s, mu_k)
+        f0 = _event(ev, m, fc, bd)
+        f1 = _event(ev, end, fc, bd)
         if f0 > 0.0 and f1 <= 0.0:
-            d, ok = _locate(ev, 0.0, f0, f1, mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_s, mu_k)
+            d, ok = _locate(ev, 0.0, f0, f1, m, h, fc, bd)
             if not ok:
                 return ev, d, False
             if d < d_best:
@@ -357,19 +408,22 @@ def _first_event(mode, s, sig, th, om, u, w, tau, h, y1, fc, alpha, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
-def _peak(mode, s, sig, th, om, u, w, tau, d, om_end, fc, alpha, mu_s, mu_k):
-    """``|theta|`` at a turning point inside a step of length ``d`` (0 if ``omega`` keeps its sign)."""
-    if mode == SLIDE or om * om_end >= 0.0 or om == 0.0:
+def _peak(m, d, om_end, fc, bd):
+    """``|theta|`` at a turning point inside a step of length ``d`` from the :class:`Motion` ``m`` (0 if
+    ``omega`` keeps its sign)."""
+    om = m.om
+    if m.mode == SLIDE or om * om_end >= 0.0 or om == 0.0:
         return 0.0, True
     sgn = 1.0 if om > 0.0 else -1.0
-    d_p, ok = _locate(_EV_PEAK, sgn, abs(om), -abs(om_end), mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_s, mu_k)
-    th_p = _rk4(mode, s, sig, th, om, u, w, tau, d_p, fc, alpha, mu_k)[0]
+    d_p, ok = _locate(_EV_PEAK, sgn, abs(om), -abs(om_end), m, d, fc, bd)
+    th_p = _rk4(m, d_p, fc, bd)[0]
     return abs(th_p), ok
 
 
 @numba.njit(cache=True)
-def _energy(mode, s, th, om, w, fy, fvy, alpha, ca, kap):
+def _energy(mode, s, th, om, w, fy, fvy, bd):
     """Kinetic plus potential energy of any mode's state (units of ``m g R``)."""
+    alpha, ca, kap = bd.alpha, bd.ca, bd.kap
     if mode == FLIGHT:
         return 0.5 * (kap / (kap + 1.0)) * (w * w + fvy * fvy + om * om / kap) + fy - ca
     return kinetic_energy(mode, s, th, om, w, alpha, kap) + potential_energy(s if mode != SLIDE else 0.0, th, alpha)
@@ -397,10 +451,10 @@ def _start_slip(mode, s, th, om, tau, fc, alpha, mu_s):
 
 
 @numba.njit(cache=True)
-def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist_u, hist_mode):
+def solve_case(params, kvals, gvals, out, hist):
     """Solve one case from rest (or from ``theta0``, ``omega0`` rocking without slip); ``params`` holds
-    the scalars (slots ``P_*``), results go in ``out`` (slots ``OUT_*``), the history (``tau``, ``theta``,
-    ``omega``, ``u``, mode) in the arrays given (length 0: none).
+    the scalars (slots ``P_*``), results go in ``out`` (slots ``OUT_*``), the history in the :class:`History`
+    ``hist``.
 
     Excitation: ``(form, k, nu, phase)`` of :func:`opsrock.solvers.forcing.forcing` up to ``tau_end``
     for an analytic pulse; for ``form == FORM_LINEAR`` the samples ``kvals`` (``a_h/g`` at
@@ -417,7 +471,8 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     max_impacts, max_steps, max_tail = int(params[P_MAX_IMPACTS]), int(params[P_MAX_STEPS]), params[P_MAX_TAIL]
     theta0, omega0, kap = params[P_THETA0], params[P_OMEGA0], params[P_KAPPA]
     exc = Excitation(form, k, nu, phase, tau_end, kvals, dtau)
-    sa, ca, beta = math.sin(alpha), math.cos(alpha), math.tan(alpha)
+    bd = _body(params)
+    sa, ca, beta = bd.sa, bd.ca, bd.beta
     level = min(mu_s, beta)
     fc = np.zeros(9)
     fc[_FC_KAPPA] = kap
@@ -431,7 +486,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
         s = (1.0 if theta0 > 0.0 else -1.0) if theta0 != 0.0 else (1.0 if omega0 > 0.0 else -1.0)
         fresh_th = theta0 == 0.0
         out[OUT_ROCKED] = 1.0
-    out[OUT_ENERGY_START] = _energy(mode, s, th, om, w, fy, fvy, alpha, ca, kap)
+    out[OUT_ENERGY_START] = _energy(mode, s, th, om, w, fy, fvy, bd)
     theta_max, u_max = abs(theta0), 0.0
     win = wfr = eimp = t_slide = t_rock = t_fly = 0.0
     n_imp = n_steps = 0
@@ -439,17 +494,17 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     sig = _start_slip(mode, s, th, om, tau, fc, alpha, mu_s)
     if sig != 0.0:  # the pivot cannot hold (e.g. a frictionless floor): the block starts slide-rocking
         mode, first_mode, fresh_w = SLIDE_ROCK, SLIDE_ROCK, True
-    n_hist = _record(_ZERO, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+    n_hist = _record(hist, _ZERO, tau, th, om, u, mode)
     status = STATUS_OK
     tail = False
     takeoff = False
     while True:
         if takeoff:  # the contact force would turn negative: the block leaves the floor
-            u, w, fy, fvy = _takeoff(mode, s, th, om, u, w, sa, ca, alpha)
+            u, w, fy, fvy = _takeoff(Motion(mode, s, sig, th, om, u, w, tau), bd)
             mode, s, sig, takeoff, fresh_fly, fresh_th, fresh_w = FLIGHT, 0.0, 0.0, False, True, False, False
             if first_mode < 0:
                 first_mode = FLIGHT
-            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
         if n_steps >= max_steps:
             status = STATUS_MAX_STEPS
             break
@@ -481,7 +536,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             fresh_w = mode == SLIDE or mode == SLIDE_ROCK
             if fresh_th:
                 out[OUT_ROCKED] = 1.0
-            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
             continue
         if tail and mode == SLIDE and _unstoppable(w, mu_k, g_tail, max_tail - (tau - tau_end), kap):
             # a pure slide on the still floor stops only after max_tail, or never: the case ends here
@@ -499,7 +554,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
         h = min(h_tail if tail else h_nom, seg_end - tau)
         last = h == seg_end - tau
         if mode == FLIGHT:
-            th, om, u, w, fy, fvy, d, dwin, landed, ok = _fly(th, om, u, w, fy, fvy, tau, h, fc, fresh_fly, sa, ca)
+            th, om, u, w, fy, fvy, d, dwin, landed, ok = _fly(Flight(th, om, u, w, fy, fvy, tau), h, fc, fresh_fly, bd)
             n_steps += 1
             if not ok:
                 status = STATUS_EVENT_FAILED
@@ -513,7 +568,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
                 tau = tau + d
             theta_max = max(theta_max, abs(th))
             u_max = max(u_max, abs(u))
-            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
             if abs(th) >= OVERTURNING_ANGLE:
                 out[OUT_OVERTURNED] = 1.0
                 break
@@ -523,7 +578,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             if n_imp > max_impacts:
                 status = STATUS_MAX_IMPACTS
                 break
-            e_before = _energy(FLIGHT, 0.0, th, om, w, fy, fvy, alpha, ca, kap)
+            e_before = _energy(FLIGHT, 0.0, th, om, w, fy, fvy, bd)
             x_cm, vx = u, w
             mode, s, sig, om, w, ok = landing(th, om, vx, fvy, sa, ca, mu_s, mu_k, f_rest, kap)
             if not ok:
@@ -532,8 +587,8 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             # the base displacement: of the landing corner (its rest position is s b), or the centre's if flat
             u = x_cm if th == 0.0 else x_cm + s * sa * math.cos(th) - ca * math.sin(th) - s * sa
             ah, gv = _floor(tau, fc)
-            mode, s, sig, om, w, ok = _settle(mode, s, sig, th, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity, kap)
-            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca, kap)
+            mode, s, sig, om, w, ok = _settle(Motion(mode, s, sig, th, om, u, w, tau), ah, gv, bd, rest_velocity)
+            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, bd)
             if not ok:
                 takeoff = True
                 continue
@@ -541,13 +596,13 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             fresh_w = (mode == SLIDE_ROCK or mode == SLIDE) and w == 0.0
             if mode == ROCK or mode == SLIDE_ROCK:
                 out[OUT_ROCKED] = 1.0
-            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
             continue
         if fresh_th and om != 0.0:
-            thdd0 = _deriv(mode, s, sig, 0.0, om, w, tau, fc, alpha, mu_k)[0]
+            thdd0 = _deriv(Motion(mode, s, sig, 0.0, om, u, w, tau), fc, bd)[0]
             if s * thdd0 < 0.0 and abs(om) / abs(thdd0) < h:
                 h, last = abs(om) / abs(thdd0), False
-        y1 = _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k)
+        y1 = _rk4(Motion(mode, s, sig, th, om, u, w, tau), h, fc, bd)
         n_steps += 1
         if fresh_w and mu_k == 0.0 and y1[3] != 0.0:
             sig = 1.0 if y1[3] > 0.0 else -1.0  # no friction force: the slip takes the direction it develops in
@@ -557,12 +612,12 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
             if h < _MIN_STEP:
                 undeveloped = True
                 break
-            y1 = _rk4(mode, s, sig, th, om, u, w, tau, h, fc, alpha, mu_k)
+            y1 = _rk4(Motion(mode, s, sig, th, om, u, w, tau), h, fc, bd)
             n_steps += 1
         if undeveloped:
             # the new mode does not develop within 1e-14/p: drop the part that does not (the rotation
             # or the slip), or both
-            e_before = _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca, kap)
+            e_before = _energy(mode, s, th, om, w, 0.0, 0.0, bd)
             rotates = fresh_th and s * y1[0] > 0.0
             slips = (fresh_w and sig * y1[3] > 0.0) or (not fresh_w and w != 0.0)
             if fresh_th and not rotates:
@@ -574,20 +629,20 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
                 mode, w, sig = REST, 0.0, 0.0
             else:
                 mode, w, sig = ROCK, 0.0, 0.0
-            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, alpha, ca, kap)
+            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, bd)
             fresh_th, fresh_w = False, False
             continue
         if not (math.isfinite(y1[0]) and math.isfinite(y1[1]) and math.isfinite(y1[2]) and math.isfinite(y1[3])):
             status = STATUS_NONFINITE
             break
-        ev, d, ok = _first_event(mode, s, sig, th, om, u, w, tau, h, y1, fc, alpha, mu_s, mu_k)
+        ev, d, ok = _first_event(Motion(mode, s, sig, th, om, u, w, tau), h, y1, fc, bd)
         if not ok:
             status = STATUS_EVENT_FAILED
             break
         if ev >= 0:
-            y1 = _rk4(mode, s, sig, th, om, u, w, tau, d, fc, alpha, mu_k)
+            y1 = _rk4(Motion(mode, s, sig, th, om, u, w, tau), d, fc, bd)
             n_steps += 1
-        th_p, ok = _peak(mode, s, sig, th, om, u, w, tau, d, y1[1], fc, alpha, mu_s, mu_k)
+        th_p, ok = _peak(Motion(mode, s, sig, th, om, u, w, tau), d, y1[1], fc, bd)
         if not ok:
             status = STATUS_EVENT_FAILED
             break
@@ -605,23 +660,23 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
         u_max = max(u_max, abs(u))
         if abs(th) >= OVERTURNING_ANGLE:
             out[OUT_OVERTURNED] = 1.0
-            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
             break
         ah, gv = _floor(tau, fc)
         if ev == 0:  # impact at theta = 0
-            n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, 0.0, om, u, mode)
+            n_hist = _record(hist, n_hist, tau, 0.0, om, u, mode)
             n_imp += 1
             if n_imp > max_impacts:
                 status = STATUS_MAX_IMPACTS
                 break
-            e_before = _energy(mode, s, 0.0, om, w, 0.0, 0.0, alpha, ca, kap)
+            e_before = _energy(mode, s, 0.0, om, w, 0.0, 0.0, bd)
             mode, s, sig, om, w, ok = impact(s, om, w, sa, ca, mu_s, mu_k, f_rest, kap)
             if not ok:
                 status = STATUS_IMPACT_LAW
                 break
             th = 0.0
-            mode, s, sig, om, w, ok = _settle(mode, s, sig, 0.0, om, w, ah, gv, alpha, beta, mu_s, mu_k, rest_velocity, kap)
-            eimp += e_before - _energy(mode, s, 0.0, om, w, 0.0, 0.0, alpha, ca, kap)
+            mode, s, sig, om, w, ok = _settle(Motion(mode, s, sig, 0.0, om, u, w, tau), ah, gv, bd, rest_velocity)
+            eimp += e_before - _energy(mode, s, 0.0, om, w, 0.0, 0.0, bd)
             if not ok:
                 takeoff = True
                 continue
@@ -657,7 +712,7 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
                 break
             takeoff = True
             continue
-        n_hist = _record(n_hist, hist_tau, hist_theta, hist_omega, hist_u, hist_mode, tau, th, om, u, mode)
+        n_hist = _record(hist, n_hist, tau, th, om, u, mode)
     out[OUT_EVENT_TIME] = tau
     if out[OUT_OVERTURNED] > 0.0:
         theta_max = max(theta_max, OVERTURNING_ANGLE)
@@ -666,9 +721,9 @@ def solve_case(params, kvals, gvals, out, hist_tau, hist_theta, hist_omega, hist
     out[OUT_TIME_SLIDING], out[OUT_TIME_ROCKING], out[OUT_SLIDE_MAX], out[OUT_SLIDE_END] = t_slide, t_rock, u_max, u
     out[OUT_TIME_FLIGHT] = t_fly
     out[OUT_INPUT_WORK], out[OUT_FRICTION_WORK], out[OUT_IMPACT_LOSS] = win, wfr, eimp
-    total = _energy(mode, s, th, om, w, fy, fvy, alpha, ca, kap)
+    total = _energy(mode, s, th, om, w, fy, fvy, bd)
     out[OUT_POTENTIAL] = fy - ca if mode == FLIGHT else potential_energy(s if mode != SLIDE else 0.0, th, alpha)
     out[OUT_KINETIC] = total - out[OUT_POTENTIAL]
 
 
-__all__ = ["OUT_SIZE", "P_SIZE", "STATUS_OK", "solve_case"]
+__all__ = ["OUT_SIZE", "P_SIZE", "STATUS_OK", "History", "history", "solve_case"]

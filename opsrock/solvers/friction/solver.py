@@ -111,17 +111,17 @@ class _FrictionRun(SolverRun):
         alpha = block.alpha
         params, kvals, gvals = case_parameters(block, self.excitation, settings)
         cap = math.ceil(params[K.P_TAU_END] / params[K.P_H_NOM]) + _HISTORY_EXTRA if settings.record else 0
-        hist = [np.zeros(cap) for _ in range(4)] + [np.zeros(cap, dtype=np.int64)]
+        hist = K.history(cap)
         out = np.zeros(K.OUT_SIZE)
         announce_compile(K.solve_case, SOLVER_NAME)
         try:
-            K.solve_case(params, kvals, gvals, out, *hist)
+            K.solve_case(params, kvals, gvals, out, hist)
         except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
             return failed_result(SOLVER_NAME, settings_dict, alpha, f"{type(exc).__name__}: {exc}",
                                  wall_time_s=self.elapsed())
         wall = self.elapsed()
         p, nh = block.p, int(out[K.OUT_N_HIST])
-        time_s, theta, theta_dot = hist[0][:nh] / p, hist[1][:nh], hist[2][:nh] * p
+        time_s, theta, theta_dot = hist.tau[:nh] / p, hist.theta[:nh], hist.omega[:nh] * p
         status = int(out[K.OUT_STATUS])
         if status != K.STATUS_OK:
             reason = f"{REASONS[status]} (at t = {out[K.OUT_EVENT_TIME] / p:.6g} s)"
@@ -132,7 +132,7 @@ class _FrictionRun(SolverRun):
             solver=SOLVER_NAME, settings=settings_dict, alpha=alpha, time=time_s, theta=theta, theta_dot=theta_dot,
             theta_max=float(out[K.OUT_THETA_MAX]), overturned=bool(out[K.OUT_OVERTURNED]),
             rocked=bool(out[K.OUT_ROCKED]), n_steps=int(out[K.OUT_STEPS]), wall_time_s=wall,
-            n_impacts=int(out[K.OUT_IMPACTS]), slide=hist[3][:nh] * block.R,
+            n_impacts=int(out[K.OUT_IMPACTS]), slide=hist.u[:nh] * block.R,
             contact=_contact(out, block, time_s))
 
 

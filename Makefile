@@ -16,8 +16,13 @@ OUT    ?= results
 reproduce: install
 	$(BIN)/opsrock reproduce --out $(OUT)
 
+# The suite on every core (pytest-xdist): a test file is the unit of distribution (--dist loadfile), so a
+# module's expensive fixtures (a quick study, a campaign) are computed once, not once per worker; numba's kernels
+# are compiled before the workers start (tests/conftest.py). TEST_WORKERS=0 runs it in one process.
+TEST_WORKERS ?= auto
+
 test: install
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest --numprocesses $(TEST_WORKERS) --dist loadfile
 
 # The fragility, plot and inventory tests with the lowest scipy and numpy that pyproject.toml allows (scipy 1.10.0, numpy 1.24.1,
 # pinned with the rest in requirements-lowest.txt), in a venv of their own: the fits use no private scipy name

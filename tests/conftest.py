@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import time
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -28,44 +29,48 @@ settings.register_profile(
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 
-# --- numba's cache warmed on the second core ------------------------------------------------------------
-#: Compiles the package's numba kernels (each solver's, by one small solve) in a process of its own. In a fresh
-#: clone numba's cache is empty and the first test to call a kernel compiles it: measured cold, ``rigid3d``'s
-#: about 80 s, ``moreau_jean``'s 10, ``friction``'s 9, ``housner_fast``'s 4, on the 2-core machine where
-#: ``make test`` must stay under 10 minutes. Started at the session's start, this compiles them on the second
-#: core while the first runs the tests (most of which call no kernel), and every later process loads them from
-#: the cache. A test that calls a kernel before its warm-up has finished compiles it itself, as it would
-#: without the warm-up (numba writes its cache files whole). ``OPSROCK_TEST_WARMUP=0`` turns it off.
-WARMUP = """
+# --- numba's cache warmed before the tests start ----------------------------------------------------------
+#: Compiles the package's numba kernels (each solver's, by one small solve) before the first test, in two
+#: processes side by side: ``rigid3d``'s alone (the longest compile) and the three planar ones in the other. In a
+#: fresh clone numba's cache is empty; without this, the first test to call a kernel compiles it, and under
+#: ``pytest -n 2`` (``make test``) both workers can meet the same cold kernel and compile it twice. Warming first
+#: compiles each kernel once, on both cores, and every later process loads it from the cache (a second or so when
+#: the cache is warm). ``OPSROCK_TEST_WARMUP=0`` turns it off. It runs in the controlling process only, never in a
+#: pytest-xdist worker.
+WARMUP_PLAN = """
 from opsrock.block import Block
 from opsrock.excitations.plan import PlanMotion
 from opsrock.excitations.pulses import OneSinePulse
 from opsrock.solvers import simulate
-planar = Block(0.3, 1.2, restitution_factor=1.0)
-pulse = OneSinePulse.from_ratios(planar, 1.35, 3.0)
+pulse = OneSinePulse.from_ratios(Block(0.3, 1.2, restitution_factor=1.0), 1.35, 3.0)
 simulate(Block(0.3, 1.2, restitution_factor=1.0, depth=0.6, friction=0.5), PlanMotion.along(pulse, 30.0),
          solver="rigid3d")
+"""
+WARMUP_PLANAR = """
+from opsrock.block import Block
+from opsrock.excitations.pulses import OneSinePulse
+from opsrock.solvers import simulate
+planar = Block(0.3, 1.2, restitution_factor=1.0)
+pulse = OneSinePulse.from_ratios(planar, 1.35, 3.0)
 for solver in ("moreau_jean", "friction"):
     simulate(Block(0.3, 1.2, restitution_factor=1.0, friction=0.5), pulse, solver=solver)
 simulate(planar, pulse, solver="housner_fast")
 """
 
-_WARMUP = pytest.StashKey[subprocess.Popen]()
-
 
 def pytest_sessionstart(session):
-    if os.environ.get("OPSROCK_TEST_WARMUP", "1") == "0" or (os.cpu_count() or 1) < 2:
+    if os.environ.get("OPSROCK_TEST_WARMUP", "1") == "0" or hasattr(session.config, "workerinput"):
         return
-    session.config.stash[_WARMUP] = subprocess.Popen(
-        [sys.executable, "-c", WARMUP], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL)
-
-
-def pytest_sessionfinish(session, exitstatus):
-    proc = session.config.stash.get(_WARMUP, None)
-    if proc is not None and proc.poll() is None:
-        proc.kill()
-        proc.wait()
+    started = time.monotonic()
+    procs = [subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE, text=True) for code in (WARMUP_PLAN, WARMUP_PLANAR)]
+    failed = [err for proc in procs for err in [proc.communicate()[1]] if proc.returncode != 0]
+    # A warm-up that fails is not hidden, but the tests still run: they compile what they need themselves and
+    # the failure shows again, with its test, where it belongs.
+    for err in failed:
+        print(f"\nopsrock test warm-up failed:\n{err.strip()}", file=sys.stderr)
+    print(f"\nnumba kernels warmed in {time.monotonic() - started:.0f} s (compiled once per clone, then loaded)",
+          file=sys.stderr)
 
 
 # --- fixtures shared by the suite ------------------------------------------------------------------------

@@ -144,10 +144,11 @@ def _watch_parent(parent: int) -> None:
     os._exit(1)
 
 
-def worker_start(parent: int) -> None:
+def worker_start(parent: int, ready=None) -> None:
     """What every worker of opsrock's pools runs first: die with ``parent``, leave Ctrl-C to it, and take the
     default action of SIGTERM and SIGHUP (a worker spawned while the parent held them back inherits them
-    blocked)."""
+    blocked). Last, it counts itself in ``ready`` (a shared ``multiprocessing.Value``, when given): from then on
+    the worker takes work, and the parent's clock of a case budget may run."""
     die_with_parent(parent)
     ignore_interrupts()
     stops = {s for s in (getattr(signal, "SIGTERM", None), getattr(signal, "SIGHUP", None)) if s is not None}
@@ -155,6 +156,9 @@ def worker_start(parent: int) -> None:
         signal.signal(s, signal.SIG_DFL)
     if hasattr(signal, "pthread_sigmask"):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, stops)
+    if ready is not None:
+        with ready.get_lock():
+            ready.value += 1
 
 
 @contextlib.contextmanager

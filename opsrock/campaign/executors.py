@@ -62,6 +62,11 @@ MAX_BATCH: int = 16
 #: room for the in-process budget to fire first and for a spawned worker's imports.
 KILL_GRACE: float = 30.0
 
+#: How often (s) the pool looks whether a worker has started, while none has: a batch's budget is counted from
+#: then, never from its submission, so a worker's start-up (a fresh interpreter's imports, seconds on a loaded
+#: machine) is never charged to a case.
+READY_POLL: float = 0.1
+
 #: The optional extra that provides Dask.
 DASK_EXTRA_HINT: str = 'the Dask executor needs the optional extra: pip install "opsrock[dask]"'
 
@@ -195,6 +200,7 @@ class LocalPool(_Closing):
         self.mp_context = mp_context
         self.item_timeout = None if item_timeout is None or math.isinf(item_timeout) else float(item_timeout)
         self._pool: ProcessPoolExecutor | None = None
+        self._ready = None  # the pool's count of started workers (a shared multiprocessing.Value)
         self._processes: dict = {}  # the pool's worker processes, kept to read their exit status once it broke
         #: Run the items in this process: no worker may start here (``workers=1`` only).
         self.here = not pool_allowed(workers)
@@ -204,8 +210,10 @@ class LocalPool(_Closing):
 
     def _new_pool(self, workers: int) -> ProcessPoolExecutor:
         self._shutdown_pool()
-        self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context(self.mp_context),
-                                         initializer=worker_start, initargs=(os.getpid(),))
+        context = multiprocessing.get_context(self.mp_context)
+        self._ready = context.Value("i", 0)  # workers that have started (worker_start counts itself in)
+        self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=context,
+                                         initializer=worker_start, initargs=(os.getpid(), self._ready))
         self._processes = self._pool._processes  # the same dict, filled as workers start; kept after shutdown
         return self._pool
 
@@ -248,10 +256,24 @@ class LocalPool(_Closing):
         """Stop the worker processes (queued batches are cancelled)."""
         self._shutdown_pool()
 
-    def _deadline(self, n_items: int) -> float:
+    def _started(self) -> int:
+        """How many workers of the current pool have started (and so take batches)."""
+        return self._ready.value if self._ready is not None else 0
+
+    def _deadlines(self, running: dict) -> float:
+        """Give the batches now being worked on their deadlines, and return the earliest (inf: none). A batch's
+        clock starts once a worker can have taken it: with ``r`` workers started, the ``r`` oldest batches in
+        flight (the pool's call queue is first in, first out). The others wait, their clock not running."""
         if self.item_timeout is None:
             return math.inf
-        return time.monotonic() + n_items * self.item_timeout + KILL_GRACE
+        started = self._started()
+        now = time.monotonic()
+        for rank, (fut, (k, deadline, n)) in enumerate(list(running.items())):
+            if deadline is None and rank < started:
+                running[fut] = (k, now + n * self.item_timeout + KILL_GRACE, n)
+        pending = [d for _, d, _ in running.values() if d is None]
+        first = min((d for _, d, _ in running.values() if d is not None), default=math.inf)
+        return min(first, now + READY_POLL) if pending else first
 
     def map_batches(
         self,
@@ -281,7 +303,7 @@ class LocalPool(_Closing):
 
     def _run_batches(self, fn, batches, todo: list[int], suspects: list[int]) -> Iterator[tuple[int, list]]:
         pool = self._new_pool(self.workers)
-        running: dict[Future, tuple[int, float]] = {}
+        running: dict[Future, tuple[int, float | None, int]] = {}  # batch, deadline (None: not started), items
         while todo or running:
             while todo and len(running) < self.workers:
                 k = todo.pop()
@@ -295,17 +317,17 @@ class LocalPool(_Closing):
                     if self._unguarded():
                         _give_back(todo, running)
                         return
-                    suspects.extend(j for j, _ in running.values())
+                    suspects.extend(j for j, _, _ in running.values())
                     running.clear()
                     pool = self._new_pool(self.workers)
                     continue
-                running[fut] = (k, self._deadline(len(batches[k])))
-            first = min(deadline for _, deadline in running.values())
+                running[fut] = (k, None, len(batches[k]))
+            first = self._deadlines(running)
             wait_for = None if math.isinf(first) else max(0.0, first - time.monotonic())
             done, _ = wait(running, timeout=wait_for, return_when=FIRST_COMPLETED)
             broken = False
             for fut in done:
-                k, _ = running.pop(fut)
+                k, _, _ = running.pop(fut)
                 try:
                     result = fut.result()
                 except BrokenProcessPool:
@@ -313,6 +335,8 @@ class LocalPool(_Closing):
                     broken = True
                     continue
                 yield k, result
+            if not done and not any(d is not None and d <= time.monotonic() for _, d, _ in running.values()):
+                continue  # no worker had started yet: look again
             if not done:  # a batch overran its budget: kill the workers, re-run its items alone
                 self._kill_pool()
                 broken = True
@@ -320,7 +344,7 @@ class LocalPool(_Closing):
                 _give_back(todo, running, suspects)
                 return
             if broken:
-                suspects.extend(k for k, _ in running.values())
+                suspects.extend(k for k, _, _ in running.values())
                 running.clear()
                 pool = self._new_pool(self.workers)
 
@@ -333,6 +357,8 @@ class LocalPool(_Closing):
             fut = self._pool.submit(fn, [item])
         budget = None if self.item_timeout is None else self.item_timeout + KILL_GRACE
         try:
+            while budget is not None and not self._started() and not fut.done():
+                wait([fut], timeout=READY_POLL)  # the worker's start-up is not the item's budget
             return fut.result(timeout=budget)[0]
         except BrokenProcessPool as exc:
             if self._unguarded():
@@ -348,7 +374,7 @@ class LocalPool(_Closing):
 def _give_back(todo: list[int], running: dict, suspects: list[int] | None = None) -> None:
     """Put the batches that were in flight (and the suspects: none of them ran) back on the ``todo`` stack,
     in order, for this process to run (a pool whose workers could not start)."""
-    todo.extend(k for k, _ in running.values())
+    todo.extend(k for k, _, _ in running.values())
     if suspects is not None:
         todo.extend(suspects)
         suspects.clear()

@@ -144,11 +144,13 @@ def _watch_parent(parent: int) -> None:
     os._exit(1)
 
 
-def worker_start(parent: int, ready=None) -> None:
+def worker_start(parent: int, ready=None, warm: str | None = None) -> None:
     """What every worker of opsrock's pools runs first: die with ``parent``, leave Ctrl-C to it, and take the
     default action of SIGTERM and SIGHUP (a worker spawned while the parent held them back inherits them
-    blocked). Last, it counts itself in ``ready`` (a shared ``multiprocessing.Value``, when given): from then on
-    the worker takes work, and the parent's clock of a case budget may run."""
+    blocked). Then it makes the kernel of the solver ``warm`` ready (:func:`opsrock.solvers.warm_up`: loaded from
+    numba's cache, which the parent has filled), and last it counts itself in ``ready`` (a shared
+    ``multiprocessing.Value``, when given): from then on the worker takes work, and the parent's clock of a case
+    budget may run."""
     die_with_parent(parent)
     ignore_interrupts()
     stops = {s for s in (getattr(signal, "SIGTERM", None), getattr(signal, "SIGHUP", None)) if s is not None}
@@ -156,9 +158,22 @@ def worker_start(parent: int, ready=None) -> None:
         signal.signal(s, signal.SIG_DFL)
     if hasattr(signal, "pthread_sigmask"):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, stops)
+    if warm is not None:
+        _warm_up(warm)
     if ready is not None:
         with ready.get_lock():
             ready.value += 1
+
+
+def _warm_up(solver: str) -> None:
+    """:func:`opsrock.solvers.warm_up`, whose failure is left to the cases: each one that meets it is stored as
+    failed with its reason, where a failed initializer would break the pool and lose every case."""
+    from opsrock.solvers import warm_up
+
+    try:
+        warm_up(solver)
+    except Exception:  # noqa: BLE001  the cases report it, each with its reason
+        pass
 
 
 @contextlib.contextmanager

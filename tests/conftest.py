@@ -37,25 +37,8 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 #: compiles each kernel once, on both cores, and every later process loads it from the cache (a second or so when
 #: the cache is warm). ``OPSROCK_TEST_WARMUP=0`` turns it off. It runs in the controlling process only, never in a
 #: pytest-xdist worker.
-WARMUP_PLAN = """
-from opsrock.block import Block
-from opsrock.excitations.plan import PlanMotion
-from opsrock.excitations.pulses import OneSinePulse
-from opsrock.solvers import simulate
-pulse = OneSinePulse.from_ratios(Block(0.3, 1.2, restitution_factor=1.0), 1.35, 3.0)
-simulate(Block(0.3, 1.2, restitution_factor=1.0, depth=0.6, friction=0.5), PlanMotion.along(pulse, 30.0),
-         solver="rigid3d")
-"""
-WARMUP_PLANAR = """
-from opsrock.block import Block
-from opsrock.excitations.pulses import OneSinePulse
-from opsrock.solvers import simulate
-planar = Block(0.3, 1.2, restitution_factor=1.0)
-pulse = OneSinePulse.from_ratios(planar, 1.35, 3.0)
-for solver in ("moreau_jean", "friction"):
-    simulate(Block(0.3, 1.2, restitution_factor=1.0, friction=0.5), pulse, solver=solver)
-simulate(planar, pulse, solver="housner_fast")
-"""
+WARMUP_PLAN = "from opsrock.solvers import warm_up; warm_up('rigid3d')"
+WARMUP_PLANAR = "from opsrock.solvers import warm_up\nfor s in ('moreau_jean', 'friction', 'housner_fast'): warm_up(s)"
 
 
 def pytest_sessionstart(session):

@@ -175,6 +175,11 @@ class LocalPool(_Closing):
         re-run one at a time, and an item that overruns alone gets ``lost(item, reason)`` with a
         reason starting ``"timeout"``. This backs up the in-process budget
         (:func:`opsrock.campaign.timeout.time_limit`), which cannot interrupt native code. None: no limit.
+        The budget counts from a worker's start (once it has started and warmed ``warm``), never from the
+        submission.
+    warm : str, optional
+        A solver whose compiled kernel each worker loads before it takes work
+        (:func:`opsrock.solvers.warm_up`), so that no item's budget pays for it. None: nothing.
 
     Raises
     ------
@@ -186,7 +191,7 @@ class LocalPool(_Closing):
     """
 
     def __init__(self, workers: int | None = None, *, mp_context: str = "spawn",
-                 item_timeout: float | None = None) -> None:
+                 item_timeout: float | None = None, warm: str | None = None) -> None:
         if workers is None:
             workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
         check_count("workers", workers)
@@ -199,6 +204,7 @@ class LocalPool(_Closing):
         self.workers = workers
         self.mp_context = mp_context
         self.item_timeout = None if item_timeout is None or math.isinf(item_timeout) else float(item_timeout)
+        self.warm = warm
         self._pool: ProcessPoolExecutor | None = None
         self._ready = None  # the pool's count of started workers (a shared multiprocessing.Value)
         self._processes: dict = {}  # the pool's worker processes, kept to read their exit status once it broke
@@ -213,7 +219,7 @@ class LocalPool(_Closing):
         context = multiprocessing.get_context(self.mp_context)
         self._ready = context.Value("i", 0)  # workers that have started (worker_start counts itself in)
         self._pool = ProcessPoolExecutor(max_workers=workers, mp_context=context,
-                                         initializer=worker_start, initargs=(os.getpid(), self._ready))
+                                         initializer=worker_start, initargs=(os.getpid(), self._ready, self.warm))
         self._processes = self._pool._processes  # the same dict, filled as workers start; kept after shutdown
         return self._pool
 

@@ -64,7 +64,7 @@ from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
 from opsrock.errors import CampaignConflictError, CaseTimeout, InputTypeError
 from opsrock.limits import check
 from opsrock.result import RockingResult
-from opsrock.solvers import get_solver, simulate
+from opsrock.solvers import get_solver, simulate, warm_up
 from opsrock.solvers.registry import METHODS
 
 #: One solve at a time per process: OpenSeesPy keeps one global model per interpreter, and a
@@ -480,7 +480,8 @@ class Stage:
             run = _Run(scene, out, digest, how.executor, how.progress)
             run.open(store, manifest, how.force)
             if how.executor is None:  # made once the folder is known to be ours
-                run.executor = LocalPool(how.workers, item_timeout=how.case_timeout)
+                warm_up(scene.solver)  # compiled here once (announced), loaded by each worker: no case pays for it
+                run.executor = LocalPool(how.workers, item_timeout=how.case_timeout, warm=scene.solver)
             try:
                 cases = run.cases() if cases is None else cases
                 chosen = cases if only is None else [c for c in cases if c.case_id in only]

@@ -61,6 +61,24 @@ def check_settings(name: str, settings: dict[str, Any]) -> Any:
     return make_settings(settings_class(name), None, dict(settings))
 
 
+def warm_up(solver: str) -> None:
+    """Make the compiled kernel of ``solver`` (one of :data:`SOLVERS`) ready in this process: compiled, or loaded
+    from numba's cache, by one short solve of a small block under a one-sine pulse (in plan for a solver in plan,
+    on a slipping base for one with friction). Nothing for a solver that is not compiled (registry ``compiled``).
+    A campaign calls it before its first case, so that no case's time budget pays for a compile; when the cache is
+    cold the solver says so on standard error with the expected duration
+    (:func:`opsrock.solvers._compile.announce_compile`)."""
+    entry = info(solver)
+    if not entry.compiled:
+        return
+    from opsrock.excitations.pulses import OneSinePulse
+
+    block = Block(0.3, 1.2, restitution_factor=1.0, depth=0.6 if "depth" in entry.block_needs else None,
+                  friction=0.5 if entry.friction else None)
+    pulse = OneSinePulse.from_ratios(Block(0.3, 1.2, restitution_factor=1.0), 1.35, 3.0)
+    simulate(block, PlanMotion.along(pulse, 30.0) if entry.plan else pulse, solver=solver)
+
+
 def simulate(block: Block, excitation: Excitation | PlanMotion | None, solver: str = "opensees",
              **settings: Any) -> RockingResult:
     """Solve the rocking response of ``block`` to ``excitation``.
@@ -115,4 +133,4 @@ def planar_excitation(solver: str, excitation: Excitation | PlanMotion | None) -
 
 
 __all__ = ["METHODS", "SOLVERS", "SolverInfo", "capabilities", "check_model", "check_settings", "get_solver", "info",
-           "planar_excitation", "settings_class", "simulate", "solver_names"]
+           "planar_excitation", "settings_class", "simulate", "solver_names", "warm_up"]

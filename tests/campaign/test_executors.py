@@ -148,3 +148,20 @@ def test_dask_local_cluster_two_processes():
         results = collect(ex, square_batch, batches)
     assert [r[:2] for r in results] == [(x, x * x) for x in range(20)]
     assert os.getpid() not in {r[2] for r in results}  # worker processes, not threads
+
+
+def kernel_loaded_batch(batch: list[int]) -> list[tuple[int, bool, int]]:
+    """(item, whether housner_fast's kernel was compiled or loaded in this worker before the item, pid)."""
+    from opsrock.solvers.housner_fast import kernel
+
+    return [(x, bool(kernel.solve_case.signatures), os.getpid()) for x in batch]
+
+
+@pytest.mark.parametrize("warm", ["housner_fast", None])
+def test_a_worker_makes_its_kernel_ready_before_it_takes_a_case(warm):
+    # The case budget counts from a worker's start; a worker told which solver it serves loads that solver's
+    # compiled kernel first (opsrock.solvers.warm_up), so no case pays for a compile or a cache load: the kernel
+    # is there before the first item, whatever the machine's speed. Without `warm`, it is not.
+    with LocalPool(1, warm=warm) as pool:
+        results = collect(pool, kernel_loaded_batch, make_batches([0, 1], 2))
+    assert [r[1] for r in results] == [warm is not None] * 2

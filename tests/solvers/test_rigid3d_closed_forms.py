@@ -17,6 +17,7 @@ import math
 import numpy as np
 import pytest
 
+from opsrock.solvers.rigid3d import contact, geometry, sliding, sticking
 from opsrock.solvers.rigid3d import kernel as kn
 from opsrock.solvers.rigid3d.model import Body, ContactSolver
 from opsrock.solvers.rigid3d.workspace import make_edge_work
@@ -43,7 +44,7 @@ def _problem(rng):
     s = np.zeros(13)
     s[3:7] = _quat(rng.uniform(0.02, 0.4), rng.uniform(-math.pi, math.pi))
     Q, Iinv, Iw, r = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3))
-    kn._geometry(s, BODY, Q, Iinv, Iw, r)
+    geometry._geometry(s, BODY, Q, Iinv, Iw, r)
     assert abs(r[0, 2] - r[3, 2]) < 1e-12  # both corners of the edge at one height
     while True:
         vf = rng.normal(0.0, 0.3, 6)
@@ -87,11 +88,11 @@ def _nsgs(r, Iinv, vf, mu):
     act[list(EDGE)] = True
     Wd, Wi = np.zeros((4, 3, 3)), np.zeros((4, 3, 3))
     for i in EDGE:
-        kn._delassus(r[i], Iinv, Wd[i])
-        kn._inv3(Wd[i], Wi[i])
+        geometry._delassus(r[i], Iinv, Wd[i])
+        geometry._inv3(Wd[i], Wi[i])
     V, Om, P = vf[:3].copy(), vf[3:].copy(), np.zeros((4, 3))
     nsgs = ContactSolver(tol=1e-13, max_sweeps=20000, fail_steps=1, loose_tol=1e-13, extra_sweeps=0)
-    sweeps = kn._solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu, mu, False, 1e-13, nsgs, np.zeros(3),
+    sweeps = contact._solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu, mu, False, 1e-13, nsgs, np.zeros(3),
                                 np.zeros(3), np.zeros(kn.OUT_SIZE), False)
     return V, Om, P, sweeps <= nsgs.max_sweeps
 
@@ -111,7 +112,7 @@ def test_edge_slip_obeys_coulomb_and_agrees_with_gauss_seidel():
         scale = np.abs(vf).max()
         slips = any(Pn[i, 2] > 0.0 and math.hypot(*(Vn + np.cross(Omn, r[i]))[:2]) > 1e-9 * scale for i in EDGE)
         V, Om, P = np.zeros(3), np.zeros(3), np.zeros((4, 3))
-        if not kn._edge_slip(act, r, Iinv, vf, V, Om, P, mu, mu, False, make_edge_work(), np.zeros(kn.OUT_SIZE)):
+        if not sliding._edge_slip(act, r, Iinv, vf, V, Om, P, mu, mu, False, make_edge_work(), np.zeros(kn.OUT_SIZE)):
             assert not slips
             continue
         answered += 1
@@ -134,7 +135,7 @@ def test_edge_split_keeps_both_corners_in_their_cones(seed):
         Pa = np.array([*rng.normal(0.0, 0.3, 2), rng.uniform(0.05, 1.0)])
         Pb = np.array([*rng.normal(0.0, 0.3, 2), rng.uniform(0.05, 1.0)])
         ca, cb = Pa @ e, Pb @ e
-        xa = kn._edge_split(Pa, Pb, e[0], e[1], e[2], ca, cb, ca, mu)
+        xa = sticking._edge_split(Pa, Pb, e[0], e[1], e[2], ca, cb, ca, mu)
 
         def inside(x, slack=0.0):
             x = np.atleast_1d(x)[:, None]
@@ -171,11 +172,11 @@ def test_flat_slide_obeys_coulomb_and_newton_finds_it_again():
         s = np.zeros(13)
         s[3:7] = _quat(0.0, rng.uniform(-math.pi, math.pi))
         Q, Iinv, Iw, r = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3))
-        kn._geometry(s, BODY, Q, Iinv, Iw, r)
+        geometry._geometry(s, BODY, Q, Iinv, Iw, r)
         vf = np.array([*rng.normal(0.0, 0.01, 2), -9.81e-3, 0.0, 0.0, rng.normal(0.0, 0.05)])
         V, Om, P, sdir = np.zeros(3), np.zeros(3), np.zeros((4, 3)), np.zeros((4, 2))
         work = (np.zeros((6, 6)), np.zeros(6), np.zeros((6, 7)))
-        if not kn._slide_flat(act, r, Iw, vf, V, Om, P, mu, sdir, *work):
+        if not sliding._slide_flat(act, r, Iw, vf, V, Om, P, mu, sdir, *work):
             continue
         answered += 1
         assert V[2] == 0.0 and Om[0] == 0.0 and Om[1] == 0.0
@@ -187,7 +188,7 @@ def test_flat_slide_obeys_coulomb_and_newton_finds_it_again():
             np.testing.assert_allclose(P[i, :2], -mu * P[i, 2] * u[:2] / math.hypot(u[0], u[1]), atol=1e-12)
         x = np.array([V[0], V[1], Om[2]]) * 1.2
         xs, zs = np.zeros(7), np.zeros(7)
-        if kn._flat_newton(x, idx, 4, r, Iw, vf, mu, sdir, *work, xs, zs):
+        if sliding._flat_newton(x, idx, 4, r, Iw, vf, mu, sdir, *work, xs, zs):
             regained += 1
             np.testing.assert_allclose(xs[4:7], [V[0], V[1], Om[2]], atol=1e-10)
     assert answered >= 100 and regained == answered
@@ -205,8 +206,8 @@ def test_slip_newton_obeys_coulomb_on_one_corner():
     for _ in range(200):
         r, Iinv, vf = _problem(rng)
         W, Wi = np.zeros((3, 3)), np.zeros((3, 3))
-        kn._delassus(r[0], Iinv, W)
-        kn._inv3(W, Wi)
+        geometry._delassus(r[0], Iinv, W)
+        geometry._inv3(W, Wi)
         q = vf[:3] + np.cross(vf[3:], r[0])
         for mu, limit in ((0.3, False), (kn.LIMIT_MU, True)):
             P = -Wi @ q
@@ -214,10 +215,10 @@ def test_slip_newton_obeys_coulomb_on_one_corner():
                 continue  # sticks
             warm = np.zeros(3)
             ut = q[:2] - W[:2, 2] * q[2] / W[2, 2]
-            ok, s0, s1 = kn._slip_newton(W, q, mu, ut[0] / math.hypot(*ut), ut[1] / math.hypot(*ut))
+            ok, s0, s1 = contact._slip_newton(W, q, mu, ut[0] / math.hypot(*ut), ut[1] / math.hypot(*ut))
             newton += ok
             P = np.zeros(3)
-            code = kn._local(W, Wi, q, mu, mu, limit, warm, P)
+            code = contact._local(W, Wi, q, mu, mu, limit, warm, P)
             if code == 2:  # no slip solution (W_zz - mu_k W_zt . s <= 0): left open
                 assert not ok and not P.any()
                 continue
@@ -251,10 +252,10 @@ def test_settle_sets_a_block_at_rest_on_three_corners_down_on_four():
         s[3:7] = [w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
                   w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2]
         Q, r = np.zeros((3, 3)), np.zeros((4, 3))
-        kn._arms(s, body, Q, r)
+        geometry._arms(s, body, Q, r)
         s[2] = -min(r[:, 2])
         s[0], s[1] = 0.1, -0.2
-        kn._arms(s, body, Q, r)
+        geometry._arms(s, body, Q, r)
         gaps = s[2] + r[:, 2]
         up = int(np.argmax(gaps))
         assert up == 2 and gaps[up] == pytest.approx(gap, rel=1e-6) and abs(gaps[0]) < 1e-15
@@ -267,8 +268,8 @@ def test_settle_sets_a_block_at_rest_on_three_corners_down_on_four():
         if not settles:
             assert np.array_equal(s, before) and not touch[up]
             continue
-        kn._arms(s, body, Q, r)
+        geometry._arms(s, body, Q, r)
         assert touch.all() and np.allclose(s[2] + r[:, 2], 0.0, atol=1e-15)
         assert np.allclose(s[:2] - h * Q[:2, 2], base, atol=1e-12)
-        assert kn._twist(s) == pytest.approx(tw, abs=1e-12)
+        assert geometry._twist(s) == pytest.approx(tw, abs=1e-12)
         assert out[kn.OUT_SETTLED] == 1.0 and out[kn.OUT_SETTLE_GAP] == pytest.approx(gap, rel=1e-3)

@@ -64,7 +64,7 @@ is in the infinite-friction limit), the whole body is integrated by the same met
 acceleration level (the linear system of ``_edge_slip`` with the slip directions those of the slip velocities;
 sub-steps also under ``1/kernel.SLIP_TURN`` of each slipping corner's speed over its tangential acceleration), kept
 on the same checks at every stage (pressing corners, stuck ones in their cones) and a probe that solves the same
-statuses (:func:`~opsrock.solvers.rigid3d.kernel._smooth_slip`). A block sliding flat on its four corners takes
+statuses (:func:`~opsrock.solvers.rigid3d.smooth._smooth_slip`). A block sliding flat on its four corners takes
 coarse Moreau-Jean steps of up to ``pivot.SLIDE_DTAU``, kept while they are solved by the closed-form flat slide or
 stick and every corner stays on the floor. A block at rest on three stuck corners whose fourth hangs within
 ``kernel.SETTLE_GAP`` contact gaps of the floor (the Moreau-Jean steps' drift) is set down on all four and seated

@@ -15,7 +15,7 @@ error (its contact impulse carries the gravity torque of the step's start); this
 is crossed in steps of :data:`RK_DTAU` instead of ``dtau``.
 
 A smooth step is only taken, and only kept, where it is the same phase throughout
-(:func:`opsrock.solvers.rigid3d.kernel._smooth`): the step ends on a sample of the floor motion or the end of
+(:func:`opsrock.solvers.rigid3d.smooth._smooth`): the step ends on a sample of the floor motion or the end of
 the excitation (the floor's acceleration is linear between samples, a pulse smooth), at the end of every
 Runge-Kutta sub-step the pivots' reaction presses on the floor within the static cone (:func:`_loads_hold`;
 without this check a smooth step held a pivot through 0.19 s of flight), every other corner stays above the
@@ -23,7 +23,7 @@ floor (no impact inside), the tilt stays below pi/2, and a Moreau-Jean probe ste
 contact problem with the same corners, stuck and loaded. Otherwise the step is halved, down to :data:`MIN_STEPS`
 Moreau-Jean steps, and then the Moreau-Jean steps take over (impacts, lift-off, the onset of slip, flight and
 overturning are always theirs; a block rocking on slipping corners has smooth steps of its own,
-:func:`opsrock.solvers.rigid3d.kernel._smooth_slip`).
+:func:`opsrock.solvers.rigid3d.smooth._smooth_slip`).
 
 Units as in :mod:`opsrock.solvers.rigid3d.kernel` (per unit mass, SI).
 """

@@ -1,0 +1,228 @@
+"""The Moreau-Jean step and its bookkeeping (numba): the free velocity, the active corners, the contact problem by the
+closed forms or NSGS, the update; then the input and friction work, the corners' contact and slip flags and an
+impact's loss; the rest skip's test. Units and frames as in :mod:`opsrock.solvers.rigid3d.kernel` (SI, per unit
+mass).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+
+from opsrock.solvers.rigid3d.constants import (FORCING_LINEAR, FORCING_STEPWISE, NO, OUT_CONTACT_STEPS, OUT_EDGE_SLIP,
+                                               OUT_FRICTION_WORK, OUT_IMPACTS, OUT_IMPACT_LOSS, OUT_INPUT_WORK,
+                                               OUT_MAX_PENETRATION, OUT_NSGS_FAILED, OUT_NSGS_MAX, OUT_NSGS_SWEEPS,
+                                               OUT_SLIDE_STEPS, OUT_STICK_STEPS, YES, ZERO)
+from opsrock.solvers.rigid3d.geometry import (_arms, _cross_add, _delassus, _geometry, _inv3, _quat_step)
+from opsrock.solvers.rigid3d.contact import _solve_contacts
+from opsrock.solvers.rigid3d.sticking import (_stick_all, _stick_single, _stick_subset)
+from opsrock.solvers.rigid3d.sliding import (_edge_slip, _slide_flat)
+from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_PN, VEC_V, VEC_VF, VEC_Y6)
+
+
+@numba.njit(cache=True)
+def _floor(floor, k, theta_mj):
+    """Floor accelerations ``(a_x, a_y, a_v)`` (m/s²) of ``floor`` (:class:`.model.Floor`) at the evaluation time
+    ``(k + theta_mj) dt`` of step ``k``."""
+    ax, ay, av, sub = floor.ax, floor.ay, floor.av, floor.sub
+    if k >= floor.n_exc:
+        return 0.0, 0.0, floor.tail_av
+    if floor.form == FORCING_STEPWISE:
+        return ax[k], ay[k], av[k]
+    j = k // sub
+    f = (k - j * sub + theta_mj) / sub
+    return (ax[j] + f * (ax[j + 1] - ax[j]), ay[j] + f * (ay[j + 1] - ay[j]), av[j] + f * (av[j + 1] - av[j]))
+
+
+@numba.njit(cache=True)
+def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
+    """One Moreau-Jean step from ``s`` into ``new`` (docs/guide/three-dimensions.md): the free velocity under the
+    step's forces (gravity and the floor's inertia force on the centre of mass, the gyroscopic torque
+    ``-omega x I omega`` at ``t_k``), the active corners from the mid-step prediction of their gaps, the
+    corners' Delassus blocks at ``q_k``, the impulses by NSGS (:func:`_nsgs`) warm-started from ``P``, then
+    ``X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]`` and the quaternion turned by ``dt`` times the
+    same blend of the angular velocities. Returns the sweeps NSGS took (0: no contact;
+    ``model.nsgs.max_sweeps + 1``: it did not converge). ``ws`` holds the workspace (see :func:`run`).
+
+    Before the closed forms and NSGS, the corners that were down (``guess``) are tried alone, stuck
+    (:func:`_stick_subset`): a block rocking on an edge just after an impact has its other corners still
+    predicted active, unloaded and separating."""
+    Q, Iinv, Iw, r, Wd, Wi, vec = ws.Q, ws.Iinv, ws.Iw, ws.r, ws.Wd, ws.Wi, ws.vec
+    body, fric, nsgs, theta_mj = model.body, model.friction, model.nsgs, model.numerics.theta_mj
+    g = body.g
+    _geometry(s, body, Q, Iinv, Iw, r)
+    V = vec[VEC_V]
+    Om = vec[VEC_OM]
+    # free velocity
+    V[0], V[1], V[2] = s[7] - dt * a_x, s[8] - dt * a_y, s[9] - dt * (g + a_v)
+    w0, w1, w2 = s[10], s[11], s[12]
+    L0 = Iw[0, 0] * w0 + Iw[0, 1] * w1 + Iw[0, 2] * w2
+    L1 = Iw[1, 0] * w0 + Iw[1, 1] * w1 + Iw[1, 2] * w2
+    L2 = Iw[2, 0] * w0 + Iw[2, 1] * w1 + Iw[2, 2] * w2
+    g0, g1, g2 = -(w1 * L2 - w2 * L1), -(w2 * L0 - w0 * L2), -(w0 * L1 - w1 * L0)
+    for a in range(3):
+        Om[a] = s[10 + a] + dt * (Iinv[a, 0] * g0 + Iinv[a, 1] * g1 + Iinv[a, 2] * g2)
+    vf = vec[VEC_VF]
+    vf[0], vf[1], vf[2], vf[3], vf[4], vf[5] = V[0], V[1], V[2], Om[0], Om[1], Om[2]
+    n_act = ZERO
+    for i in range(4):
+        ri = r[i]
+        un = s[9] + s[10] * ri[1] - s[11] * ri[0]
+        act[i] = s[2] + ri[2] + 0.5 * dt * un <= 0.0
+        n_act += act[i]
+    sweeps = 0
+    stick_only, mu_s, mu_k = fric.infinite, fric.mu_s, fric.mu_k
+    scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), body.R * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
+    tol = nsgs.tol * scale
+    n_down = 0  # the active corners that were down: a subset to try alone (_stick_subset) if one or two, not all
+    for i in range(4):
+        n_down += act[i] and guess[i]
+    try_down = 0 < n_down <= 2 and n_down < n_act
+    try_landing = 0 < n_act - n_down <= 2 and n_down > 0
+    if n_act >= 2 and ((try_down and _stick_subset(act, guess, NO, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s,
+                                                    stick_only, tol, ws, vec[VEC_Y6]))
+                       or (try_landing and _stick_subset(act, guess, YES, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s,
+                                                         stick_only, tol, ws, vec[VEC_Y6]))):
+        sweeps = 1
+        out[OUT_STICK_STEPS] += 1.0
+    elif n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, ws.A6, vec[VEC_Y6]):
+        sweeps = 1
+        out[OUT_STICK_STEPS] += 1.0
+    elif n_act == 2 and _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws,
+                                      vec[VEC_Y6]):
+        sweeps = 1
+        out[OUT_STICK_STEPS] += 1.0
+    elif n_act == 2 and _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ws.edge, out):
+        sweeps = 1
+        out[OUT_EDGE_SLIP] += 1.0
+    elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, ws.sdir, ws.A6,
+                                                                   vec[VEC_Y6], ws.Am):
+        sweeps = 1
+        out[OUT_SLIDE_STEPS] += 1.0
+    elif n_act > 0:
+        V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
+        for i in range(4):
+            if act[i]:
+                _delassus(r[i], Iinv, Wd[i])
+                _inv3(Wd[i], Wi[i])
+                V[0] += P[i, 0]
+                V[1] += P[i, 1]
+                V[2] += P[i, 2]
+                _cross_add(r[i], P[i], Iinv, Om, 1.0)
+            else:
+                P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+        sweeps = _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol,
+                                 nsgs, vec[VEC_Y6], vec[VEC_PN], out, n_act == 1)
+    else:
+        for i in range(4):
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+    for a in range(3):
+        new[a] = s[a] + dt * ((1.0 - theta_mj) * s[7 + a] + theta_mj * V[a])
+        new[7 + a] = V[a]
+        new[10 + a] = Om[a]
+    _quat_step(s, (1.0 - theta_mj) * s[10] + theta_mj * Om[0], (1.0 - theta_mj) * s[11] + theta_mj * Om[1],
+               (1.0 - theta_mj) * s[12] + theta_mj * Om[2], dt, new)
+    return sweeps
+
+
+@numba.njit(cache=True)
+def _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
+    """After a step: friction work of the impulses, and each corner's contact and slip flags (the arms ``r``
+    of the step's start: the velocity rows the solver enforced; ``r1`` those of its end, for the gaps); returns
+    True if a corner landed (an impact).
+
+    A corner with a normal impulse is down (an impact if it was up), slipping if its tangential speed exceeds
+    ``vel_tol``. A corner without impulse is up once it moves away from the floor faster than ``vel_tol`` or
+    rises above ``lift_gap``; otherwise it stays down (a pivot constrained at velocity level drifts up and
+    takes an occasional free step; a level block may rest on three corners), slipping if it moves."""
+    impact = False
+    V0, V1, V2, w0, w1, w2 = new[7], new[8], new[9], new[10], new[11], new[12]
+    for i in range(4):
+        ri = r[i]
+        u0 = V0 + w1 * ri[2] - w2 * ri[1]
+        u1 = V1 + w2 * ri[0] - w0 * ri[2]
+        u2 = V2 + w0 * ri[1] - w1 * ri[0]
+        gap = new[2] + r1[i, 2]
+        if act[i]:
+            out[OUT_FRICTION_WORK] -= P[i, 0] * u0 + P[i, 1] * u1
+        if P[i, 2] > 0.0:
+            impact = impact or not touch[i]
+            touch[i] = True
+            slip[i] = math.hypot(u0, u1) > vel_tol
+            out[OUT_MAX_PENETRATION] = max(out[OUT_MAX_PENETRATION], -gap)
+        elif u2 > vel_tol or gap > lift_gap:
+            touch[i] = False
+            slip[i] = False
+        elif touch[i]:  # down without load (a level block on three corners): slipping if it moves
+            slip[i] = math.hypot(u0, u1) > vel_tol
+    return impact
+
+
+@numba.njit(cache=True)
+def _rest_holds(a_x, a_y, a_v, body, fric):
+    """Does a block at rest on its four corners, stuck, stay at rest under the floor accelerations? Iff
+    ``g + a_v > 0``, the centre of pressure ``(a_x, a_y) h / (g + a_v)`` lies in the base ``[-b, b] x [-d, d]``
+    and friction carries the load, ``hypot(a_x, a_y) <= mu (g + a_v)``."""
+    gz = body.g + a_v
+    if gz <= 0.0:
+        return False
+    h = body.h
+    if abs(a_x) * h > body.b * gz or abs(a_y) * h > body.d * gz:
+        return False
+    return fric.infinite or math.hypot(a_x, a_y) <= fric.mu_s * gz
+
+
+@numba.njit(cache=True)
+def _count_sweeps(sweeps, nsgs, out):
+    """A Moreau-Jean step's contact-solver counts (:func:`_step`'s ``sweeps``); returns True if it converged.
+    (The step and its bookkeeping, :func:`_book`, are called from :func:`run` itself: a function between them
+    that passed the kernel's workspace on cost about a third of a microsecond a step in numba's reference
+    counting of its arrays.)"""
+    if sweeps > 0:
+        out[OUT_CONTACT_STEPS] += 1.0
+        out[OUT_NSGS_SWEEPS] += min(sweeps, nsgs.max_sweeps)
+        out[OUT_NSGS_MAX] = max(out[OUT_NSGS_MAX], min(sweeps, nsgs.max_sweeps))
+    converged = sweeps <= nsgs.max_sweeps
+    if not converged:
+        out[OUT_NSGS_FAILED] += 1.0
+    return converged
+
+
+@numba.njit(cache=True)
+def _book(state, a, Q1, r1, r, Iw, vf, act, P, new, out, touch, slip, vel_tol, lift_gap, body):
+    """The bookkeeping of a Moreau-Jean step from ``state`` to ``new`` under the accelerations ``a`` with the
+    impulses ``P``: input work, the corners' flags and friction work (:func:`_contacts`), an impact's loss.
+    ``r`` and ``Iw`` are the step's arms and inertia, ``vf`` its free velocity; ``Q1`` and ``r1`` workspace (the
+    arms of ``new`` on return). Returns True at an impact."""
+    # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
+    # _contacts, and at an impact the kinetic energy of the impulses' velocity change
+    out[OUT_INPUT_WORK] -= a[0] * (new[0] - state[0]) + a[1] * (new[1] - state[1]) + a[2] * (new[2] - state[2])
+    _arms(new, body, Q1, r1)
+    impact = _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out)
+    if impact:
+        e = 0.0
+        for c in range(3):
+            dv = new[7 + c] - vf[c]
+            e += 0.5 * dv * dv
+            for c2 in range(3):
+                e += 0.5 * (new[10 + c] - vf[3 + c]) * Iw[c, c2] * (new[10 + c2] - vf[3 + c2])
+        out[OUT_IMPACT_LOSS] += e
+        out[OUT_IMPACTS] += 1.0
+    return impact
+
+
+@numba.njit(cache=True)
+def _rest_span(model, floor, k, tail_left):
+    """Steps a seated block whose load the base carries at step ``k`` stays at rest (>= 1): a record's whole
+    sample interval from its start if the base carries the load at both samples, the tail's remaining rest
+    steps ``tail_left`` under a still floor, else one."""
+    ax, ay, av, sub, body, fric = floor.ax, floor.ay, floor.av, floor.sub, model.body, model.friction
+    if k >= floor.n_exc:
+        return max(1, min(tail_left, model.limits.max_steps - k))
+    if floor.form == FORCING_LINEAR and k % sub == 0:
+        jj = k // sub
+        if _rest_holds(ax[jj], ay[jj], av[jj], body, fric) and _rest_holds(ax[jj + 1], ay[jj + 1], av[jj + 1],
+                                                                            body, fric):
+            return sub
+    return 1

@@ -29,7 +29,7 @@ from opsrock.excitations import HalfSinePulse, OneSinePulse, RectangularPulse, R
 from opsrock.published import housner_1963, newmark_1965
 from opsrock.solvers import check_model, friction, housner_fast, simulate
 from opsrock.solvers.friction.impacts import impact
-from opsrock.solvers.friction.modes import ROCK, SLIDE_ROCK, accelerations, critical_friction
+from opsrock.solvers.friction.modes import ROCK, SLIDE_ROCK, Motion, accelerations, body, critical_friction
 
 # --- the no-slip limit -------------------------------------------------------------------------------
 
@@ -187,7 +187,7 @@ def test_sticking_impact_is_housners(b_over_h):
     corner: theta'+ = e_H theta'-, e_H = 1 - 1.5 sin²(alpha), no slip after (to round-off)."""
     alpha = math.atan(b_over_h)
     e_h = 1.0 - 1.5 * math.sin(alpha) ** 2
-    mode, s, _, om, w, ok = impact(1.0, -0.7, 0.0, math.sin(alpha), math.cos(alpha), math.inf, math.inf, 1.0, 3.0)
+    mode, s, _, om, w, ok = impact(1.0, -0.7, 0.0, body(alpha, math.inf, math.inf, 1.0, 3.0))
     assert ok and mode == ROCK and s == -1.0
     assert om == pytest.approx(-0.7 * e_h, rel=1e-14)
     assert w == 0.0
@@ -200,7 +200,7 @@ def test_slipping_impact_ratio(b_over_h, mu, ratio):
     obtained by an independent Moreau-Jean step (5 digits printed: tolerance 1e-5)."""
     alpha = math.atan(b_over_h)
     sa, ca = math.sin(alpha), math.cos(alpha)
-    mode, _, _, om, w, ok = impact(1.0, -1.0, 0.0, sa, ca, mu, mu, 1.0, 3.0)
+    mode, _, _, om, w, ok = impact(1.0, -1.0, 0.0, body(alpha, mu, mu, 1.0, 3.0))
     assert ok and mode == SLIDE_ROCK and w != 0.0
     assert om / -1.0 == pytest.approx((1 - 3 * sa ** 2 + 3 * mu * sa * ca) / (1 + 3 * sa ** 2 - 3 * mu * sa * ca), rel=1e-13)
     assert om / -1.0 == pytest.approx(ratio, abs=1e-5)
@@ -213,12 +213,11 @@ def test_impact_never_creates_energy():
 
     for b_over_h in (0.15, 0.4, 0.7, 1.0):
         alpha = math.atan(b_over_h)
-        sa, ca = math.sin(alpha), math.cos(alpha)
         for mu in (0.0, 0.05, 0.2, 0.5, math.inf):
             for w in (-0.5, -0.1, 0.0, 0.1, 0.5):
                 mode0 = ROCK if w == 0.0 else SLIDE_ROCK
                 before = kinetic_energy(mode0, 1.0, 0.0, -0.8, w, alpha, 3.0)
-                mode, s, _, om, w1, ok = impact(1.0, -0.8, w, sa, ca, mu, mu, 1.0, 3.0)
+                mode, s, _, om, w1, ok = impact(1.0, -0.8, w, body(alpha, mu, mu, 1.0, 3.0))
                 assert ok
                 after = kinetic_energy(mode, s, 0.0, om, w1, alpha, 3.0)
                 assert after <= before * (1 + 1e-12)
@@ -260,7 +259,7 @@ def test_slide_rock_equations_against_newton_euler():
 def test_slide_rock_rotation_does_not_depend_on_a_h():
     """In slide-rock the only horizontal force on the block is friction: theta'' is the same for any
     a_h at a given state (docs/guide/friction.md)."""
-    out = [accelerations(SLIDE_ROCK, 1.0, 1.0, 0.01, 0.2, 0.1, ah, 1.1, 0.3, 0.35, 3.0)[0] for ah in (-2.0, 0.0, 0.7)]
+    out = [accelerations(Motion(SLIDE_ROCK, 1.0, 1.0, 0.01, 0.2, 0.0, 0.1, 0.0), ah, 1.1, body(0.3, 0.35, 0.35, 1.0, 3.0))[0] for ah in (-2.0, 0.0, 0.7)]
     assert out[0] == out[1] == out[2]
 
 

@@ -90,14 +90,15 @@ def _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k, kap):
 
 
 @numba.njit(cache=True)
-def contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f, kap):
-    """The impact of a block at ``theta = 0`` whose centre of mass moves at ``(vx, vy)`` and turns at ``om``
-    (units of ``R p``, ``p``): ``(mode, s, sig, om, w, ok)``.
+def contact_at_zero(vx, vy, om, bd):
+    """The impact of a block (:class:`~.modes.Body` ``bd``) at ``theta = 0`` whose centre of mass moves at ``(vx,
+    vy)`` and turns at ``om`` (units of ``R p``, ``p``): ``(mode, s, sig, om, w, ok)``.
 
     Both corners are at the floor. The impulse acts at one corner (each approaching corner is tried, the
     faster first: accepted if the other corner is not then driven into the floor) or at both (a flat
     landing, :func:`_flat_landing`); with no approaching corner there is no impulse and the block rocks or
     slide-rocks on the corner its rotation lowers. ``ok`` is False if none of these obeys the laws."""
+    sa, ca, mu_s, mu_k, f, kap = bd.sa, bd.ca, bd.mu_s, bd.mu_k, bd.f_rest, bd.kap
     u_plus, u_minus = vy - sa * om, vy + sa * om  # normal velocities of the corners c = +1 and c = -1
     first = 1.0 if u_plus <= u_minus else -1.0
     for c in (first, -first):
@@ -123,24 +124,26 @@ def contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f, kap):
 
 
 @numba.njit(cache=True)
-def impact(s, om, w, sa, ca, mu_s, mu_k, f, kap):
+def impact(s, om, w, bd):
     """The state after corner ``-s`` strikes: ``(mode, s, sig, om, w, ok)`` (:func:`contact_at_zero`).
 
     ``om`` (< 0 along ``s``) and ``w`` are the rotation rate and the pivot's slip velocity just before.
     The new mode is ``ROCK`` or ``SLIDE_ROCK`` about ``-s`` (``sig`` the new pivot's slip direction),
-    or, after a flat landing, ``REST`` or ``SLIDE``. ``ok`` is False if the law has no solution."""
-    return contact_at_zero(w + ca * om, s * sa * om, om, sa, ca, mu_s, mu_k, f, kap)
+    or, after a flat landing, ``REST`` or ``SLIDE``. ``ok`` is False if the law has no solution; ``bd`` the
+    :class:`~.modes.Body`."""
+    return contact_at_zero(w + bd.ca * om, s * bd.sa * om, om, bd)
 
 
 @numba.njit(cache=True)
-def landing(th, om, vx, vy, sa, ca, mu_s, mu_k, f, kap):
+def landing(th, om, vx, vy, bd):
     """A block in free flight lands: ``(mode, s, sig, om, w, ok)`` after the impact of its lower corner
     ``c = sgn(theta)`` (``theta``, ``om``: rotation and rate; ``vx``, ``vy``: the centre of mass's
     velocity relative to the floor, units of ``R p``), by the same law as :func:`impact` in the general
     position; at ``theta = 0`` by :func:`contact_at_zero`. The new mode
-    rocks, or slide-rocks, about ``c`` (``w`` the corner's slip velocity)."""
+    rocks, or slide-rocks, about ``c`` (``w`` the corner's slip velocity); ``bd`` the :class:`~.modes.Body`."""
     if th == 0.0:
-        return contact_at_zero(vx, vy, om, sa, ca, mu_s, mu_k, f, kap)
+        return contact_at_zero(vx, vy, om, bd)
+    sa, ca, mu_s, mu_k, f, kap = bd.sa, bd.ca, bd.mu_s, bd.mu_k, bd.f_rest, bd.kap
     c = 1.0 if th > 0.0 else -1.0
     sn, cs = math.sin(th), math.cos(th)
     gn = ca * sn - c * sa * cs

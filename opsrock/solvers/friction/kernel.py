@@ -30,7 +30,9 @@ from opsrock.solvers.friction.modes import (
     ROCK,
     SLIDE,
     SLIDE_ROCK,
+    Motion,
     accelerations,
+    body,
     kinetic_energy,
     potential_energy,
     rock_forces,
@@ -78,14 +80,7 @@ P_SIZE = 21
 # block's kap (it travels with the context to every function that evaluates the equations)
 _FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL, _FC_KAPPA = 0, 1, 2, 3, 4, 5, 6, 7, 8
 
-# --- the named tuples the kernel passes (QuantEcon's layout) ------------------------------------------------
-#: The block as the equations take it: ``alpha`` (rad), its sine, cosine and tangent (``b/h``), static and kinetic
-#: friction (``inf``: no slip), ``kap = R² / r²`` (:mod:`.modes`). Built by :func:`_body` from the parameters.
-Body = namedtuple("Body", ["alpha", "sa", "ca", "beta", "mu_s", "mu_k", "kap"])
-#: The state of a moving mode at time ``tau`` (units of 1/p): ``mode``, pivot ``s`` and slip direction ``sig``
-#: (+-1 or 0), rotation ``th`` (rad) and its rate ``om`` (units of p), the base's displacement ``u`` (units of R)
-#: and slip velocity ``w`` (units of R p).
-Motion = namedtuple("Motion", ["mode", "s", "sig", "th", "om", "u", "w", "tau"])
+# --- the named tuples the kernel passes (QuantEcon's layout; Body and Motion are :mod:`.modes`') -------------
 #: A block in free flight at ``tau``: rotation ``th`` (rad) and rate ``om`` (units of p), the centre of mass's
 #: horizontal position and velocity ``x``, ``vx`` and height and vertical velocity ``y``, ``vy`` (units of R, R p).
 Flight = namedtuple("Flight", ["th", "om", "x", "vx", "y", "vy", "tau"])
@@ -120,10 +115,8 @@ def _floor(tau, fc):
 
 @numba.njit(cache=True)
 def _body(params):
-    """The :class:`Body` of the parameter vector (slots ``P_*``)."""
-    alpha = params[P_ALPHA]
-    return Body(alpha, math.sin(alpha), math.cos(alpha), math.tan(alpha), params[P_MU_S], params[P_MU_K],
-                params[P_KAPPA])
+    """The :class:`~.modes.Body` of the parameter vector (slots ``P_*``)."""
+    return body(params[P_ALPHA], params[P_MU_S], params[P_MU_K], params[P_F_REST], params[P_KAPPA])
 
 
 def history(cap):
@@ -135,7 +128,7 @@ def history(cap):
 def _deriv(m, fc, bd):
     """:func:`opsrock.solvers.friction.modes.accelerations` at the :class:`Motion` ``m``."""
     ah, gv = _floor(m.tau, fc)
-    return accelerations(m.mode, m.s, m.sig, m.th, m.om, m.w, ah, gv, bd.alpha, bd.mu_k, fc[_FC_KAPPA])
+    return accelerations(m, ah, gv, bd)
 
 
 @numba.njit(cache=True)
@@ -254,7 +247,7 @@ def _settle(m, ah, gv, bd, rest_velocity):
     mode, s, sig, th, om, w = m.mode, m.s, m.sig, m.th, m.om, m.w
     alpha, beta, mu_s, mu_k, kap = bd.alpha, bd.beta, bd.mu_s, bd.mu_k, bd.kap
     if th == 0.0 and (mode == ROCK or mode == SLIDE_ROCK) and abs(om) < rest_velocity:
-        thdd = accelerations(mode, s, sig, 0.0, om, w, ah, gv, alpha, mu_k, kap)[0]
+        thdd = accelerations(Motion(mode, s, sig, 0.0, om, m.u, w, m.tau), ah, gv, bd)[0]
         if s * thdd <= 0.0:
             if abs(w) < rest_velocity:
                 return REST, 0.0, 0.0, 0.0, 0.0, True
@@ -580,7 +573,7 @@ def solve_case(params, kvals, gvals, out, hist):
                 break
             e_before = _energy(FLIGHT, 0.0, th, om, w, fy, fvy, bd)
             x_cm, vx = u, w
-            mode, s, sig, om, w, ok = landing(th, om, vx, fvy, sa, ca, mu_s, mu_k, f_rest, kap)
+            mode, s, sig, om, w, ok = landing(th, om, vx, fvy, bd)
             if not ok:
                 status = STATUS_IMPACT_LAW
                 break
@@ -670,7 +663,7 @@ def solve_case(params, kvals, gvals, out, hist):
                 status = STATUS_MAX_IMPACTS
                 break
             e_before = _energy(mode, s, 0.0, om, w, 0.0, 0.0, bd)
-            mode, s, sig, om, w, ok = impact(s, om, w, sa, ca, mu_s, mu_k, f_rest, kap)
+            mode, s, sig, om, w, ok = impact(s, om, w, bd)
             if not ok:
                 status = STATUS_IMPACT_LAW
                 break

@@ -17,6 +17,7 @@ in docs/guide/friction.md.
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numba
 import numpy as np
@@ -30,13 +31,32 @@ ROCK = np.int64(2)
 SLIDE_ROCK = np.int64(3)
 FLIGHT = np.int64(4)
 
+#: The block as the equations take it: ``alpha`` (rad), its sine, cosine and tangent (``b/h``), static and kinetic
+#: friction (``inf``: no slip), the restitution factor ``f_rest = e / e_H`` of the impact law (:mod:`.impacts`) and
+#: ``kap = R² / r²``. Built by :func:`body`.
+Body = namedtuple("Body", ["alpha", "sa", "ca", "beta", "mu_s", "mu_k", "f_rest", "kap"])
+#: The state of a moving mode at time ``tau`` (units of 1/p): ``mode``, pivot ``s`` and slip direction ``sig``
+#: (+-1 or 0), rotation ``th`` (rad) and its rate ``om`` (units of p), the base's displacement ``u`` (units of R)
+#: and slip velocity ``w`` (units of R p).
+Motion = namedtuple("Motion", ["mode", "s", "sig", "th", "om", "u", "w", "tau"])
+
 
 @numba.njit(cache=True)
-def accelerations(mode, s, sig, th, om, w, ah, gv, alpha, mu_k, kap):
-    """``(theta'', u'', input power, friction power)`` of a moving mode (``SLIDE``, ``ROCK``,
-    ``SLIDE_ROCK``) at one instant; pivot ``s`` and slip direction ``sig`` are +-1. The powers are the
-    rates of the floor's inertial work and of the friction dissipation (units of ``m g R`` per tau); ``kap``
-    as the module docstring."""
+def body(alpha, mu_s, mu_k, f_rest, kap):
+    """The :class:`Body` of a block of slenderness ``alpha`` (rad), friction ``mu_s``, ``mu_k``, restitution factor
+    ``f_rest`` and ``kap`` (dimensionless)."""
+    return Body(float(alpha), math.sin(alpha), math.cos(alpha), math.tan(alpha), float(mu_s), float(mu_k),
+                float(f_rest), float(kap))
+
+
+@numba.njit(cache=True)
+def accelerations(m, ah, gv, bd):
+    """``(theta'', u'', input power, friction power)`` of the :class:`Motion` ``m`` of a moving mode (``SLIDE``,
+    ``ROCK``, ``SLIDE_ROCK``) of the :class:`Body` ``bd`` under ``ah``, ``gv``; pivot ``s`` and slip direction
+    ``sig`` are +-1. The powers are the rates of the floor's inertial work and of the friction dissipation (units
+    of ``m g R`` per tau)."""
+    mode, s, sig, th, om, w = m.mode, m.s, m.sig, m.th, m.om, m.w
+    alpha, mu_k, kap = bd.alpha, bd.mu_k, bd.kap
     c = (kap + 1.0) / kap  # 1 / k, 4/3 homogeneous
     if mode == SLIDE:
         return 0.0, c * (-ah - sig * mu_k * gv), -ah * w, mu_k * gv * abs(w)
@@ -133,5 +153,5 @@ def potential_energy(s, th, alpha):
     return math.cos(s * alpha - th) - math.cos(alpha)
 
 
-__all__ = ["FLIGHT", "REST", "ROCK", "SLIDE", "SLIDE_ROCK", "accelerations", "critical_friction",
+__all__ = ["FLIGHT", "REST", "Body", "Motion", "body", "ROCK", "SLIDE", "SLIDE_ROCK", "accelerations", "critical_friction",
            "kinetic_energy", "potential_energy", "rock_forces", "slide_rock_normal", "start_mode"]

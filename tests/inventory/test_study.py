@@ -214,10 +214,7 @@ def test_contents_inventory_motions_through_the_console_script(tmp_path):
     from opsrock.inventory.items import read_inventory
 
     inv, man = _write_inputs(tmp_path)
-    try:
-        read_inventory(inv)
-    except NotImplementedError:
-        pytest.skip("the inventory reader is not in this build yet")
+    read_inventory(inv)
     proc = run_opsrock(["contents", "--inventory", inv, "--motions", man, "--out", tmp_path / "out", "--quick",
                         "--n-boot", "2", "--workers", "1", "--no-progress"], tmp_path, timeout=300)
     assert proc.returncode == 0, proc.stderr

@@ -165,10 +165,18 @@ def _two_components(seed: int, n: int = 800, dt: float = 0.01) -> tuple[Record, 
 
 def test_plan_frame_turn_and_swap_of_width_and_depth():
     """The same floor motion described in motion axes turned by ``delta`` (components rotated accordingly, the
-    block's azimuth reduced by ``delta``) gives the same response (the rotation acts on the samples; round-off
-    only: 1e-9 relative); so does the box with width and depth swapped and turned by 90 deg with them (the
-    same body, corners numbered differently, so NSGS sweeps them in another order: its tolerance, and the
-    infinite-friction limit solves, exact to 1/LIMIT_MU = 1e-6 relative; measured 1.1e-6: 1e-5 relative)."""
+    block's azimuth reduced by ``delta``) gives the same response; so does the box with width and depth swapped
+    and turned by 90 deg with them (the same body, corners numbered differently, so NSGS sweeps them in another
+    order).
+
+    Tolerance 2e-3 relative on theta_max, and not round-off's 1e-9: this motion brings the block to a contact
+    decision (which corners stay closed) at round-off distance from its threshold, and the decision flips with
+    the last bit of the input. Measured (issue 46): scaling one component by 1 + k 2^-52, k = -6..5, gives one of
+    two answers, 0.0454909483 or 0.0455367286 (1.0e-3 apart, six k each); an AMD EPYC gives the second for the
+    unperturbed motion where the machine this was written on gives the first, and the turned motion (rotated
+    samples: other round-off) either. The rotation itself is exact to round-off when the decision does not flip
+    (the four turns 10, 40, 70 and 130 deg agree to 1e-15 here). The infinite-friction slide residual is
+    round-off in either branch (each component below 3.3e-9 m in the twelve runs): bounded, not compared."""
     r1, r2 = _two_components(3)
     box = _box(0.5, 1.5, 0.7)
     psi, delta = 25.0, 40.0
@@ -179,9 +187,11 @@ def test_plan_frame_turn_and_swap_of_width_and_depth():
     turned = rigid3d.solve(box, PlanMotion(t1, t2, psi - delta))
     swapped = rigid3d.solve(_box(0.7, 1.5, 0.5), PlanMotion(r1, r2, psi + 90.0))
     assert ref.ok and ref.rocked and 0.05 < ref.theta_max_over_alpha < 1.0
-    assert turned.theta_max == pytest.approx(ref.theta_max, rel=1e-9)
-    assert turned.plan.slide_residual == pytest.approx(ref.plan.slide_residual, rel=1e-6, abs=1e-12)
-    assert swapped.theta_max == pytest.approx(ref.theta_max, rel=1e-5)
+    assert not (ref.overturned or turned.overturned or swapped.overturned) and turned.rocked and swapped.rocked
+    assert turned.theta_max == pytest.approx(ref.theta_max, rel=2e-3)
+    assert swapped.theta_max == pytest.approx(ref.theta_max, rel=2e-3)
+    for r in (ref, turned, swapped):
+        assert max(abs(s) for s in r.plan.slide_residual) < 1e-8  # m: no slip at infinite friction
     # infinite friction: no corner slips, so the twist is the contact solves' tolerance only (measured 1.1e-7 and
     # 1.8e-7 rad)
     assert swapped.plan.twist_max < 1e-6 and ref.plan.twist_max < 1e-6

@@ -60,6 +60,20 @@ def main_script() -> str:
     return str(getattr(main, "__file__", None) or getattr(spec, "name", None) or "the main module")
 
 
+def unimportable_main() -> str | None:
+    """The main script's name if worker processes started by ``spawn`` could not import it again: it names a
+    file that does not exist (``"<stdin>"`` for ``python3 - <<EOF``, a script deleted since); else None (a file,
+    a module run with ``-m``, ``python -c`` or an interactive session, which the workers do not import)."""
+    main = sys.modules.get("__main__")
+    if getattr(getattr(main, "__spec__", None), "name", None) is not None:
+        return None
+    path = getattr(main, "__file__", None)
+    if path is None:
+        return None
+    origin = multiprocessing.process.ORIGINAL_DIR or os.getcwd()
+    return None if os.path.isfile(os.path.join(origin, path)) else str(path)
+
+
 def leave_if_reimported() -> None:
     """End this process at once, quietly, with status :data:`UNGUARDED_EXIT`, if it is a worker re-running the
     main script's top-level code (:func:`reimported_script`); the parent's pool tells the user."""
@@ -85,7 +99,15 @@ def pool_allowed(workers: int | None) -> bool:
     leave_if_reimported()
     parent = multiprocessing.parent_process()
     if parent is None:
-        return True
+        script = unimportable_main()
+        if script is None:
+            return True
+        if workers == 1:
+            return False
+        raise UnguardedScriptError(
+            f"the main script {script} has no file that worker processes can import (multiprocessing starts every "
+            "worker by importing the main script again; a script read from standard input cannot be): save the "
+            "script to a file and run that, or pass workers=1 to run the cases in this process")
     if workers == 1:
         return False
     raise UnguardedScriptError(

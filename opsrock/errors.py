@@ -147,6 +147,12 @@ class UnguardedScriptError(OpsrockError, RuntimeError):
     ``workers=1``)."""
 
 
+class AllCasesLostError(OpsrockError, RuntimeError):
+    """A campaign in which no case could be computed: every case was lost to the infrastructure (its worker
+    process could not start or died). An environment fault, not bad input (exit status 1): the cases are stored as
+    lost and the same run computes them once the cause named in the message is fixed."""
+
+
 class CaseTimeout(OpsrockError):
     """A case ran past its wall-clock budget (a campaign stores it failed, with this message)."""
 

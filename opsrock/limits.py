@@ -83,6 +83,11 @@ LIMITS: dict[str, Limit] = {
     "batch": Limit(1, 1_000_000, "-", "cases per batch of a campaign"),
     "case_timeout": Limit(1e-3, 1e6, "s", "wall-clock budget of one case: from 1 ms to about 11 days (the "
                           "slowest healthy case measured takes 17 s)"),
+    "quantity": Limit(1, 1_000_000, "-", "units of one inventory item on one floor, a whole number: a million "
+                      "of one item on one floor is beyond any building (a larger count is a unit or typing mistake)"),
+    "inventory_items": Limit(1, 10_000, "-", "one row per item type, each fitted on its own (16 IDA levels x every "
+                             "record, floor and direction each): 10,000 types are beyond any building's contents and "
+                             "already millions of cases; split the inventory or group its items by type"),
     "record_file_bytes": Limit(0, 64e6, "B", "size of a record file: 64 MB hold 4 million samples, 40 times "
                                "the longest FEMA P695 record at 0.001 s; larger files are refused unread"),
 }

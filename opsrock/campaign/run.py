@@ -61,7 +61,7 @@ from opsrock.campaign.motions import MOTIONS_FILE, cached_motions, compute_motio
 from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import DISK_ERRNOS, MANIFEST_FILE, STORE_FILE, ResultStore, disk_fault
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
-from opsrock.errors import CampaignConflictError, CaseTimeout, InputTypeError
+from opsrock.errors import AllCasesLostError, CampaignConflictError, CaseTimeout, InputTypeError
 from opsrock.limits import check
 from opsrock.result import RockingResult
 from opsrock.solvers import get_solver, simulate, warm_up
@@ -491,7 +491,21 @@ class Stage:
                     run.executor.close()
             table = case_table(chosen, store.rows())
             write_cases_csv(out / CASES_FILE, table, scene.columns)
-        return run.summary(table, time.perf_counter() - t_start), cases
+        summary = run.summary(table, time.perf_counter() - t_start)
+        _some_computed(summary, table)
+        return summary, cases
+
+
+def _some_computed(summary: CampaignSummary, table: list) -> None:
+    """Raise :class:`AllCasesLostError` when this run tried cases and every case of the table was lost to the
+    infrastructure: a run that computed nothing must not return as if it had (a script read from standard input
+    once lost all 1,760 cases, its workers unable to import it, and returned normally)."""
+    if summary.n_computed == 0 or summary.n_lost < summary.n_cases:
+        return
+    first = next(r["reason"] for r in table if is_lost(r["reason"]))
+    raise AllCasesLostError(f"no case could be computed: all {summary.n_cases} cases were lost to the infrastructure "
+                            f"(first: {first}); they are stored as lost in {summary.store_path}: fix the cause and "
+                            "run the same campaign again (or pass workers=1 to run the cases in this process)")
 
 
 @contextlib.contextmanager

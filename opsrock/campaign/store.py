@@ -47,6 +47,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterable, Iterator, Mapping
 
+from opsrock._files import not_a_file
 from opsrock.campaign.executors import LOST_MARKERS
 from opsrock.errors import StoreError, StoreUnavailableError
 from opsrock.result import STATUSES, VERDICTS
@@ -163,6 +164,11 @@ class ResultStore:
                 self._take_lock()
         except OSError as exc:
             raise StoreError(f"cannot use folder {str(self.path.parent)!r}: {exc.strerror or exc}") from None
+        kind = not_a_file(self.path)
+        if kind is not None:  # sqlite would say "unable to open database file", told as a permission problem
+            self.close()
+            raise StoreError(f"{self.path} is {kind}, not a campaign store (a file); move it aside or use another "
+                             "--out folder")
         try:
             with self._faults():
                 # isolation_level=None: no implicit transactions; we BEGIN and COMMIT ourselves.

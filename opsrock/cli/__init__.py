@@ -42,7 +42,7 @@ import sys
 import threading
 from typing import Callable, Sequence
 
-from opsrock.errors import OpsrockError, StoreUnavailableError
+from opsrock.errors import AllCasesLostError, OpsrockError, StoreUnavailableError
 
 #: Exit status when the work ran but did not pass (a failed solve, gate or validation case).
 EXIT_FAILED = 1
@@ -242,7 +242,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         status = _run(argv, state)
         # a handler that caught the stop itself (run, contents: "finished cases are stored") gives 130
         return status if _RECEIVED["signum"] is None else 128 + _RECEIVED["signum"]
-    except StoreUnavailableError as exc:  # a sound store in use or on a full disk: the environment, not the input
+    except (StoreUnavailableError, AllCasesLostError) as exc:  # a store in use, a full disk, workers that cannot
+        # start: the environment, not the input
         _say(_one_line(state["command"], exc))
         return EXIT_ENVIRONMENT
     except OpsrockError as exc:

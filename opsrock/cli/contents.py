@@ -127,6 +127,9 @@ def _inventory(args: argparse.Namespace) -> int:
         "demand_levels_pfa": _numbers("--demand-levels-pfa", args.demand_levels_pfa),
         "slide_distance": args.slide_distance, "n_boot": args.n_boot, "seed": args.seed, "solver": args.solver,
         "azimuths": _numbers("--azimuths", args.azimuths)}.items() if v is not None}
+    if args.levels is not None and args.method == "cloud":
+        raise UsageError(f"--levels {args.levels} does not apply with --method cloud (the motions are taken as "
+                         "recorded, unscaled); leave out --levels, or use --method ida")
     if args.azimuths is not None and not (args.solver in METHODS and METHODS[args.solver].plan):
         raise UsageError(f"--azimuths applies to --solver {plan_solver()} (the items in three dimensions)")
     settings["accept_implausible"] = args.accept_implausible

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import sys
 from typing import Any, Callable
 
 from opsrock import __version__
@@ -32,6 +33,17 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> None:  # type: ignore[override]
         raise UsageError(f"{self.prog}: {message}")
+
+    def parse_args(self, args=None, namespace=None):  # type: ignore[override]
+        """``--version`` alone prints the version (argparse's own action would print it and ignore the rest:
+        ``opsrock --version extra`` exited 0); with anything else it is refused, naming what follows."""
+        argv = sys.argv[1:] if args is None else [str(a) for a in args]
+        if self.prog == "opsrock" and "--version" in argv[:1]:
+            if len(argv) > 1:
+                raise UsageError(f"opsrock: --version takes nothing after it, got {' '.join(argv[1:])!r}")
+            print(f"opsrock {__version__}")
+            raise SystemExit(0)
+        return super().parse_args(args, namespace)
 
 
 def _typed(kind: str, parse: Callable[[str], Any], what: str, accept: Callable[[Any, str], Any]):
@@ -396,7 +408,8 @@ COMMANDS = {"simulate": _simulate, "threshold": _threshold, "records": _records,
 def build_parser() -> argparse.ArgumentParser:
     """The ``opsrock`` parser; each command's namespace has ``command`` set to its name."""
     parser = _Parser(prog="opsrock", description="Rocking and overturning of freestanding rigid blocks.")
-    parser.add_argument("--version", action="version", version=f"opsrock {__version__}")
+    parser.add_argument("--version", action="store_true", help="print the version and exit (alone: with "
+                        "anything after it, the command line is refused)")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     for add in COMMANDS.values():
         add(sub)

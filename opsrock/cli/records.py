@@ -5,7 +5,10 @@ record file (:func:`~opsrock.excitations.records.check_plausible_record`)."""
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import os
+import sys
 
 import numpy as np
 
@@ -21,6 +24,17 @@ from opsrock.limits import ACCEPT_OPTION
 
 #: Periods (s) of the 5 %-damped spectrum ``records show`` prints for a record file.
 SHOW_PERIODS: tuple[float, ...] = (0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0)
+
+#: Seconds a response spectrum costs per sample and period (Nigam-Jennings through eqsig), for the line that
+#: announces a long ``records show``: 300,000 samples at 211 periods took 24.4 s (2 shared cores, issue 46).
+SPECTRUM_S_PER_SAMPLE_PERIOD: float = 0.4e-6
+
+#: ``records show`` of a record whose spectra are estimated to take longer than this (s) says so on stderr first.
+LONG_SHOW_S: float = 10.0
+
+#: Size (bytes) of a record file above which ``records show|plot`` say on stderr that they are reading it
+#: (a text record is read at about 13 µs a sample: 5 MB, about 400,000 samples, take some 5 s).
+LONG_READ_BYTES: int = 5_000_000
 
 
 def records(args: argparse.Namespace) -> int:
@@ -56,6 +70,11 @@ def _records_list(args: argparse.Namespace) -> int:
 def _record(args: argparse.Namespace) -> Record:
     """The record ``NAME`` names (a library reference, or a file read with --units and --dt), a file's checked
     for plausibility unless --accept-implausible."""
+    if not library.is_reference(args.name):
+        with contextlib.suppress(OSError):
+            size = os.stat(args.name).st_size
+            if size > LONG_READ_BYTES:
+                print(f"opsrock records: reading {args.name} ({size / 1e6:.1f} MB)", file=sys.stderr, flush=True)
     rec = read_record(args.name, units=args.units, dt=args.dt)
     check_plausible_record(rec, what=args.name, option=ACCEPT_OPTION, confirm=args.accept_implausible)
     return rec
@@ -85,9 +104,15 @@ def _records_show(args: argparse.Namespace) -> int:
 def _file_show(args: argparse.Namespace) -> int:
     """``records show FILE``: the record's sampling, PFA (m/s² and g), PFV, PFD, periods and 5 %-damped
     spectrum at :data:`SHOW_PERIODS` (:mod:`opsrock.intensity.records`)."""
-    from opsrock.intensity.records import SPECTRUM_DAMPING, motion_measures, response_spectrum  # lazy: scipy
+    from opsrock.intensity.records import (SPECTRUM_DAMPING, SPECTRUM_PERIODS,  # lazy: scipy
+                                           motion_measures, response_spectrum)
 
     rec = _record(args)
+    periods = len(SPECTRUM_PERIODS) + len(SHOW_PERIODS)
+    estimate = rec.values.size * periods * SPECTRUM_S_PER_SAMPLE_PERIOD
+    if estimate > LONG_SHOW_S:
+        print(f"opsrock records: {rec.values.size:,} samples ({rec.duration:,.0f} s at dt {rec.dt:g} s): its response "
+              f"spectra at {periods} periods take about {_minutes(estimate)}", file=sys.stderr, flush=True)
     m = motion_measures(rec)
     spec = response_spectrum(rec, periods=np.asarray(SHOW_PERIODS))
     out = {"name": rec.name, "source": rec.info.source, "units_in_file": rec.info.units_in_file, "dt": rec.dt,
@@ -107,6 +132,10 @@ def _file_show(args: argparse.Namespace) -> int:
     for t, a in zip(spec["period"], spec["psa"]):
         print(f"{t:>10g} {a:>10.4g} {a / G:>8.4g}")
     return 0
+
+
+def _minutes(seconds: float) -> str:
+    return f"{seconds:.0f} s" if seconds < 120 else f"{seconds / 60:.0f} min"
 
 
 def _records_plot(args: argparse.Namespace) -> int:

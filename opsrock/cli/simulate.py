@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import json
+import math
 import sys
 
 from opsrock._files import output_file
@@ -162,6 +163,10 @@ def _plan(args: argparse.Namespace, block: Block, excitation, scale: float | Non
     if args.record2 is None and args.azimuth is None and not METHODS[args.solver].plan:
         return excitation
     second = None if args.record2 is None else _second(args, block, scale)
+    n1, n2 = (len(m.values) if hasattr(m, "values") else None for m in (excitation, second))
+    if None not in (n1, n2) and n1 != n2:  # two components of one recording are as long as each other
+        raise UsageError(f"--record2 {args.record2} has {n2:,} samples where --record {args.record} has {n1:,}: give "
+                         "the second horizontal component of the same recording (same length and dt)")
     with named_options({"azimuth": "--azimuth", "second": "--record2"}):
         return PlanMotion(excitation, second, 0.0 if args.azimuth is None else args.azimuth)
 
@@ -263,6 +268,17 @@ def _first(excitation):
     return excitation.first if isinstance(excitation, PlanMotion) else excitation
 
 
+def _plan_ratios(block: Block, motion) -> dict:
+    """A box in three dimensions: ``alpha`` (rad) the weaker axis's slenderness, the one ``theta_max_over_alpha``
+    divides by (``alpha_width``: across the width), and ``pfa_ratio`` the floor acceleration over the smallest
+    one that uplifts the box in its direction (:meth:`PlanMotion.uplift_ratio`; ``pfa``, m/s², stays the first
+    component's peak). Planar: nothing to change (``alpha`` the width's, ``pfa_ratio`` ``PFA / (g tan alpha)``)."""
+    if not isinstance(motion, PlanMotion) or block.depth is None:
+        return {}
+    return {"alpha": min(block.alpha, block.alpha_depth), "alpha_width": block.alpha,
+            "pfa_ratio": motion.uplift_ratio(block.tan_alpha, math.tan(block.alpha_depth))}
+
+
 def _plan_summary(result, block: Block, motion) -> dict:
     """The three-dimensional outputs (solver ``rigid3d``): the block's depth and azimuth, the second record, and
     :class:`~opsrock.result.PlanSummary`'s scalars (rad, m, s; ``slide_residual`` the vector ``[x, y]``)."""
@@ -286,6 +302,7 @@ def _summary(result, block: Block, motion, scale: float | None) -> dict:
                                    "status", "reason", "solver")}
     out.update(alpha=block.alpha, R=block.R, p=block.p, e=block.e, e_R=block.e_R, pfa=excitation.pfa,
                pfa_ratio=excitation.pfa / block.uplift_acceleration)
+    out.update(_plan_ratios(block, motion))
     if not block.homogeneous:
         out.update(cm_height=block.h_cm, radius_of_gyration=block.r_gyration, I_O=block.I_O)
     if scale is None:

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from opsrock.constants import G
 from opsrock.errors import InputError, InputTypeError
 from opsrock.excitations.base import Excitation, has_vertical
 from opsrock.limits import real_number
@@ -110,6 +111,21 @@ class PlanMotion:
         """Magnitude of the horizontal floor acceleration at times ``t`` (m/s²)."""
         ax, ay = self.components(t)
         return np.hypot(ax, ay)
+
+    def uplift_ratio(self, tan_x: float, tan_y: float) -> float:
+        """The peak over time of ``max(|a_x| / (g tan_x), |a_y| / (g tan_y))`` (dimensionless): the floor
+        acceleration over the smallest one that uplifts a rigid box in its direction (``tan_x = b / h_cm``,
+        ``tan_y = d / h_cm`` of the box; the resultant of weight and inertia leaves the base when either term
+        passes 1; the vertical floor motion left out). One component at ``azimuth`` psi: ``PFA / (g min(tan_x /
+        |cos psi|, tan_y / |sin psi|))``; two: at the samples of sampled components (their acceleration is
+        piecewise linear, so the peak is at one of them), else at 20,001 times over the duration."""
+        c, s = math.cos(math.radians(self.azimuth)), math.sin(math.radians(self.azimuth))
+        if self.second is None:
+            return self.first.pfa * max(abs(c) / (G * tan_x), abs(s) / (G * tan_y))
+        sampled = all(hasattr(m, "values") for m in (self.first, self.second))
+        t = self.breakpoints() if sampled else np.linspace(0.0, self.duration, 20_001)
+        ax, ay = self.components(t)
+        return float(np.max(np.maximum(np.abs(ax) / (G * tan_x), np.abs(ay) / (G * tan_y))))
 
     def breakpoints(self) -> np.ndarray:
         """Times where either component is not smooth (s)."""

@@ -108,6 +108,27 @@ def check_free_fall(record: Record) -> None:
                          f"for more than {MAX_FREE_FALL:g} s (it would drop more than {G * MAX_FREE_FALL ** 2 / 2:.3g} "
                          "m): likely a vertical record in the wrong units or scaled far beyond any recorded motion",
                          argument="vertical")
+    gap = gap_at_end(record)
+    if gap > 0.0:
+        raise InputError(f"vertical: the floor of record {record.name or '<unnamed>'} falls away from the block (a_v "
+                         f"down to {float(np.min(record.vertical)) / G:.3g} g from t = {start:.4g} s) and is still "
+                         f"{gap:.3g} m below it when the record ends: the block would fly free for longer than the "
+                         "record, which no floor does; likely a vertical record in the wrong units or sign, or scaled "
+                         "far beyond any recorded motion", argument="vertical")
+
+
+def gap_at_end(record: Record) -> float:
+    """How far (m) the floor of ``record`` is still below a block that left it at the first ``a_v < -g`` when the
+    record ends (0: the block landed before, or never left). In flight the gap grows as ``gap'' = -(g + a_v)``
+    from rest (trapezoidal sums over the samples): a floor that keeps falling faster than the block has no
+    recorded counterpart (issue 46: 32.47 s of flight reported in a 9.99-s record)."""
+    if record.vertical is None or not np.any(record.vertical < -G):
+        return 0.0
+    rel = -(G + np.asarray(record.vertical, dtype=float))
+    k0 = int(np.flatnonzero(rel > 0.0)[0])
+    v = np.concatenate(([0.0], np.cumsum(0.5 * (rel[k0:-1] + rel[k0 + 1:]) * record.dt)))
+    gap = np.concatenate(([0.0], np.cumsum(0.5 * (v[:-1] + v[1:]) * record.dt)))
+    return 0.0 if np.any(gap[1:] <= 0.0) else float(gap[-1])
 
 
 def partner(ref: str) -> str:
@@ -135,5 +156,6 @@ def synthetic_vertical(ref: str, ratio: float = VERTICAL_TO_HORIZONTAL) -> Recor
     return with_vertical(library.load(ref), library.load(partner(ref)), ratio)
 
 
-__all__ = ["MAX_FREE_FALL", "VERTICAL_SOURCES", "VERTICAL_TO_HORIZONTAL", "check_free_fall", "longest_free_fall",
+__all__ = ["MAX_FREE_FALL", "VERTICAL_SOURCES", "VERTICAL_TO_HORIZONTAL", "check_free_fall", "gap_at_end",
+           "longest_free_fall",
            "on_grid", "padded", "partner", "synthetic_vertical", "with_vertical"]

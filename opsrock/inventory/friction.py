@@ -57,11 +57,16 @@ FRICTION_DISTRIBUTIONS: dict[str, tuple[str, ...]] = {
 FRICTION_STREAM: int = 0x6D75  # "mu"
 
 _CALL = re.compile(r"^\s*([A-Za-z_]+)\s*\((.*)\)\s*$")
-_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$", re.ASCII)  # ASCII digits only
 _STD = NormalDist()
 
 #: Parameters that must be positive (a spread, a lognormal's median).
 _POSITIVE = frozenset({"std", "beta", "median"})
+
+#: Smallest dispersion (``std`` of a normal law, ``beta`` of a lognormal one; dimensionless) a distribution may
+#: have: below it every draw is the same coefficient to 0.1 %, so the distribution is a fixed coefficient
+#: written in a misleading way, or a typing mistake (``1e-320``, a denormal, draws nothing but the median).
+MIN_DISPERSION: float = 1e-3
 
 
 def unit_draw(seed: int, case_id: str, stream: int = FRICTION_STREAM) -> float:
@@ -104,6 +109,10 @@ class FrictionLaw:
                        else _coefficient("friction" if kind == "fixed" else f"friction {kind} {n}", v)
                        for n, v in zip(names, params))
         object.__setattr__(self, "parameters", values)
+        for n, v in zip(names, values):
+            if n in ("std", "beta") and v < MIN_DISPERSION:
+                raise InputError(f"friction: {kind} {n} = {v!r} is below {MIN_DISPERSION:g}: every draw would be the "
+                                 "same coefficient; write the number itself", argument="friction")
         self._check_support()
         if self.kinetic_ratio is not None:
             r = self.kinetic_ratio

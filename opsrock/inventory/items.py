@@ -39,7 +39,7 @@ from opsrock.errors import MISSING, InputError, OpsrockError
 from opsrock.inventory.friction import FrictionLaw, parse_friction
 from opsrock.inventory.readers import (LIST_SEPARATOR, Row, TableFileError, number_cell, read_csv_rows,
                                       read_toml_rows, text_cell)
-from opsrock.limits import check, check_plausible, positive_finite
+from opsrock.limits import LIMITS, check, check_count, check_plausible, positive_finite
 from opsrock.published import fema_p58
 
 #: The horizontal directions of the floor motions: ``Item.width`` lies along ``"1"``, ``Item.depth`` along
@@ -285,7 +285,9 @@ class Inventory:
         if not items:
             raise InputError(f"inventory {self.source}: no items", argument="inventory")
         ids = [it.id for it in items]
-        dup = next((i for i in ids if ids.count(i) > 1), None)
+        seen: set[str] = set()
+        dup = next((i for i in ids if i in seen or seen.add(i)), None)  # one pass (list.count: 100,000 rows took
+        # minutes)
         if dup is not None:
             raise InputError(f"inventory {self.source}: id {dup!r} is used twice", argument="id")
         object.__setattr__(self, "items", items)
@@ -320,13 +322,22 @@ def _friction(row: Row) -> FrictionLaw | None:
     return FrictionLaw("fixed", (number_cell(value),))
 
 
+def quantity_cell(value: Any) -> float:
+    """A ``quantity`` cell: a whole number of units (the inventory counts items; pelicun's ``Theta_0`` of an
+    ``EA`` component), from 1 to ``LIMITS["quantity"].high``."""
+    v = number_cell(value)
+    if v != math.floor(v):
+        raise InputError("is not a whole number of units (the inventory counts items)")
+    return check_count("quantity", int(v)) * 1.0
+
+
 #: How each column's cell becomes an :class:`Item` argument: (argument, parser).
 _PARSERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
     "id": ("id", text_cell), "description": ("description", text_cell), "width": ("width", number_cell),
     "depth": ("depth", number_cell), "height": ("height", number_cell), "mass": ("mass", number_cell),
     "cm_height": ("cm_height", number_cell), "radius_of_gyration": ("radius_of_gyration", number_cell),
     "friction_kinetic": ("friction_kinetic", number_cell), "restitution": ("restitution", number_cell),
-    "fema_id": ("fema_id", text_cell), "quantity": ("quantity", number_cell),
+    "fema_id": ("fema_id", text_cell), "quantity": ("quantity", quantity_cell),
     "floor": ("floors", floors_cell),
     "repair_cost": ("repair_cost", number_cell),
 }
@@ -406,6 +417,10 @@ def read_inventory(path: str | Path, *, confirm: bool = False) -> Inventory:
         rows = read_toml_rows(path, "item", COLUMNS, REQUIRED)
     else:
         rows = read_csv_rows(path, COLUMNS, REQUIRED)
+    if len(rows) > LIMITS["inventory_items"].high:
+        raise TableFileError(path, None, None, MISSING, f"{len(rows):,} items, more than the "
+                             f"{LIMITS['inventory_items'].high:,.0f} an inventory may hold: "
+                             f"{LIMITS['inventory_items'].why}")
     items: list[Item] = []
     seen: dict[str, int] = {}
     for row in rows:

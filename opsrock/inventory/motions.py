@@ -62,7 +62,7 @@ NAME_SEPARATOR: str = "@"
 HEADER_LINES: int = 50
 
 _DT_LINE = re.compile(r"^\s*#\s*dt\s*[=:]\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(?:s|sec|seconds)?\s*$",
-                      re.IGNORECASE)
+                      re.IGNORECASE | re.ASCII)
 
 
 @dataclass(frozen=True)

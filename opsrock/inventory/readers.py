@@ -26,7 +26,8 @@ LIST_SEPARATOR: str = ";"
 #: Largest inventory or manifest file read (bytes): a table of a million rows; larger files are refused unread.
 MAX_TABLE_BYTES: int = 64_000_000
 
-_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+_NUMBER = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$", re.ASCII)  # ASCII digits only: float()
+# also reads Arabic-Indic or full-width digits, which the guide's "plain decimals" do not include
 
 
 class TableFileError(InputError):
@@ -239,9 +240,13 @@ def number_cell(value: Any) -> float:
 
 
 def text_cell(value: Any) -> str:
-    """A cell's text: a string (a TOML number is refused, a CSV cell is text already)."""
+    """A cell's text: a string (a TOML number is refused, a CSV cell is text already) without control
+    characters (a NUL byte or a tab inside a cell is a damaged file, not a name)."""
     if not isinstance(value, str):
         raise InputError(f"must be a string, not {type(value).__name__}")
+    bad = next((ch for ch in value if ord(ch) < 32 or ord(ch) == 127), None)
+    if bad is not None:
+        raise InputError(f"holds the control character U+{ord(bad):04X} (a damaged file?)")
     return value
 
 

@@ -320,38 +320,52 @@ end_time = 5000.0
 [grid.freq_ratio]
 values = [6.0]
 [grid.pfa_ratio]
-values = [0.8, 3.0]
+values = {pfa_ratios}
 """
 
 
-def slow_scene(tmp_path: Path, timeout: float = 1.0, stop_at_rest: str = "false") -> Path:
+def slow_scene(tmp_path: Path, timeout: float = 1.0, stop_at_rest: str = "false",
+               pfa_ratios: str = "[0.8, 3.0]") -> Path:
     path = tmp_path / "slow.toml"
     path.write_text(SLOW_SCENE.format(blocks=ROOT / "opsrock" / "data" / "blocks.toml", timeout=timeout,
-                                      stop_at_rest=stop_at_rest))
+                                      stop_at_rest=stop_at_rest, pfa_ratios=pfa_ratios))
     return path
+
+
+def seated_at_once(block, excitation, solver, **settings) -> RockingResult:
+    """The real solver for a case that rocks (the slow one: minutes of OpenSees steps, it cannot finish inside a
+    budget of seconds on any machine), the closed form for one that does not (no work: nothing a loaded machine
+    can push past the budget). So the verdicts do not depend on the machine's speed (issue 46: the seated
+    OpenSees case took 0.17 s quiet and did not finish inside 0.5 s at a load average of 6-10)."""
+    if excitation.pfa <= block.uplift_acceleration:
+        return fake_solve(block, excitation, solver, **settings)
+    from opsrock.solvers import simulate
+
+    return simulate(block, excitation, solver=solver, **settings)
 
 
 def test_a_case_past_its_budget_is_stored_as_timeout_and_the_campaign_goes_on(tmp_path):
     out = tmp_path / "out"
-    t0 = time.monotonic()
-    summary = run_campaign(slow_scene(tmp_path, timeout=1.0), out, workers=1, progress=False)
-    assert time.monotonic() - t0 < 60  # not the minutes of the slow case
+    summary = run_campaign(slow_scene(tmp_path, timeout=1.0), out, workers=1, progress=False, solve_fn=seated_at_once)
     rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
     slow, seated = rows["medicine_cabinet/f01/a02"], rows["medicine_cabinet/f01/a01"]
     assert (slow["status"], slow["verdict"]) == ("failed", "failed")
-    assert slow["reason"].startswith("timeout") and "1 s" in slow["reason"]
-    assert 1.0 <= float(slow["wall_time_s"]) < 30.0
+    # the in-process budget stopped it (the pool's backstop kill would say "the case budget plus ...")
+    assert slow["reason"].startswith("timeout: no answer within the case budget of 1 s")
+    assert float(slow["wall_time_s"]) >= 1.0  # no upper bound: how late the interruption lands is the machine's
     assert seated["status"] == "ok" and seated["verdict"] == "no_uplift"
     assert summary.n_failed == 1
 
 
 def test_case_timeout_on_the_command_line_overrides_the_scene(tmp_path, capsys):
-    scene = slow_scene(tmp_path, timeout=600.0)
+    # the slow case alone: it cannot finish in 0.5 s (minutes of work), so the one failure does not depend on how
+    # fast the machine is today (a case meant to finish inside 0.5 s did not, at a load average of 6-10)
+    scene = slow_scene(tmp_path, timeout=600.0, pfa_ratios="[3.0]")
     out = tmp_path / "cli"
     assert main([str(scene), "--out", str(out), "--no-progress", "--workers", "1", "--case-timeout", "0.5"]) == 0
     assert "1 case(s) failed" in capsys.readouterr().err
     rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
-    assert rows["medicine_cabinet/f01/a02"]["reason"].startswith("timeout: no answer within the case budget of 0.5 s")
+    assert rows["medicine_cabinet/f01/a01"]["reason"].startswith("timeout: no answer within the case budget of 0.5 s")
     for bad in ("0", "-1", "nan", "inf"):
         assert main([str(scene), "--out", str(tmp_path / "x"), "--case-timeout", bad]) == 2
         assert "--case-timeout" in capsys.readouterr().err
@@ -393,3 +407,29 @@ def test_a_dask_worker_killed_mid_campaign_loses_no_finished_case(tmp_path):
     assert summary.n_cases == 9 and summary.n_failed == 0  # the killed worker's cases were re-run
     run_campaign(scene, tmp_path / "local", workers=2, progress=False, solve_fn=slow_fake_solve)
     assert identity_view(read_csv(out / "cases.csv")) == identity_view(read_csv(tmp_path / "local" / "cases.csv"))
+
+
+class _LosingExecutor:
+    """An executor whose every worker is lost (as when spawned workers cannot import the main script)."""
+
+    workers = 2
+
+    def map_batches(self, fn, batches, lost):
+        for k, batch in enumerate(batches):
+            yield k, [lost(item, f"{LOST_PREFIX}worker process died before it started (exit code 1)")
+                      for item in batch]
+
+    def close(self) -> None:
+        pass
+
+
+def test_a_campaign_that_computed_no_case_raises_instead_of_returning(tmp_path):
+    """Issue 46: every case lost to the infrastructure and the call returned normally. Now one error naming the
+    count, the first cause and the fix; the lost rows are stored (a re-run computes them)."""
+    from opsrock.errors import AllCasesLostError
+
+    with pytest.raises(AllCasesLostError, match=r"no case could be computed: all 9 cases were lost .*exit code 1"):
+        run_campaign(small_scene(tmp_path), tmp_path / "out", executor=_LosingExecutor(), progress=False,
+                     solve_fn=fake_solve)
+    again = run_campaign(small_scene(tmp_path), tmp_path / "out", workers=1, progress=False, solve_fn=fake_solve)
+    assert again.n_computed == 9 and again.n_lost == 0

@@ -3,8 +3,7 @@
 the file, its line, the column and the value, writing nothing (the promise of :mod:`_hostile`).
 
 The readers are :mod:`opsrock.inventory.items` and :mod:`opsrock.inventory.motions`; their refusals are also
-tested in-process (``tests/inventory/``). This module is skipped while ``opsrock contents`` has no
-``--inventory`` option (the study's command line is written in parallel, issue 32).
+tested in-process (``tests/inventory/``).
 """
 
 from __future__ import annotations
@@ -16,9 +15,6 @@ import pytest
 from _hostile import Case, sweep
 from _support import run_opsrock
 
-_HELP = run_opsrock(["contents", "--help"], timeout=120)
-pytestmark = pytest.mark.skipif("--inventory" not in _HELP.stdout,
-                                reason="opsrock contents has no --inventory option yet (issue 32 study)")
 
 HEADER = "id,description,width,depth,height,friction,floor"
 GOOD_ROW = "box,a box,0.4,0.5,1.0,0.5,1"
@@ -53,6 +49,15 @@ def inputs(tmp_path_factory) -> Path:
         "nounits.csv": f"{MANIFEST}\nr1,1,1,floor.txt,,0.01\n",
         "dup_motions.csv": f"{MANIFEST}\n{GOOD_MOTION}\n{GOOD_MOTION}\n",
         "scale.csv": f"{MANIFEST},scale\n{GOOD_MOTION},2\n",
+        # issue 46: accepted silently before (float() reads any Unicode digit; a NUL is a character to csv)
+        "arabic.csv": f"{HEADER}\nbox,a box,\u0660.\u0664,0.5,1.0,0.5,1\n",
+        "fullwidth.csv": f"{HEADER}\nbox,a box,0.4,0.5,1.0,\uff10.\uff14,1\n",
+        "nul.csv": f"{HEADER}\nbox,a b\x00ox,0.4,0.5,1.0,0.5,1\n",
+        "fraction.toml": "[[item]]\nid = 'box'\ndescription = 'a box'\nwidth = 0.4\ndepth = 0.5\nheight = 1.0\n"
+                         "quantity = 1.5\n",
+        "huge.toml": "[[item]]\nid = 'box'\ndescription = 'a box'\nwidth = 0.4\ndepth = 0.5\nheight = 1.0\n"
+                     "quantity = 99999999999999999999\n",
+        "denormal.csv": f"{HEADER}\nbox,a box,0.4,0.5,1.0,\"lognormal(0.4, 1e-320)\",1\n",
     }
     for name, text in files.items():
         (base / name).write_text(text)
@@ -81,6 +86,15 @@ def inventory_cases(b: Path) -> list[Case]:
         inv("empty.csv", ("empty.csv", "empty file")),
         inv("missing.csv", ("missing.csv", "no such file")),
         inv("key.toml", ("key.toml:7", "colour", "unknown key")),
+        inv("arabic.csv", ("arabic.csv:2", "width = '\u0660.\u0664'", "not a number")),
+        inv("fullwidth.csv", ("fullwidth.csv:2", "friction", "neither a number")),
+        inv("nul.csv", ("nul.csv:2", "description", "U+0000")),
+        inv("fraction.toml", ("fraction.toml:7", "quantity = 1.5", "whole number")),
+        inv("huge.toml", ("huge.toml:7", "quantity", "1000000")),
+        inv("denormal.csv", ("denormal.csv:2", "friction", "1e-320", "below 0.001")),
+        Case("inventory --levels-with-cloud", ("contents", "--inventory", f"{b}/good.csv", "--motions",
+                                               f"{b}/good_motions.csv", "--method", "cloud", "--levels", "2,4",
+                                               "--out", "out"), ("--levels 2,4", "--method cloud")),
         mot("nofile.csv", ("nofile.csv:3", "file = 'nope.txt'", "no such file")),
         mot("cm_motions.csv", ("cm_motions.csv line 2 (floor_cm.txt): PFA", "cm/s²", "--accept-implausible")),
         mot("xy.csv", ("xy.csv:2", "direction = 'X'")),
@@ -95,7 +109,7 @@ def inventory_cases(b: Path) -> list[Case]:
 #: distribution, a missing file, a repeated row, an empty file): behind ``slow``, to keep make test's budget
 #: (each case is one start of the console script, about 0.7 s of CPU).
 SECOND = {"inventory wide.csv", "inventory empty.csv", "motions scale.csv", "motions missing.csv",
-          "motions dup_motions.csv"}
+          "motions dup_motions.csv", "inventory fullwidth.csv", "inventory huge.toml"}
 
 
 def test_hostile_inventories_and_manifests_are_refused(inputs, tmp_path):
@@ -114,4 +128,4 @@ def test_more_hostile_inventories_and_manifests_are_refused(inputs, tmp_path):
 
 def test_inventory_case_counts(inputs):
     counts = Counter(c.name.split()[0] for c in inventory_cases(inputs))
-    assert counts == {"inventory": 11, "motions": 7}, counts
+    assert counts == {"inventory": 18, "motions": 7}, counts

@@ -23,6 +23,7 @@ def files(tmp_path_factory) -> Path:
     both directions, and a one-item inventory."""
     base = tmp_path_factory.mktemp("three_d_inputs")
     (base / "one.txt").write_text("0.1\n" * 100)
+    (base / "half.txt").write_text("0.1\n" * 50)
     (base / "d1.csv").write_text("record,floor,direction,file,units,dt\nr,1,1,one.txt,g,0.01\n")
     (base / "d12.csv").write_text("record,floor,direction,file,units,dt\nr,1,1,one.txt,g,0.01\nr,1,2,one.txt,g,0.01\n")
     (base / "inv.csv").write_text("id,description,width,depth,height\ncab,a cabinet,0.4,0.6,1.2\n")
@@ -40,6 +41,8 @@ def three_d_cases(b: Path) -> list[Case]:
     cases += [
         Case("simulate --record2 missing", (*SIM, *rec, "--depth", "0.6", "--record2", f"{b}/nope.txt"),
              ("--record2", "nope.txt")),
+        Case("simulate --record2 shorter", (*SIM, *rec, "--depth", "0.6", "--record2", f"{b}/half.txt"),
+             ("--record2", "50 samples", "100")),
         Case("simulate --record2 with-a-pulse", (*SIM, *PULSE, "--depth", "0.6", "--record2", f"{b}/one.txt"),
              ("--record2", "--record only")),
         Case("simulate planar --depth", (*SIM, *PULSE, "--depth", "0.6", "--solver", "housner_fast"),
@@ -71,7 +74,7 @@ def three_d_cases(b: Path) -> list[Case]:
 
 def test_three_d_case_counts(files):
     counts = Counter(c.name.rsplit(" ", 1)[0] for c in three_d_cases(files))
-    assert counts == {"simulate --depth": 6, "simulate --azimuth": 6, "simulate --record2": 2, "simulate planar": 3,
+    assert counts == {"simulate --depth": 6, "simulate --azimuth": 6, "simulate --record2": 3, "simulate planar": 3,
                       "simulate rigid3d": 3, "contents rigid3d": 5}, counts
 
 

@@ -115,7 +115,7 @@ class _FrictionRun(SolverRun):
         out = np.zeros(K.OUT_SIZE)
         announce_compile(K.solve_case, SOLVER_NAME)
         try:
-            K.solve_case(params, kvals, gvals, out, hist)
+            self.compiled_call(K.solve_case, params, kvals, gvals, out, hist)
         except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
             return failed_result(SOLVER_NAME, settings_dict, alpha, f"{type(exc).__name__}: {exc}",
                                  wall_time_s=self.elapsed())

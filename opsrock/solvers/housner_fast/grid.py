@@ -16,6 +16,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from opsrock.block import Block
+from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.errors import InputError, InputTypeError
 from opsrock.excitations import PULSE_SHAPES
 from opsrock.limits import int_at_least, one_of
@@ -147,6 +148,7 @@ def solve_grid(
     _run_chunks((cases, opts), outs, n, threads)
     wall = _time.perf_counter() - t0
     theta_max, overturned, rocked, status, n_impacts, n_steps = (x.reshape(shape) for x in outs)
+    theta_max = np.where(overturned, OVERTURNING_ANGLE, theta_max)  # pi/2 on overturning, as every solver's
     return GridResult(theta_max=theta_max, overturned=overturned, rocked=rocked, status=status,
                       n_impacts=n_impacts, n_steps=n_steps, wall_time_s=wall)
 

@@ -72,7 +72,8 @@ class _HousnerFastRun(SolverRun):
         hist = K.History(np.zeros(cap), np.zeros(cap), np.zeros(cap))
         announce_compile(K.solve_case, SOLVER_NAME)
         try:
-            out = K.solve_case(par, exc, float(settings.theta0), float(settings.theta_dot0 / p), hist)
+            out = self.compiled_call(K.solve_case, par, exc, float(settings.theta0), float(settings.theta_dot0 / p),
+                                     hist)
         except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
             return failed_result(SOLVER_NAME, settings_dict, alpha, f"{type(exc).__name__}: {exc}",
                                  wall_time_s=self.elapsed())

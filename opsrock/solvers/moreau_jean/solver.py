@@ -93,8 +93,8 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     floor = kn.floor_motion(forcing.form, forcing.ah, forcing.av, forcing.sub, forcing.n_exc, forcing.tail_av)
     announce_compile(kn.run, SOLVER_NAME)
     try:
-        kn.run(kn.body(block.b, block.h_cm, R, G, inertia_ratio(block)), fric, num, floor, state.copy(), limits, hist,
-               out)
+        run.compiled_call(kn.run, kn.body(block.b, block.h_cm, R, G, inertia_ratio(block)), fric, num, floor,
+                          state.copy(), limits, hist, out)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, block.alpha, f"{type(exc).__name__}: {exc}",
                              wall_time_s=run.elapsed())

@@ -183,7 +183,7 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": forcing.dt}
     announce_compile(kn.run, SOLVER_NAME)
     try:
-        kn.run(model, floor, state.copy(), hist, out)
+        run.compiled_call(kn.run, model, floor, state.copy(), hist, out)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, box.alpha, f"{type(exc).__name__}: {exc}",
                              wall_time_s=run.elapsed())

@@ -22,3 +22,8 @@ OVERTURNING_ANGLE: float = 1.5707963267948966  # pi / 2
 #: (Housner 1963 onwards), ``theta'' = -p² [(alpha s - theta) + a/g]``, uplift when ``|a| > g alpha``;
 #: its free-rocking energy is ``theta'²/(2p²) + [alpha² - (alpha - |theta|)²]/2``.
 EQUATIONS: tuple[str, ...] = ("exact", "linearised")
+
+#: The analytic pulse shapes by name, in the order of :data:`opsrock.excitations.PULSE_SHAPES` (which maps each
+#: to its class and is built from this tuple): here, so that the command line's parser names them without loading
+#: numpy with the pulses.
+PULSE_SHAPE_NAMES: tuple[str, ...] = ("rectangular", "half-sine", "one-sine", "one-cosine", "ricker")

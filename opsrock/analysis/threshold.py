@@ -33,6 +33,7 @@ from typing import Any, Sequence
 
 import numpy as np
 
+from opsrock.analysis.threshold_defaults import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
 from opsrock.block import Block
 from opsrock.constants import EQUATIONS, G
 from opsrock.errors import InputError, InputTypeError
@@ -41,12 +42,6 @@ from opsrock.limits import check, check_count, one_of, positive_finite, scaled_i
 
 #: Solvers whose settings take ``equations`` (the SDOF models solve their own equation).
 RIGID_SOLVERS: tuple[str, ...] = ("housner", "housner_fast")
-#: Default top of the scanned amplitude range, ``PFA / (g tan alpha)``.
-DEFAULT_PFA_RATIO_MAX: float = 50.0
-#: Default number of scanned amplitudes.
-DEFAULT_N_SCAN: int = 600
-#: Default relative width of a refined boundary bracket.
-DEFAULT_RTOL: float = 1e-6
 
 
 @dataclass(frozen=True)

@@ -15,11 +15,11 @@ from typing import Any, Callable
 
 from opsrock import __version__
 from opsrock.analysis.reproduce import ROBUSTNESS_SETS
-from opsrock.analysis.threshold import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
+from opsrock.analysis.threshold_defaults import DEFAULT_N_SCAN, DEFAULT_PFA_RATIO_MAX, DEFAULT_RTOL
 from opsrock.bench import BENCHMARKS
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT
+from opsrock.constants import PULSE_SHAPE_NAMES
 from opsrock.errors import OpsrockError, UsageError
-from opsrock.excitations import PULSE_SHAPES
 from opsrock.limits import ACCEPT_OPTION, check, check_count
 from opsrock.solvers.registry import solver_names
 from opsrock.validation import CASES
@@ -138,7 +138,7 @@ def _block(p: argparse.ArgumentParser) -> None:
 
 
 def _pulse(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--pulse", default="one-sine", help=f"pulse shape: {', '.join(PULSE_SHAPES)} (default one-sine)")
+    p.add_argument("--pulse", default="one-sine", help=f"pulse shape: {', '.join(PULSE_SHAPE_NAMES)} (default one-sine)")
     f = p.add_mutually_exclusive_group()
     f.add_argument("--freq", type=positive("--freq"), help="pulse frequency omega_p / 2 pi (Hz)")
     f.add_argument("--freq-ratio", type=positive("--freq-ratio"), help="omega_p / p")

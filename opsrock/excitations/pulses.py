@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from opsrock.constants import G
+from opsrock.constants import G, PULSE_SHAPE_NAMES
 from opsrock.limits import check, one_of, positive_finite, scaled_input
 
 if TYPE_CHECKING:
@@ -326,9 +326,10 @@ class RickerWavelet(Pulse):
 
 
 #: The pulse shapes by name.
-PULSE_SHAPES: dict[str, type[Pulse]] = {
+_BY_SHAPE: dict[str, type[Pulse]] = {
     cls.SHAPE: cls for cls in (RectangularPulse, HalfSinePulse, OneSinePulse, OneCosinePulse, RickerWavelet)
 }
+PULSE_SHAPES: dict[str, type[Pulse]] = {name: _BY_SHAPE[name] for name in PULSE_SHAPE_NAMES}
 
 
 def pulse_class(shape: str) -> type[Pulse]:

@@ -27,14 +27,16 @@ campaign and the studies, which choose a solver by what it declares, never by it
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from opsrock.block import Block
 from opsrock.errors import InputTypeError
-from opsrock.excitations import Excitation
-from opsrock.excitations.plan import PlanMotion
-from opsrock.result import RockingResult
 from opsrock.solvers.registry import METHODS, SOLVERS, SolverInfo, capabilities, check_model, info, solver_names
+
+if TYPE_CHECKING:  # the excitations and results load numpy: the command line's parser reads the registry without
+    from opsrock.excitations import Excitation
+    from opsrock.excitations.plan import PlanMotion
+    from opsrock.result import RockingResult
 
 
 def get_solver(name: str):
@@ -71,6 +73,7 @@ def warm_up(solver: str) -> None:
     entry = info(solver)
     if not entry.compiled:
         return
+    from opsrock.excitations.plan import PlanMotion
     from opsrock.excitations.pulses import OneSinePulse
 
     block = Block(0.3, 1.2, restitution_factor=1.0, depth=0.6 if "depth" in entry.block_needs else None,
@@ -116,6 +119,9 @@ def simulate(block: Block, excitation: Excitation | PlanMotion | None, solver: s
     """
     if not isinstance(block, Block):
         raise InputTypeError(f"block must be a Block, got {block!r}")
+    from opsrock.excitations import Excitation
+    from opsrock.excitations.plan import PlanMotion
+
     if excitation is not None and not isinstance(excitation, (Excitation, PlanMotion)):
         raise InputTypeError(f"excitation must be an Excitation (OneSinePulse, Record) or a PlanMotion, got "
                              f"{excitation!r}")
@@ -127,6 +133,8 @@ def planar_excitation(solver: str, excitation: Excitation | PlanMotion | None) -
     """What ``solver`` is given for ``excitation``: a planar :class:`~opsrock.excitations.plan.PlanMotion` as its
     first component for a planar solver (registry ``plan`` False); anything else as it is (a non-planar
     plan motion is refused for a planar solver by :func:`check_model`, not here)."""
+    from opsrock.excitations.plan import PlanMotion
+
     if isinstance(excitation, PlanMotion) and excitation.planar and not info(solver).plan:
         return excitation.first
     return excitation

@@ -14,7 +14,6 @@ from typing import Any
 
 from opsrock.block import Block
 from opsrock.errors import InputError, ModelNotSupported
-from opsrock.excitations.base import has_vertical
 from opsrock.limits import one_of
 
 #: The models a solver may solve (:attr:`SolverInfo.model`).
@@ -214,6 +213,8 @@ def check_model(name: str, block: Block, excitation: object) -> None:
     ModelNotSupported
         Naming the solver and what it cannot model.
     """
+    from opsrock.excitations.base import has_vertical  # numpy: not loaded for the command line's parser
+
     entry = info(name)
     if block.slips and not entry.friction:
         raise ModelNotSupported(

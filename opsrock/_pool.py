@@ -166,11 +166,11 @@ def _watch_parent(parent: int) -> None:
     os._exit(1)
 
 
-def worker_start(parent: int, ready=None, warm: str | None = None) -> None:
+def worker_start(parent: int, ready=None, warm: tuple[str, ...] = ()) -> None:
     """What every worker of opsrock's pools runs first: die with ``parent``, leave Ctrl-C to it, and take the
     default action of SIGTERM and SIGHUP (a worker spawned while the parent held them back inherits them
-    blocked). Then it makes the kernel of the solver ``warm`` ready (:func:`opsrock.solvers.warm_up`: loaded from
-    numba's cache, which the parent has filled), and last it counts itself in ``ready`` (a shared
+    blocked). Then it makes the kernels of the solvers ``warm`` ready (:func:`opsrock.solvers.warm_up`: loaded
+    from numba's cache, which the parent has filled), and last it counts itself in ``ready`` (a shared
     ``multiprocessing.Value``, when given): from then on the worker takes work, and the parent's clock of a case
     budget may run."""
     die_with_parent(parent)
@@ -180,8 +180,8 @@ def worker_start(parent: int, ready=None, warm: str | None = None) -> None:
         signal.signal(s, signal.SIG_DFL)
     if hasattr(signal, "pthread_sigmask"):
         signal.pthread_sigmask(signal.SIG_UNBLOCK, stops)
-    if warm is not None:
-        _warm_up(warm)
+    for solver in warm:
+        _warm_up(solver)
     if ready is not None:
         with ready.get_lock():
             ready.value += 1

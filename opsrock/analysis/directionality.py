@@ -50,6 +50,7 @@ from opsrock.campaign.run import Execution, Stage, case_budget
 from opsrock.errors import InputError
 from opsrock.inventory.items import shipped_inventory
 from opsrock.limits import int_at_least
+from opsrock.solvers import warm_up
 from opsrock.solvers.registry import METHODS, plan_solver
 
 #: The record pairs of the full study, by their first component's name (FEMA P695 far-field): twelve of the 22, of
@@ -328,7 +329,10 @@ def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress
     stored)."""
 
     frames, computed = [], 0
-    with LocalPool(workers) as pool:
+    solvers = tuple(sorted({c.scene.solver for c in campaigns}))
+    for solver in solvers:  # compiled here once (announced when the cache is cold), loaded by each worker:
+        warm_up(solver)     # no case's budget pays for a compile
+    with LocalPool(workers, warm=solvers) as pool:
         for c in campaigns:
             how = Execution(workers, pool, force, progress, None, case_budget(c.scene, None))
             summary, _ = Stage(how)(c.scene, store / c.name, cases=c.cases)

@@ -177,9 +177,9 @@ class LocalPool(_Closing):
         (:func:`opsrock.campaign.timeout.time_limit`), which cannot interrupt native code. None: no limit.
         The budget counts from a worker's start (once it has started and warmed ``warm``), never from the
         submission.
-    warm : str, optional
-        A solver whose compiled kernel each worker loads before it takes work
-        (:func:`opsrock.solvers.warm_up`), so that no item's budget pays for it. None: nothing.
+    warm : sequence of str, optional
+        Solvers whose compiled kernels each worker loads before it takes work (:func:`opsrock.solvers.warm_up`),
+        so that no item's budget pays for them. Default: none.
 
     Raises
     ------
@@ -191,7 +191,7 @@ class LocalPool(_Closing):
     """
 
     def __init__(self, workers: int | None = None, *, mp_context: str = "spawn",
-                 item_timeout: float | None = None, warm: str | None = None) -> None:
+                 item_timeout: float | None = None, warm: Sequence[str] = ()) -> None:
         if workers is None:
             workers = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
         check_count("workers", workers)
@@ -204,7 +204,7 @@ class LocalPool(_Closing):
         self.workers = workers
         self.mp_context = mp_context
         self.item_timeout = None if item_timeout is None or math.isinf(item_timeout) else float(item_timeout)
-        self.warm = warm
+        self.warm = tuple(warm)
         self._pool: ProcessPoolExecutor | None = None
         self._ready = None  # the pool's count of started workers (a shared multiprocessing.Value)
         self._processes: dict = {}  # the pool's worker processes, kept to read their exit status once it broke

@@ -481,7 +481,7 @@ class Stage:
             run.open(store, manifest, how.force)
             if how.executor is None:  # made once the folder is known to be ours
                 warm_up(scene.solver)  # compiled here once (announced), loaded by each worker: no case pays for it
-                run.executor = LocalPool(how.workers, item_timeout=how.case_timeout, warm=scene.solver)
+                run.executor = LocalPool(how.workers, item_timeout=how.case_timeout, warm=(scene.solver,))
             try:
                 cases = run.cases() if cases is None else cases
                 chosen = cases if only is None else [c for c in cases if c.case_id in only]

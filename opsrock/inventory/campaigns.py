@@ -359,9 +359,13 @@ def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, 
     """
     from opsrock.campaign import run_campaign
     from opsrock.campaign.executors import LocalPool
+    from opsrock.solvers import warm_up
 
     frames, t0, computed = [], time.perf_counter(), 0
-    with LocalPool(workers) as pool:
+    solvers = tuple(sorted({gs.scene.solver for gs in scenes}))
+    for solver in solvers:  # compiled here once (announced when the cache is cold), loaded by each worker
+        warm_up(solver)
+    with LocalPool(workers, warm=solvers) as pool:
         for gs in scenes:
             folder = store / gs.group.name
             seed_motions(gs, folder, demands)

@@ -156,11 +156,11 @@ def kernel_loaded_batch(batch: list[int]) -> list[tuple[int, bool, int]]:
     return [(x, bool(kernel.solve_case.signatures), os.getpid()) for x in batch]
 
 
-@pytest.mark.parametrize("warm", ["housner_fast", None])
+@pytest.mark.parametrize("warm", [("housner_fast",), ()])
 def test_a_worker_makes_its_kernel_ready_before_it_takes_a_case(warm):
     # The case budget counts from a worker's start; a worker told which solver it serves loads that solver's
     # compiled kernel first (opsrock.solvers.warm_up), so no case pays for a compile or a cache load: the kernel
     # is there before the first item, whatever the machine's speed. Without `warm`, it is not.
     with LocalPool(1, warm=warm) as pool:
         results = collect(pool, kernel_loaded_batch, make_batches([0, 1], 2))
-    assert [r[1] for r in results] == [warm is not None] * 2
+    assert [r[1] for r in results] == [bool(warm)] * 2

@@ -333,10 +333,14 @@ def test_ctrl_c_says_what_is_true_of_the_command(command, tmp_path, record_campa
     proc = subprocess.Popen(opsrock_command(args), cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, start_new_session=True, stdin=subprocess.DEVNULL,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    # ready once the command's handler is being imported (pandas is loaded by the handlers, not the parser, and
-    # the command's name is known from then on): polled, not a fixed sleep that a loaded machine can outlast
+    # ready once the command is at its work: validate has made its output folder, fragility its staging folder
+    # (both made just before the long part, after every import): polled, not a fixed sleep that a loaded machine
+    # can outlast. (Polling for pandas being mapped sent the Ctrl-C during the handler's imports, where a fresh
+    # clone's run saw it lost once: the command went on past the 60 s below.)
+    started = {"validate": lambda: (tmp_path / "v").is_dir(),
+               "fragility": lambda: any(tmp_path.glob(".rep.staging-*"))}[command]
     deadline = time.monotonic() + 120
-    while not _mapped(proc.pid, "pandas/_libs") and proc.poll() is None and time.monotonic() < deadline:
+    while not started() and proc.poll() is None and time.monotonic() < deadline:
         time.sleep(0.01)
     assert proc.poll() is None, proc.communicate()
     os.killpg(proc.pid, signal.SIGINT)

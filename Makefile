@@ -30,7 +30,7 @@ test: install
 # `make test-lowest LOWEST_TESTS=` runs the whole suite there.
 LOWEST_VENV  := .venv-lowest
 LOWEST       := requirements-lowest.txt
-LOWEST_TESTS ?= tests/fragility tests/plots tests/inventory
+LOWEST_TESTS ?= tests/unit/fragility tests/model/fragility tests/unit/plots tests/unit/inventory tests/model/inventory
 
 test-lowest: blas $(LOWEST_VENV)/.opsrock-installed
 	$(LOWEST_VENV)/bin/python -m pytest $(LOWEST_TESTS)
@@ -47,8 +47,8 @@ test-slow: install
 # Property tests with fresh random seeds and ten times the examples (make test is derandomised), and
 # fresh random option values through the console script.
 test-fuzz: install
-	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest tests/inputs/test_input_properties.py \
-	    tests/inputs/test_hostile_inputs.py::test_random_option_values_are_refused_or_answered
+	HYPOTHESIS_PROFILE=fuzz $(BIN)/python -m pytest tests/unit/test_input_properties.py \
+	    tests/e2e/inputs/test_hostile_inputs.py::test_random_option_values_are_refused_or_answered
 
 # The FEMA P-58 / pelicun export loads in pelicun: pelicun 3.10 pins scipy < 1.16 and pandas < 3, so it
 # gets a venv of its own; opsrock writes a sample export and pelicun reads every parameter back.

@@ -1,4 +1,4 @@
-"""The hostile-input harness every ``tests/inputs/test_hostile_*.py`` module shares: one case is a command
+"""The hostile-input harness every ``tests/e2e/inputs/test_hostile_*.py`` module shares: one case is a command
 line and the promise it must keep, checked through the real console script in a folder of its own.
 
 The promise (README): for bad input, exit status 2, one line on stderr (at most two), no traceback, nothing

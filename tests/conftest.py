@@ -57,6 +57,23 @@ def pytest_sessionstart(session):
 
 
 # --- fixtures shared by the suite ------------------------------------------------------------------------
+#: The suite's four tiers, one folder each (as pelicun splits its tests): ``unit`` (one function or table, no
+#: solver run beyond a few steps), ``model`` (solvers, campaigns and studies through the Python API),
+#: ``validation`` (against closed forms, published results, experiments and peer codes) and ``e2e`` (through the
+#: installed console script: commands, hostile-input sweeps, interrupted runs). Each test carries its tier as a
+#: marker, so ``pytest -m unit`` gives the fastest feedback and ``pytest -m e2e`` the slowest.
+TIERS = ("unit", "model", "validation", "e2e")
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        parts = item.path.relative_to(config.rootpath).parts
+        tier = parts[1] if len(parts) > 2 and parts[0] == "tests" else None
+        if tier not in TIERS:
+            raise pytest.UsageError(f"{item.nodeid}: a test module lives in one of tests/{{{','.join(TIERS)}}}/")
+        item.add_marker(tier)
+
+
 @pytest.fixture(scope="session")
 def record_library():
     """The FEMA P695 record library (the optional extra ``records``, installed by ``make test``): its module,

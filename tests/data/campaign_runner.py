@@ -1,7 +1,7 @@
 """Run a campaign whose rigid-body solves are slowed down, so that a test can kill it mid-way.
 
 Usage: python campaign_runner.py SCENE OUT_DIR WORKERS
-Prints the campaign summary as one JSON line. Used by tests/campaign/test_campaign.py.
+Prints the campaign summary as one JSON line. Used by tests/model/campaign/test_campaign.py.
 """
 
 import json

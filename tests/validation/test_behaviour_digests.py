@@ -13,11 +13,10 @@ from __future__ import annotations
 
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+from _support import ROOT
 
 
 @pytest.mark.slow

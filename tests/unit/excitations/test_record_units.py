@@ -2,7 +2,7 @@
 is shown, values given without units that look like g (or cm/s²) are refused with the fix, internal copies
 (scaled, renamed, filtered, zero) never trip it; and the plausibility check of record files names the unit
 the values look like given the declared one (:func:`opsrock.excitations.records.check_plausible_record`).
-The command-line refusals are in ``tests/inputs/test_hostile_units.py``."""
+The command-line refusals are in ``tests/e2e/inputs/test_hostile_units.py``."""
 
 from __future__ import annotations
 

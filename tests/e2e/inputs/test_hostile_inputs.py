@@ -485,7 +485,7 @@ def test_random_option_values_are_refused_or_answered(option, value):
 # 0.3 s (while the workers start), 1.5 and 3.0 s (while they solve), all behind slow to keep make test under 10
 # minutes on 2 cores (each resumes a 144-case campaign, about 15 s; 0.3 s was in make test until issue 33's tests
 # needed the time): Ctrl-C in make test is test_ctrl_c_then_resume_computes_only_the_missing_cases
-# (tests/campaign/test_campaign.py) and test_ctrl_c_says_what_is_true_of_the_command (test_hostile_environment.py)
+# (tests/model/campaign/test_campaign.py) and test_ctrl_c_says_what_is_true_of_the_command (test_hostile_environment.py)
 @pytest.mark.slow
 @pytest.mark.parametrize("delay", [0.3, 1.5, 3.0])
 def test_ctrl_c_at_any_moment_gives_one_line_and_resumes(base, tmp_path, delay):

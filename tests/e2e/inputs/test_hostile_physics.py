@@ -137,7 +137,7 @@ def test_a_wide_block_with_friction_slides_and_never_rocks(files, tmp_path):
 def test_friction_zero_ends_with_the_motion(files, solver, tmp_path):
     """--friction 0 --friction-kinetic 0 on a floor that ends moving (0.1 g for 0.99 s and a ramp to 0 over 0.01 s:
     0.976095 m/s): the run ends, with the block still sliding at -0.976095 m/s relative to the floor (no max_steps or
-    max_free_time failure; to 1e-6 as tests/inputs/test_hostile_friction.py)."""
+    max_free_time failure; to 1e-6 as tests/e2e/inputs/test_hostile_friction.py)."""
     extra = ("--restitution-law", "housner") if solver == "moreau_jean" else ()
     d = _json((*SIM, "--record", f"{files}/step.txt", "--units", "g", "--dt", "0.01", "--friction", "0",
                "--friction-kinetic", "0", "--solver", solver, *extra), tmp_path)

@@ -4,9 +4,8 @@
 from __future__ import annotations
 
 import importlib.util
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+from _support import ROOT
 
 #: Compiled functions still over a limit, by qualified name, while the kernels they belong to are being
 #: restructured (issue 43). The list may only shrink: the test fails when a function listed here no longer exists

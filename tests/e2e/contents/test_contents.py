@@ -1,6 +1,6 @@
 """The FEMA P-58 contents: the shipped blocks library, the study's design checks, a quick study end to end
 (its files, the resume, the pelicun export's round trip), and ``opsrock contents``: its refusals of bad
-input (the promise of tests/inputs/test_hostile_inputs.py: exit status 2, one line naming the argument, no
+input (the promise of tests/e2e/inputs/test_hostile_inputs.py: exit status 2, one line naming the argument, no
 traceback, nothing written) and an interruption that loses nothing."""
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Slow tier of :mod:`opsrock.solvers.rigid3d`: the planar limit on the paper's 400 pulses and on FEMA P695
-far-field records, and the convergence with the step (``pytest -m slow tests/solvers/test_rigid3d_slow.py``;
+far-field records, and the convergence with the step (``pytest -m slow tests/model/solvers/test_rigid3d_slow.py``;
 several minutes). The rates measured are in the module docstring of :mod:`opsrock.solvers.rigid3d`."""
 
 from __future__ import annotations

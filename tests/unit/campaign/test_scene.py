@@ -194,7 +194,7 @@ BAD_BLOCKS = [
     ('reason = "test"', "colour = 1", "block[0].colour", "1"),
     ('reason = "test"', "restitution_factor = 1.5", "block[0]", "{'width': 0.4, 'height': 2.2}"),
     # a mass distribution the block cannot have (Block's own checks; issue 32: a block too stocky for Housner's
-    # e_R is now a valid block that lands flat, tests/solvers/test_wide_blocks.py)
+    # e_R is now a valid block that lands flat, tests/model/solvers/test_wide_blocks.py)
     ("width = 0.50", "width = 0.50\ncm_height = 2.0", "block[1].cm_height", "2.0"),
     ("width = 0.50", "width = 0.50\nradius_of_gyration = 5.0", "block[1].radius_of_gyration", "5.0"),
     ("width = 0.50", 'width = 0.50\ncm_height = "low"', "block[1].cm_height", "'low'"),

@@ -122,7 +122,7 @@ def test_moreau_jean_impact_agrees_at_high_friction(mu):
     """Moreau-Jean's e_n = 0 corner impact with the block's own inertia (kappa = R²/r²) gives e_R for a stuck
     corner (mu infinite, or mu = 2, far above the stick limit): from theta = 1e-6 rad at theta' = -p the corner
     lands in the first step of dtau = 1e-5, ratio read after the second; gravity in that step moves it by
-    about 1.5e-5 (as tests/solvers/test_moreau_jean.py's homogeneous check: tolerance 5e-5)."""
+    about 1.5e-5 (as tests/model/solvers/test_moreau_jean.py's homogeneous check: tolerance 5e-5)."""
     block = _loaded(friction=mu, friction_kinetic=1.0 if mu else None)
     p, dtau = block.p, 1e-5
     r = mj.solve(block, None, theta0=1e-6, theta_dot0=-p, end_time=2 * dtau / p, dtau=dtau, history_dtau=dtau)

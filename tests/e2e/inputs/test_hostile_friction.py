@@ -140,7 +140,7 @@ def test_threshold_of_a_frictionless_block_ends_quickly(tmp_path):
 
 def test_a_short_free_flight_is_followed(files, tmp_path):
     """-3 g for 0.09 s then a 0.01-s ramp to 0: the block flies 0.5176 s (closed form in
-    tests/solvers/test_friction_ending.py) and lands flat, at rest."""
+    tests/model/solvers/test_friction_ending.py) and lands flat, at rest."""
     out, _ = _run((*SIM, *_rec(files), "--friction", "0.5", "--vertical-record", f"{files}/drop_short.txt", "--json"),
                   tmp_path)
     d = json.loads(out)

@@ -2,7 +2,7 @@
 
 Every reference is independent of the solver: Newmark's sliding block and its half-sine extension
 (:mod:`opsrock.published.newmark_1965`, themselves checked against direct integration in
-``tests/published/test_friction_closed_forms.py``), the static uplift threshold ``a_h = (g + a_v) tan(alpha)``,
+``tests/validation/published/test_friction_closed_forms.py``), the static uplift threshold ``a_h = (g + a_v) tan(alpha)``,
 Housner's rectangular-pulse threshold with ``g -> g + a_v`` (:mod:`opsrock.published.housner_1963`),
 Housner's ``e_H`` and the slipping-impact ratio of docs/guide/friction.md (a slipping corner), Shenton's
 initiation regions (:mod:`opsrock.published.shenton_1996`), the event-driven rigid-body solver

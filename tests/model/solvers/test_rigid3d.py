@@ -7,7 +7,7 @@ direction ``phi``, ``a = g/h min(b/|cos phi|, d/|sin phi|)``; Newmark's rectangu
 and the invariances of the model under a turn of the plan frame and under swapping width and depth.
 
 Tolerances are argued at each test from the steps' errors measured in the module docstring of
-:mod:`opsrock.solvers.rigid3d` (default ``dtau = 1e-4``). Slow tier: tests/solvers/test_rigid3d_slow.py.
+:mod:`opsrock.solvers.rigid3d` (default ``dtau = 1e-4``). Slow tier: tests/model/solvers/test_rigid3d_slow.py.
 """
 
 from __future__ import annotations

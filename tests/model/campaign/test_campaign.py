@@ -265,7 +265,7 @@ def test_ctrl_c_then_resume_computes_only_the_missing_cases(tmp_path):
     assert not [p for p in out.iterdir() if ".tmp-" in p.name]  # no temporary file left behind
 
 
-# behind slow: tests/inputs/test_hostile_environment.py kills the main process (SIGTERM, kill -9) mid-campaign
+# behind slow: tests/e2e/inputs/test_hostile_environment.py kills the main process (SIGTERM, kill -9) mid-campaign
 # and resumes in make test; this one stays for make test-slow (make test under 10 minutes on 2 cores)
 @pytest.mark.slow
 def test_sigkill_mid_campaign_then_resume(tmp_path):
@@ -379,7 +379,7 @@ def slow_fake_solve(block, excitation, solver, **settings) -> RockingResult:
 
 
 # behind slow to keep make test under 10 minutes on 2 cores (about 10 s): the local pool's dying and hung workers
-# (test_a_dying_worker_loses_only_its_case_and_a_resume_computes_it, tests/campaign/test_executors.py) stay in it
+# (test_a_dying_worker_loses_only_its_case_and_a_resume_computes_it, tests/model/campaign/test_executors.py) stay in it
 @pytest.mark.slow
 def test_a_dask_worker_killed_mid_campaign_loses_no_finished_case(tmp_path):
     pytest.importorskip("distributed")

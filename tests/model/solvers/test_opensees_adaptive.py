@@ -45,7 +45,7 @@ def test_adaptive_velocity_ratio_across_band_is_e():
     block = Block(0.50, 1.15)
     zero = OneSinePulse(pfa=1e-9, omega_p=50.0)  # no excitation to speak of
     # Eq. 8 as printed: the velocity ratio is e (the default energy law keeps e² of the energy, band
-    # potential included, instead: tests/test_model.py)
+    # potential included, instead: tests/model/test_model.py)
     kw = dict(theta0=0.5 * block.alpha, damper="entry_velocity")
     os_ = simulate(block, zero, solver="opensees", stop_at_rest=False, end_time=1.5, **kw)
     sd = simulate(block, zero, solver="sdof", end_time=1.5, **kw)

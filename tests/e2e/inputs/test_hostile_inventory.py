@@ -3,7 +3,7 @@
 the file, its line, the column and the value, writing nothing (the promise of :mod:`_hostile`).
 
 The readers are :mod:`opsrock.inventory.items` and :mod:`opsrock.inventory.motions`; their refusals are also
-tested in-process (``tests/inventory/``).
+tested in-process (``tests/model/inventory/``).
 """
 
 from __future__ import annotations

@@ -203,7 +203,7 @@ def all_cases(root: Path, base: Path) -> list[Case]:
 
 #: Scene cases swept by ``make test`` (one per kind of unmet need: a restitution, an end time, a vertical motion,
 #: and ``--solver`` on a scene); the others, the same checks on other solvers, behind ``slow``
-#: (tests/campaign/test_scene_capabilities.py loads every solver x need combination in make test, in-process).
+#: (tests/unit/campaign/test_scene_capabilities.py loads every solver x need combination in make test, in-process).
 QUICK_SCENES: tuple[str, ...] = ("scene_mj_default", "scene_friction_end_time", "scene_opensees_vertical",
                                  "scene_sdof_slider", "run_slider_housner_fast")
 

@@ -20,7 +20,7 @@ import pytest
 
 import opsrock
 
-ROOT = Path(__file__).resolve().parents[1]
+from _support import ROOT
 SCENES = {"paper", "spectrum", "tiny", "fema-far-field-ida", "fema-far-field-ida-b3"}
 
 

@@ -3,7 +3,7 @@
 It shares no numerics with :mod:`opsrock.solvers.housner_fast`: scipy's DOP853 (rtol 1e-10),
 restarted at every event, in the dimensionless time ``tau = p t``, integrating the free rocking
 after the pulse instead of using the fast solver's energy shortcut. The tests
-(``tests/solvers/test_housner_fast.py``) and the benchmark (:mod:`opsrock.bench.housner_fast`) measure the
+(``tests/model/solvers/test_housner_fast.py``) and the benchmark (:mod:`opsrock.bench.housner_fast`) measure the
 fast solver's accuracy against it.
 """
 

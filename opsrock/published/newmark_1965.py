@@ -12,7 +12,7 @@ A constant vertical floor acceleration ``a_v`` only changes the friction capacit
   its acceleration ``A g = a_p`` and the yield acceleration ``N g = mu g_v`` (here with ``g -> g_v``).
   Expanded: ``u_m = (a_p - mu g_v) t_1² a_p / (2 mu g_v)``. We quote the relation as it is usually cited
   (the paper itself was not available to us); it is re-derived in docs/guide/friction.md (rigid-plastic sliding) and checked
-  against direct integration in ``tests/published/test_friction_closed_forms.py``.
+  against direct integration in ``tests/validation/published/test_friction_closed_forms.py``.
 * **Half-sine pulse** ``a = a_p sin(omega t)`` for ``0 <= t <= pi / omega``: derived here (not in
   Newmark's paper). With ``r = mu g_v / a_p < 1`` and ``psi = asin(r)`` (the slip starts at
   ``omega t = psi``), while slipping::

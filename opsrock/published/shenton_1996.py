@@ -8,7 +8,7 @@ depends on the floor acceleration; the friction that pure rocking needs grows wi
 We could not read the paper's own inequalities. The criteria below are therefore derived here (from
 the first instant of each mode, docs/guide/friction.md: leaving rest), and were checked
 against those qualitative statements and against an independent Moreau-Jean time stepper with contact
-and friction at impulse level (:mod:`opsrock.solvers.moreau_jean`, ``tests/solvers/test_moreau_jean.py``); they
+and friction at impulse level (:mod:`opsrock.solvers.moreau_jean`, ``tests/model/solvers/test_moreau_jean.py``); they
 are not a transcription of Shenton's equations.
 
 Derivation in short. At rest (``theta = theta' = 0``) with floor accelerations ``a_h`` (horizontal) and

@@ -3,7 +3,7 @@
 Every solver is a package with ``settings.py``, ``solver.py`` (and, compiled, ``kernel.py``) whose
 ``solve(block, excitation, settings=None, **overrides) -> RockingResult`` keeps one written contract
 (the docstring of :mod:`opsrock.solvers.common`: the shared settings base, statuses, result fields and
-errors; tests/solvers/test_contract.py checks every registered solver against it). They share
+errors; tests/model/solvers/test_contract.py checks every registered solver against it). They share
 :mod:`~opsrock.solvers.common` and :mod:`~opsrock.solvers.status` and never each other's code:
 
 * ``opensees``: the paper's equivalent SDOF model built literally in OpenSeesPy (the only

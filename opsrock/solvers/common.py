@@ -1,7 +1,7 @@
 """What the solvers share: the contract, the settings base, the one settings merge, the run skeleton,
 the block's energy, the uplift search and the recorded history.
 
-The contract (every solver registered in :data:`opsrock.solvers.SOLVERS` keeps it; tests/solvers/
+The contract (every solver registered in :data:`opsrock.solvers.SOLVERS` keeps it; tests/model/solvers/
 test_contract.py checks it)
 -----------------------------------------------------------------------------------------------------
 Every solver is a package ``opsrock.solvers.<name>`` with ``settings.py`` (its frozen settings dataclass,

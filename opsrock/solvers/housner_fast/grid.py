@@ -107,7 +107,7 @@ def solve_grid(
     All inputs broadcast together; each element of the broadcast is one independent case.
     The kernel integrates in the dimensionless time ``tau = p t``, in which the peak rotation and
     the verdict depend on ``alpha``, ``e`` and the two ratios alone, so the block's size (``p``)
-    is not an input here (tests/solvers/test_housner_fast.py checks that claim against the dimensional
+    is not an input here (tests/model/solvers/test_housner_fast.py checks that claim against the dimensional
     solver ``housner``).
 
     Parameters

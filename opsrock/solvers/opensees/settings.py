@@ -107,7 +107,7 @@ class OpenSeesSettings(SolverSettings):
         elements (``eleResponse``, two calls a step); if False (default), compute them after the
         run from the same table (``ElasticMultiLinear`` interpolates it linearly) and the damper
         coefficient at each recorded state (``Viscous``: ``F = C theta'``): the same numbers
-        (tests/solvers/test_opensees_adaptive.py checks it) at a third less Python time per step.
+        (tests/model/solvers/test_opensees_adaptive.py checks it) at a third less Python time per step.
     record_every : int
         Keep every n-th step in the returned history (the last step is always kept) (-).
     explicit_step_check : bool

@@ -131,7 +131,7 @@ with their contact problems in closed form, steps 1-3 above; with NSGS instead, 
 rigid3d reproduces ``moreau_jean`` (the same scheme in the plane) to 1e-7 alpha on the pulse and 1e-5 on the record;
 like it, the rocking peak converges at first order with a scatter (each impact is located to a step). Hence the
 default ``dtau = 1e-4``: about 1e-3 alpha on records, 1e-4 on pulses. Planar limit (slow tier,
-tests/solvers/test_rigid3d_slow.py): the paper's 400 pulses (depth twice the width) against ``housner_fast`` 399/400
+tests/model/solvers/test_rigid3d_slow.py): the paper's 400 pulses (depth twice the width) against ``housner_fast`` 399/400
 verdicts, median ``|d theta_max| / alpha`` 3.3e-5, 95th percentile 2.2e-4; the one difference is the model's, not
 the scheme's: medicine_cabinet/f06/a09 leaves the floor (0.19 s of flight, which housner_fast's bilateral pivot
 cannot) and overturns, as ``moreau_jean`` does (a smooth step that held the pivot through that flight agreed with
@@ -140,7 +140,7 @@ sticking impulse would pull slides in the infinite-friction limit; when it was l
 bookcase/f01/a07-a10 stopped at 8.57-8.70 alpha, short of overturning at 8.8.) Against ``friction`` (mu = 0.5, which
 models flight): 400/400, median 6.2e-5, 95th percentile 2.3e-4. Twelve FEMA P695 far-field records at 0.45 g along
 ``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 3.8e-4, 95th percentile
-1.2e-3 (``pytest -s -m slow tests/solvers/test_rigid3d_slow.py`` prints them).
+1.2e-3 (``pytest -s -m slow tests/model/solvers/test_rigid3d_slow.py`` prints them).
 
 Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms; much of it
 numba's reference counting of the arrays passed between the kernel's functions), a few µs one slipping on one or two

@@ -58,7 +58,6 @@ from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
 
 from opsrock.block import Block
 from opsrock.constants import OVERTURNING_ANGLE, G
@@ -690,6 +689,9 @@ def first_exceedance(excitation: Any, level: float, t_start: float, t_stop: floa
     if not candidates:
         return None
     lo, hi = min(candidates)
+    from scipy.optimize import brentq  # here: scipy.optimize costs a third of a second to import, and a refused
+                                       # command line or a compiled solver's run never needs it
+
     tol = 1e-14 * max(1.0, abs(hi))
     root = brentq(f, lo, hi, xtol=tol, rtol=4 * np.finfo(float).eps)
     # step onto the exceeding side so the uplift starts with the right sign of theta''
@@ -704,6 +706,8 @@ def first_exceedance(excitation: Any, level: float, t_start: float, t_stop: floa
 def _crossing_brackets(f, grid: np.ndarray, vals: np.ndarray, level: float) -> list[tuple[float, float]]:
     """Brackets ``(t_lo, t_hi)`` with ``f(t_lo) <= 0 < f(t_hi)``: the first grid exceedance, and the first
     grid-local maximum just below the level that exceeds it between grid points."""
+    from scipy.optimize import minimize_scalar  # imported here as brentq above
+
     candidates: list[tuple[float, float]] = []
     above = np.flatnonzero(vals > 0.0)
     if above.size:

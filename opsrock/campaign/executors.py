@@ -42,8 +42,8 @@ from concurrent.futures import TimeoutError as FutureTimeout
 from concurrent.futures.process import BrokenProcessPool
 from typing import Callable, Iterator, Protocol, Sequence, TypeVar, runtime_checkable
 
-from opsrock._pool import (UNGUARDED_EXIT, leave_if_reimported, pool_allowed, unguarded_error, warn_unguarded_here,
-                           worker_start)
+from opsrock._pool import (UNGUARDED_EXIT, deferred_interrupts, leave_if_reimported, pool_allowed, unguarded_error,
+                           warn_unguarded_here, worker_start)
 from opsrock.errors import ExecutorUnavailableError, InputError
 from opsrock.limits import check_count
 
@@ -397,15 +397,23 @@ def _interrupts_held():
     """Hold SIGINT (and SIGTERM, SIGHUP) back while worker processes are spawned (``submit`` spawns them on
     demand): a child inherits the blocked signal mask, so a Ctrl-C during its start-up, before
     :func:`opsrock._pool.worker_start` runs, cannot make it print a traceback, and a stop cannot cut a spawn
-    in half; the parent gets the held signal as soon as the spawn is over."""
+    in half; the parent gets the held signal as soon as the spawn is over.
+
+    The mask holds the signal back from this thread only: another thread of the process (a progress bar's,
+    a queue's feeder) can still take it, and Python then runs the handler here, between two steps of the
+    spawn. So the handlers are also swapped for ones that record (:func:`opsrock._pool.deferred_interrupts`):
+    a stop that came in mid-spawn once left a child reading its start-up data from a parent that had gone,
+    and the child printed ``EOFError: Ran out of input`` after the command's one line (a SIGTERM test of a
+    loaded ``make test``)."""
     if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
         yield
         return
-    old = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
-    try:
-        yield
-    finally:
-        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+    with deferred_interrupts():
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
+        try:
+            yield
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)  # a held signal arrives here: recorded, raised next
 
 
 # --- Dask ------------------------------------------------------------------------------------

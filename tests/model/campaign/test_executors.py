@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import os
+import signal
 import sys
+import threading
 import time
 
 import pytest
@@ -164,3 +166,29 @@ def test_a_worker_makes_its_kernel_ready_before_it_takes_a_case(warm):
     with LocalPool(1, warm=warm) as pool:
         results = collect(pool, kernel_loaded_batch, make_batches([0, 1], 2))
     assert [r[1] for r in results] == [bool(warm)] * 2
+
+
+def test_a_stop_another_thread_takes_while_workers_spawn_waits_for_the_spawn():
+    """The signal mask holds a stop back from the main thread only; a thread started earlier (a progress bar's)
+    can take it, and Python then runs the handler in the main thread mid-spawn. Sent to such a thread
+    (``pthread_kill``, so the kernel cannot pick another), a Ctrl-C must still wait for the held block's end."""
+    from opsrock.campaign.executors import _interrupts_held
+
+    go, sent = threading.Event(), threading.Event()
+
+    def other_thread():
+        go.wait(10)
+        signal.pthread_kill(threading.get_ident(), signal.SIGINT)
+        sent.set()
+
+    thread = threading.Thread(target=other_thread)
+    thread.start()  # before the block: this thread's mask lets SIGINT in
+    steps = 0
+    with pytest.raises(KeyboardInterrupt):
+        with _interrupts_held():
+            go.set()
+            assert sent.wait(10)
+            thread.join(10)
+            for _ in range(10_000):  # bytecode on which Python would run a pending handler
+                steps += 1
+    assert steps == 10_000  # the whole block ran; the KeyboardInterrupt came after it

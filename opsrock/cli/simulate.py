@@ -326,17 +326,21 @@ def _text(result, block, motion, out) -> str:
     excitation = _first(motion)
     mass = "" if block.homogeneous else (f", centre of mass {block.h_cm:g} m up, radius of gyration "
                                          f"{block.r_gyration:.4g} m")
-    head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m{mass}: alpha = {block.alpha:.4f} rad, "
-            f"R = {block.R:.4f} m, p = {block.p:.4f} rad/s, e = {block.e:.4f}\n")
+    in_plan = "alpha_width" in out  # a box in three dimensions: alpha and pfa_ratio as _plan_ratios defines them
+    head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m{mass}: alpha{' across the width' * in_plan} = "
+            f"{block.alpha:.4f} rad, R = {block.R:.4f} m, p = {block.p:.4f} rad/s, e = {block.e:.4f}\n")
+    ratio = (f"{out['pfa_ratio']:.3g} x the PFA that uplifts it in the motion's direction" if in_plan
+             else f"{out['pfa_ratio']:.3g} g tan alpha")
     if "record" in out:
         motion = (f"record {out['record']} ({out['floor']}) x {out['scale']:.4g}: PFA = {excitation.pfa:.4g} m/s² "
-                  f"({out['pfa_ratio']:.3g} g tan alpha), dt = {excitation.dt:g} s, {excitation.duration:g} s\n")
+                  f"({ratio}), dt = {excitation.dt:g} s, {excitation.duration:g} s\n")
     else:
-        motion = (f"{excitation.shape} pulse PFA = {excitation.pfa:.4g} m/s² ({out['pfa_ratio']:.3g} g tan alpha), "
+        motion = (f"{excitation.shape} pulse PFA = {excitation.pfa:.4g} m/s² ({ratio}), "
                   f"omega_p = {excitation.omega_p:.4g} rad/s ({out['freq_ratio']:.3g} p), "
                   f"duration {excitation.duration:.4g} s\n")
+    alpha = f"x {out['alpha']:.4f} rad, the weaker axis's alpha" if in_plan else "alpha"
     return (head + motion + f"{result.solver}: {result.verdict}; theta_max = {result.theta_max:.5g} rad "
-            f"= {result.theta_max_over_alpha:.4g} alpha; {result.n_impacts} impacts, {result.n_steps} steps in "
+            f"= {result.theta_max_over_alpha:.4g} {alpha}; {result.n_impacts} impacts, {result.n_steps} steps in "
             f"{result.wall_time_s:.3f} s" + _contact_text(result, out) + _plan_text(out)
             + (f"\nfailed: {result.reason}" if not result.ok else ""))
 

@@ -147,6 +147,13 @@ def test_three_d_alpha_and_pfa_ratio_are_those_of_the_weaker_axis_and_the_motion
     assert out["pfa_ratio"] == pytest.approx(math.cos(math.radians(30.0)), rel=1e-12)
     assert out["pfa"] == pytest.approx(0.3 * G, rel=1e-12)
     assert out["verdict"] == "no_uplift"  # below the uplift level in its direction, as pfa_ratio < 1 says
+    # the text says the same, in words: not "g tan alpha", which is the width's ratio (0.3 g / 0.3 g = 1)
+    text = run_opsrock(["simulate", "--solver", "rigid3d", "--width", "0.6", "--depth", "0.4", "--height", "2.0",
+                        "--azimuth", "30", "--pfa", "0.3", "--freq-ratio", "3"], tmp_path, timeout=900)
+    assert text.returncode == 0, text.stderr
+    assert "g tan alpha" not in text.stdout
+    assert "(0.866 x the PFA that uplifts it in the motion's direction)" in text.stdout
+    assert "x 0.1974 rad, the weaker axis's alpha" in text.stdout and "alpha across the width = 0.2915" in text.stdout
 
 
 def test_wall_time_excludes_the_compilation(tmp_path):

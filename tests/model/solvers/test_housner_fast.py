@@ -372,3 +372,20 @@ def test_dense_spectrum_40000_cases_under_60_s():
     assert res.theta_max.size == 40_000
     assert res.ok.all()
     assert res.wall_time_s < 60.0
+
+
+def test_a_grids_wall_time_starts_once_the_kernel_is_loaded(monkeypatch):
+    """Issue 46: a first grid from an empty numba cache counted seconds of compilation in ``wall_time_s``. The
+    kernel is now called on no case (loaded, or compiled) before the clock starts: checked by the order of the
+    calls, which does not depend on how warm the cache or how fast the machine is."""
+    from opsrock.solvers.housner_fast import grid
+
+    events = []
+    kernel, clock = grid._solve_chunk, grid._time.perf_counter
+    monkeypatch.setattr(grid, "announce_compile", lambda *a: None)  # it inspects the real dispatcher
+    monkeypatch.setattr(grid, "_solve_chunk", lambda *a: (events.append(("kernel", a[2], a[3])), kernel(*a))[1])
+    monkeypatch.setattr(grid._time, "perf_counter", lambda: (events.append(("clock",)), clock())[1])
+    res = grid.solve_grid(0.25, 0.8, [2.0, 3.0], 3.0, threads=1)
+    assert events[0] == ("kernel", 0, 0)  # no case: the load
+    assert events[1] == ("clock",) and ("kernel", 0, 2) in events[2:]
+    assert res.wall_time_s > 0.0 and res.overturned.shape == (2,)

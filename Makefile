@@ -60,8 +60,10 @@ test-fuzz: install
 # studies/contents/README.md quotes.
 # Then the user's route (opsrock contents --inventory --motions): the shipped example inventory on the shipped
 # example floor motions, quick, into .pelicun-venv/inventory; pelicun runs its pelicun/ folder as it is (damage
-# and loss, tools/pelicun_inventory.py, and pelicun's own DL_calculation on its config.json) and prints each
-# item's expected number overturned per floor and direction beside the exact expectation over the records.
+# and loss, tools/pelicun_inventory.py, and pelicun's own DL_calculation on its config.json, its outputs kept in
+# .pelicun-venv/inventory/pelicun/results/) and prints per item and floor, each unit once, the expected units
+# damaged, overturned and repair cost beside the exact expectations over the records; it fails when pelicun's
+# means differ from them by more than four standard errors of its sampling.
 EXAMPLE_INVENTORY := opsrock/data/inventories/example.csv
 EXAMPLE_MOTIONS   := opsrock/data/examples/floor-motions/motions.csv
 

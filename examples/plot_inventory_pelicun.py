@@ -35,6 +35,12 @@ shown = fits[fits.ok & (fits.demand == "pfa")][["item", "floor", "direction", "o
 print("medians in g:")
 print(shown.to_string(index=False, float_format="%.3f"))
 
+# Each unit once, whatever the direction: expected units damaged (displaced or overturned) and repair cost per
+# item and floor, the exact expectation over the records with the fragilities the pelicun folder holds.
+expected = pd.read_csv(study.tables["expected"])
+print(expected[["item", "floor", "quantity", "expected_damaged", "expected_overturned", "expected_cost"]]
+      .to_string(index=False, float_format="%.3f"))
+
 # %%
 # The figures of the study's report, as written into its folder:
 figures = sorted((out / "figures").glob("*.png"))

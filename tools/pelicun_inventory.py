@@ -1,19 +1,21 @@
 """pelicun 3.10 on an inventory study's ``pelicun/`` folder as it is (``opsrock contents --inventory ...``):
 the damage assessment (and the loss assessment where the folder has a repair-cost model) that its
 ``config.json`` describes, through pelicun's ``DLCalculationAssessment`` (the engine of pelicun's
-``DL_calculation``), and each item's expected number overturned per floor and direction beside the exact
-expectation over the records (the study's ``expected.csv``). Runs in a venv that has pelicun 3.10
-(``.pelicun-venv``: pelicun pins scipy < 1.16 and pandas < 3); it does not import opsrock.
+``DL_calculation``), and per item and floor (each unit once) pelicun's mean units damaged, overturned and repair
+cost beside the study's exact expectations over the records (``expected.csv``), written to
+``FOLDER/results/comparison.csv``. Runs in a venv that has pelicun 3.10 (``.pelicun-venv``: pelicun pins
+scipy < 1.16 and pandas < 3; ``make test-pelicun`` makes it); it does not import opsrock.
 
     python tools/pelicun_inventory.py STUDY/pelicun [--repeat N] [--dl-calculation] [--out FILE.json]
 
 ``config.json`` paths are relative to the folder (``CustomDLDataFolder/`` is pelicun's custom model folder:
 this one). The demands are the records as recorded, in order and repeated (``CoupledDemands``), so pelicun's
-mean over the realisations samples only the capacities: each unit overturns or not on its own draw. Exit
-status 1 when pelicun's mean differs from the exact expectation by more than four standard errors of that
-sampling (each unit one Bernoulli draw per realisation, variance at most 1/4). ``--dl-calculation`` also
-runs pelicun's own ``DL_calculation.run_pelicun`` on the configuration (schema check included) into a
-temporary folder.
+mean over the realisations samples only the capacities: each unit is damaged or not on its own draw. Exit
+status 1 when pelicun's mean units damaged or overturned (all components) differs from the exact expectation by
+more than four standard errors of that sampling (each unit one Bernoulli draw per realisation, variance at most
+1/4). ``--dl-calculation`` also runs pelicun's own ``DL_calculation.run_pelicun`` on the configuration (schema
+check included) and keeps its outputs (``DL_summary.csv``, ``DV_repair_*``, ``DMG_*``, its log) in
+``FOLDER/results/``.
 """
 
 from __future__ import annotations
@@ -22,7 +24,6 @@ import argparse
 import json
 import math
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -41,8 +42,8 @@ def resolved(config: dict, folder: Path) -> dict:
 
 
 def damage_and_loss(config: dict, folder: Path, repeat: int | None):
-    """Run the assessment; returns (mean overturned per ``(cmp, loc, dir)``, realisations, mean repair cost
-    per realisation or None)."""
+    """Run the assessment; returns (mean units per ``(cmp, loc, dir, ds)``, realisations, mean repair cost per
+    ``cmp`` or None, mean total repair cost or None)."""
     from pelicun.assessment import DLCalculationAssessment
 
     dl = config["DL"]
@@ -64,9 +65,8 @@ def damage_and_loss(config: dict, folder: Path, repeat: int | None):
                            component_database_path=dl["Asset"]["ComponentDatabasePath"],
                            damage_process_approach=dl["Damage"]["DamageProcess"], custom_model_dir=str(folder))
     ds = asmnt.damage.ds_model.sample
-    ds1 = ds.loc[:, ds.columns.get_level_values("ds") == "1"]
-    counts = ds1.T.groupby(level=["cmp", "loc", "dir"]).sum().T.mean(axis=0)
-    cost = None
+    counts = ds.T.groupby(level=["cmp", "loc", "dir", "ds"]).sum().T.mean(axis=0)
+    cost, total = None, None
     repair = dl.get("Losses", {}).get("Repair")
     if repair:
         agg, _ = asmnt.calculate_loss(loss_map_approach=repair["MapApproach"], occupancy_type=None,
@@ -74,71 +74,99 @@ def damage_and_loss(config: dict, folder: Path, repeat: int | None):
                                       consequence_database_path=repair["ConsequenceDatabasePath"],
                                       custom_model_dir=str(folder), damage_process_approach="None",
                                       loss_map_path=repair["MapFilePath"], decision_variables=("Cost",))
-        cost = float(agg["repair_cost"].mean()) if "repair_cost" in agg else float(agg.iloc[:, 0].mean())
-    return counts, size, cost
+        total = float(agg["repair_cost"].mean()) if "repair_cost" in agg else float(agg.iloc[:, 0].mean())
+        sample = asmnt.loss.ds_model.sample
+        cost = sample.T.groupby(level="dmg").sum().T.mean(axis=0)
+    return counts, size, cost, total
 
 
-def compare(folder: Path, counts: pd.Series) -> pd.DataFrame:
-    """One row per item, floor and direction: pelicun's mean overturned count beside ``expected.csv``."""
-    mapping = pd.read_csv(folder / "mapping.csv", dtype={"floor": str, "direction": str})
-    expected = pd.read_csv(folder.parent / "expected.csv", dtype={"floor": str, "direction": str})
-    table = expected.merge(mapping[["item", "floor", "direction", "pelicun_id", "location", "status_pfv"]],
-                           on=["item", "floor", "direction"], how="left")
-    table["pelicun"] = [float(counts.get((cid, str(int(loc)), str(d)), 0.0)) if s == "ok" else math.nan
-                        for cid, loc, d, s in zip(table["pelicun_id"], table["location"], table["direction"],
-                                                  table["status_pfv"])]
-    return table
+def compare(folder: Path, counts: pd.Series, cost: pd.Series | None) -> pd.DataFrame:
+    """One row per item and floor: pelicun's mean units damaged (any damage state), overturned (the
+    overturned state, ``mapping.csv``) and repair cost beside the study's exact expectations (``expected.csv``)."""
+    mapping = pd.read_csv(folder / "mapping.csv", dtype={"floor": str})
+    expected = pd.read_csv(folder.parent / "expected.csv", dtype={"floor": str})
+    table = expected.merge(mapping[["pelicun_id", "location", "exported", *[c for c in mapping if c.startswith("ds")
+                                                                            and c[2:].isdigit()]]],
+                           on="pelicun_id", how="left")
+    by_cmp = counts.groupby(level=["cmp", "ds"]).sum()
+    damaged, overturned, costs = [], [], []
+    for r in table.itertuples():
+        if not r.exported:
+            damaged.append(math.nan), overturned.append(math.nan), costs.append(math.nan)
+            continue
+        states = [getattr(r, c) for c in table.columns if c.startswith("ds") and c[2:].isdigit()]
+        mine = {k: float(by_cmp.get((r.pelicun_id, str(k)), 0.0)) for k in range(1, len(states) + 1)}
+        damaged.append(sum(mine.values()))
+        overturned.append(sum(v for k, v in mine.items() if states[k - 1] == "overturned"))
+        costs.append(float(cost.get(r.pelicun_id, math.nan)) if cost is not None else math.nan)
+    return table.assign(pelicun_damaged=damaged, pelicun_overturned=overturned, pelicun_cost=costs)
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("folder", type=Path, help="the study's pelicun/ folder")
     ap.add_argument("--repeat", type=int, help="realisations per record (default: the configuration's)")
-    ap.add_argument("--dl-calculation", action="store_true", help="also run pelicun's DL_calculation on the config")
+    ap.add_argument("--dl-calculation", action="store_true",
+                    help="also run pelicun's DL_calculation on the config, its outputs into FOLDER/results/")
     ap.add_argument("--out", type=Path, help="also write the results (JSON)")
     args = ap.parse_args(argv)
     folder = args.folder.resolve()
     config = resolved(json.loads((folder / "config.json").read_text()), folder)
-    counts, size, cost = damage_and_loss(config, folder, args.repeat)
-    table = compare(folder, counts)
-    print(f"pelicun damage assessment of {folder} ({size} realisations, the records as recorded, repeated): "
-          "expected number overturned per item, floor and direction (pelicun / exact over the records)")
-    shown = table[["item", "floor", "direction", "quantity", "pelicun", "expected_overturned", "status_pfv"]]
-    with pd.option_context("display.width", 160, "display.max_rows", 500, "display.float_format", "{:.3f}".format):
-        print(shown.rename(columns={"expected_overturned": "exact", "status_pfv": "component"}).to_string(index=False))
-    have = table["status_pfv"].eq("ok")
-    tot_p, tot_e = float(table.loc[have, "pelicun"].sum()), float(table.loc[have, "expected_overturned"].sum())
+    counts, size, cost, total = damage_and_loss(config, folder, args.repeat)
+    table = compare(folder, counts, cost)
+    print(f"pelicun damage assessment of {folder} ({size} realisations, the records as recorded, repeated): per item "
+          "and floor, each unit once, the expected units damaged, overturned and repair cost (pelicun / exact over "
+          "the records)")
+    shown = table[["item", "floor", "location", "quantity", "pelicun_damaged", "expected_damaged", "pelicun_overturned",
+                   "expected_overturned", "pelicun_cost", "expected_cost"]]
+    with pd.option_context("display.width", 200, "display.max_rows", 500, "display.float_format", "{:.3f}".format):
+        print(shown.to_string(index=False))
+    have = table["exported"].fillna(False).astype(bool)
     n_units = float(table.loc[have, "quantity"].sum())
+    # each unit one Bernoulli draw per realisation (variance at most 1/4), the units independent
     tol = 4.0 * math.sqrt(max(n_units, 1.0) / 4.0 / size)
-    print(f"total over the components: pelicun {tot_p:.3f}, exact {tot_e:.3f} ({n_units:g} units; tolerance {tol:.3f})")
-    skipped = table.loc[~have, ["item", "floor", "direction", "status_pfv"]]
+    result = {"realisations": size, "tolerance": tol, "rows": table.replace({np.nan: None}).to_dict("records")}
+    bad = []
+    for what in ("damaged", "overturned"):
+        p, e = float(table.loc[have, f"pelicun_{what}"].sum()), float(table.loc[have, f"expected_{what}"].sum())
+        print(f"units {what}, all components: pelicun {p:.3f}, exact {e:.3f} ({n_units:g} units; tolerance {tol:.3f})")
+        result[f"pelicun_{what}"], result[f"exact_{what}"] = p, e
+        if abs(p - e) > tol:
+            bad.append(what)
+    skipped = table.loc[~have, ["item", "floor", "status"]]
     if len(skipped):
-        print(f"{len(skipped)} item-floor-directions without a PFV damage model (counted 0 by pelicun; mapping.csv says why)")
-    result = {"realisations": size, "pelicun_total": tot_p, "exact_total": tot_e, "tolerance": tol,
-              "rows": table.replace({np.nan: None}).to_dict("records")}
-    if cost is not None:
-        costs = pd.read_csv(folder / "loss_repair.csv", index_col=0)["DS1-Theta_0"]
-        exact_cost = sum(costs.get(f"{cid}-Cost", 0.0) * e for cid, e, s in
-                         zip(table["pelicun_id"], table["expected_overturned"], table["status_pfv"]) if s == "ok")
-        print(f"loss assessment: mean repair cost {cost:.2f} per realisation (exact over the records {exact_cost:.2f})")
-        result.update(repair_cost=cost, exact_repair_cost=exact_cost)
+        print(f"{len(skipped)} item-floors without a damage model (counted 0 by pelicun; mapping.csv says why)")
+    if total is not None:
+        exact_cost = float(table.loc[have, "expected_cost"].sum())
+        print(f"loss assessment: mean repair cost {total:.2f} per realisation (exact over the records {exact_cost:.2f})")
+        result.update(repair_cost=total, exact_repair_cost=exact_cost)
+    (folder / "results").mkdir(exist_ok=True)
+    table.to_csv(folder / "results" / "comparison.csv", index=False)
     if args.dl_calculation:
-        from pelicun.tools.DL_calculation import run_pelicun
-
-        with tempfile.TemporaryDirectory() as tmp:
-            path = Path(tmp) / "config.json"
-            config["DL"]["Options"]["LogFile"] = str(Path(tmp) / "pelicun_log.txt")  # not into the working folder
-            path.write_text(json.dumps(config))
-            run_pelicun(str(path), config["DL"]["Demands"]["DemandFilePath"], str(Path(tmp) / "out"), size, None,
-                        str(folder), ["csv"], detailed_results=False, coupled_edp=True)
-            made = sorted(p.name for p in (Path(tmp) / "out").iterdir())
-        print(f"pelicun DL_calculation ran the configuration: {', '.join(made)}")
+        made = dl_calculation(config, folder, size)
+        print(f"pelicun DL_calculation ran the configuration; its outputs in {folder / 'results'}: {', '.join(made)}")
     if args.out:
         args.out.write_text(json.dumps(result, indent=1))
-    if abs(tot_p - tot_e) > tol:
-        print(f"pelicun's mean differs from the exact expectation by more than {tol:.3f}", file=sys.stderr)
+    if bad:
+        print(f"pelicun's mean differs from the exact expectation by more than {tol:.3f} ({', '.join(bad)})",
+              file=sys.stderr)
         return 1
     return 0
+
+
+def dl_calculation(config: dict, folder: Path, size: int) -> list[str]:
+    """pelicun's own ``DL_calculation.run_pelicun`` on the configuration (schema check included), its outputs
+    (``DL_summary.csv``, ``DV_repair_*``, ``DMG_*``, its log) kept in ``folder/results/``; the file names."""
+    from pelicun.tools.DL_calculation import run_pelicun
+
+    out = folder / "results"
+    out.mkdir(exist_ok=True)
+    path = out / "config.json"
+    config["DL"]["Options"]["LogFile"] = str(out / "pelicun_log.txt")
+    path.write_text(json.dumps(config, indent=2))
+    run_pelicun(str(path), config["DL"]["Demands"]["DemandFilePath"], str(out), size, None, str(folder), ["csv"],
+                detailed_results=True, coupled_edp=True)
+    return sorted(p.name for p in out.iterdir())
 
 
 if __name__ == "__main__":

@@ -8,11 +8,20 @@ as recorded at that floor and direction (:func:`opsrock.inventory.campaigns.floo
 on a support (whose campaign scaled the floor motion before its oscillator), so that the fragility is in the
 demand pelicun assesses.
 
+Outcomes perfectly separated by the demand (every case below a gap survived, every case above it did not) have
+no finite maximum-likelihood fit: the row's ``ok`` is False, its ``status`` ``no fit``, and it keeps the gap's
+middle as ``median`` with ``beta`` 0 (a step), which :mod:`opsrock.inventory.components` uses as such.
+
 A fit whose median lies beyond the largest demand of its cases (a few exceedances at the top levels) is kept,
 with the status ``extrapolated`` (column ``status``, :data:`FIT_STATUSES`) and a message that says so.
 
 Sliding "beyond ``slide_distance``" is ``slide_max >= slide_distance``: the peak displacement of the base
-relative to the floor (m), whether the item then overturned or not.
+relative to the floor (m), whether the item then overturned or not (the item's own ``slide_distance`` where the
+inventory gives one, else the study's). ``displaced`` is sliding beyond it *or* overturning: the first damage
+state of the item's pelicun component, which overturning (the second) follows
+(:mod:`opsrock.inventory.components`). These fits are per direction (``direction`` 1 or 2: the item rocking
+and sliding in that plane alone); the item's damage under both components at once is
+:mod:`opsrock.inventory.components`'.
 
 ``ratio_fema`` is opsrock's PFV median over FEMA P-58's (:data:`opsrock.published.fema_p58.ITEMS`) for the
 overturning rows of an item that names one of FEMA's nine unanchored items; FEMA's fragilities are in PFV
@@ -24,11 +33,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import numpy as np
 import pandas as pd
 
 from opsrock.constants import G
-from opsrock.fragility.lognormal import fragility_probability
 
 #: Demands fitted: name -> (unit, column of the floor demands, divisor).
 DEMANDS: dict[str, tuple[str, str, float]] = {"pfv": ("m/s", "pfv", 1.0), "pfa": ("g", "pfa", G)}
@@ -57,13 +64,20 @@ def fit_status(ok: bool, median: float, x_max: float, n_exceeded: int, n_cases: 
 
 
 def outcomes(cases: pd.DataFrame, slide_distance: float) -> dict[str, pd.Series]:
-    """The outcomes a group of cases is fitted for: ``overturning`` always, ``sliding`` (``slide_max >=
-    slide_distance``, m) when friction is modelled (a ``slide_max`` was computed)."""
+    """The outcomes a group of cases is fitted for: ``overturning`` always; when friction is modelled (a
+    ``slide_max`` was computed) also ``sliding`` (``slide_max >= slide_distance``, m) and ``displaced`` (sliding
+    that far or overturning)."""
     out = {"overturning": cases["overturned"].astype(bool)}
-    slide = cases["slide_max"].astype(float)
+    slide = cases["slide_max"].astype(float) if "slide_max" in cases else pd.Series(math.nan, index=cases.index)
     if slide.notna().any():
         out["sliding"] = slide.fillna(0.0) >= slide_distance
+        out["displaced"] = out["sliding"] | out["overturning"]
     return out
+
+
+def slide_distance_of(item: Any, study: Any) -> float:
+    """The distance (m) beyond which ``item`` counts as displaced: its own, else the study's."""
+    return item.slide_distance if getattr(item, "slide_distance", None) is not None else study.slide_distance
 
 
 def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: int | None) -> pd.DataFrame:
@@ -87,7 +101,7 @@ def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: i
     rows, plans, where = [], [], []
     for (item, floor, direction), g in scaled.groupby(["item", "floor", "direction"], sort=False):
         ok = g[g["status"] == "ok"]
-        for outcome, y in outcomes(ok, study.slide_distance).items():
+        for outcome, y in outcomes(ok, slide_distance_of(items[item], study)).items():
             for demand, (unit, _, _) in DEMANDS.items():
                 row = _row_keys(items[item], floor, direction, outcome, demand, unit, study.method)
                 row.update(n_cases=len(ok), n_exceeded=int(y.sum()), n_failed=len(g) - len(ok),
@@ -103,8 +117,9 @@ def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: i
                 rows.append(row)
     for (i, x_max), f in zip(where, fit_plans(plans, workers or 1)):
         ok = bool(f.success and math.isfinite(f.mu))
-        rows[i].update(median=f.mu if ok else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
-                       beta=f.beta if ok else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=ok,
+        step = not ok and f.beta == 0.0 and math.isfinite(f.mu)  # separated outcomes: kept as a step at the gap
+        rows[i].update(median=f.mu if ok or step else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
+                       beta=f.beta if ok or step else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=ok,
                        status=fit_status(ok, f.mu, x_max, rows[i]["n_exceeded"], rows[i]["n_cases"]))
         rows[i]["message"] = _extrapolated(f.mu, x_max, rows[i]) if rows[i]["status"] == "extrapolated" else f.message
     table = pd.DataFrame(rows, columns=list(FIT_COLUMNS))
@@ -143,7 +158,7 @@ def fema_median(fema_id: str) -> float:
 
 
 def _verb(outcome: str) -> str:
-    return "overturned" if outcome == "overturning" else "slid that far"
+    return {"overturning": "overturned", "sliding": "slid that far"}.get(outcome, "slid that far or overturned")
 
 
 def _within(method: str) -> str:
@@ -156,32 +171,4 @@ def _no_fit(message: str) -> dict[str, Any]:
             "ok": False, "message": message}
 
 
-def expected_table(fits: pd.DataFrame, cases: pd.DataFrame, demands: pd.DataFrame, study: Any) -> pd.DataFrame:
-    """The expected number of each item overturned per floor and direction under the motions as recorded.
-
-    ``expected_overturned = quantity x mean_r Phi(ln(PFV_r / theta) / beta)``: the exact expectation over the
-    records ``r`` of that floor and direction with the fitted PFV fragility (0 where the item never overturned
-    within the study, NaN where its fit failed); for a cloud also ``empirical_overturned``, ``quantity`` times
-    the share of the records under which it overturned (NaN for IDA)."""
-    items = {it.id: it for it in study.inventory.items}
-    pfv = fits[(fits["outcome"] == "overturning") & (fits["demand"] == "pfv")]
-    rows = []
-    for _, r in pfv.iterrows():
-        item = items[r["item"]]
-        d = demands[(demands["floor"] == r["floor"]) & (demands["direction"] == r["direction"])]["pfv"].to_numpy(float)
-        if r["ok"]:
-            p = float(np.mean(fragility_probability(d, r["median"], r["beta"])))
-        else:
-            p = 0.0 if r["n_exceeded"] == 0 and r["n_cases"] > 0 else math.nan
-        row = {"item": r["item"], "floor": r["floor"], "direction": r["direction"], "quantity": item.quantity,
-               "n_records": len(d), "expected_overturned": item.quantity * p, "empirical_overturned": math.nan}
-        if study.method == "cloud":
-            c = cases[(cases["item"] == r["item"]) & (cases["floor"] == r["floor"])
-                      & (cases["direction"] == r["direction"]) & (cases["status"] == "ok")]
-            row["empirical_overturned"] = item.quantity * float(c["overturned"].mean()) if len(c) else math.nan
-        rows.append(row)
-    return pd.DataFrame(rows, columns=["item", "floor", "direction", "quantity", "n_records", "expected_overturned",
-                                       "empirical_overturned"])
-
-
-__all__ = ["DEMANDS", "FIT_COLUMNS", "FIT_STATUSES", "fit_status", "expected_table", "fema_median", "fit_table", "outcomes"]
+__all__ = ["DEMANDS", "FIT_COLUMNS", "FIT_STATUSES", "fit_status", "slide_distance_of", "fema_median", "fit_table", "outcomes"]

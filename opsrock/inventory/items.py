@@ -8,7 +8,8 @@ along direction 2), optional ``mass`` (kg), ``cm_height`` (m), ``radius_of_gyrat
 :mod:`opsrock.inventory.friction`), ``friction_kinetic``, ``restitution``, ``fema_id``, ``floor`` (the floors
 it stands on, separated by ``;``; empty: every floor of the motions), ``quantity`` (per floor),
 ``support_period`` (s) and ``support_damping`` (-) for an item standing on a desk, table or shelf,
-``repair_cost``.
+``repair_cost`` (per overturned unit), ``slide_distance`` (m: the item counts as displaced once it slides
+that far; default the study's) and ``slide_cost`` (per unit displaced but not overturned).
 
 A CSV file has a header row naming its columns (any order, any case, spaces trimmed), then one row per item;
 lines starting with ``#`` are comments, blank lines and blank cells are allowed (a blank optional cell takes
@@ -49,7 +50,8 @@ DIRECTIONS: tuple[str, ...] = ("1", "2")
 #: The inventory's columns, in the order :func:`write_inventory` writes them.
 COLUMNS: tuple[str, ...] = ("id", "description", "width", "depth", "height", "mass", "cm_height",
                             "radius_of_gyration", "friction", "friction_kinetic", "restitution", "fema_id", "floor",
-                            "quantity", "support_period", "support_damping", "repair_cost")
+                            "quantity", "support_period", "support_damping", "repair_cost", "slide_distance",
+                            "slide_cost")
 
 #: The columns every inventory has.
 REQUIRED: tuple[str, ...] = ("id", "description", "width", "depth", "height")
@@ -122,6 +124,11 @@ class Item:
         The desk, table or shelf it stands on; None: the floor itself.
     repair_cost : float or None
         Cost of one overturned unit (the inventory's currency), >= 0; None: no loss assessment.
+    slide_distance : float or None
+        Sliding (or rolling, on casters) beyond it (m) displaces the item: the damage state below overturning
+        where friction is modelled; None: the study's ``slide_distance``.
+    slide_cost : float or None
+        Cost of one unit displaced but not overturned (the inventory's currency), >= 0; None: not priced (0).
     """
 
     id: str
@@ -140,6 +147,8 @@ class Item:
     quantity: float = 1.0
     support: Support | None = None
     repair_cost: float | None = None
+    slide_distance: float | None = None
+    slide_cost: float | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.id, str) or not NAME_PATTERN.match(self.id):
@@ -160,6 +169,14 @@ class Item:
         if self.repair_cost is not None:
             cost = _argued("repair_cost", check_nonnegative, "repair_cost", self.repair_cost)
             object.__setattr__(self, "repair_cost", cost)
+        if self.slide_cost is not None:
+            object.__setattr__(self, "slide_cost", _argued("slide_cost", check_nonnegative, "slide_cost", self.slide_cost))
+        if self.slide_distance is not None:
+            value = self.slide_distance
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+                raise InputError(f"slide_distance of item {self.id!r} must be a positive distance (m), got {value!r}",
+                                 argument="slide_distance")
+            object.__setattr__(self, "slide_distance", float(value))
         for direction in DIRECTIONS:
             self.planar_block(direction)  # the Block's own checks, in both directions
 
@@ -339,7 +356,8 @@ _PARSERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
     "friction_kinetic": ("friction_kinetic", number_cell), "restitution": ("restitution", number_cell),
     "fema_id": ("fema_id", text_cell), "quantity": ("quantity", quantity_cell),
     "floor": ("floors", floors_cell),
-    "repair_cost": ("repair_cost", number_cell),
+    "repair_cost": ("repair_cost", number_cell), "slide_distance": ("slide_distance", number_cell),
+    "slide_cost": ("slide_cost", number_cell),
 }
 
 
@@ -445,7 +463,7 @@ def item_cells(item: Item) -> dict[str, Any]:
         "floor": FLOOR_SEPARATOR.join(item.floors) or None, "quantity": item.quantity,
         "support_period": None if item.support is None else item.support.period,
         "support_damping": None if item.support is None else item.support.damping,
-        "repair_cost": item.repair_cost,
+        "repair_cost": item.repair_cost, "slide_distance": item.slide_distance, "slide_cost": item.slide_cost,
     }
     return {k: v for k, v in cells.items() if v is not None}
 

@@ -103,10 +103,14 @@ class MotionSet:
         In manifest order.
     source : str
         The manifest read, or a description of the building filter.
+    locations : tuple of (str, int)
+        Each floor label's pelicun location (the manifest's ``location`` column; 1 the ground floor); empty: not
+        given (:func:`opsrock.inventory.pelicun.floor_locations` then says which floor it takes as the ground).
     """
 
     motions: tuple[FloorMotion, ...]
     source: str
+    locations: tuple[tuple[str, int], ...] = ()
 
     def __post_init__(self) -> None:
         motions = tuple(self.motions)

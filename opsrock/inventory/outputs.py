@@ -12,10 +12,12 @@ from typing import Any
 import pandas as pd
 
 #: Files the study writes into its folder (besides ``campaigns/``).
-TABLES: dict[str, str] = {"fits": "fits.csv", "demands": "demands.csv", "expected": "expected.csv"}
+TABLES: dict[str, str] = {"fits": "fits.csv", "components": "components.csv", "demands": "demands.csv",
+                          "expected": "expected.csv"}
 
 #: Every output the study owns in its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
-OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pelicun/*.csv", "pelicun/*.json")
+OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pelicun/*.csv", "pelicun/*.json",
+                              "pelicun/per_direction/*.csv")
 
 
 @dataclass(frozen=True)
@@ -68,14 +70,23 @@ def write_csv(df: pd.DataFrame, path: Path) -> Path:
     return path
 
 
-def study_tables(a: Any, cases: pd.DataFrame) -> dict[str, pd.DataFrame]:
-    """``fits`` (with their pelicun IDs), ``demands`` and ``expected`` (:data:`TABLES`) of the assessment ``a``
-    (:class:`opsrock.inventory.stages.Assessment`) from ``cases``: one row per item, floor and direction."""
-    from opsrock.inventory.fits import expected_table, fit_table
-    from opsrock.inventory.pelicun import with_pelicun_ids
+def study_tables(a: Any, cases: pd.DataFrame, components: pd.DataFrame | None = None) -> dict[str, pd.DataFrame]:
+    """The tables (:data:`TABLES`) of the assessment ``a`` (:class:`opsrock.inventory.stages.Assessment`) from
+    ``cases``: ``fits`` one row per item, floor, direction, outcome and demand (each with the ``pelicun_id`` of the
+    component it feeds); ``components`` one row per item, floor and limit state (given, from the route in three
+    dimensions, or the planar fits' two directions combined:
+    :func:`opsrock.inventory.components.planar_components`); ``demands``; ``expected`` one row per item and floor
+    (:func:`opsrock.inventory.components.expected_table`)."""
+    from opsrock.inventory.components import component_id, expected_table, planar_components
+    from opsrock.inventory.fits import fit_table
 
-    fits = with_pelicun_ids(fit_table(cases, a.demands, a.design, workers_of(a.workers)), a.design.motions.directions)
-    return {"fits": fits, "demands": a.demands, "expected": expected_table(fits, cases, a.demands, a.design)}
+    fits = fit_table(cases, a.demands, a.design, workers_of(a.workers))
+    fits["pelicun_id"] = [component_id(i, str(f)) for i, f in zip(fits["item"], fits["floor"])]
+    planar = components is None
+    if planar:
+        components = planar_components(fits, a.demands, a.design)
+    expected = expected_table(components, a.demands, a.design, fits if planar else None, cases)
+    return {"fits": fits, "components": components, "demands": a.demands, "expected": expected}
 
 
 def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> tuple[dict[str, Path], dict[str, Path], Path]:
@@ -85,7 +96,7 @@ def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> tuple[dic
 
     t0 = time.perf_counter()
     paths = {k: write_csv(df, stage / TABLES.get(k, f"{k}.csv")) for k, df in a.tables.items()}
-    pel = write_pelicun_folder(a.tables["fits"], a.demands, a.design, stage / "pelicun")
+    pel = write_pelicun_folder(a.tables["components"], a.tables["fits"], a.demands, a.design, stage / "pelicun")
     a.timings["outputs_s"] = time.perf_counter() - t0
     a.timings["total_s"] = time.perf_counter() - a.t_start
     report = _write_report(stage, {**a.tables, "design": a.design, "cases": a.cases, "timings": a.timings,

@@ -57,7 +57,8 @@ class ReportInputs:
     demands : pandas.DataFrame
         ``demands.csv`` (PFA in m/s², PFV in m/s).
     expected : pandas.DataFrame
-        ``expected.csv``: ``item, floor, direction, quantity, expected_overturned`` (counts).
+        ``expected.csv`` (:func:`opsrock.inventory.components.expected_table`): per item and floor the units
+        (counts) expected damaged, displaced only, overturned, and the expected repair cost.
     inventory : pandas.DataFrame
         One row per item: ``id, description, width, depth, height`` (m) and the optional columns.
     table : pandas.DataFrame
@@ -218,16 +219,41 @@ def footnotes(table: pd.DataFrame, verb: str) -> list[str]:
     return [*(f"{line}\n" for line in lines)]
 
 
+#: The expected-loss table's columns: ``expected.csv`` column -> (header, unit).
+EXPECTED_SHOWN: dict[str, tuple[str, str]] = {
+    "item": ("item", ""), "floor": ("floor", "label"), "quantity": ("units on the floor", "count"),
+    "expected_damaged": ("expected damaged", "count"), "expected_displaced_only": ("displaced, not overturned", "count"),
+    "expected_overturned": ("overturned", "count"), "expected_damaged_combined": ("damaged, before the lognormal", "count"),
+    "expected_cost": ("expected repair cost", "currency"),
+}
+
+
 def _expected_lines(expected: pd.DataFrame, pelicun: dict[str, str]) -> list[str]:
     if expected is None or expected.empty:
         return []
-    cols = [c for c in ("item", "floor", "direction", "quantity", "expected_overturned") if c in expected.columns]
-    return ["## Expected number overturned", "",
-            "Per item, floor and direction: the quantity on the floor and the expected number overturned, the exact "
-            "expectation over the records (each record weighted equally, the fitted PFV curve at its demand), "
-            "which the pelicun assessment of the files below should reproduce"
-            + (f" (`{pelicun['fragility']}`)" if "fragility" in pelicun else "") + ":", "",
-            markdown_table(expected[cols], ".3g"), ""]
+    cols = [c for c in EXPECTED_SHOWN if c in expected.columns and not (c == "expected_damaged_combined"
+                                                                          and expected[c].isna().all())]
+    shown = expected[cols].astype(object)
+    if "expected_cost" in cols:  # currency to the unit, not in exponent form
+        shown["expected_cost"] = [f"{v:,.0f}" if isinstance(v, float) and math.isfinite(v) else "-"
+                                  for v in expected["expected_cost"]]
+    shown = shown.rename(columns={c: EXPECTED_SHOWN[c][0] for c in cols})
+    units = pd.DataFrame([{EXPECTED_SHOWN[c][0]: f"({EXPECTED_SHOWN[c][1]})" if EXPECTED_SHOWN[c][1] else "(unit)"
+                           for c in cols}])
+    cost = expected["expected_cost"].sum(min_count=1) if "expected_cost" in expected else math.nan
+    return ["## Expected units damaged and repair cost", "",
+            "Per item and floor, each unit counted once whatever the direction: the expected number of units damaged "
+            "(displaced, i.e. slid beyond the item's distance or overturned), of those only displaced, and overturned, "
+            "and the expected repair cost (overturned units at `repair_cost`, units only displaced at `slide_cost`); "
+            "the exact expectation over the records as recorded (each weighted equally) with the fragilities pelicun is "
+            "given"
+            + (f" (`{pelicun['fragility']}`)" if "fragility" in pelicun else "")
+            + ", which pelicun's assessment of that folder reproduces within its sampling error. \"damaged, before the "
+            "lognormal\" is the same count from the two directions' combined curve before a lognormal is fitted to it "
+            "(the lognormal's own error).", "",
+            markdown_table(pd.concat([units, shown.astype(object)], ignore_index=True), ".3g"), "",
+            f"Total expected repair cost: {cost:,.0f} (the inventory's currency)." if math.isfinite(cost) else
+            "No item gives a `repair_cost`: no repair cost is computed.", ""]
 
 
 def _failure_lines(inputs: ReportInputs) -> list[str]:

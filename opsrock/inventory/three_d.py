@@ -18,7 +18,8 @@ non-directional demand. Pelicun's non-directional demand is the larger direction
 ``NonDirectionalMultipliers`` (default ``{"ALL": 1.2}``, "based on FEMA P-58"): NHERI-SimCenter/pelicun,
 ``pelicun/base.py`` (``Options``) and ``pelicun/model/damage_model.py`` (a demand of direction 0 is "the
 maximum of all available directions" scaled by ``nondir_multi``); neither the geometric mean nor the SRSS. So
-``pfv_nd = 1.2 max(pfv_1, pfv_2)``, and its fitted median is 1.2 times ``pfv_max``'s with the same ``beta``
+``pfv_max_x1.2 = 1.2 max(pfv_1, pfv_2)`` (not ``pfv_nd``, which in the directionality study is the peak of the
+horizontal velocity vector), and its fitted median is 1.2 times ``pfv_max``'s with the same ``beta``
 (the lognormal fit is scale-equivariant), given for reading against FEMA P-58's non-directional medians.
 
 Outputs (in ``out_dir``, through a staging folder): the planar route's (:data:`opsrock.inventory.outputs.OUTPUTS`:
@@ -52,7 +53,8 @@ PFV_CONVENTIONS: dict[str, str] = {
     "pfv_1": "PFV of direction 1",
     "pfv_2": "PFV of direction 2",
     "pfv_max": "the larger PFV of the two directions",
-    "pfv_nd": f"non-directional: {NONDIRECTIONAL_FACTOR:g} x the larger (pelicun's NonDirectionalMultipliers)",
+    "pfv_max_x1.2": f"pelicun's default non-directional demand: {NONDIRECTIONAL_FACTOR:g} x the larger "
+                    "(NonDirectionalMultipliers; the pelicun folder sets it to 1.0 and uses pfv_max)",
 }
 
 #: Columns of ``fits3d.csv``, in order: per item, floor and demand convention (``demand``, m/s) the lognormal
@@ -130,7 +132,7 @@ def pfv_demands(cases: pd.DataFrame, demands: pd.DataFrame) -> pd.DataFrame:
         keys = list(zip(cases["record"], cases["floor"], [direction] * len(cases)))
         out[f"pfv_{direction}"] = scale * d.reindex(keys).to_numpy(float)
     out["pfv_max"] = np.maximum(out["pfv_1"], out["pfv_2"])
-    out["pfv_nd"] = NONDIRECTIONAL_FACTOR * out["pfv_max"]
+    out["pfv_max_x1.2"] = NONDIRECTIONAL_FACTOR * out["pfv_max"]
     return out
 
 
@@ -152,7 +154,7 @@ def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers
                    "method": design.method, "n_cases": len(ok), "n_exceeded": int(y.sum()),
                    "n_corner": int((ok["overturned_over"] == "corner").sum()), "n_failed": len(g) - len(ok),
                    "n_records": int(ok["record"].nunique()), "n_azimuths": int(ok["azimuth"].nunique()),
-                   "fema_id": item.fema_id, "fema_median": fema if demand == "pfv_nd" else math.nan,
+                   "fema_id": item.fema_id, "fema_median": fema if demand == "pfv_max_x1.2" else math.nan,
                    "median": math.nan, "median_lo": math.nan, "median_hi": math.nan, "beta": math.nan,
                    "beta_lo": math.nan, "beta_hi": math.nan, "ok": False, "message": ""}
             if not y.any():
@@ -184,7 +186,10 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
     """The planar route's tables from :func:`per_direction` cases, and ``fits3d`` (:func:`fit3d_table`)."""
     from opsrock.inventory.outputs import study_tables, workers_of
 
-    return {**study_tables(a, per_direction(a.cases)),
+    from opsrock.inventory.components import three_d_components
+
+    components = three_d_components(a.cases, a.demands, a.design, workers_of(a.workers))
+    return {**study_tables(a, per_direction(a.cases), components),
             "fits3d": fit3d_table(a.cases, a.demands, a.design, workers_of(a.workers))}
 
 

@@ -86,35 +86,39 @@ def test_the_second_run_computes_nothing_and_writes_the_same_fits(study):
 
 
 def test_expected_is_the_exact_expectation_over_the_records(study):
-    """``quantity x mean_r Phi(ln(PFV_r / theta) / beta)`` recomputed from fits.csv and demands.csv with
-    scipy's normal CDF (an independent evaluation of the same closed form: agreement to rounding)."""
-    fits = pd.read_csv(study[0].tables["fits"], dtype={"floor": str, "direction": str})
+    """``quantity x mean_r Phi(ln(pfv_max_r / theta) / beta)`` with the component's fragility, recomputed from
+    components.csv and demands.csv with scipy's normal CDF (an independent evaluation of the same closed form:
+    agreement to rounding); one direction here, so ``pfv_max`` is its PFV."""
+    comps = pd.read_csv(study[0].tables["components"], dtype={"floor": str})
     demands = pd.read_csv(study[0].tables["demands"], dtype={"floor": str, "direction": str})
-    expected = pd.read_csv(study[0].tables["expected"], dtype={"floor": str, "direction": str})
+    expected = pd.read_csv(study[0].tables["expected"], dtype={"floor": str})
     assert {"pfa", "pfv", "pfd", "mean_period", "predominant_period"} <= set(demands.columns)
     assert len(demands) == len(RECORDS) * len(FLOORS)
+    assert len(expected) == 3  # the bookcase on two floors, the printer on one: each unit once
     for _, r in expected.iterrows():
-        f = fits[(fits["item"] == r["item"]) & (fits["floor"] == r["floor"]) & (fits["demand"] == "pfv")].iloc[0]
+        c = comps[(comps["item"] == r["item"]) & (comps["floor"] == r["floor"])].iloc[0]
         pfv = demands.loc[demands["floor"] == r["floor"], "pfv"].to_numpy()
-        if f["ok"]:
-            want = r["quantity"] * norm.cdf(np.log(pfv / f["median"]) / f["beta"]).mean()
+        if c["status"] == "fitted":
+            want = r["quantity"] * norm.cdf(np.log(pfv / c["median"]) / c["beta"]).mean()
             assert r["expected_overturned"] == pytest.approx(want, rel=1e-12, abs=1e-15)
         else:
-            assert math.isnan(r["expected_overturned"]) or (f["n_exceeded"] == 0 and r["expected_overturned"] == 0)
+            assert math.isnan(r["expected_overturned"]) or (c["status"] == "never" and r["expected_overturned"] == 0)
+        assert r["expected_damaged"] <= r["quantity"]
 
 
 def test_the_pelicun_folder_is_complete_and_consistent(study):
     folder = Path(study[0].out_dir) / "pelicun"
-    mapping = pd.read_csv(folder / "mapping.csv", dtype={"floor": str, "direction": str})
+    mapping = pd.read_csv(folder / "mapping.csv", dtype={"floor": str})
     frag = pd.read_csv(folder / "fragility.csv", index_col=0)
     inv = pd.read_csv(folder / "inventory.csv", index_col=0)
-    ok = mapping[mapping["status_pfv"] == "ok"]
+    ok = mapping[mapping["exported"]]
     assert set(frag.index) == set(ok["pelicun_id"]) == set(inv.index)
     assert (frag["Demand-Type"] == "Peak Floor Velocity").all() and (frag["Demand-Unit"] == "mps").all()
+    assert (frag["Demand-Directional"] == 0).all()
     # pelicun's locations: floor slab n at n + 1 (labels "1", "2" are slabs 1 and 2)
     assert dict(zip(mapping["floor"], mapping["location"])) == {"1": 2, "2": 3}
     assert np.allclose(inv.loc[ok["pelicun_id"], "Theta_0"], ok["quantity"])
-    assert np.allclose(frag.loc[ok["pelicun_id"], "LS1-Theta_0"], ok["median_pfv"])
+    assert np.allclose(frag.loc[ok["pelicun_id"], "LS1-Theta_0"], ok["median_ds1"])
     demands = pd.read_csv(folder / "demands.csv", index_col=0)
     assert list(demands.index) == ["Units", *RECORDS]
     assert set(demands.columns) == {"PFA-1-1", "PFA-2-1", "PFV-1-1", "PFV-2-1"}
@@ -226,7 +230,8 @@ def test_contents_inventory_motions_through_the_console_script(tmp_path):
 def test_a_cloud_gives_the_empirical_count_beside_the_expectation():
     """A cloud (one case per motion, as recorded) made by hand: the fit on the records' own PFV, and
     ``empirical_overturned = quantity x`` the share of the records that overturned the item (2 of 4)."""
-    from opsrock.inventory.fits import expected_table, fit_table
+    from opsrock.inventory.components import expected_table, planar_components
+    from opsrock.inventory.fits import fit_table
 
     motions = synthetic_motions(floors=("1",))
     design = InventoryDesign(Inventory((BOOKCASE,), "test"), motions, method="cloud", n_boot=0)
@@ -239,7 +244,10 @@ def test_a_cloud_gives_the_empirical_count_beside_the_expectation():
     assert set(fits["method"]) == {"cloud"} and (fits["n_exceeded"] == 2).all()
     pfv_fit = fits[fits["demand"] == "pfv"].iloc[0]
     assert pfv_fit["ok"] and pfv_fit["n_records"] == 4
-    expected = expected_table(fits, cases, demands, design).iloc[0]
+    components = planar_components(fits, demands, design)
+    expected = expected_table(components, demands, design, fits, cases).iloc[0]
     assert expected["empirical_overturned"] == 3.0 * 2 / 4  # quantity 3, 2 of 4 records
+    # one direction: the component's curve is that direction's, to the precision of the quantile fit
     want = 3.0 * norm.cdf(np.log(pfv / pfv_fit["median"]) / pfv_fit["beta"]).mean()
-    assert expected["expected_overturned"] == pytest.approx(want, rel=1e-12)
+    assert expected["expected_overturned"] == pytest.approx(want, rel=1e-9)
+    assert expected["expected_damaged_combined"] == pytest.approx(want, rel=1e-12)

@@ -48,8 +48,8 @@ def test_the_demand_conventions_are_pelicuns():
     np.testing.assert_allclose(out["pfv_max"], [0.8, 0.2], rtol=1e-15)
     # pelicun: a non-directional demand is the largest directional one times NonDirectionalMultipliers (1.2)
     assert NONDIRECTIONAL_FACTOR == 1.2
-    np.testing.assert_allclose(out["pfv_nd"], [0.96, 0.24], rtol=1e-15)
-    assert list(PFV_CONVENTIONS) == ["pfv_1", "pfv_2", "pfv_max", "pfv_nd"]
+    np.testing.assert_allclose(out["pfv_max_x1.2"], [0.96, 0.24], rtol=1e-15)
+    assert list(PFV_CONVENTIONS) == ["pfv_1", "pfv_2", "pfv_max", "pfv_max_x1.2"]
 
 
 def test_the_campaigns_are_in_plan_with_both_directions(inputs):
@@ -92,7 +92,9 @@ def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_pat
     assert all(int(r["n_cases"]) + int(r["n_failed"]) == 2 for r in rows)
     assert "1.2" in Path(first.report).read_text()
     # the planar route's outputs too (the same stages): fits per direction, expected numbers, a pelicun folder
-    assert set(first.tables) == {"fits", "demands", "expected", "fits3d"} and first.pelicun
+    assert set(first.tables) == {"fits", "components", "demands", "expected", "fits3d"} and first.pelicun
+    comps = pd.read_csv(first.tables["components"], dtype={"floor": str})
+    assert set(comps["source"]) == {"3-D (2 azimuths pooled)"} and set(comps["demand"]) == {"pfv_max"}
     fits = pd.read_csv(first.tables["fits"], dtype={"direction": str, "floor": str})
     assert set(fits["direction"]) == {"1", "2"} and set(fits["item"]) == {"cab"}
     assert (fits["n_cases"] + fits["n_failed"] == 2).all()  # each case once per direction, not twice

@@ -29,8 +29,8 @@ HEADER = ",".join(COLUMNS)
 #: One inventory with every column given, as CSV (BOM, comments, blank lines, spaces, any-case header).
 FULL_CSV = ("\ufeff# an inventory with every column\n\n"
             + " ID , Description ,width,depth,height,mass,cm_height,radius_of_gyration,friction,friction_kinetic,"
-              "restitution,fema_id,floor,quantity,support_period,support_damping,repair_cost\n"
-            + "cab, low cabinet ,1.2,0.45,0.75,80,,,\"lognormal(median=0.4, beta=0.25)\",0.3,,,1;2; 3 ,4,,,500\n"
+              "restitution,fema_id,floor,quantity,support_period,support_damping,repair_cost,slide_distance,slide_cost\n"
+            + "cab, low cabinet ,1.2,0.45,0.75,80,,,\"lognormal(median=0.4, beta=0.25)\",0.3,,,1;2; 3 ,4,,,500,0.1,60\n"
             + "# a comment between rows\n"
             + "book,loaded bookcase,0.320675,0.9144,1.8034,135,0.78,0.5,,,0.8,E.20.22.105a,,12,,,300\n"
             + "printer,\"printer, on a desk\",0.42,0.46,0.5,25,,,0.5,0.4,,,2;3,3,0.2,0.07,800.5\n")
@@ -48,6 +48,8 @@ friction_kinetic = 0.3
 floor = ["1", "2", 3]
 quantity = 4
 repair_cost = 500
+slide_distance = 0.1
+slide_cost = 60
 
 [[item]]
 id = "book"

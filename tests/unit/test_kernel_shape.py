@@ -11,43 +11,11 @@ from _support import ROOT
 #: restructured (issue 43). The list may only shrink: the test fails when a function listed here no longer exists
 #: or now keeps both limits, so that it is struck off at once.
 #:
-#: ``rigid3d``'s kernel, being split into one module per part of the physics (issue 43); the lead empties this
-#: part when that lands.
-ALLOWED_RIGID3D = frozenset({
-    "opsrock.solvers.rigid3d.contact._nsgs",
-    "opsrock.solvers.rigid3d.contact._solve_contacts",
-    "opsrock.solvers.rigid3d.sticking._stick_flat",
-    "opsrock.solvers.rigid3d.sticking._edge_split",
-    "opsrock.solvers.rigid3d.sticking._stick_all",
-    "opsrock.solvers.rigid3d.sliding._flat_system",
-    "opsrock.solvers.rigid3d.sliding._flat_eval",
-    "opsrock.solvers.rigid3d.sliding._flat_newton",
-    "opsrock.solvers.rigid3d.sliding._slide_flat",
-    "opsrock.solvers.rigid3d.sliding._edge_eval",
-    "opsrock.solvers.rigid3d.sliding._edge_try",
-    "opsrock.solvers.rigid3d.sliding._edge_slip",
-    "opsrock.solvers.rigid3d.kernel._record",
-    "opsrock.solvers.rigid3d.sticking._stick_subset",
-    "opsrock.solvers.rigid3d.sticking._stick_mask",
-    "opsrock.solvers.rigid3d.sticking._stick_single",
-    "opsrock.solvers.rigid3d.step._step",
-    "opsrock.solvers.rigid3d.step._contacts",
-    "opsrock.solvers.rigid3d.step._book",
-    "opsrock.solvers.rigid3d.smooth._smooth",
-    "opsrock.solvers.rigid3d.smooth._slip_rhs",
-    "opsrock.solvers.rigid3d.smooth._slip_integrate",
-    "opsrock.solvers.rigid3d.smooth._smooth_slip",
-    "opsrock.solvers.rigid3d.smooth._coarse_slide",
-    "opsrock.solvers.rigid3d.kernel.run",
-    "opsrock.solvers.rigid3d.pivot._rhs",
-    "opsrock.solvers.rigid3d.pivot._loads_hold",
-    "opsrock.solvers.rigid3d.pivot.integrate",
-})
 #: The planar kernels: friction's solve_case (its 273 lines still to be split into phases).
 ALLOWED_PLANAR = frozenset({
     "opsrock.solvers.friction.kernel.solve_case",
 })
-ALLOWED = ALLOWED_RIGID3D | ALLOWED_PLANAR
+ALLOWED = ALLOWED_PLANAR
 
 
 def _metrics():

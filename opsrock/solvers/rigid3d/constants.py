@@ -81,6 +81,20 @@ OUT_SETTLED = ST.OUT_COMMON + 48  # times a block at rest on three corners was s
 OUT_SETTLE_GAP = ST.OUT_COMMON + 49  # the largest gap (m) of a fourth corner so set down
 OUT_SIZE = ST.OUT_COMMON + 50
 
+# --- the run's phase state (``kernel.run``): an int64 vector, slots ``PH_*`` -------------------------------------
+#: Moreau-Jean steps without an impact the block has spent in each phase that has smooth steps of its own: turning
+#: about stuck corners (``smooth._smooth``), rocking on slipping corners (``smooth._smooth_slip``), sliding flat
+#: (``smooth._coarse_slide``); negative after a smooth step of that phase failed: the steps left before it is tried
+#: again (``kernel._next_phase``).
+PH_PIVOT, PH_SLIP, PH_SLIDE = 0, 1, 2
+PH_SEATED = 3  # 1: seated on its four stuck corners, at rest (the rest skip applies)
+PH_RESTING = 4  # steps the block has been at rest after the excitation
+PH_UNCONVERGED = 5  # consecutive steps whose NSGS did not converge
+PH_LAST_DOWN = 6  # corners down the last time one was
+PH_OUTSIDE = 7  # 1: the centre of mass's plan projection is outside the base's
+PH_OVER_KIND = 8  # how it would overturn, set as the centre of mass leaves the base: 1 over an edge, 2 over a corner
+PH_SIZE = 9
+
 #: Speed of the base (m/s) below which the tail rule "peak" may end a run: a block on its base sliding at
 #: 1 mm/s under friction ``mu`` stops within ``(1e-3)² / (2 mu g)``, 5e-8/mu m.
 PEAK_BASE_SPEED = 1e-3

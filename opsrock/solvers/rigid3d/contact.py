@@ -12,6 +12,7 @@ import numba
 from opsrock.solvers.rigid3d.constants import (CONE_SLACK, DIRECTION_TOL, LIMIT_MU, OUT_LIMIT_STEPS, OUT_NSGS_EXTRA,
                                                OUT_NSGS_LOOSE, SECULAR_TOL, SLIP_ANGLE_TOL, SLIP_STEP_TOL)
 from opsrock.solvers.rigid3d.geometry import _cross_add
+from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_PN, VEC_V, VEC_Y6)
 
 
 @numba.njit(cache=True)
@@ -173,12 +174,16 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
 
 
 @numba.njit(cache=True)
-def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter, q, Pn, out, single):
-    """Nonsmooth Gauss-Seidel (Jean & Moreau) over the active corners: each corner's local problem solved
-    exactly (:func:`_local`) with the others' impulses fixed, the body's velocity ``(V, Om)`` updated after each,
-    sweeps until no impulse changes by more than ``tol`` (m/s). Warm-started from ``P`` (the previous step's
-    impulses). Returns the number of sweeps (``max_iter + 1``: not converged); with a ``single`` active corner
-    one sweep is exact."""
+def _nsgs(ws, act, P, fric, tol, max_iter, out, single):
+    """Nonsmooth Gauss-Seidel (Jean & Moreau) over the active corners ``act``: each corner's local problem solved
+    exactly (:func:`_local`, friction ``fric``: :class:`.model.Friction`) with the others' impulses fixed, the body's
+    velocity (``ws.vec`` rows ``VEC_V``, ``VEC_OM``) updated after each, sweeps until no impulse changes by more than
+    ``tol`` (m/s). Warm-started from ``P`` (the previous step's impulses). Returns the number of sweeps
+    (``max_iter + 1``: not converged); with a ``single`` active corner one sweep is exact. ``ws`` is the step's
+    :class:`.workspace.StepWork` (arms ``r``, Delassus blocks ``Wd`` and inverses ``Wi``, ``Iinv``)."""
+    r, Wd, Wi, Iinv, vec = ws.r, ws.Wd, ws.Wi, ws.Iinv, ws.vec
+    V, Om, q, Pn = vec[VEC_V], vec[VEC_OM], vec[VEC_Y6], vec[VEC_PN]
+    mu_s, mu_k, stick_only = fric.mu_s, fric.mu_k, fric.infinite
     for it in range(max_iter):
         change = 0.0
         for i in range(4):
@@ -212,18 +217,17 @@ def _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter,
 
 
 @numba.njit(cache=True)
-def _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, nsgs, q, Pn, out, single):
+def _solve_contacts(ws, act, P, fric, tol, nsgs, out, single):
     """NSGS (:func:`_nsgs`) to ``tol`` in ``nsgs.max_sweeps`` sweeps; failing that, on for up to ``nsgs.extra_sweeps``
-    sweeps more (at least one) to the looser ``tol * nsgs.loose_tol / nsgs.tol`` (a block at the stick-slip limit on three or four corners, whose
-    impulses are statically indeterminate, makes Gauss-Seidel converge slowly, not fail), counted in
-    ``OUT_NSGS_LOOSE``. Returns the sweeps (``nsgs.max_sweeps + 1``: not converged)."""
+    sweeps more (at least one) to the looser ``tol * nsgs.loose_tol / nsgs.tol`` (a block at the stick-slip limit on
+    three or four corners, whose impulses are statically indeterminate, makes Gauss-Seidel converge slowly, not
+    fail), counted in ``OUT_NSGS_LOOSE``. Returns the sweeps (``nsgs.max_sweeps + 1``: not converged)."""
     max_iter = nsgs.max_sweeps
-    sweeps = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol, max_iter, q, Pn, out, single)
+    sweeps = _nsgs(ws, act, P, fric, tol, max_iter, out, single)
     if sweeps <= max_iter:
         return sweeps
     extra = max(1, nsgs.extra_sweeps)
-    more = _nsgs(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol * nsgs.loose_tol / nsgs.tol, extra,
-                 q, Pn, out, single)
+    more = _nsgs(ws, act, P, fric, tol * nsgs.loose_tol / nsgs.tol, extra, out, single)
     if more > extra:
         return max_iter + 1
     out[OUT_NSGS_LOOSE] += 1.0

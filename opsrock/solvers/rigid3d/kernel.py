@@ -49,17 +49,21 @@ from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, CORNER_SX,
                                                ZERO)  # noqa: F401  (the layout, re-exported)
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers.rigid3d import pivot as PV
+from opsrock.solvers.rigid3d.constants import (PH_LAST_DOWN, PH_OUTSIDE, PH_OVER_KIND, PH_PIVOT, PH_RESTING, PH_SEATED,
+                                               PH_SIZE, PH_SLIDE, PH_SLIP, PH_UNCONVERGED)
 from opsrock.solvers.rigid3d.geometry import (_arms, _cm_outside, _geometry, _tilt, _twist)
 from opsrock.solvers.rigid3d.step import (_book, _count_sweeps, _floor, _rest_holds, _rest_span, _step)
-from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _flat_slip, _slip_pivot, _smooth, _smooth_slip, _stuck_pivot)
-from opsrock.solvers.rigid3d.workspace import (VEC_VF, make_workspace)
+from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _flat_slip, _slip_pivot, _smooth,
+                                            _smooth_slip, _stuck_pivot)
+from opsrock.solvers.rigid3d.workspace import (Probe, make_corners, make_workspace)
 
 
 @numba.njit(cache=True)
-def _record(j, cap, t, s, theta, theta_dot, down, h, hist):
-    """Store one history row if there is room; returns the next free row."""
-    if j >= cap:
-        return j
+def _record(hist, t, s, theta, theta_dot, down, h, out):
+    """Store one history row if there is room (``out[OUT_N_HIST]``: the rows stored, counted on)."""
+    j = int(out[OUT_N_HIST])
+    if j >= hist.shape[0]:
+        return
     w, x, y, z = s[3], s[4], s[5], s[6]
     nv = math.sqrt(x * x + y * y + z * z)
     ang = 2.0 * math.atan2(nv, w)
@@ -73,7 +77,7 @@ def _record(j, cap, t, s, theta, theta_dot, down, h, hist):
     q02, q12 = 2.0 * (x * z + w * y), 2.0 * (y * z - w * x)
     hist[j, H_SLIDE], hist[j, H_SLIDE + 1] = s[0] - h * q02, s[1] - h * q12
     hist[j, H_DOWN] = down
-    return j + 1
+    out[OUT_N_HIST] = j + 1
 
 
 @numba.njit(cache=True)
@@ -161,9 +165,180 @@ def _peak_reached(s, body, tilt_max, tail_av):
 
 
 @numba.njit(cache=True)
+def _finite(state):
+    """Is every component of the state finite (their sum is)?"""
+    fin = 0.0
+    for a in range(13):
+        fin += state[a]
+    return math.isfinite(fin)
+
+
+@numba.njit(cache=True)
+def _in_phase(j, act, corners, P):
+    """After a Moreau-Jean step: is the block in the phase ``j`` (``PH_PIVOT``, ``PH_SLIP``, ``PH_SLIDE``)?"""
+    touch, slip = corners.touch, corners.slip
+    if j == PH_PIVOT:
+        return _stuck_pivot(act, touch, slip, P)
+    if j == PH_SLIP:
+        return _slip_pivot(act, touch, slip, P)
+    return _flat_slip(act, touch, slip)
+
+
+@numba.njit(cache=True)
+def _next_phase(phase, impact, act, corners, P):
+    """The phase counts after a Moreau-Jean step (slots ``PH_PIVOT``, ``PH_SLIP``, ``PH_SLIDE`` of ``phase``): one
+    more step in the phase the block is in if no corner landed (``impact``), the others back to 0; a cool-down
+    (negative) counts up whatever the phase."""
+    for j in range(PH_PIVOT, PH_SLIDE + 1):
+        if phase[j] < 0:
+            phase[j] += 1
+        elif not impact and _in_phase(j, act, corners, P):
+            phase[j] += 1
+        else:
+            phase[j] = 0
+
+
+@numba.njit(cache=True, inline='always')
+def _smooth_step(model, floor, state, k, phase, work, corners, trial):
+    """A smooth step of the phase the block has been in for ``pivot.CALM_STEPS`` Moreau-Jean steps (``phase``):
+    about stuck corners (:func:`.smooth._smooth`), on slipping corners (:func:`.smooth._smooth_slip`), sliding flat
+    (:func:`.smooth._coarse_slide`), into ``trial``, with its input work; a phase whose smooth step failed cools
+    down. Returns ``(steps, largest tilt)``, steps <= 0 if none was taken (the Moreau-Jean step then goes on)."""
+    n, tilt_sub, smoothed = 0, 0.0, False
+    if not model.numerics.smooth:
+        return n, tilt_sub
+    if phase[PH_PIVOT] >= PV.CALM_STEPS:
+        n, tilt_sub = _smooth(model, floor, state, k, work, corners, trial)
+        smoothed = n > 0
+        if n == 0:
+            phase[PH_PIVOT] = -4 * PV.MIN_STEPS  # none kept: the Moreau-Jean steps locate the event first
+    elif phase[PH_SLIP] >= PV.CALM_STEPS:
+        n, tilt_sub = _smooth_slip(model, floor, state, k, work, corners, trial)
+        smoothed = n > 0
+        if n == 0:
+            phase[PH_SLIP] = -4 * PV.MIN_STEPS
+    elif phase[PH_SLIDE] >= PV.CALM_STEPS:
+        n = _coarse_slide(model, floor, state, k, work, corners, trial)
+        if n == 0:
+            phase[PH_SLIDE] = -_coarse_steps(model)
+    if smoothed:  # a smooth step's input work (the floor's force at its middle)
+        F, g, new = work.pivot.F, model.body.g, trial.state
+        PV.floor_at(floor, k + 0.5 * n, k, model.numerics.theta_mj, F, g)
+        trial.out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
+            (F[2] + g) * (new[2] - state[2])
+    return n, tilt_sub
+
+
+@numba.njit(cache=True, inline='always')
+def _mj_step(model, state, acc, ws, trial, corners, phase):
+    """One Moreau-Jean step (:func:`.step._step`, the corners down tried first) under the floor accelerations
+    ``acc``, its bookkeeping (:func:`.step._book`) and the phase counts after it (:func:`_next_phase`). Returns
+    False once NSGS has failed ``nsgs.fail_steps`` steps in a row (the run fails)."""
+    converged = _count_sweeps(_step(model, state, acc, model.numerics.dt, ws, trial, corners.touch), model.nsgs,
+                              trial.out)
+    a = ws.a
+    a[0], a[1], a[2] = acc
+    impact = _book(state, trial, ws, corners, model)
+    if not converged:
+        phase[PH_UNCONVERGED] += 1
+        if phase[PH_UNCONVERGED] > model.nsgs.fail_steps:
+            return False
+    else:
+        phase[PH_UNCONVERGED] = 0
+    _next_phase(phase, impact, trial.act, corners, trial.P)
+    return True
+
+
+@numba.njit(cache=True)
+def _rest_skip(model, floor, k, state, theta, phase, hist, out):
+    """The rest skip from step ``k`` (a seated, stuck block whose load the base carries stays at rest this step, and
+    a whole sample interval of a record if it does at both its samples, and the whole rest of a still tail:
+    :func:`.step._rest_span`), its history rows (``theta`` the block's signed tilt) and time at rest. Returns the
+    step it ends at."""
+    dt, hist_every = model.numerics.dt, model.numerics.hist_every
+    n = _rest_span(model, floor, k, model.limits.rest_steps - phase[PH_RESTING])
+    out[OUT_REST_STEPS] += n
+    _tally(REST_MODE, FOUR, n * dt, out)
+    for kk in range(k + 1, k + n + 1):
+        if kk % hist_every == 0:
+            _record(hist, kk * dt, state, theta, 0.0, FOUR, model.body.h, out)
+    k += n
+    phase[PH_RESTING] = phase[PH_RESTING] + min(n, k - floor.n_exc + 1) if k >= floor.n_exc else 0
+    return k
+
+
+@numba.njit(cache=True)
+def _start(model, state, ws, corners, hist, out):
+    """The run's start from ``state``: ``out`` cleared, the corners within ``lift_gap`` of the floor down, the first
+    history row, the peaks of the start. Returns ``(corners down, signed tilt)``."""
+    body = model.body
+    out[:] = 0.0
+    out[OUT_FIRST_MODE] = -1.0
+    _geometry(state, body, ws.Q, ws.Iinv, ws.Iw, ws.r)
+    for i in range(4):
+        corners.touch[i] = state[2] + ws.r[i, 2] <= model.limits.lift_gap
+    tilt, theta, _, _ = _tilt(state, body.weak_y)
+    n_down = _mode(corners.touch, corners.slip)[1]
+    _record(hist, 0.0, state, theta, state[10 + (0 if body.weak_y else 1)] * (-1.0 if body.weak_y else 1.0),
+            n_down, body.h, out)
+    out[OUT_THETA_MAX] = tilt
+    out[OUT_TWIST_MAX] = abs(_twist(state))
+    return n_down, theta
+
+
+@numba.njit(cache=True)
+def _track(body, state, n_down, tilt_sub, r1, phase, out):
+    """After a step to ``state`` (``r1`` its arms, ``n_down`` corners down, ``tilt_sub`` the largest tilt inside a
+    smooth step): the peaks of tilt, slide and twist into ``out``, the corners down last and how the block would
+    overturn into ``phase``. Returns ``(signed tilt, lean direction (rad))``."""
+    if n_down > 0:
+        phase[PH_LAST_DOWN] = n_down
+    tilt, theta, lx, ly = _tilt(state, body.weak_y)
+    sx, sy = state[0] - body.h * lx, state[1] - body.h * ly
+    out[OUT_SLIDE_MAX] = max(out[OUT_SLIDE_MAX], math.hypot(sx, sy))
+    out[OUT_TWIST_MAX] = max(out[OUT_TWIST_MAX], abs(_twist(state)))
+    out[OUT_THETA_MAX] = max(out[OUT_THETA_MAX], tilt, tilt_sub)
+    now_out = _cm_outside(state, r1)
+    if now_out and not phase[PH_OUTSIDE]:
+        phase[PH_OVER_KIND] = 1 if phase[PH_LAST_DOWN] >= 2 else 2
+    phase[PH_OUTSIDE] = now_out
+    return theta, math.atan2(ly, lx)
+
+
+@numba.njit(cache=True)
+def _seat(model, state, n_down, ws, corners, phase, out):
+    """A block at rest and still enough (``limits.velocity_tol``) on four corners, or on three with the fourth within
+    the settling gap (:func:`_settle`, set down), is seated: its velocities zeroed, the rest skip on."""
+    if n_down == 4 or _settle(state, corners.touch, model.body, ws.Q1, ws.r1, SETTLE_GAP * model.limits.lift_gap,
+                              out):
+        phase[PH_SEATED] = 1
+        for a in range(7, 13):
+            state[a] = 0.0
+
+
+@numba.njit(cache=True)
+def _finish(model, state, k, status, corners, hist, out):
+    """The run's end at step ``k`` with ``status``: the last state's history row (if not stored) and the outputs."""
+    dt, body = model.numerics.dt, model.body
+    if k % model.numerics.hist_every != 0:
+        tilt, theta, _, _ = _tilt(state, body.weak_y)
+        _record(hist, k * dt, state, theta, -state[10] if body.weak_y else state[11],
+                _mode(corners.touch, corners.slip)[1], body.h, out)
+    out[OUT_STATUS] = status
+    out[OUT_STEPS] = k
+    out[OUT_ROCKED] = 1.0 if out[OUT_THETA_MAX] > model.limits.rocked_theta else 0.0
+    out[OUT_STATE:OUT_STATE + 13] = state
+    out[OUT_TIME] = k * dt
+    out[OUT_EVENT_TIME] = k * dt * body.p
+    return status
+
+
+@numba.njit(cache=True)
 def run(model, floor, state, hist, out):
     """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history rows ``hist`` (columns ``H_*``);
-    returns the status.
+    returns the status. Each step: the rest skip if the block is seated and the floor's load carried; else a
+    smooth step of the phase the block is in (``phase``, slots ``PH_*``), or a Moreau-Jean step; then the
+    bookkeeping of the new state (peaks, history, overturning, the ending rules, seating).
 
     Parameters
     ----------
@@ -181,182 +356,60 @@ def run(model, floor, state, hist, out):
     out : float64[OUT_SIZE]
         The run's results and bookkeeping.
     """
-    body, num, lim = model.body, model.numerics, model.limits
-    h, Rw, weak_y = body.h, body.R, body.weak_y
-    dt, theta_mj, hist_every = num.dt, num.theta_mj, num.hist_every
-    max_steps, max_tail, rest_vel = lim.max_steps, lim.max_tail, lim.rest_velocity
-    rest_steps, vel_tol, lift_gap = lim.rest_steps, lim.velocity_tol, lim.lift_gap
-    peak_rule, smooth_on = lim.peak_rule, num.smooth
-    fail_steps = model.nsgs.fail_steps
-    n_exc, tail_av = floor.n_exc, floor.tail_av
-    n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (body.p * dt)))
-    out[:] = 0.0
-    out[OUT_FIRST_MODE] = -1.0
-    ws, wk, probe, sw = make_workspace(OUT_SIZE)
-    Q, Iinv, Iw, r = ws.Q, ws.Iinv, ws.Iw, ws.r
-    act = np.zeros(4, dtype=np.bool_)
-    touch = np.zeros(4, dtype=np.bool_)
-    slip = np.zeros(4, dtype=np.bool_)
-    P = np.zeros((4, 3))
-    new = np.zeros(13)
-    r1 = ws.r1
-    cap = hist.shape[0]
-    _geometry(state, body, Q, Iinv, Iw, r)
-    for i in range(4):
-        touch[i] = state[2] + r[i, 2] <= lift_gap
-    tilt, theta, _, _ = _tilt(state, weak_y)
-    mode, n_down = _mode(touch, slip)
-    j = _record(ZERO, cap, 0.0, state, theta, state[10 + (0 if weak_y else 1)] * (-1.0 if weak_y else 1.0),
-                n_down, h, hist)
-    theta_max = tilt
-    slide_max = 0.0
-    twist_max = abs(_twist(state))
+    body, lim, dt, n_exc = model.body, model.limits, model.numerics.dt, floor.n_exc
+    work = make_workspace(OUT_SIZE)
+    ws = work.step
+    corners = make_corners()
+    trial = Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), out)
+    phase = np.zeros(PH_SIZE, dtype=np.int64)
+    last_down, theta = _start(model, state, ws, corners, hist, out)
+    phase[PH_LAST_DOWN] = last_down
     status = STATUS_OK
-    resting = 0
-    unconverged = 0
-    seated = False
-    outside = False
-    over_kind = 0.0
-    last_down = n_down
-    calm = 0
-    slipc = 0
-    sliding = 0
-    n_slide = max(2, int(PV.SLIDE_DTAU / (body.p * dt)))
     k = ZERO
     while True:
-        if k >= n_exc and (max_tail < 0 or resting >= rest_steps):
+        if k >= n_exc and (lim.max_tail < 0 or phase[PH_RESTING] >= lim.rest_steps):
             break
-        if k >= n_exc + max(max_tail, 0) or k >= max_steps:
-            status = STATUS_TAIL if k < max_steps else STATUS_MAX_STEPS
+        if k >= n_exc + max(lim.max_tail, 0) or k >= lim.max_steps:
+            status = STATUS_TAIL if k < lim.max_steps else STATUS_MAX_STEPS
             break
-        a_x, a_y, a_v = _floor(floor, k, theta_mj)
-        if not math.isfinite(a_x + a_y + a_v):
+        acc = _floor(floor, k, model.numerics.theta_mj)
+        if not math.isfinite(acc[0] + acc[1] + acc[2]):
             status = STATUS_NONFINITE
             break
-        if seated and _rest_holds(a_x, a_y, a_v, body, model.friction):
-            # the rest skip: a seated, stuck block whose load the base carries stays at rest this step, and
-            # a whole sample interval of a record if it does at both its samples (the accelerations are
-            # linear in between and the set of loads the base carries is convex), and the whole rest of
-            # a still tail
-            n = _rest_span(model, floor, k, rest_steps - resting)
-            out[OUT_REST_STEPS] += n
-            _tally(REST_MODE, FOUR, n * dt, out)
-            for kk in range(k + 1, k + n + 1):
-                if kk % hist_every == 0:
-                    j = _record(j, cap, kk * dt, state, theta, 0.0, FOUR, h, hist)
-            k += n
-            resting = resting + min(n, k - n_exc + 1) if k >= n_exc else 0
+        if phase[PH_SEATED] and _rest_holds(acc[0], acc[1], acc[2], body, model.friction):
+            k = _rest_skip(model, floor, k, state, theta, phase, hist, out)
             continue
-        if seated:  # leaving rest: warm start from the static impulses of the step's load
-            seated = False
-            gz = body.g + a_v
+        if phase[PH_SEATED]:  # leaving rest: warm start from the static impulses of the step's load
+            phase[PH_SEATED] = 0
+            P, gz = trial.P, body.g + acc[2]
             for i in range(4):
-                P[i, 0], P[i, 1], P[i, 2] = 0.25 * a_x * dt, 0.25 * a_y * dt, 0.25 * gz * dt
-        n, tilt_sub, smoothed = 0, 0.0, False
-        if smooth_on and calm >= PV.CALM_STEPS:
-            n, tilt_sub = _smooth(model, floor, state, touch, k, n_max, ws, wk, probe, P, new, out)
-            smoothed = n > 0
-            if n == 0:
-                calm = -4 * PV.MIN_STEPS  # none kept: the Moreau-Jean steps locate the event first
-        elif smooth_on and slipc >= PV.CALM_STEPS:
-            n, tilt_sub = _smooth_slip(model, floor, state, touch, slip, k, n_max, ws, sw, probe, P, new, out)
-            smoothed = n > 0
-            if n == 0:
-                slipc = -4 * PV.MIN_STEPS
-        elif smooth_on and sliding >= PV.CALM_STEPS:
-            n = _coarse_slide(model, floor, state, k, n_slide, ws, probe, P, new, out, touch, slip)
-            if n == 0:
-                sliding = -n_slide
-        if smoothed:  # a smooth step's input work (the floor's force at its middle)
-            F = wk.F
-            PV.floor_at(floor, k + 0.5 * n, k, theta_mj, F, body.g)
-            out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
-                (F[2] + body.g) * (new[2] - state[2])
+                P[i, 0], P[i, 1], P[i, 2] = 0.25 * acc[0] * dt, 0.25 * acc[1] * dt, 0.25 * gz * dt
+        n, tilt_sub = _smooth_step(model, floor, state, k, phase, work, corners, trial)
         if n <= 0:
             n = 1
-            converged = _count_sweeps(_step(model, state, a_x, a_y, a_v, dt, ws, act, P, new, out, touch),
-                                      model.nsgs, out)
-            a_step = ws.a  # (an array, as _coarse_slide passes it: one specialisation of _book)
-            a_step[0], a_step[1], a_step[2] = a_x, a_y, a_v
-            impact = _book(state, a_step, ws.Q1, ws.r1, ws.r, ws.Iw, ws.vec[VEC_VF], act, P, new, out, touch,
-                           slip, vel_tol, lift_gap, body)
-            if not converged:
-                unconverged += 1
-                if unconverged > fail_steps:
-                    status = STATUS_CONTACT
-                    break
-            else:
-                unconverged = 0
-            if calm < 0:
-                calm += 1
-            elif not impact and _stuck_pivot(act, touch, slip, P):
-                calm += 1
-            else:
-                calm = 0
-            if slipc < 0:
-                slipc += 1
-            elif not impact and _slip_pivot(act, touch, slip, P):
-                slipc += 1
-            else:
-                slipc = 0
-            if sliding < 0:
-                sliding += 1
-            elif not impact and _flat_slip(act, touch, slip):
-                sliding += 1
-            else:
-                sliding = 0
-        state[:] = new
+            if not _mj_step(model, state, acc, ws, trial, corners, phase):
+                status = STATUS_CONTACT
+                break
+        state[:] = trial.state
         k += n
-        fin = 0.0
-        for a in range(13):
-            fin += state[a]
-        if not math.isfinite(fin):
+        if not _finite(state):
             status = STATUS_NONFINITE
             break
-        mode, n_down = _mode(touch, slip)
+        mode, n_down = _mode(corners.touch, corners.slip)
         _tally(mode, n_down, n * dt, out)
-        if n_down > 0:
-            last_down = n_down
-        tilt, theta, lx, ly = _tilt(state, weak_y)
-        sx, sy = state[0] - h * lx, state[1] - h * ly
-        slide_max = max(slide_max, math.hypot(sx, sy))
-        twist_max = max(twist_max, abs(_twist(state)))
-        theta_max = max(theta_max, tilt, tilt_sub)
-        now_out = _cm_outside(state, r1)
-        if now_out and not outside:
-            over_kind = 1.0 if last_down >= 2 else 2.0
-        outside = now_out
-        theta_dot = -state[10] if weak_y else state[11]
-        if k // hist_every != (k - n) // hist_every:
-            j = _record(j, cap, k * dt, state, theta, theta_dot, n_down, h, hist)
-        if theta_max >= OVERTURNING_ANGLE:
-            out[OUT_OVERTURNED] = 1.0
-            out[OUT_OVER_KIND] = over_kind
-            out[OUT_OVER_DIR] = math.atan2(ly, lx)
+        theta, lean = _track(body, state, n_down, tilt_sub, ws.r1, phase, out)
+        if k // model.numerics.hist_every != (k - n) // model.numerics.hist_every:
+            _record(hist, k * dt, state, theta, -state[10] if body.weak_y else state[11], n_down, body.h, out)
+        if out[OUT_THETA_MAX] >= OVERTURNING_ANGLE:
+            out[OUT_OVERTURNED], out[OUT_OVER_KIND], out[OUT_OVER_DIR] = 1.0, phase[PH_OVER_KIND], lean
             break
         speed = max(abs(state[7]), abs(state[8]), abs(state[9]),
-                    Rw * (abs(state[10]) + abs(state[11]) + abs(state[12])))
-        still = speed < rest_vel
-        resting = resting + min(n, k - n_exc + 1) if (k >= n_exc and mode == MODE_REST and still) else 0
-        if peak_rule and k >= n_exc and _peak_reached(state, body, theta_max, tail_av):
+                    body.R * (abs(state[10]) + abs(state[11]) + abs(state[12])))
+        rest = k >= n_exc and mode == MODE_REST and speed < lim.rest_velocity
+        phase[PH_RESTING] = phase[PH_RESTING] + min(n, k - n_exc + 1) if rest else 0
+        if lim.peak_rule and k >= n_exc and _peak_reached(state, body, out[OUT_THETA_MAX], floor.tail_av):
             out[OUT_PEAK_STOP] = 1.0
             break
-        if mode == MODE_REST and speed < vel_tol and (n_down == 4 or _settle(state, touch, body, ws.Q1, ws.r1,
-                                                                               SETTLE_GAP * lift_gap, out)):
-            seated = True
-            for a in range(7, 13):
-                state[a] = 0.0
-    if k % hist_every != 0:
-        tilt, theta, _, _ = _tilt(state, weak_y)
-        j = _record(j, cap, k * dt, state, theta, -state[10] if weak_y else state[11], _mode(touch, slip)[1], h, hist)
-    out[OUT_STATUS] = status
-    out[OUT_STEPS] = k
-    out[OUT_THETA_MAX] = theta_max
-    out[OUT_ROCKED] = 1.0 if theta_max > lim.rocked_theta else 0.0
-    out[OUT_SLIDE_MAX] = slide_max
-    out[OUT_TWIST_MAX] = twist_max
-    out[OUT_STATE:OUT_STATE + 13] = state
-    out[OUT_N_HIST] = j
-    out[OUT_TIME] = k * dt
-    out[OUT_EVENT_TIME] = k * dt * body.p
-    return status
+        if mode == MODE_REST and speed < lim.velocity_tol:
+            _seat(model, state, n_down, ws, corners, phase, out)
+    return _finish(model, state, k, status, corners, hist, out)

@@ -136,8 +136,11 @@ def _arm(y, cb, Q, r):
 
 
 @numba.njit(cache=True)
-def _rhs(y, cb, ib, F, edge, e, dy, Q, IO, r):
-    """Time derivative ``dy`` of ``y = (q, omega)`` about the fixed pivot (see the module docstring)."""
+def _rhs(y, wk, ib, edge):
+    """Time derivative ``wk.dy`` of ``y = (q, omega)`` about the fixed pivot ``wk.cb`` under the body force ``wk.F``
+    (see the module docstring; ``ib`` the body-frame inertia, ``edge``: turning about the edge ``wk.e``); ``wk``
+    (:class:`.workspace.PivotWork`) gets the arm ``r``, ``Q`` and ``IO`` of ``y``."""
+    cb, F, e, dy, Q, IO, r = wk.cb, wk.F, wk.e, wk.dy, wk.Q, wk.IO, wk.r
     _arm(y, cb, Q, r)
     rr = r[0] * r[0] + r[1] * r[1] + r[2] * r[2]
     for i in range(3):
@@ -188,14 +191,16 @@ def _tilt_of(y):
 
 
 @numba.njit(cache=True)
-def _loads_hold(y, dy, r, IO, F, edge, e, length, friction):
-    """Do the pivots carry the motion ``(y, dy)`` (the arm ``r`` and ``I_O`` of ``y``, body force ``F``)? The
+def _loads_hold(wk, edge, length, friction):
+    """Do the pivots carry the motion ``(wk.y, wk.dy)`` (the arm ``wk.r`` and ``wk.IO`` of ``y``, body force
+    ``wk.F``)? The
     reaction per unit mass ``R = omega' x r + omega x (omega x r) - F`` presses on the floor (``R_z > 0``) within
     the static cone (``hypot(R_x, R_y) <= mu_s R_z``; always with infinite friction); on an edge of direction
     ``e`` and ``length`` from the pivot ``O`` to the other corner, each corner presses: the other's share
     ``R_Bz = (e_y m_x - e_x m_y) / length`` from the moment about ``O``, ``length e x R_B = m = I_O omega' +
     omega x I_O omega - r x F``. A block that would lift a pivot or slip leaves the smooth phase here, between
     two Moreau-Jean probes."""
+    y, dy, r, IO, F, e = wk.y, wk.dy, wk.r, wk.IO, wk.F, wk.e
     w0, w1, w2 = y[4], y[5], y[6]
     a0, a1, a2 = dy[4], dy[5], dy[6]
     r0, r1, r2 = r[0], r[1], r[2]
@@ -217,12 +222,12 @@ def _loads_hold(y, dy, r, IO, F, edge, e, length, friction):
 
 
 @numba.njit(cache=True)
-def integrate(model, floor, s, pivots, n_piv, k0, n_steps, new, wk):
-    """Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps about the stuck
-    ``pivots[:n_piv]`` (one corner or two) into ``new``; returns the largest tilt (rad) at the sub-steps' ends, or
-    -1 as soon as the pivots' loads stop holding the block there (:func:`_loads_hold`).
-    ``model`` and ``floor`` are the kernel's (:mod:`.model`); ``wk`` its scratch (:class:`.workspace.PivotWork`)."""
-    y, dy, acc, ytmp, F, cb, e, r, Q, IO = wk.y, wk.dy, wk.acc, wk.ytmp, wk.F, wk.cb, wk.e, wk.r, wk.Q, wk.IO
+def integrate(model, floor, s, pivots, k0, n_steps, new, wk):
+    """Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps about the stuck corners
+    ``pivots`` (one or two indices) into ``new``; returns the largest tilt (rad) at the sub-steps' ends, or -1 as
+    soon as the pivots' loads stop holding the block there (:func:`_loads_hold`). ``model`` and ``floor`` are the
+    kernel's (:mod:`.model`); ``wk`` its scratch (:class:`.workspace.PivotWork`)."""
+    y, dy, acc, ytmp, F, cb, e, r, Q = wk.y, wk.dy, wk.acc, wk.ytmp, wk.F, wk.cb, wk.e, wk.r, wk.Q
     body, dt, theta_mj = model.body, model.numerics.dt, model.numerics.theta_mj
     b, d, h, g, ib = body.b, body.d, body.h, body.g, body.inertia
     i0 = pivots[0]
@@ -233,7 +238,7 @@ def integrate(model, floor, s, pivots, n_piv, k0, n_steps, new, wk):
     y[4], y[5], y[6] = s[10], s[11], s[12]
     _arm(y, cb, Q, r)
     o0, o1, o2 = s[0] - r[0], s[1] - r[1], s[2] - r[2]  # the pivot, fixed in the floor frame
-    edge = n_piv == 2
+    edge = pivots.shape[0] == 2
     n = 1.0
     if edge:
         i1 = pivots[1]
@@ -251,7 +256,7 @@ def integrate(model, floor, s, pivots, n_piv, k0, n_steps, new, wk):
     hdt = hs * dt
     tilt_max = _tilt_of(y)
     floor_at(floor, float(k0), k0, theta_mj, F, g)
-    _rhs(y, cb, ib, F, edge, e, dy, Q, IO, r)
+    _rhs(y, wk, ib, edge)
     for m in range(n_sub):
         kf = k0 + m * hs
         for a in range(7):
@@ -262,7 +267,7 @@ def integrate(model, floor, s, pivots, n_piv, k0, n_steps, new, wk):
             for a in range(7):
                 ytmp[a] = y[a] + c * hdt * dy[a]
             floor_at(floor, kf + c * hs, k0, theta_mj, F, g)
-            _rhs(ytmp, cb, ib, F, edge, e, dy, Q, IO, r)
+            _rhs(ytmp, wk, ib, edge)
             for a in range(7):
                 acc[a] += w * dy[a]
         for a in range(7):
@@ -272,8 +277,8 @@ def integrate(model, floor, s, pivots, n_piv, k0, n_steps, new, wk):
             y[a] /= nq
         tilt_max = max(tilt_max, _tilt_of(y))
         floor_at(floor, kf + hs, k0, theta_mj, F, g)
-        _rhs(y, cb, ib, F, edge, e, dy, Q, IO, r)  # also the next sub-step's first stage
-        if not _loads_hold(y, dy, r, IO, F, edge, e, n if edge else 1.0, model.friction):
+        _rhs(y, wk, ib, edge)  # also the next sub-step's first stage
+        if not _loads_hold(wk, edge, n if edge else 1.0, model.friction):
             return -1.0
     _arm(y, cb, Q, r)
     new[0], new[1], new[2] = o0 + r[0], o1 + r[1], o2 + r[2]

@@ -14,7 +14,8 @@ from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, EDGE_STATU
                                                NEWTON_TOL, OUT_LIMIT_STEPS, PIVOT_TOL, SIX, ZERO)
 from opsrock.solvers.rigid3d.geometry import (_cross_add, _delassus_pair, _inv3)
 from opsrock.solvers.rigid3d.sticking import _shift_range
-from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y)
+from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y, VEC_OM, VEC_V, VEC_VF, VEC_Y6,
+                                               FlatWork)
 
 
 @numba.njit(cache=True)
@@ -56,9 +57,14 @@ def _solve_n(A, y, n):
 
 
 @numba.njit(cache=True)
-def _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
-    """The linear momentum equations of :func:`_slide_flat` for the slip directions ``sdir``: ``xs`` gets the
-    normal impulses of the ``n`` corners ``idx`` and ``(V_x, V_y, omega_z)``; False if singular."""
+def _flat_system(ws, fw, n, mu_k):
+    """The linear momentum equations of :func:`_slide_flat` for the slip directions ``ws.sdir``: ``fw.xs`` gets the
+    normal impulses of the ``n`` corners ``fw.idx`` and ``(V_x, V_y, omega_z)``; False if singular. ``ws`` is the
+    step's :class:`.workspace.StepWork` (arms ``r``, inertia ``Iw``, free velocity row ``VEC_VF``, scratch ``A6``,
+    ``Am`` and row ``VEC_Y6``), ``fw`` the slide's :class:`.workspace.FlatWork`."""
+    r, Iw, sdir, A6, Am = ws.r, ws.Iw, ws.sdir, ws.A6, ws.Am
+    vf, y6 = ws.vec[VEC_VF], ws.vec[VEC_Y6]
+    idx, xs, zs = fw.idx, fw.xs, fw.zs
     m = n + 3
     # rows: force x, y, z; torque x, y, z. Columns: N of each active corner, then V_x, V_y, omega_z
     for a in range(6):
@@ -132,22 +138,24 @@ def _flat_directions(v0, v1, wz, idx, n, r, sdir):
 
 
 @numba.njit(cache=True)
-def _flat_eval(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g):
+def _flat_eval(ws, fw, n, mu_k, x, g):
     """``g = G(x) - x`` for the velocities ``x = (V_x, V_y, omega_z)``: the slip directions of ``x``, then the
     velocities :func:`_flat_system` gives for them. False if a corner does not slip or the system is singular."""
-    if _flat_directions(x[0], x[1], x[2], idx, n, r, sdir) < 0.0:
+    if _flat_directions(x[0], x[1], x[2], fw.idx, n, ws.r, ws.sdir) < 0.0:
         return False
-    if not _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
+    if not _flat_system(ws, fw, n, mu_k):
         return False
+    xs = fw.xs
     for a in range(3):
         g[a] = xs[n + a] - x[a]
     return True
 
 
 @numba.njit(cache=True)
-def _flat_newton(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
+def _flat_newton(ws, fw, n, mu_k, x):
     """Newton on ``G(x) = x`` (:func:`_flat_eval`) from ``x``, with a forward-difference Jacobian and step
-    halving, to ``1e-12`` of the velocities' scale. Returns True with ``xs`` and ``sdir`` of the solution."""
+    halving, to ``1e-12`` of the velocities' scale. Returns True with ``fw.xs`` and ``ws.sdir`` of the solution."""
+    r, vf, idx = ws.r, ws.vec[VEC_VF], fw.idx
     g = np.zeros(3)
     g1 = np.zeros(3)
     x1 = np.zeros(3)
@@ -155,17 +163,17 @@ def _flat_newton(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
     Ji = np.zeros((3, 3))
     scale = max(abs(x[0]), abs(x[1]), abs(vf[0]), abs(vf[1]), abs(vf[2]))
     arm = math.sqrt(r[idx[0], 0] ** 2 + r[idx[0], 1] ** 2)
-    if not _flat_eval(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g):
+    if not _flat_eval(ws, fw, n, mu_k, x, g):
         return False
     for it in range(20):
         res = max(abs(g[0]), abs(g[1]), arm * abs(g[2]))
         if res <= NEWTON_TOL * scale:
-            return _flat_eval(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g)
+            return _flat_eval(ws, fw, n, mu_k, x, g)
         for j in range(3):
             hj = FD_STEP * (scale / arm if j == 2 else scale)
             for a in range(3):
                 x1[a] = x[a] + (hj if a == j else 0.0)
-            if not _flat_eval(x1, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g1):
+            if not _flat_eval(ws, fw, n, mu_k, x1, g1):
                 return False
             for a in range(3):
                 J[a, j] = (g1[a] - g[a]) / hj
@@ -175,7 +183,7 @@ def _flat_newton(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
         for half in range(8):
             for a in range(3):
                 x1[a] = x[a] - lam * (Ji[a, 0] * g[0] + Ji[a, 1] * g[1] + Ji[a, 2] * g[2])
-            ok = _flat_eval(x1, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs, g1)
+            ok = _flat_eval(ws, fw, n, mu_k, x1, g1)
             if ok and max(abs(g1[0]), abs(g1[1]), arm * abs(g1[2])) < res:
                 break
             lam *= 0.5
@@ -188,7 +196,7 @@ def _flat_newton(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
 
 
 @numba.njit(cache=True)
-def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
+def _slide_flat(ws, act, P, mu_k):
     """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its corners
     on the floor (``V_z = 0``, no rotation about a horizontal axis: with the floor's normal ``z`` the corners'
     normal velocities ``V_z + omega_x r_y - omega_y r_x`` vanish at three corners not in a line iff these do,
@@ -201,10 +209,12 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
     distribution with a pulling corner is moved along the system's free direction to the nearest compressive one.
     Accepted, into ``V``, ``Om`` and ``P``, if the directions settle (each corner then slips along the ``s_i`` its
     friction opposes) and every ``N_i >= 0`` (to ``FLAT_ROUNDOFF``); else False (NSGS then solves the step).
-    ``sdir`` (4 x 2), ``A6`` (6 x 6), ``y6`` (6) and ``Am`` (6 x 7) are workspace."""
-    idx = np.empty(4, dtype=np.int64)
-    xs = np.empty(7)
-    zs = np.empty(7)
+    ``ws`` is the step's :class:`.workspace.StepWork` (arms ``r``, free velocity row ``VEC_VF``, slip directions
+    ``sdir``; the velocities into rows ``VEC_V``, ``VEC_OM``)."""
+    r, sdir, vec = ws.r, ws.sdir, ws.vec
+    vf, V, Om = vec[VEC_VF], vec[VEC_V], vec[VEC_OM]
+    fw = FlatWork(np.empty(4, dtype=np.int64), np.empty(7), np.empty(7))
+    idx, xs = fw.idx, fw.xs
     n = ZERO
     for i in range(4):
         if act[i]:
@@ -214,7 +224,7 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
         return False
     settled = False
     for it in range(30):
-        if not _flat_system(idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
+        if not _flat_system(ws, fw, n, mu_k):
             return False
         moved = _flat_directions(xs[n], xs[n + 1], xs[n + 2], idx, n, r, sdir)
         if moved < 0.0:
@@ -224,7 +234,7 @@ def _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, sdir, A6, y6, Am):
             break
     if not settled:
         x = np.array([xs[n], xs[n + 1], xs[n + 2]])
-        if not _flat_newton(x, idx, n, r, Iw, vf, mu_k, sdir, A6, y6, Am, xs, zs):
+        if not _flat_newton(ws, fw, n, mu_k, x):
             return False
     for k in range(n):
         P[idx[k], 2] = xs[k]
@@ -290,10 +300,13 @@ def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
 
 
 @numba.njit(cache=True)
-def _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
-    """The impulses ``P6`` and corner velocities ``u`` of :func:`_edge_system` for the slip directions ``sdir``,
-    and per slipping corner ``k`` the angle from its direction ``s`` to its tangential velocity, ``f[k]`` in
-    (-pi, pi] (zero where the friction opposes the slip). False if the system is singular."""
+def _edge_eval(ew, st, mu_k, f):
+    """The impulses ``P6`` and corner velocities ``u`` (``ew.vec`` rows ``EVEC_P6``, ``EVEC_U``) of
+    :func:`_edge_system` for the slip directions ``ew.sdir``, and per slipping corner ``k`` the angle from its
+    direction ``s`` to its tangential velocity, ``f[k]`` in (-pi, pi] (zero where the friction opposes the slip).
+    False if the system is singular. ``ew`` is the :class:`.workspace.EdgeWork` of :func:`_edge_slip`."""
+    sdir, D, A, cols = ew.sdir, ew.D, ew.A, ew.cols
+    q, y, P6, u = ew.vec[EVEC_Q], ew.vec[EVEC_Y], ew.vec[EVEC_P6], ew.vec[EVEC_U]
     m = _edge_system(st, sdir, mu_k, D, q, A, y, cols)
     if not _solve_n(A, y, m):
         return False
@@ -317,17 +330,20 @@ def _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
 
 
 @numba.njit(cache=True)
-def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
+def _edge_try(ew, st, mu_s, mu_k):
     """One status pair of :func:`_edge_slip`: the slip directions brought to consistency (each along that corner's
     tangential velocity; a few fixed-point steps ``s <- u_t / |u_t|``, then Newton on the directions' angles with a
     finite-difference Jacobian and step halving, the fixed point alone stalling or flipping where the two corners'
     slips are strongly coupled), then the statuses checked (a stuck corner pressing inside the static cone, a
     slipping one pressing and slipping along its ``s``, an open one not approaching). Returns True with the impulses
-    ``P6`` and velocities ``u`` of the two corners; ``fw`` (5 x 2) is workspace."""
+    ``P6`` and velocities ``u`` of the two corners (``ew.vec`` rows ``EVEC_P6``, ``EVEC_U``); ``ew`` is the
+    :class:`.workspace.EdgeWork` of :func:`_edge_slip`."""
+    sdir, fw = ew.sdir, ew.fw
+    P6, u = ew.vec[EVEC_P6], ew.vec[EVEC_U]
     f, f1, ang, J = fw[0], fw[1], fw[2], fw[3:5]
     done = False
     for it in range(5):
-        if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
+        if not _edge_eval(ew, st, mu_k, f):
             return False
         moved = 0.0
         for k in range(2):
@@ -343,7 +359,7 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
     if not done:
         for k in range(2):
             ang[k] = math.atan2(sdir[k, 1], sdir[k, 0])
-        if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f):
+        if not _edge_eval(ew, st, mu_k, f):
             return False
         for it in range(20):
             res = max(abs(f[0]), abs(f[1]))
@@ -355,7 +371,7 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
                     J[0, j], J[1, j] = 0.0, 0.0
                     continue
                 sdir[j, 0], sdir[j, 1] = math.cos(ang[j] + FD_STEP), math.sin(ang[j] + FD_STEP)
-                if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f1):
+                if not _edge_eval(ew, st, mu_k, f1):
                     return False
                 J[0, j], J[1, j] = (f1[0] - f[0]) / FD_STEP, (f1[1] - f[1]) / FD_STEP
                 sdir[j, 0], sdir[j, 1] = math.cos(ang[j]), math.sin(ang[j])
@@ -372,7 +388,7 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
                 for k in range(2):
                     a = ang[k] + lam * (d0 if k == 0 else d1)
                     sdir[k, 0], sdir[k, 1] = math.cos(a), math.sin(a)
-                if not _edge_eval(st, sdir, mu_k, D, q, A, y, cols, P6, u, f1):
+                if not _edge_eval(ew, st, mu_k, f1):
                     return False
                 if max(abs(f1[0]), abs(f1[1])) < res or half == 7:
                     break
@@ -396,7 +412,7 @@ def _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, fw):
 
 
 @numba.njit(cache=True)
-def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
+def _edge_slip(ws, act, P, fric, out):
     """Two active corners, one stuck and one slipping, both slipping, or one slipping and the other leaving the
     floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or twists
     about one of its corners; Gauss-Seidel converges slowly there, the two corners being strongly coupled through
@@ -405,13 +421,16 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
     friction impulses ``P`` (warm start) or free velocities; the first whose statuses hold is the step's solution of
     the contact problem (into ``V``, ``Om``, ``P``), else False (NSGS then solves it). With infinite friction
     (``stick_only``) a slipping corner is :func:`_local`'s infinite-friction limit (``mu_k = LIMIT_MU``, counted in
-    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``ew`` is its scratch (:class:`.workspace.EdgeWork`),
-    ``last[0]`` the pair that held last (tried first)."""
+    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``ws`` is the step's :class:`.workspace.StepWork`
+    (arms ``r``, ``Iinv``, free velocity row ``VEC_VF``; the velocities into rows ``VEC_V``, ``VEC_OM``), its
+    ``edge`` this one's scratch (:class:`.workspace.EdgeWork`), ``edge.last[0]`` the pair that held last (tried
+    first)."""
+    r, Iinv, ew = ws.r, ws.Iinv, ws.edge
+    vf, V, Om = ws.vec[VEC_VF], ws.vec[VEC_V], ws.vec[VEC_OM]
+    mu_s, mu_k, stick_only = fric.mu_s, fric.mu_k, fric.infinite
     if stick_only:
         mu_s, mu_k = np.inf, LIMIT_MU
-    D, A, cols, vecs = ew.D, ew.A, ew.cols, ew.vec
-    q, y, P6, u = vecs[EVEC_Q], vecs[EVEC_Y], vecs[EVEC_P6], vecs[EVEC_U]
-    sdir = ew.sdir
+    D, q, P6, sdir = ew.D, ew.vec[EVEC_Q], ew.vec[EVEC_P6], ew.sdir
     st, idx = ew.stidx[0:2], ew.stidx[2:4]
     n = 0
     for i in range(4):
@@ -443,7 +462,7 @@ def _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ew, out):
                     ok = False
                     break
                 sdir[k, 0], sdir[k, 1] = q[3 * k] / nu, q[3 * k + 1] / nu
-        if ok and _edge_try(st, sdir, mu_s, mu_k, D, q, A, y, cols, P6, u, ew.fw):
+        if ok and _edge_try(ew, st, mu_s, mu_k):
             last[0] = combo
             V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
             for i in range(4):

@@ -20,7 +20,7 @@ from opsrock.solvers.rigid3d.constants import (LIMIT_MU, NO, OUT_COARSE_SPAN, OU
 from opsrock.solvers.rigid3d.geometry import (_arms, _delassus_pair, _inv_inertia, _tilt)
 from opsrock.solvers.rigid3d.sliding import (_edge_system, _solve_n)
 from opsrock.solvers.rigid3d.step import (_book, _floor, _step)
-from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y, VEC_VF)
+from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y, Probe)
 
 
 @numba.njit(cache=True)
@@ -46,6 +46,21 @@ def _stuck_pivot(act, touch, slip, P):
     return n == 1 or n == 2
 
 
+@numba.njit(cache=True)
+def _span(floor, k, n_max):
+    """The Moreau-Jean steps a smooth step from step ``k`` spans at first: to the next sample of the floor motion or
+    the end of the excitation, at most ``n_max``; -1 if that is fewer than two (none is tried)."""
+    n = PV.step_end(floor, k, n_max) - k
+    return -1 if n < 2 else n
+
+
+@numba.njit(cache=True)
+def _halved(n):
+    """The steps of the next smooth step tried after one of ``n`` steps left its phase: half of them, at least
+    ``pivot.MIN_STEPS``; 0 if ``n`` was already that short (the Moreau-Jean steps then locate the event)."""
+    return 0 if n <= PV.MIN_STEPS else max(PV.MIN_STEPS, n // 2)
+
+
 @numba.njit(cache=True, inline='always')
 def _same_phase(model, new, piv, n_piv, a, ws, probe):
     """Is the end state ``new`` of a smooth step still in its phase? Every other corner above ``lift_gap``, and
@@ -64,7 +79,7 @@ def _same_phase(model, new, piv, n_piv, a, ws, probe):
     guess = ws.mask
     for i in range(4):
         guess[i] = i == piv[0] or (n_piv == 2 and i == piv[1])
-    sweeps = _step(model, new, a[0], a[1], a[2], model.numerics.dt, ws, actp, Pp, sp, outp, guess)
+    sweeps = _step(model, new, (a[0], a[1], a[2]), model.numerics.dt, ws, probe, guess)
     if sweeps == 0 or sweeps > model.nsgs.max_sweeps:
         return False
     for i in range(4):
@@ -80,11 +95,15 @@ def _same_phase(model, new, piv, n_piv, a, ws, probe):
 
 
 @numba.njit(cache=True, inline='always')
-def _smooth(model, floor, state, touch, k, n_max, ws, wk, probe, P, new, out):
-    """A smooth step (:mod:`opsrock.solvers.rigid3d.pivot`) about the corners down: from ``k`` to the next
-    sample (at most ``n_max`` steps), halved while it leaves its phase, down to ``pivot.MIN_STEPS``. Returns
-    ``(steps, largest tilt)``; 0 steps if none was kept, -1 if none could be tried (fewer than two steps to
-    the next sample, or not one corner or two down); the Moreau-Jean steps then go on."""
+def _smooth(model, floor, state, k, work, corners, trial):
+    """A smooth step (:mod:`opsrock.solvers.rigid3d.pivot`) about the corners down (``corners.touch``): from ``k`` to
+    the next sample (at most ``pivot.MAX_DTAU``), halved while it leaves its phase (:func:`_halved`), into
+    ``trial.state`` (its impulses ``trial.P``, its counts ``trial.out``). Returns ``(steps, largest tilt)``; 0 steps
+    if none was kept, -1 if none could be tried (fewer than two steps to the next sample, or not one corner or two
+    down); the Moreau-Jean steps then go on. ``work``: the kernel's :class:`.workspace.Workspace`."""
+    touch, ws, wk, probe = corners.touch, work.step, work.pivot, work.probe
+    P, new, out = trial.P, trial.state, trial.out
+    n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (model.body.p * model.numerics.dt)))
     piv = ws.piv
     n_piv = ZERO
     for i in range(4):
@@ -95,14 +114,14 @@ def _smooth(model, floor, state, touch, k, n_max, ws, wk, probe, P, new, out):
             n_piv += 1
     if n_piv == 0:
         return 0, 0.0
-    n = PV.step_end(floor, k, n_max) - k
-    if n < 2:
+    n = _span(floor, k, n_max)
+    if n < 0:
         return -1, 0.0
     a = ws.a
     Pp = probe.P
     while True:
         out[OUT_SMOOTH_TRIED] += 1.0
-        tilt = PV.integrate(model, floor, state, piv, n_piv, k, n, new, wk)
+        tilt = PV.integrate(model, floor, state, piv[:n_piv], k, n, new, wk)
         a[0], a[1], a[2] = _floor(floor, k + n, model.numerics.theta_mj)
         Pp[:, :] = P
         if 0.0 <= tilt < OVERTURNING_ANGLE and _same_phase(model, new, piv, n_piv, a, ws, probe):
@@ -110,26 +129,19 @@ def _smooth(model, floor, state, touch, k, n_max, ws, wk, probe, P, new, out):
             out[OUT_SMOOTH_STEPS] += 1.0
             out[OUT_SMOOTH_SPAN] += n
             return n, tilt
-        if n <= PV.MIN_STEPS:
+        n = _halved(n)
+        if n == 0:
             return 0, 0.0
-        n = max(PV.MIN_STEPS, n // 2)
 
 
 @numba.njit(cache=True)
-def _slip_rhs(model, y, F, idx, st, sw, dy):
-    """Time derivative ``dy`` of the state ``y`` (13) of a block on the corners ``idx[:2]`` with the statuses
-    ``st`` (0 stuck, 1 slipping, 2 not in contact) under the body force ``F`` (m/s², per unit mass): the contact
-    forces per unit mass solve :func:`_edge_system` at acceleration level (a stuck corner's acceleration zero, a
-    slipping corner's normal acceleration zero and its force ``N (-mu_k s, 1)``, ``s`` its slip velocity's
-    direction; with infinite friction :func:`_local`'s limit, ``mu_k = LIMIT_MU``), the corners' free
-    accelerations ``F + alpha_f x r + omega x (omega x r)`` with ``alpha_f = -I^-1 (omega x I omega)``. Returns
-    ``(holds, friction power, stop time)``: ``holds`` False unless every contact presses (``N > 0``) and a stuck
-    corner's force lies in its static cone; the power (W/kg) the slipping corners' friction dissipates; the
-    smallest of the slipping corners' speed over tangential acceleration (s)."""
-    Q, Iinv, Iw, r, D, A, cols, vecs, sdir = sw.Q, sw.Iinv, sw.Iw, sw.r, sw.D, sw.A, sw.cols, sw.vec, sw.sdir
-    q, yv, P6, u = vecs[EVEC_Q], vecs[EVEC_Y], vecs[EVEC_P6], vecs[EVEC_U]
-    fric = model.friction
-    mu_s, mu_k = (np.inf, LIMIT_MU) if fric.infinite else (fric.mu_s, fric.mu_k)
+def _slip_free(model, y, F, sw):
+    """The free motion of :func:`_slip_rhs` at the state ``y`` under the body force ``F``: into ``sw`` the arms,
+    inertia, the contact corners' velocities ``u`` and free accelerations ``q`` (rows ``EVEC_U``, ``EVEC_Q``), their
+    Delassus blocks ``D`` and a slipping corner's slip direction ``sdir``. Returns ``(ok, alpha_f)``: ``ok`` False
+    if a slipping corner does not move; ``alpha_f = -I^-1 (omega x I omega)`` (a 3-tuple, rad/s²)."""
+    Q, Iinv, Iw, r, D, sdir, idx, st = sw.Q, sw.Iinv, sw.Iw, sw.r, sw.D, sw.sdir, sw.idx, sw.st
+    q, u = sw.vec[EVEC_Q], sw.vec[EVEC_U]
     _arms(y, model.body, Q, r)
     _inv_inertia(Q, model.body.inertia, Iinv, Iw)
     w0, w1, w2 = y[10], y[11], y[12]
@@ -152,16 +164,17 @@ def _slip_rhs(model, y, F, idx, st, sw, dy):
         if st[k] == 1:
             nu = math.hypot(u[3 * k], u[3 * k + 1])
             if nu == 0.0:
-                return False, 0.0, 0.0
+                return False, (0.0, 0.0, 0.0)
             sdir[k, 0], sdir[k, 1] = u[3 * k] / nu, u[3 * k + 1] / nu
-    m = _edge_system(st, sdir, mu_k, D, q, A, yv, cols)
-    if not _solve_n(A, yv, m):
-        return False, 0.0, 0.0
-    for a in range(6):
-        acc = 0.0
-        for c in range(m):
-            acc += cols[c, a] * yv[c]
-        P6[a] = acc
+    return True, (al0, al1, al2)
+
+
+@numba.njit(cache=True)
+def _slip_loads(sw, mu_s):
+    """The contact forces ``P6`` (row ``EVEC_P6``) of :func:`_slip_rhs` checked: ``(holds, friction power, stop
+    time)`` as it returns them."""
+    D, st = sw.D, sw.st
+    q, P6, u = sw.vec[EVEC_Q], sw.vec[EVEC_P6], sw.vec[EVEC_U]
     holds = True
     power = 0.0
     t_stop = np.inf
@@ -180,6 +193,14 @@ def _slip_rhs(model, y, F, idx, st, sw, dy):
             if a_t > 0.0:
                 t_stop = min(t_stop, math.hypot(u[3 * k], u[3 * k + 1]) / a_t)
             power -= P6[3 * k] * u[3 * k] + P6[3 * k + 1] * u[3 * k + 1]
+    return holds, power, t_stop
+
+
+@numba.njit(cache=True)
+def _slip_derivative(y, F, al, sw, dy):
+    """``dy`` of :func:`_slip_rhs`: the body force ``F`` and the contact forces ``P6`` on the centre of mass, their
+    torques and ``al`` (``alpha_f``) on the rotation, the quaternion's rate."""
+    r, idx, st, P6, Iinv = sw.r, sw.idx, sw.st, sw.vec[EVEC_P6], sw.Iinv
     t0, t1, t2 = 0.0, 0.0, 0.0
     dy[7], dy[8], dy[9] = F[0], F[1], F[2]
     for k in range(2):
@@ -193,31 +214,63 @@ def _slip_rhs(model, y, F, idx, st, sw, dy):
         t0 += ri[1] * p2 - ri[2] * p1
         t1 += ri[2] * p0 - ri[0] * p2
         t2 += ri[0] * p1 - ri[1] * p0
-    dy[10] = al0 + Iinv[0, 0] * t0 + Iinv[0, 1] * t1 + Iinv[0, 2] * t2
-    dy[11] = al1 + Iinv[1, 0] * t0 + Iinv[1, 1] * t1 + Iinv[1, 2] * t2
-    dy[12] = al2 + Iinv[2, 0] * t0 + Iinv[2, 1] * t1 + Iinv[2, 2] * t2
+    dy[10] = al[0] + Iinv[0, 0] * t0 + Iinv[0, 1] * t1 + Iinv[0, 2] * t2
+    dy[11] = al[1] + Iinv[1, 0] * t0 + Iinv[1, 1] * t1 + Iinv[1, 2] * t2
+    dy[12] = al[2] + Iinv[2, 0] * t0 + Iinv[2, 1] * t1 + Iinv[2, 2] * t2
     dy[0], dy[1], dy[2] = y[7], y[8], y[9]
+    w0, w1, w2 = y[10], y[11], y[12]
     qw, qx, qy, qz = y[3], y[4], y[5], y[6]
     dy[3] = -0.5 * (w0 * qx + w1 * qy + w2 * qz)
     dy[4] = 0.5 * (qw * w0 + w1 * qz - w2 * qy)
     dy[5] = 0.5 * (qw * w1 + w2 * qx - w0 * qz)
     dy[6] = 0.5 * (qw * w2 + w0 * qy - w1 * qx)
+
+
+@numba.njit(cache=True)
+def _slip_rhs(model, y, F, sw, dy):
+    """Time derivative ``dy`` of the state ``y`` (13) of a block on the corners ``sw.idx`` with the statuses
+    ``sw.st`` (0 stuck, 1 slipping, 2 not in contact) under the body force ``F`` (m/s², per unit mass): the contact
+    forces per unit mass solve :func:`_edge_system` at acceleration level (a stuck corner's acceleration zero, a
+    slipping corner's normal acceleration zero and its force ``N (-mu_k s, 1)``, ``s`` its slip velocity's
+    direction; with infinite friction :func:`_local`'s limit, ``mu_k = LIMIT_MU``), the corners' free
+    accelerations ``F + alpha_f x r + omega x (omega x r)`` with ``alpha_f = -I^-1 (omega x I omega)``
+    (:func:`_slip_free`). Returns ``(holds, friction power, stop time)`` (:func:`_slip_loads`): ``holds`` False
+    unless every contact presses (``N > 0``) and a stuck corner's force lies in its static cone; the power (W/kg)
+    the slipping corners' friction dissipates; the smallest of the slipping corners' speed over tangential
+    acceleration (s). ``sw`` is its :class:`.workspace.SlipWork`."""
+    D, A, cols, sdir = sw.D, sw.A, sw.cols, sw.sdir
+    q, yv, P6 = sw.vec[EVEC_Q], sw.vec[EVEC_Y], sw.vec[EVEC_P6]
+    fric = model.friction
+    mu_s, mu_k = (np.inf, LIMIT_MU) if fric.infinite else (fric.mu_s, fric.mu_k)
+    ok, al = _slip_free(model, y, F, sw)
+    if not ok:
+        return False, 0.0, 0.0
+    m = _edge_system(sw.st, sdir, mu_k, D, q, A, yv, cols)
+    if not _solve_n(A, yv, m):
+        return False, 0.0, 0.0
+    for a in range(6):
+        acc = 0.0
+        for c in range(m):
+            acc += cols[c, a] * yv[c]
+        P6[a] = acc
+    holds, power, t_stop = _slip_loads(sw, mu_s)
+    _slip_derivative(y, F, al, sw, dy)
     return holds, power, t_stop
 
 
 @numba.njit(cache=True)
-def _slip_integrate(model, floor, s, idx, st, k0, n_steps, new, sw):
+def _slip_integrate(model, floor, s, k0, n_steps, new, sw):
     """Classical Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps on the slipping
-    (and stuck) corners ``idx`` / ``st`` (:func:`_slip_rhs`) into ``new``, in sub-steps of at most
+    (and stuck) corners ``sw.idx`` / ``sw.st`` (:func:`_slip_rhs`) into ``new``, in sub-steps of at most
     ``pivot.RK_DTAU``. Returns ``(largest tilt at the sub-steps' ends (rad), friction work (J/kg))``, the tilt -1
     as soon as a stage's forces stop holding (:func:`_slip_rhs`), a corner not in contact reaches the floor or
     the tilt reaches pi/2. ``sw`` is the workspace of :func:`_slip_rhs` and ``(dy, acc, ytmp, F)``."""
     dy, acc, ytmp, F = sw.dy, sw.acc, sw.ytmp, sw.F
-    r = sw.r
+    r, idx, st = sw.r, sw.idx, sw.st
     g, dt, theta_mj = model.body.g, model.numerics.dt, model.numerics.theta_mj
     new[:] = s
     PV.floor_at(floor, float(k0), k0, theta_mj, F, g)
-    holds, _, t_stop = _slip_rhs(model, new, F, idx, st, sw, dy)
+    holds, _, t_stop = _slip_rhs(model, new, F, sw, dy)
     span = n_steps * dt
     if not holds or t_stop <= 0.0 or span * SLIP_TURN > n_steps * t_stop:  # (the last: a sub-step under dt)
         return -1.0, 0.0
@@ -236,7 +289,7 @@ def _slip_integrate(model, floor, s, idx, st, k0, n_steps, new, sw):
             for a in range(13):
                 ytmp[a] = new[a] + (c * hdt * dy[a] if stage > 0 else 0.0)
             PV.floor_at(floor, kf + c * hs, k0, theta_mj, F, g)
-            holds, power, t_stop = _slip_rhs(model, ytmp, F, idx, st, sw, dy)
+            holds, power, t_stop = _slip_rhs(model, ytmp, F, sw, dy)
             if not holds or 0.5 * SLIP_TURN * hdt > t_stop:
                 return -1.0, 0.0
             work += w * hdt * power
@@ -299,7 +352,7 @@ def _same_slip(model, new, idx, st, a, ws, probe, sw):
         if not guess[i] and new[2] + ws.r1[i, 2] <= model.limits.lift_gap:
             return False
     outp[:] = 0.0
-    sweeps = _step(model, new, a[0], a[1], a[2], model.numerics.dt, ws, actp, Pp, sp, outp, guess)
+    sweeps = _step(model, new, (a[0], a[1], a[2]), model.numerics.dt, ws, probe, guess)
     if sweeps == 0 or sweeps > model.nsgs.max_sweeps:
         return False
     u = sw.vec[EVEC_U]  # the end state's corner velocities, from its last _slip_rhs (the arms of ``new``)
@@ -322,11 +375,14 @@ def _same_slip(model, new, idx, st, a, ws, probe, sw):
 
 
 @numba.njit(cache=True, inline='always')
-def _smooth_slip(model, floor, state, touch, slip, k, n_max, ws, sw, probe, P, new, out):
+def _smooth_slip(model, floor, state, k, work, corners, trial):
     """A smooth step on one or two corners of which at least one slips (:func:`_slip_integrate`): from ``k`` to
-    the next sample (at most ``n_max`` steps), halved while it leaves its phase (:func:`_same_slip`), down to
-    ``pivot.MIN_STEPS``. Returns ``(steps, largest tilt)`` as :func:`_smooth` does; the friction work into
-    ``out``."""
+    the next sample (at most ``pivot.MAX_DTAU``), halved while it leaves its phase (:func:`_same_slip`,
+    :func:`_halved`). Returns ``(steps, largest tilt)`` as :func:`_smooth` does, with its arguments; the friction
+    work into ``trial.out``."""
+    touch, slip, ws, sw, probe = corners.touch, corners.slip, work.step, work.slip, work.probe
+    P, new, out = trial.P, trial.state, trial.out
+    n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (model.body.p * model.numerics.dt)))
     idx, st = sw.idx, sw.st
     n_c = ZERO
     for i in range(4):
@@ -340,14 +396,14 @@ def _smooth_slip(model, floor, state, touch, slip, k, n_max, ws, sw, probe, P, n
         return 0, 0.0
     if n_c == 1:
         idx[1], st[1] = (idx[0] + 1) % 4, 2
-    n = PV.step_end(floor, k, n_max) - k
-    if n < 2:
+    n = _span(floor, k, n_max)
+    if n < 0:
         return -1, 0.0
     a = ws.a
     Pp = probe.P
     while True:
         out[OUT_SLIP_TRIED] += 1.0
-        tilt, work = _slip_integrate(model, floor, state, idx, st, k, n, new, sw)
+        tilt, fw = _slip_integrate(model, floor, state, k, n, new, sw)
         if tilt >= 0.0:
             a[0], a[1], a[2] = _floor(floor, k + n, model.numerics.theta_mj)
             Pp[:, :] = P
@@ -355,23 +411,31 @@ def _smooth_slip(model, floor, state, touch, slip, k, n_max, ws, sw, probe, P, n
                 P[:, :] = Pp
                 out[OUT_SLIP_STEPS] += 1.0
                 out[OUT_SLIP_SPAN] += n
-                out[OUT_FRICTION_WORK] += work
+                out[OUT_FRICTION_WORK] += fw
                 return n, tilt
-        if n <= PV.MIN_STEPS:
+        n = _halved(n)
+        if n == 0:
             return 0, 0.0
-        n = max(PV.MIN_STEPS, n // 2)
+
+
+@numba.njit(cache=True)
+def _coarse_steps(model):
+    """The longest coarse Moreau-Jean step of a block sliding flat (:func:`_coarse_slide`), in Moreau-Jean steps:
+    ``pivot.SLIDE_DTAU``, at least two."""
+    return max(2, int(PV.SLIDE_DTAU / (model.body.p * model.numerics.dt)))
 
 
 @numba.njit(cache=True, inline='always')
-def _coarse_slide(model, floor, state, k, n_max, ws, probe, P, new, out, touch, slip):
-    """A block sliding flat on its four corners: one Moreau-Jean step of up to ``n_max`` steps (to the next
-    sample), kept if its contact problem is the same, all four corners active, solved by the closed-form
-    flat slide or stick (:mod:`.pivot`, ``SLIDE_DTAU``) and kept on the floor (no corner's normal velocity above
-    ``vel_tol``; a corner may carry none of the load, the four corners' loads being indeterminate). Returns the steps taken (0: none kept, -1: none
-    tried)."""
-    vel_tol, lift_gap = model.limits.velocity_tol, model.limits.lift_gap
-    n = PV.step_end(floor, k, n_max) - k
-    if n < 2:
+def _coarse_slide(model, floor, state, k, work, corners, trial):
+    """A block sliding flat on its four corners: one Moreau-Jean step of up to :func:`_coarse_steps` steps (to the
+    next sample) into ``trial.state``, kept if its contact problem is the same, all four corners active, solved by
+    the closed-form flat slide or stick (:mod:`.pivot`, ``SLIDE_DTAU``) and kept on the floor (no corner's normal
+    velocity above ``vel_tol``; a corner may carry none of the load, the four corners' loads being indeterminate).
+    Returns the steps taken (0: none kept, -1: none tried); arguments as :func:`_smooth`'s."""
+    vel_tol = model.limits.velocity_tol
+    ws, probe, P, new, out = work.step, work.probe, trial.P, trial.state, trial.out
+    n = _span(floor, k, _coarse_steps(model))
+    if n < 0:
         return -1
     a = ws.a
     PV.mean_floor(floor, k, n, model.numerics.theta_mj, a)
@@ -380,15 +444,15 @@ def _coarse_slide(model, floor, state, k, n_max, ws, probe, P, new, out, touch, 
         for c in range(3):
             Pp[i, c] = P[i, c] * n
     outp[:] = 0.0
-    sweeps = _step(model, state, a[0], a[1], a[2], n * model.numerics.dt, ws, actp, Pp, new, outp, touch)
+    sweeps = _step(model, state, (a[0], a[1], a[2]), n * model.numerics.dt, ws, Probe(actp, Pp, new, outp),
+                   corners.touch)
     if sweeps != 1 or outp[OUT_SLIDE_STEPS] + outp[OUT_STICK_STEPS] < 0.5:
         return 0
     for i in range(4):  # every corner active and kept on the floor (a corner may carry no load: see _slide_flat)
         ri = ws.r[i]
         if not actp[i] or abs(new[9] + new[10] * ri[1] - new[11] * ri[0]) > vel_tol:
             return 0
-    _book(state, a, ws.Q1, ws.r1, ws.r, ws.Iw, ws.vec[VEC_VF], actp, Pp, new, out, touch, slip, vel_tol, lift_gap,
-          model.body)
+    _book(state, Probe(actp, Pp, new, out), ws, corners, model)
     for i in range(4):
         for c in range(3):
             P[i, c] = Pp[i, c] / n

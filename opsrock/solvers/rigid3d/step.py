@@ -18,7 +18,7 @@ from opsrock.solvers.rigid3d.geometry import (_arms, _cross_add, _delassus, _geo
 from opsrock.solvers.rigid3d.contact import _solve_contacts
 from opsrock.solvers.rigid3d.sticking import (_stick_all, _stick_single, _stick_subset)
 from opsrock.solvers.rigid3d.sliding import (_edge_slip, _slide_flat)
-from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_PN, VEC_V, VEC_VF, VEC_Y6)
+from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_V, VEC_VF)
 
 
 @numba.njit(cache=True)
@@ -36,26 +36,15 @@ def _floor(floor, k, theta_mj):
 
 
 @numba.njit(cache=True)
-def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
-    """One Moreau-Jean step from ``s`` into ``new`` (docs/guide/three-dimensions.md): the free velocity under the
-    step's forces (gravity and the floor's inertia force on the centre of mass, the gyroscopic torque
-    ``-omega x I omega`` at ``t_k``), the active corners from the mid-step prediction of their gaps, the
-    corners' Delassus blocks at ``q_k``, the impulses by NSGS (:func:`_nsgs`) warm-started from ``P``, then
-    ``X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]`` and the quaternion turned by ``dt`` times the
-    same blend of the angular velocities. Returns the sweeps NSGS took (0: no contact;
-    ``model.nsgs.max_sweeps + 1``: it did not converge). ``ws`` holds the workspace (see :func:`run`).
-
-    Before the closed forms and NSGS, the corners that were down (``guess``) are tried alone, stuck
-    (:func:`_stick_subset`): a block rocking on an edge just after an impact has its other corners still
-    predicted active, unloaded and separating."""
-    Q, Iinv, Iw, r, Wd, Wi, vec = ws.Q, ws.Iinv, ws.Iw, ws.r, ws.Wd, ws.Wi, ws.vec
-    body, fric, nsgs, theta_mj = model.body, model.friction, model.nsgs, model.numerics.theta_mj
-    g = body.g
-    _geometry(s, body, Q, Iinv, Iw, r)
+def _free_velocity(s, acc, dt, g, ws):
+    """The free velocity of a step from ``s`` under the floor accelerations ``acc = (a_x, a_y, a_v)`` (m/s²):
+    gravity and the floor's inertia force on the centre of mass, the gyroscopic torque ``-omega x I omega`` at
+    ``t_k``, into ``ws.vec`` rows ``VEC_V``, ``VEC_OM`` (where the impulses then add) and ``VEC_VF`` (kept); ``ws``
+    holds the inertia of ``s``."""
+    Iinv, Iw, vec = ws.Iinv, ws.Iw, ws.vec
     V = vec[VEC_V]
     Om = vec[VEC_OM]
-    # free velocity
-    V[0], V[1], V[2] = s[7] - dt * a_x, s[8] - dt * a_y, s[9] - dt * (g + a_v)
+    V[0], V[1], V[2] = s[7] - dt * acc[0], s[8] - dt * acc[1], s[9] - dt * (g + acc[2])
     w0, w1, w2 = s[10], s[11], s[12]
     L0 = Iw[0, 0] * w0 + Iw[0, 1] * w1 + Iw[0, 2] * w2
     L1 = Iw[1, 0] * w0 + Iw[1, 1] * w1 + Iw[1, 2] * w2
@@ -65,55 +54,88 @@ def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
         Om[a] = s[10 + a] + dt * (Iinv[a, 0] * g0 + Iinv[a, 1] * g1 + Iinv[a, 2] * g2)
     vf = vec[VEC_VF]
     vf[0], vf[1], vf[2], vf[3], vf[4], vf[5] = V[0], V[1], V[2], Om[0], Om[1], Om[2]
+
+
+@numba.njit(cache=True)
+def _closed_form(ws, act, n_act, guess, P, fric, tol, out):
+    """The step's contact problem by a closed form, tried in turn (docs/guide/three-dimensions.md): the corners that
+    were down (``guess``) alone stuck, or else those that were not (:func:`_stick_subset`: a block rocking on an
+    edge just after an impact has its other corners still predicted active, unloaded and separating); every active
+    corner stuck (:func:`_stick_all`); on two corners each alone stuck (:func:`_stick_single`), then one or both
+    slipping (:func:`_edge_slip`); on three or four all slipping (:func:`_slide_flat`). Returns True, counted in
+    ``out``, if one solved it (into ``ws.vec`` rows ``VEC_V``, ``VEC_OM`` and ``P``; a tried one may have written
+    them); ``tol`` (m/s) the separation allowed."""
+    n_down = 0  # the active corners that were down: a subset to try alone (_stick_subset) if one or two, not all
+    for i in range(4):
+        n_down += act[i] and guess[i]
+    try_down = 0 < n_down <= 2 and n_down < n_act
+    try_landing = 0 < n_act - n_down <= 2 and n_down > 0
+    if n_act >= 2 and ((try_down and _stick_subset(ws, act, guess, NO, n_act, P, fric, tol))
+                       or (try_landing and _stick_subset(ws, act, guess, YES, n_act, P, fric, tol))):
+        out[OUT_STICK_STEPS] += 1.0
+    elif n_act >= 2 and _stick_all(ws, act, n_act, P, fric):
+        out[OUT_STICK_STEPS] += 1.0
+    elif n_act == 2 and _stick_single(ws, act, P, fric, tol):
+        out[OUT_STICK_STEPS] += 1.0
+    elif n_act == 2 and _edge_slip(ws, act, P, fric, out):
+        out[OUT_EDGE_SLIP] += 1.0
+    elif n_act >= 3 and not fric.infinite and _slide_flat(ws, act, P, fric.mu_k):
+        out[OUT_SLIDE_STEPS] += 1.0
+    else:
+        return False
+    return True
+
+
+@numba.njit(cache=True)
+def _gauss_seidel(ws, act, n_act, P, fric, tol, nsgs, out):
+    """The step's contact problem by NSGS (:func:`_solve_contacts`): the active corners' Delassus blocks at ``q_k``,
+    the velocity warm-started from the impulses ``P`` (an inactive corner's zeroed). Returns the sweeps."""
+    r, Iinv, Wd, Wi, vec = ws.r, ws.Iinv, ws.Wd, ws.Wi, ws.vec
+    V, Om, vf = vec[VEC_V], vec[VEC_OM], vec[VEC_VF]
+    V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
+    for i in range(4):
+        if act[i]:
+            _delassus(r[i], Iinv, Wd[i])
+            _inv3(Wd[i], Wi[i])
+            V[0] += P[i, 0]
+            V[1] += P[i, 1]
+            V[2] += P[i, 2]
+            _cross_add(r[i], P[i], Iinv, Om, 1.0)
+        else:
+            P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
+    return _solve_contacts(ws, act, P, fric, tol, nsgs, out, n_act == 1)
+
+
+@numba.njit(cache=True)
+def _step(model, s, acc, dt, ws, trial, guess):
+    """One Moreau-Jean step of length ``dt`` (s) from ``s`` under the floor accelerations ``acc = (a_x, a_y, a_v)``
+    (m/s²) into ``trial`` (:class:`.workspace.Probe`: the active corners, the impulses ``P``, warm start on entry,
+    the end state and the bookkeeping; docs/guide/three-dimensions.md): the free velocity
+    (:func:`_free_velocity`), the active corners from the mid-step prediction of their gaps, the impulses by a
+    closed form (:func:`_closed_form`, the corners down before the step ``guess`` tried alone first) or NSGS
+    (:func:`_gauss_seidel`), then ``X_{k+1} = X_k + dt [(1 - theta_mj) V_k + theta_mj V_{k+1}]`` and the quaternion
+    turned by ``dt`` times the same blend of the angular velocities. Returns the sweeps (0: no contact; 1: a closed
+    form; ``model.nsgs.max_sweeps + 1``: NSGS did not converge). ``ws`` is the step's
+    :class:`.workspace.StepWork`."""
+    act, P, new, out = trial.act, trial.P, trial.state, trial.out
+    body, fric, nsgs, theta_mj = model.body, model.friction, model.nsgs, model.numerics.theta_mj
+    r, vec = ws.r, ws.vec
+    _geometry(s, body, ws.Q, ws.Iinv, ws.Iw, r)
+    _free_velocity(s, acc, dt, body.g, ws)
+    V, Om, vf = vec[VEC_V], vec[VEC_OM], vec[VEC_VF]
     n_act = ZERO
     for i in range(4):
         ri = r[i]
         un = s[9] + s[10] * ri[1] - s[11] * ri[0]
         act[i] = s[2] + ri[2] + 0.5 * dt * un <= 0.0
         n_act += act[i]
-    sweeps = 0
-    stick_only, mu_s, mu_k = fric.infinite, fric.mu_s, fric.mu_k
-    scale = max(g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), body.R * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
+    scale = max(body.g * dt, abs(vf[0]), abs(vf[1]), abs(vf[2]), body.R * (abs(vf[3]) + abs(vf[4]) + abs(vf[5])))
     tol = nsgs.tol * scale
-    n_down = 0  # the active corners that were down: a subset to try alone (_stick_subset) if one or two, not all
-    for i in range(4):
-        n_down += act[i] and guess[i]
-    try_down = 0 < n_down <= 2 and n_down < n_act
-    try_landing = 0 < n_act - n_down <= 2 and n_down > 0
-    if n_act >= 2 and ((try_down and _stick_subset(act, guess, NO, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s,
-                                                    stick_only, tol, ws, vec[VEC_Y6]))
-                       or (try_landing and _stick_subset(act, guess, YES, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s,
-                                                         stick_only, tol, ws, vec[VEC_Y6]))):
+    sweeps = 0
+    if n_act >= 2 and _closed_form(ws, act, n_act, guess, P, fric, tol, out):
         sweeps = 1
-        out[OUT_STICK_STEPS] += 1.0
-    elif n_act >= 2 and _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, ws.A6, vec[VEC_Y6]):
-        sweeps = 1
-        out[OUT_STICK_STEPS] += 1.0
-    elif n_act == 2 and _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws,
-                                      vec[VEC_Y6]):
-        sweeps = 1
-        out[OUT_STICK_STEPS] += 1.0
-    elif n_act == 2 and _edge_slip(act, r, Iinv, vf, V, Om, P, mu_s, mu_k, stick_only, ws.edge, out):
-        sweeps = 1
-        out[OUT_EDGE_SLIP] += 1.0
-    elif n_act >= 3 and not stick_only and _slide_flat(act, r, Iw, vf, V, Om, P, mu_k, ws.sdir, ws.A6,
-                                                                   vec[VEC_Y6], ws.Am):
-        sweeps = 1
-        out[OUT_SLIDE_STEPS] += 1.0
     elif n_act > 0:
-        V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
-        for i in range(4):
-            if act[i]:
-                _delassus(r[i], Iinv, Wd[i])
-                _inv3(Wd[i], Wi[i])
-                V[0] += P[i, 0]
-                V[1] += P[i, 1]
-                V[2] += P[i, 2]
-                _cross_add(r[i], P[i], Iinv, Om, 1.0)
-            else:
-                P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
-        sweeps = _solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu_s, mu_k, stick_only, tol,
-                                 nsgs, vec[VEC_Y6], vec[VEC_PN], out, n_act == 1)
+        sweeps = _gauss_seidel(ws, act, n_act, P, fric, tol, nsgs, out)
     else:
         for i in range(4):
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
@@ -127,15 +149,17 @@ def _step(model, s, a_x, a_y, a_v, dt, ws, act, P, new, out, guess):
 
 
 @numba.njit(cache=True)
-def _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out):
-    """After a step: friction work of the impulses, and each corner's contact and slip flags (the arms ``r``
-    of the step's start: the velocity rows the solver enforced; ``r1`` those of its end, for the gaps); returns
-    True if a corner landed (an impact).
+def _contacts(new, ws, act, P, corners, limits, out):
+    """After a step: friction work of the impulses, and each corner's contact and slip flags (``corners``:
+    :class:`.workspace.Corners`; the arms ``ws.r`` of the step's start: the velocity rows the solver enforced;
+    ``ws.r1`` those of its end, for the gaps); returns True if a corner landed (an impact).
 
     A corner with a normal impulse is down (an impact if it was up), slipping if its tangential speed exceeds
-    ``vel_tol``. A corner without impulse is up once it moves away from the floor faster than ``vel_tol`` or
-    rises above ``lift_gap``; otherwise it stays down (a pivot constrained at velocity level drifts up and
+    ``limits.velocity_tol``. A corner without impulse is up once it moves away from the floor faster than that or
+    rises above ``limits.lift_gap``; otherwise it stays down (a pivot constrained at velocity level drifts up and
     takes an occasional free step; a level block may rest on three corners), slipping if it moves."""
+    r, r1, touch, slip = ws.r, ws.r1, corners.touch, corners.slip
+    vel_tol, lift_gap = limits.velocity_tol, limits.lift_gap
     impact = False
     V0, V1, V2, w0, w1, w2 = new[7], new[8], new[9], new[10], new[11], new[12]
     for i in range(4):
@@ -175,10 +199,7 @@ def _rest_holds(a_x, a_y, a_v, body, fric):
 
 @numba.njit(cache=True)
 def _count_sweeps(sweeps, nsgs, out):
-    """A Moreau-Jean step's contact-solver counts (:func:`_step`'s ``sweeps``); returns True if it converged.
-    (The step and its bookkeeping, :func:`_book`, are called from :func:`run` itself: a function between them
-    that passed the kernel's workspace on cost about a third of a microsecond a step in numba's reference
-    counting of its arrays.)"""
+    """A Moreau-Jean step's contact-solver counts (:func:`_step`'s ``sweeps``); returns True if it converged."""
     if sweeps > 0:
         out[OUT_CONTACT_STEPS] += 1.0
         out[OUT_NSGS_SWEEPS] += min(sweeps, nsgs.max_sweeps)
@@ -190,16 +211,19 @@ def _count_sweeps(sweeps, nsgs, out):
 
 
 @numba.njit(cache=True)
-def _book(state, a, Q1, r1, r, Iw, vf, act, P, new, out, touch, slip, vel_tol, lift_gap, body):
-    """The bookkeeping of a Moreau-Jean step from ``state`` to ``new`` under the accelerations ``a`` with the
-    impulses ``P``: input work, the corners' flags and friction work (:func:`_contacts`), an impact's loss.
-    ``r`` and ``Iw`` are the step's arms and inertia, ``vf`` its free velocity; ``Q1`` and ``r1`` workspace (the
-    arms of ``new`` on return). Returns True at an impact."""
+def _book(state, trial, ws, corners, model):
+    """The bookkeeping of a Moreau-Jean step from ``state`` to ``trial.state`` under the accelerations ``ws.a`` with
+    the active corners ``trial.act`` and impulses ``trial.P``, into ``trial.out``: input work, the corners' flags
+    (``corners``) and friction work (:func:`_contacts`), an impact's loss. ``ws`` holds the step's arms ``r``,
+    inertia ``Iw`` and free velocity (row ``VEC_VF``); the arms of the end state into ``ws.r1`` (``ws.Q1``
+    workspace). Returns True at an impact."""
+    act, P, new, out = trial.act, trial.P, trial.state, trial.out
+    a, Iw, vf = ws.a, ws.Iw, ws.vec[VEC_VF]
     # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
     # _contacts, and at an impact the kinetic energy of the impulses' velocity change
     out[OUT_INPUT_WORK] -= a[0] * (new[0] - state[0]) + a[1] * (new[1] - state[1]) + a[2] * (new[2] - state[2])
-    _arms(new, body, Q1, r1)
-    impact = _contacts(new, r, r1, act, P, touch, slip, vel_tol, lift_gap, out)
+    _arms(new, model.body, ws.Q1, ws.r1)
+    impact = _contacts(new, ws, act, P, corners, model.limits, out)
     if impact:
         e = 0.0
         for c in range(3):

@@ -12,6 +12,7 @@ import numpy as np
 
 from opsrock.solvers.rigid3d.constants import (CONE_SLACK, ONE, TWO, ZERO)
 from opsrock.solvers.rigid3d.geometry import (_cross_add, _delassus, _inv3)
+from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_V, VEC_VF)
 
 
 @numba.njit(cache=True)
@@ -32,23 +33,13 @@ def _shift_range(x, z, n):
 
 
 @numba.njit(cache=True)
-def _stick_flat(act, r, Iw, vf, P, B):
-    """Impulses that stop a block standing on three or four corners of its level base: the total impulse
-    ``-vf`` (per unit mass) and torque ``-I omega_f`` are fixed; with the corners in one plane (``r_z`` the
-    same, ``rz``) the tangential impulses enter the horizontal torques through their total only, so the normal
-    impulses are the least-norm solution of ``sum N = F_z``, ``sum N r_y = T_x + rz F_y``, ``sum N r_x = rz F_x
-    - T_y``; the tangential impulses are then proportional to the normal ones, ``P_t,i = N_i (c + kappa z x
-    (rho_i - rho_bar))`` (a translation and a twist about the centre of pressure ``rho_bar``), ``c`` and
-    ``kappa`` from the total and the vertical torque. False if the normal impulses do not add up to a
-    compressive total. On four corners a distribution with a pulling corner is moved along the free (alternating)
-    direction to the nearest compressive one where there is one (the least-norm one is compressive only for a
-    centre of pressure inside the base's inscribed diamond). ``B`` (6 x 6) is workspace."""
-    F0, F1, F2 = -vf[0], -vf[1], -vf[2]
-    T0 = -(Iw[0, 0] * vf[3] + Iw[0, 1] * vf[4] + Iw[0, 2] * vf[5])
-    T1 = -(Iw[1, 0] * vf[3] + Iw[1, 1] * vf[4] + Iw[1, 2] * vf[5])
-    T2 = -(Iw[2, 0] * vf[3] + Iw[2, 1] * vf[4] + Iw[2, 2] * vf[5])
-    if F2 <= 0.0:
-        return False
+def _flat_normals(act, r, F, T, P, B):
+    """The normal impulses ``P[:, 2]`` of :func:`_stick_flat`: the least-norm solution of ``sum N = F_z``, ``sum N
+    r_y = T_x + rz F_y``, ``sum N r_x = rz F_x - T_y`` (``F`` the total impulse, ``T`` the torque's horizontal part,
+    both tuples; ``rz`` the corners' mean ``r_z``), on four corners moved along the free (alternating) direction to
+    the nearest compressive distribution where there is one; an inactive corner's impulse zeroed. Returns ``(total,
+    cx, cy)``: their sum and the sums ``sum N r_x``, ``sum N r_y`` (``total`` 0 and ``P`` untouched if ``B B^T`` is
+    singular). ``B`` (6 x 6) is workspace."""
     rz = 0.0
     n = 0
     for i in range(4):
@@ -67,8 +58,8 @@ def _stick_flat(act, r, Iw, vf, P, B):
                 for c in range(3):
                     B[a, c] += row[a] * row[c]
     if not _inv3(B[0:3, 0:3], B[3:6, 0:3]):
-        return False
-    g0, g1, g2 = F2, T0 + rz * F1, rz * F0 - T1
+        return 0.0, 0.0, 0.0
+    g0, g1, g2 = F[2], T[0] + rz * F[1], rz * F[0] - T[1]
     y0 = B[3, 0] * g0 + B[3, 1] * g1 + B[3, 2] * g2
     y1 = B[4, 0] * g0 + B[4, 1] * g1 + B[4, 2] * g2
     y2 = B[5, 0] * g0 + B[5, 1] * g1 + B[5, 2] * g2
@@ -101,6 +92,28 @@ def _stick_flat(act, r, Iw, vf, P, B):
                     total += P[i, 2]
                     cx += P[i, 2] * r[i, 0]
                     cy += P[i, 2] * r[i, 1]
+    return total, cx, cy
+
+
+@numba.njit(cache=True)
+def _stick_flat(act, r, Iw, vf, P, B):
+    """Impulses that stop a block standing on three or four corners of its level base: the total impulse
+    ``-vf`` (per unit mass) and torque ``-I omega_f`` are fixed; with the corners in one plane (``r_z`` the
+    same, ``rz``) the tangential impulses enter the horizontal torques through their total only, so the normal
+    impulses are the least-norm solution of ``sum N = F_z``, ``sum N r_y = T_x + rz F_y``, ``sum N r_x = rz F_x
+    - T_y`` (:func:`_flat_normals`); the tangential impulses are then proportional to the normal ones, ``P_t,i =
+    N_i (c + kappa z x (rho_i - rho_bar))`` (a translation and a twist about the centre of pressure ``rho_bar``),
+    ``c`` and ``kappa`` from the total and the vertical torque. False if the normal impulses do not add up to a
+    compressive total. On four corners a distribution with a pulling corner is moved along the free (alternating)
+    direction to the nearest compressive one where there is one (the least-norm one is compressive only for a
+    centre of pressure inside the base's inscribed diamond). ``B`` (6 x 6) is workspace."""
+    F0, F1, F2 = -vf[0], -vf[1], -vf[2]
+    T0 = -(Iw[0, 0] * vf[3] + Iw[0, 1] * vf[4] + Iw[0, 2] * vf[5])
+    T1 = -(Iw[1, 0] * vf[3] + Iw[1, 1] * vf[4] + Iw[1, 2] * vf[5])
+    T2 = -(Iw[2, 0] * vf[3] + Iw[2, 1] * vf[4] + Iw[2, 2] * vf[5])
+    if F2 <= 0.0:
+        return False
+    total, cx, cy = _flat_normals(act, r, (F0, F1, F2), (T0, T1), P, B)
     if total <= 0.0:
         return False
     cx /= total
@@ -149,12 +162,12 @@ def _cone_interval(P, e0, e1, e2, x0, mu):
 
 
 @numba.njit(cache=True)
-def _edge_split(Pa, Pb, e0, e1, e2, ca, cb, xa, mu):
-    """Corner ``a``'s share of the impulse along an edge ``e`` shared by two stuck corners (which may carry any split
-    of it): the share nearest ``xa`` that keeps both impulses in the static cone, ``xa`` if none does. ``Pa``,
-    ``Pb`` are the impulses, ``ca``, ``cb`` their components along ``e``."""
-    la, ha = _cone_interval(Pa, e0, e1, e2, ca, mu)
-    lb, hb = _cone_interval(Pb, e0, e1, e2, cb, mu)
+def _edge_split(Pa, Pb, e, ca, cb, xa, mu):
+    """Corner ``a``'s share of the impulse along an edge of unit direction ``e`` (a 3-tuple) shared by two stuck
+    corners (which may carry any split of it): the share nearest ``xa`` that keeps both impulses in the static cone,
+    ``xa`` if none does. ``Pa``, ``Pb`` are the impulses, ``ca``, ``cb`` their components along ``e``."""
+    la, ha = _cone_interval(Pa, e[0], e[1], e[2], ca, mu)
+    lb, hb = _cone_interval(Pb, e[0], e[1], e[2], cb, mu)
     total = ca + cb
     lo, hi = max(la, total - hb), min(ha, total - lb)
     if lo > hi:
@@ -163,14 +176,19 @@ def _edge_split(Pa, Pb, e0, e1, e2, ca, cb, xa, mu):
 
 
 @numba.njit(cache=True)
-def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
+def _stick_all(ws, act, n_act, P, fric):
     """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
     through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
     it stops; the impulses are the least-norm ones that make that velocity change (no self-equilibrated
     friction "squeeze": the statically indeterminate part is left at zero), with the friction along an edge,
-    and on three or four corners all of it, split in proportion to the normal impulses (:func:`_stick_flat`). Accepted, into ``V``, ``Om`` and
-    ``P``, if every normal impulse is compressive and every tangential one lies in the static cone; else False
-    (NSGS then solves the step). ``A6`` (6 x 6) and ``y6`` (6) are workspace."""
+    and on three or four corners all of it, split in proportion to the normal impulses (:func:`_stick_flat`).
+    Accepted, into ``V``, ``Om`` (``ws.vec`` rows ``VEC_V``, ``VEC_OM``) and ``P``, if every normal impulse is
+    compressive and every tangential one lies in the static cone (``fric``: :class:`.model.Friction`); else False
+    (NSGS then solves the step). ``ws`` is the step's :class:`.workspace.StepWork`: the arms ``r``, the inertia
+    ``Iw``, the free velocity (row ``VEC_VF``), ``A6`` workspace."""
+    r, Iw, vec = ws.r, ws.Iw, ws.vec
+    vf, V, Om = vec[VEC_VF], vec[VEC_V], vec[VEC_OM]
+    mu_s, stick_only = fric.mu_s, fric.infinite
     i1, i2 = _first_two(act)
     if n_act == 2:
         ra, rb = r[i1], r[i2]
@@ -209,11 +227,11 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
             c2 = P[i2, 0] * e0 + P[i2, 1] * e1 + P[i2, 2] * e2
             dl = (c1 + c2) * n1 / (n1 + n2) - c1
             if not stick_only:  # a split that keeps both in their static cones, if that one does not
-                dl = _edge_split(P[i1], P[i2], e0, e1, e2, c1, c2, c1 + dl, mu_s) - c1
+                dl = _edge_split(P[i1], P[i2], (e0, e1, e2), c1, c2, c1 + dl, mu_s) - c1
             P[i1, 0], P[i1, 1], P[i1, 2] = P[i1, 0] + dl * e0, P[i1, 1] + dl * e1, P[i1, 2] + dl * e2
             P[i2, 0], P[i2, 1], P[i2, 2] = P[i2, 0] - dl * e0, P[i2, 1] - dl * e1, P[i2, 2] - dl * e2
     else:  # three or four corners (a level base): the block stops
-        if not _stick_flat(act, r, Iw, vf, P, A6):
+        if not _stick_flat(act, r, Iw, vf, P, ws.A6):
             return False
         for a in range(3):
             V[a] = 0.0
@@ -228,13 +246,13 @@ def _stick_all(act, n_act, r, Iw, vf, V, Om, P, mu_s, stick_only, A6, y6):
 
 
 @numba.njit(cache=True)
-def _stick_subset(act, guess, landing, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+def _stick_subset(ws, act, guess, landing, n_act, P, fric, tol):
     """The active corners that were down (``act`` and ``guess``; with ``landing`` those that were not: a rocking
     impact, where the landing edge takes the load and the pivot lifts), one or two of them and fewer than
     ``n_act``, stuck and loaded, the other active corners without impulse: accepted, into ``V``, ``Om``, ``P``
     and ``act`` (the others dropped), if those others separate, ``u_n >= -tol`` (m/s), which with the stuck
     corners' loads in their cones solves the step's contact problem. One corner: ``P = -W^-1 u_free``; two:
-    :func:`_stick_all`."""
+    :func:`_stick_all`. ``ws`` is the step's :class:`.workspace.StepWork`."""
     sub = ws.mask
     n_sub = ZERO
     for i in range(4):
@@ -242,15 +260,18 @@ def _stick_subset(act, guess, landing, n_act, r, Iinv, Iw, vf, V, Om, P, mu_s, s
         n_sub += sub[i]
     if n_sub == 0 or n_sub > 2 or n_sub == n_act:
         return False
-    return _stick_mask(act, sub, n_sub, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6)
+    return _stick_mask(ws, act, sub, n_sub, P, fric, tol)
 
 
 @numba.njit(cache=True)
-def _stick_mask(act, sub, n_sub, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+def _stick_mask(ws, act, sub, n_sub, P, fric, tol):
     """The corners of ``sub`` (one or two of the active ones) stuck and loaded, the other active corners
     separating (:func:`_stick_subset`)."""
+    r, Iinv, vec = ws.r, ws.Iinv, ws.vec
+    vf, V, Om = vec[VEC_VF], vec[VEC_V], vec[VEC_OM]
+    mu_s, stick_only = fric.mu_s, fric.infinite
     if n_sub == 2:
-        if not _stick_all(sub, TWO, r, Iw, vf, V, Om, P, mu_s, stick_only, ws.A6, y6):
+        if not _stick_all(ws, sub, TWO, P, fric):
             return False
     else:
         i = 0
@@ -285,10 +306,11 @@ def _stick_mask(act, sub, n_sub, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, to
 
 
 @numba.njit(cache=True)
-def _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+def _stick_single(ws, act, P, fric, tol):
     """Two active corners whose edge cannot carry the step stuck (a corner pulls): each alone stuck, the other
     separating (:func:`_stick_mask`), the lower one first (a block turning about a corner with the edge's other
     corner grazing the floor)."""
+    r = ws.r
     i1, i2 = _first_two(act)
     if r[i2, 2] < r[i1, 2]:
         i1, i2 = i2, i1
@@ -296,6 +318,6 @@ def _stick_single(act, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6)
     for first in (i1, i2):
         for i in range(4):
             sub[i] = i == first
-        if _stick_mask(act, sub, ONE, r, Iinv, Iw, vf, V, Om, P, mu_s, stick_only, tol, ws, y6):
+        if _stick_mask(ws, act, sub, ONE, P, fric, tol):
             return True
     return False

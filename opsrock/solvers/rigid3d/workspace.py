@@ -28,7 +28,7 @@ EVEC_Q, EVEC_Y, EVEC_P6, EVEC_U = 0, 1, 2, 3
 
 
 class EdgeWork(NamedTuple):
-    """Scratch of the closed-form slip on two corners (``kernel._edge_slip``): ``D``, ``A``, ``cols`` (6 x 6),
+    """Scratch of the closed-form slip on two corners (``sliding._edge_slip``): ``D``, ``A``, ``cols`` (6 x 6),
     ``vec`` (4 x 6, rows ``EVEC_*``), ``sdir`` (2 x 2), ``last`` (1, int: the status pair that held last), ``fw``
     (5 x 2: ``_edge_try``'s residuals, angles and Jacobian), ``stidx`` (4, int: the statuses, then the corners)."""
 
@@ -43,7 +43,7 @@ class EdgeWork(NamedTuple):
 
 
 class StepWork(NamedTuple):
-    """Scratch of a Moreau-Jean step (``kernel._step``): rotation ``Q``, floor-frame inverse inertia ``Iinv`` and
+    """Scratch of a Moreau-Jean step (``step._step``): rotation ``Q``, floor-frame inverse inertia ``Iinv`` and
     inertia ``Iw`` (3 x 3), the corners' arms ``r`` (4 x 3), the Delassus blocks ``Wd`` and their inverses ``Wi``
     (4 x 3 x 3), ``vec`` (5 x 6, rows ``VEC_*``), the closed forms' ``A6`` (6 x 6), slip directions ``sdir`` (4 x 2)
     and ``Am`` (6 x 7), the end state's rotation ``Q1`` and arms ``r1``, the smooth step's pivots ``piv`` (2, int),
@@ -85,7 +85,7 @@ class PivotWork(NamedTuple):
 
 
 class SlipWork(NamedTuple):
-    """Scratch of a smooth step on slipping corners (``kernel._slip_integrate``): ``Q``, ``Iinv``, ``Iw`` (3 x 3),
+    """Scratch of a smooth step on slipping corners (``smooth._slip_integrate``): ``Q``, ``Iinv``, ``Iw`` (3 x 3),
     the arms ``r`` (4 x 3), ``D``, ``A``, ``cols`` (6 x 6), ``vec`` (4 x 6, rows ``EVEC_*``), ``sdir`` (2 x 2), the
     Runge-Kutta ``dy``, ``acc``, ``ytmp`` (13 each), the body force ``F`` (3), and the contact corners ``idx`` and
     their statuses ``st`` (2 each, int)."""
@@ -108,13 +108,42 @@ class SlipWork(NamedTuple):
 
 
 class Probe(NamedTuple):
-    """A probe Moreau-Jean step's active corners ``act`` (4, bool), impulses ``P`` (4 x 3), end state ``state``
-    (13) and bookkeeping ``out``."""
+    """What a Moreau-Jean step (``step._step``) writes: its active corners ``act`` (4, bool), impulses ``P``
+    (4 x 3), end state ``state`` (13) and bookkeeping ``out``: the run's own step's (its arrays, ``run``'s
+    ``out``) or a probe step's (scratch of its own, built by :func:`make_workspace`)."""
 
     act: np.ndarray
     P: np.ndarray
     state: np.ndarray
     out: np.ndarray
+
+
+class FlatWork(NamedTuple):
+    """Scratch of the closed-form flat slide (``sliding._slide_flat``): the active corners ``idx`` (4, int), the
+    solution ``xs`` (7: normal impulses, then ``V_x``, ``V_y``, ``omega_z``) and the free direction ``zs`` (7)."""
+
+    idx: np.ndarray
+    xs: np.ndarray
+    zs: np.ndarray
+
+
+class Corners(NamedTuple):
+    """The corners' state carried from step to step: ``touch`` (4, bool: down) and ``slip`` (4, bool: down and
+    slipping faster than ``Limits.velocity_tol``)."""
+
+    touch: np.ndarray
+    slip: np.ndarray
+
+
+class Workspace(NamedTuple):
+    """All the kernel's scratch: the Moreau-Jean step's (:class:`StepWork`), the smooth steps' about stuck corners
+    (:class:`PivotWork`), a probe step's (:class:`Probe`) and the smooth steps' on slipping corners
+    (:class:`SlipWork`)."""
+
+    step: StepWork
+    pivot: PivotWork
+    probe: Probe
+    slip: SlipWork
 
 
 @numba.njit(cache=True)
@@ -126,8 +155,8 @@ def make_edge_work():
 
 @numba.njit(cache=True)
 def make_workspace(out_size):
-    """The kernel's scratch, zeroed: ``(StepWork, PivotWork, Probe, SlipWork)`` (``out_size``: the length of the
-    kernel's output vector, for the probe's)."""
+    """The kernel's scratch, zeroed: a :class:`Workspace` (``out_size``: the length of the kernel's output vector,
+    for the probe's)."""
     edge = make_edge_work()
     ws = StepWork(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
                   np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)),
@@ -139,8 +168,15 @@ def make_workspace(out_size):
     sw = SlipWork(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((6, 6)),
                   np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)), np.zeros(13), np.zeros(13),
                   np.zeros(13), np.zeros(3), np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64))
-    return ws, wk, probe, sw
+    return Workspace(ws, wk, probe, sw)
 
 
-__all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "EdgeWork",
-           "PivotWork", "Probe", "SlipWork", "StepWork", "make_edge_work", "make_workspace"]
+@numba.njit(cache=True)
+def make_corners():
+    """The corners' flags (:class:`Corners`), all False."""
+    return Corners(np.zeros(4, dtype=np.bool_), np.zeros(4, dtype=np.bool_))
+
+
+__all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Corners",
+           "EdgeWork", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace", "make_corners",
+           "make_edge_work", "make_workspace"]

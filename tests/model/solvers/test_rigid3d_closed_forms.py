@@ -19,8 +19,8 @@ import pytest
 
 from opsrock.solvers.rigid3d import contact, geometry, sliding, sticking
 from opsrock.solvers.rigid3d import kernel as kn
-from opsrock.solvers.rigid3d.model import Body, ContactSolver
-from opsrock.solvers.rigid3d.workspace import make_edge_work
+from opsrock.solvers.rigid3d.model import Body, ContactSolver, Friction
+from opsrock.solvers.rigid3d.workspace import VEC_OM, VEC_V, VEC_VF, FlatWork, make_workspace
 
 B, D, H = 0.2, 0.3, 0.8
 IB = ((0.6**2 + 1.6**2) / 12, (0.4**2 + 1.6**2) / 12, (0.4**2 + 0.6**2) / 12)
@@ -51,6 +51,18 @@ def _problem(rng):
         u = [vf[:3] + np.cross(vf[3:], r[i]) for i in EDGE]
         if u[0][2] < -0.02 and u[1][2] < -0.02:
             return r, Iinv, vf
+
+
+def _workspace(r, vf, Iinv=None, Iw=None):
+    """The kernel's step workspace holding the arms ``r``, the free velocity ``vf`` and the inertias given."""
+    ws = make_workspace(kn.OUT_SIZE).step
+    ws.r[:] = r
+    ws.vec[VEC_VF] = vf
+    if Iinv is not None:
+        ws.Iinv[:] = Iinv
+    if Iw is not None:
+        ws.Iw[:] = Iw
+    return ws
 
 
 def _velocities(P, r, Iinv, vf):
@@ -86,15 +98,15 @@ def _check_law(P, r, Iinv, vf, mu):
 def _nsgs(r, Iinv, vf, mu):
     act = np.zeros(4, dtype=np.bool_)
     act[list(EDGE)] = True
-    Wd, Wi = np.zeros((4, 3, 3)), np.zeros((4, 3, 3))
+    ws = _workspace(r, vf, Iinv=Iinv)
     for i in EDGE:
-        geometry._delassus(r[i], Iinv, Wd[i])
-        geometry._inv3(Wd[i], Wi[i])
-    V, Om, P = vf[:3].copy(), vf[3:].copy(), np.zeros((4, 3))
+        geometry._delassus(r[i], Iinv, ws.Wd[i])
+        geometry._inv3(ws.Wd[i], ws.Wi[i])
+    ws.vec[VEC_V, :3], ws.vec[VEC_OM, :3] = vf[:3], vf[3:]
+    P = np.zeros((4, 3))
     nsgs = ContactSolver(tol=1e-13, max_sweeps=20000, fail_steps=1, loose_tol=1e-13, extra_sweeps=0)
-    sweeps = contact._solve_contacts(act, r, Wd, Wi, Iinv, V, Om, P, mu, mu, False, 1e-13, nsgs, np.zeros(3),
-                                np.zeros(3), np.zeros(kn.OUT_SIZE), False)
-    return V, Om, P, sweeps <= nsgs.max_sweeps
+    sweeps = contact._solve_contacts(ws, act, P, Friction(mu, mu, False), 1e-13, nsgs, np.zeros(kn.OUT_SIZE), False)
+    return ws.vec[VEC_V, :3].copy(), ws.vec[VEC_OM, :3].copy(), P, sweeps <= nsgs.max_sweeps
 
 
 def test_edge_slip_obeys_coulomb_and_agrees_with_gauss_seidel():
@@ -111,10 +123,11 @@ def test_edge_slip_obeys_coulomb_and_agrees_with_gauss_seidel():
         assert converged
         scale = np.abs(vf).max()
         slips = any(Pn[i, 2] > 0.0 and math.hypot(*(Vn + np.cross(Omn, r[i]))[:2]) > 1e-9 * scale for i in EDGE)
-        V, Om, P = np.zeros(3), np.zeros(3), np.zeros((4, 3))
-        if not sliding._edge_slip(act, r, Iinv, vf, V, Om, P, mu, mu, False, make_edge_work(), np.zeros(kn.OUT_SIZE)):
+        ws, P = _workspace(r, vf, Iinv=Iinv), np.zeros((4, 3))
+        if not sliding._edge_slip(ws, act, P, Friction(mu, mu, False), np.zeros(kn.OUT_SIZE)):
             assert not slips
             continue
+        V, Om = ws.vec[VEC_V, :3], ws.vec[VEC_OM, :3]
         answered += 1
         assert _check_law(P, r, Iinv, vf, mu) > 0
         np.testing.assert_allclose(V, Vn, atol=1e-8 * scale)
@@ -135,7 +148,7 @@ def test_edge_split_keeps_both_corners_in_their_cones(seed):
         Pa = np.array([*rng.normal(0.0, 0.3, 2), rng.uniform(0.05, 1.0)])
         Pb = np.array([*rng.normal(0.0, 0.3, 2), rng.uniform(0.05, 1.0)])
         ca, cb = Pa @ e, Pb @ e
-        xa = sticking._edge_split(Pa, Pb, e[0], e[1], e[2], ca, cb, ca, mu)
+        xa = sticking._edge_split(Pa, Pb, (e[0], e[1], e[2]), ca, cb, ca, mu)
 
         def inside(x, slack=0.0):
             x = np.atleast_1d(x)[:, None]
@@ -174,10 +187,10 @@ def test_flat_slide_obeys_coulomb_and_newton_finds_it_again():
         Q, Iinv, Iw, r = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3))
         geometry._geometry(s, BODY, Q, Iinv, Iw, r)
         vf = np.array([*rng.normal(0.0, 0.01, 2), -9.81e-3, 0.0, 0.0, rng.normal(0.0, 0.05)])
-        V, Om, P, sdir = np.zeros(3), np.zeros(3), np.zeros((4, 3)), np.zeros((4, 2))
-        work = (np.zeros((6, 6)), np.zeros(6), np.zeros((6, 7)))
-        if not sliding._slide_flat(act, r, Iw, vf, V, Om, P, mu, sdir, *work):
+        ws, P = _workspace(r, vf, Iw=Iw), np.zeros((4, 3))
+        if not sliding._slide_flat(ws, act, P, mu):
             continue
+        V, Om = ws.vec[VEC_V, :3].copy(), ws.vec[VEC_OM, :3].copy()
         answered += 1
         assert V[2] == 0.0 and Om[0] == 0.0 and Om[1] == 0.0
         np.testing.assert_allclose(V - vf[:3], P.sum(axis=0), atol=1e-12)
@@ -187,10 +200,10 @@ def test_flat_slide_obeys_coulomb_and_newton_finds_it_again():
             assert P[i, 2] >= 0.0
             np.testing.assert_allclose(P[i, :2], -mu * P[i, 2] * u[:2] / math.hypot(u[0], u[1]), atol=1e-12)
         x = np.array([V[0], V[1], Om[2]]) * 1.2
-        xs, zs = np.zeros(7), np.zeros(7)
-        if sliding._flat_newton(x, idx, 4, r, Iw, vf, mu, sdir, *work, xs, zs):
+        fw = FlatWork(idx, np.zeros(7), np.zeros(7))
+        if sliding._flat_newton(ws, fw, 4, mu, x):
             regained += 1
-            np.testing.assert_allclose(xs[4:7], [V[0], V[1], Om[2]], atol=1e-10)
+            np.testing.assert_allclose(fw.xs[4:7], [V[0], V[1], Om[2]], atol=1e-10)
     assert answered >= 100 and regained == answered
 
 

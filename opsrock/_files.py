@@ -237,6 +237,15 @@ def atomic_text(path: Path, text: str) -> None:
     atomic_write(Path(path), lambda fh: fh.write(text), durable=False)
 
 
+def atomic_metrics(path: Path, metrics: dict) -> None:
+    """Write a ``metric,value`` table atomically, every value at full precision as Python writes it (a numpy
+    scalar as the Python number it holds: numpy 2's ``repr`` is ``np.float64(0.25)``, which no spreadsheet reads)."""
+    def text(v: Any) -> str:
+        return repr(v.item() if hasattr(v, "item") and hasattr(v, "dtype") else v)
+
+    atomic_text(path, "metric,value\n" + "".join(f"{k},{text(v)}\n" for k, v in metrics.items()))
+
+
 def atomic_csv(path: Path, df: "pd.DataFrame") -> None:
     """Write ``df`` (no index) to ``path`` atomically, at full precision (``repr`` of every float)."""
     atomic_write(Path(path), lambda fh: df.to_csv(fh, index=False), durable=False)

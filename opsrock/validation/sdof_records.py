@@ -27,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from opsrock._files import atomic_text
+from opsrock._files import atomic_metrics, atomic_text
 
 #: Blocks (2b, 2h in m).
 BLOCKS: tuple[tuple[float, float], ...] = ((0.4, 2.2), (0.6, 2.0), (0.5, 1.15))
@@ -229,8 +229,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     _plot(rows, out_dir / f"sdof_records{suffix}.png")
     if not quick:
         m.update(divergence(out_dir))
-    atomic_text(out_dir / f"summary{suffix}.csv",
-                "metric,value\n" + "".join(f"{k},{v!r}\n" for k, v in m.items()))
+    atomic_metrics(out_dir / f"summary{suffix}.csv", m)
     return m
 
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from opsrock._files import atomic_csv, atomic_text
+from opsrock._files import atomic_csv, atomic_metrics
 from opsrock.analysis.restitution_scatter import compare
 from opsrock.published.colombo_limestone import EventArrays, analysis_arrays, load_events, load_trials
 from opsrock.validation.experiments.checks import data_checks, interval_checks, model_checks
@@ -138,7 +138,7 @@ def run(out_dir: Path, quick: bool = False) -> dict:
     if not quick:  # restitution as an uncertain input on the FEMA P695 IDA scene (three campaigns)
         m.update(scatter_outputs(out_dir))
     m.update({"quick": quick, "n_boot": N_BOOT_QUICK if quick else N_BOOT, "wall_time_s": time.perf_counter() - t0})
-    atomic_text(out_dir / f"summary{sfx}.csv", "metric,value\n" + "".join(f"{k},{v!r}\n" for k, v in m.items()))
+    atomic_metrics(out_dir / f"summary{sfx}.csv", m)
     return m
 
 

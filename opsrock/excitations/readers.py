@@ -15,6 +15,10 @@ Text and CSV
     trailing ``s`` or ``sec`` allowed; any case) states the time step of a one-column file, which then
     needs no ``dt`` argument (one that differs is refused; a two-column file's time column must agree with
     it). The units of the acceleration are not in such files and must be declared.
+Several columns (``time,ax,ay``; OpenSees' ``Node`` recorder with ``-time``: the time, then one column per node
+and dof)
+    Read with ``column``: a header name (any case) or a 1-based index of the file's columns picks the
+    acceleration; the first column is the time unless ``dt`` is given (then no column is the time).
 
 Every problem (missing file, empty file, wrong header, non-numeric or NaN value, ragged rows,
 non-uniform time step, count mismatch, missing units) raises :class:`RecordFileError` whose
@@ -46,7 +50,7 @@ def units_factor(units: str | None, *, where: str = "units") -> float:
 
 
 def read_record(path: str | Path, *, units: str | None = None, dt: float | None = None,
-                name: str = "") -> Record:
+                name: str = "", column: str | int | None = None) -> Record:
     """Read a record into a :class:`Record` in m/s²: the one way to read a record, from a file or from the
     record library.
 
@@ -64,6 +68,9 @@ def read_record(path: str | Path, *, units: str | None = None, dt: float | None 
         ``.AT2`` files, whose own time step is used.
     name : str, optional
         Record name; default the file's stem (characters outside ``[A-Za-z0-9_.-]`` become ``_``).
+    column : str or int, optional
+        The acceleration column of a text/CSV file of several columns: a header name or a 1-based index (the
+        first column the time, unless ``dt`` is given); refused for ``.AT2`` files (one component each).
 
     Raises
     ------
@@ -80,8 +87,10 @@ def read_record(path: str | Path, *, units: str | None = None, dt: float | None 
     lines = _read_lines(path)
     name = name or safe_name(path.stem)
     if path.suffix.lower() == ".at2":
+        if column is not None:
+            raise RecordFileError(path, None, f"column = {column!r} given, but an .AT2 file holds one component")
         return _read_at2(path, lines, units, dt, name)
-    return _read_text(path, lines, units, dt, name)
+    return _read_text(path, lines, units, dt, name, column)
 
 
 def _read_lines(path: Path) -> list[str]:
@@ -230,14 +239,20 @@ def _looks_numeric(token: str) -> bool:
     return True
 
 
-def _read_text(path: Path, lines: list[str], units: str | None, dt: float | None, name: str) -> Record:
+def _read_text(path: Path, lines: list[str], units: str | None, dt: float | None, name: str,
+               column: str | int | None = None) -> Record:
     if units is None:
         raise RecordFileError(path, None, "units missing: a text/CSV record needs units = g, m/s2 or cm/s2")
     units_factor(units)
-    rows, _ = _data_rows(path, lines)
+    rows, header = _data_rows(path, lines)
     ncol = len(rows[0][1])
+    if column is not None:
+        return _read_column(path, lines, rows, header, (units, dt, name), column)
     if ncol not in (1, 2):
-        raise RecordFileError(path, rows[0][0], f"{ncol} columns: expected 1 (acceleration) or 2 (time, acceleration)")
+        names = f" ({', '.join(header)})" if header else ""
+        raise RecordFileError(path, rows[0][0], f"{ncol} columns{names}: expected 1 (acceleration) or 2 (time, "
+                                                "acceleration); pick the acceleration with column (a header name or "
+                                                "a 1-based index, the first column the time)")
     data = np.empty((len(rows), ncol))
     for i, (lineno, tokens) in enumerate(rows):
         if len(tokens) != ncol:
@@ -256,6 +271,46 @@ def _read_text(path: Path, lines: list[str], units: str | None, dt: float | None
         acc = data[:, 1]
     info = RecordInfo(source=str(path), units_in_file=units)
     return _record(path, dt, acc, units, name, info)
+
+
+def _column_index(path: Path, header: list[str] | None, ncol: int, column: str | int) -> int:
+    """The 0-based index of ``column`` (a header name, any case, or a 1-based index as int or digits)."""
+    text = str(column).strip()
+    if isinstance(column, int) or (text.isascii() and text.isdigit()):
+        k = int(text)
+        if not 1 <= k <= ncol:
+            raise RecordFileError(path, None, f"column = {column!r}: the file has {ncol} columns (1 to {ncol})")
+        return k - 1
+    names = [h.lower() for h in header or ()]
+    if text.lower() not in names:
+        known = f"its header names {', '.join(header)}" if header else "it has no header row of names"
+        raise RecordFileError(path, None, f"column = {column!r} is not a column of the file ({known}; or give a "
+                                          f"1-based index, 1 to {ncol})")
+    return names.index(text.lower())
+
+
+def _read_column(path: Path, lines: list[str], rows, header: list[str] | None, how: tuple, column: str | int) -> Record:
+    """One acceleration column of a file of several: the first column the time unless ``dt`` is given."""
+    units, dt, name = how
+    ncol = len(rows[0][1])
+    k = _column_index(path, header, ncol, column)
+    if dt is None and k == 0:
+        raise RecordFileError(path, None, f"column = {column!r} is the first column, the time (give dt if the file has "
+                                          "no time column)")
+    data = np.empty((len(rows), ncol))
+    for i, (lineno, tokens) in enumerate(rows):
+        if len(tokens) != ncol:
+            raise RecordFileError(path, lineno, f"{len(tokens)} column(s) where the first data row has {ncol}")
+        data[i] = _numbers(path, lineno, tokens)
+    stated = _dt_line(path, lines)
+    if dt is None:
+        dt = _uniform_step(path, rows, data[:, 0])
+        if stated is not None and abs(stated[1] - dt) > DT_RTOL * dt:
+            raise RecordFileError(path, stated[0], f"dt = {stated[1]!r} s, but the time column steps by {dt:.6g} s")
+    elif stated is not None and abs(dt - stated[1]) > DT_RTOL * stated[1]:
+        raise RecordFileError(path, stated[0], f"the file states dt = {stated[1]!r} s, but dt = {dt!r} was given")
+    info = RecordInfo(source=f"{path} column {column}", units_in_file=units)
+    return _record(path, dt, data[:, k], units, name, info)
 
 
 def _one_column_dt(path: Path, dt: float | None, stated: tuple[int, float] | None) -> float:

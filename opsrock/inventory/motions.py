@@ -1,5 +1,6 @@
-"""The user's floor motions: a manifest CSV with the columns ``record, floor, direction, file, units, dt``
-(``dt`` where the file does not give it; ``file`` relative to the manifest), listing floor acceleration
+"""The user's floor motions: a manifest CSV with the columns ``record, floor, direction, file, units, dt`` and
+optionally ``column`` and ``location`` (``dt`` where the file does not give it; ``file`` relative to the
+manifest), listing floor acceleration
 histories in any format :func:`opsrock.excitations.readers.read_record` reads. Each motion is checked
 for plausibility (:data:`opsrock.limits.PLAUSIBLE`) unless confirmed.
 
@@ -20,6 +21,15 @@ comments, blank lines, spaces trimmed, UTF-8 with or without a byte-order mark).
 ``units``
     ``g``, ``m/s2`` or ``cm/s2`` (:data:`opsrock.excitations.readers.UNITS`): required for text/CSV files;
     for an ``.AT2`` file optional and checked against its header.
+``column``
+    The acceleration column of a file of several (``time,ax,ay``; OpenSees' ``Node`` recorder output with
+    ``-time``: the time, then one column per node and dof): a header name (any case) or a 1-based index of the
+    file's columns; the first column is the time unless ``dt`` is given. So both directions (and a vertical)
+    come from one file, each on its own row.
+``location``
+    pelicun's location number of the row's floor (1 the ground floor, a whole number): the same on every row
+    of a floor, different floors at different locations; given on every row or on none
+    (:func:`opsrock.inventory.pelicun.floor_locations`: without it, which floor is taken as the ground is said).
 ``dt``
     The sampling interval (s) of a one-column file that states none. A one-column file may state it in a
     comment line before its samples, ``# dt = 0.01`` (``s`` after the number allowed); a ``dt`` cell then must
@@ -50,7 +60,7 @@ from opsrock.inventory.readers import Row, TableFileError, number_cell, read_csv
 from opsrock.limits import check
 
 #: The manifest's columns.
-MANIFEST_COLUMNS: tuple[str, ...] = ("record", "floor", "direction", "file", "units", "dt")
+MANIFEST_COLUMNS: tuple[str, ...] = ("record", "floor", "direction", "file", "units", "dt", "column", "location")
 
 #: The columns every manifest has.
 MANIFEST_REQUIRED: tuple[str, ...] = ("record", "floor", "direction", "file")
@@ -120,6 +130,11 @@ class MotionSet:
             raise InputError(f"motions {self.source}: record {dup[0]!r}, floor {dup[1]!r}, direction {dup[2]!r} "
                              "appears twice", argument="motions")
         object.__setattr__(self, "motions", motions)
+        locations = tuple((str(f), int(n)) for f, n in self.locations)
+        missing = [f for f in self.floors if f not in dict(locations)]
+        if locations and missing:
+            raise InputError(f"motions {self.source}: floor {missing[0]!r} has no location", argument="location")
+        object.__setattr__(self, "locations", locations)
 
     @property
     def floors(self) -> tuple[str, ...]:
@@ -279,7 +294,7 @@ def _units_dt(manifest: Path, row: Row, path: Path) -> tuple[str | None, float |
             dt = check("dt", number_cell(value))
         except OpsrockError as exc:
             raise TableFileError(manifest, line, "dt", value, str(exc)) from None
-    stated = None if at2 else header_dt(path)
+    stated = None if at2 or "column" in cells else header_dt(path)
     if stated is not None and dt is not None and abs(stated - dt) > 1e-9 * stated:
         raise TableFileError(manifest, cells["dt"][1], "dt", cells["dt"][0], f"but {path.name} states dt = {stated:g} s "
                              "in its header")
@@ -305,13 +320,50 @@ def _motion(manifest: Path, row: Row, key: tuple[str, str, str], confirm: bool) 
     path = Path(text) if Path(text).is_absolute() else manifest.parent / text
     units, dt = _units_dt(manifest, row, path)
     name = motion_name(record, floor, direction)
+    column = row.cells["column"][0] if "column" in row.cells else None
     try:
-        rec = read_record(path, units=units, dt=dt, name=name)
+        rec = read_record(path, units=units, dt=dt, name=name, column=column)
     except OpsrockError as exc:
-        raise TableFileError(manifest, line, "file", text, str(exc)) from None
+        if column is not None and f"column = {column!r}" in str(exc):
+            raise TableFileError(manifest, row.cells["column"][1], "column", column, str(exc)) from None
+        raise TableFileError(manifest, line, "file", text, _how_to_address(str(exc))) from None
     check_plausible_record(rec, what=f"{manifest} line {row.line} ({text})", option="--accept-implausible",
                            confirm=confirm, declared_units=units, units_option="the units column")
     return FloorMotion(record, floor, direction, rec.with_name(name, floor=floor))
+
+
+def _how_to_address(message: str) -> str:
+    """A record reader's refusal, with how the manifest addresses a file of several columns."""
+    if "pick the acceleration with column" in message:
+        return message.replace("pick the acceleration with column", "pick the acceleration with the manifest's "
+                               "column 'column'")
+    return message
+
+
+def _locations(manifest: Path, rows: list[Row]) -> tuple[tuple[str, int], ...]:
+    """The ``location`` of each floor (every row or none; one per floor; distinct floors distinct)."""
+    given = [r for r in rows if "location" in r.cells]
+    if not given:
+        return ()
+    if len(given) != len(rows):
+        blank = next(r for r in rows if "location" not in r.cells)
+        raise TableFileError(manifest, blank.line, "location", MISSING, "blank while other rows give one: give the "
+                             "location of every row's floor, or of none")
+    out: dict[str, tuple[int, int]] = {}
+    for r in rows:
+        value, line = r.cells["location"]
+        floor = r.cells["floor"][0]
+        if not (value.isascii() and value.isdigit()) or int(value) < 1:
+            raise TableFileError(manifest, line, "location", value, "must be a whole number >= 1 (pelicun's location: "
+                                 "1 the ground floor)")
+        if floor in out and out[floor][0] != int(value):
+            raise TableFileError(manifest, line, "location", value, f"floor {floor!r} is at location {out[floor][0]} "
+                                 f"on line {out[floor][1]}")
+        other = next((f for f, (n, _) in out.items() if n == int(value) and f != floor), None)
+        if other is not None:
+            raise TableFileError(manifest, line, "location", value, f"floor {other!r} is at location {value} already")
+        out.setdefault(floor, (int(value), line))
+    return tuple((f, n) for f, (n, _) in out.items())
 
 
 def read_motions(path: str | Path, *, confirm: bool = False) -> MotionSet:
@@ -344,7 +396,7 @@ def read_motions(path: str | Path, *, confirm: bool = False) -> MotionSet:
                                  f"listed twice (first on line {seen[key]})")
         seen[key] = row.line
         motions.append(_motion(manifest, row, key, confirm))
-    return MotionSet(tuple(motions), str(manifest))
+    return MotionSet(tuple(motions), str(manifest), locations=_locations(manifest, rows))
 
 
 __all__ = ["FloorMotion", "HEADER_LINES", "MANIFEST_COLUMNS", "MANIFEST_REQUIRED", "MotionPair", "MotionSet",

@@ -96,6 +96,7 @@ def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> tuple[dic
 
     t0 = time.perf_counter()
     paths = {k: write_csv(df, stage / TABLES.get(k, f"{k}.csv")) for k, df in a.tables.items()}
+    say_ground(a.design)
     pel = write_pelicun_folder(a.tables["components"], a.tables["fits"], a.demands, a.design, stage / "pelicun")
     a.timings["outputs_s"] = time.perf_counter() - t0
     a.timings["total_s"] = time.perf_counter() - a.t_start
@@ -122,13 +123,50 @@ def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[
              f"{study_tables['n_computed']} computed in this run.",
              f"Wall time (s): demands {t.get('demands_s', 0.0):.1f}, campaigns {t.get('campaigns_s', 0.0):.1f}, "
              f"fits {t.get('fits_s', 0.0):.1f}.", *route_notes)
-    pelicun = {key: f"pelicun/{Path(path).name}" for key, path in study_tables["pelicun"].items()}
+    pelicun = {key: Path(path).relative_to(stage).as_posix() for key, path in study_tables["pelicun"].items()}
     inputs = ReportInputs(title=f"Contents fragility: {design.inventory.source} on {design.motions.source}",
                           method=design.method, fits=fits, demands=study_tables["demands"],
                           expected=study_tables["expected"],
                           inventory=pd.DataFrame([item_cells(i) for i in design.inventory.items]),
-                          figures=figures, notes=notes, pelicun=pelicun, **computed)
+                          figures=figures, notes=notes, pelicun=pelicun, pelicun_notes=_pelicun_notes(design),
+                          **computed)
     return write_report(stage / "report.md", inputs)
+
+
+def say_ground(design: Any) -> None:
+    """Which floor label the pelicun folder takes as the ground, on stderr (always: it is an assumption about the
+    user's building, not progress), unless the manifest's ``location`` column gave every floor's location."""
+    import sys
+
+    from opsrock.inventory.pelicun import floor_locations
+
+    floors = floor_locations(design.motions)
+    if not floors.given:
+        where = ", ".join(f"{f} -> {n}" for f, n in floors.locations.items())
+        print(f"contents: pelicun locations: {floors.ground} ({where}; NumberOfStories {floors.storeys}); give the "
+              "manifest a 'location' column to set them", file=sys.stderr, flush=True)
+
+
+def _pelicun_notes(design: Any) -> tuple[str, ...]:
+    """What the report says of the pelicun folder: the floors' locations, the storeys, the demand and states."""
+    from opsrock.inventory.components import NONDIRECTIONAL_MULTIPLIER
+    from opsrock.inventory.pelicun import floor_locations
+
+    floors = floor_locations(design.motions)
+    how = "as the manifest's `location` column gives them" if floors.given else \
+        f"no `location` column in the manifest: {floors.ground}"
+    return (f"Floors -> pelicun locations ({how}): " + ", ".join(floors.lines()) + ".",
+            "Each item on each floor is one non-directional component (`Demand-Directional` 0): its units counted "
+            "once, `quantity` units as that many blocks. Its demand is pelicun's non-directional PFV, the larger "
+            f"direction times `NonDirectionalMultipliers`, set to {NONDIRECTIONAL_MULTIPLIER:g} so that it is "
+            "`pfv_max`, the demand its fragility is fitted in (`components.csv`).",
+            "Damage states, sequential: DS1 displaced (slid or rolled beyond the item's `slide_distance`, or "
+            "overturned), DS2 overturned, where friction is modelled; DS1 overturned otherwise. Every overturned "
+            "unit is also displaced, and pelicun draws a unit's limit-state capacities perfectly correlated, so "
+            "P(DS >= 1) and P(DS2) are the two fitted curves; mutually exclusive states would split one exceedance "
+            "by fixed weights, while the split between sliding and overturning changes with the demand and the item.",
+            "The per-direction fragilities (`per_direction/`) are for those who build their own model: assigning "
+            "both directions to the same units counts each unit twice.")
 
 
 __all__ = ["OUTPUTS", "TABLES", "InventoryStudy", "study_tables", "workers_of", "write_csv", "write_outputs"]

@@ -80,6 +80,8 @@ class ReportInputs:
         :func:`opsrock.inventory.summary.item_floor_table` of sliding; None: no friction modelled.
     confidence : float
         Level of the intervals (dimensionless), for the headers.
+    pelicun_notes : tuple of str
+        What the pelicun folder assumes (floor locations, demand, damage states), printed as it is.
     """
 
     title: str
@@ -97,6 +99,7 @@ class ReportInputs:
     failures: pd.DataFrame | None = field(default=None, repr=False)
     sliding: pd.DataFrame | None = field(default=None, repr=False)
     confidence: float = 0.95
+    pelicun_notes: tuple[str, ...] = ()
 
 
 def _num(v: float) -> str:
@@ -271,11 +274,13 @@ def _failure_lines(inputs: ReportInputs) -> list[str]:
     return lines + [*(f"- {note}" for note in inputs.notes), ""]
 
 
-def _pelicun_lines(pelicun: dict[str, str]) -> list[str]:
+def _pelicun_lines(pelicun: dict[str, str], notes: tuple[str, ...] = ()) -> list[str]:
     if not pelicun:
         return []
-    return ["## Into pelicun", "", "The folder pelicun runs as it is:", "",
-            *(f"- {what}: `{name}`" for what, name in pelicun.items()), ""]
+    return ["## Into pelicun", "", *(f"{note}\n" for note in notes), "The folder pelicun runs as it is:", "",
+            *(f"- {what}: `{name}`" for what, name in pelicun.items()), "",
+            "pelicun's own DL_calculation on it, its outputs kept in `pelicun/results/` (in pelicun's venv, "
+            "docs/getting-started-loss.md): `python tools/pelicun_inventory.py pelicun --dl-calculation`.", ""]
 
 
 def _figure_lines(figures: dict[str, str]) -> list[str]:
@@ -313,7 +318,7 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
                   markdown_table(formatted_table(inputs.sliding, "slid", inputs.confidence)), "",
                   *footnotes(inputs.sliding, "slid")]
     lines += [*_figure_lines(inputs.figures), *_expected_lines(inputs.expected, inputs.pelicun),
-              *_failure_lines(inputs), *_pelicun_lines(inputs.pelicun)]
+              *_failure_lines(inputs), *_pelicun_lines(inputs.pelicun, inputs.pelicun_notes)]
     path = Path(path)
     atomic_text(path, "\n".join(lines) + "\n")
     return path

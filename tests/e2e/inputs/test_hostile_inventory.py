@@ -29,6 +29,8 @@ def inputs(tmp_path_factory) -> Path:
     base = tmp_path_factory.mktemp("inventory_inputs")
     motion = "\n".join(f"{0.5 * ((k % 20) - 10) / 10:.3f}" for k in range(1000))
     (base / "floor.txt").write_text(motion + "\n")
+    rows = [f"{0.01 * k:.2f},{0.5 * ((k % 20) - 10) / 10:.3f},{0.3 * ((k % 16) - 8) / 8:.3f}" for k in range(1000)]
+    (base / "txy.csv").write_text("time,ax,ay\n" + "\n".join(rows) + "\n")  # the structural engineer's file
     (base / "floor_cm.txt").write_text("\n".join(f"{float(v) * 10000:g}" for v in motion.split()) + "\n")
     files = {
         "good.csv": f"{HEADER}\n{GOOD_ROW}\n",
@@ -49,6 +51,15 @@ def inputs(tmp_path_factory) -> Path:
         "nounits.csv": f"{MANIFEST}\nr1,1,1,floor.txt,,0.01\n",
         "dup_motions.csv": f"{MANIFEST}\n{GOOD_MOTION}\n{GOOD_MOTION}\n",
         "scale.csv": f"{MANIFEST},scale\n{GOOD_MOTION},2\n",
+        # issue 44: a file of several columns, addressed by the manifest's column; floors' pelicun locations
+        "nocolumn.csv": f"{MANIFEST}\nr1,1,1,txy.csv,m/s2,\n",
+        "badcolumn.csv": f"{MANIFEST},column\nr1,1,1,txy.csv,m/s2,,az\n",
+        "column9.csv": f"{MANIFEST},column\nr1,1,1,txy.csv,m/s2,,9\n",
+        "timecolumn.csv": f"{MANIFEST},column\nr1,1,1,txy.csv,m/s2,,1\n",
+        "location0.csv": f"{MANIFEST},column,location\nr1,1,1,txy.csv,m/s2,,ax,0\n",
+        "location2.csv": f"{MANIFEST},column,location\nr1,1,1,txy.csv,m/s2,,ax,1\nr1,1,2,txy.csv,m/s2,,ay,2\n",
+        "locationblank.csv": f"{MANIFEST},column,location\nr1,1,1,txy.csv,m/s2,,ax,1\nr1,1,2,txy.csv,m/s2,,ay,\n",
+        "samelocation.csv": f"{MANIFEST},column,location\nr1,1,1,txy.csv,m/s2,,ax,1\nr1,2,1,txy.csv,m/s2,,ay,1\n",
         # issue 46: accepted silently before (float() reads any Unicode digit; a NUL is a character to csv)
         "arabic.csv": f"{HEADER}\nbox,a box,\u0660.\u0664,0.5,1.0,0.5,1\n",
         "fullwidth.csv": f"{HEADER}\nbox,a box,0.4,0.5,1.0,\uff10.\uff14,1\n",
@@ -102,6 +113,14 @@ def inventory_cases(b: Path) -> list[Case]:
         mot("dup_motions.csv", ("dup_motions.csv:3", "listed twice")),
         mot("scale.csv", ("scale.csv:1", "header = 'scale'", "unknown column")),
         mot("missing.csv", ("missing.csv", "no such file")),
+        mot("nocolumn.csv", ("nocolumn.csv:2", "3 columns (time, ax, ay)", "manifest's column 'column'")),
+        mot("badcolumn.csv", ("badcolumn.csv:2", "column = 'az'", "time, ax, ay")),
+        mot("column9.csv", ("column9.csv:2", "column = '9'", "3 columns")),
+        mot("timecolumn.csv", ("timecolumn.csv:2", "column = '1'", "the time")),
+        mot("location0.csv", ("location0.csv:2", "location = '0'", "whole number >= 1")),
+        mot("location2.csv", ("location2.csv:3", "location = '2'", "floor '1' is at location 1")),
+        mot("locationblank.csv", ("locationblank.csv:3", "location", "blank while other rows give one")),
+        mot("samelocation.csv", ("samelocation.csv:3", "location = '1'", "floor '1' is at location 1 already")),
     ]
 
 
@@ -109,7 +128,8 @@ def inventory_cases(b: Path) -> list[Case]:
 #: distribution, a missing file, a repeated row, an empty file): behind ``slow``, to keep make test's budget
 #: (each case is one start of the console script, about 0.7 s of CPU).
 SECOND = {"inventory wide.csv", "inventory empty.csv", "motions scale.csv", "motions missing.csv",
-          "motions dup_motions.csv", "inventory fullwidth.csv", "inventory huge.toml"}
+          "motions dup_motions.csv", "inventory fullwidth.csv", "inventory huge.toml", "motions column9.csv",
+          "motions timecolumn.csv", "motions location0.csv", "motions samelocation.csv"}
 
 
 def test_hostile_inventories_and_manifests_are_refused(inputs, tmp_path):
@@ -128,4 +148,4 @@ def test_more_hostile_inventories_and_manifests_are_refused(inputs, tmp_path):
 
 def test_inventory_case_counts(inputs):
     counts = Counter(c.name.split()[0] for c in inventory_cases(inputs))
-    assert counts == {"inventory": 18, "motions": 7}, counts
+    assert counts == {"inventory": 18, "motions": 15}, counts

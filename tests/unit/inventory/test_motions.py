@@ -13,6 +13,7 @@ import pytest
 from _support import ROOT
 
 from opsrock.constants import G
+from opsrock.excitations.records import UNITS
 from opsrock.data import example_motions_manifest
 from opsrock.errors import ImplausibleInputError, InputError
 from opsrock.inventory.motions import FloorMotion, MotionSet, header_dt, motion_name, read_motions
@@ -153,3 +154,24 @@ def test_the_example_motions_are_what_the_tool_writes():
     proc = subprocess.run([sys.executable, "tools/make_example_motions.py", "--check"], cwd=ROOT,
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+def test_column_picks_one_acceleration_of_a_file_of_several(tmp_path):
+    """Issue 44: ``time,ax,ay`` by header name or 1-based index, and OpenSees' Node recorder output with
+    ``-time`` (no header, white space: the time, then one column per node and dof), each read exactly."""
+    from opsrock.inventory.motions import read_motions
+
+    t = np.arange(0.0, 1.0, 0.01)
+    ax, ay = np.sin(7.0 * t), 0.5 * np.cos(3.0 * t)
+    np.savetxt(tmp_path / "txy.csv", np.c_[t, ax, ay], delimiter=",", header="time,ax,ay", comments="")
+    np.savetxt(tmp_path / "node.out", np.c_[t, ax, 0.0 * t, ay])  # nodes 2 and 3, dof 1
+    (tmp_path / "m.csv").write_text("record,floor,direction,file,units,column,location\n"
+                                    "r,L1,1,txy.csv,m/s2,AX,1\nr,L1,2,txy.csv,m/s2,3,1\n"
+                                    "r,L2,1,node.out,g,2,2\nr,L2,2,node.out,g,4,2\n")
+    m = read_motions(tmp_path / "m.csv")
+    assert m.locations == (("L1", 1), ("L2", 2))
+    got = {mm.key: mm.motion for mm in m.motions}
+    np.testing.assert_allclose(got[("r", "L1", "1")].values, ax, rtol=1e-15)
+    np.testing.assert_allclose(got[("r", "L1", "2")].values, ay, rtol=1e-15)
+    np.testing.assert_allclose(got[("r", "L2", "2")].values, UNITS["g"] * ay, rtol=1e-12)  # g to m/s2
+    assert got[("r", "L2", "1")].dt == pytest.approx(0.01, rel=1e-12)

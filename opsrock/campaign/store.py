@@ -277,6 +277,14 @@ class ResultStore:
             self._db.execute("DELETE FROM results")
             self._db.execute("DELETE FROM manifest WHERE key != 'schema_version'")
 
+    def forget_timeouts(self) -> int:
+        """Delete the stored cases that failed on their case budget (reason ``"timeout..."``), so that a resume
+        computes them again (with the budget it is given); the other failures stay results. Returns how many."""
+        with self._transaction():
+            before = self._db.total_changes
+            self._db.execute("DELETE FROM results WHERE status = 'failed' AND reason LIKE 'timeout%'")
+            return self._db.total_changes - before
+
     # --- results ---------------------------------------------------------------------------
     def append(self, rows: Iterable[Mapping[str, Any]]) -> int:
         """Insert result rows in one durable transaction; return how many were new.

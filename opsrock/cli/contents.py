@@ -36,7 +36,8 @@ INVENTORY_OPTIONS: dict[str, str] = {
 _INVENTORY_ONLY = {"--method": ("method", None), "--levels": ("levels", None),
                    "--demand-levels-pfv": ("demand_levels_pfv", None), "--demand-levels-pfa": ("demand_levels_pfa", None),
                    "--slide-distance": ("slide_distance", None), "--accept-implausible": ("accept_implausible", False),
-                   "--solver": ("solver", None), "--azimuths": ("azimuths", None)}
+                   "--solver": ("solver", None), "--azimuths": ("azimuths", None),
+                   "--case-timeout": ("case_timeout", None)}
 _FEMA_ONLY = {"--items": ("items", None), "--variants": ("variants", "default,housner,friction"),
               "--friction": ("friction", None), "--no-sweep": ("no_sweep", False)}
 _BUILDING = {"--period": ("period", 1.0), "--storeys": ("storeys", 8), "--damping": ("damping", 0.05),
@@ -141,7 +142,7 @@ def _inventory(args: argparse.Namespace) -> int:
             design = inventory_design(args.inventory, args.motions, source, settings, quick_run=args.quick,
                                       workers=args.workers)
             res = run_inventory_study(design, args.out, workers=args.workers, progress=not args.no_progress,
-                                      force=args.force, store_dir=args.store)
+                                      force=args.force, store_dir=args.store, case_timeout=args.case_timeout)
     except KeyboardInterrupt:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)

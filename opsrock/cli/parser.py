@@ -382,6 +382,9 @@ def _contents(sub) -> None:
                                     "both directions of each record and floor at once (docs/guide/inventory.md)")
     p.add_argument("--azimuths", help="with --solver rigid3d: the items' azimuths in plan (deg, from direction 1 to "
                                       "an item's width), comma-separated, pooled in each fit (default 0,45,90)")
+    p.add_argument("--case-timeout", type=limited("--case-timeout", "case_timeout"),
+                   help="with --inventory/--motions: wall-clock budget of one case (s; default 300); cases stored as "
+                        "timed out are computed again by the next run")
 
 
 def _directionality(sub) -> None:

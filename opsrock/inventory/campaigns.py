@@ -346,8 +346,13 @@ def seed_motions(gs: GroupScene, folder: Path, demands: pd.DataFrame) -> bool:
 
 
 def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, workers: int | None,
-               progress: bool, force: bool) -> tuple[pd.DataFrame, dict[str, Any]]:
+               progress: bool, force: bool, case_timeout: float | None = None) -> tuple[pd.DataFrame, dict[str, Any]]:
     """Run (or resume) every group's campaign into ``store/<group>``, on one pool of worker processes.
+
+    A case stored as failed on its case budget (reason ``"timeout..."``: a machine's load or a cold compile as much
+    as the case) is computed again on a resume, within ``case_timeout`` (s; default the campaigns'
+    :data:`opsrock.campaign.timeout.DEFAULT_CASE_TIMEOUT`); every other failure is a result and stays. Counted in
+    the timings' ``n_retried``.
 
     Returns
     -------
@@ -361,19 +366,28 @@ def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, 
     from opsrock.campaign.executors import LocalPool
     from opsrock.solvers import warm_up
 
-    frames, t0, computed = [], time.perf_counter(), 0
+    from opsrock.campaign.run import case_budget
+    from opsrock.campaign.store import STORE_FILE, ResultStore
+
+    frames, t0, computed, retried = [], time.perf_counter(), 0, 0
     solvers = tuple(sorted({gs.scene.solver for gs in scenes}))
     for solver in solvers:  # compiled here once (announced when the cache is cold), loaded by each worker
         warm_up(solver)
-    with LocalPool(workers, warm=solvers) as pool:
+    budget = case_budget(scenes[0].scene, case_timeout) if scenes else None
+    with LocalPool(workers, warm=solvers, item_timeout=budget) as pool:
         for gs in scenes:
             folder = store / gs.group.name
+            if not force and (folder / STORE_FILE).is_file():
+                with ResultStore(folder / STORE_FILE) as stored:
+                    retried += stored.forget_timeouts()
             seed_motions(gs, folder, demands)
-            summary = run_campaign(gs.scene, folder, executor=pool, progress=progress, force=force, batch=BATCH)
+            summary = run_campaign(gs.scene, folder, executor=pool, progress=progress, force=force, batch=BATCH,
+                                   case_timeout=budget)
             computed += summary.n_computed
             frames.append(_read_cases(summary.cases_csv, gs))
     cases = pd.concat(frames, ignore_index=True)
-    return cases, {"campaigns_s": time.perf_counter() - t0, "n_cases": len(cases), "n_computed": computed}
+    return cases, {"campaigns_s": time.perf_counter() - t0, "n_cases": len(cases), "n_computed": computed,
+                   "n_retried": retried}
 
 
 def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:

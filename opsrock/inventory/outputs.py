@@ -101,7 +101,8 @@ def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> tuple[dic
     a.timings["outputs_s"] = time.perf_counter() - t0
     a.timings["total_s"] = time.perf_counter() - a.t_start
     report = _write_report(stage, {**a.tables, "design": a.design, "cases": a.cases, "timings": a.timings,
-                                   "pelicun": pel, "n_computed": a.n_computed}, notes)
+                                   "pelicun": pel, "n_computed": a.n_computed,
+                                   "n_retried": getattr(a, "n_retried", 0)}, notes)
     return paths, pel, report
 
 
@@ -120,7 +121,9 @@ def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[
     figures["demands"] = f"figures/{plot_floor_demands(demand_table(study_tables['demands']), stage / 'figures' / 'demands.png').name}"
     t = study_tables["timings"]
     notes = (f"{len(cases)} cases, {int((cases['status'] != 'ok').sum())} failed; "
-             f"{study_tables['n_computed']} computed in this run.",
+             f"{study_tables['n_computed']} computed in this run"
+             + (f" ({study_tables['n_retried']} of them stored as timed out before, computed again)."
+                if study_tables.get("n_retried") else "."),
              f"Wall time (s): demands {t.get('demands_s', 0.0):.1f}, campaigns {t.get('campaigns_s', 0.0):.1f}, "
              f"fits {t.get('fits_s', 0.0):.1f}.", *route_notes)
     pelicun = {key: Path(path).relative_to(stage).as_posix() for key, path in study_tables["pelicun"].items()}

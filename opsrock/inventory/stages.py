@@ -74,6 +74,9 @@ class Assessment:
         Progress on stderr.
     force : bool
         Delete stored results of other settings in the campaigns' folders instead of refusing them.
+    case_timeout : float or None
+        Wall-clock budget of one case (s); None: the campaigns' default. Cases stored as timed out are computed
+        again (:func:`opsrock.inventory.campaigns.run_groups`).
     """
 
     design: Any
@@ -83,11 +86,13 @@ class Assessment:
     workers: int | None = None
     progress: bool = True
     force: bool = False
+    case_timeout: float | None = None
     scenes: list = field(default_factory=list, repr=False)
     demands: pd.DataFrame | None = field(default=None, repr=False)
     cases: pd.DataFrame | None = field(default=None, repr=False)
     tables: dict[str, pd.DataFrame] = field(default_factory=dict, repr=False)
     n_computed: int = 0
+    n_retried: int = 0
     timings: dict[str, float] = field(default_factory=dict)
     t_start: float = field(default_factory=time.perf_counter)
 
@@ -126,8 +131,11 @@ class CampaignStage:
         a.say(f"{sum(s.scene.n_cases for s in a.scenes)} cases in {len(a.scenes)} campaigns ({a.route.name}) into "
               f"{a.store}")
         a.cases, t = run_groups(a.scenes, a.store, a.demands, workers=a.workers, progress=a.progress,
-                                force=a.force)
+                                force=a.force, case_timeout=a.case_timeout)
         a.timings["campaigns_s"], a.n_computed = t["campaigns_s"], int(t["n_computed"])
+        a.n_retried = int(t["n_retried"])
+        if a.n_retried:
+            a.say(f"{a.n_retried} cases stored as timed out were computed again")
         check_some_finished(a.cases, str(a.store))
 
 

@@ -210,7 +210,7 @@ def inventory_design(inventory: str | Path | None, motions: str | Path | None, s
 
 def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers: int | None = None,
                         progress: bool = True, force: bool = False,
-                        store_dir: str | Path | None = None) -> InventoryStudy:
+                        store_dir: str | Path | None = None, case_timeout: float | None = None) -> InventoryStudy:
     """Each item's overturning (and sliding) fragility per floor and direction, the expected numbers
     overturned, and a pelicun folder, written into ``out_dir`` (resumable): the stages of
     :class:`opsrock.inventory.stages.Assessment` on the route of the design's solver (:data:`PLANAR`, or
@@ -230,6 +230,9 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
         Delete stored results of other settings in the campaigns' folders instead of refusing them.
     store_dir : str or Path, optional
         Where the campaigns keep their stores; default ``out_dir/campaigns``.
+    case_timeout : float, optional
+        Wall-clock budget of one case (s); default the campaigns' (300 s). A case stored as timed out is computed
+        again by the next run, within the budget it is given; every other failure is kept as a result.
 
     Returns
     -------
@@ -246,7 +249,8 @@ def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers
     out = Path(out_dir)
     store = Path(store_dir) if store_dir is not None else out / "campaigns"
     route = THREE_D if SOLVER_INFO[design.solver].plan else PLANAR
-    return Assessment(design, route, out, store, workers=workers, progress=progress, force=force).run()
+    return Assessment(design, route, out, store, workers=workers, progress=progress, force=force,
+                      case_timeout=case_timeout).run()
 
 
 def run_study(inventory: str | Path | None = None, motions: str | Path | None = None, out_dir: str | Path = "contents",

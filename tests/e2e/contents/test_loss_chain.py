@@ -70,3 +70,14 @@ def test_one_command_from_the_engineers_files_to_a_pelicun_folder_counting_each_
     assert expected.loc[expected["item"] == "trolley", "expected_damaged"].item() > 0
     report = (tmp_path / "out" / "report.md").read_text()
     assert "`L1` -> location 1" in report and "NumberOfStories: 2" in report
+
+
+def test_case_timeout_is_refused_where_it_does_not_apply_or_is_out_of_range(tmp_path):
+    from _hostile import Case, sweep
+
+    inv, man = _files(tmp_path)
+    cases = [Case("--case-timeout 0", ("contents", "--inventory", str(inv), "--motions", str(man), "--case-timeout", "0",
+                                       "--out", "out"), ("--case-timeout", "0")),
+             Case("--case-timeout without --inventory", ("contents", "--case-timeout", "60", "--out", "out"),
+                  ("--case-timeout", "--inventory"))]
+    assert sweep(cases, tmp_path) == []

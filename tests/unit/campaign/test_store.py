@@ -94,6 +94,18 @@ def test_a_lost_case_is_not_a_result_and_gives_way_to_its_next_row(tmp_path):
     assert is_lost(lost_old["reason"]) and not is_lost(timed_out["reason"]) and not is_lost("")
 
 
+def test_forget_timeouts_leaves_every_other_failure_a_result(tmp_path):
+    # issue 44: the inventory study computes cases stored as timed out again on a resume (within the budget it
+    # is given); a solver's other failures and the results stay
+    with ResultStore(tmp_path / STORE_FILE) as store:
+        store.append([_failed("a", "timeout: no answer within the case budget of 300 s"),
+                      _failed("b", "timeout: no answer within 35 s (the case budget plus 30 s of grace)"),
+                      _failed("c", "no convergence at t = 0.41 s"), row("d")])
+        assert store.forget_timeouts() == 2
+        assert store.done_ids() == {"c", "d"}
+        assert store.forget_timeouts() == 0
+
+
 def test_incomplete_row_is_refused_and_nothing_written(tmp_path):
     bad = row("b")
     del bad["verdict"]

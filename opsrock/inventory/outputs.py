@@ -112,11 +112,16 @@ def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[
     from opsrock.inventory.items import item_cells
     from opsrock.inventory.plots import item_figures, plot_floor_demands
     from opsrock.inventory.report import ReportInputs, write_report
-    from opsrock.inventory.summary import demand_table, report_tables
+    from opsrock.inventory.summary import demand_table, fema_ratio_reasons, report_tables
 
     design, fits, cases = study_tables["design"], study_tables["fits"], study_tables["cases"]
     levels = {"pfv": design.demand_levels_pfv, "pfa": design.demand_levels_pfa}
     computed = report_tables(fits, levels, cases)
+    items = {it.id: it for it in design.inventory.items}
+    computed["reasons"] = fema_ratio_reasons(computed["table"], items, study_tables["demands"])
+    computed["never"] = tuple(i for i in items if i not in set(computed["curves"].query(
+        "outcome == 'overturning' and demand == 'pfv'")["item"]))
+    computed["slides"] = tuple(sorted(set(fits.loc[(fits["outcome"] == "sliding") & (fits["n_exceeded"] > 0), "item"])))
     figures = {item: f"figures/{p.name}" for item, p in item_figures(computed["curves"], stage / "figures").items()}
     figures["demands"] = f"figures/{plot_floor_demands(demand_table(study_tables['demands']), stage / 'figures' / 'demands.png').name}"
     t = study_tables["timings"]

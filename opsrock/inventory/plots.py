@@ -116,10 +116,12 @@ def plot_floor_demands(demands: pd.DataFrame, path: str | Path) -> Path:
 
 def item_figures(curves: pd.DataFrame, folder: str | Path, demand: str = "pfv",
                  outcome: str = "overturning") -> dict[str, Path]:
-    """:func:`plot_item_fragility` of every item of ``curves`` into ``folder/<item>.png``: item -> PNG."""
+    """:func:`plot_item_fragility` of every item of ``curves`` that has a curve of ``outcome`` in ``demand`` into
+    ``folder/<item>.png``: item -> PNG (an item without one gets no empty figure: the report says it in a line)."""
     folder = Path(folder)
+    have = curves[(curves["demand"] == demand) & (curves["outcome"] == outcome)]
     return {item: plot_item_fragility(curves, item, folder / f"{item}.png", demand, outcome)
-            for item in dict.fromkeys(curves["item"])}
+            for item in dict.fromkeys(have["item"])}
 
 
 __all__ = ["AXIS_LABELS", "MIN_FONT", "item_figures", "plot_floor_demands", "plot_item_fragility"]

@@ -82,6 +82,12 @@ class ReportInputs:
         Level of the intervals (dimensionless), for the headers.
     pelicun_notes : tuple of str
         What the pelicun folder assumes (floor locations, demand, damage states), printed as it is.
+    reasons : pandas.DataFrame or None
+        :func:`opsrock.inventory.summary.fema_ratio_reasons`: what drives each ratio to FEMA's median.
+    never : tuple of str
+        The items that never overturned in any case (one line, no figure).
+    slides : tuple of str
+        The items that slid beyond their distance in some case.
     """
 
     title: str
@@ -100,6 +106,9 @@ class ReportInputs:
     sliding: pd.DataFrame | None = field(default=None, repr=False)
     confidence: float = 0.95
     pelicun_notes: tuple[str, ...] = ()
+    reasons: pd.DataFrame | None = field(default=None, repr=False)
+    never: tuple[str, ...] = ()
+    slides: tuple[str, ...] = ()
 
 
 def _num(v: float) -> str:
@@ -212,9 +221,10 @@ def footnotes(table: pd.DataFrame, verb: str) -> list[str]:
                      "tested demand; read it as \"rarely, within these demands\", not as a measured median.")
     never = table[(table["status_pfv"] == "never")]
     if len(never):
-        lines.append(f"\"none {verb}\": no case of " + ", ".join(_where(r, several) for r in never.itertuples())
-                     + f" {verb}, so there is no curve to fit and no probability is given (\"-\"); it is not zero, only "
-                     "below what these motions reach.")
+        where = {item: sorted(set(g["floor"])) for item, g in never.groupby("item", sort=False)}
+        lines.append(f"\"none {verb}\": no case {verb} " + "; ".join(f"{item} (floor{'s' if len(f) > 1 else ''} "
+                     f"{', '.join(f)})" for item, f in where.items()) + ", so no curve is fitted and no probability "
+                     "given (\"-\"): not zero, but beyond what these motions, at the levels run, made it do.")
     for r in table.itertuples():
         for d, abbr in (("pfv", "PFV"), ("pfa", "PFA")):
             if getattr(r, f"status_{d}") == "no fit":
@@ -283,11 +293,30 @@ def _pelicun_lines(pelicun: dict[str, str], notes: tuple[str, ...] = ()) -> list
             "docs/getting-started-loss.md): `python tools/pelicun_inventory.py pelicun --dl-calculation`.", ""]
 
 
-def _figure_lines(figures: dict[str, str]) -> list[str]:
+def _reason_lines(reasons: pd.DataFrame | None) -> list[str]:
+    """What drives each ratio to FEMA P-58 (:func:`opsrock.inventory.summary.fema_ratio_reasons`), per item."""
+    if reasons is None or reasons.empty:
+        return []
+    lines = ["## Ratios to FEMA P-58: what drives them", "",
+             "FEMA P-58's medians follow (our reading, `opsrock/published/fema_p58.py`) PFV = g (b/h) T / (2 pi), the "
+             "velocity at which a floor moving at period T uplifts the block. Each ratio is that rule at this item's "
+             "b/h (b over twice the centre of mass height where given) and at the floor's own T = 2 pi PFV / PFA, "
+             "over the rule for FEMA's item, times what the rule leaves out:", ""]
+    for item, g in reasons.groupby("item", sort=False):
+        lines += [f"- **{item}** (direction {g['direction'].iloc[0]}, its narrower side, as FEMA's):",
+                  *(f"  - floor {r.floor}: {r.reason}." for r in g.itertuples())]
+    return [*lines, ""]
+
+
+def _figure_lines(figures: dict[str, str], never: tuple[str, ...] = (), slides: tuple[str, ...] = ()) -> list[str]:
     lines = ["## Figures", "",
-             "Each item's overturning fragility in PFV on each floor (one line style and marker per floor, the shaded "
-             "band spanned by the curves at the corners of the intervals); the floors' demands, one point per record.",
-             ""]
+             "Each item's overturning fragility in PFV on each floor (one line style per floor and direction, the "
+             "shaded band spanned by the curves at the corners of the intervals; curves, not data); the floors' "
+             "demands, one point per record.", ""]
+    for item in never:
+        lines += [f"{item} never overturned in any case of the study, so it has no figure"
+                  + (" (it slides instead: see the sliding table and its displaced damage state)." if item in slides
+                     else "."), ""]
     for name, rel in figures.items():
         lines += [f"![{name}]({rel})", ""]
     return lines
@@ -310,6 +339,7 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
              "## Per item and floor: overturning", "",
              markdown_table(formatted_table(t, "overturned", inputs.confidence)) if len(t) else "(no item was fitted)", "",
              *(footnotes(t, "overturned") if len(t) else []),
+             *_reason_lines(inputs.reasons),
              *method_lines(inputs.method, inputs.confidence)]
     if inputs.findings:
         lines += ["## What the floors show", "", *(f"- {f.text}" for f in inputs.findings), ""]
@@ -317,7 +347,7 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
         lines += ["## Per item and floor: sliding", "",
                   markdown_table(formatted_table(inputs.sliding, "slid", inputs.confidence)), "",
                   *footnotes(inputs.sliding, "slid")]
-    lines += [*_figure_lines(inputs.figures), *_expected_lines(inputs.expected, inputs.pelicun),
+    lines += [*_figure_lines(inputs.figures, inputs.never, inputs.slides), *_expected_lines(inputs.expected, inputs.pelicun),
               *_failure_lines(inputs), *_pelicun_lines(inputs.pelicun, inputs.pelicun_notes)]
     path = Path(path)
     atomic_text(path, "\n".join(lines) + "\n")

@@ -374,6 +374,63 @@ def report_tables(fits: pd.DataFrame, demand_levels: dict[str, tuple[float, ...]
             "sliding": item_floor_table(fits, demand_levels, "sliding") if has_sliding else None}
 
 
-__all__ = ["DEFAULT_LEVELS", "DEMANDS", "Finding", "curve_table", "default_grid", "demand_table", "failure_table",
+#: Columns of :func:`fema_ratio_reasons`.
+REASON_COLUMNS: tuple[str, ...] = ("item", "floor", "direction", "ratio_fema", "aspect_item", "aspect_fema",
+                                   "period_floor", "period_fema", "rule_factor", "beyond_factor", "friction",
+                                   "slides_first", "reason")
+
+
+def fema_ratio_reasons(table: pd.DataFrame, items: dict, demands: pd.DataFrame) -> pd.DataFrame:
+    """What drives each ratio to FEMA P-58's median, per item, floor and direction, by FEMA's own rule (our
+    reading, :mod:`opsrock.published.fema_p58`): ``PFV_50 = g (b/h) T / (2 pi)``, the PFV at which a floor moving
+    harmonically at the period ``T`` uplifts the block. The ratio splits into ``rule_factor``, the rule at this
+    item's ``b/h`` (``b / (2 h_cm)`` where the inventory gives a centre of mass: a low one steadies it) and at the
+    floor motions' own ``T = 2 pi PFV / PFA`` (the median over the records of that floor and direction) over the
+    rule at FEMA's item's ``b/h`` and period (:data:`~opsrock.published.fema_p58.REFERENCE_PERIOD`), and
+    ``beyond_factor``, what the rule leaves out: overturning needs more than uplift, more so for a larger
+    block (Housner's size effect), and an item whose friction is below its ``b/h`` slides before it rocks.
+    Only the direction of the item's narrower side is compared (FEMA's items rock about their depth).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        :func:`item_floor_table` of overturning (``ratio_fema``, ``fema_id``; PFV m/s).
+    items : dict of str to Item
+        The inventory's items by id (m).
+    demands : pandas.DataFrame
+        ``demands.csv`` (``pfa`` m/s², ``pfv`` m/s).
+    """
+    from opsrock.published.fema_p58 import ITEMS, REFERENCE_PERIOD
+
+    fema = {it.fema_id: it for it in ITEMS}
+    rows = []
+    for r in table[(table["fema_id"] != "") & np.isfinite(table["ratio_fema"].astype(float))].itertuples():
+        item, ref = items[r.item], fema[r.fema_id]
+        b = item.width if str(r.direction) == "1" else item.depth
+        if b > min(item.width, item.depth):
+            continue  # FEMA's item rocks about its depth, the narrower side: the other direction is not comparable
+        h = 2.0 * item.cm_height if item.cm_height is not None else item.height
+        d = demands[(demands["floor"].astype(str) == r.floor) & (demands["direction"].astype(str) == r.direction)]
+        period = float(np.median(2.0 * np.pi * d["pfv"].to_numpy(float) / d["pfa"].to_numpy(float)))
+        rule = (b / h) * period / (ref.aspect_ratio * REFERENCE_PERIOD)
+        mu = item.friction.median if item.friction is not None else math.nan
+        slides = bool(math.isfinite(mu) and mu < b / h)
+        beyond = float(r.ratio_fema) / rule
+        parts = {"geometry and floor period (FEMA's own rule)": rule, "beyond uplift (size, dynamics)": beyond}
+        main = max(parts, key=lambda k: abs(math.log(parts[k])))
+        why = (f"{float(r.ratio_fema):.2f} = {rule:.2f} by FEMA's own rule (b/h {b / h:.3g} vs {ref.aspect_ratio:.3g}"
+               f"{', a low centre of mass' if item.cm_height is not None and item.cm_height < 0.5 * item.height else ''}"
+               f"; the floor's T = 2 pi PFV/PFA {period:.2f} s vs {REFERENCE_PERIOD:.2f} s) x {beyond:.2f} beyond uplift "
+               f"(overturning needs more than uplift; R = {0.5 * math.hypot(b, item.height):.2f} m)"
+               + (f"; friction {mu:.2g} below b/h: it slides before it rocks" if slides else "")
+               + f". Mostly: {main}" + (", and sliding" if slides else ""))
+        rows.append({"item": r.item, "floor": r.floor, "direction": r.direction, "ratio_fema": float(r.ratio_fema),
+                     "aspect_item": b / h, "aspect_fema": ref.aspect_ratio, "period_floor": period,
+                     "period_fema": REFERENCE_PERIOD, "rule_factor": rule, "beyond_factor": beyond, "friction": mu,
+                     "slides_first": slides, "reason": why})
+    return pd.DataFrame(rows, columns=list(REASON_COLUMNS))
+
+
+__all__ = ["DEFAULT_LEVELS", "DEMANDS", "Finding", "REASON_COLUMNS", "fema_ratio_reasons", "curve_table", "default_grid", "demand_table", "failure_table",
            "floor_findings", "floor_order", "floors_are_numbered", "item_floor_table", "level_column", "outside_interval",
            "probability", "report_tables"]

@@ -249,3 +249,28 @@ def test_each_item_figure_spans_its_own_curves():
     assert cabinet.max() == pytest.approx(0.9 * math.exp(2.5 * 0.3), rel=1e-12)
     assert cabinet.min() == pytest.approx(0.8 * math.exp(-2.5 * 0.3), rel=1e-12)
     assert pfv[pfv["item"] == "rack"]["x"].max() == pytest.approx(0.6 * math.exp(2.5 * 0.4), rel=1e-12)
+
+
+def test_each_ratio_to_fema_splits_into_fema_s_own_rule_and_what_it_leaves_out():
+    """Issue 44: ratio = rule_factor x beyond_factor, rule_factor = (b/h_cm)/(b/h)_FEMA x T_floor/T_FEMA with
+    T_floor = 2 pi PFV/PFA of the floor's records (values made up; the rule is opsrock.published.fema_p58's)."""
+    import math as _m
+
+    from opsrock.inventory.items import FrictionLaw, Item
+    from opsrock.inventory.summary import fema_ratio_reasons
+    from opsrock.published.fema_p58 import ITEMS, REFERENCE_PERIOD
+
+    ref = next(it for it in ITEMS if it.fema_id == "E.20.22.105a")
+    item = Item("book", "a bookcase", 0.3, 0.9, 1.8, cm_height=0.8, friction=FrictionLaw("fixed", (0.1,)),
+                fema_id="E.20.22.105a")
+    table = pd.DataFrame([{"item": "book", "floor": "1", "direction": d, "fema_id": "E.20.22.105a",
+                           "ratio_fema": 2.0} for d in ("1", "2")])
+    demands = pd.DataFrame({"record": ["a", "b", "c"], "floor": "1", "direction": "1", "pfa": [4.0, 5.0, 6.0],
+                            "pfv": [0.4, 0.4, 0.9]})
+    out = fema_ratio_reasons(table, {"book": item}, demands)
+    assert list(out["direction"]) == ["1"]  # the narrower side only, as FEMA's items rock about their depth
+    r = out.iloc[0]
+    period = 2 * _m.pi * 0.1  # 2 pi times the median of PFV/PFA over the three records (0.1, 0.08, 0.15)
+    assert r["rule_factor"] == pytest.approx((0.3 / 1.6) / ref.aspect_ratio * period / REFERENCE_PERIOD, rel=1e-12)
+    assert r["rule_factor"] * r["beyond_factor"] == pytest.approx(2.0, rel=1e-12)
+    assert r["slides_first"] and "slides before it rocks" in r["reason"]  # friction 0.1 < b/h 0.19

@@ -90,8 +90,7 @@ API_GROUPS: dict[str, tuple[str, ...]] = {
                   "opsrock.solvers", "opsrock.solvers."),
     "Campaigns": ("opsrock.campaign", "opsrock.campaign."),
     "Fragility": ("opsrock.fragility", "opsrock.fragility.", "opsrock.intensity", "opsrock.intensity."),
-    "Contents studies": ("opsrock.inventory.", "opsrock.contents", "opsrock.contents.",
-                         "opsrock.analysis.directionality", "opsrock.analysis.directionality_"),
+    "Contents studies": ("opsrock.inventory.",),
     "Validation": ("opsrock.validation", "opsrock.validation.", "opsrock.bench", "opsrock.bench.",
                    "opsrock.published", "opsrock.published.", "opsrock.analysis."),
 }

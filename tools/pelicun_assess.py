@@ -6,7 +6,7 @@ opsrock's venv); it does not import opsrock.
     python tools/pelicun_assess.py STUDY/pelicun [--variant default] [--fema FILE] [--repeat 100]
                                    [--seed 0] [--nondirectional-multiplier 1.2] [--out FILE.json]
 
-Inputs, all in the folder (written by ``opsrock.contents``):
+Inputs, all in the folder (written by ``opsrock.inventory.fema``):
 
 * ``inventory.csv``: ``count`` of each FEMA item (``fema_id``) at each pelicun ``location`` (1 the
   ground floor, ``n + 1`` floor slab ``n``);

@@ -13,7 +13,9 @@
     opsrock bench [--quick] [--only NAME]
     opsrock sliding-map [--quick] --out DIR [--workers N]
     opsrock contents [--period T --storeys N --floors ground,roof ...] [--quick] --out DIR
-    opsrock directionality [--quick] --out DIR [--workers N] [--store S] [--force]
+    opsrock contents --inventory FILE --motions FILE [--solver rigid3d] [--quick] --out DIR
+    opsrock contents --model both [--quick] --out DIR [--workers N] [--store S] [--force]
+    opsrock directionality ...   (an alias of opsrock contents --model both)
 
 The parser is :mod:`opsrock.cli.parser`; each command's handler is a module of this package
 (:data:`HANDLERS`), imported once the command line is parsed, so that ``opsrock --help`` and each command
@@ -58,7 +60,7 @@ HANDLERS: dict[str, str] = {
     "simulate": "simulate:simulate", "threshold": "threshold:threshold", "records": "records:records",
     "run": "run:run", "fragility": "fragility:fragility", "reproduce": "reproduce:reproduce",
     "validate": "validate:validate", "bench": "bench:bench", "sliding-map": "sliding_map:sliding_map",
-    "contents": "contents:contents", "directionality": "directionality:directionality",
+    "contents": "contents:contents", "directionality": "contents:directionality",
 }
 
 _KEPT = "finished cases are kept; re-run the same command to resume"

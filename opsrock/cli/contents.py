@@ -1,6 +1,10 @@
-"""``opsrock contents``: FEMA P-58's unanchored contents in one building, beside FEMA's fragilities; with
-``--inventory`` and/or ``--motions``, the user's inventory on the user's floor motions
-(:func:`opsrock.inventory.study.run_inventory_study`). Options of the other route are refused, one line."""
+"""``opsrock contents``: the contents study (:class:`opsrock.inventory.stages.Assessment`) in one of its
+configurations: FEMA P-58's unanchored contents in one building, beside FEMA's fragilities
+(:func:`opsrock.inventory.fema.run_contents_study`); with ``--inventory`` and/or ``--motions``, the user's
+inventory on the user's floor motions (:func:`opsrock.inventory.study.run_inventory_study`); with ``--model both``
+(alias ``opsrock directionality``), both models side by side
+(:func:`opsrock.inventory.directionality.study.run_directionality_study`). Options of another configuration are
+refused, one line."""
 
 from __future__ import annotations
 
@@ -11,10 +15,10 @@ from pathlib import Path
 from opsrock._files import output_dir
 from opsrock.cli import EXIT_INTERRUPTED
 from opsrock.cli.common import named_options
-from opsrock.contents import SWEEP_BUILDINGS, ContentsDesign, run_contents_study
+from opsrock.inventory.fema import SWEEP_BUILDINGS, ContentsDesign, run_contents_study
 from opsrock.errors import UsageError
 
-#: Fields of :class:`opsrock.contents.ContentsDesign` (``records``: its ``names``, as the design's check
+#: Fields of :class:`opsrock.inventory.fema.ContentsDesign` (``records``: its ``names``, as the design's check
 #: calls them) -> the option that gives them.
 CONTENTS_OPTIONS: dict[str, str] = {
     "period": "--period", "storeys": "--storeys", "damping": "--damping", "floors": "--floors",
@@ -65,7 +69,7 @@ def _numbers(option: str, text: str | None) -> tuple | None:
 def _comma_list(option: str, text: str | None) -> tuple[str, ...]:
     """``"a, b"`` -> ``("a", "b")`` (spaces around a name are dropped); None -> (). An empty entry
     (``""``, ``"a,"``, ``",,"``) is refused naming ``option``; names given twice are refused by the
-    library (:class:`opsrock.contents.ContentsDesign`), under the option's name."""
+    library (:class:`opsrock.inventory.fema.ContentsDesign`), under the option's name."""
     if text is None:
         return ()
     parts = tuple(part.strip() for part in text.split(","))
@@ -81,11 +85,13 @@ def _floors(text: str) -> tuple:
 
 
 def contents(args: argparse.Namespace) -> int:
-    """``opsrock contents``: :func:`opsrock.contents.run_contents_study` for one building, or with
+    """``opsrock contents``: :func:`opsrock.inventory.fema.run_contents_study` for one building, or with
     ``--inventory``/``--motions`` :func:`opsrock.inventory.study.run_inventory_study`."""
     output_dir("--out", args.out)
     if args.store is not None:
         output_dir("--store", args.store)
+    if args.model == "both":
+        return _both(args)
     if args.inventory is not None or args.motions is not None:
         return _inventory(args)
     _refuse(args, _INVENTORY_ONLY, "without --inventory or --motions (FEMA P-58's study in the shipped building)")
@@ -153,4 +159,40 @@ def _inventory(args: argparse.Namespace) -> int:
     return 0
 
 
-__all__ = ["contents"]
+def directionality(args: argparse.Namespace) -> int:
+    """``opsrock directionality``: an alias of ``opsrock contents --model both`` (:func:`contents`)."""
+    output_dir("--out", args.out)
+    if args.store is not None:
+        output_dir("--store", args.store)
+    return _both(args)
+
+
+#: Options ``--model both`` takes none of (they configure the other routes), with their defaults.
+_NOT_BOTH = {"--inventory": ("inventory", None), "--motions": ("motions", None), **_INVENTORY_ONLY, **_FEMA_ONLY,
+             **_BUILDING, "--n-boot": ("n_boot", 100), "--seed": ("seed", 0)}
+
+
+def _both(args: argparse.Namespace) -> int:
+    """The route of ``--model both``: the shipped inventories on the shipped building, in three dimensions and in
+    the plane of the weaker axis (its design's defaults)."""
+    from opsrock.inventory.directionality.study import DirectionalityDesign, run_directionality_study
+
+    command = f"opsrock {args.command}"
+    _refuse(args, {k: v for k, v in _NOT_BOTH.items() if hasattr(args, v[0])},
+            "with --model both (it runs the shipped inventories on the shipped building, as designed)")
+    try:
+        res = run_directionality_study(DirectionalityDesign(), args.out, workers=args.workers,
+                                       progress=not args.no_progress, quick_run=args.quick, force=args.force,
+                                       store_dir=args.store)
+    except KeyboardInterrupt:
+        print(f"{command}: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
+              "run the same command again to compute only the missing ones", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    h = res.summary
+    print(f"{command}: {h['n_cases']} cases ({h['n_failed']} failed) in {h['wall_time_s']:.1f} s; "
+          f"factor on max(PFV_1, PFV_2) implied by 3-D: median {h['factor_implied_median']:.3g} (pelicun: 1.2); "
+          f"3-D case cost {h['cost_ratio_3d']:.3g} x planar; see {res.report}")
+    return 0
+
+
+__all__ = ["contents", "directionality"]

@@ -385,10 +385,20 @@ def _contents(sub) -> None:
     p.add_argument("--case-timeout", type=limited("--case-timeout", "case_timeout"),
                    help="with --inventory/--motions: wall-clock budget of one case (s; default 300); cases stored as "
                         "timed out are computed again by the next run")
+    p.add_argument("--model", choices=MODELS, default="planar",
+                   help="planar (default: each item in the plane of each direction, or with --solver rigid3d a box in "
+                        "three dimensions) or both: FEMA P-58's items and the example inventory on the shipped "
+                        "building, in three dimensions under both components and in the plane of the weaker axis, "
+                        "side by side (the directionality study; alias: opsrock directionality)")
+
+
+#: The model choices of ``opsrock contents --model``.
+MODELS: tuple[str, ...] = ("planar", "both")
 
 
 def _directionality(sub) -> None:
-    p = sub.add_parser("directionality", help="contents under two horizontal components in 3-D, beside planar analysis",
+    p = sub.add_parser("directionality", help="alias of contents --model both: contents under two horizontal "
+                                              "components in 3-D, beside planar analysis",
                        description="Overturning fragility of FEMA P-58's items and the example inventory on the shipped "
                                    "building's floors under both horizontal components of FEMA P695 records, in three "
                                    "dimensions (rigid3d) at plan orientations 0-90 deg, in pelicun's demand conventions, "

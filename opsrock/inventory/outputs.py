@@ -5,7 +5,7 @@ which both import it and neither each other."""
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -40,6 +40,11 @@ class InventoryStudy:
         Cases of the campaigns, those computed by this call (0 on a resume with nothing missing), those failed.
     timings : dict of str to float
         Wall times (s): ``demands_s``, ``campaigns_s``, ``fits_s``, ``outputs_s``, ``total_s``.
+    figures : list of str
+        PNG paths the route lists (the FEMA P-58 and the side-by-side routes).
+    summary : object
+        The route's headline numbers (:class:`opsrock.inventory.fema.report.StudySummary`, the side-by-side
+        route's dict), or None.
     """
 
     design: Any
@@ -51,6 +56,33 @@ class InventoryStudy:
     n_computed: int
     n_failed: int
     timings: dict[str, float]
+    figures: list[str] = field(default_factory=list)
+    summary: Any = None
+
+
+@dataclass(frozen=True)
+class Written:
+    """What a route's output stage wrote into the staging folder.
+
+    Parameters
+    ----------
+    tables : dict of str to Path
+        Table key -> CSV path.
+    report : Path
+        ``report.md``.
+    pelicun : dict of str to Path
+        pelicun file key -> path (empty: no pelicun folder).
+    figures : tuple of Path
+        PNG paths.
+    summary : object
+        The route's headline numbers (what its command prints), or None.
+    """
+
+    tables: dict[str, Path]
+    report: Path
+    pelicun: dict[str, Path] = field(default_factory=dict)
+    figures: tuple[Path, ...] = ()
+    summary: Any = None
 
 
 def workers_of(workers: int | None) -> int:
@@ -89,7 +121,7 @@ def study_tables(a: Any, cases: pd.DataFrame, components: pd.DataFrame | None = 
     return {"fits": fits, "components": components, "demands": a.demands, "expected": expected}
 
 
-def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> tuple[dict[str, Path], dict[str, Path], Path]:
+def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> Any:
     """The tables of the assessment ``a`` (:data:`TABLES`, and any other ``<key>.csv``), its pelicun folder, then its report (which shows the
     wall times), into the staging folder ``stage``; ``notes``: lines the route adds to the report."""
     from opsrock.inventory.pelicun import write_pelicun_folder
@@ -102,8 +134,8 @@ def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> tuple[dic
     a.timings["total_s"] = time.perf_counter() - a.t_start
     report = _write_report(stage, {**a.tables, "design": a.design, "cases": a.cases, "timings": a.timings,
                                    "pelicun": pel, "n_computed": a.n_computed,
-                                   "n_retried": getattr(a, "n_retried", 0)}, notes)
-    return paths, pel, report
+                                   "n_retried": a.n_retried}, notes)
+    return Written(paths, report, pel)
 
 
 def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[str, ...] = ()) -> Path:
@@ -177,4 +209,4 @@ def _pelicun_notes(design: Any) -> tuple[str, ...]:
             "both directions to the same units counts each unit twice.")
 
 
-__all__ = ["OUTPUTS", "TABLES", "InventoryStudy", "study_tables", "workers_of", "write_csv", "write_outputs"]
+__all__ = ["OUTPUTS", "TABLES", "InventoryStudy", "Written", "study_tables", "workers_of", "write_csv", "write_outputs"]

@@ -70,7 +70,7 @@ def building_motions(source: BuildingSource, workers: int | None = None) -> Moti
         Processes for the building analyses (OpenSeesPy; about a second per record); None or 1: this one.
     """
     from opsrock._pool import TaskPool
-    from opsrock.contents.design import ContentsDesign
+    from opsrock.inventory.fema.design import ContentsDesign
 
     # the contents study's checks of the building and its floors, under the same argument names
     design = ContentsDesign(period=source.period, storeys=source.storeys, damping=source.damping,

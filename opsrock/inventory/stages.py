@@ -1,17 +1,18 @@
-"""The inventory study run by stages, in the shape of pelicun's ``Assessment`` and its stage models: one
+"""The contents study run by stages, in the shape of pelicun's ``Assessment`` and its stage models: one
 :class:`Assessment` holds the design and where it writes, and four stages with one job each run it in
 order, each reading what the one before left on the assessment:
 
-1. :class:`DemandStage`: each floor motion's measures (:func:`opsrock.inventory.campaigns.cached_demands`);
-2. :class:`CampaignStage`: every group's campaign, run or resumed on one pool of workers
-   (:func:`opsrock.inventory.campaigns.run_groups`), the scenes built (and every input checked) first;
-3. :class:`FitStage`: the fragility tables of the model choice;
-4. :class:`OutputStage`: the tables, the report, the figures and (planar) the pelicun folder, written
-   together through a staging folder (a failed or interrupted run changes nothing).
+1. :class:`DemandStage`: the floor motions' measures;
+2. :class:`CampaignStage`: every campaign, run or resumed (the scenes built, and every input checked, first);
+3. :class:`FitStage`: the fragility tables;
+4. :class:`OutputStage`: the tables, the report, the figures and the pelicun folder, written together through a
+   staging folder (a failed or interrupted run changes nothing).
 
-What differs between the model choices (planar per axis, or every item a box in three dimensions under
-both directions at once: :mod:`opsrock.inventory.three_d`) is a :class:`Route`: how its scenes are built,
-how it fits and what it writes. The solver's registry entry picks the route (``plan``), never its name.
+What a configuration of the study brings to the stages is a :class:`Route` (its stage models): the user's
+inventory planar per axis (:data:`opsrock.inventory.study.PLANAR`) or every item a box in three dimensions
+(:data:`opsrock.inventory.three_d.THREE_D`; the solver's registry entry picks it, ``plan``, never its name),
+FEMA P-58's nine in the shipped building beside FEMA's fragilities (:data:`opsrock.inventory.fema.study.FEMA_NINE`),
+and both models side by side (:data:`opsrock.inventory.directionality.study.BOTH`).
 """
 
 from __future__ import annotations
@@ -24,34 +25,70 @@ from typing import Any, Callable
 
 import pandas as pd
 
-from opsrock.inventory.outputs import InventoryStudy, workers_of
+from opsrock.inventory.outputs import InventoryStudy, Written, workers_of
+
+
+@dataclass(frozen=True)
+class Ran:
+    """What a route's campaign stage ran: every case (one table), the cases computed by this call, wall times (s)
+    and counts for the report, and the cases stored as timed out that this call computed again."""
+
+    cases: pd.DataFrame
+    n_computed: int
+    timings: dict[str, Any]
+    n_retried: int = 0
+
+
+def inventory_demands(a: "Assessment") -> pd.DataFrame:
+    """Each motion's measures of the user's motion set (:func:`opsrock.inventory.campaigns.cached_demands`)."""
+    from opsrock.inventory.campaigns import cached_demands
+
+    return cached_demands(a.design.motions, a.store, workers_of(a.workers))
+
+
+def inventory_campaigns(a: "Assessment") -> Ran:
+    """Every group's campaign on one pool of workers (:func:`opsrock.inventory.campaigns.run_groups`)."""
+    from opsrock.inventory.campaigns import run_groups
+
+    a.say(f"{sum(s.scene.n_cases for s in a.scenes)} cases in {len(a.scenes)} campaigns ({a.route.name}) into "
+          f"{a.store}")
+    cases, t = run_groups(a.scenes, a.store, a.demands, workers=a.workers, progress=a.progress, force=a.force,
+                          case_timeout=a.case_timeout)
+    return Ran(cases, int(t["n_computed"]), {"campaigns_s": t["campaigns_s"]}, int(t["n_retried"]))
 
 
 @dataclass(frozen=True)
 class Route:
-    """What a model choice brings to the stages.
+    """What a configuration of the study brings to the stages: one function per stage (its stage models).
 
     Parameters
     ----------
     name : str
-        ``"planar"`` or ``"3d"`` (progress lines).
+        ``"planar"``, ``"3d"``, ``"fema-p58"`` or ``"both"`` (progress lines).
     scenes : callable
-        ``scenes(design) -> list[GroupScene]``: the campaigns, every input checked before anything is written.
+        ``scenes(design)``: the campaigns' scenes (or what they are built from), every input checked before
+        anything is written.
     fit : callable
-        ``fit(assessment) -> dict[str, DataFrame]``: the tables written (key -> table), from
-        ``assessment.cases`` and ``assessment.demands``.
+        ``fit(assessment) -> dict[str, DataFrame]``: the tables (key -> table), from ``assessment.cases`` and
+        ``assessment.demands``.
     write : callable
-        ``write(assessment, stage) -> (paths, pelicun, report)``: the tables, figures, pelicun folder and report
-        written into the staging folder ``stage``; ``paths`` key -> CSV path, ``pelicun`` key -> path.
+        ``write(assessment, stage) -> Written``: the tables, figures, pelicun folder and report written into
+        the staging folder ``stage``.
     outputs : tuple of str
         Globs (relative to the output folder) of the files it writes (:func:`opsrock._files.staged_folder`).
+    demands : callable
+        ``demands(assessment)``: the floor motions' measures (default :func:`inventory_demands`).
+    campaigns : callable
+        ``campaigns(assessment) -> Ran``: every campaign run or resumed (default :func:`inventory_campaigns`).
     """
 
     name: str
-    scenes: Callable[[Any], list]
+    scenes: Callable[[Any], Any]
     fit: Callable[["Assessment"], dict[str, pd.DataFrame]]
-    write: Callable[["Assessment", Path], tuple[dict[str, Path], dict[str, Path], Path]]
+    write: Callable[["Assessment", Path], Written]
     outputs: tuple[str, ...]
+    demands: Callable[["Assessment"], Any] = inventory_demands
+    campaigns: Callable[["Assessment"], Ran] = inventory_campaigns
 
 
 @dataclass
@@ -60,10 +97,10 @@ class Assessment:
 
     Parameters
     ----------
-    design : InventoryDesign
-        The inventory, the motions and how to run and fit them.
+    design : object
+        The study's design (:class:`opsrock.inventory.study.InventoryDesign`, or the design of its route).
     route : Route
-        The model choice.
+        The configuration.
     out : Path
         The output folder.
     store : Path
@@ -87,8 +124,8 @@ class Assessment:
     progress: bool = True
     force: bool = False
     case_timeout: float | None = None
-    scenes: list = field(default_factory=list, repr=False)
-    demands: pd.DataFrame | None = field(default=None, repr=False)
+    scenes: Any = field(default=None, repr=False)
+    demands: Any = field(default=None, repr=False)
     cases: pd.DataFrame | None = field(default=None, repr=False)
     tables: dict[str, pd.DataFrame] = field(default_factory=dict, repr=False)
     n_computed: int = 0
@@ -110,37 +147,32 @@ class Assessment:
 
 
 class DemandStage:
-    """Each floor motion's measures (pfa m/s², pfv m/s, ...), cached in the store."""
+    """Each floor motion's measures (pfa m/s², pfv m/s, ...), as the route reads them (cached in the store)."""
 
     def run(self, a: Assessment) -> None:
-        from opsrock.inventory.campaigns import cached_demands
-
         t0 = time.perf_counter()
-        a.demands = cached_demands(a.design.motions, a.store, workers_of(a.workers))
+        a.demands = a.route.demands(a)
         a.timings["demands_s"] = time.perf_counter() - t0
 
 
 class CampaignStage:
-    """Every group's campaign, run or resumed on one pool of workers; refuses a study whose every case
-    failed (:func:`opsrock.fragility.cases.check_some_finished`)."""
+    """Every campaign of the route, run or resumed; refuses a study whose every case failed
+    (:func:`opsrock.fragility.cases.check_some_finished`)."""
 
     def run(self, a: Assessment) -> None:
         from opsrock.fragility.cases import check_some_finished
-        from opsrock.inventory.campaigns import run_groups
 
-        a.say(f"{sum(s.scene.n_cases for s in a.scenes)} cases in {len(a.scenes)} campaigns ({a.route.name}) into "
-              f"{a.store}")
-        a.cases, t = run_groups(a.scenes, a.store, a.demands, workers=a.workers, progress=a.progress,
-                                force=a.force, case_timeout=a.case_timeout)
-        a.timings["campaigns_s"], a.n_computed = t["campaigns_s"], int(t["n_computed"])
-        a.n_retried = int(t["n_retried"])
+        t0 = time.perf_counter()
+        ran = a.route.campaigns(a)
+        a.cases, a.n_computed, a.n_retried = ran.cases, ran.n_computed, ran.n_retried
+        a.timings.update({"campaigns_s": time.perf_counter() - t0, **ran.timings})
         if a.n_retried:
             a.say(f"{a.n_retried} cases stored as timed out were computed again")
         check_some_finished(a.cases, str(a.store))
 
 
 class FitStage:
-    """The route's fragility tables."""
+    """The route's fragility tables (and the tables computed from them)."""
 
     def run(self, a: Assessment) -> None:
         t0 = time.perf_counter()
@@ -157,15 +189,18 @@ class OutputStage:
 
         t0 = time.perf_counter()
         with staged_folder(a.out, a.route.outputs) as stage:
-            paths, pel, report = a.route.write(a, stage)
-            final = {p: a.out / Path(p).relative_to(stage) for p in [report, *paths.values(), *pel.values()]}
+            w = a.route.write(a, stage)
+            final = {p: str(a.out / Path(p).relative_to(stage))
+                     for p in [w.report, *w.tables.values(), *w.pelicun.values(), *w.figures]}
         a.timings.setdefault("outputs_s", time.perf_counter() - t0)
         a.timings.setdefault("total_s", time.perf_counter() - a.t_start)
-        a.say(f"done in {a.timings['total_s']:.1f} s: {final[report]}")
-        return InventoryStudy(design=a.design, out_dir=str(a.out), tables={k: str(final[p]) for k, p in paths.items()},
-                              pelicun={k: str(final[p]) for k, p in pel.items()}, report=str(final[report]),
+        a.say(f"done in {a.timings['total_s']:.1f} s: {final[w.report]}")
+        return InventoryStudy(design=a.design, out_dir=str(a.out), tables={k: final[p] for k, p in w.tables.items()},
+                              pelicun={k: final[p] for k, p in w.pelicun.items()}, report=final[w.report],
                               n_cases=len(a.cases), n_computed=a.n_computed,
-                              n_failed=int((a.cases["status"] != "ok").sum()), timings=a.timings)
+                              n_failed=int((a.cases["status"] != "ok").sum()), timings=a.timings,
+                              figures=[final[p] for p in w.figures], summary=w.summary)
 
 
-__all__ = ["Assessment", "CampaignStage", "DemandStage", "FitStage", "OutputStage", "Route"]
+__all__ = ["Assessment", "CampaignStage", "DemandStage", "FitStage", "OutputStage", "Ran", "Route",
+           "inventory_campaigns", "inventory_demands"]

@@ -193,7 +193,7 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
             "fits3d": fit3d_table(a.cases, a.demands, a.design, workers_of(a.workers))}
 
 
-def _write(a: Any, stage: Path) -> tuple[dict[str, Path], dict[str, Path], Path]:
+def _write(a: Any, stage: Path) -> Any:
     """The planar route's outputs (:func:`opsrock.inventory.outputs.write_outputs`), ``fits3d.csv``, and the
     report's lines on the model in three dimensions."""
     from opsrock.inventory.outputs import write_outputs

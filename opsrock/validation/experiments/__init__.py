@@ -27,7 +27,7 @@ the data's own consistency, the intervals containing their estimates, the rigid 
 The package, by role: :mod:`~.constants` (the fixed choices), :mod:`~.checks` (data, intervals, runs
 against closed forms), :mod:`~.statistics` (restitution, factor, drift, bootstrap, headline, decay),
 :mod:`~.runs` (the solver runs), :mod:`~.closed_forms`, :mod:`~.tables`, :mod:`~.figures` and
-:mod:`~.summary` (the summary and :func:`run`).
+:mod:`~opsrock.validation.experiments.summary` (the summary and :func:`run`).
 """
 
 from opsrock.published.colombo_limestone import (

@@ -18,8 +18,8 @@ from opsrock._files import read_table
 from opsrock.campaign import run_campaign
 from opsrock.campaign.scene import load_blocks, load_scene
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR, G
-from opsrock.contents import DEFAULT_FRICTION, ContentsDesign, run_contents_study
-from opsrock.contents.design import DEFAULT_FRICTION_KINETIC, campaign_scenes, library_friction, quick
+from opsrock.inventory.fema import DEFAULT_FRICTION, ContentsDesign, run_contents_study
+from opsrock.inventory.fema.design import DEFAULT_FRICTION_KINETIC, campaign_scenes, library_friction, quick
 from opsrock.data import block_library, block_library_names
 from opsrock.errors import InputError
 from opsrock.fragility.pelicun_export import read_pelicun_csv
@@ -223,7 +223,7 @@ def test_contents_refuses_bad_input_in_one_line_and_writes_nothing(tmp_path):
 @pytest.mark.usefixtures("record_library")
 def test_contents_interrupted_keeps_its_cases_and_resumes(tmp_path, monkeypatch, capsys):
     from opsrock.cli import main
-    from opsrock.contents import study
+    from opsrock.inventory.fema import report
 
     args = ["contents", "--quick", "--items", "E.20.22.105a", "--variants", "default", "--records",
             "NORTHR_MUL009,KOBE_NIS000,HECTOR_HEC000", "--no-progress", "--no-sweep", "--workers", "1",
@@ -232,7 +232,7 @@ def test_contents_interrupted_keeps_its_cases_and_resumes(tmp_path, monkeypatch,
     def interrupt(*a, **k):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(study, "write_report", interrupt)  # Ctrl-C while the outputs are written
+    monkeypatch.setattr(report, "write_report", interrupt)  # Ctrl-C while the outputs are written
     assert main(args) == 130
     err = capsys.readouterr().err
     assert "interrupted" in err and "run the same command again" in err

@@ -92,7 +92,7 @@ def test_api_case_counts(campaigns):
 def test_contents_campaigns_with_nothing_to_fit_are_refused_in_one_line(campaigns):
     # the study's campaign step (opsrock contents) resumes the failed campaign (all 12 cases reused, none computed)
     # and stops before any fit, naming it: the same check as opsrock fragility
-    from opsrock.contents.campaigns import run_campaigns
+    from opsrock.inventory.fema.campaigns import run_campaigns
 
     scene = load_scene(campaigns / "failed" / "scene.toml")
     with pytest.raises(AllCasesFailedError) as err:

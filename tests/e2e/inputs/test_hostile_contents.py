@@ -29,7 +29,7 @@ from _hostile import Case, every_other, one_per_option, sweep
 from _support import BLOCKS, run_opsrock, write_friction_campaign
 
 from opsrock._files import remove_stale
-from opsrock.contents.design import VARIANTS
+from opsrock.inventory.fema.design import VARIANTS
 
 #: The smallest study the options allow: one item, one or two records, the roof, eight levels, 2 resamples.
 ITEM = "E.20.22.112a"

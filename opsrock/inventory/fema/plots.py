@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 
 from opsrock.constants import G
-from opsrock.contents.design import ContentsDesign, floor_name
+from opsrock.inventory.fema.design import ContentsDesign, floor_name
 from opsrock.fragility.lognormal import fragility_probability
 from opsrock.published import fema_p58
 

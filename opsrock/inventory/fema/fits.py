@@ -55,9 +55,9 @@ def _fit_chunk(tasks: list) -> list[dict[str, Any]]:
 
 
 def fit_tasks(cases: pd.DataFrame, n_boot: int, seed: int, relative: pd.DataFrame | None = None) -> list[tuple]:
-    """The fits of a case table (:func:`opsrock.contents.campaigns.run_campaigns`), as picklable tasks.
+    """The fits of a case table (:func:`opsrock.inventory.fema.campaigns.run_campaigns`), as picklable tasks.
 
-    ``relative`` (:func:`opsrock.contents.campaigns.floor_velocities` of the no-slip campaign) adds the
+    ``relative`` (:func:`opsrock.inventory.fema.campaigns.floor_velocities` of the no-slip campaign) adds the
     ``pfv_rel`` fits of the default variant on the building's floors."""
     tasks = []
     rel = None if relative is None else relative.set_index(["record", "floor"])["pfv_rel"]

@@ -10,7 +10,7 @@ from typing import Any
 
 import pandas as pd
 
-from opsrock.contents.design import ContentsDesign, floor_name
+from opsrock.inventory.fema.design import ContentsDesign, floor_name
 from opsrock.published import fema_p58
 from opsrock.report.markdown import markdown_table
 
@@ -176,7 +176,7 @@ def _rule_section(result: dict, with_figure: bool) -> list[str]:
 def write_report(path: Path, design: ContentsDesign, result: dict, summary: StudySummary) -> Path:
     """Write ``report.md``."""
     from opsrock._files import atomic_write
-    from opsrock.contents.drivers import drivers_section
+    from opsrock.inventory.fema.drivers import drivers_section
 
     lines = [*_head(design, summary), *_ratio_section(result, design), *_rule_section(result, "default" in design.variants),
              *drivers_section(result, design), *_pelicun_section(design)]

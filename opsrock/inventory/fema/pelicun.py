@@ -24,7 +24,7 @@ from pathlib import Path
 import pandas as pd
 
 from opsrock.constants import G
-from opsrock.contents.design import ContentsDesign, floor_label
+from opsrock.inventory.fema.design import ContentsDesign, floor_label
 
 #: Items of each kind on each floor of the assessment's inventory.
 INVENTORY_COUNT: int = 3

@@ -1,5 +1,5 @@
 """The directionality study's numbers: every fit and every table the report shows (the report and the figures,
-:mod:`opsrock.analysis.directionality_report`, compute nothing).
+:mod:`opsrock.inventory.directionality.report`, compute nothing).
 
 Fits (:func:`fit_table`): lognormal maximum likelihood on every finished case with 95 % intervals from
 resampling whole record pairs (:func:`opsrock.fragility.mle.plan_mle`, :func:`~opsrock.fragility.mle.fit_plans`),
@@ -63,7 +63,7 @@ def fit_table(cases: pd.DataFrame, design: Any, workers: int = 1) -> pd.DataFram
     Parameters
     ----------
     cases : DataFrame
-        The campaigns' cases (:func:`opsrock.analysis.directionality.run_campaigns`).
+        The campaigns' cases (:func:`opsrock.inventory.directionality.study.run_campaigns`).
     design : DirectionalityDesign
         Its ``n_boot`` and ``seed``.
     workers : int

@@ -1,5 +1,5 @@
 """The directionality study: contents under both horizontal floor components, in three dimensions, beside the
-planar analysis along the weaker axis and pelicun's non-directional factor 1.2 (``opsrock directionality``).
+planar analysis along the weaker axis and pelicun's non-directional factor 1.2 (``opsrock contents --model both``, alias ``opsrock directionality``).
 
 What it computes (docs/guide/directionality.md):
 
@@ -20,8 +20,8 @@ What it computes (docs/guide/directionality.md):
   components and for both models: ``level x g min(tan alpha, mu) / max(PFA_1, PFA_2)`` of the weaker axis;
 * the campaigns: one per (model, solver), run by the campaign engine (:class:`opsrock.campaign.run.Stage`:
   resumable, parallel, with progress) into ``store/<campaign>``;
-* the tables (:mod:`opsrock.analysis.directionality_summary`) and the report and figures
-  (:mod:`opsrock.analysis.directionality_report`), which compute nothing.
+* the tables (:mod:`opsrock.inventory.directionality.summary`) and the report and figures
+  (:mod:`opsrock.inventory.directionality.report`), which compute nothing.
 
 ``solver3d`` is the study's three-dimensional solver (``rigid3d``); a planar solver named there runs the
 three-dimensional cases in the plane of the weaker axis instead (the plumbing of the study, for its tests).
@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,15 +39,17 @@ from typing import Any, Mapping
 import numpy as np
 import pandas as pd
 
-from opsrock._files import atomic_csv, staged_folder
-from opsrock.analysis import directionality_summary as summary
-from opsrock.analysis.directionality_cases import study_campaigns, study_motions
-from opsrock.analysis.directionality_report import write_figures, write_report
+from opsrock._files import atomic_csv
+from opsrock.inventory.directionality import summary
+from opsrock.inventory.directionality.cases import study_campaigns, study_motions
+from opsrock.inventory.directionality.report import write_figures, write_report
 from opsrock.campaign.cases import read_cases
 from opsrock.campaign.executors import LocalPool
 from opsrock.campaign.run import Execution, Stage, case_budget
 from opsrock.errors import InputError
 from opsrock.inventory.items import shipped_inventory
+from opsrock.inventory.outputs import InventoryStudy, Written
+from opsrock.inventory.stages import Ran, Route
 from opsrock.limits import int_at_least
 from opsrock.solvers import warm_up
 from opsrock.solvers.registry import METHODS, plan_solver
@@ -237,46 +238,11 @@ def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
     return tuple(out)
 
 
-def _say(progress: bool, text: str) -> None:
-    if progress:
-        print(f"directionality: {text}", file=sys.stderr, flush=True)
-
-
-@dataclass(frozen=True)
-class DirectionalityStudy:
-    """What :func:`run_directionality_study` computed and wrote.
-
-    Parameters
-    ----------
-    design : DirectionalityDesign
-        The study as run.
-    out_dir : str
-        The output folder.
-    report : str
-        ``report.md``.
-    tables : dict of str to str
-        Table key -> CSV path.
-    figures : list of str
-        PNG paths.
-    headline : dict
-        The numbers the command prints (:func:`opsrock.analysis.directionality_summary.headline`).
-    timings : dict of str to float
-        Wall times (s): ``motions_s``, ``campaigns_s``, ``fits_s``, ``outputs_s``, ``total_s``.
-    """
-
-    design: DirectionalityDesign
-    out_dir: str
-    report: str
-    tables: dict[str, str]
-    figures: list[str]
-    headline: dict[str, Any]
-    timings: dict[str, float]
-
-
 def run_directionality_study(design: DirectionalityDesign, out_dir: str | Path, *, workers: int | None = None,
                              progress: bool = True, quick_run: bool = False, force: bool = False,
-                             store_dir: str | Path | None = None) -> DirectionalityStudy:
-    """Run (or resume) the study and write its tables, figures and report into ``out_dir``.
+                             store_dir: str | Path | None = None) -> InventoryStudy:
+    """Run (or resume) the study and write its tables, figures and report into ``out_dir``: the stages of
+    :class:`opsrock.inventory.stages.Assessment` on the route :data:`BOTH`.
 
     Parameters
     ----------
@@ -297,33 +263,36 @@ def run_directionality_study(design: DirectionalityDesign, out_dir: str | Path, 
 
     Returns
     -------
-    DirectionalityStudy
-        The paths written, the headline numbers and the wall times (s).
+    InventoryStudy
+        The paths written (``tables``, ``figures``, ``report``), the case counts, the wall times (s) and
+        ``summary``, the headline numbers the command prints
+        (:func:`opsrock.inventory.directionality.summary.headline`).
     """
+    from opsrock.inventory.stages import Assessment
 
-    t_start = time.perf_counter()
     design = quick(design) if quick_run else design
-    items = study_items(design)  # every input checked before anything is computed
-    timings: dict[str, float] = {}
-    t0 = time.perf_counter()
-    _say(progress, f"floor motions of {len(design.pairs) or 'every'} record pair(s) in both directions")
-    motions = study_motions(design, items, workers)
-    timings["motions_s"] = time.perf_counter() - t0
-    campaigns = study_campaigns(design, items, motions)
     out = Path(out_dir)
     store = Path(store_dir) if store_dir is not None else out / "campaigns"
-    _say(progress, f"{sum(len(c.cases) for c in campaigns)} cases in {len(campaigns)} campaigns into {store}")
-    t0 = time.perf_counter()
-    cases, computed = run_campaigns(campaigns, store, workers=workers, progress=progress, force=force)
-    timings["campaigns_s"] = time.perf_counter() - t0
-    timings["n_computed"] = computed
-    return _fit_and_write(design, items, motions, cases, out,
-                          {"workers": workers, "progress": progress, "timings": timings, "t_start": t_start})
+    return Assessment(design, BOTH, out, store, workers=workers, progress=progress, force=force).run()
+
+
+def _motions(a: Any) -> Any:
+    """The floor motions of every record pair in both directions (:func:`study_motions`)."""
+    a.say(f"floor motions of {len(a.design.pairs) or 'every'} record pair(s) in both directions")
+    return study_motions(a.design, a.scenes, a.workers)
+
+
+def _campaigns(a: Any) -> Ran:
+    """Both models' campaigns (:func:`opsrock.inventory.directionality.cases.study_campaigns`) on one pool."""
+    campaigns = study_campaigns(a.design, a.scenes, a.demands)
+    a.say(f"{sum(len(c.cases) for c in campaigns)} cases in {len(campaigns)} campaigns into {a.store}")
+    cases, computed = run_campaigns(campaigns, a.store, workers=a.workers, progress=a.progress, force=a.force)
+    return Ran(cases, computed, {"n_computed": computed})
 
 
 def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress: bool,
                   force: bool) -> tuple[pd.DataFrame, int]:
-    """Every campaign (:class:`opsrock.analysis.directionality_cases.Campaign`) run or resumed by the campaign
+    """Every campaign (:class:`opsrock.inventory.directionality.cases.Campaign`) run or resumed by the campaign
     engine into ``store/<name>`` on one pool of workers: their ``cases.csv`` joined, with ``campaign`` and
     ``solver_name`` (the campaign's solver), and the number of cases this call computed (the others were
     stored)."""
@@ -343,34 +312,35 @@ def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress
     return cases, computed
 
 
-def _fit_and_write(design: DirectionalityDesign, items: tuple[StudyItem, ...], motions: Any, cases: pd.DataFrame,
-                   out: Path, run: dict[str, Any]) -> DirectionalityStudy:
-    """Fit, tabulate, draw and report into ``out`` (through a staging folder: all or nothing); ``run`` holds the
-    ``workers``, ``progress``, ``timings`` (s) and ``t_start`` of the run."""
-    workers, progress, timings, t_start = run["workers"], run["progress"], run["timings"], run["t_start"]
+def _fit(a: Any) -> dict[str, pd.DataFrame]:
+    """The fits of both models and the tables computed from them
+    (:func:`opsrock.inventory.directionality.summary.study_tables`)."""
+    a.say(f"fits ({a.design.n_boot} record resamples each)")
+    fits = summary.fit_table(a.cases, a.design, a.workers or 1)
+    return summary.study_tables(fits, a.cases, a.demands.demands, a.design, a.scenes)
 
+
+def _write(a: Any, stage: Path) -> Written:
+    """The tables (CSV, full precision), the figures and the report into the staging folder ``stage``; the
+    3-D over planar medians per item and floor (``directionality.csv``) among the tables."""
     t0 = time.perf_counter()
-    _say(progress, f"fits ({design.n_boot} record resamples each)")
-    fits = summary.fit_table(cases, design, workers or 1)
-    timings["fits_s"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    tables = summary.study_tables(fits, cases, motions.demands, design, items)
-    with staged_folder(out, OUTPUTS) as stage:
-        paths = {k: stage / f"{k}.csv" for k in tables}
-        for k, df in tables.items():
-            atomic_csv(paths[k], df)
-        figures = write_figures(tables, stage / "figures", design.tolerance)
-        timings["outputs_s"] = time.perf_counter() - t0
-        timings["total_s"] = time.perf_counter() - t_start
-        head = summary.headline(tables, cases, timings)
-        report = write_report(stage / "report.md", summary.report_inputs(design, tables, head, figures))
-        final = {p: out / Path(p).relative_to(stage) for p in [report, *paths.values(), *figures]}
-    _say(progress, f"done in {timings['total_s']:.1f} s: {final[report]}")
-    return DirectionalityStudy(design=design, out_dir=str(out), report=str(final[report]),
-                               tables={k: str(final[p]) for k, p in paths.items()},
-                               figures=[str(final[p]) for p in figures], headline=head, timings=timings)
+    paths = {k: stage / f"{k}.csv" for k in a.tables}
+    for k, df in a.tables.items():
+        atomic_csv(paths[k], df)
+    figures = write_figures(a.tables, stage / "figures", a.design.tolerance)
+    a.timings["outputs_s"] = time.perf_counter() - t0
+    a.timings["total_s"] = time.perf_counter() - a.t_start
+    head = summary.headline(a.tables, a.cases, {**a.timings, "motions_s": a.timings.get("demands_s", 0.0)})
+    report = write_report(stage / "report.md", summary.report_inputs(a.design, a.tables, head, figures))
+    return Written(paths, report, {}, tuple(figures), head)
 
 
-__all__ = ["DEFAULT_AZIMUTHS", "DEFAULT_ITEMS", "DEFAULT_LEVELS", "DEFAULT_PAIRS", "QUICK_ITEMS", "INVENTORIES", "MODELS", "OUTPUTS", "QUICK_PAIRS",
-           "DirectionalityDesign", "DirectionalityStudy", "StudyItem", "quick", "run_campaigns",
+#: Both models side by side (:class:`opsrock.inventory.stages.Route`): the same items under the same record pairs,
+#: in three dimensions (both components at once) and in the plane of the weaker axis, and the 3-D over planar
+#: medians per item and floor.
+BOTH: Route = Route("both", study_items, _fit, _write, OUTPUTS, demands=_motions, campaigns=_campaigns)
+
+
+__all__ = ["BOTH", "DEFAULT_AZIMUTHS", "DEFAULT_ITEMS", "DEFAULT_LEVELS", "DEFAULT_PAIRS", "QUICK_ITEMS", "INVENTORIES",
+           "MODELS", "OUTPUTS", "QUICK_PAIRS", "DirectionalityDesign", "StudyItem", "quick", "run_campaigns",
            "run_directionality_study", "study_items"]

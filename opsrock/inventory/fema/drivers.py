@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pandas as pd
 
-from opsrock.contents.design import ContentsDesign, floor_name
+from opsrock.inventory.fema.design import ContentsDesign, floor_name
 from opsrock.report.markdown import markdown_table
 
 

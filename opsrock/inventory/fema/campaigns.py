@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from opsrock.campaign.cases import read_cases
-from opsrock.contents.design import split_block_name
+from opsrock.inventory.fema.design import split_block_name
 from opsrock.fragility.cases import check_some_finished
 
 #: Columns of ``cases.csv`` the study reads.
@@ -56,7 +56,7 @@ def seed_motions(src: Path, dst: Path, src_scene, dst_scene) -> bool:
 
 def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, progress: bool,
                   force: bool = False) -> tuple[pd.DataFrame, dict[str, Any]]:
-    """Run (or resume) the study's campaigns (:func:`opsrock.contents.design.campaign_scenes`) into
+    """Run (or resume) the study's campaigns (:func:`opsrock.inventory.fema.design.campaign_scenes`) into
     ``store/<name>`` (``rocking``, ``friction``, ``sweep``).
 
     Returns

@@ -1,5 +1,5 @@
 """The directionality study's report and figures. They show the tables of
-:mod:`opsrock.analysis.directionality_summary` and compute nothing (matplotlib is imported lazily: the command
+:mod:`opsrock.inventory.directionality.summary` and compute nothing (matplotlib is imported lazily: the command
 line loads it only when it draws).
 
 Figures: ``map.png`` (where planar analysis suffices: the 3-D over the planar median, per item, orientation and
@@ -131,7 +131,7 @@ def _design_lines(d: Any) -> list[str]:
 
 
 def write_report(path: Path, inputs: Any) -> Path:
-    """``report.md`` from :class:`opsrock.analysis.directionality_summary.ReportInputs`."""
+    """``report.md`` from :class:`opsrock.inventory.directionality.summary.ReportInputs`."""
     d, t, h, fig = inputs.design, inputs.tables, inputs.headline, inputs.figures
     main = t["directionality"]
     pooled = main[main["azimuth"] == "all"][["item", "floor", "b_over_h", "median_3d_pfv_1", "median_3d_pfv_2",

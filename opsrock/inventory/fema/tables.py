@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from opsrock.contents.design import ContentsDesign, floor_label
+from opsrock.inventory.fema.design import ContentsDesign, floor_label
 from opsrock.published import fema_p58
 
 
@@ -134,7 +134,7 @@ def sliding_share(cases: pd.DataFrame) -> pd.DataFrame:
 def sweep_table(fits: pd.DataFrame, design: ContentsDesign) -> pd.DataFrame:
     """The roofs of the period sweep (default variant): PFV median per item and ``T_1``, beside the rule
     at that period and the database median. The study's own roof stands for its building when it is one
-    of the sweep's (:func:`opsrock.contents.design.sweep_buildings`)."""
+    of the sweep's (:func:`opsrock.inventory.fema.design.sweep_buildings`)."""
     if not design.sweep:
         return pd.DataFrame()
     s = _fits(fits, "pfv", "sweep")

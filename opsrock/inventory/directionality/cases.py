@@ -1,4 +1,4 @@
-"""The directionality study's motions, cases and campaigns (:mod:`opsrock.analysis.directionality`).
+"""The directionality study's motions, cases and campaigns (:mod:`opsrock.inventory.directionality.study`).
 
 * :func:`study_motions`: the shipped building's floor motions of each record pair in both directions
   (:func:`opsrock.inventory.sources.building_motions`, paired by :func:`opsrock.inventory.motions.paired_motions`),

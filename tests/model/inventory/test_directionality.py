@@ -1,4 +1,4 @@
-"""The directionality study (:mod:`opsrock.analysis.directionality`): the summary's tables on small synthetic
+"""The directionality study (:mod:`opsrock.inventory.directionality.study`): the summary's tables on small synthetic
 tables whose answers follow by hand, the plan frames of the weaker axis against :class:`PlanMotion`, and the
 quick study end to end with a planar solver standing in for ``rigid3d`` (the plumbing: every file, and the
 3-D over planar ratio exactly 1 when both models run the same planar cases)."""
@@ -11,9 +11,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from opsrock.analysis.directionality import DirectionalityDesign, StudyItem, quick, run_directionality_study
-from opsrock.analysis.directionality_cases import weak_cosines
-from opsrock.analysis.directionality_summary import (ALL, PELICUN_FACTOR, cost_table, directionality_table,
+from opsrock.inventory.directionality.study import DirectionalityDesign, StudyItem, quick, run_directionality_study
+from opsrock.inventory.directionality.cases import weak_cosines
+from opsrock.inventory.directionality.summary import (ALL, PELICUN_FACTOR, cost_table, directionality_table,
                                                      mechanisms, verdict)
 from opsrock.errors import InputError
 from opsrock.excitations import PlanMotion, Record
@@ -106,7 +106,7 @@ def test_quick_study_end_to_end_with_a_planar_stand_in(tmp_path):
     res = run_directionality_study(design, tmp_path / "out", workers=1, progress=False, quick_run=True)
     q = quick(design)
     n = len(q.items) * len(q.floors) * len(q.pairs) * len(q.azimuths) * len(q.levels)
-    assert res.headline["n_cases"] == 2 * n and res.headline["n_failed"] == 0
+    assert res.summary["n_cases"] == 2 * n and res.summary["n_failed"] == 0
     names = {p.name for p in (tmp_path / "out").iterdir()}
     assert {"report.md", "directionality.csv", "fits.csv", "map.csv", "mechanisms.csv", "cost.csv", "demands.csv",
             "figures"} <= names

@@ -1,0 +1,163 @@
+"""FEMA P-58's nine unanchored items in the shipped building, beside FEMA's fragilities: the contents study's
+route :data:`FEMA_NINE` (``opsrock contents``), run end to end by :func:`run_contents_study`."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from opsrock.inventory.fema.design import ContentsDesign, campaign_scenes
+from opsrock.inventory.fema.design import quick as quick_design
+from opsrock.inventory.fema.report import StudySummary
+from opsrock.inventory.outputs import InventoryStudy
+from opsrock.inventory.stages import Route
+
+#: Files the study writes into its folder (besides ``campaigns/``, ``figures/`` and ``pelicun/``).
+TABLES: dict[str, str] = {
+    "fits": "fragility.csv", "ratios": "ratios.csv", "rule": "rule_reproduction.csv",
+    "size": "size_regression.csv", "velocity": "velocity_definition.csv", "decomposition": "decomposition.csv",
+    "sliding": "sliding.csv", "sweep": "sweep.csv", "paired": "paired_variants.csv",
+}
+
+
+#: Every output the study owns in its folder (globs relative to it): a new study replaces them all, and
+#: removes those it does not write again (:func:`opsrock._files.staged_folder`); anything else in the folder
+#: (the campaigns' stores, files of the user's) is kept.
+OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pelicun/*.csv")
+
+
+def _tables(fits: pd.DataFrame, cases: pd.DataFrame, velocities: pd.DataFrame, design: ContentsDesign) -> dict:
+    from opsrock.inventory.fema import tables
+    from opsrock.published import fema_p58
+
+    ratios = tables.ratio_table(fits, design)
+    paired = [tables.paired_ratio(ratios, v).assign(variant=v) for v in design.variants if v != "default"]
+    return {
+        "fits": fits, "ratios": ratios, "rule": pd.DataFrame(fema_p58.reproduction()),
+        "size": tables.size_regression(ratios), "velocity": tables.velocity_definition(fits, velocities, design),
+        "decomposition": tables.decomposition(ratios), "sliding": tables.sliding_share(cases),
+        "sweep": tables.sweep_table(fits, design),
+        "paired": pd.concat(paired, ignore_index=True) if paired and "default" in design.variants else pd.DataFrame(),
+    }
+
+
+def _figures(out: Path, fits: pd.DataFrame, cases: pd.DataFrame, result: dict, design: ContentsDesign) -> list[Path]:
+    from opsrock.inventory.fema.plots import plot_item, plot_rule
+
+    folder = out / "figures"
+    folder.mkdir(parents=True, exist_ok=True)
+    paths = [plot_item(item, fits, cases, design, folder / f"{item}.png") for item in sorted(fits["item"].unique())]
+    if "default" in design.variants:
+        paths.append(plot_rule(result["ratios"], result["sweep"], design, folder / "fema_rule.png"))
+    return paths
+
+
+def run_contents_study(design: ContentsDesign, out_dir: str | Path, *, workers: int | None = None,
+                       progress: bool = True, quick: bool = False, force: bool = False,
+                       store_dir: str | Path | None = None) -> InventoryStudy:
+    """Each FEMA P-58 unanchored item's overturning fragility on the floors of one building, beside
+    FEMA P-58's, written into ``out_dir`` (resumable: a second call reuses every stored case): the stages of
+    :class:`opsrock.inventory.stages.Assessment` on the route :data:`FEMA_NINE`.
+
+    Parameters
+    ----------
+    design : ContentsDesign
+        The building (period s, storeys, damping), floors, record set and records, IDA levels, items,
+        variants, friction, record-bootstrap resamples and seed, and the sweep's buildings
+        (:data:`opsrock.inventory.fema.design.SWEEP_BUILDINGS` for the chart of the medians against the period).
+    out_dir : str or Path
+        Output folder: ``report.md``, the tables (:data:`TABLES`), ``figures/``, ``pelicun/`` (and the
+        campaigns, unless ``store_dir`` is given).
+    workers, progress : int or None, bool
+        Processes (default: all cores); progress on stderr.
+    quick : bool
+        A small study (:func:`opsrock.inventory.fema.design.quick`: six records, eight levels, ground and roof).
+    force : bool
+        Delete stored results of other settings in the campaigns' folders instead of refusing them.
+    store_dir : str or Path, optional
+        Where the campaigns keep their stores and case tables (large: about 35 MB per 25,000 cases);
+        default ``out_dir/campaigns``. A report folder kept under version control names another one.
+
+    Returns
+    -------
+    InventoryStudy
+        The design run, the paths written (``tables``, ``figures``, ``pelicun``, ``report``), the case counts,
+        the wall times (s) and ``summary`` (:class:`StudySummary`: counts and headline ratios).
+    """
+    from opsrock.inventory.stages import Assessment
+
+    if quick:
+        design = quick_design(design)
+    out = Path(out_dir)
+    store = Path(store_dir) if store_dir is not None else out / "campaigns"
+    return Assessment(design, FEMA_NINE, out, store, workers=workers, progress=progress, force=force).run()
+
+
+def _campaigns(a: Any) -> Any:
+    """The study's campaigns (no slip, friction, the sweep's roofs), run or resumed one after the other."""
+    from opsrock.inventory.fema.campaigns import run_campaigns
+    from opsrock.inventory.stages import Ran
+
+    scenes = a.scenes
+    a.say(f"{sum(len(s.blocks) * s.records.n_per_block for s in scenes.values())} cases in "
+          f"{len(scenes)} campaigns ({', '.join(scenes)}) into {a.store}")
+    cases, timings = run_campaigns(scenes, a.store, workers=a.workers, progress=a.progress, force=a.force)
+    return Ran(cases, sum(int(v) for k, v in timings.items() if k.endswith("_computed")), timings)
+
+
+def _fit(a: Any) -> dict[str, pd.DataFrame]:
+    """The fits (:func:`opsrock.inventory.fema.fits.fit_table`), the floor velocities and the tables computed
+    from them (:data:`TABLES`)."""
+    from opsrock.inventory.fema.campaigns import floor_velocities
+    from opsrock.inventory.fema.fits import fit_table, fit_tasks
+
+    base = "rocking" if "rocking" in a.scenes else "friction"
+    velocities = floor_velocities(a.scenes[base], a.store / base)
+    tasks = fit_tasks(a.cases, a.design.n_boot, a.design.seed, velocities if base == "rocking" else None)
+    a.say(f"{len(tasks)} fits ({a.design.n_boot} record resamples each)")
+    fits = fit_table(tasks, a.workers)
+    return {**_tables(fits, a.cases, velocities, a.design), "velocities": velocities}
+
+
+def _write(a: Any, stage: Path) -> Any:
+    """The tables, figures, pelicun files and report into the staging folder ``stage``."""
+    from opsrock.inventory.fema.pelicun import write_pelicun_files
+    from opsrock.inventory.fema.report import write_report
+    from opsrock.inventory.outputs import Written, write_csv
+
+    t0 = time.perf_counter()
+    result = {k: v for k, v in a.tables.items() if k in TABLES}
+    fits, velocities = result["fits"], a.tables["velocities"]
+    a.say(f"tables, figures, pelicun files and report into {a.out}")
+    paths = {k: write_csv(df, stage / TABLES[k]) for k, df in result.items() if not df.empty}
+    figures = _figures(stage, fits, a.cases, result, a.design)
+    pelicun = write_pelicun_files(fits, velocities[velocities["floor"].isin(set(a.cases["floor"]))], a.design,
+                                  stage / "pelicun")
+    a.timings["outputs_s"] = time.perf_counter() - t0
+    a.timings["total_s"] = time.perf_counter() - a.t_start
+    summary = _summary(a.cases, result, {k: v for k, v in a.timings.items() if k not in ("demands_s", "campaigns_s")})
+    report = write_report(stage / "report.md", a.design, result, summary)
+    return Written(paths, report, pelicun, tuple(figures), summary)
+
+
+def _summary(cases: pd.DataFrame, result: dict, timings: dict) -> StudySummary:
+    ratios = result["ratios"]
+    default = ratios[ratios["variant"] == "default"]["ratio_fema"].dropna()
+    sweep = result["sweep"]["ratio_fema"].dropna() if not result["sweep"].empty else pd.Series(dtype=float)
+    return StudySummary(n_cases=len(cases), n_failed=int((cases["status"] != "ok").sum()),
+                        n_overturned=int(cases["overturned"].sum()), timings=timings,
+                        ratio_range=(float(default.min()), float(default.max())) if len(default) else None,
+                        sweep_ratio_range=(float(sweep.min()), float(sweep.max())) if len(sweep) else None)
+
+
+#: FEMA P-58's nine in the shipped building, beside FEMA's fragilities (:class:`opsrock.inventory.stages.Route`):
+#: the campaigns of :func:`opsrock.inventory.fema.design.campaign_scenes` (no floor-motion demand stage: the
+#: campaigns filter the records through the building themselves), their fits, the tables and the pelicun files.
+FEMA_NINE: Route = Route("fema-p58", campaign_scenes, _fit, _write, OUTPUTS, demands=lambda a: None,
+                         campaigns=_campaigns)
+
+
+__all__ = ["FEMA_NINE", "OUTPUTS", "TABLES", "StudySummary", "run_contents_study"]

@@ -10,7 +10,6 @@ ground; point fit only), which measures what the PFV definition does to a median
 from __future__ import annotations
 
 import math
-from concurrent.futures import ProcessPoolExecutor
 from typing import Any
 
 import pandas as pd
@@ -25,33 +24,10 @@ FIT_COLUMNS: tuple[str, ...] = ("median", "median_lo", "median_hi", "beta", "bet
                                 "n_overturned", "n_failed", "n_boot_used", "ok", "message")
 
 
-def _fit_one(task: tuple) -> dict[str, Any]:
-    """Fit one group (runs in a worker)."""
-    from opsrock.fragility.mle import fit_lognormal_mle
-
-    key, x, y, groups, n_boot, seed, n_failed = task
-    row = dict(key, n_cases=len(x), n_overturned=int(y.sum()), n_failed=n_failed)
-    if not y.any():
-        return {**row, **_nan_fit("never overturned within the levels")}
-    f = fit_lognormal_mle(x, y, n_boot=n_boot, seed=seed, groups=groups)
-    ok = bool(f.success and math.isfinite(f.mu))
-    return {**row, "median": f.mu if ok else math.nan, "median_lo": f.mu_lo, "median_hi": f.mu_hi,
-            "beta": f.beta if ok else math.nan, "beta_lo": f.beta_lo, "beta_hi": f.beta_hi,
-            "n_boot_used": f.n_boot_used, "ok": ok, "message": f.message}
-
-
 def _nan_fit(message: str) -> dict[str, Any]:
     nan = math.nan
     return {"median": nan, "median_lo": nan, "median_hi": nan, "beta": nan, "beta_lo": nan, "beta_hi": nan,
             "n_boot_used": 0, "ok": False, "message": message}
-
-
-def _chunk(tasks: list, k: int) -> list[list]:
-    return [tasks[i::k] for i in range(k)]
-
-
-def _fit_chunk(tasks: list) -> list[dict[str, Any]]:
-    return [_fit_one(t) for t in tasks]
 
 
 def fit_tasks(cases: pd.DataFrame, n_boot: int, seed: int, relative: pd.DataFrame | None = None) -> list[tuple]:
@@ -76,15 +52,23 @@ def fit_tasks(cases: pd.DataFrame, n_boot: int, seed: int, relative: pd.DataFram
 
 
 def fit_table(tasks: list[tuple], workers: int | None = None) -> pd.DataFrame:
-    """Run the fits (in ``workers`` processes when more than one) and return one row per fit."""
-    workers = 1 if workers is None or workers < 2 or len(tasks) < 8 else workers
-    if workers == 1:
-        rows = _fit_chunk(tasks)
-    else:
-        import multiprocessing
+    """Run the fits (their record resamples shared among ``workers`` processes,
+    :func:`opsrock.fragility.mle.fit_plans`: the same fits whatever ``workers``) and return one row per fit."""
+    from opsrock.fragility.mle import fit_plans, plan_mle
 
-        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn")) as pool:
-            rows = [r for chunk in pool.map(_fit_chunk, _chunk(tasks, 4 * workers)) for r in chunk]
+    rows, plans, where = [], [], []
+    for key, x, y, groups, n_boot, seed, n_failed in tasks:
+        rows.append(dict(key, n_cases=len(x), n_overturned=int(y.sum()), n_failed=n_failed))
+        if not y.any():
+            rows[-1].update(_nan_fit("never overturned within the levels"))
+        else:
+            plans.append(plan_mle(x, y, n_boot=n_boot, seed=seed, groups=groups))
+            where.append(len(rows) - 1)
+    for i, f in zip(where, fit_plans(plans, workers or 1)):
+        ok = bool(f.success and math.isfinite(f.mu))
+        rows[i].update(median=f.mu if ok else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
+                       beta=f.beta if ok else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi,
+                       n_boot_used=f.n_boot_used, ok=ok, message=f.message)
     table = pd.DataFrame(rows)
     order = ["campaign", "variant", "item", "floor", "demand"]
     return table.sort_values(order, kind="stable").reset_index(drop=True)[

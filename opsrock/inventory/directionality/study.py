@@ -315,7 +315,6 @@ def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress
 def _fit(a: Any) -> dict[str, pd.DataFrame]:
     """The fits of both models and the tables computed from them
     (:func:`opsrock.inventory.directionality.summary.study_tables`)."""
-    a.say(f"fits ({a.design.n_boot} record resamples each)")
     fits = summary.fit_table(a.cases, a.design, a.workers or 1)
     return summary.study_tables(fits, a.cases, a.demands.demands, a.design, a.scenes)
 

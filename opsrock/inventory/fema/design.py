@@ -25,8 +25,11 @@ import numpy as np
 
 from opsrock.errors import InputError
 
-#: Name of the shipped blocks library of the nine items.
+#: Name of the shipped blocks library of the nine items (its header states the friction default).
 LIBRARY: str = "fema-p58-contents"
+
+#: Name of the shipped inventory of the nine items (:func:`opsrock.inventory.items.shipped_inventory`).
+INVENTORY: str = "fema-p58-nine"
 
 
 
@@ -245,18 +248,22 @@ def quick(design: ContentsDesign) -> ContentsDesign:
 
 
 def item_specs(design: ContentsDesign) -> tuple[Any, ...]:
-    """The items' :class:`~opsrock.campaign.scene.BlockSpec` from the shipped library, in the study's order."""
-    from opsrock.campaign.scene import load_blocks
-    from opsrock.data import block_library
+    """The items' :class:`~opsrock.campaign.scene.BlockSpec`, in the study's order: the shipped inventory
+    :data:`INVENTORY` (FEMA P-58's nine) made block specs where every inventory item becomes one
+    (:func:`opsrock.inventory.campaigns.item_block_spec`, direction 1: its ``width``, the database's depth; the
+    same specs as the blocks library :data:`LIBRARY` gives, and so the same campaign digests)."""
+    from opsrock.inventory.campaigns import item_block_spec
+    from opsrock.inventory.items import shipped_inventory
 
     if len(set(design.items)) != len(design.items):
         raise InputError(f"items name an item twice: {list(design.items)!r}", argument="items")
-    specs = {b.name: b for b in load_blocks(block_library(LIBRARY))}
-    names = design.items or tuple(specs)
-    bad = [n for n in names if n not in specs]
+    items = {it.id: it for it in shipped_inventory(INVENTORY).items}
+    names = design.items or tuple(items)
+    bad = [n for n in names if n not in items]
     if bad:
-        raise InputError(f"items {bad!r} are not in the {LIBRARY} library (has: {', '.join(specs)})", argument="items")
-    return tuple(specs[n] for n in names)
+        raise InputError(f"items {bad!r} are not in the {INVENTORY} inventory (has: {', '.join(items)})",
+                         argument="items")
+    return tuple(item_block_spec(items[n], "1", n) for n in names)
 
 
 def block_name(item: str, variant: str) -> str:
@@ -335,6 +342,7 @@ __all__ = [
     "DEFAULT_FRICTION",
     "DEFAULT_FRICTION_KINETIC",
     "DEFAULT_LEVELS",
+    "INVENTORY",
     "LIBRARY",
     "QUICK_RECORDS",
     "SWEEP_BUILDINGS",

@@ -117,7 +117,6 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
     base = "rocking" if "rocking" in a.scenes else "friction"
     velocities = floor_velocities(a.scenes[base], a.store / base)
     tasks = fit_tasks(a.cases, a.design.n_boot, a.design.seed, velocities if base == "rocking" else None)
-    a.say(f"{len(tasks)} fits ({a.design.n_boot} record resamples each)")
     fits = fit_table(tasks, a.workers)
     return {**_tables(fits, a.cases, velocities, a.design), "velocities": velocities}
 

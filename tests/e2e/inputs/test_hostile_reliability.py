@@ -122,6 +122,28 @@ def test_a_lock_held_by_another_run_is_an_environment_fault(base, tmp_path):
     assert sorted(os.listdir(out)) == [".lock"]
 
 
+def test_a_lock_held_by_another_run_is_an_environment_fault_for_contents_too(tmp_path):
+    """The same fault, the same status in every command (issue 46: ``contents`` gave 1 and ``run`` 2): a study
+    finished once, then re-run while every store lock of its folder is held by another process."""
+    args = ["contents", "--quick", "--items", "E.20.22.105a", "--variants", "default", "--n-boot", "2",
+            "--records", "NORTHR_MUL009,NORTHR_LOS000",
+            "--out", "out", "--no-progress"]
+    first = run_opsrock(args, tmp_path, timeout=600)
+    assert first.returncode == 0, first.stderr
+    locks = sorted((tmp_path / "out").rglob(".lock"))
+    assert locks  # each campaign store has its lock file
+    fds = [os.open(p, os.O_RDWR) for p in locks]
+    try:
+        for fd in fds:
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        again = run_opsrock(args, tmp_path, timeout=600)
+    finally:
+        for fd in fds:
+            os.close(fd)
+    assert again.returncode == 1, again.stderr
+    assert "another opsrock run is writing" in again.stderr and len(again.stderr.splitlines()) == 1
+
+
 @pytest.mark.parametrize("solver", ["friction", "housner_fast", "housner"])
 def test_theta_max_of_an_overturned_block_is_pi_over_2_in_every_solver(solver, tmp_path):
     """Issue 46: ``friction`` reported 1.585 rad for this block, which overturns during the excitation."""

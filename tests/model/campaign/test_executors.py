@@ -171,7 +171,8 @@ def test_a_worker_makes_its_kernel_ready_before_it_takes_a_case(warm):
 def test_a_stop_another_thread_takes_while_workers_spawn_waits_for_the_spawn():
     """The signal mask holds a stop back from the main thread only; a thread started earlier (a progress bar's)
     can take it, and Python then runs the handler in the main thread mid-spawn. Sent to such a thread
-    (``pthread_kill``, so the kernel cannot pick another), a Ctrl-C must still wait for the held block's end."""
+    (``pthread_kill``, so the kernel cannot pick another), a Ctrl-C must still wait for the held block's end.
+    Python's own Ctrl-C handler is set for the test, whatever runs it (a pytest-xdist worker ignores SIGINT)."""
     from opsrock.campaign.executors import _interrupts_held
 
     go, sent = threading.Event(), threading.Event()
@@ -181,14 +182,18 @@ def test_a_stop_another_thread_takes_while_workers_spawn_waits_for_the_spawn():
         signal.pthread_kill(threading.get_ident(), signal.SIGINT)
         sent.set()
 
-    thread = threading.Thread(target=other_thread)
-    thread.start()  # before the block: this thread's mask lets SIGINT in
-    steps = 0
-    with pytest.raises(KeyboardInterrupt):
-        with _interrupts_held():
-            go.set()
-            assert sent.wait(10)
-            thread.join(10)
-            for _ in range(10_000):  # bytecode on which Python would run a pending handler
-                steps += 1
-    assert steps == 10_000  # the whole block ran; the KeyboardInterrupt came after it
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        thread = threading.Thread(target=other_thread)
+        thread.start()  # before the block: this thread's mask lets SIGINT in
+        steps = 0
+        with pytest.raises(KeyboardInterrupt):
+            with _interrupts_held():
+                go.set()
+                assert sent.wait(10)
+                thread.join(10)
+                for _ in range(10_000):  # bytecode on which Python would run a pending handler
+                    steps += 1
+        assert steps == 10_000  # the whole block ran; the KeyboardInterrupt came after it
+    finally:
+        signal.signal(signal.SIGINT, previous)

@@ -174,14 +174,14 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
 
 
 @numba.njit(cache=True)
-def _nsgs(ws, act, P, fric, tol, max_iter, out, single):
+def _nsgs(cw, act, P, fric, tol, max_iter, out, single):
     """Nonsmooth Gauss-Seidel (Jean & Moreau) over the active corners ``act``: each corner's local problem solved
     exactly (:func:`_local`, friction ``fric``: :class:`.model.Friction`) with the others' impulses fixed, the body's
-    velocity (``ws.vec`` rows ``VEC_V``, ``VEC_OM``) updated after each, sweeps until no impulse changes by more than
+    velocity (``cw.vec`` rows ``VEC_V``, ``VEC_OM``) updated after each, sweeps until no impulse changes by more than
     ``tol`` (m/s). Warm-started from ``P`` (the previous step's impulses). Returns the number of sweeps
-    (``max_iter + 1``: not converged); with a ``single`` active corner one sweep is exact. ``ws`` is the step's
-    :class:`.workspace.StepWork` (arms ``r``, Delassus blocks ``Wd`` and inverses ``Wi``, ``Iinv``)."""
-    r, Wd, Wi, Iinv, vec = ws.r, ws.Wd, ws.Wi, ws.Iinv, ws.vec
+    (``max_iter + 1``: not converged); with a ``single`` active corner one sweep is exact. ``cw`` is the step's
+    :class:`.workspace.Contact` (arms ``r``, Delassus blocks ``Wd`` and inverses ``Wi``, ``Iinv``)."""
+    r, Wd, Wi, Iinv, vec = cw.r, cw.Wd, cw.Wi, cw.Iinv, cw.vec
     V, Om, q, Pn = vec[VEC_V], vec[VEC_OM], vec[VEC_Y6], vec[VEC_PN]
     mu_s, mu_k, stick_only = fric.mu_s, fric.mu_k, fric.infinite
     for it in range(max_iter):
@@ -217,17 +217,17 @@ def _nsgs(ws, act, P, fric, tol, max_iter, out, single):
 
 
 @numba.njit(cache=True)
-def _solve_contacts(ws, act, P, fric, tol, nsgs, out, single):
+def _solve_contacts(cw, act, P, fric, tol, nsgs, out, single):
     """NSGS (:func:`_nsgs`) to ``tol`` in ``nsgs.max_sweeps`` sweeps; failing that, on for up to ``nsgs.extra_sweeps``
     sweeps more (at least one) to the looser ``tol * nsgs.loose_tol / nsgs.tol`` (a block at the stick-slip limit on
     three or four corners, whose impulses are statically indeterminate, makes Gauss-Seidel converge slowly, not
     fail), counted in ``OUT_NSGS_LOOSE``. Returns the sweeps (``nsgs.max_sweeps + 1``: not converged)."""
     max_iter = nsgs.max_sweeps
-    sweeps = _nsgs(ws, act, P, fric, tol, max_iter, out, single)
+    sweeps = _nsgs(cw, act, P, fric, tol, max_iter, out, single)
     if sweeps <= max_iter:
         return sweeps
     extra = max(1, nsgs.extra_sweeps)
-    more = _nsgs(ws, act, P, fric, tol * nsgs.loose_tol / nsgs.tol, extra, out, single)
+    more = _nsgs(cw, act, P, fric, tol * nsgs.loose_tol / nsgs.tol, extra, out, single)
     if more > extra:
         return max_iter + 1
     out[OUT_NSGS_LOOSE] += 1.0

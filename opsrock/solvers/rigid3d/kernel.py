@@ -164,7 +164,7 @@ def _peak_reached(s, body, tilt_max, tail_av):
     return math.hypot(s[7] + w1 * c2 - w2 * c1, s[8] + w2 * c0 - w0 * c2) < PEAK_BASE_SPEED
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _finite(state):
     """Is every component of the state finite (their sum is)?"""
     fin = 0.0
@@ -173,7 +173,7 @@ def _finite(state):
     return math.isfinite(fin)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _in_phase(j, act, corners, P):
     """After a Moreau-Jean step: is the block in the phase ``j`` (``PH_PIVOT``, ``PH_SLIP``, ``PH_SLIDE``)?"""
     touch, slip = corners.touch, corners.slip
@@ -184,7 +184,7 @@ def _in_phase(j, act, corners, P):
     return _flat_slip(act, touch, slip)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _next_phase(phase, impact, act, corners, P):
     """The phase counts after a Moreau-Jean step (slots ``PH_PIVOT``, ``PH_SLIP``, ``PH_SLIDE`` of ``phase``): one
     more step in the phase the block is in if no corner landed (``impact``), the others back to 0; a cool-down
@@ -249,7 +249,7 @@ def _mj_step(model, state, acc, ws, trial, corners, phase):
     return True
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _rest_skip(model, floor, k, state, theta, phase, hist, out):
     """The rest skip from step ``k`` (a seated, stuck block whose load the base carries stays at rest this step, and
     a whole sample interval of a record if it does at both its samples, and the whole rest of a still tail:
@@ -274,9 +274,10 @@ def _start(model, state, ws, corners, hist, out):
     body = model.body
     out[:] = 0.0
     out[OUT_FIRST_MODE] = -1.0
-    _geometry(state, body, ws.Q, ws.Iinv, ws.Iw, ws.r)
+    cw = ws.contact
+    _geometry(state, body, ws.Q, cw.Iinv, cw.Iw, cw.r)
     for i in range(4):
-        corners.touch[i] = state[2] + ws.r[i, 2] <= model.limits.lift_gap
+        corners.touch[i] = state[2] + cw.r[i, 2] <= model.limits.lift_gap
     tilt, theta, _, _ = _tilt(state, body.weak_y)
     n_down = _mode(corners.touch, corners.slip)[1]
     _record(hist, 0.0, state, theta, state[10 + (0 if body.weak_y else 1)] * (-1.0 if body.weak_y else 1.0),
@@ -286,7 +287,7 @@ def _start(model, state, ws, corners, hist, out):
     return n_down, theta
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _track(body, state, n_down, tilt_sub, r1, phase, out):
     """After a step to ``state`` (``r1`` its arms, ``n_down`` corners down, ``tilt_sub`` the largest tilt inside a
     smooth step): the peaks of tilt, slide and twist into ``out``, the corners down last and how the block would

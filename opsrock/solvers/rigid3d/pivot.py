@@ -190,7 +190,7 @@ def _tilt_of(y):
     return 2.0 * math.asin(min(1.0, math.sqrt(y[1] * y[1] + y[2] * y[2])))
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _loads_hold(wk, edge, length, friction):
     """Do the pivots carry the motion ``(wk.y, wk.dy)`` (the arm ``wk.r`` and ``wk.IO`` of ``y``, body force
     ``wk.F``)? The

@@ -57,13 +57,13 @@ def _solve_n(A, y, n):
 
 
 @numba.njit(cache=True)
-def _flat_system(ws, fw, n, mu_k):
-    """The linear momentum equations of :func:`_slide_flat` for the slip directions ``ws.sdir``: ``fw.xs`` gets the
-    normal impulses of the ``n`` corners ``fw.idx`` and ``(V_x, V_y, omega_z)``; False if singular. ``ws`` is the
-    step's :class:`.workspace.StepWork` (arms ``r``, inertia ``Iw``, free velocity row ``VEC_VF``, scratch ``A6``,
-    ``Am`` and row ``VEC_Y6``), ``fw`` the slide's :class:`.workspace.FlatWork`."""
-    r, Iw, sdir, A6, Am = ws.r, ws.Iw, ws.sdir, ws.A6, ws.Am
-    vf, y6 = ws.vec[VEC_VF], ws.vec[VEC_Y6]
+def _flat_system(cw, fw, n, mu_k):
+    """The linear momentum equations of :func:`_slide_flat` for the slip directions ``fw.sdir``: ``fw.xs`` gets the
+    normal impulses of the ``n`` corners ``fw.idx`` and ``(V_x, V_y, omega_z)``; False if singular. ``cw`` is the
+    step's :class:`.workspace.Contact` (arms ``r``, inertia ``Iw``, free velocity row ``VEC_VF``, scratch ``A6`` and
+    row ``VEC_Y6``), ``fw`` the slide's :class:`.workspace.FlatWork`."""
+    r, Iw, A6, sdir, Am = cw.r, cw.Iw, cw.A6, fw.sdir, fw.Am
+    vf, y6 = cw.vec[VEC_VF], cw.vec[VEC_Y6]
     idx, xs, zs = fw.idx, fw.xs, fw.zs
     m = n + 3
     # rows: force x, y, z; torque x, y, z. Columns: N of each active corner, then V_x, V_y, omega_z
@@ -138,12 +138,12 @@ def _flat_directions(v0, v1, wz, idx, n, r, sdir):
 
 
 @numba.njit(cache=True)
-def _flat_eval(ws, fw, n, mu_k, x, g):
+def _flat_eval(cw, fw, n, mu_k, x, g):
     """``g = G(x) - x`` for the velocities ``x = (V_x, V_y, omega_z)``: the slip directions of ``x``, then the
     velocities :func:`_flat_system` gives for them. False if a corner does not slip or the system is singular."""
-    if _flat_directions(x[0], x[1], x[2], fw.idx, n, ws.r, ws.sdir) < 0.0:
+    if _flat_directions(x[0], x[1], x[2], fw.idx, n, cw.r, fw.sdir) < 0.0:
         return False
-    if not _flat_system(ws, fw, n, mu_k):
+    if not _flat_system(cw, fw, n, mu_k):
         return False
     xs = fw.xs
     for a in range(3):
@@ -152,10 +152,10 @@ def _flat_eval(ws, fw, n, mu_k, x, g):
 
 
 @numba.njit(cache=True)
-def _flat_newton(ws, fw, n, mu_k, x):
+def _flat_newton(cw, fw, n, mu_k, x):
     """Newton on ``G(x) = x`` (:func:`_flat_eval`) from ``x``, with a forward-difference Jacobian and step
-    halving, to ``1e-12`` of the velocities' scale. Returns True with ``fw.xs`` and ``ws.sdir`` of the solution."""
-    r, vf, idx = ws.r, ws.vec[VEC_VF], fw.idx
+    halving, to ``1e-12`` of the velocities' scale. Returns True with ``fw.xs`` and ``fw.sdir`` of the solution."""
+    r, vf, idx = cw.r, cw.vec[VEC_VF], fw.idx
     g = np.zeros(3)
     g1 = np.zeros(3)
     x1 = np.zeros(3)
@@ -163,17 +163,17 @@ def _flat_newton(ws, fw, n, mu_k, x):
     Ji = np.zeros((3, 3))
     scale = max(abs(x[0]), abs(x[1]), abs(vf[0]), abs(vf[1]), abs(vf[2]))
     arm = math.sqrt(r[idx[0], 0] ** 2 + r[idx[0], 1] ** 2)
-    if not _flat_eval(ws, fw, n, mu_k, x, g):
+    if not _flat_eval(cw, fw, n, mu_k, x, g):
         return False
     for it in range(20):
         res = max(abs(g[0]), abs(g[1]), arm * abs(g[2]))
         if res <= NEWTON_TOL * scale:
-            return _flat_eval(ws, fw, n, mu_k, x, g)
+            return _flat_eval(cw, fw, n, mu_k, x, g)
         for j in range(3):
             hj = FD_STEP * (scale / arm if j == 2 else scale)
             for a in range(3):
                 x1[a] = x[a] + (hj if a == j else 0.0)
-            if not _flat_eval(ws, fw, n, mu_k, x1, g1):
+            if not _flat_eval(cw, fw, n, mu_k, x1, g1):
                 return False
             for a in range(3):
                 J[a, j] = (g1[a] - g[a]) / hj
@@ -183,7 +183,7 @@ def _flat_newton(ws, fw, n, mu_k, x):
         for half in range(8):
             for a in range(3):
                 x1[a] = x[a] - lam * (Ji[a, 0] * g[0] + Ji[a, 1] * g[1] + Ji[a, 2] * g[2])
-            ok = _flat_eval(ws, fw, n, mu_k, x1, g1)
+            ok = _flat_eval(cw, fw, n, mu_k, x1, g1)
             if ok and max(abs(g1[0]), abs(g1[1]), arm * abs(g1[2])) < res:
                 break
             lam *= 0.5
@@ -196,7 +196,7 @@ def _flat_newton(ws, fw, n, mu_k, x):
 
 
 @numba.njit(cache=True)
-def _slide_flat(ws, act, P, mu_k):
+def _slide_flat(cw, act, P, mu_k, sdir, Am):
     """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its corners
     on the floor (``V_z = 0``, no rotation about a horizontal axis: with the floor's normal ``z`` the corners'
     normal velocities ``V_z + omega_x r_y - omega_y r_x`` vanish at three corners not in a line iff these do,
@@ -209,11 +209,11 @@ def _slide_flat(ws, act, P, mu_k):
     distribution with a pulling corner is moved along the system's free direction to the nearest compressive one.
     Accepted, into ``V``, ``Om`` and ``P``, if the directions settle (each corner then slips along the ``s_i`` its
     friction opposes) and every ``N_i >= 0`` (to ``FLAT_ROUNDOFF``); else False (NSGS then solves the step).
-    ``ws`` is the step's :class:`.workspace.StepWork` (arms ``r``, free velocity row ``VEC_VF``, slip directions
-    ``sdir``; the velocities into rows ``VEC_V``, ``VEC_OM``)."""
-    r, sdir, vec = ws.r, ws.sdir, ws.vec
+    ``cw`` is the step's :class:`.workspace.Contact` (arms ``r``, free velocity row ``VEC_VF``; the velocities into
+    rows ``VEC_V``, ``VEC_OM``); ``sdir`` (4 x 2: the slip directions) and ``Am`` (6 x 7) are workspace."""
+    r, vec = cw.r, cw.vec
     vf, V, Om = vec[VEC_VF], vec[VEC_V], vec[VEC_OM]
-    fw = FlatWork(np.empty(4, dtype=np.int64), np.empty(7), np.empty(7))
+    fw = FlatWork(np.empty(4, dtype=np.int64), np.empty(7), np.empty(7), sdir, Am)
     idx, xs = fw.idx, fw.xs
     n = ZERO
     for i in range(4):
@@ -224,7 +224,7 @@ def _slide_flat(ws, act, P, mu_k):
         return False
     settled = False
     for it in range(30):
-        if not _flat_system(ws, fw, n, mu_k):
+        if not _flat_system(cw, fw, n, mu_k):
             return False
         moved = _flat_directions(xs[n], xs[n + 1], xs[n + 2], idx, n, r, sdir)
         if moved < 0.0:
@@ -234,7 +234,7 @@ def _slide_flat(ws, act, P, mu_k):
             break
     if not settled:
         x = np.array([xs[n], xs[n + 1], xs[n + 2]])
-        if not _flat_newton(ws, fw, n, mu_k, x):
+        if not _flat_newton(cw, fw, n, mu_k, x):
             return False
     for k in range(n):
         P[idx[k], 2] = xs[k]
@@ -412,7 +412,7 @@ def _edge_try(ew, st, mu_s, mu_k):
 
 
 @numba.njit(cache=True)
-def _edge_slip(ws, act, P, fric, out):
+def _edge_slip(cw, ew, act, P, fric, out):
     """Two active corners, one stuck and one slipping, both slipping, or one slipping and the other leaving the
     floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or twists
     about one of its corners; Gauss-Seidel converges slowly there, the two corners being strongly coupled through
@@ -421,12 +421,11 @@ def _edge_slip(ws, act, P, fric, out):
     friction impulses ``P`` (warm start) or free velocities; the first whose statuses hold is the step's solution of
     the contact problem (into ``V``, ``Om``, ``P``), else False (NSGS then solves it). With infinite friction
     (``stick_only``) a slipping corner is :func:`_local`'s infinite-friction limit (``mu_k = LIMIT_MU``, counted in
-    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``ws`` is the step's :class:`.workspace.StepWork`
-    (arms ``r``, ``Iinv``, free velocity row ``VEC_VF``; the velocities into rows ``VEC_V``, ``VEC_OM``), its
-    ``edge`` this one's scratch (:class:`.workspace.EdgeWork`), ``edge.last[0]`` the pair that held last (tried
-    first)."""
-    r, Iinv, ew = ws.r, ws.Iinv, ws.edge
-    vf, V, Om = ws.vec[VEC_VF], ws.vec[VEC_V], ws.vec[VEC_OM]
+    ``OUT_LIMIT_STEPS``) and a stuck one needs only to press. ``cw`` is the step's :class:`.workspace.Contact`
+    (arms ``r``, ``Iinv``, free velocity row ``VEC_VF``; the velocities into rows ``VEC_V``, ``VEC_OM``), ``ew``
+    this one's scratch (:class:`.workspace.EdgeWork`), ``ew.last[0]`` the pair that held last (tried first)."""
+    r, Iinv = cw.r, cw.Iinv
+    vf, V, Om = cw.vec[VEC_VF], cw.vec[VEC_V], cw.vec[VEC_OM]
     mu_s, mu_k, stick_only = fric.mu_s, fric.mu_k, fric.infinite
     if stick_only:
         mu_s, mu_k = np.inf, LIMIT_MU

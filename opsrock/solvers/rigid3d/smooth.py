@@ -76,7 +76,7 @@ def _same_phase(model, new, piv, n_piv, a, ws, probe):
         if not mine and new[2] + r1[i, 2] <= lift_gap:
             return False
     outp[:] = 0.0
-    guess = ws.mask
+    guess = ws.contact.mask
     for i in range(4):
         guess[i] = i == piv[0] or (n_piv == 2 and i == piv[1])
     sweeps = _step(model, new, (a[0], a[1], a[2]), model.numerics.dt, ws, probe, guess)
@@ -88,7 +88,7 @@ def _same_phase(model, new, piv, n_piv, a, ws, probe):
             return False
     if n_piv == 2:
         return outp[OUT_STICK_STEPS] > 0.5
-    ri = ws.r[piv[0]]  # the probe's arms
+    ri = ws.contact.r[piv[0]]  # the probe's arms
     u0 = sp[7] + sp[11] * ri[2] - sp[12] * ri[1]
     u1 = sp[8] + sp[12] * ri[0] - sp[10] * ri[2]
     return math.hypot(u0, u1) <= vel_tol
@@ -134,7 +134,7 @@ def _smooth(model, floor, state, k, work, corners, trial):
             return 0, 0.0
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _slip_free(model, y, F, sw):
     """The free motion of :func:`_slip_rhs` at the state ``y`` under the body force ``F``: into ``sw`` the arms,
     inertia, the contact corners' velocities ``u`` and free accelerations ``q`` (rows ``EVEC_U``, ``EVEC_Q``), their
@@ -169,7 +169,7 @@ def _slip_free(model, y, F, sw):
     return True, (al0, al1, al2)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _slip_loads(sw, mu_s):
     """The contact forces ``P6`` (row ``EVEC_P6``) of :func:`_slip_rhs` checked: ``(holds, friction power, stop
     time)`` as it returns them."""
@@ -196,7 +196,7 @@ def _slip_loads(sw, mu_s):
     return holds, power, t_stop
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _slip_derivative(y, F, al, sw, dy):
     """``dy`` of :func:`_slip_rhs`: the body force ``F`` and the contact forces ``P6`` on the centre of mass, their
     torques and ``al`` (``alpha_f``) on the rotation, the quaternion's rate."""
@@ -344,7 +344,7 @@ def _same_slip(model, new, idx, st, a, ws, probe, sw):
     in the half-plane of the end state's slip velocity) and stuck where it stuck. ``probe`` as in
     :func:`_same_phase`."""
     actp, Pp, sp, outp = probe.act, probe.P, probe.state, probe.out
-    guess = ws.mask
+    guess = ws.contact.mask
     for i in range(4):
         guess[i] = (i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)
     _arms(new, model.body, ws.Q1, ws.r1)
@@ -362,7 +362,7 @@ def _same_slip(model, new, idx, st, a, ws, probe, sw):
             continue
         if not actp[i] or Pp[i, 2] <= 0.0:
             return False
-        ri = ws.r[i]  # the probe's arms
+        ri = ws.contact.r[i]  # the probe's arms
         u0 = sp[7] + sp[11] * ri[2] - sp[12] * ri[1]
         u1 = sp[8] + sp[12] * ri[0] - sp[10] * ri[2]
         sl = math.hypot(u0, u1) > model.limits.velocity_tol
@@ -449,7 +449,7 @@ def _coarse_slide(model, floor, state, k, work, corners, trial):
     if sweeps != 1 or outp[OUT_SLIDE_STEPS] + outp[OUT_STICK_STEPS] < 0.5:
         return 0
     for i in range(4):  # every corner active and kept on the floor (a corner may carry no load: see _slide_flat)
-        ri = ws.r[i]
+        ri = ws.contact.r[i]
         if not actp[i] or abs(new[9] + new[10] * ri[1] - new[11] * ri[0]) > vel_tol:
             return 0
     _book(state, Probe(actp, Pp, new, out), ws, corners, model)

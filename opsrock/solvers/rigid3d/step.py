@@ -35,13 +35,13 @@ def _floor(floor, k, theta_mj):
     return (ax[j] + f * (ax[j + 1] - ax[j]), ay[j] + f * (ay[j + 1] - ay[j]), av[j] + f * (av[j + 1] - av[j]))
 
 
-@numba.njit(cache=True)
-def _free_velocity(s, acc, dt, g, ws):
+@numba.njit(cache=True, inline='always')
+def _free_velocity(s, acc, dt, g, cw):
     """The free velocity of a step from ``s`` under the floor accelerations ``acc = (a_x, a_y, a_v)`` (m/s²):
     gravity and the floor's inertia force on the centre of mass, the gyroscopic torque ``-omega x I omega`` at
-    ``t_k``, into ``ws.vec`` rows ``VEC_V``, ``VEC_OM`` (where the impulses then add) and ``VEC_VF`` (kept); ``ws``
-    holds the inertia of ``s``."""
-    Iinv, Iw, vec = ws.Iinv, ws.Iw, ws.vec
+    ``t_k``, into ``cw.vec`` rows ``VEC_V``, ``VEC_OM`` (where the impulses then add) and ``VEC_VF`` (kept); ``cw``
+    (:class:`.workspace.Contact`) holds the inertia of ``s``."""
+    Iinv, Iw, vec = cw.Iinv, cw.Iw, cw.vec
     V = vec[VEC_V]
     Om = vec[VEC_OM]
     V[0], V[1], V[2] = s[7] - dt * acc[0], s[8] - dt * acc[1], s[9] - dt * (g + acc[2])
@@ -56,41 +56,42 @@ def _free_velocity(s, acc, dt, g, ws):
     vf[0], vf[1], vf[2], vf[3], vf[4], vf[5] = V[0], V[1], V[2], Om[0], Om[1], Om[2]
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _closed_form(ws, act, n_act, guess, P, fric, tol, out):
     """The step's contact problem by a closed form, tried in turn (docs/guide/three-dimensions.md): the corners that
     were down (``guess``) alone stuck, or else those that were not (:func:`_stick_subset`: a block rocking on an
     edge just after an impact has its other corners still predicted active, unloaded and separating); every active
     corner stuck (:func:`_stick_all`); on two corners each alone stuck (:func:`_stick_single`), then one or both
     slipping (:func:`_edge_slip`); on three or four all slipping (:func:`_slide_flat`). Returns True, counted in
-    ``out``, if one solved it (into ``ws.vec`` rows ``VEC_V``, ``VEC_OM`` and ``P``; a tried one may have written
-    them); ``tol`` (m/s) the separation allowed."""
+    ``out``, if one solved it (into ``ws.contact.vec`` rows ``VEC_V``, ``VEC_OM`` and ``P``; a tried one may have
+    written them); ``tol`` (m/s) the separation allowed."""
+    cw = ws.contact
     n_down = 0  # the active corners that were down: a subset to try alone (_stick_subset) if one or two, not all
     for i in range(4):
         n_down += act[i] and guess[i]
     try_down = 0 < n_down <= 2 and n_down < n_act
     try_landing = 0 < n_act - n_down <= 2 and n_down > 0
-    if n_act >= 2 and ((try_down and _stick_subset(ws, act, guess, NO, n_act, P, fric, tol))
-                       or (try_landing and _stick_subset(ws, act, guess, YES, n_act, P, fric, tol))):
+    if n_act >= 2 and ((try_down and _stick_subset(cw, act, guess, NO, n_act, P, fric, tol))
+                       or (try_landing and _stick_subset(cw, act, guess, YES, n_act, P, fric, tol))):
         out[OUT_STICK_STEPS] += 1.0
-    elif n_act >= 2 and _stick_all(ws, act, n_act, P, fric):
+    elif n_act >= 2 and _stick_all(cw, act, n_act, P, fric):
         out[OUT_STICK_STEPS] += 1.0
-    elif n_act == 2 and _stick_single(ws, act, P, fric, tol):
+    elif n_act == 2 and _stick_single(cw, act, P, fric, tol):
         out[OUT_STICK_STEPS] += 1.0
-    elif n_act == 2 and _edge_slip(ws, act, P, fric, out):
+    elif n_act == 2 and _edge_slip(cw, ws.edge, act, P, fric, out):
         out[OUT_EDGE_SLIP] += 1.0
-    elif n_act >= 3 and not fric.infinite and _slide_flat(ws, act, P, fric.mu_k):
+    elif n_act >= 3 and not fric.infinite and _slide_flat(cw, act, P, fric.mu_k, ws.sdir, ws.Am):
         out[OUT_SLIDE_STEPS] += 1.0
     else:
         return False
     return True
 
 
-@numba.njit(cache=True)
-def _gauss_seidel(ws, act, n_act, P, fric, tol, nsgs, out):
+@numba.njit(cache=True, inline='always')
+def _gauss_seidel(cw, act, n_act, P, fric, tol, nsgs, out):
     """The step's contact problem by NSGS (:func:`_solve_contacts`): the active corners' Delassus blocks at ``q_k``,
     the velocity warm-started from the impulses ``P`` (an inactive corner's zeroed). Returns the sweeps."""
-    r, Iinv, Wd, Wi, vec = ws.r, ws.Iinv, ws.Wd, ws.Wi, ws.vec
+    r, Iinv, Wd, Wi, vec = cw.r, cw.Iinv, cw.Wd, cw.Wi, cw.vec
     V, Om, vf = vec[VEC_V], vec[VEC_OM], vec[VEC_VF]
     V[0], V[1], V[2], Om[0], Om[1], Om[2] = vf[0], vf[1], vf[2], vf[3], vf[4], vf[5]
     for i in range(4):
@@ -103,7 +104,7 @@ def _gauss_seidel(ws, act, n_act, P, fric, tol, nsgs, out):
             _cross_add(r[i], P[i], Iinv, Om, 1.0)
         else:
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
-    return _solve_contacts(ws, act, P, fric, tol, nsgs, out, n_act == 1)
+    return _solve_contacts(cw, act, P, fric, tol, nsgs, out, n_act == 1)
 
 
 @numba.njit(cache=True)
@@ -119,9 +120,10 @@ def _step(model, s, acc, dt, ws, trial, guess):
     :class:`.workspace.StepWork`."""
     act, P, new, out = trial.act, trial.P, trial.state, trial.out
     body, fric, nsgs, theta_mj = model.body, model.friction, model.nsgs, model.numerics.theta_mj
-    r, vec = ws.r, ws.vec
-    _geometry(s, body, ws.Q, ws.Iinv, ws.Iw, r)
-    _free_velocity(s, acc, dt, body.g, ws)
+    cw = ws.contact
+    r, vec = cw.r, cw.vec
+    _geometry(s, body, ws.Q, cw.Iinv, cw.Iw, r)
+    _free_velocity(s, acc, dt, body.g, cw)
     V, Om, vf = vec[VEC_V], vec[VEC_OM], vec[VEC_VF]
     n_act = ZERO
     for i in range(4):
@@ -135,7 +137,7 @@ def _step(model, s, acc, dt, ws, trial, guess):
     if n_act >= 2 and _closed_form(ws, act, n_act, guess, P, fric, tol, out):
         sweeps = 1
     elif n_act > 0:
-        sweeps = _gauss_seidel(ws, act, n_act, P, fric, tol, nsgs, out)
+        sweeps = _gauss_seidel(cw, act, n_act, P, fric, tol, nsgs, out)
     else:
         for i in range(4):
             P[i, 0], P[i, 1], P[i, 2] = 0.0, 0.0, 0.0
@@ -148,17 +150,17 @@ def _step(model, s, acc, dt, ws, trial, guess):
     return sweeps
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _contacts(new, ws, act, P, corners, limits, out):
     """After a step: friction work of the impulses, and each corner's contact and slip flags (``corners``:
-    :class:`.workspace.Corners`; the arms ``ws.r`` of the step's start: the velocity rows the solver enforced;
+    :class:`.workspace.Corners`; the arms ``ws.contact.r`` of the step's start: the velocity rows the solver enforced;
     ``ws.r1`` those of its end, for the gaps); returns True if a corner landed (an impact).
 
     A corner with a normal impulse is down (an impact if it was up), slipping if its tangential speed exceeds
     ``limits.velocity_tol``. A corner without impulse is up once it moves away from the floor faster than that or
     rises above ``limits.lift_gap``; otherwise it stays down (a pivot constrained at velocity level drifts up and
     takes an occasional free step; a level block may rest on three corners), slipping if it moves."""
-    r, r1, touch, slip = ws.r, ws.r1, corners.touch, corners.slip
+    r, r1, touch, slip = ws.contact.r, ws.r1, corners.touch, corners.slip
     vel_tol, lift_gap = limits.velocity_tol, limits.lift_gap
     impact = False
     V0, V1, V2, w0, w1, w2 = new[7], new[8], new[9], new[10], new[11], new[12]
@@ -210,7 +212,7 @@ def _count_sweeps(sweeps, nsgs, out):
     return converged
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline='always')
 def _book(state, trial, ws, corners, model):
     """The bookkeeping of a Moreau-Jean step from ``state`` to ``trial.state`` under the accelerations ``ws.a`` with
     the active corners ``trial.act`` and impulses ``trial.P``, into ``trial.out``: input work, the corners' flags
@@ -218,7 +220,7 @@ def _book(state, trial, ws, corners, model):
     inertia ``Iw`` and free velocity (row ``VEC_VF``); the arms of the end state into ``ws.r1`` (``ws.Q1``
     workspace). Returns True at an impact."""
     act, P, new, out = trial.act, trial.P, trial.state, trial.out
-    a, Iw, vf = ws.a, ws.Iw, ws.vec[VEC_VF]
+    a, Iw, vf = ws.a, ws.contact.Iw, ws.contact.vec[VEC_VF]
     # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
     # _contacts, and at an impact the kinetic energy of the impulses' velocity change
     out[OUT_INPUT_WORK] -= a[0] * (new[0] - state[0]) + a[1] * (new[1] - state[1]) + a[2] * (new[2] - state[2])

@@ -176,17 +176,17 @@ def _edge_split(Pa, Pb, e, ca, cb, xa, mu):
 
 
 @numba.njit(cache=True)
-def _stick_all(ws, act, n_act, P, fric):
+def _stick_all(cw, act, n_act, P, fric):
     """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
     through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
     it stops; the impulses are the least-norm ones that make that velocity change (no self-equilibrated
     friction "squeeze": the statically indeterminate part is left at zero), with the friction along an edge,
     and on three or four corners all of it, split in proportion to the normal impulses (:func:`_stick_flat`).
-    Accepted, into ``V``, ``Om`` (``ws.vec`` rows ``VEC_V``, ``VEC_OM``) and ``P``, if every normal impulse is
+    Accepted, into ``V``, ``Om`` (``cw.vec`` rows ``VEC_V``, ``VEC_OM``) and ``P``, if every normal impulse is
     compressive and every tangential one lies in the static cone (``fric``: :class:`.model.Friction`); else False
-    (NSGS then solves the step). ``ws`` is the step's :class:`.workspace.StepWork`: the arms ``r``, the inertia
+    (NSGS then solves the step). ``cw`` is the step's :class:`.workspace.Contact`: the arms ``r``, the inertia
     ``Iw``, the free velocity (row ``VEC_VF``), ``A6`` workspace."""
-    r, Iw, vec = ws.r, ws.Iw, ws.vec
+    r, Iw, vec = cw.r, cw.Iw, cw.vec
     vf, V, Om = vec[VEC_VF], vec[VEC_V], vec[VEC_OM]
     mu_s, stick_only = fric.mu_s, fric.infinite
     i1, i2 = _first_two(act)
@@ -231,7 +231,7 @@ def _stick_all(ws, act, n_act, P, fric):
             P[i1, 0], P[i1, 1], P[i1, 2] = P[i1, 0] + dl * e0, P[i1, 1] + dl * e1, P[i1, 2] + dl * e2
             P[i2, 0], P[i2, 1], P[i2, 2] = P[i2, 0] - dl * e0, P[i2, 1] - dl * e1, P[i2, 2] - dl * e2
     else:  # three or four corners (a level base): the block stops
-        if not _stick_flat(act, r, Iw, vf, P, ws.A6):
+        if not _stick_flat(act, r, Iw, vf, P, cw.A6):
             return False
         for a in range(3):
             V[a] = 0.0
@@ -246,38 +246,38 @@ def _stick_all(ws, act, n_act, P, fric):
 
 
 @numba.njit(cache=True)
-def _stick_subset(ws, act, guess, landing, n_act, P, fric, tol):
+def _stick_subset(cw, act, guess, landing, n_act, P, fric, tol):
     """The active corners that were down (``act`` and ``guess``; with ``landing`` those that were not: a rocking
     impact, where the landing edge takes the load and the pivot lifts), one or two of them and fewer than
     ``n_act``, stuck and loaded, the other active corners without impulse: accepted, into ``V``, ``Om``, ``P``
     and ``act`` (the others dropped), if those others separate, ``u_n >= -tol`` (m/s), which with the stuck
     corners' loads in their cones solves the step's contact problem. One corner: ``P = -W^-1 u_free``; two:
-    :func:`_stick_all`. ``ws`` is the step's :class:`.workspace.StepWork`."""
-    sub = ws.mask
+    :func:`_stick_all`. ``cw`` is the step's :class:`.workspace.Contact`."""
+    sub = cw.mask
     n_sub = ZERO
     for i in range(4):
         sub[i] = act[i] and (guess[i] != landing)
         n_sub += sub[i]
     if n_sub == 0 or n_sub > 2 or n_sub == n_act:
         return False
-    return _stick_mask(ws, act, sub, n_sub, P, fric, tol)
+    return _stick_mask(cw, act, sub, n_sub, P, fric, tol)
 
 
 @numba.njit(cache=True)
-def _stick_mask(ws, act, sub, n_sub, P, fric, tol):
+def _stick_mask(cw, act, sub, n_sub, P, fric, tol):
     """The corners of ``sub`` (one or two of the active ones) stuck and loaded, the other active corners
     separating (:func:`_stick_subset`)."""
-    r, Iinv, vec = ws.r, ws.Iinv, ws.vec
+    r, Iinv, vec = cw.r, cw.Iinv, cw.vec
     vf, V, Om = vec[VEC_VF], vec[VEC_V], vec[VEC_OM]
     mu_s, stick_only = fric.mu_s, fric.infinite
     if n_sub == 2:
-        if not _stick_all(ws, sub, TWO, P, fric):
+        if not _stick_all(cw, sub, TWO, P, fric):
             return False
     else:
         i = 0
         while not sub[i]:
             i += 1
-        W, Wi = ws.Wd[i], ws.Wi[i]
+        W, Wi = cw.Wd[i], cw.Wi[i]
         _delassus(r[i], Iinv, W)
         if not _inv3(W, Wi):
             return False
@@ -306,18 +306,18 @@ def _stick_mask(ws, act, sub, n_sub, P, fric, tol):
 
 
 @numba.njit(cache=True)
-def _stick_single(ws, act, P, fric, tol):
+def _stick_single(cw, act, P, fric, tol):
     """Two active corners whose edge cannot carry the step stuck (a corner pulls): each alone stuck, the other
     separating (:func:`_stick_mask`), the lower one first (a block turning about a corner with the edge's other
     corner grazing the floor)."""
-    r = ws.r
+    r = cw.r
     i1, i2 = _first_two(act)
     if r[i2, 2] < r[i1, 2]:
         i1, i2 = i2, i1
-    sub = ws.mask
+    sub = cw.mask
     for first in (i1, i2):
         for i in range(4):
             sub[i] = i == first
-        if _stick_mask(ws, act, sub, ONE, P, fric, tol):
+        if _stick_mask(cw, act, sub, ONE, P, fric, tol):
             return True
     return False

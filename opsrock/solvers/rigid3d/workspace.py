@@ -1,12 +1,17 @@
 """The scratch arrays of :mod:`opsrock.solvers.rigid3d`'s kernel as typed named tuples (numba), read by name
-(``ws.Iinv``), built once a run by :func:`make_workspace`: the Moreau-Jean step's (:class:`StepWork`, with the
-closed-form slip on two corners' :class:`EdgeWork`), the smooth steps' about stuck corners (:class:`PivotWork`),
-those on slipping corners (:class:`SlipWork`), and a probe step's (:class:`Probe`).
+(``ws.Q``), built once a run by :func:`make_workspace`: the Moreau-Jean step's (:class:`StepWork`, with its contact
+problem's :class:`Contact` and the closed-form slip on two corners' :class:`EdgeWork`), the smooth steps' about
+stuck corners (:class:`PivotWork`), those on slipping corners (:class:`SlipWork`), and a probe step's
+(:class:`Probe`).
 
 A named tuple is the same structure to numba as a plain tuple of the same arrays (its fields are read by a constant
-offset), so passing one costs what passing the tuple did: commit 671beba measured about a third of a microsecond a
-step for each function a workspace passes through, in numba's reference counting of its arrays. The 6-vectors of
-one role share a 2-D array (rows named ``VEC_*``, ``EVEC_*``) for that reason: fewer arrays to count.
+offset), and a compiled function counts a reference to every array of its arguments as it starts and ends (an
+atomic increment and decrement each): commit 671beba measured about a third of a microsecond a step for each
+function the whole workspace passes through, and with every function of the contact problem taking the whole
+:class:`StepWork` (23 arrays) those counts took 22 % of a quick Siconos run's CPU (``perf``, against 11.5 % with
+the arrays passed one by one). So the functions called several times a step take the few arrays they read
+(:class:`Contact`, 8), the small ones called once a step are inlined into theirs, and the 6-vectors of one role
+share a 2-D array (rows named ``VEC_*``, ``EVEC_*``): fewer arrays to count.
 """
 
 from __future__ import annotations
@@ -42,14 +47,14 @@ class EdgeWork(NamedTuple):
     stidx: np.ndarray
 
 
-class StepWork(NamedTuple):
-    """Scratch of a Moreau-Jean step (``step._step``): rotation ``Q``, floor-frame inverse inertia ``Iinv`` and
-    inertia ``Iw`` (3 x 3), the corners' arms ``r`` (4 x 3), the Delassus blocks ``Wd`` and their inverses ``Wi``
-    (4 x 3 x 3), ``vec`` (5 x 6, rows ``VEC_*``), the closed forms' ``A6`` (6 x 6), slip directions ``sdir`` (4 x 2)
-    and ``Am`` (6 x 7), the end state's rotation ``Q1`` and arms ``r1``, the smooth step's pivots ``piv`` (2, int),
-    floor accelerations ``a`` (3), a corner mask ``mask`` (4, bool), and :class:`EdgeWork`."""
+class Contact(NamedTuple):
+    """The contact problem of a Moreau-Jean step, what its closed forms and NSGS read and write: the floor-frame
+    inverse inertia ``Iinv`` and inertia ``Iw`` (3 x 3), the corners' arms ``r`` (4 x 3), the Delassus blocks ``Wd``
+    and their inverses ``Wi`` (4 x 3 x 3), ``vec`` (5 x 6, rows ``VEC_*``: the velocities), the closed forms' ``A6``
+    (6 x 6) and a corner mask ``mask`` (4, bool). Kept apart from the rest of :class:`StepWork` so that the
+    functions of the contact problem, called several times a step, take (and count references to) these arrays
+    only."""
 
-    Q: np.ndarray
     Iinv: np.ndarray
     Iw: np.ndarray
     r: np.ndarray
@@ -57,13 +62,22 @@ class StepWork(NamedTuple):
     Wi: np.ndarray
     vec: np.ndarray
     A6: np.ndarray
+    mask: np.ndarray
+
+
+class StepWork(NamedTuple):
+    """Scratch of a Moreau-Jean step (``step._step``): its :class:`Contact`, the rotation ``Q`` (3 x 3), the flat
+    slide's slip directions ``sdir`` (4 x 2) and ``Am`` (6 x 7), the end state's rotation ``Q1`` and arms ``r1``,
+    the smooth step's pivots ``piv`` (2, int), floor accelerations ``a`` (3), and :class:`EdgeWork`."""
+
+    contact: Contact
+    Q: np.ndarray
     sdir: np.ndarray
     Am: np.ndarray
     Q1: np.ndarray
     r1: np.ndarray
     piv: np.ndarray
     a: np.ndarray
-    mask: np.ndarray
     edge: EdgeWork
 
 
@@ -120,11 +134,14 @@ class Probe(NamedTuple):
 
 class FlatWork(NamedTuple):
     """Scratch of the closed-form flat slide (``sliding._slide_flat``): the active corners ``idx`` (4, int), the
-    solution ``xs`` (7: normal impulses, then ``V_x``, ``V_y``, ``omega_z``) and the free direction ``zs`` (7)."""
+    solution ``xs`` (7: normal impulses, then ``V_x``, ``V_y``, ``omega_z``), the free direction ``zs`` (7), the slip
+    directions ``sdir`` (4 x 2) and the system's ``Am`` (6 x 7)."""
 
     idx: np.ndarray
     xs: np.ndarray
     zs: np.ndarray
+    sdir: np.ndarray
+    Am: np.ndarray
 
 
 class Corners(NamedTuple):
@@ -158,10 +175,10 @@ def make_workspace(out_size):
     """The kernel's scratch, zeroed: a :class:`Workspace` (``out_size``: the length of the kernel's output vector,
     for the probe's)."""
     edge = make_edge_work()
-    ws = StepWork(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)),
-                  np.zeros((4, 3, 3)), np.zeros((5, 6)), np.zeros((6, 6)), np.zeros((4, 2)), np.zeros((6, 7)),
-                  np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3),
-                  np.zeros(4, dtype=np.bool_), edge)
+    contact = Contact(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)), np.zeros((4, 3, 3)),
+                      np.zeros((5, 6)), np.zeros((6, 6)), np.zeros(4, dtype=np.bool_))
+    ws = StepWork(contact, np.zeros((3, 3)), np.zeros((4, 2)), np.zeros((6, 7)), np.zeros((3, 3)), np.zeros((4, 3)),
+                  np.zeros(2, dtype=np.int64), np.zeros(3), edge)
     wk = PivotWork(np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
                    np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
     probe = Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), np.zeros(out_size))
@@ -177,6 +194,6 @@ def make_corners():
     return Corners(np.zeros(4, dtype=np.bool_), np.zeros(4, dtype=np.bool_))
 
 
-__all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Corners",
+__all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Contact", "Corners",
            "EdgeWork", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace", "make_corners",
            "make_edge_work", "make_workspace"]

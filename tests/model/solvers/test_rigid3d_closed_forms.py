@@ -20,7 +20,7 @@ import pytest
 from opsrock.solvers.rigid3d import contact, geometry, sliding, sticking
 from opsrock.solvers.rigid3d import kernel as kn
 from opsrock.solvers.rigid3d.model import Body, ContactSolver, Friction
-from opsrock.solvers.rigid3d.workspace import VEC_OM, VEC_V, VEC_VF, FlatWork, make_workspace
+from opsrock.solvers.rigid3d.workspace import VEC_OM, VEC_V, VEC_VF, FlatWork, make_edge_work, make_workspace
 
 B, D, H = 0.2, 0.3, 0.8
 IB = ((0.6**2 + 1.6**2) / 12, (0.4**2 + 1.6**2) / 12, (0.4**2 + 0.6**2) / 12)
@@ -54,8 +54,9 @@ def _problem(rng):
 
 
 def _workspace(r, vf, Iinv=None, Iw=None):
-    """The kernel's step workspace holding the arms ``r``, the free velocity ``vf`` and the inertias given."""
-    ws = make_workspace(kn.OUT_SIZE).step
+    """The kernel's contact-problem workspace holding the arms ``r``, the free velocity ``vf`` and the inertias
+    given."""
+    ws = make_workspace(kn.OUT_SIZE).step.contact
     ws.r[:] = r
     ws.vec[VEC_VF] = vf
     if Iinv is not None:
@@ -124,7 +125,7 @@ def test_edge_slip_obeys_coulomb_and_agrees_with_gauss_seidel():
         scale = np.abs(vf).max()
         slips = any(Pn[i, 2] > 0.0 and math.hypot(*(Vn + np.cross(Omn, r[i]))[:2]) > 1e-9 * scale for i in EDGE)
         ws, P = _workspace(r, vf, Iinv=Iinv), np.zeros((4, 3))
-        if not sliding._edge_slip(ws, act, P, Friction(mu, mu, False), np.zeros(kn.OUT_SIZE)):
+        if not sliding._edge_slip(ws, make_edge_work(), act, P, Friction(mu, mu, False), np.zeros(kn.OUT_SIZE)):
             assert not slips
             continue
         V, Om = ws.vec[VEC_V, :3], ws.vec[VEC_OM, :3]
@@ -188,7 +189,8 @@ def test_flat_slide_obeys_coulomb_and_newton_finds_it_again():
         geometry._geometry(s, BODY, Q, Iinv, Iw, r)
         vf = np.array([*rng.normal(0.0, 0.01, 2), -9.81e-3, 0.0, 0.0, rng.normal(0.0, 0.05)])
         ws, P = _workspace(r, vf, Iw=Iw), np.zeros((4, 3))
-        if not sliding._slide_flat(ws, act, P, mu):
+        sdir, Am = np.zeros((4, 2)), np.zeros((6, 7))
+        if not sliding._slide_flat(ws, act, P, mu, sdir, Am):
             continue
         V, Om = ws.vec[VEC_V, :3].copy(), ws.vec[VEC_OM, :3].copy()
         answered += 1
@@ -200,7 +202,7 @@ def test_flat_slide_obeys_coulomb_and_newton_finds_it_again():
             assert P[i, 2] >= 0.0
             np.testing.assert_allclose(P[i, :2], -mu * P[i, 2] * u[:2] / math.hypot(u[0], u[1]), atol=1e-12)
         x = np.array([V[0], V[1], Om[2]]) * 1.2
-        fw = FlatWork(idx, np.zeros(7), np.zeros(7))
+        fw = FlatWork(idx, np.zeros(7), np.zeros(7), sdir, Am)
         if sliding._flat_newton(ws, fw, 4, mu, x):
             regained += 1
             np.testing.assert_allclose(fw.xs[4:7], [V[0], V[1], Om[2]], atol=1e-10)

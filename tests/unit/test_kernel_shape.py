@@ -7,16 +7,6 @@ import importlib.util
 
 from _support import ROOT
 
-#: Compiled functions still over a limit, by qualified name, while the kernels they belong to are being
-#: restructured (issue 43). The list may only shrink: the test fails when a function listed here no longer exists
-#: or now keeps both limits, so that it is struck off at once.
-#:
-#: The planar kernels: friction's solve_case (its 273 lines still to be split into phases).
-ALLOWED_PLANAR = frozenset({
-    "opsrock.solvers.friction.kernel.solve_case",
-})
-ALLOWED = ALLOWED_PLANAR
-
 
 def _metrics():
     spec = importlib.util.spec_from_file_location("structure_metrics", ROOT / "tools" / "structure_metrics.py")
@@ -43,12 +33,7 @@ def test_the_metrics_find_the_compiled_kernels():
 
 
 def test_no_compiled_function_over_8_parameters_or_80_lines():
+    """Every compiled function of every kernel keeps both limits (no allow-list: the last over them, friction's
+    solve_case, was split into its phases)."""
     _, over = _offences()
-    assert sorted(set(over) - ALLOWED) == [], "compiled functions over 8 parameters or 80 lines"
-
-
-def test_the_allow_list_only_shrinks():
-    """Every allow-listed function still exists and still breaks a limit: one that was split or fixed is struck
-    off the list (which then only shrinks)."""
-    _, over = _offences()
-    assert sorted(ALLOWED - set(over)) == [], "allow-listed but gone or now within the limits: strike it off"
+    assert sorted(over.values()) == [], "compiled functions over 8 parameters or 80 lines"

@@ -84,9 +84,11 @@ _FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL, _FC_KAPPA =
 #: A block in free flight at ``tau``: rotation ``th`` (rad) and rate ``om`` (units of p), the centre of mass's
 #: horizontal position and velocity ``x``, ``vx`` and height and vertical velocity ``y``, ``vy`` (units of R, R p).
 Flight = namedtuple("Flight", ["th", "om", "x", "vx", "y", "vy", "tau"])
-#: Where the history goes: ``tau`` (units of 1/p), ``theta`` (rad), ``omega`` (units of p), ``u`` (units of R) and
-#: the mode; arrays of length 0: none. Built by :func:`history`.
-History = namedtuple("History", ["tau", "theta", "omega", "u", "mode"])
+#: Columns of the history rows (:func:`history`): ``tau`` (units of 1/p), ``theta`` (rad), ``omega`` (units of p),
+#: ``u`` (units of R) and the mode. One 2-D array rather than a tuple of five: numba counts a reference to each
+#: array a compiled function is passed, and the history goes through the loop's every step.
+H_TAU, H_THETA, H_OMEGA, H_U, H_MODE = 0, 1, 2, 3, 4
+H_SIZE = 5
 
 #: Non-literal ``0`` (a start index) and the peak event's id: numba compiles a callee, and all it calls, once more
 #: for a literal argument met while it infers a caller (issue 43: cold compile time).
@@ -120,8 +122,8 @@ def _body(params):
 
 
 def history(cap):
-    """A :class:`History` of ``cap`` rows (0: none)."""
-    return History(np.zeros(cap), np.zeros(cap), np.zeros(cap), np.zeros(cap), np.zeros(cap, dtype=np.int64))
+    """The history's ``cap`` rows (0: none), columns ``H_*``."""
+    return np.zeros((cap, H_SIZE))
 
 
 @numba.njit(cache=True)
@@ -367,17 +369,18 @@ def _fly(fl, h, fc, fresh, bd):
     return th + d * om, om, f1[0], f1[1], f1[2], f1[3], d, f1[4], best != 0.0, True
 
 
-@numba.njit(cache=True)
-def _record(hist, n_hist, tau, th, om, u, mode):
-    """Append one state to the :class:`History` if it has room; returns the new length."""
-    if n_hist < hist.tau.shape[0]:
-        hist.tau[n_hist] = tau
-        hist.theta[n_hist] = th
-        hist.omega[n_hist] = om
-        hist.u[n_hist] = u
-        hist.mode[n_hist] = mode
-        return n_hist + 1
-    return n_hist
+@numba.njit(cache=True, inline='always')
+def _record(hist, out, m):
+    """Append the :class:`Motion` ``m`` to the history rows ``hist`` (columns ``H_*``) if it has room
+    (``out[OUT_N_HIST]``: the rows stored, counted on)."""
+    n_hist = int(out[OUT_N_HIST])
+    if n_hist < hist.shape[0]:
+        hist[n_hist, H_TAU] = m.tau
+        hist[n_hist, H_THETA] = m.th
+        hist[n_hist, H_OMEGA] = m.om
+        hist[n_hist, H_U] = m.u
+        hist[n_hist, H_MODE] = m.mode
+        out[OUT_N_HIST] = n_hist + 1
 
 
 @numba.njit(cache=True)
@@ -443,280 +446,457 @@ def _start_slip(mode, s, th, om, tau, fc, alpha, mu_s):
     return -1.0 if f > 0.0 else 1.0
 
 
+# --- the case's state between steps: a float vector, slots _CS_* (the first eight a Motion's fields, in order) ----
+_CS_MODE, _CS_S, _CS_SIG, _CS_TH, _CS_OM, _CS_U, _CS_W, _CS_TAU = 0, 1, 2, 3, 4, 5, 6, 7
+#: In flight: the centre of mass's height and vertical velocity (units of R, R p; ``u``, ``w`` its horizontal ones).
+_CS_FY, _CS_FVY = 8, 9
+#: 1.0 while the rotation (``th``) or the slip (``w``) of a mode just entered has still to develop, or a flight has
+#: just begun; 1.0 when the contact force would turn negative (the block leaves the floor next).
+_CS_FRESH_TH, _CS_FRESH_W, _CS_FRESH_FLY, _CS_TAKEOFF = 10, 11, 12, 13
+#: 1.0 after the excitation; the forcing segment the time is in and its end (units of 1/p).
+_CS_TAIL, _CS_SEG, _CS_SEG_END = 14, 15, 16
+_CS_SIZE = 17
+
+#: What a phase of :func:`solve_case` returns to go on (any other value: the status the case ends with).
+_GO = np.int64(-1)
+
+#: The case's fixed inputs, read from the parameter vector once (:func:`_setup`): the :class:`Excitation`, the
+#: vertical samples ``gvals`` (``1 + a_v/g``; length 0: ``g_const``), ``g_tail`` after the excitation at
+#: ``tau_end``, the steps ``h_nom`` and ``h_tail``, the rest velocity, the limits, and the level
+#: ``min(mu_s, b/h)`` a block at rest is overcome by.
+Setup = namedtuple("Setup", ["exc", "gvals", "g_const", "g_tail", "tau_end", "h_nom", "h_tail", "rest_velocity",
+                             "max_impacts", "max_steps", "max_tail", "level"])
+
+
+@numba.njit(cache=True)
+def _setup(params, kvals, gvals):
+    """The case's :class:`Setup` and :class:`~.modes.Body` from the parameter vector (slots ``P_*``)."""
+    exc = Excitation(int(params[P_FORM]), params[P_K], params[P_NU], params[P_PHASE], params[P_TAU_END], kvals,
+                     params[P_DTAU])
+    bd = _body(params)
+    cfg = Setup(exc, gvals, params[P_G_CONST], params[P_G_TAIL], params[P_TAU_END], params[P_H_NOM],
+                params[P_H_TAIL], params[P_REST_VELOCITY], int(params[P_MAX_IMPACTS]), int(params[P_MAX_STEPS]),
+                params[P_MAX_TAIL], min(params[P_MU_S], bd.beta))
+    return cfg, bd
+
+
+@numba.njit(cache=True, inline='always')
+def _motion(cs):
+    """The :class:`Motion` of the case state ``cs``."""
+    return Motion(int(cs[_CS_MODE]), cs[_CS_S], cs[_CS_SIG], cs[_CS_TH], cs[_CS_OM], cs[_CS_U], cs[_CS_W],
+                  cs[_CS_TAU])
+
+
+@numba.njit(cache=True, inline='always')
+def _set_mode(cs, mode, s, sig, om, w):
+    """A new mode ``(mode, s, sig)`` with rate ``om`` and slip velocity ``w`` into the case state ``cs``."""
+    cs[_CS_MODE], cs[_CS_S], cs[_CS_SIG], cs[_CS_OM], cs[_CS_W] = mode, s, sig, om, w
+
+
+@numba.njit(cache=True, inline='always')
+def _first_mode(out, mode):
+    """Count ``mode`` as the first the block left rest into, if it is."""
+    if out[OUT_FIRST_MODE] < 0.0:
+        out[OUT_FIRST_MODE] = mode
+
+
+@numba.njit(cache=True)
+def _start(params, cfg, bd, fc, cs, out, hist):
+    """The case's start: from rest, or rocking on a stuck pivot from ``theta0``, ``omega0`` (slide-rocking if the
+    pivot cannot hold, :func:`_start_slip`); ``out`` cleared but for the start's energy, the first history row."""
+    theta0, omega0 = params[P_THETA0], params[P_OMEGA0]
+    out[:] = 0.0
+    out[OUT_FIRST_MODE] = -1.0
+    cs[:] = 0.0
+    cs[_CS_TH], cs[_CS_OM], cs[_CS_MODE] = theta0, omega0, REST
+    if theta0 != 0.0 or omega0 != 0.0:
+        cs[_CS_MODE], out[OUT_FIRST_MODE] = ROCK, ROCK
+        cs[_CS_S] = (1.0 if theta0 > 0.0 else -1.0) if theta0 != 0.0 else (1.0 if omega0 > 0.0 else -1.0)
+        cs[_CS_FRESH_TH] = theta0 == 0.0
+        out[OUT_ROCKED] = 1.0
+    m = _motion(cs)
+    out[OUT_ENERGY_START] = _energy(m.mode, m.s, m.th, m.om, m.w, 0.0, 0.0, bd)
+    out[OUT_THETA_MAX] = abs(theta0)
+    cs[_CS_SEG], cs[_CS_SEG_END] = _set_segment(fc, 0.0, _ZERO, cfg.exc, cfg.gvals, cfg.g_const)
+    sig = _start_slip(m.mode, m.s, m.th, m.om, m.tau, fc, bd.alpha, bd.mu_s)
+    cs[_CS_SIG] = sig
+    if sig != 0.0:  # the pivot cannot hold (e.g. a frictionless floor): the block starts slide-rocking
+        cs[_CS_MODE], out[OUT_FIRST_MODE], cs[_CS_FRESH_W] = SLIDE_ROCK, SLIDE_ROCK, True
+    _record(hist, out, _motion(cs))
+
+
+@numba.njit(cache=True)
+def _take_off(bd, cs, out, hist):
+    """The block leaves the floor (its contact force would turn negative): the flight's start from its mode."""
+    fx, fvx, fy, fvy = _takeoff(_motion(cs), bd)
+    cs[_CS_U], cs[_CS_W], cs[_CS_FY], cs[_CS_FVY] = fx, fvx, fy, fvy
+    _set_mode(cs, FLIGHT, 0.0, 0.0, cs[_CS_OM], fvx)
+    cs[_CS_TAKEOFF], cs[_CS_FRESH_FLY], cs[_CS_FRESH_TH], cs[_CS_FRESH_W] = False, True, False, False
+    _first_mode(out, FLIGHT)
+    _record(hist, out, _motion(cs))
+
+
+@numba.njit(cache=True)
+def _leave_rest(cfg, bd, fc, cs, out, hist):
+    """A block at rest jumps to the next time the floor overcomes it and takes the mode it starts in
+    (:func:`~.modes.start_mode`; flight: a take-off next). Returns :data:`_GO`, or ``STATUS_OK`` if it stays at
+    rest to the excitation's end."""
+    t_up, _ = _next_departure(cs[_CS_TAU], cfg.level, cfg.exc, cfg.gvals, cfg.g_const)
+    out[OUT_STEPS] += 1
+    if t_up < 0.0:
+        return STATUS_OK
+    tau = t_up
+    cs[_CS_TAU] = tau
+    cs[_CS_SEG], cs[_CS_SEG_END] = _set_segment(fc, tau, int(cs[_CS_SEG]), cfg.exc, cfg.gvals, cfg.g_const)
+    ah, gv = _floor(tau, fc)
+    mode, s, sig = start_mode(ah, gv, bd.beta, bd.mu_s, bd.mu_k, bd.kap)
+    if mode == REST:  # at the threshold to round-off: leave by the level that was exceeded
+        d = -1.0 if ah > 0.0 else 1.0
+        mode, s, sig = (SLIDE, 0.0, d) if bd.mu_s < bd.beta else (ROCK, d, 0.0)
+    if mode != FLIGHT:
+        _first_mode(out, mode)
+    cs[_CS_TH] = 0.0
+    _set_mode(cs, mode, s, sig, 0.0, 0.0)
+    if mode == FLIGHT:
+        cs[_CS_MODE], cs[_CS_TAKEOFF] = REST, True
+        return _GO
+    fresh_th = mode == ROCK or mode == SLIDE_ROCK
+    cs[_CS_FRESH_TH], cs[_CS_FRESH_W] = fresh_th, mode == SLIDE or mode == SLIDE_ROCK
+    if fresh_th:
+        out[OUT_ROCKED] = 1.0
+    _record(hist, out, _motion(cs))
+    return _GO
+
+
+@numba.njit(cache=True)
+def _seat_slide(cfg, bd, cs, out):
+    """The ending rule (docs/guide/friction.md): a pure slide on the still floor after the excitation that friction
+    stops only after ``max_tail``, or never, ends the case; its slip velocity into ``OUT_SLIP_END``, one slower than
+    the rest velocity seated."""
+    w = cs[_CS_W]
+    if abs(w) < cfg.rest_velocity:
+        out[OUT_IMPACT_LOSS] += 0.5 * (bd.kap / (bd.kap + 1.0)) * w * w
+        cs[_CS_MODE], cs[_CS_W], cs[_CS_SIG] = REST, 0.0, 0.0
+        w = 0.0
+    out[OUT_SLIP_END] = w
+
+
+@numba.njit(cache=True, inline='always')
+def _fly_step(cfg, bd, fc, cs, h, last, out, hist):
+    """A step of free flight of at most ``h`` (``last``: to the segment's end) and its landing, if a corner lands
+    (:func:`~.impacts.landing`, then :func:`_settle`; a take-off again if it cannot). Returns :data:`_GO` or the
+    case's status."""
+    th, om, fy, fvy, tau, seg_end = cs[_CS_TH], cs[_CS_OM], cs[_CS_FY], cs[_CS_FVY], cs[_CS_TAU], cs[_CS_SEG_END]
+    fl = Flight(th, om, cs[_CS_U], cs[_CS_W], fy, fvy, tau)
+    th, om, u, w, fy, fvy, d, dwin, landed, ok = _fly(fl, h, fc, cs[_CS_FRESH_FLY] > 0.0, bd)
+    out[OUT_STEPS] += 1
+    if not ok:
+        return STATUS_EVENT_FAILED
+    cs[_CS_FRESH_FLY] = False
+    out[OUT_INPUT_WORK] += dwin
+    out[OUT_TIME_FLIGHT] += d
+    if cs[_CS_TAIL] == 0.0 and (last and not landed or seg_end - (tau + d) <= 4e-16 * seg_end):
+        tau = seg_end
+    else:
+        tau = tau + d
+    cs[_CS_TH], cs[_CS_OM], cs[_CS_U], cs[_CS_W], cs[_CS_FY], cs[_CS_FVY], cs[_CS_TAU] = th, om, u, w, fy, fvy, tau
+    out[OUT_THETA_MAX] = max(out[OUT_THETA_MAX], abs(th))
+    out[OUT_SLIDE_MAX] = max(out[OUT_SLIDE_MAX], abs(u))
+    _record(hist, out, _motion(cs))
+    if abs(th) >= OVERTURNING_ANGLE:
+        out[OUT_OVERTURNED] = 1.0
+        return STATUS_OK
+    if not landed:
+        return _GO
+    out[OUT_IMPACTS] += 1
+    if out[OUT_IMPACTS] > cfg.max_impacts:
+        return STATUS_MAX_IMPACTS
+    return _land(cfg, bd, fc, cs, out, hist)
+
+
+@numba.njit(cache=True)
+def _land(cfg, bd, fc, cs, out, hist):
+    """A corner lands from flight (:func:`_fly_step`): the impact law, then the mode the block settles in."""
+    th, om, fy, fvy, tau = cs[_CS_TH], cs[_CS_OM], cs[_CS_FY], cs[_CS_FVY], cs[_CS_TAU]
+    e_before = _energy(FLIGHT, 0.0, th, om, cs[_CS_W], fy, fvy, bd)
+    x_cm, vx = cs[_CS_U], cs[_CS_W]
+    mode, s, sig, om, w, ok = landing(th, om, vx, fvy, bd)
+    if not ok:
+        _set_mode(cs, mode, s, sig, om, w)
+        return STATUS_IMPACT_LAW
+    # the base displacement: of the landing corner (its rest position is s b), or the centre's if flat
+    u = x_cm if th == 0.0 else x_cm + s * bd.sa * math.cos(th) - bd.ca * math.sin(th) - s * bd.sa
+    ah, gv = _floor(tau, fc)
+    mode, s, sig, om, w, ok = _settle(Motion(mode, s, sig, th, om, u, w, tau), ah, gv, bd, cfg.rest_velocity)
+    cs[_CS_U] = u
+    _set_mode(cs, mode, s, sig, om, w)
+    out[OUT_IMPACT_LOSS] += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, bd)
+    if not ok:
+        cs[_CS_TAKEOFF] = True
+        return _GO
+    cs[_CS_FRESH_TH] = th == 0.0 and (mode == ROCK or mode == SLIDE_ROCK)
+    cs[_CS_FRESH_W] = (mode == SLIDE_ROCK or mode == SLIDE) and w == 0.0
+    if mode == ROCK or mode == SLIDE_ROCK:
+        out[OUT_ROCKED] = 1.0
+    _record(hist, out, _motion(cs))
+    return _GO
+
+
+@numba.njit(cache=True, inline='always')
+def _trial_step(bd, fc, cs, h, last, out):
+    """An RK4 step of at most ``h`` from the case state (``last``: to the segment's end); a rotation or slip just
+    begun shortens it so that it develops (a rotation its own way, halved until it does). Returns ``(end state,
+    h, last, developed)``; ``developed`` False if the new mode does not develop within 1e-14/p."""
+    m = _motion(cs)
+    fresh_th, fresh_w, s, om = cs[_CS_FRESH_TH] > 0.0, cs[_CS_FRESH_W] > 0.0, m.s, m.om
+    if fresh_th and om != 0.0:
+        thdd0 = _deriv(Motion(m.mode, s, m.sig, 0.0, om, m.u, m.w, m.tau), fc, bd)[0]
+        if s * thdd0 < 0.0 and abs(om) / abs(thdd0) < h:
+            h, last = abs(om) / abs(thdd0), False
+    y1 = _rk4(m, h, fc, bd)
+    out[OUT_STEPS] += 1
+    if fresh_w and bd.mu_k == 0.0 and y1[3] != 0.0:
+        cs[_CS_SIG] = 1.0 if y1[3] > 0.0 else -1.0  # no friction force: the slip takes the direction it develops in
+        m = _motion(cs)
+    while (fresh_th and s * y1[0] <= 0.0) or (fresh_w and m.sig * y1[3] <= 0.0):
+        h, last = 0.5 * h, False
+        if h < _MIN_STEP:
+            return y1, h, last, False
+        y1 = _rk4(m, h, fc, bd)
+        out[OUT_STEPS] += 1
+    return y1, h, last, True
+
+
+@numba.njit(cache=True)
+def _drop_undeveloped(bd, cs, y1, out):
+    """A new mode that does not develop within 1e-14/p (:func:`_trial_step`, ending in ``y1``): the part that does
+    not (the rotation or the slip), or both, is dropped; the energy that takes away counted as lost."""
+    m = _motion(cs)
+    mode, s, sig, th, om, w = m.mode, m.s, m.sig, m.th, m.om, m.w
+    fresh_th, fresh_w = cs[_CS_FRESH_TH] > 0.0, cs[_CS_FRESH_W] > 0.0
+    e_before = _energy(mode, s, th, om, w, 0.0, 0.0, bd)
+    rotates = fresh_th and s * y1[0] > 0.0
+    slips = (fresh_w and sig * y1[3] > 0.0) or (not fresh_w and w != 0.0)
+    if fresh_th and not rotates:
+        th, om = 0.0, 0.0
+        mode, s = (SLIDE, 0.0) if (mode == SLIDE_ROCK and slips) else (REST, 0.0)
+        if mode == REST:
+            w, sig = 0.0, 0.0
+    elif mode == SLIDE:
+        mode, w, sig = REST, 0.0, 0.0
+    else:
+        mode, w, sig = ROCK, 0.0, 0.0
+    out[OUT_IMPACT_LOSS] += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, bd)
+    cs[_CS_TH] = th
+    _set_mode(cs, mode, s, sig, om, w)
+    cs[_CS_FRESH_TH], cs[_CS_FRESH_W] = False, False
+
+
+@numba.njit(cache=True, inline='always')
+def _rk_step(cfg, bd, fc, cs, h, last, out, hist):
+    """A step of a mode on the floor (rock, slide, slide-rock) of at most ``h`` (:func:`_trial_step`), cut at its
+    first event (:func:`_first_event`), its peak of ``|theta|`` (:func:`_peak`) and tallies, then the event's mode
+    change (:func:`_at_event`). Returns :data:`_GO` or the case's status."""
+    y1, h, last, developed = _trial_step(bd, fc, cs, h, last, out)
+    if not developed:
+        _drop_undeveloped(bd, cs, y1, out)
+        return _GO
+    if not (math.isfinite(y1[0]) and math.isfinite(y1[1]) and math.isfinite(y1[2]) and math.isfinite(y1[3])):
+        return STATUS_NONFINITE
+    m = _motion(cs)
+    ev, d, ok = _first_event(m, h, y1, fc, bd)
+    if not ok:
+        return STATUS_EVENT_FAILED
+    if ev >= 0:
+        y1 = _rk4(m, d, fc, bd)
+        out[OUT_STEPS] += 1
+    th_p, ok = _peak(m, d, y1[1], fc, bd)
+    if not ok:
+        return STATUS_EVENT_FAILED
+    out[OUT_THETA_MAX] = max(out[OUT_THETA_MAX], th_p)
+    if m.mode == SLIDE or m.mode == SLIDE_ROCK:
+        out[OUT_TIME_SLIDING] += d
+    if m.mode != SLIDE:
+        out[OUT_TIME_ROCKING] += d
+    tau, seg_end = m.tau, cs[_CS_SEG_END]
+    tail = cs[_CS_TAIL] > 0.0
+    tau = seg_end if ((last and ev < 0) or (not tail and seg_end - (tau + d) <= 4e-16 * seg_end)) else tau + d
+    cs[_CS_TAU], cs[_CS_TH], cs[_CS_OM], cs[_CS_U], cs[_CS_W] = tau, y1[0], y1[1], y1[2], y1[3]
+    out[OUT_INPUT_WORK] += y1[4]
+    out[OUT_FRICTION_WORK] += y1[5]
+    cs[_CS_FRESH_TH], cs[_CS_FRESH_W] = False, False
+    out[OUT_THETA_MAX] = max(out[OUT_THETA_MAX], abs(y1[0]))
+    out[OUT_SLIDE_MAX] = max(out[OUT_SLIDE_MAX], abs(y1[2]))
+    if abs(y1[0]) >= OVERTURNING_ANGLE:
+        out[OUT_OVERTURNED] = 1.0
+        _record(hist, out, _motion(cs))
+        return STATUS_OK
+    return _at_event(cfg, bd, fc, cs, ev, out, hist)
+
+
+@numba.njit(cache=True, inline='always')
+def _impact(cfg, bd, fc, cs, out, hist):
+    """An impact at ``theta = 0`` (:func:`~.impacts.impact`), then the mode the block settles in (:func:`_settle`;
+    a take-off next if it cannot). Returns :data:`_GO` or the case's status."""
+    m = _motion(cs)
+    _record(hist, out, Motion(m.mode, m.s, m.sig, 0.0, m.om, m.u, m.w, m.tau))
+    out[OUT_IMPACTS] += 1
+    if out[OUT_IMPACTS] > cfg.max_impacts:
+        return STATUS_MAX_IMPACTS
+    e_before = _energy(m.mode, m.s, 0.0, m.om, m.w, 0.0, 0.0, bd)
+    mode, s, sig, om, w, ok = impact(m.s, m.om, m.w, bd)
+    if not ok:
+        _set_mode(cs, mode, s, sig, om, w)
+        return STATUS_IMPACT_LAW
+    cs[_CS_TH] = 0.0
+    ah, gv = _floor(m.tau, fc)
+    mode, s, sig, om, w, ok = _settle(Motion(mode, s, sig, 0.0, om, m.u, w, m.tau), ah, gv, bd, cfg.rest_velocity)
+    _set_mode(cs, mode, s, sig, om, w)
+    out[OUT_IMPACT_LOSS] += e_before - _energy(mode, s, 0.0, om, w, 0.0, 0.0, bd)
+    if not ok:
+        cs[_CS_TAKEOFF] = True
+        return _GO
+    cs[_CS_FRESH_TH] = mode == ROCK or mode == SLIDE_ROCK
+    cs[_CS_FRESH_W] = mode == SLIDE_ROCK and w == 0.0
+    _record(hist, out, _motion(cs))
+    return _GO
+
+
+@numba.njit(cache=True, inline='always')
+def _stick_slip(bd, fc, cs, out, hist):
+    """The stick-slip event: a rocking block's pivot starts slipping, a slide-rocking one's slip stops (it sticks,
+    or slips back), a sliding one stops and takes the mode it starts in (a take-off next if flight). Returns
+    :data:`_GO`."""
+    m = _motion(cs)
+    mode, s, sig, th, om = m.mode, m.s, m.sig, m.th, m.om
+    ah, gv = _floor(m.tau, fc)
+    if mode == ROCK:
+        f, _ = rock_forces(s, th, om, ah, gv, bd.alpha, bd.kap)
+        _set_mode(cs, SLIDE_ROCK, s, -1.0 if f > 0.0 else 1.0, om, 0.0)
+        cs[_CS_FRESH_W] = True
+    elif mode == SLIDE_ROCK:
+        f, n = rock_forces(s, th, om, ah, gv, bd.alpha, bd.kap)
+        cs[_CS_W] = 0.0
+        if abs(f) <= bd.mu_s * n:
+            cs[_CS_MODE], cs[_CS_SIG] = ROCK, 0.0
+        else:
+            cs[_CS_SIG], cs[_CS_FRESH_W] = (-1.0 if f > 0.0 else 1.0), True
+    else:
+        mode, s, sig = start_mode(ah, gv, bd.beta, bd.mu_s, bd.mu_k, bd.kap)
+        if mode == FLIGHT:
+            _set_mode(cs, SLIDE, s, sig, om, 0.0)
+            cs[_CS_TAKEOFF] = True
+            return _GO
+        cs[_CS_TH] = 0.0
+        _set_mode(cs, mode, s, sig, 0.0, 0.0)
+        fresh_th = mode == ROCK or mode == SLIDE_ROCK
+        cs[_CS_FRESH_TH], cs[_CS_FRESH_W] = fresh_th, mode == SLIDE or mode == SLIDE_ROCK
+        if fresh_th:
+            out[OUT_ROCKED] = 1.0
+    _record(hist, out, _motion(cs))
+    return _GO
+
+
+@numba.njit(cache=True, inline='always')
+def _at_event(cfg, bd, fc, cs, ev, out, hist):
+    """The mode change at the end of a step cut by event ``ev`` (0 impact, 1 stick-slip, 2 contact lost: a take-off
+    next, or overturning if the block leaves the floor beyond its hump turning outwards; none: the step's history
+    row). Returns :data:`_GO` or the case's status."""
+    if ev == 0:
+        return _impact(cfg, bd, fc, cs, out, hist)
+    if ev == 1:
+        return _stick_slip(bd, fc, cs, out, hist)
+    if ev == 2:
+        if cs[_CS_MODE] != SLIDE and cs[_CS_S] * cs[_CS_TH] > bd.alpha and cs[_CS_S] * cs[_CS_OM] > 0.0:
+            # it leaves the floor beyond its hump, turning outwards: nothing brings it back
+            out[OUT_OVERTURNED] = 1.0
+            out[OUT_THETA_MAX] = OVERTURNING_ANGLE
+            return STATUS_OK
+        cs[_CS_TAKEOFF] = True
+        return _GO
+    _record(hist, out, _motion(cs))
+    return _GO
+
+
+@numba.njit(cache=True, inline='always')
+def _phase(cfg, bd, fc, cs, out, hist):
+    """One turn of :func:`solve_case`'s loop: a take-off if one is due; the excitation's end (a still floor, the
+    vertical acceleration ``g_tail``); then by mode: a block at rest leaves it (:func:`_leave_rest`; after the
+    excitation the case ends), a slide friction cannot stop ends it (:func:`_seat_slide`), a flight step
+    (:func:`_fly_step`) or a step on the floor (:func:`_rk_step`), each ending on the forcing segment's end.
+    Returns :data:`_GO` or the case's status."""
+    if cs[_CS_TAKEOFF] > 0.0:
+        _take_off(bd, cs, out, hist)
+    if out[OUT_STEPS] >= cfg.max_steps:
+        return STATUS_MAX_STEPS
+    tau = cs[_CS_TAU]
+    if cs[_CS_TAIL] == 0.0 and tau >= cfg.tau_end:
+        cs[_CS_TAIL] = 1.0
+        fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, cfg.g_tail, 0.0, 0.0
+        cs[_CS_SEG_END] = math.inf
+    tail = cs[_CS_TAIL] > 0.0
+    mode = int(cs[_CS_MODE])
+    if mode == REST:
+        return STATUS_OK if tail else _leave_rest(cfg, bd, fc, cs, out, hist)
+    if tail and mode == SLIDE and _unstoppable(cs[_CS_W], bd.mu_k, cfg.g_tail, cfg.max_tail - (tau - cfg.tau_end),
+                                               bd.kap):
+        _seat_slide(cfg, bd, cs, out)
+        return STATUS_OK
+    if tail and tau - cfg.tau_end > cfg.max_tail:
+        return STATUS_TAIL
+    if not tail and tau >= cs[_CS_SEG_END]:
+        cs[_CS_SEG], cs[_CS_SEG_END] = _set_segment(fc, tau, int(cs[_CS_SEG]), cfg.exc, cfg.gvals, cfg.g_const)
+    h = min(cfg.h_tail if tail else cfg.h_nom, cs[_CS_SEG_END] - tau)
+    last = h == cs[_CS_SEG_END] - tau
+    if mode == FLIGHT:
+        return _fly_step(cfg, bd, fc, cs, h, last, out, hist)
+    return _rk_step(cfg, bd, fc, cs, h, last, out, hist)
+
+
+@numba.njit(cache=True)
+def _finish(bd, cs, status, out):
+    """The case's outputs at its end with ``status``: its time, peak tilt, first mode, base displacement and the
+    energies of its last state."""
+    m = _motion(cs)
+    out[OUT_EVENT_TIME] = m.tau
+    if out[OUT_OVERTURNED] > 0.0:
+        out[OUT_THETA_MAX] = max(out[OUT_THETA_MAX], OVERTURNING_ANGLE)
+    out[OUT_STATUS] = status
+    out[OUT_FIRST_MODE] = max(out[OUT_FIRST_MODE], REST)
+    out[OUT_SLIDE_END] = m.u
+    fy, fvy = cs[_CS_FY], cs[_CS_FVY]
+    total = _energy(m.mode, m.s, m.th, m.om, m.w, fy, fvy, bd)
+    out[OUT_POTENTIAL] = fy - bd.ca if m.mode == FLIGHT else potential_energy(m.s if m.mode != SLIDE else 0.0, m.th,
+                                                                              bd.alpha)
+    out[OUT_KINETIC] = total - out[OUT_POTENTIAL]
+
+
 @numba.njit(cache=True)
 def solve_case(params, kvals, gvals, out, hist):
     """Solve one case from rest (or from ``theta0``, ``omega0`` rocking without slip); ``params`` holds
-    the scalars (slots ``P_*``), results go in ``out`` (slots ``OUT_*``), the history in the :class:`History`
-    ``hist``.
+    the scalars (slots ``P_*``), results go in ``out`` (slots ``OUT_*``), the history in the rows ``hist``
+    (:func:`history`, columns ``H_*``).
 
     Excitation: ``(form, k, nu, phase)`` of :func:`opsrock.solvers.forcing.forcing` up to ``tau_end``
     for an analytic pulse; for ``form == FORM_LINEAR`` the samples ``kvals`` (``a_h/g`` at
     ``tau = i dtau``). Vertical: the samples ``gvals`` (``1 + a_v/g``, same grid; length 0: the
     constant ``g_const``); after the excitation ``g_tail``. ``f_rest = e / e_H``; ``mu_s``, ``mu_k``
     may be ``inf`` (no slip). Steps: ``h_nom`` during the excitation, ``h_tail`` after it (units of
-    ``1/p``), followed for at most ``max_tail``. In flight ``u`` and ``w`` hold the centre of mass's
-    horizontal position and velocity, ``fy`` and ``fvy`` its height and vertical velocity.
+    ``1/p``), followed for at most ``max_tail``. The case's state between steps is the vector ``cs`` (slots
+    ``_CS_*``: the :class:`Motion`, in flight the centre's height and vertical velocity, the flags of a mode just
+    entered, the forcing segment); each turn of the loop is one :func:`_phase`; the counts and peaks accumulate
+    in ``out`` as they go.
     """
-    alpha, f_rest, mu_s, mu_k = params[P_ALPHA], params[P_F_REST], params[P_MU_S], params[P_MU_K]
-    form, k, nu, phase, tau_end = int(params[P_FORM]), params[P_K], params[P_NU], params[P_PHASE], params[P_TAU_END]
-    g_const, g_tail, dtau = params[P_G_CONST], params[P_G_TAIL], params[P_DTAU]
-    h_nom, h_tail, rest_velocity = params[P_H_NOM], params[P_H_TAIL], params[P_REST_VELOCITY]
-    max_impacts, max_steps, max_tail = int(params[P_MAX_IMPACTS]), int(params[P_MAX_STEPS]), params[P_MAX_TAIL]
-    theta0, omega0, kap = params[P_THETA0], params[P_OMEGA0], params[P_KAPPA]
-    exc = Excitation(form, k, nu, phase, tau_end, kvals, dtau)
-    bd = _body(params)
-    sa, ca, beta = bd.sa, bd.ca, bd.beta
-    level = min(mu_s, beta)
+    cfg, bd = _setup(params, kvals, gvals)
     fc = np.zeros(9)
-    fc[_FC_KAPPA] = kap
-    out[:] = 0.0
-    tau, th, om, u, w, fy, fvy = 0.0, theta0, omega0, 0.0, 0.0, 0.0, 0.0
-    mode, s, sig = REST, 0.0, 0.0
-    fresh_th, fresh_w, fresh_fly = False, False, False
-    first_mode = -1
-    if theta0 != 0.0 or omega0 != 0.0:
-        mode, first_mode = ROCK, ROCK
-        s = (1.0 if theta0 > 0.0 else -1.0) if theta0 != 0.0 else (1.0 if omega0 > 0.0 else -1.0)
-        fresh_th = theta0 == 0.0
-        out[OUT_ROCKED] = 1.0
-    out[OUT_ENERGY_START] = _energy(mode, s, th, om, w, fy, fvy, bd)
-    theta_max, u_max = abs(theta0), 0.0
-    win = wfr = eimp = t_slide = t_rock = t_fly = 0.0
-    n_imp = n_steps = 0
-    seg, seg_end = _set_segment(fc, 0.0, _ZERO, exc, gvals, g_const)
-    sig = _start_slip(mode, s, th, om, tau, fc, alpha, mu_s)
-    if sig != 0.0:  # the pivot cannot hold (e.g. a frictionless floor): the block starts slide-rocking
-        mode, first_mode, fresh_w = SLIDE_ROCK, SLIDE_ROCK, True
-    n_hist = _record(hist, _ZERO, tau, th, om, u, mode)
-    status = STATUS_OK
-    tail = False
-    takeoff = False
-    while True:
-        if takeoff:  # the contact force would turn negative: the block leaves the floor
-            u, w, fy, fvy = _takeoff(Motion(mode, s, sig, th, om, u, w, tau), bd)
-            mode, s, sig, takeoff, fresh_fly, fresh_th, fresh_w = FLIGHT, 0.0, 0.0, False, True, False, False
-            if first_mode < 0:
-                first_mode = FLIGHT
-            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
-        if n_steps >= max_steps:
-            status = STATUS_MAX_STEPS
-            break
-        if not tail and tau >= tau_end:
-            tail = True
-            fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, g_tail, 0.0, 0.0
-            seg_end = math.inf
-        if mode == REST:
-            if tail:
-                break
-            t_up, _ = _next_departure(tau, level, exc, gvals, g_const)
-            n_steps += 1
-            if t_up < 0.0:
-                break
-            tau = t_up
-            seg, seg_end = _set_segment(fc, tau, seg, exc, gvals, g_const)
-            ah, gv = _floor(tau, fc)
-            mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k, kap)
-            if mode == REST:  # at the threshold to round-off: leave by the level that was exceeded
-                d = -1.0 if ah > 0.0 else 1.0
-                mode, s, sig = (SLIDE, 0.0, d) if mu_s < beta else (ROCK, d, 0.0)
-            if first_mode < 0 and mode != FLIGHT:
-                first_mode = mode
-            th, om, w = 0.0, 0.0, 0.0
-            if mode == FLIGHT:
-                mode, takeoff = REST, True
-                continue
-            fresh_th = mode == ROCK or mode == SLIDE_ROCK
-            fresh_w = mode == SLIDE or mode == SLIDE_ROCK
-            if fresh_th:
-                out[OUT_ROCKED] = 1.0
-            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
-            continue
-        if tail and mode == SLIDE and _unstoppable(w, mu_k, g_tail, max_tail - (tau - tau_end), kap):
-            # a pure slide on the still floor stops only after max_tail, or never: the case ends here
-            # (docs/guide/friction.md, the ending rule); a slip slower than rest_velocity is seated
-            if abs(w) < rest_velocity:
-                eimp += 0.5 * (kap / (kap + 1.0)) * w * w
-                mode, w, sig = REST, 0.0, 0.0
-            out[OUT_SLIP_END] = w
-            break
-        if tail and tau - tau_end > max_tail:
-            status = STATUS_TAIL
-            break
-        if not tail and tau >= seg_end:
-            seg, seg_end = _set_segment(fc, tau, seg, exc, gvals, g_const)
-        h = min(h_tail if tail else h_nom, seg_end - tau)
-        last = h == seg_end - tau
-        if mode == FLIGHT:
-            th, om, u, w, fy, fvy, d, dwin, landed, ok = _fly(Flight(th, om, u, w, fy, fvy, tau), h, fc, fresh_fly, bd)
-            n_steps += 1
-            if not ok:
-                status = STATUS_EVENT_FAILED
-                break
-            fresh_fly = False
-            win += dwin
-            t_fly += d
-            if not tail and (last and not landed or seg_end - (tau + d) <= 4e-16 * seg_end):
-                tau = seg_end
-            else:
-                tau = tau + d
-            theta_max = max(theta_max, abs(th))
-            u_max = max(u_max, abs(u))
-            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
-            if abs(th) >= OVERTURNING_ANGLE:
-                out[OUT_OVERTURNED] = 1.0
-                break
-            if not landed:
-                continue
-            n_imp += 1
-            if n_imp > max_impacts:
-                status = STATUS_MAX_IMPACTS
-                break
-            e_before = _energy(FLIGHT, 0.0, th, om, w, fy, fvy, bd)
-            x_cm, vx = u, w
-            mode, s, sig, om, w, ok = landing(th, om, vx, fvy, bd)
-            if not ok:
-                status = STATUS_IMPACT_LAW
-                break
-            # the base displacement: of the landing corner (its rest position is s b), or the centre's if flat
-            u = x_cm if th == 0.0 else x_cm + s * sa * math.cos(th) - ca * math.sin(th) - s * sa
-            ah, gv = _floor(tau, fc)
-            mode, s, sig, om, w, ok = _settle(Motion(mode, s, sig, th, om, u, w, tau), ah, gv, bd, rest_velocity)
-            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, bd)
-            if not ok:
-                takeoff = True
-                continue
-            fresh_th = th == 0.0 and (mode == ROCK or mode == SLIDE_ROCK)
-            fresh_w = (mode == SLIDE_ROCK or mode == SLIDE) and w == 0.0
-            if mode == ROCK or mode == SLIDE_ROCK:
-                out[OUT_ROCKED] = 1.0
-            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
-            continue
-        if fresh_th and om != 0.0:
-            thdd0 = _deriv(Motion(mode, s, sig, 0.0, om, u, w, tau), fc, bd)[0]
-            if s * thdd0 < 0.0 and abs(om) / abs(thdd0) < h:
-                h, last = abs(om) / abs(thdd0), False
-        y1 = _rk4(Motion(mode, s, sig, th, om, u, w, tau), h, fc, bd)
-        n_steps += 1
-        if fresh_w and mu_k == 0.0 and y1[3] != 0.0:
-            sig = 1.0 if y1[3] > 0.0 else -1.0  # no friction force: the slip takes the direction it develops in
-        undeveloped = False
-        while (fresh_th and s * y1[0] <= 0.0) or (fresh_w and sig * y1[3] <= 0.0):
-            h, last = 0.5 * h, False
-            if h < _MIN_STEP:
-                undeveloped = True
-                break
-            y1 = _rk4(Motion(mode, s, sig, th, om, u, w, tau), h, fc, bd)
-            n_steps += 1
-        if undeveloped:
-            # the new mode does not develop within 1e-14/p: drop the part that does not (the rotation
-            # or the slip), or both
-            e_before = _energy(mode, s, th, om, w, 0.0, 0.0, bd)
-            rotates = fresh_th and s * y1[0] > 0.0
-            slips = (fresh_w and sig * y1[3] > 0.0) or (not fresh_w and w != 0.0)
-            if fresh_th and not rotates:
-                th, om = 0.0, 0.0
-                mode, s = (SLIDE, 0.0) if (mode == SLIDE_ROCK and slips) else (REST, 0.0)
-                if mode == REST:
-                    w, sig = 0.0, 0.0
-            elif mode == SLIDE:
-                mode, w, sig = REST, 0.0, 0.0
-            else:
-                mode, w, sig = ROCK, 0.0, 0.0
-            eimp += e_before - _energy(mode, s, th, om, w, 0.0, 0.0, bd)
-            fresh_th, fresh_w = False, False
-            continue
-        if not (math.isfinite(y1[0]) and math.isfinite(y1[1]) and math.isfinite(y1[2]) and math.isfinite(y1[3])):
-            status = STATUS_NONFINITE
-            break
-        ev, d, ok = _first_event(Motion(mode, s, sig, th, om, u, w, tau), h, y1, fc, bd)
-        if not ok:
-            status = STATUS_EVENT_FAILED
-            break
-        if ev >= 0:
-            y1 = _rk4(Motion(mode, s, sig, th, om, u, w, tau), d, fc, bd)
-            n_steps += 1
-        th_p, ok = _peak(Motion(mode, s, sig, th, om, u, w, tau), d, y1[1], fc, bd)
-        if not ok:
-            status = STATUS_EVENT_FAILED
-            break
-        theta_max = max(theta_max, th_p)
-        if mode == SLIDE or mode == SLIDE_ROCK:
-            t_slide += d
-        if mode != SLIDE:
-            t_rock += d
-        tau = seg_end if ((last and ev < 0) or (not tail and seg_end - (tau + d) <= 4e-16 * seg_end)) else tau + d
-        th, om, u, w = y1[0], y1[1], y1[2], y1[3]
-        win += y1[4]
-        wfr += y1[5]
-        fresh_th, fresh_w = False, False
-        theta_max = max(theta_max, abs(th))
-        u_max = max(u_max, abs(u))
-        if abs(th) >= OVERTURNING_ANGLE:
-            out[OUT_OVERTURNED] = 1.0
-            n_hist = _record(hist, n_hist, tau, th, om, u, mode)
-            break
-        ah, gv = _floor(tau, fc)
-        if ev == 0:  # impact at theta = 0
-            n_hist = _record(hist, n_hist, tau, 0.0, om, u, mode)
-            n_imp += 1
-            if n_imp > max_impacts:
-                status = STATUS_MAX_IMPACTS
-                break
-            e_before = _energy(mode, s, 0.0, om, w, 0.0, 0.0, bd)
-            mode, s, sig, om, w, ok = impact(s, om, w, bd)
-            if not ok:
-                status = STATUS_IMPACT_LAW
-                break
-            th = 0.0
-            mode, s, sig, om, w, ok = _settle(Motion(mode, s, sig, 0.0, om, u, w, tau), ah, gv, bd, rest_velocity)
-            eimp += e_before - _energy(mode, s, 0.0, om, w, 0.0, 0.0, bd)
-            if not ok:
-                takeoff = True
-                continue
-            fresh_th = mode == ROCK or mode == SLIDE_ROCK
-            fresh_w = mode == SLIDE_ROCK and w == 0.0
-        elif ev == 1:  # stick-slip
-            if mode == ROCK:
-                f, _ = rock_forces(s, th, om, ah, gv, alpha, kap)
-                mode, sig, w, fresh_w = SLIDE_ROCK, (-1.0 if f > 0.0 else 1.0), 0.0, True
-            elif mode == SLIDE_ROCK:
-                f, n = rock_forces(s, th, om, ah, gv, alpha, kap)
-                w = 0.0
-                if abs(f) <= mu_s * n:
-                    mode, sig = ROCK, 0.0
-                else:
-                    sig, fresh_w = (-1.0 if f > 0.0 else 1.0), True
-            else:
-                w = 0.0
-                mode, s, sig = start_mode(ah, gv, beta, mu_s, mu_k, kap)
-                if mode == FLIGHT:
-                    mode, takeoff = SLIDE, True
-                    continue
-                th, om = 0.0, 0.0
-                fresh_th = mode == ROCK or mode == SLIDE_ROCK
-                fresh_w = mode == SLIDE or mode == SLIDE_ROCK
-                if fresh_th:
-                    out[OUT_ROCKED] = 1.0
-        elif ev == 2:  # contact lost
-            if mode != SLIDE and s * th > alpha and s * om > 0.0:
-                # it leaves the floor beyond its hump, turning outwards: nothing brings it back
-                out[OUT_OVERTURNED] = 1.0
-                theta_max = OVERTURNING_ANGLE
-                break
-            takeoff = True
-            continue
-        n_hist = _record(hist, n_hist, tau, th, om, u, mode)
-    out[OUT_EVENT_TIME] = tau
-    if out[OUT_OVERTURNED] > 0.0:
-        theta_max = max(theta_max, OVERTURNING_ANGLE)
-    out[OUT_THETA_MAX], out[OUT_STATUS], out[OUT_IMPACTS], out[OUT_STEPS] = theta_max, status, n_imp, n_steps
-    out[OUT_N_HIST], out[OUT_FIRST_MODE] = n_hist, max(first_mode, REST)
-    out[OUT_TIME_SLIDING], out[OUT_TIME_ROCKING], out[OUT_SLIDE_MAX], out[OUT_SLIDE_END] = t_slide, t_rock, u_max, u
-    out[OUT_TIME_FLIGHT] = t_fly
-    out[OUT_INPUT_WORK], out[OUT_FRICTION_WORK], out[OUT_IMPACT_LOSS] = win, wfr, eimp
-    total = _energy(mode, s, th, om, w, fy, fvy, bd)
-    out[OUT_POTENTIAL] = fy - ca if mode == FLIGHT else potential_energy(s if mode != SLIDE else 0.0, th, alpha)
-    out[OUT_KINETIC] = total - out[OUT_POTENTIAL]
+    fc[_FC_KAPPA] = params[P_KAPPA]
+    cs = np.zeros(_CS_SIZE)
+    _start(params, cfg, bd, fc, cs, out, hist)
+    status = _GO
+    while status == _GO:
+        status = _phase(cfg, bd, fc, cs, out, hist)
+    _finish(bd, cs, status, out)
 
 
-__all__ = ["OUT_SIZE", "P_SIZE", "STATUS_OK", "History", "history", "solve_case"]
+__all__ = ["H_OMEGA", "H_SIZE", "H_TAU", "H_THETA", "H_U", "OUT_SIZE", "P_SIZE", "STATUS_OK", "history",
+           "solve_case"]

@@ -121,7 +121,7 @@ class _FrictionRun(SolverRun):
                                  wall_time_s=self.elapsed())
         wall = self.elapsed()
         p, nh = block.p, int(out[K.OUT_N_HIST])
-        time_s, theta, theta_dot = hist.tau[:nh] / p, hist.theta[:nh], hist.omega[:nh] * p
+        time_s, theta, theta_dot = hist[:nh, K.H_TAU] / p, hist[:nh, K.H_THETA].copy(), hist[:nh, K.H_OMEGA] * p
         status = int(out[K.OUT_STATUS])
         if status != K.STATUS_OK:
             reason = f"{REASONS[status]} (at t = {out[K.OUT_EVENT_TIME] / p:.6g} s)"
@@ -132,7 +132,7 @@ class _FrictionRun(SolverRun):
             solver=SOLVER_NAME, settings=settings_dict, alpha=alpha, time=time_s, theta=theta, theta_dot=theta_dot,
             theta_max=float(out[K.OUT_THETA_MAX]), overturned=bool(out[K.OUT_OVERTURNED]),
             rocked=bool(out[K.OUT_ROCKED]), n_steps=int(out[K.OUT_STEPS]), wall_time_s=wall,
-            n_impacts=int(out[K.OUT_IMPACTS]), slide=hist.u[:nh] * block.R,
+            n_impacts=int(out[K.OUT_IMPACTS]), slide=hist[:nh, K.H_U] * block.R,
             contact=_contact(out, block, time_s))
 
 

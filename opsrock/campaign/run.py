@@ -58,10 +58,10 @@ from opsrock.campaign.advice import sliding_warnings
 from opsrock.campaign.cases import CASES_FILE, IDENTITY_EXCLUDED, case_table, failed_row, result_row, write_cases_csv
 from opsrock.campaign.executors import Executor, LocalPool, batch_size, is_lost, make_batches
 from opsrock.campaign.motions import MOTIONS_FILE, cached_motions, compute_motions
-from opsrock.campaign.scene import Scene
+from opsrock.campaign.scene import MAX_CASES, Scene
 from opsrock.campaign.store import DISK_ERRNOS, MANIFEST_FILE, STORE_FILE, ResultStore, disk_fault
 from opsrock.campaign.timeout import DEFAULT_CASE_TIMEOUT, time_limit
-from opsrock.errors import AllCasesLostError, CampaignConflictError, CaseTimeout, InputTypeError
+from opsrock.errors import AllCasesLostError, CampaignConflictError, CaseTimeout, InputTypeError, UsageError
 from opsrock.limits import check
 from opsrock.result import RockingResult
 from opsrock.solvers import get_solver, simulate, warm_up
@@ -470,6 +470,7 @@ class Stage:
         """
         t_start = time.perf_counter()
         leave_if_reimported()  # a worker re-running an unguarded script: before the folder is touched
+        _within_limit(scene)
         if self.how.executor is None:
             pool_allowed(self.how.workers)  # several workers inside a worker: refused before anything is written
         how, out = self.how, Path(out_dir)
@@ -494,6 +495,16 @@ class Stage:
         summary = run.summary(table, time.perf_counter() - t_start)
         _some_computed(summary, table)
         return summary, cases
+
+
+def _within_limit(scene: Scene) -> None:
+    """Refuse, before anything is computed or written, a campaign of more than :data:`MAX_CASES` cases: a scene
+    file's parser refuses it already; a campaign built in code (a contents study of a 200-storey building on every
+    floor: 3.8 million cases) went on computing floor motions, with days of work ahead."""
+    if scene.n_cases > MAX_CASES:
+        raise UsageError(f"campaign {scene.name}: {len(scene.blocks)} blocks x {scene.design.n_per_block} cases per "
+                         f"block = {scene.n_cases} cases, more than the {MAX_CASES} a campaign takes (MAX_CASES): "
+                         "ask for fewer blocks, records, levels or floors")
 
 
 def _some_computed(summary: CampaignSummary, table: list) -> None:

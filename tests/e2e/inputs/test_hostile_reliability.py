@@ -222,3 +222,15 @@ def test_a_script_read_from_standard_input_refuses_several_workers_at_once(base,
                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert one.returncode == 0 and "returned" in one.stdout, one.stderr
     assert len((tmp_path / "out" / "cases.csv").read_text().splitlines()) == 1 + 4
+
+
+def test_a_hopeless_study_is_refused_up_front_with_its_number_of_cases(tmp_path):
+    """Issue 46: ``contents`` on every floor of a 200-storey building (3.8 million cases) computed floor motions
+    for minutes, days of work ahead; a campaign of more than MAX_CASES is now refused before any work, as a
+    scene file of that size is, and nothing is written."""
+    floors = ",".join(["ground", *map(str, range(1, 201))])
+    proc = run_opsrock(["contents", "--storeys", "200", "--period", "4", "--floors", floors, "--out", "out",
+                        "--no-sweep", "--no-progress"], tmp_path, timeout=300)
+    assert proc.returncode == 2, proc.stderr
+    assert proc.stderr.count("\n") == 1 and "MAX_CASES" in proc.stderr and "cases" in proc.stderr
+    assert not (tmp_path / "out").exists()

@@ -22,6 +22,7 @@ import numpy as np
 if TYPE_CHECKING:
     import pandas as pd
 
+from opsrock.campaign.cases import as_bool
 from opsrock.errors import InputError
 
 #: Columns that identify one IDA curve.
@@ -33,7 +34,7 @@ OUTCOMES: tuple[str, ...] = ("as_simulated", "first_exceedance")
 def _ok(cases: pd.DataFrame) -> pd.DataFrame:
     """The finished cases (failed ones are never a verdict), sorted along each curve."""
     ok = cases[cases["status"] == "ok"].copy()
-    ok["overturned"] = ok["overturned"].astype(str).str.lower().isin(("true", "1"))
+    ok["overturned"] = as_bool(ok["overturned"], "overturned")  # the case reader's parser: anything else refused
     return ok.sort_values([*CURVE_KEYS, "level"], kind="stable")
 
 

@@ -45,9 +45,13 @@ from opsrock.plots import save_figure as _save  # noqa: E402
 def _verdicts(cases: pd.DataFrame) -> pd.Series:
     if "verdict" in cases.columns:
         return cases["verdict"].astype(str)
+    from opsrock.campaign.cases import as_bool
+
     status = cases["status"].astype(str)
-    rocked = cases["rocked"].astype(str).str.lower().isin(("true", "1"))
-    over = cases["overturned"].astype(str).str.lower().isin(("true", "1"))
+    done = (status == "ok").to_numpy()  # a failed case is "failed" whatever its columns hold
+    rocked, over = np.zeros(len(cases), dtype=bool), np.zeros(len(cases), dtype=bool)
+    rocked[done] = as_bool(cases.loc[done, "rocked"], "rocked")  # the case reader's parser
+    over[done] = as_bool(cases.loc[done, "overturned"], "overturned")
     return pd.Series(np.where(status != "ok", "failed", np.where(~rocked, "no_uplift",
                               np.where(over, "overturned", "safe"))), index=cases.index)
 

@@ -146,8 +146,8 @@ class ImpactLog:
 
 @dataclass(frozen=True)
 class PlanSummary:
-    """What a block did in three dimensions (solver ``rigid3d``), beyond the tilt that
-    :attr:`RockingResult.theta` holds.
+    """What a block did in three dimensions (solvers ``rigid3d``, a box, and ``cylinder3d``, a cylinder), beyond the
+    tilt that :attr:`RockingResult.theta` holds.
 
     Parameters
     ----------
@@ -163,8 +163,10 @@ class PlanSummary:
         Horizontal displacement ``(x, y)`` of the base's centre relative to the floor at the end of the run
         (m, block frame at rest).
     overturned_over : str
-        ``"edge"`` or ``"corner"``: what the block last stood on when it overturned (one base edge on the floor,
-        or a single corner); ``""`` if it did not overturn.
+        The mechanism of overturning, ``""`` if it did not overturn. A box: ``"edge"`` or ``"corner"``, what it last
+        stood on when it overturned (one base edge on the floor, or a single corner). A cylinder: ``"rim"`` (rocking
+        over a rim point that stayed put in the body) or ``"rolling"`` (its contact point running round the rim:
+        wobbling).
     overturn_direction : float
         Direction in plan (deg, block frame, from ``x`` towards ``y``) in which the centre of mass left the
         support polygon when the block overturned; ``nan`` if it did not.
@@ -178,6 +180,10 @@ class PlanSummary:
         Time during which no corner touched the floor (s).
     energy : Mapping
         Energy balance in J (for the block's mass), as :attr:`ContactSummary.energy`.
+    time_rim : float
+        A cylinder: time during which it stood on one rim point (s); 0 for a box.
+    time_rolling : float
+        A cylinder: the part of ``time_rim`` during which its contact point ran round the rim (rolling, wobbling; s).
     """
 
     tilt_max: float
@@ -191,6 +197,8 @@ class PlanSummary:
     time_sliding: float = 0.0
     time_flight: float = 0.0
     energy: Mapping[str, float] = field(default_factory=dict)
+    time_rim: float = 0.0
+    time_rolling: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -31,14 +31,16 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 # --- numba's cache warmed before the tests start ----------------------------------------------------------
 #: Compiles the package's numba kernels (each solver's, by one small solve) before the first test, in two
-#: processes side by side: ``rigid3d``'s alone (the longest compile) and the three planar ones in the other. In a
+#: processes side by side: ``rigid3d``'s alone (the longest compile) and the three planar ones and ``cylinder3d``'s in
+#: the other. In a
 #: fresh clone numba's cache is empty; without this, the first test to call a kernel compiles it, and under
 #: ``pytest -n 2`` (``make test``) both workers can meet the same cold kernel and compile it twice. Warming first
 #: compiles each kernel once, on both cores, and every later process loads it from the cache (a second or so when
 #: the cache is warm). ``OPSROCK_TEST_WARMUP=0`` turns it off. It runs in the controlling process only, never in a
 #: pytest-xdist worker.
 WARMUP_PLAN = "from opsrock.solvers import warm_up; warm_up('rigid3d')"
-WARMUP_PLANAR = "from opsrock.solvers import warm_up\nfor s in ('moreau_jean', 'friction', 'housner_fast'): warm_up(s)"
+WARMUP_PLANAR = ("from opsrock.solvers import warm_up\n"
+                 "for s in ('moreau_jean', 'friction', 'housner_fast', 'cylinder3d'): warm_up(s)")
 
 
 def pytest_sessionstart(session):

@@ -17,7 +17,7 @@ from opsrock.errors import InputError, ModelNotSupported
 from opsrock.limits import one_of
 
 #: The models a solver may solve (:attr:`SolverInfo.model`).
-MODELS: tuple[str, ...] = ("rigid", "sdof", "friction", "rigid3d")
+MODELS: tuple[str, ...] = ("rigid", "sdof", "friction", "rigid3d", "cylinder3d")
 
 #: Groups of result columns a solver may write beyond every solver's (:attr:`SolverInfo.result_columns`):
 #: ``contact`` (the base's friction and what it did, :data:`opsrock.campaign.cases.CONTACT_COLUMNS`) and
@@ -49,7 +49,8 @@ class SolverInfo:
         ``"sdof"`` (the paper's equivalent SDOF model, Eq. 5-8) or ``"friction"`` (the rigid block with
         Coulomb friction under horizontal and vertical floor motion, docs/guide/friction.md) or ``"rigid3d"`` (the
         rigid box on four base corners with isotropic Coulomb friction under two horizontal components and
-        a vertical one, docs/guide/three-dimensions.md).
+        a vertical one, docs/guide/three-dimensions.md) or ``"cylinder3d"`` (the rigid cylinder on its circular base,
+        the same floor and friction, :mod:`opsrock.solvers.cylinder3d`).
     friction : bool
         Models a base that slips (``Block.friction``); False: a block with friction is refused.
     vertical : bool
@@ -159,6 +160,9 @@ METHODS: dict[str, SolverInfo] = {
     "rigid3d": _entry("rigid3d", "Rigid3DSettings", "rigid3d", friction=True, vertical=True, restitution=False,
                       mass_distribution=True, excitations="pulses_records", plan=True, compiled=True,
                       end_time_under_motion=False, result_columns=("contact", "plan"), block_needs=("depth",)),
+    "cylinder3d": _entry("cylinder3d", "Cylinder3DSettings", "cylinder3d", friction=True, vertical=True,
+                         restitution=False, mass_distribution=True, excitations="pulses_records", plan=True,
+                         compiled=True, end_time_under_motion=False, result_columns=("contact", "plan")),
 }
 
 #: Solver names accepted by :func:`opsrock.solvers.simulate` and the command line.

@@ -63,7 +63,7 @@ def test_every_compiled_solver_declares_its_compile_time():
     from opsrock.solvers import SOLVERS
     from opsrock.solvers._compile import COMPILE_CPU_S
 
-    compiled = {"friction", "housner_fast", "moreau_jean", "rigid3d"}
+    compiled = {"friction", "housner_fast", "moreau_jean", "rigid3d", "cylinder3d"}
     assert compiled <= set(SOLVERS)
     assert set(COMPILE_CPU_S) == compiled and all(v > 0.0 for v in COMPILE_CPU_S.values())
 

@@ -30,6 +30,10 @@ BLOCK = Block(0.3, 1.2, restitution_factor=1.0)
 #: The same block with a depth, for the solvers that model motion in plan (``rigid3d`` needs the depth). Twice the
 #: width: the width stays the weaker axis, so alpha, p and the free rocking along it are BLOCK's.
 BLOCK_3D = Block(0.3, 1.2, restitution_factor=1.0, depth=0.6)
+#: A cylinder of diameter 0.3 m and height 1.2 m whose inertia about a horizontal axis is BLOCK's
+#: (``radius_of_gyration``), for ``cylinder3d``: rocking in a vertical plane through its axis, its alpha, p and e_H are
+#: BLOCK's (the rigid-body equation of the plane has only R, alpha and I_O).
+CYLINDER = Block(0.3, 1.2, restitution_factor=1.0, cm_height=0.6, radius_of_gyration=BLOCK.r_gyration)
 #: Free rocking: released at half its slenderness, followed for 1.6 s (two impacts: the first at ~0.33 s).
 THETA0 = 0.5 * BLOCK.alpha
 SPAN = 1.6
@@ -43,7 +47,7 @@ RESULT_FIELDS = {"solver": str, "settings": dict, "alpha": float, "time": np.nda
 def _solve(name: str, excitation, **settings) -> RockingResult:
     """The solver's own entry, ``solve(block, excitation, settings)``, with its settings object."""
     solver = get_solver(name)
-    block = BLOCK_3D if METHODS[name].plan else BLOCK
+    block = CYLINDER if name == "cylinder3d" else (BLOCK_3D if METHODS[name].plan else BLOCK)
     return solver.solve(block, excitation, make_settings(settings_class(name), None, settings))
 
 
@@ -84,9 +88,9 @@ def name(request) -> str:
 
 
 def test_registry_declares_each_solver_and_names_one_thing():
-    assert set(SOLVERS) == set(METHODS) and len(SOLVERS) == 7
-    assert solver_names(friction=True) == ("friction", "moreau_jean", "rigid3d")
-    assert solver_names(plan=True) == ("rigid3d",)
+    assert set(SOLVERS) == set(METHODS) and len(SOLVERS) == 8
+    assert solver_names(friction=True) == ("friction", "moreau_jean", "rigid3d", "cylinder3d")
+    assert solver_names(plan=True) == ("rigid3d", "cylinder3d")
     assert solver_names(model="rigid") == ("housner", "housner_fast")
     assert solver_names(needs_opensees=True) == ("opensees",)
     with pytest.raises(InputError, match="capability 'slips'"):
@@ -191,11 +195,12 @@ def test_free_rocking_from_a_start_state_meets_the_closed_form(name):
     SDOF models replace the impact by the damper band tuned to keep e² of the energy over a free passage,
     with the tabulated spring (sdof 1.4e-5; OpenSees adds its adaptive Newmark steps, 1.4e-4): 1e-3.
     rigid3d is the same Moreau-Jean scheme on the box (BLOCK_3D, rocking along its width: both corners of an
-    edge land in one step, e_n = 0 at each): the same error, 1e-3. Every solver but friction stops at
+    edge land in one step, e_n = 0 at each): the same error, 1e-3; so is cylinder3d on CYLINDER (the landing rim point
+    takes the impulse, e_n = 0), 1e-3. Every solver but friction stops at
     ``end_time``, after 3 impacts; friction follows the block to rest.
     """
     tolerance = {"housner": 1e-8, "housner_fast": 1e-4, "friction": 1e-4, "moreau_jean": 1e-3,
-                 "sdof": 1e-3, "opensees": 1e-3, "rigid3d": 1e-3}[name]
+                 "sdof": 1e-3, "opensees": 1e-3, "rigid3d": 1e-3, "cylinder3d": 1e-3}[name]
     r = _free(name)
     assert r.ok and r.failure is None, r.reason
     assert r.theta_max == pytest.approx(THETA0, rel=1e-12)  # released from rest: the first peak is theta0
@@ -213,9 +218,11 @@ def test_opensees_is_loaded_only_when_first_used():
             "from opsrock import Block, OneSinePulse\n"
             "from opsrock.solvers import SOLVERS, settings_class, simulate, solver_names\n"
             "b = Block(0.3, 1.2, restitution_factor=1.0, depth=0.6)  # rigid3d needs the depth; the rest ignore it\n"
+            "c = Block(0.3, 1.2, restitution_factor=1.0)  # cylinder3d: a round base (depth None)\n"
             "[settings_class(n)() for n in SOLVERS]\n"
             "for n in solver_names(needs_opensees=False):\n"
-            "    assert simulate(b, OneSinePulse.from_ratios(b, 1.35, 3.0), solver=n).ok, n\n"
+            "    k = c if n == 'cylinder3d' else b\n"
+            "    assert simulate(k, OneSinePulse.from_ratios(k, 1.35, 3.0), solver=n).ok, n\n"
             "assert not any(m.startswith('openseespy') or m == 'opsrock.opensees_session' for m in sys.modules)\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-2000:]

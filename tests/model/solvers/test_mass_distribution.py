@@ -34,7 +34,8 @@ def test_registry_declares_every_solver():
     # kernels that wrote a homogeneous block's inertia (friction, moreau_jean, the OpenSees lumped build) take
     # kappa = R² / r² (opsrock.solvers.common.inertia_ratio)
     # rigid3d builds its box's inertia from them (opsrock.solvers.rigid3d.box_properties)
-    assert set(HONOURING) == {"opensees", "sdof", "housner", "housner_fast", "friction", "moreau_jean", "rigid3d"}
+    assert set(HONOURING) == {"opensees", "sdof", "housner", "housner_fast", "friction", "moreau_jean", "rigid3d",
+                              "cylinder3d"}
     assert solver_names(mass_distribution=False) == ()
 
 
@@ -57,7 +58,8 @@ def test_uplift_threshold_is_g_b_over_h_cm(solver):
     enough; decided at 0.99 and 1.01 of it (opsrock.validation.closed_forms.UPLIFT_MARGIN: the SDOF models uplift
     1e-6 below the threshold, the others at it; measured theta_max = 0 exactly at 0.99 in every solver)."""
     # the solver in plan needs a depth: twice the width, so the width stays the weaker axis the pulse acts along
-    block = _loaded(depth=1.0) if registry.info(solver).plan else _loaded()
+    # (cylinder3d reads the width as the diameter of a round base: no depth, the same g r / h_cm)
+    block = _loaded(depth=1.0) if "depth" in registry.info(solver).block_needs else _loaded()
     assert block.uplift_acceleration == pytest.approx(9.81 * 0.25 / 0.7, rel=1e-15)
     below = simulate(block, OneSinePulse.from_ratios(block, pfa_ratio=0.99, freq_ratio=0.5), solver=solver)
     above = simulate(block, OneSinePulse.from_ratios(block, pfa_ratio=1.01, freq_ratio=0.5), solver=solver)

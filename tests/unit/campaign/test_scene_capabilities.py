@@ -22,8 +22,8 @@ from opsrock.restitution import RestitutionDistribution
 from opsrock.solvers import SOLVERS
 
 NO_SLIP = {"opensees", "sdof", "housner", "housner_fast"}  # no friction, no vertical motion
-HOUSNER_ONLY = {"moreau_jean", "rigid3d"}  # e = e_H and no other
-END_TIME_FREE_ONLY = {"housner_fast", "friction", "moreau_jean", "rigid3d"}  # end_time only without a floor motion
+HOUSNER_ONLY = {"moreau_jean", "rigid3d", "cylinder3d"}  # e = e_H and no other
+END_TIME_FREE_ONLY = {"housner_fast", "friction", "moreau_jean", "rigid3d", "cylinder3d"}  # end_time only without a floor motion
 
 RESTITUTIONS = ("default", "housner", "e", "distribution")
 

@@ -34,9 +34,10 @@ import dataclasses
 import math
 import pickle
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Iterator
 
 import numpy as np
 import pandas as pd
@@ -345,6 +346,38 @@ def seed_motions(gs: GroupScene, folder: Path, demands: pd.DataFrame) -> bool:
     return True
 
 
+@contextmanager
+def study_pool(scenes: list, workers: int | None, case_timeout: float | None = None) -> Iterator[tuple[Any, float]]:
+    """One pool of worker processes for all of a study's campaigns: ``(pool, budget)``.
+
+    Every solver the ``scenes`` (:class:`~opsrock.campaign.scene.Scene`) use is compiled here once (announced
+    when the cache is cold) and loaded by each worker before it takes a case, so that no case's budget pays for a
+    compile; ``budget`` is the case budget (s) of ``case_timeout`` (:func:`opsrock.campaign.run.case_budget`; None:
+    the scenes' default), the pool's hard limit per case too. The campaign stage of every configuration of the
+    study runs its campaigns on it (:func:`run_groups`, :func:`opsrock.inventory.fema.campaigns.run_campaigns`,
+    :func:`opsrock.inventory.directionality.study.run_campaigns`).
+
+    Parameters
+    ----------
+    scenes : list of Scene
+        The campaigns' scenes.
+    workers : int or None
+        Processes (None: every core).
+    case_timeout : float or None
+        Wall-clock budget of one case (s).
+    """
+    from opsrock.campaign.executors import LocalPool
+    from opsrock.campaign.run import case_budget
+    from opsrock.solvers import warm_up
+
+    solvers = tuple(sorted({scene.solver for scene in scenes}))
+    for solver in solvers:
+        warm_up(solver)
+    budget = case_budget(scenes[0], case_timeout) if scenes else None
+    with LocalPool(workers, warm=solvers, item_timeout=budget) as pool:
+        yield pool, budget
+
+
 def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, workers: int | None,
                progress: bool, force: bool, case_timeout: float | None = None) -> tuple[pd.DataFrame, dict[str, Any]]:
     """Run (or resume) every group's campaign into ``store/<group>``, on one pool of worker processes.
@@ -363,18 +396,10 @@ def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, 
         Wall time of the campaigns (s), their cases and those computed now.
     """
     from opsrock.campaign import run_campaign
-    from opsrock.campaign.executors import LocalPool
-    from opsrock.solvers import warm_up
-
-    from opsrock.campaign.run import case_budget
     from opsrock.campaign.store import STORE_FILE, ResultStore
 
     frames, t0, computed, retried = [], time.perf_counter(), 0, 0
-    solvers = tuple(sorted({gs.scene.solver for gs in scenes}))
-    for solver in solvers:  # compiled here once (announced when the cache is cold), loaded by each worker
-        warm_up(solver)
-    budget = case_budget(scenes[0].scene, case_timeout) if scenes else None
-    with LocalPool(workers, warm=solvers, item_timeout=budget) as pool:
+    with study_pool([gs.scene for gs in scenes], workers, case_timeout) as (pool, budget):
         for gs in scenes:
             folder = store / gs.group.name
             if not force and (folder / STORE_FILE).is_file():
@@ -406,4 +431,4 @@ def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
 
 __all__ = ["BATCH", "CASE_COLUMNS", "OPTIONAL_CASE_COLUMNS", "DEMANDS_FILE", "SUPPORT_NAME", "Group", "GroupScene", "block_name",
            "cached_demands", "floor_demands", "group_scenes", "groups_of", "item_block_spec", "motions_digest",
-           "run_groups", "seed_motions"]
+           "run_groups", "seed_motions", "study_pool"]

@@ -44,14 +44,12 @@ from opsrock.inventory.directionality import summary
 from opsrock.inventory.directionality.cases import study_campaigns, study_motions
 from opsrock.inventory.directionality.report import write_figures, write_report
 from opsrock.campaign.cases import read_cases
-from opsrock.campaign.executors import LocalPool
-from opsrock.campaign.run import Execution, Stage, case_budget
+from opsrock.campaign.run import Execution, Stage
 from opsrock.errors import InputError
 from opsrock.inventory.items import shipped_inventory
 from opsrock.inventory.outputs import InventoryStudy, Written
 from opsrock.inventory.stages import Ran, Route
 from opsrock.limits import int_at_least
-from opsrock.solvers import warm_up
 from opsrock.solvers.registry import METHODS, plan_solver
 
 #: The record pairs of the full study, by their first component's name (FEMA P695 far-field): twelve of the 22, of
@@ -293,17 +291,16 @@ def _campaigns(a: Any) -> Ran:
 def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress: bool,
                   force: bool) -> tuple[pd.DataFrame, int]:
     """Every campaign (:class:`opsrock.inventory.directionality.cases.Campaign`) run or resumed by the campaign
-    engine into ``store/<name>`` on one pool of workers: their ``cases.csv`` joined, with ``campaign`` and
+    engine into ``store/<name>`` on the study's one pool of workers (:func:`opsrock.inventory.campaigns.study_pool`): their ``cases.csv`` joined, with ``campaign`` and
     ``solver_name`` (the campaign's solver), and the number of cases this call computed (the others were
     stored)."""
 
+    from opsrock.inventory.campaigns import study_pool
+
     frames, computed = [], 0
-    solvers = tuple(sorted({c.scene.solver for c in campaigns}))
-    for solver in solvers:  # compiled here once (announced when the cache is cold), loaded by each worker:
-        warm_up(solver)     # no case's budget pays for a compile
-    with LocalPool(workers, warm=solvers) as pool:
+    with study_pool([c.scene for c in campaigns], workers) as (pool, budget):
         for c in campaigns:
-            how = Execution(workers, pool, force, progress, None, case_budget(c.scene, None))
+            how = Execution(workers, pool, force, progress, None, budget)
             summary, _ = Stage(how)(c.scene, store / c.name, cases=c.cases)
             frames.append(read_cases(summary.cases_csv)
                           .assign(campaign=c.name, solver_name=c.scene.solver))

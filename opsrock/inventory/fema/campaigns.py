@@ -57,7 +57,8 @@ def seed_motions(src: Path, dst: Path, src_scene, dst_scene) -> bool:
 def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, progress: bool,
                   force: bool = False) -> tuple[pd.DataFrame, dict[str, Any]]:
     """Run (or resume) the study's campaigns (:func:`opsrock.inventory.fema.design.campaign_scenes`) into
-    ``store/<name>`` (``rocking``, ``friction``, ``sweep``).
+    ``store/<name>`` (``rocking``, ``friction``, ``sweep``), on one pool of workers
+    (:func:`opsrock.inventory.campaigns.study_pool`).
 
     Returns
     -------
@@ -74,21 +75,24 @@ def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, p
         Every case of a campaign failed (:func:`opsrock.fragility.cases.check_some_finished`).
     """
     from opsrock.campaign import run_campaign
+    from opsrock.inventory.campaigns import study_pool
 
     frames, timings = [], {}
-    for name, scene in scenes.items():
-        folder = store / name
-        if name == "friction" and "rocking" in scenes:
-            timings["friction_motions_seeded"] = seed_motions(store / "rocking", folder,
-                                                              scenes["rocking"], scene)
-        t0 = time.perf_counter()
-        summary = run_campaign(scene, folder, workers=workers, progress=progress, force=force, batch=BATCH)
-        if summary.n_failed == summary.n_cases:  # nothing to fit: one line (AllCasesFailedError), exit 2
-            check_some_finished(read_cases(summary.cases_csv, usecols=["status", "reason"]), str(folder))
-        timings[f"{name}_s"] = time.perf_counter() - t0
-        timings[f"{name}_cases"] = summary.n_cases
-        timings[f"{name}_computed"] = summary.n_computed
-        frames.append(_read_cases(summary.cases_csv, name, scene))
+    with study_pool(list(scenes.values()), workers) as (pool, budget):
+        for name, scene in scenes.items():
+            folder = store / name
+            if name == "friction" and "rocking" in scenes:
+                timings["friction_motions_seeded"] = seed_motions(store / "rocking", folder,
+                                                                  scenes["rocking"], scene)
+            t0 = time.perf_counter()
+            summary = run_campaign(scene, folder, executor=pool, progress=progress, force=force, batch=BATCH,
+                                   case_timeout=budget)
+            if summary.n_failed == summary.n_cases:  # nothing to fit: one line (AllCasesFailedError), exit 2
+                check_some_finished(read_cases(summary.cases_csv, usecols=["status", "reason"]), str(folder))
+            timings[f"{name}_s"] = time.perf_counter() - t0
+            timings[f"{name}_cases"] = summary.n_cases
+            timings[f"{name}_computed"] = summary.n_computed
+            frames.append(_read_cases(summary.cases_csv, name, scene))
     return pd.concat(frames, ignore_index=True), timings
 
 

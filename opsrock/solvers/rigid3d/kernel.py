@@ -53,7 +53,7 @@ from opsrock.solvers.rigid3d.constants import (PH_LAST_DOWN, PH_OUTSIDE, PH_OVER
                                                PH_SIZE, PH_SLIDE, PH_SLIP, PH_UNCONVERGED)
 from opsrock.solvers.rigid3d.geometry import (_arms, _cm_outside, _geometry, _tilt, _twist)
 from opsrock.solvers.rigid3d.step import (_book, _count_sweeps, _floor, _rest_holds, _rest_span, _step)
-from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _flat_slip, _slip_pivot, _smooth,
+from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _copy, _flat_slip, _slip_pivot, _smooth,
                                             _smooth_slip, _stuck_pivot)
 from opsrock.solvers.rigid3d.workspace import (Probe, make_corners, make_workspace)
 
@@ -328,7 +328,8 @@ def _finish(model, state, k, status, corners, hist, out):
     out[OUT_STATUS] = status
     out[OUT_STEPS] = k
     out[OUT_ROCKED] = 1.0 if out[OUT_THETA_MAX] > model.limits.rocked_theta else 0.0
-    out[OUT_STATE:OUT_STATE + 13] = state
+    for a in range(13):  # (element by element: a slice assignment compiles numba's shape-error message, seconds)
+        out[OUT_STATE + a] = state[a]
     out[OUT_TIME] = k * dt
     out[OUT_EVENT_TIME] = k * dt * body.p
     return status
@@ -391,7 +392,7 @@ def run(model, floor, state, hist, out):
             if not _mj_step(model, state, acc, ws, trial, corners, phase):
                 status = STATUS_CONTACT
                 break
-        state[:] = trial.state
+        _copy(state, trial.state)
         k += n
         if not _finite(state):
             status = STATUS_NONFINITE

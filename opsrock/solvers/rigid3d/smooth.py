@@ -47,6 +47,19 @@ def _stuck_pivot(act, touch, slip, P):
 
 
 @numba.njit(cache=True)
+def _copy(dst, src):
+    """``dst[:] = src`` (1-D, or 2-D row by row) element by element: numba compiles a slice assignment with its
+    shape-mismatch error message, string formatting included (seconds of a cold compile)."""
+    if dst.ndim == 1:
+        for i in range(dst.shape[0]):
+            dst[i] = src[i]
+    else:
+        for i in range(dst.shape[0]):
+            for j in range(dst.shape[1]):
+                dst[i, j] = src[i, j]
+
+
+@numba.njit(cache=True)
 def _span(floor, k, n_max):
     """The Moreau-Jean steps a smooth step from step ``k`` spans at first: to the next sample of the floor motion or
     the end of the excitation, at most ``n_max``; -1 if that is fewer than two (none is tried)."""
@@ -123,9 +136,9 @@ def _smooth(model, floor, state, k, work, corners, trial):
         out[OUT_SMOOTH_TRIED] += 1.0
         tilt = PV.integrate(model, floor, state, piv[:n_piv], k, n, new, wk)
         a[0], a[1], a[2] = _floor(floor, k + n, model.numerics.theta_mj)
-        Pp[:, :] = P
+        _copy(Pp, P)
         if 0.0 <= tilt < OVERTURNING_ANGLE and _same_phase(model, new, piv, n_piv, a, ws, probe):
-            P[:, :] = Pp
+            _copy(P, Pp)
             out[OUT_SMOOTH_STEPS] += 1.0
             out[OUT_SMOOTH_SPAN] += n
             return n, tilt
@@ -268,7 +281,7 @@ def _slip_integrate(model, floor, s, k0, n_steps, new, sw):
     dy, acc, ytmp, F = sw.dy, sw.acc, sw.ytmp, sw.F
     r, idx, st = sw.r, sw.idx, sw.st
     g, dt, theta_mj = model.body.g, model.numerics.dt, model.numerics.theta_mj
-    new[:] = s
+    _copy(new, s)
     PV.floor_at(floor, float(k0), k0, theta_mj, F, g)
     holds, _, t_stop = _slip_rhs(model, new, F, sw, dy)
     span = n_steps * dt
@@ -406,9 +419,9 @@ def _smooth_slip(model, floor, state, k, work, corners, trial):
         tilt, fw = _slip_integrate(model, floor, state, k, n, new, sw)
         if tilt >= 0.0:
             a[0], a[1], a[2] = _floor(floor, k + n, model.numerics.theta_mj)
-            Pp[:, :] = P
+            _copy(Pp, P)
             if _same_slip(model, new, idx, st, a, ws, probe, sw):
-                P[:, :] = Pp
+                _copy(P, Pp)
                 out[OUT_SLIP_STEPS] += 1.0
                 out[OUT_SLIP_SPAN] += n
                 out[OUT_FRICTION_WORK] += fw

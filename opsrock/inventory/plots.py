@@ -27,8 +27,6 @@ AXIS_LABELS: dict[str, str] = {"pfv": "PFV, peak floor velocity (m/s)", "pfa": "
 #: Line styles and markers, one pair per floor, in turn.
 STYLES: tuple[tuple[str, str], ...] = (("-", "o"), ("--", "s"), ("-.", "^"), (":", "D"), ((0, (5, 1, 1, 1)), "v"),
                                        ((0, (8, 3)), "P"))
-#: Markers per curve (staggered from floor to floor so that coinciding curves show every floor's markers).
-N_MARKERS: int = 8
 
 
 def _style(k: int) -> tuple:
@@ -57,13 +55,11 @@ def plot_item_fragility(curves: pd.DataFrame, item: str, path: str | Path, deman
     sel = curves[(curves["item"] == item) & (curves["demand"] == demand) & (curves["outcome"] == outcome)]
     fig, ax = plt.subplots(figsize=(6.0, 4.2), constrained_layout=True)
     groups = list(sel.groupby(["floor", "direction"], sort=False))
-    several_directions = sel["direction"].nunique() > 1
     for k, ((floor, direction), g) in enumerate(groups):
-        ls, marker = _style(k)
-        step = max(len(g) // N_MARKERS, 1)
-        label = f"floor {floor}" + (f", direction {direction}" if several_directions else "")
-        line, = ax.plot(g["x"], g["p"], ls=ls, marker=marker, ms=5, lw=1.6, markevery=(k * step // max(len(groups), 1), step),
-                        mfc="none", label=label)
+        ls, _ = _style(k)
+        # the direction always named (a legend that drops it when one direction has a curve reads as both);
+        # fitted curves, no markers (markers read as data points)
+        line, = ax.plot(g["x"], g["p"], ls=ls, lw=1.6, label=f"floor {floor}, direction {direction}")
         if g["p_lo"].notna().any():
             # arrays, not Series: numpy 1.24 (the floor pyproject.toml allows) cannot mask a Series whose index
             # does not start at 0
@@ -76,7 +72,8 @@ def plot_item_fragility(curves: pd.DataFrame, item: str, path: str | Path, deman
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel(AXIS_LABELS[demand])
     ax.set_ylabel(f"P({outcome} | {demand.upper()}) (-)")
-    ax.set_title(f"{item}: {outcome} fragility per floor (band: 95 % record bootstrap)", fontsize=10)
+    ax.set_title(f"{item}: fitted {outcome} fragility per floor and direction (band: 95 % record bootstrap)",
+                 fontsize=10)
     ax.tick_params(labelsize=MIN_FONT)
     ax.grid(True, which="both", alpha=0.3)
     if groups:

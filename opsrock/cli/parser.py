@@ -122,8 +122,16 @@ def _accept(p: argparse.ArgumentParser, what: str) -> None:
                         "than 10 m), which are otherwise refused as likely unit mistakes")
 
 
-def _block(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--width", required=True, type=limited("--width", "width"), help="full width 2b (m)")
+def _block(p: argparse.ArgumentParser, round_base: bool = False) -> None:
+    """The block options; ``round_base``: also ``--shape`` and ``--diameter`` (then ``--width`` is checked by the
+    command: a box needs it, a cylinder refuses it)."""
+    p.add_argument("--width", required=not round_base, type=limited("--width", "width"),
+                   help="full width 2b (m)" + (" of a box" if round_base else ""))
+    if round_base:
+        p.add_argument("--shape", default="box", help="box (default) or cylinder (a round base: --diameter, solver "
+                                                      "cylinder3d, docs/guide/cylinders.md)")
+        p.add_argument("--diameter", type=limited("--diameter", "width"),
+                       help="diameter (m) of a cylinder's base (--shape cylinder), in place of --width")
     p.add_argument("--height", required=True, type=limited("--height", "height"), help="full height 2h (m)")
     p.add_argument("--mass", type=limited("--mass", "mass"), default=1.0, help="mass (kg); scales moments only (default 1)")
     r = p.add_mutually_exclusive_group()
@@ -161,7 +169,7 @@ def _model(p: argparse.ArgumentParser, default_solver: str) -> None:
 def _simulate(sub) -> None:
     p = sub.add_parser("simulate", help="one block, one pulse or record",
                        description="Simulate one block under one pulse or one record.")
-    _block(p)
+    _block(p, round_base=True)
     p.add_argument("--cm-height", type=positive("--cm-height"),
                    help="height of the centre of mass above the base (m), at most --height (default: mid-height)")
     p.add_argument("--radius-of-gyration", type=positive("--radius-of-gyration"),

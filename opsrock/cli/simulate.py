@@ -82,7 +82,44 @@ def _check_plan_args(args: argparse.Namespace) -> None:
                          "horizontal component along the block's width)")
 
 
+#: The shapes of ``--shape``: a box (``--width``) or a cylinder (``--diameter``, solver ``cylinder3d``).
+SHAPES: tuple[str, ...] = ("box", "cylinder")
+
+#: The solver of a round base.
+ROUND_SOLVER = "cylinder3d"
+
+
+def _check_shape_args(args: argparse.Namespace) -> None:
+    """``--shape``: a box takes ``--width`` (and no ``--diameter``); a cylinder takes ``--diameter`` (and no
+    ``--width`` or ``--depth``) and solver ``cylinder3d``, its default. The cylinder is then the block of width
+    ``--diameter`` (:func:`opsrock.solvers.cylinder3d.cylinder_block`)."""
+    if args.shape not in SHAPES:
+        raise UsageError(f"--shape must be one of {', '.join(SHAPES)}; got {args.shape!r}")
+    if args.shape == "box":
+        if args.diameter is not None:
+            raise UsageError(f"--diameter {args.diameter:g} applies to --shape cylinder (a box has --width and --depth)")
+        if args.width is None:
+            raise UsageError("--width is required: the full width 2b (m) of a box (a round base: --shape cylinder "
+                             "--diameter D)")
+        if args.solver == ROUND_SOLVER:
+            raise UsageError(f"--solver {ROUND_SOLVER} solves a round base: give --shape cylinder --diameter D")
+        return
+    if args.diameter is None:
+        raise UsageError("--shape cylinder needs --diameter: the diameter (m) of its round base")
+    for option, value in (("--width", args.width), ("--depth", args.depth)):
+        if value is not None:
+            raise UsageError(f"{option} {value:g} applies to a box: a cylinder's base is --diameter "
+                             f"({args.diameter:g} m)")
+    if args.solver is None:
+        args.solver = ROUND_SOLVER
+    elif args.solver != ROUND_SOLVER:
+        raise UsageError(f"--shape cylinder is solved by --solver {ROUND_SOLVER} (the other solvers model a box); "
+                         f"got --solver {args.solver}")
+    args.width = args.diameter
+
+
 def _check_args(args: argparse.Namespace) -> None:
+    _check_shape_args(args)
     _check_plan_args(args)
     check_model_args(args)
     if args.plot is not None:
@@ -196,6 +233,10 @@ def _block(args: argparse.Namespace) -> Block:
     :attr:`~opsrock.solvers.registry.SolverInfo.default_restitution_factor`: ``e_R``)."""
     block = make_block(args)
     given = {name: getattr(args, name) for name in MASS_OPTIONS if getattr(args, name) is not None}
+    if args.shape == "cylinder":  # a homogeneous solid cylinder's mass distribution unless given
+        from opsrock.solvers.cylinder3d.model import cylinder_mass
+
+        given = {**cylinder_mass(args.diameter, args.height), **given}
     if args.depth is not None:
         given["depth"] = args.depth
     factor = METHODS[args.solver].default_restitution_factor
@@ -203,7 +244,8 @@ def _block(args: argparse.Namespace) -> Block:
         given["restitution_factor"] = factor
     if not given:
         return block
-    with named_options({**MASS_OPTIONS, "depth": "--depth"}):
+    with named_options({**MASS_OPTIONS, "depth": "--depth", "width": "--diameter" if args.shape == "cylinder"
+                        else "--width"}):
         return dataclasses.replace(block, **given)
 
 
@@ -238,7 +280,8 @@ ignore it) and ``--record2``.
 def _check_plausible(args: argparse.Namespace) -> None:
     """--width, --height and --pfa beyond the plausibility bounds, refused unless --accept-implausible (a
     record file is checked as read, :func:`_record`)."""
-    sizes = {"--width": args.width, "--height": args.height, **({"--depth": args.depth} if args.depth else {})}
+    sizes = {"--diameter" if args.shape == "cylinder" else "--width": args.width, "--height": args.height,
+             **({"--depth": args.depth} if args.depth else {})}
     check_plausible_sizes(sizes, option=ACCEPT_OPTION, confirm=args.accept_implausible)
     if args.pfa is not None:
         check_plausible("pfa", args.pfa * G, what="--pfa", option=ACCEPT_OPTION, confirm=args.accept_implausible,
@@ -280,18 +323,25 @@ def _plan_ratios(block: Block, motion) -> dict:
 
 
 def _plan_summary(result, block: Block, motion) -> dict:
-    """The three-dimensional outputs (solver ``rigid3d``): the block's depth and azimuth, the second record, and
-    :class:`~opsrock.result.PlanSummary`'s scalars (rad, m, s; ``slide_residual`` the vector ``[x, y]``)."""
-    if not isinstance(motion, PlanMotion) or block.depth is None:
+    """The three-dimensional outputs (solvers ``rigid3d`` and ``cylinder3d``): the box's depth (a cylinder's
+    ``shape`` and ``diameter``) and azimuth, the second record, and :class:`~opsrock.result.PlanSummary`'s scalars
+    (rad, m, s; ``slide_residual`` the vector ``[x, y]``)."""
+    round_base = result.solver == ROUND_SOLVER
+    if not round_base and (not isinstance(motion, PlanMotion) or block.depth is None):
         return {}  # a planar solver's run (its motion planar, unwrapped)
-    out = {"depth": block.depth, "alpha_depth": block.alpha_depth, "azimuth": motion.azimuth,
-           "record2": None if motion.second is None else getattr(motion.second, "name", None)}
+    plan_motion = motion if isinstance(motion, PlanMotion) else PlanMotion(motion)
+    out = ({"shape": "cylinder", "diameter": block.width} if round_base else
+           {"depth": block.depth, "alpha_depth": block.alpha_depth})
+    out.update(azimuth=plan_motion.azimuth,
+               record2=None if plan_motion.second is None else getattr(plan_motion.second, "name", None))
     plan = result.plan
     if plan is not None:
         out.update(tilt_max=plan.tilt_max, twist_max=plan.twist_max, slide_max=plan.slide_max,
                    slide_residual=list(plan.slide_residual), overturned_over=plan.overturned_over,
-                   overturn_direction=plan.overturn_direction, time_edge=plan.time_edge,
-                   time_corner=plan.time_corner, time_sliding=plan.time_sliding, time_flight=plan.time_flight)
+                   overturn_direction=plan.overturn_direction, time_sliding=plan.time_sliding,
+                   time_flight=plan.time_flight)
+        out.update(time_rim=plan.time_rim, time_rolling=plan.time_rolling) if round_base else \
+            out.update(time_edge=plan.time_edge, time_corner=plan.time_corner)
     return out
 
 
@@ -327,7 +377,8 @@ def _text(result, block, motion, out) -> str:
     mass = "" if block.homogeneous else (f", centre of mass {block.h_cm:g} m up, radius of gyration "
                                          f"{block.r_gyration:.4g} m")
     in_plan = "alpha_width" in out  # a box in three dimensions: alpha and pfa_ratio as _plan_ratios defines them
-    head = (f"block 2b x 2h = {block.width:g} x {block.height:g} m{mass}: alpha{' across the width' * in_plan} = "
+    what = "cylinder D x H" if out.get("shape") == "cylinder" else "block 2b x 2h"
+    head = (f"{what} = {block.width:g} x {block.height:g} m{mass}: alpha{' across the width' * in_plan} = "
             f"{block.alpha:.4f} rad, R = {block.R:.4f} m, p = {block.p:.4f} rad/s, e = {block.e:.4f}\n")
     ratio = (f"{out['pfa_ratio']:.3g} x the PFA that uplifts it in the motion's direction" if in_plan
              else f"{out['pfa_ratio']:.3g} g tan alpha")
@@ -351,17 +402,25 @@ def _plan_text(out: dict) -> str:
     if "azimuth" not in out:
         return ""
     second = "" if out["record2"] is None else f", second component {out['record2']}"
-    head = (f"\nin plan: depth 2d = {out['depth']:g} m (alpha across it {out['alpha_depth']:.4f} rad), azimuth "
-            f"{out['azimuth']:g} deg{second}")
+    base = (f"cylinder of diameter {out['diameter']:g} m" if "diameter" in out else
+            f"depth 2d = {out['depth']:g} m (alpha across it {out['alpha_depth']:.4f} rad)")
+    head = f"\nin plan: {base}, azimuth {out['azimuth']:g} deg{second}"
     if "tilt_max" not in out:
         return head
-    over = ("" if not out["overturned_over"] else f"; overturned over {'an' if out['overturned_over'] == 'edge' else 'a'} "
-            f"{out['overturned_over']} towards {out['overturn_direction']:.4g} deg")
+    over = ("" if not out["overturned_over"] else f"; overturned {_mechanism(out['overturned_over'])} towards "
+            f"{out['overturn_direction']:.4g} deg")
     x, y = out["slide_residual"]
+    where = (f"on one rim point {out['time_rim']:.3g} s (rolling {out['time_rolling']:.3g} s)" if "time_rim" in out
+             else f"on an edge {out['time_edge']:.3g} s, on a corner {out['time_corner']:.3g} s")
     return (head + f"\ntilt_max = {out['tilt_max']:.5g} rad, twist_max = {out['twist_max']:.5g} rad; slide peak "
-            f"{out['slide_max']:.4g} m, residual (x, y) = ({x:.4g}, {y:.4g}) m; on an edge {out['time_edge']:.3g} s, on "
-            f"a corner {out['time_corner']:.3g} s, sliding {out['time_sliding']:.3g} s, in flight "
-            f"{out['time_flight']:.3g} s{over}")
+            f"{out['slide_max']:.4g} m, residual (x, y) = ({x:.4g}, {y:.4g}) m; {where}, sliding "
+            f"{out['time_sliding']:.3g} s, in flight {out['time_flight']:.3g} s{over}")
+
+
+def _mechanism(over: str) -> str:
+    """The mechanism of overturning in words (:attr:`~opsrock.result.PlanSummary.overturned_over`)."""
+    return {"edge": "over an edge", "corner": "over a corner", "rim": "over a rim point",
+            "rolling": "rolling on its rim"}.get(over, f"over {over}")
 
 
 def _contact_text(result, out) -> str:

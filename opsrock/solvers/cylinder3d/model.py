@@ -56,6 +56,13 @@ class CylinderProperties:
     e_housner: float
 
 
+def cylinder_mass(diameter: float, height: float) -> dict[str, float]:
+    """A homogeneous solid cylinder's mass distribution as :class:`Block` fields (m): ``cm_height = height / 2``,
+    ``radius_of_gyration = sqrt(diameter² / 16 + height² / 12)`` (about a horizontal axis through the centre of
+    mass), so that the block's planar properties are the cylinder's in a vertical plane through its axis."""
+    return {"cm_height": 0.5 * height, "radius_of_gyration": math.sqrt(diameter**2 / 16.0 + height**2 / 12.0)}
+
+
 def cylinder_properties(block: Block) -> CylinderProperties:
     """The cylinder ``block`` stands for: its width is the diameter; depth, if given, must equal it.
 
@@ -241,4 +248,4 @@ def make_state(s0: np.ndarray) -> State:
 
 
 __all__ = ["ContactSolver", "CylinderProperties", "Design", "Floor", "Friction", "Limits", "Model", "Numerics",
-           "State", "Workspace", "cylinder_properties", "make_floor", "make_model", "make_state", "make_workspace"]
+           "State", "Workspace", "cylinder_mass", "cylinder_properties", "make_floor", "make_model", "make_state", "make_workspace"]

@@ -20,8 +20,8 @@ from opsrock.solvers.common import SolverRun, check_inputs, make_settings, setti
 from opsrock.solvers.registry import check_model
 from opsrock.solvers.cylinder3d import constants as C
 from opsrock.solvers.cylinder3d import kernel as kn
-from opsrock.solvers.cylinder3d.model import (CylinderProperties, cylinder_properties, make_floor, make_model,
-                                              make_state, make_workspace)
+from opsrock.solvers.cylinder3d.model import (CylinderProperties, cylinder_mass, cylinder_properties, make_floor,
+                                              make_model, make_state, make_workspace)
 from opsrock.solvers.cylinder3d.settings import Cylinder3DSettings
 from opsrock.solvers.status import REASONS, failure_of
 
@@ -297,9 +297,7 @@ def cylinder_block(diameter: float, height: float, **fields: Any) -> Block:
     H²/12)`` (m), so that its planar properties (``alpha``, ``R``, ``p``, ``I_O``, ``e_R``) are those of the cylinder
     rocking in a vertical plane through its axis; ``restitution_factor`` 1 (Housner's). Other ``fields`` go to
     :class:`Block`."""
-    fields.setdefault("cm_height", 0.5 * height)
-    fields.setdefault("radius_of_gyration", math.sqrt(diameter**2 / 16.0 + height**2 / 12.0))
-    fields.setdefault("restitution_factor", 1.0)
+    fields = {**cylinder_mass(diameter, height), "restitution_factor": 1.0, **fields}
     return Block(diameter, height, **fields)
 
 

@@ -11,6 +11,7 @@ follow (:func:`opsrock.inventory.pelicun.floor_numbers`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from opsrock.errors import InputError
 from opsrock.inventory.motions import FloorMotion, MotionSet
@@ -59,6 +60,31 @@ class _Filter:
         return [g if n == 0 else filtered[n] for n in self.numbers]
 
 
+#: Records of a quick study on the shipped building (six of the FEMA P695 far-field set).
+QUICK_RECORDS: tuple[str, ...] = ("NORTHR_MUL009", "NORTHR_LOS000", "DUZCE_BOL000", "HECTOR_HEC000",
+                                  "KOBE_NIS000", "LANDERS_YER270")
+
+
+def floor_numbers(building: Any, floors: tuple) -> tuple[int, ...]:
+    """``floors`` of ``building`` (a :class:`~opsrock.excitations.building.ShearBuilding`) as numbers: 0 the
+    ground, ``storeys`` the roof; each ``"ground"``, a floor 1..storeys or ``"roof"``, at least one, each floor
+    once, else :class:`InputError` naming ``floors``."""
+    from opsrock.errors import OpsrockError
+
+    if not floors:
+        raise InputError("floors must name at least one floor ('ground', a number or 'roof')", argument="floors")
+    numbers = []
+    for f in floors:
+        try:
+            numbers.append(0 if f == "ground" else building.floor_index(f))
+        except OpsrockError:
+            raise InputError(f"floors: {f!r} is not 'ground', 'roof' or a floor 1..{building.storeys}",
+                             argument="floors") from None
+    if len(set(numbers)) != len(floors):
+        raise InputError(f"floors name the same floor twice: {tuple(floors)!r}", argument="floors")
+    return tuple(numbers)
+
+
 def building_motions(source: BuildingSource, workers: int | None = None) -> MotionSet:
     """The floor motions (m/s²) of ``source``'s building under its record set, as a motion set.
 
@@ -70,14 +96,12 @@ def building_motions(source: BuildingSource, workers: int | None = None) -> Moti
         Processes for the building analyses (OpenSeesPy; about a second per record); None or 1: this one.
     """
     from opsrock._pool import TaskPool
-    from opsrock.inventory.fema.design import ContentsDesign
+    from opsrock.excitations.building import ShearBuilding
 
-    # the contents study's checks of the building and its floors, under the same argument names
-    design = ContentsDesign(period=source.period, storeys=source.storeys, damping=source.damping,
-                            floors=source.floors, record_set=source.record_set, names=source.names)
+    building = ShearBuilding("building", source.period, source.storeys, source.damping)  # checks each, by name
+    numbers = floor_numbers(building, source.floors)
     grounds = _grounds(source)
-    numbers = design.floor_numbers
-    state = _Filter(grounds, design.building, numbers)
+    state = _Filter(grounds, building, numbers)
     tasks = [(k,) for k in range(len(grounds))]
     with TaskPool(state, tasks, workers or 1) as pool:
         results = pool.results()
@@ -107,4 +131,4 @@ def _grounds(source: BuildingSource) -> tuple:
     return tuple(library.load(e.reference) for e in entries)
 
 
-__all__ = ["BuildingSource", "building_motions"]
+__all__ = ["QUICK_RECORDS", "BuildingSource", "building_motions", "floor_numbers"]

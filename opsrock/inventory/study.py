@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from opsrock.inventory.fema.design import DEFAULT_LEVELS
+from opsrock.inventory.campaigns import DEFAULT_LEVELS
 from opsrock.errors import InputError
 from opsrock.inventory.items import Inventory
 from opsrock.inventory.motions import MotionSet
@@ -191,10 +191,9 @@ def inventory_design(inventory: str | Path | None, motions: str | Path | None, s
     workers : int or None
         Processes of the building analyses.
     """
-    from opsrock.inventory.fema.design import QUICK_RECORDS
     from opsrock.inventory.items import read_inventory, shipped_inventory
     from opsrock.inventory.motions import read_motions
-    from opsrock.inventory.sources import building_motions
+    from opsrock.inventory.sources import QUICK_RECORDS, building_motions
 
     confirm = bool(settings.get("accept_implausible", False))
     inv = shipped_inventory("fema-p58-nine") if inventory is None else read_inventory(inventory, confirm=confirm)

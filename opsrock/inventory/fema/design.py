@@ -24,6 +24,8 @@ from typing import Any
 import numpy as np
 
 from opsrock.errors import InputError
+from opsrock.inventory.campaigns import DEFAULT_LEVELS  # noqa: F401  (the study's IDA levels, re-exported)
+from opsrock.inventory.sources import QUICK_RECORDS  # noqa: F401  (the quick study's records, re-exported)
 
 #: Name of the shipped blocks library of the nine items (its header states the friction default).
 LIBRARY: str = "fema-p58-contents"
@@ -52,16 +54,10 @@ def library_friction() -> tuple[float, float]:
 #: the stocky items (b/h above mu) slide instead of rocking.
 DEFAULT_FRICTION, DEFAULT_FRICTION_KINETIC = library_friction()
 
-#: IDA levels (PFA / (g tan alpha), per item): 16 from 1.1 to 9, where the pilot on the FEMA P695
-#: far-field set had 4 % of the no-slip cases overturned at 1.2 and 99 % at 7.4, on every floor.
-DEFAULT_LEVELS: tuple[float, ...] = tuple(float(x) for x in np.geomspace(1.1, 9.0, 16))
 
 #: Buildings of the optional period sweep (T_1 in s, storeys), the project's sliding-map set.
 SWEEP_BUILDINGS: tuple[tuple[float, int], ...] = ((0.2, 2), (0.5, 4), (1.0, 8), (2.0, 16))
 
-#: Records of a quick study (as the sliding map's quick design).
-QUICK_RECORDS: tuple[str, ...] = ("NORTHR_MUL009", "NORTHR_LOS000", "DUZCE_BOL000", "HECTOR_HEC000",
-                                  "KOBE_NIS000", "LANDERS_YER270")
 
 
 @dataclass(frozen=True)
@@ -169,7 +165,6 @@ class ContentsDesign:
 
     def __post_init__(self) -> None:
         # every error carries the field at fault (OpsrockError.argument: the command line names its option)
-        from opsrock.errors import OpsrockError
         from opsrock.excitations.building import ShearBuilding
 
         self.building  # noqa: B018  (checks period, storeys, damping)
@@ -178,16 +173,7 @@ class ContentsDesign:
             raise InputError(f"variants must be a non-empty subset of {', '.join(VARIANTS)}; got {self.variants!r}", argument="variants")
         if len(set(self.variants)) != len(self.variants):
             raise InputError(f"variants name a variant twice: {list(self.variants)!r}", argument="variants")
-        if not self.floors:
-            raise InputError("floors must name at least one floor ('ground', a number or 'roof')", argument="floors")
-        for f in self.floors:
-            if f != "ground":
-                try:
-                    self.building.floor_index(f)
-                except OpsrockError:
-                    raise InputError(f"floors: {f!r} is not 'ground', 'roof' or a floor 1..{self.storeys}", argument="floors") from None
-        if len(set(self.floor_numbers)) != len(self.floors):
-            raise InputError(f"floors name the same floor twice: {self.floors!r}", argument="floors")
+        self.floor_numbers  # noqa: B018  (checks floors: opsrock.inventory.sources.floor_numbers)
         if not self.levels or any(isinstance(x, bool) or not (isinstance(x, (int, float)) and math.isfinite(x)
                                                               and x > 0) for x in self.levels):
             raise InputError(f"levels must be positive numbers (PFA / g tan alpha), got {self.levels!r}")
@@ -206,8 +192,11 @@ class ContentsDesign:
 
     @property
     def floor_numbers(self) -> tuple[int, ...]:
-        """The floors as numbers: 0 the ground, ``storeys`` the roof."""
-        return tuple(0 if f == "ground" else self.building.floor_index(f) for f in self.floors)
+        """The floors as numbers: 0 the ground, ``storeys`` the roof (:func:`opsrock.inventory.sources.floor_numbers`,
+        the shipped building's motion source's check)."""
+        from opsrock.inventory.sources import floor_numbers
+
+        return floor_numbers(self.building, self.floors)
 
     @property
     def friction_pair(self) -> tuple[float, float]:

@@ -193,16 +193,19 @@ def three_d_components(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, 
             row["source"] = f"3-D ({ok['azimuth'].nunique() if 'azimuth' in ok else 1} azimuths pooled)"
             if y.any():
                 plans.append(plan_mle(x, y, n_boot=design.n_boot, seed=design.seed, groups=ok["record"].to_numpy()))
-                where.append((len(rows), len(y), int(y.sum())))
+                where.append((len(rows), len(y), int(y.sum()), float(x.max())))
             else:
                 row["message"] = f"never {'overturned' if ls == 'overturned' else 'displaced'} in {len(y)} cases"
             rows.append(row)
-    for (i, n, k), f in zip(where, fit_plans(plans, workers or 1)):
+    for (i, n, k, x_max), f in zip(where, fit_plans(plans, workers or 1)):
         good = bool(f.success and math.isfinite(f.mu))
         rows[i].update(median=f.mu if good else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
                        beta=f.beta if good else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi,
                        status="fitted" if good else fit_status(False, math.nan, math.nan, k, n),
                        message="" if good else f.message)
+        if good and f.mu > x_max:  # kept (as the planar fits keep theirs), and said
+            rows[i]["message"] = (f"extrapolated: the median {f.mu:.3g} m/s lies beyond the largest demand of the "
+                                  f"cases ({x_max:.3g} m/s), from {k} of {n} cases")
     return _numbered(pd.DataFrame(rows, columns=list(COMPONENT_COLUMNS)))
 
 

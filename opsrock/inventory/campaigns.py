@@ -173,12 +173,12 @@ def item_block_spec(item: Item, direction: str, name: str, seed: int = 0, solver
                          "Housner's impact only (e = e_R): leave its restitution blank", argument="inventory")
     block = item.planar_block(direction, *(() if factor is None else (factor,)))
     law = item.friction
-    extra: dict[str, Any] = {k: getattr(item, k) for k in ("cm_height", "radius_of_gyration")
-                             if getattr(item, k) is not None}  # only when given: a homogeneous entry as ever
+    extra: dict[str, Any] = {k: v for k, v in item.mass_distribution().items()
+                             if v is not None}  # only when given (or a cylinder's): a homogeneous entry as ever
     if law is not None and not law.fixed:
         extra["friction_distribution"] = FrictionDistribution(law, seed)
     reason = f"{item.description} (inventory item {item.id}, direction {direction})"
-    if entry is not None and entry.plan:
+    if entry is not None and entry.plan and "depth" in entry.block_needs:
         extra["depth"] = item.depth
         reason = f"{item.description} (inventory item {item.id}, in three dimensions)"
     return BlockSpec(name=name, width=block.width, height=block.height, reason=reason, mass=block.mass,

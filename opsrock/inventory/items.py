@@ -3,7 +3,8 @@
 (:func:`shipped_inventory`). ``docs/guide/inventory.md`` describes the file formats.
 
 Columns (SI): ``id, description, width, depth, height`` (m; ``width`` along motion direction 1, ``depth``
-along direction 2), optional ``mass`` (kg), ``cm_height`` (m), ``radius_of_gyration`` (m), ``friction``
+along direction 2), optional ``shape`` (``box``, the default, or ``cylinder``: a round base whose ``diameter``
+(m) stands in place of ``width`` and ``depth``, solved in three dimensions by ``cylinder3d``), ``mass`` (kg), ``cm_height`` (m), ``radius_of_gyration`` (m), ``friction``
 (a number, or a distribution: its name and parameters, drawn per case from the seed and the case id;
 :mod:`opsrock.inventory.friction`), ``friction_kinetic``, ``restitution``, ``fema_id``, ``floor`` (the floors
 it stands on, separated by ``;``; empty: every floor of the motions), ``quantity`` (per floor),
@@ -51,10 +52,13 @@ DIRECTIONS: tuple[str, ...] = ("1", "2")
 COLUMNS: tuple[str, ...] = ("id", "description", "width", "depth", "height", "mass", "cm_height",
                             "radius_of_gyration", "friction", "friction_kinetic", "restitution", "fema_id", "floor",
                             "quantity", "support_period", "support_damping", "repair_cost", "slide_distance",
-                            "slide_cost")
+                            "slide_cost", "shape", "diameter")
 
-#: The columns every inventory has.
-REQUIRED: tuple[str, ...] = ("id", "description", "width", "depth", "height")
+#: The columns every inventory has (a box's row needs ``width`` and ``depth`` too, a cylinder's ``diameter``).
+REQUIRED: tuple[str, ...] = ("id", "description", "height")
+
+#: The shapes of an item's base (``shape``): a box (``width`` x ``depth``) or a cylinder (``diameter``).
+SHAPES: tuple[str, ...] = ("box", "cylinder")
 
 #: Separator of several floors in one cell (``1;2;roof``).
 FLOOR_SEPARATOR: str = LIST_SEPARATOR
@@ -129,6 +133,10 @@ class Item:
         where friction is modelled; None: the study's ``slide_distance``.
     slide_cost : float or None
         Cost of one unit displaced but not overturned (the inventory's currency), >= 0; None: not priced (0).
+    shape : str
+        ``"box"`` (the default) or ``"cylinder"``: a round base of diameter ``width`` (``depth`` equal to it), whose
+        planar block has a homogeneous solid cylinder's ``cm_height`` and ``radius_of_gyration`` unless given, and
+        which the study in three dimensions solves with ``cylinder3d``.
     """
 
     id: str
@@ -149,8 +157,15 @@ class Item:
     repair_cost: float | None = None
     slide_distance: float | None = None
     slide_cost: float | None = None
+    shape: str = "box"
 
     def __post_init__(self) -> None:
+        if self.shape not in SHAPES:
+            raise InputError(f"shape of item {self.id!r} must be one of {', '.join(SHAPES)}, got {self.shape!r}",
+                             argument="shape")
+        if self.shape == "cylinder" and self.depth != self.width:
+            raise InputError(f"item {self.id!r} is a cylinder: its diameter stands for width and depth, got width = "
+                             f"{self.width!r}, depth = {self.depth!r}", argument="diameter")
         if not isinstance(self.id, str) or not NAME_PATTERN.match(self.id):
             raise InputError(f"id = {self.id!r} must use only letters, digits, '_', '.', '-'", argument="id")
         if not isinstance(self.description, str) or not self.description.strip():
@@ -230,7 +245,7 @@ class Item:
             return Block(width=base, height=self.height, mass=1.0 if self.mass is None else self.mass,
                          restitution_factor=DEFAULT_RESTITUTION_FACTOR if self.restitution is not None
                          else restitution_factor, name=self.id, restitution=self.restitution, friction=mu,
-                         friction_kinetic=mu_k, cm_height=self.cm_height, radius_of_gyration=self.radius_of_gyration)
+                         friction_kinetic=mu_k, **self.mass_distribution())
         except OpsrockError as exc:
             if exc.argument not in _PLANAR:  # the same in both directions: the column is the argument
                 raise InputError(str(exc), argument=exc.argument) from None
@@ -238,6 +253,17 @@ class Item:
             along = "width" if direction == "1" else "depth"
             raise InputError(f"{exc} (direction {direction}: {along} {base:g} m along the motion)",
                              argument=column) from None
+
+    def mass_distribution(self) -> dict[str, float | None]:
+        """``cm_height`` and ``radius_of_gyration`` (m) of the item's blocks: as given; a cylinder's blank ones a
+        homogeneous solid cylinder's (:func:`opsrock.solvers.cylinder3d.model.cylinder_mass`), so that its planar
+        block rocks as the cylinder in a vertical plane through its axis; a box's blank ones None (homogeneous)."""
+        given = {"cm_height": self.cm_height, "radius_of_gyration": self.radius_of_gyration}
+        if self.shape != "cylinder":
+            return given
+        from opsrock.solvers.cylinder3d.model import cylinder_mass
+
+        return {**cylinder_mass(self.width, self.height), **{k: v for k, v in given.items() if v is not None}}
 
     def floors_in(self, available: tuple[str, ...] | list[str]) -> tuple[str, ...]:
         """The floors of ``available`` (the motions' floors, in their order) this item stands on: all of them
@@ -357,7 +383,7 @@ _PARSERS: dict[str, tuple[str, Callable[[Any], Any]]] = {
     "fema_id": ("fema_id", text_cell), "quantity": ("quantity", quantity_cell),
     "floor": ("floors", floors_cell),
     "repair_cost": ("repair_cost", number_cell), "slide_distance": ("slide_distance", number_cell),
-    "slide_cost": ("slide_cost", number_cell),
+    "slide_cost": ("slide_cost", number_cell), "shape": ("shape", text_cell),
 }
 
 
@@ -366,6 +392,17 @@ def _item(path: Path, row: Row, confirm: bool) -> Item:
     for column in REQUIRED:
         if column not in row.cells:
             raise TableFileError(path, row.line, column, MISSING, "blank: every item needs it")
+    cylinder = row.cells.get("shape", ("box", 0))[0] == "cylinder"
+    for column in (("diameter",) if cylinder else ("width", "depth")):
+        if column not in row.cells:
+            raise TableFileError(path, row.line, column, MISSING,
+                                 "blank: a cylinder needs its diameter" if cylinder else
+                                 "blank: a box needs its width and depth (a round base: shape cylinder, diameter)")
+    for column in (("width", "depth") if cylinder else ("diameter",)):
+        if column in row.cells:
+            value, line = row.cells[column]
+            raise TableFileError(path, line, column, value, "a cylinder has a diameter in place of width and depth"
+                                 if cylinder else "diameter is a cylinder's (shape cylinder); a box has width and depth")
     kwargs: dict[str, Any] = {}
     for column, (value, line) in row.cells.items():
         if column in _PARSERS:
@@ -376,10 +413,12 @@ def _item(path: Path, row: Row, confirm: bool) -> Item:
                 kwargs[arg] = parse(value)
             except OpsrockError as exc:
                 raise TableFileError(path, line, column, value, str(exc)) from None
-    for column in ("width", "depth", "height"):
+    if cylinder:
+        kwargs["width"] = kwargs["depth"] = _argued("diameter", number_cell, row.cells["diameter"][0])
+    for column in ("diameter", "height") if cylinder else ("width", "depth", "height"):
         value, line = row.cells[column]
-        check_plausible("block_size", kwargs[column], what=f"{path} line {line}: {column}",
-                        option="--accept-implausible", confirm=confirm)
+        check_plausible("block_size", kwargs["width" if column == "diameter" else column],
+                        what=f"{path} line {line}: {column}", option="--accept-implausible", confirm=confirm)
     try:
         kwargs["friction"] = _friction(row)
         kwargs["support"] = _support(row)
@@ -465,6 +504,8 @@ def item_cells(item: Item) -> dict[str, Any]:
         "support_damping": None if item.support is None else item.support.damping,
         "repair_cost": item.repair_cost, "slide_distance": item.slide_distance, "slide_cost": item.slide_cost,
     }
+    if item.shape == "cylinder":
+        cells.update(width=None, depth=None, shape="cylinder", diameter=item.width)
     return {k: v for k, v in cells.items() if v is not None}
 
 

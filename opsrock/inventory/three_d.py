@@ -42,6 +42,9 @@ from opsrock.inventory.motions import paired_motions
 from opsrock.inventory.outputs import OUTPUTS
 from opsrock.inventory.stages import Route
 
+#: The solver of an item with a round base (``shape = cylinder``) in three dimensions.
+ROUND_SOLVER = "cylinder3d"
+
 #: Default azimuths of the items in plan (deg, from direction 1 to an item's width).
 DEFAULT_AZIMUTHS: tuple[float, ...] = (0.0, 45.0, 90.0)
 
@@ -102,7 +105,8 @@ def three_d_scenes(design: Any) -> list:
     groups: dict[Any, list] = {}
     for item in design.inventory.items:
         own = tuple(f for f in floors if f in item.floors) if item.floors else floors
-        groups.setdefault(Group(own, own == floors, "12", item.support, design.solver), []).append(item)
+        solver = ROUND_SOLVER if item.shape == "cylinder" else design.solver  # a round base: the cylinder's solver
+        groups.setdefault(Group(own, own == floors, "12", item.support, solver), []).append(item)
     out = []
     for g, items in groups.items():
         chosen = [p for p in pairs if p.floor in g.floors]
@@ -113,8 +117,8 @@ def three_d_scenes(design: Any) -> list:
                             source=design.motions.source, intensity=design.intensity,
                             seconds=tuple(p.second.motion.with_name(names[p] + ".d2") for p in chosen),
                             second="manifest", azimuth=design.azimuths)
-        blocks = tuple(item_block_spec(it, "1", f"{it.id}-3d", design.seed, design.solver) for it in items)
-        scene = Scene(name=f"inventory-{g.name}", path="", blocks=blocks, grid=None, solver=design.solver,
+        blocks = tuple(item_block_spec(it, "1", f"{it.id}-3d", design.seed, g.solver) for it in items)
+        scene = Scene(name=f"inventory-{g.name}", path="", blocks=blocks, grid=None, solver=g.solver,
                       records=records)
         out.append(GroupScene(g, scene, {b.name: it.id for b, it in zip(blocks, items)},
                               {names[p]: (p.record, p.floor) for p in chosen}))

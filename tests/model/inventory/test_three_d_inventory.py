@@ -98,3 +98,25 @@ def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_pat
     fits = pd.read_csv(first.tables["fits"], dtype={"direction": str, "floor": str})
     assert set(fits["direction"]) == {"1", "2"} and set(fits["item"]) == {"cab"}
     assert (fits["n_cases"] + fits["n_failed"] == 2).all()  # each case once per direction, not twice
+
+
+def test_a_round_item_is_a_cylinder_in_its_own_campaign(inputs, tmp_path):
+    """Issue 45: an inventory row with ``shape = cylinder`` and a ``diameter`` (an oxygen cylinder 0.23 x 1.5 m)
+    beside a box: the box's campaign in plan runs rigid3d, the cylinder's cylinder3d, its block the diameter wide
+    without a depth, a homogeneous solid cylinder's mass distribution (cm at mid-height, radius of gyration
+    sqrt(d²/16 + H²/12)), Housner's impact; and a tiny study runs both."""
+    inv, motions = inputs
+    (tmp_path / "mixed.csv").write_text("id,description,width,depth,height,shape,diameter\n"
+                                        "cab,a cabinet,0.4,0.6,1.2,,\n"
+                                        "o2,an oxygen cylinder,,,1.5,cylinder,0.23\n")
+    design = InventoryDesign(read_inventory(tmp_path / "mixed.csv"), read_motions(motions), solver="rigid3d",
+                             azimuths=(0.0, 45.0), levels=(4.0,), n_boot=0)
+    scenes = {gs.group.name: gs.scene for gs in three_d_scenes(design)}
+    assert set(scenes) == {"d12-rigid3d", "d12-cylinder3d"}
+    block = scenes["d12-cylinder3d"].blocks[0].block
+    assert (block.width, block.depth, block.height, block.restitution_factor) == (0.23, None, 1.5, 1.0)
+    assert block.h_cm == 0.75 and block.r_gyration == pytest.approx(math.sqrt(0.23**2 / 16 + 1.5**2 / 12))
+    out = run_inventory_study(design, tmp_path / "out", workers=1, progress=False)
+    assert out.n_cases == 4 and out.n_computed == 4
+    with open(out.tables["fits3d"], newline="") as fh:
+        assert {r["item"] for r in csv.DictReader(fh)} == {"cab", "o2"}

@@ -8,6 +8,7 @@ another status (an environment fault, an answered edge input) or files (valid in
 
 from __future__ import annotations
 
+import os
 import subprocess
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
@@ -60,10 +61,21 @@ def check_case(case: Case, work: Path, *, timeout: float = 90, env: Mapping[str,
     return f"{case.name}: {'; '.join(problems)} | {proc.stderr.strip()[:300]}" if problems else None
 
 
+#: Environment variable: a file to which :func:`sweep` appends one line per case checked (command, kept or
+#: broken, name), for the hostile-input counts by command that a closing note reports.
+LOG_ENV = "OPSROCK_HOSTILE_LOG"
+
+
 def sweep(cases: Iterable[Case], work: Path, *, workers: int = 4, timeout: float = 90) -> list[str]:
     """Check every case (in parallel threads, each its own subprocess); the broken promises, one line each."""
+    cases = list(cases)
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        return [r for r in pool.map(lambda c: check_case(c, work, timeout=timeout), cases) if r]
+        results = list(pool.map(lambda c: check_case(c, work, timeout=timeout), cases))
+    if os.environ.get(LOG_ENV):
+        with open(os.environ[LOG_ENV], "a", encoding="utf-8") as log:
+            log.writelines(f"{c.args[0] if c.args else '-'}\t{'broken' if r else 'kept'}\t{c.name}\n"
+                           for c, r in zip(cases, results))
+    return [r for r in results if r]
 
 
 def one_per_option(cases: list[Case]) -> tuple[list[Case], list[Case]]:

@@ -333,11 +333,15 @@ def _sliding_map(sub) -> None:
 
 
 def _contents(sub) -> None:
-    p = sub.add_parser("contents", help="FEMA P-58's unanchored contents in one building, beside FEMA's fragilities",
-                       description="Overturning fragility of FEMA P-58's nine unanchored items (blocks library "
-                                   "fema-p58-contents) on the floors of one building, in PFV and PFA, beside FEMA P-58's; "
-                                   "no-slip rocking with two restitutions and rocking with friction; ratio table, a "
-                                   "figure per item, report.md and pelicun damage-model files. Resumable.")
+    p = sub.add_parser("contents", help="the contents study: FEMA P-58's unanchored contents in one building beside "
+                                        "FEMA's fragilities, your inventory on your floor motions, or both models",
+                       description="The contents study, in one of three configurations. By default: overturning "
+                                   "fragility of FEMA P-58's nine unanchored items (the shipped inventory fema-p58-nine) "
+                                   "on the floors of one building, in PFV and PFA, beside FEMA P-58's; no-slip rocking "
+                                   "with two restitutions and rocking with friction; ratio table, a figure per item, "
+                                   "report.md and pelicun damage-model files. With --inventory/--motions: your inventory "
+                                   "on your floor motions. With --model both: in three dimensions and in the plane of "
+                                   "the weaker axis side by side (alias: opsrock directionality). Resumable.")
     p.add_argument("--out", default="results/contents", help="output folder (default results/contents/)")
     p.add_argument("--period", type=limited("--period", "period"), default=1.0,
                    help="first period T1 of the linear shear building (s) (default 1.0)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
-from test_fragility import BOUNDARY_SLOPE, GRID_IM1, GRID_IM2, grid_cases
+from _synthetic_cases import BOUNDARY_SLOPE, GRID_IM1, GRID_IM2, grid_cases
 
 from opsrock import Block
 from opsrock.fragility import FragilitySettings, analyse_fragility

@@ -19,7 +19,7 @@ import opsrock
 PACKAGE = Path(opsrock.__file__).resolve().parent
 #: The writing and drawing modules.
 WRITERS: list[Path] = sorted([*PACKAGE.glob("report/*.py"), *PACKAGE.glob("plots/*.py"),
-                              PACKAGE / "contents" / "report.py", PACKAGE / "contents" / "plots.py",
+                              PACKAGE / "inventory" / "fema" / "report.py", PACKAGE / "inventory" / "fema" / "plots.py",
                               PACKAGE / "inventory" / "report.py", PACKAGE / "inventory" / "plots.py"])
 #: Modules a writer must not import (a prefix each).
 FORBIDDEN: tuple[str, ...] = ("opsrock.solvers", "opsrock.validation", "opsrock.campaign", "opsrock.analysis",
@@ -29,7 +29,9 @@ FORBIDDEN_NAMES: frozenset[str] = frozenset({"simulate", "solve", "record_fragil
                                              "fit_lognormal_mle", "sliding_table", "headline", "bootstrap",
                                              "response_spectrum", "velocity_displacement"})
 #: What a writer may import from those: result types and the constants of a chart.
-ALLOWED: dict[str, set[str]] = {"opsrock.analysis.charts": {"ChartData", "Y_MAX"},
+#: ``as_bool`` is the case table's parser of a boolean column (a table read from an older file holds text), no
+#: computation.
+ALLOWED: dict[str, set[str]] = {"opsrock.analysis.charts": {"ChartData", "Y_MAX"}, "opsrock.campaign.cases": {"as_bool"},
                                 "opsrock.analysis.record_curves": {"RecordCurves"},
                                 "opsrock.validation.experiments": {"Headline"}}
 

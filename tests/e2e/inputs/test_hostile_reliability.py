@@ -122,6 +122,7 @@ def test_a_lock_held_by_another_run_is_an_environment_fault(base, tmp_path):
     assert sorted(os.listdir(out)) == [".lock"]
 
 
+@pytest.mark.slow  # a contents study twice (10 s); the lock's status is checked through `run` in make test
 def test_a_lock_held_by_another_run_is_an_environment_fault_for_contents_too(tmp_path):
     """The same fault, the same status in every command (issue 46: ``contents`` gave 1 and ``run`` 2): a study
     finished once, then re-run while every store lock of its folder is held by another process."""

@@ -63,7 +63,7 @@ def run_script(tmp_path, body: str) -> tuple[subprocess.CompletedProcess, float,
 
 
 def test_an_unguarded_script_stops_at_once_with_one_error_naming_the_fix(tmp_path):
-    proc, wall, starts = run_script(tmp_path, RUN.format(workers=2))
+    proc, _, starts = run_script(tmp_path, RUN.format(workers=2))
     assert proc.returncode == 1 and "computed" not in proc.stdout
     last = proc.stderr.strip().splitlines()[-1]
     assert last.startswith("opsrock.errors.UnguardedScriptError: the worker processes re-ran the script ")
@@ -72,9 +72,8 @@ def test_an_unguarded_script_stops_at_once_with_one_error_naming_the_fix(tmp_pat
     # failed; now each of the two workers stops as soon as the script reaches run_campaign, and nothing is stored.
     # The user's start and the two workers', and the pool may start a replacement before it reads a stopped
     # worker's exit status (as in the one-worker test below): a few, never a loop
-    assert starts <= 4 and read_rows(tmp_path / "out") == {}
-    # a few interpreter start-ups (measured about 4 s on a loaded 2-core machine); the old way: minutes
-    assert wall < 120.0
+    assert starts <= 4 and read_rows(tmp_path / "out") == {}  # a few start-ups, never a loop (no bound on time:
+    # the count says it, whatever the machine's speed; measured about 4 s on a loaded 2-core machine)
 
 
 @pytest.mark.slow  # make test runs guarded main modules through spawn in every `opsrock run --workers 2` test

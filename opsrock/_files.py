@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any, Callable, Iterator, Sequence
 if TYPE_CHECKING:
     import pandas as pd
 
+from opsrock._pool import deferred_interrupts
 from opsrock.errors import InputError
 
 
@@ -190,8 +191,10 @@ def staged_folder(out: str | os.PathLike, owned: Sequence[str] = ()) -> Iterator
     made = [d for d in (out, *out.parents) if not d.exists()][::-1][:-1]  # missing ancestors of out
     for d in made:
         d.mkdir()
-    stage = Path(tempfile.mkdtemp(prefix=f".{out.name or 'out'}.staging-", dir=out.parent))
+    stage = None
     try:
+        with deferred_interrupts():  # made and named together: a Ctrl-C here is raised once `stage` is known
+            stage = Path(tempfile.mkdtemp(prefix=f".{out.name or 'out'}.staging-", dir=out.parent))
         yield stage
         out.mkdir(exist_ok=True)
         written = set()
@@ -203,13 +206,17 @@ def staged_folder(out: str | os.PathLike, owned: Sequence[str] = ()) -> Iterator
                 os.replace(f, dest)
                 written.add(rel)
     except BaseException:
-        shutil.rmtree(stage, ignore_errors=True)
+        if stage is not None:
+            shutil.rmtree(stage, ignore_errors=True)
         for d in reversed(made):
             with contextlib.suppress(OSError):
                 d.rmdir()
         raise
-    shutil.rmtree(stage, ignore_errors=True)
-    remove_stale(out, owned, written)
+    # The outputs are in place: a Ctrl-C now waits for the clean-up, which it interrupted once (a fresh clone's
+    # make test found the staging folder left beside the finished report).
+    with deferred_interrupts():
+        shutil.rmtree(stage, ignore_errors=True)
+        remove_stale(out, owned, written)
 
 
 def remove_stale(out: Path, owned: Sequence[str], keep: set[Path]) -> list[Path]:

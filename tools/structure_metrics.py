@@ -27,6 +27,14 @@ from pathlib import Path
 LONG = 80
 MANY_PARAMETERS = 8
 
+#: Solver names that are also words of the physics or of a study (Coulomb friction and the friction variant;
+#: Housner's restitution and the housner variant): counted only where they stand for a solver
+#: (:func:`solver_name_strings`).
+AMBIGUOUS_NAMES = ("friction", "housner")
+
+#: The packages that choose solvers by what the registry declares, never by name (issue 42).
+ENGINE_PACKAGES = ("campaign", "inventory")
+
 
 def _parameters(node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
     a = node.args
@@ -227,6 +235,53 @@ def metrics(root: Path) -> dict:
     }
 
 
+def _docstrings(tree: ast.AST) -> set[int]:
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) and node.body:
+            first = node.body[0]
+            if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant) and isinstance(first.value.value, str):
+                out.add(id(first.value))
+    return out
+
+
+def _solver_slots(tree: ast.AST) -> set[int]:
+    """Constants compared with, or passed as, a solver or model (``x.model == "friction"``, ``solver="friction"``)."""
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Compare):
+            parts = [node.left, *node.comparators]
+            if any(isinstance(p, ast.Attribute) and p.attr in ("model", "solver")
+                   or isinstance(p, ast.Name) and p.id in ("model", "solver") for p in parts):
+                out |= {id(p) for p in parts if isinstance(p, ast.Constant)}
+        elif isinstance(node, ast.keyword) and node.arg in ("model", "solver") and isinstance(node.value, ast.Constant):
+            out.add(id(node.value))
+    return out
+
+
+def solver_name_strings(root: Path, names: tuple[str, ...], packages: tuple[str, ...] = ENGINE_PACKAGES) -> list[str]:
+    """Every string constant (docstrings skipped) of ``root``'s ``packages`` that names a solver of ``names``:
+    as a word anywhere in its text, or, for :data:`AMBIGUOUS_NAMES`, standing as a solver (the whole string compared
+    with or passed as a ``model``/``solver``, or ``solver `name``` in a text). ``path:line: 'text'`` each."""
+    plain = [n for n in names if n not in AMBIGUOUS_NAMES]
+    word = re.compile(r"\b(" + "|".join(map(re.escape, plain)) + r")\b") if plain else None
+    ambiguous = [n for n in names if n in AMBIGUOUS_NAMES]
+    as_solver = re.compile(r"solvers? [`'\"]?(" + "|".join(ambiguous) + r")\b") if ambiguous else None
+    out = []
+    for package in packages:
+        for f in sorted((root / package).rglob("*.py")):
+            tree = ast.parse(f.read_text())
+            skip, slots = _docstrings(tree), _solver_slots(tree)
+            for node in ast.walk(tree):
+                if not (isinstance(node, ast.Constant) and isinstance(node.value, str)) or id(node) in skip:
+                    continue
+                v = node.value
+                if ((word and word.search(v)) or (as_solver and as_solver.search(v))
+                        or (v in ambiguous and id(node) in slots)):
+                    out.append(f"{f.relative_to(root.parent)}:{node.lineno}: {v[:100]!r}")
+    return out
+
+
 def duplicate_pairs(root: Path) -> int | None:
     """Pairs of places sharing six or more lines in ``root``, as the ``duplicates`` command counts them
     (None where the command is not installed)."""
@@ -250,4 +305,7 @@ if __name__ == "__main__":
         result["test_files"] = len(list(Path(tests).rglob("test_*.py")))
     if with_duplicates:
         result["duplicate_pairs"] = duplicate_pairs(root)
+    from opsrock.solvers.registry import SOLVERS
+
+    result["solver_name_strings_in_engine"] = solver_name_strings(root, SOLVERS)
     print(json.dumps(result, indent=2))

@@ -62,7 +62,8 @@ from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import MANIFEST_FILE, read_rows
 from opsrock.errors import InputError
 from opsrock.solvers import check_settings
-from opsrock.solvers.registry import METHODS, solver_names
+from opsrock.solvers.registry import METHODS, RIGID_MODEL, SDOF_MODEL, reference_sdof_solver, solver_names
+from opsrock.solvers.registry import screen_solver as default_screen
 
 #: Sub-folders of a multi-fidelity run: the screen's campaign and the expensive solver's partial one.
 SCREEN_DIR: str = "screen"
@@ -218,7 +219,7 @@ def escalation_reason(rule: EscalationRule, row: Mapping[str, Any]) -> str:
 
 def _sdof_model(solver: str, settings: Mapping[str, Any]):
     """The SDOF model the expensive solver runs (None for a solver of another model)."""
-    if METHODS.get(solver).model != "sdof":
+    if METHODS.get(solver).model != SDOF_MODEL:
         return None
     return check_settings(solver, dict(settings)).model
 
@@ -251,8 +252,9 @@ def derive_rule(solver: str, screen_solver: str, settings: Mapping[str, Any] | N
     for name in (solver, screen_solver):
         if METHODS.get(name) is None:
             raise InputError(f"unknown solver {name!r} (known: {', '.join(solver_names())})")
-    if METHODS.get(screen_solver).model != "rigid":
-        raise InputError(f"screen_solver must solve the rigid body ({', '.join(solver_names(model='rigid'))}), got {screen_solver!r}")
+    if METHODS.get(screen_solver).model != RIGID_MODEL:
+        raise InputError(f"screen_solver must solve the rigid body ({', '.join(solver_names(model=RIGID_MODEL))}), "
+                         f"got {screen_solver!r}")
     model = _sdof_model(solver, settings or {})
     uplift_q = 0.0
     if model is not None:
@@ -489,8 +491,8 @@ class MultiFidelity:
         Seed of the audit.
     """
 
-    screen_solver: str = field(default_factory=lambda: solver_names(model="rigid", compiled=True)[0])
-    solver: str = field(default_factory=lambda: solver_names(model="sdof", needs_opensees=True)[0])
+    screen_solver: str = field(default_factory=default_screen)
+    solver: str = field(default_factory=reference_sdof_solver)
     margin: float | None = None
     percentile: int = DEFAULT_PERCENTILE
     escalate_overturned: bool | None = None
@@ -504,7 +506,7 @@ class MultiFidelity:
 
     def _check(self, scene: Scene) -> EscalationRule:
         info = METHODS.get(self.solver)
-        if info is None or info.model == "friction" or self.screen_solver == self.solver:
+        if info is None or info.friction or self.screen_solver == self.solver:
             raise InputError(f"solver must be a no-slip solver other than the screen ({self.screen_solver!r}), "
                              f"got {self.solver!r}")
         return derive_rule(self.solver, self.screen_solver, scene.with_solver(self.solver).solver_settings,

@@ -31,14 +31,14 @@ from pathlib import Path
 from typing import Any
 
 from opsrock.errors import InputError
-from opsrock.solvers.registry import METHODS, plan_solver, solver_names
+from opsrock.solvers.registry import FRICTION_MODEL, METHODS, RIGID_MODEL, SDOF_MODEL, plan_solver, screen_solver
 
 #: What a scene may ask for.
 ANSWERS: tuple[str, ...] = ("verdicts", "theta_max", "histories", "hysteresis")
 #: The answers that need the solver's time histories (its registry entry's ``histories``).
 HISTORY_ANSWERS: tuple[str, ...] = ("histories", "hysteresis")
 #: The models an answer may come from.
-NEEDED_MODELS: tuple[str, ...] = ("rigid", "sdof", "either")
+NEEDED_MODELS: tuple[str, ...] = (RIGID_MODEL, SDOF_MODEL, "either")
 #: The evidence table shipped in the package.
 EVIDENCE_FILE: str = "evidence/solvers.csv"
 
@@ -113,17 +113,18 @@ def evidence() -> tuple[dict[str, Any], ...]:
 def _candidates(needs: Needs, friction: bool) -> list[dict]:
     """The evidence rows of the solvers whose model may answer ``needs``."""
     if friction:
-        if needs.model == "sdof":
-            raise InputError("needs.model = 'sdof': the paper's SDOF model has no friction and no vertical motion, "
-                             "and the scene's blocks slide or its floor moves vertically; use model 'rigid' or 'either'")
-        models = {"friction"}
+        if needs.model == SDOF_MODEL:
+            raise InputError(f"needs.model = {SDOF_MODEL!r}: the paper's SDOF model has no friction and no vertical "
+                             "motion, and the scene's blocks slide or its floor moves vertically; use model "
+                             f"{RIGID_MODEL!r} or 'either'")
+        models = {FRICTION_MODEL}
     else:
-        models = {"rigid", "sdof"} if needs.model == "either" else {needs.model}
+        models = {RIGID_MODEL, SDOF_MODEL} if needs.model == "either" else {needs.model}
     if needs.answer == "hysteresis":
-        if "sdof" not in models:
+        if SDOF_MODEL not in models:
             raise InputError(f"needs.answer = 'hysteresis' exists only in the paper's SDOF model (spring and damper), "
                              f"not in model {needs.model!r}" + (" with friction" if friction else ""))
-        models = {"sdof"}
+        models = {SDOF_MODEL}
     return [r for r in evidence() if r["model"] in models]
 
 
@@ -131,10 +132,10 @@ def _plan_choice(needs: Needs) -> Choice:
     """The solver in plan (:func:`opsrock.solvers.registry.plan_solver`) for a scene in three dimensions, or
     :class:`InputError` if ``needs`` asks what it has not."""
     solver = plan_solver()
-    if needs.model == "sdof" or needs.answer == "hysteresis":
+    if needs.model == SDOF_MODEL or needs.answer == "hysteresis":
         raise InputError(f"needs.model = {needs.model!r}, answer {needs.answer!r}: the scene turns a block in plan or "
                          f"gives a second horizontal component, and only the rigid box of solver {solver!r} moves in "
-                         "plan (no SDOF model, no hysteresis); use model 'rigid' or 'either'")
+                         f"plan (no SDOF model, no hysteresis); use model {RIGID_MODEL!r} or 'either'")
     return Choice(solver, f"{solver}: the scene needs three dimensions (a block turned in plan or a second "
                                "horizontal component) and it is the only solver in plan; no measured error of it in "
                                "the evidence table yet")
@@ -163,8 +164,8 @@ def choose(needs: Needs, *, friction: bool = False, n_cases: int = 0, plan: bool
     reason = (f"{pick['solver']}: model {pick['model']}, measured error {pick['numerical_error_alpha']:.3g} alpha <= "
               f"{needs.tolerance:g}, {pick['record_seconds_per_cpu_second']:.4g} record-seconds per CPU-second, the "
               f"cheapest of {', '.join(r['solver'] for r in ok)}")
-    if pick["model"] == "sdof" and needs.answer == "verdicts" and n_cases >= MULTIFIDELITY_MIN_CASES:
-        screen = solver_names(model="rigid", compiled=True)[0]
+    if pick["model"] == SDOF_MODEL and needs.answer == "verdicts" and n_cases >= MULTIFIDELITY_MIN_CASES:
+        screen = screen_solver()
         return Choice(pick["solver"], reason + f"; {n_cases} cases: screened by {screen}, {pick['solver']} "
                       "where the verdict can differ (multi-fidelity)", pick, "multifidelity", screen)
     return Choice(pick["solver"], reason, pick)

@@ -71,7 +71,7 @@ from opsrock.excitations.plan import PlanMotion
 from opsrock.limits import ACCEPT_KEY, ACCEPT_OPTION, check_plausible_sizes
 from opsrock.restitution import RestitutionDistribution, distribution_from_table, law_factor
 from opsrock.solvers import check_settings
-from opsrock.solvers.registry import METHODS, capabilities, check_model, solver_names
+from opsrock.solvers.registry import METHODS, capabilities, check_model, reference_sdof_solver, solver_names
 
 if TYPE_CHECKING:
     from opsrock.campaign.records import RecordSet
@@ -81,7 +81,7 @@ if TYPE_CHECKING:
 SCENE_FORMAT: int = 1
 
 #: Solver used when a scene has no ``[solver]`` table: the paper's OpenSees SDOF model.
-DEFAULT_SOLVER: str = solver_names(model="sdof", needs_opensees=True)[0]
+DEFAULT_SOLVER: str = reference_sdof_solver()
 
 #: ``[solver] name`` that picks the solver from ``[needs]`` (:mod:`opsrock.campaign.needs`).
 AUTO: str = "auto"

@@ -127,11 +127,12 @@ class InventoryDesign:
     def _check_solvers(self) -> None:
         from opsrock.solvers.registry import METHODS as SOLVERS
 
-        for name, model in (("solver", None), ("friction_solver", "friction")):
+        for name, slips in (("solver", False), ("friction_solver", True)):
             value = getattr(self, name)
             info = SOLVERS.get(value) if isinstance(value, str) else None
-            if info is None or (model is not None and info.model != model) or (model is None and info.model == "friction"):
-                kind = "of the friction model" if model else "without friction (no slip)"
+            planar_slip = info is not None and info.friction and not info.plan  # the planar block whose base slips
+            if info is None or planar_slip != slips:
+                kind = "of the friction model" if slips else "without friction (no slip)"
                 raise InputError(f"{name} must name a solver {kind}, got {value!r}", argument=name)
 
     def _check_inputs(self) -> None:

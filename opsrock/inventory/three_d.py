@@ -41,9 +41,7 @@ from opsrock.errors import InputError
 from opsrock.inventory.motions import paired_motions
 from opsrock.inventory.outputs import OUTPUTS
 from opsrock.inventory.stages import Route
-
-#: The solver of an item with a round base (``shape = cylinder``) in three dimensions.
-ROUND_SOLVER = "cylinder3d"
+from opsrock.solvers.registry import round_solver
 
 #: Default azimuths of the items in plan (deg, from direction 1 to an item's width).
 DEFAULT_AZIMUTHS: tuple[float, ...] = (0.0, 45.0, 90.0)
@@ -105,7 +103,7 @@ def three_d_scenes(design: Any) -> list:
     groups: dict[Any, list] = {}
     for item in design.inventory.items:
         own = tuple(f for f in floors if f in item.floors) if item.floors else floors
-        solver = ROUND_SOLVER if item.shape == "cylinder" else design.solver  # a round base: the cylinder's solver
+        solver = round_solver() if item.shape == "cylinder" else design.solver  # a round base: the cylinder's solver
         groups.setdefault(Group(own, own == floors, "12", item.support, solver), []).append(item)
     out = []
     for g, items in groups.items():

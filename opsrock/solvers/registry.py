@@ -19,6 +19,14 @@ from opsrock.limits import one_of
 #: The models a solver may solve (:attr:`SolverInfo.model`).
 MODELS: tuple[str, ...] = ("rigid", "sdof", "friction", "rigid3d", "cylinder3d")
 
+#: The models by meaning, for the code that chooses a solver by what it models (never by its name): the rigid
+#: body (Eq. 1-3), the paper's equivalent SDOF model with its spring and damper (Eq. 5-8), the planar rigid block
+#: on a base that slips, the box in plan, the cylinder in plan.
+RIGID_MODEL, SDOF_MODEL, FRICTION_MODEL, BOX3D_MODEL, CYLINDER3D_MODEL = MODELS
+
+#: The bases a solver models (:attr:`SolverInfo.base`): a rectangular ``box`` (corners) or a ``round`` one (a rim).
+BASES: tuple[str, ...] = ("box", "round")
+
 #: Groups of result columns a solver may write beyond every solver's (:attr:`SolverInfo.result_columns`):
 #: ``contact`` (the base's friction and what it did, :data:`opsrock.campaign.cases.CONTACT_COLUMNS`) and
 #: ``plan`` (a box in plan, :data:`opsrock.campaign.cases.PLAN_COLUMNS`).
@@ -89,6 +97,9 @@ class SolverInfo:
         Runs a numba kernel (compiled once and cached on first use).
     needs_opensees : bool
         Needs OpenSeesPy (and its system BLAS), loaded when first used.
+    base : str
+        The block's base it models, one of :data:`BASES`: ``"box"`` (a rectangle, rocking on its edges and
+        corners) or ``"round"`` (a circle, rocking on its rim: an item whose ``shape`` is a cylinder).
     """
 
     name: str
@@ -109,9 +120,11 @@ class SolverInfo:
     block_needs: tuple[str, ...] = ()
     compiled: bool = False
     needs_opensees: bool = False
+    base: str = "box"
 
     def __post_init__(self) -> None:
         one_of("model", self.model, MODELS)
+        one_of("base", self.base, BASES)
         one_of("excitations", self.excitations, EXCITATION_KINDS)
         for group in self.result_columns:
             one_of("result_columns", group, RESULT_COLUMN_GROUPS)
@@ -162,7 +175,8 @@ METHODS: dict[str, SolverInfo] = {
                       end_time_under_motion=False, result_columns=("contact", "plan"), block_needs=("depth",)),
     "cylinder3d": _entry("cylinder3d", "Cylinder3DSettings", "cylinder3d", friction=True, vertical=True,
                          restitution=False, mass_distribution=True, excitations="pulses_records", plan=True,
-                         compiled=True, end_time_under_motion=False, result_columns=("contact", "plan")),
+                         compiled=True, end_time_under_motion=False, result_columns=("contact", "plan"),
+                         base="round"),
 }
 
 #: Solver names accepted by :func:`opsrock.solvers.simulate` and the command line.
@@ -196,8 +210,27 @@ def solver_names(**declared: Any) -> tuple[str, ...]:
 
 
 def plan_solver() -> str:
-    """The solver in plan (the first that declares ``plan``): the one a scene in three dimensions takes."""
-    return solver_names(plan=True)[0]
+    """The box solver in plan (the first that declares ``plan`` and a ``box`` base): the one a scene in three
+    dimensions takes."""
+    return solver_names(plan=True, base="box")[0]
+
+
+def round_solver() -> str:
+    """The solver in plan of a round base (the first that declares ``plan`` and a ``round`` base): the one an item
+    whose ``shape`` is a cylinder takes in three dimensions."""
+    return solver_names(plan=True, base="round")[0]
+
+
+def reference_sdof_solver() -> str:
+    """The paper's own solver of its SDOF model (the first of :data:`SDOF_MODEL` that needs OpenSeesPy): a scene's
+    default and the expensive solver a multi-fidelity campaign runs by default."""
+    return solver_names(model=SDOF_MODEL, needs_opensees=True)[0]
+
+
+def screen_solver() -> str:
+    """The cheapest rigid-body solver (the first compiled one of :data:`RIGID_MODEL`): the screen of a
+    multi-fidelity campaign."""
+    return solver_names(model=RIGID_MODEL, compiled=True)[0]
 
 
 def planar_solver(friction: bool) -> str:
@@ -274,5 +307,7 @@ def _alternative(capability: str) -> str:
     return repr(solver_names(**{capability: True})[0])
 
 
-__all__ = ["BLOCK_NEEDS", "EXCITATION_KINDS", "METHODS", "MODELS", "RESULT_COLUMN_GROUPS", "SOLVERS", "SolverInfo",
-           "capabilities", "check_model", "info", "plan_solver", "planar_solver", "solver_names"]
+__all__ = ["BASES", "BLOCK_NEEDS", "BOX3D_MODEL", "CYLINDER3D_MODEL", "EXCITATION_KINDS", "FRICTION_MODEL", "METHODS",
+           "MODELS", "RESULT_COLUMN_GROUPS", "RIGID_MODEL", "SDOF_MODEL", "SOLVERS", "SolverInfo", "capabilities",
+           "check_model", "info", "plan_solver", "planar_solver", "reference_sdof_solver", "round_solver",
+           "screen_solver", "solver_names"]

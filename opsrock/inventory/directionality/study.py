@@ -145,7 +145,7 @@ class DirectionalityDesign:
             if len(set(values)) != len(values):
                 raise InputError(f"{name} name a value twice: {values!r}", argument=name)
             object.__setattr__(self, name, tuple(float(x) for x in values))
-        if self.solver3d not in METHODS or METHODS[self.solver3d].model == "friction":
+        if self.solver3d not in METHODS or (METHODS[self.solver3d].friction and not METHODS[self.solver3d].plan):
             raise InputError(f"solver3d must be {plan_solver()} or a no-slip planar solver, got {self.solver3d!r}",
                              argument="solver3d")
         if isinstance(self.tolerance, bool) or not isinstance(self.tolerance, (int, float)) or not 0 < self.tolerance < 1:

@@ -7,6 +7,7 @@ import pandas as pd
 
 from opsrock.inventory.fema.design import ContentsDesign, floor_name
 from opsrock.report.markdown import markdown_table
+from opsrock.solvers.registry import planar_solver
 
 
 def _rng(s: pd.Series, fmt: str = ".2f") -> str:
@@ -218,8 +219,8 @@ def drivers_section(result: dict, design: ContentsDesign) -> list[str]:
                    "Housner's own restitution e = e_R against the default e = 0.95 e_R (same motions and levels, "
                    "PFV medians of `housner` over `default`; `paired_variants.csv`).", design)
     out += _paired(result, "friction", "Sliding",
-                   f"The block on a floor of friction {_mu(design)} (solver `friction`) against no-slip rocking "
-                   f"(PFV medians of `friction` over `default`). An item with b/h above mu slides before it can "
+                   f"The block on a floor of friction {_mu(design)} (solver `{planar_solver(True)}`) against no-slip "
+                   "rocking (PFV medians of `friction` over `default`). An item with b/h above mu slides before it can "
                    "rock, and a sliding base caps the force the floor passes to it.", design)
     out += _sliding(result)
     out += _definition(result, design)

@@ -90,7 +90,10 @@ API_GROUPS: dict[str, tuple[str, ...]] = {
                   "opsrock.solvers", "opsrock.solvers."),
     "Campaigns": ("opsrock.campaign", "opsrock.campaign."),
     "Fragility": ("opsrock.fragility", "opsrock.fragility.", "opsrock.intensity", "opsrock.intensity."),
-    "Contents studies": ("opsrock.inventory.",),
+    "Contents studies": ("opsrock.inventory.run", "opsrock.inventory.study", "opsrock.inventory.three_d",
+                         "opsrock.inventory.fema", "opsrock.inventory.directionality.study",
+                         "opsrock.inventory.items", "opsrock.inventory.friction", "opsrock.inventory.motions",
+                         "opsrock.inventory.sources", "opsrock.inventory.stages", "opsrock.inventory.outputs"),
     "Validation": ("opsrock.validation", "opsrock.validation.", "opsrock.bench", "opsrock.bench.",
                    "opsrock.published", "opsrock.published.", "opsrock.analysis."),
 }

@@ -32,7 +32,7 @@ _EXPORTS: dict[str, str] = {
     "Block": "opsrock.block", "G": "opsrock.constants", "OneSinePulse": "opsrock.excitations",
     "Record": "opsrock.excitations", "SDOFModel": "opsrock.model", "RockingResult": "opsrock.result",
     "SOLVERS": "opsrock.solvers", "simulate": "opsrock.solvers", "run_campaign": "opsrock.campaign.workflow",
-    "run_study": "opsrock.inventory.study",
+    "run_study": "opsrock.inventory.run",
 }
 
 

@@ -1,10 +1,10 @@
 """``opsrock contents``: the contents study (:class:`opsrock.inventory.stages.Assessment`) in one of its
-configurations: FEMA P-58's unanchored contents in one building, beside FEMA's fragilities
-(:func:`opsrock.inventory.fema.run_contents_study`); with ``--inventory`` and/or ``--motions``, the user's
-inventory on the user's floor motions (:func:`opsrock.inventory.study.run_inventory_study`); with ``--model both``
-(alias ``opsrock directionality``), both models side by side
-(:func:`opsrock.inventory.directionality.study.run_directionality_study`). Options of another configuration are
-refused, one line."""
+configurations, each a design run by :func:`opsrock.inventory.run.run_design`: FEMA P-58's unanchored contents in
+one building, beside FEMA's fragilities (:class:`opsrock.inventory.fema.ContentsDesign`); with ``--inventory``
+and/or ``--motions``, the user's inventory on the user's floor motions
+(:class:`opsrock.inventory.study.InventoryDesign`); with ``--model both`` (alias ``opsrock directionality``), both
+models side by side (:class:`opsrock.inventory.directionality.study.DirectionalityDesign`). Options of another
+configuration are refused, one line."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ from pathlib import Path
 from opsrock._files import output_dir
 from opsrock.cli import EXIT_INTERRUPTED
 from opsrock.cli.common import named_options
-from opsrock.inventory.fema import SWEEP_BUILDINGS, ContentsDesign, run_contents_study
+from opsrock.inventory.fema import SWEEP_BUILDINGS, ContentsDesign
 from opsrock.errors import UsageError
 
 #: Fields of :class:`opsrock.inventory.fema.ContentsDesign` (``records``: its ``names``, as the design's check
@@ -85,8 +85,8 @@ def _floors(text: str) -> tuple:
 
 
 def contents(args: argparse.Namespace) -> int:
-    """``opsrock contents``: :func:`opsrock.inventory.fema.run_contents_study` for one building, or with
-    ``--inventory``/``--motions`` :func:`opsrock.inventory.study.run_inventory_study`."""
+    """``opsrock contents``: FEMA P-58's preset for one building, or with ``--inventory``/``--motions`` the
+    inventory study, or with ``--model both`` both models (:func:`opsrock.inventory.run.run_design` each)."""
     output_dir("--out", args.out)
     if args.store is not None:
         output_dir("--store", args.store)
@@ -94,6 +94,9 @@ def contents(args: argparse.Namespace) -> int:
         return _both(args)
     if args.inventory is not None or args.motions is not None:
         return _inventory(args)
+    from opsrock.inventory.fema.design import quick
+    from opsrock.inventory.run import run_design
+
     _refuse(args, _INVENTORY_ONLY, "without --inventory or --motions (FEMA P-58's study in the shipped building)")
     try:
         with named_options(CONTENTS_OPTIONS):
@@ -104,8 +107,8 @@ def contents(args: argparse.Namespace) -> int:
                                     variants=_comma_list("--variants", args.variants),
                                     friction=args.friction, sweep=() if args.no_sweep else SWEEP_BUILDINGS,
                                     n_boot=args.n_boot, seed=args.seed)
-            res = run_contents_study(design, args.out, quick=args.quick, workers=args.workers,
-                                     progress=not args.no_progress, force=args.force, store_dir=args.store)
+            res = run_design(quick(design) if args.quick else design, args.out, workers=args.workers,
+                             progress=not args.no_progress, force=args.force, store_dir=args.store)
     except KeyboardInterrupt:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)
@@ -122,7 +125,8 @@ def contents(args: argparse.Namespace) -> int:
 def _inventory(args: argparse.Namespace) -> int:
     """The route of ``--inventory``/``--motions``: the design is read and checked by the library."""
     from opsrock.inventory.sources import BuildingSource
-    from opsrock.inventory.study import inventory_design, run_inventory_study
+    from opsrock.inventory.run import run_design
+    from opsrock.inventory.study import inventory_design
     from opsrock.solvers.registry import METHODS, plan_solver
 
     _refuse(args, _FEMA_ONLY, "with --inventory or --motions (it is an option of FEMA P-58's study)")
@@ -147,8 +151,8 @@ def _inventory(args: argparse.Namespace) -> int:
                                     names=_comma_list("--records", args.records))
             design = inventory_design(args.inventory, args.motions, source, settings, quick_run=args.quick,
                                       workers=args.workers)
-            res = run_inventory_study(design, args.out, workers=args.workers, progress=not args.no_progress,
-                                      force=args.force, store_dir=args.store, case_timeout=args.case_timeout)
+            res = run_design(design, args.out, workers=args.workers, progress=not args.no_progress,
+                             force=args.force, store_dir=args.store, case_timeout=args.case_timeout)
     except KeyboardInterrupt:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)
@@ -175,15 +179,16 @@ _NOT_BOTH = {"--inventory": ("inventory", None), "--motions": ("motions", None),
 def _both(args: argparse.Namespace) -> int:
     """The route of ``--model both``: the shipped inventories on the shipped building, in three dimensions and in
     the plane of the weaker axis (its design's defaults)."""
-    from opsrock.inventory.directionality.study import DirectionalityDesign, run_directionality_study
+    from opsrock.inventory.directionality.study import DirectionalityDesign, quick
+    from opsrock.inventory.run import run_design
 
     command = f"opsrock {args.command}"
     _refuse(args, {k: v for k, v in _NOT_BOTH.items() if hasattr(args, v[0])},
             "with --model both (it runs the shipped inventories on the shipped building, as designed)")
     try:
-        res = run_directionality_study(DirectionalityDesign(), args.out, workers=args.workers,
-                                       progress=not args.no_progress, quick_run=args.quick, force=args.force,
-                                       store_dir=args.store)
+        design = quick(DirectionalityDesign()) if args.quick else DirectionalityDesign()
+        res = run_design(design, args.out, workers=args.workers, progress=not args.no_progress, force=args.force,
+                         store_dir=args.store)
     except KeyboardInterrupt:
         print(f"{command}: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)

@@ -22,7 +22,7 @@ OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pel
 
 @dataclass(frozen=True)
 class InventoryStudy:
-    """What :func:`opsrock.inventory.study.run_inventory_study` computed and wrote.
+    """What :func:`opsrock.inventory.run.run_design` computed and wrote.
 
     Parameters
     ----------

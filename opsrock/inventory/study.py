@@ -1,5 +1,5 @@
-"""The user's inventory on the user's floor motions, end to end: :func:`run_inventory_study`
-(``opsrock contents --inventory FILE --motions FILE --out DIR``).
+"""The user's inventory on the user's floor motions: :class:`InventoryDesign` and the planar route :data:`PLANAR`
+(``opsrock contents --inventory FILE --motions FILE --out DIR``; run by :func:`opsrock.inventory.run.run_design`).
 
 Every item runs on the floors it stands on, in every direction of the motions (direction ``"1"``: its
 ``width`` along the motion; ``"2"``: its ``depth``), through its support's oscillator if it stands on one
@@ -33,8 +33,7 @@ from opsrock.inventory.items import Inventory
 from opsrock.inventory.motions import MotionSet
 from opsrock.inventory.outputs import OUTPUTS, TABLES, InventoryStudy, study_tables, write_outputs
 from opsrock.inventory.stages import Route
-from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, THREE_D, check_azimuths
-from opsrock.solvers.registry import METHODS as SOLVER_INFO
+from opsrock.inventory.three_d import DEFAULT_AZIMUTHS, check_azimuths
 from opsrock.solvers.registry import planar_solver
 
 #: Intensity methods: IDA on the given motions, or the motions as given (a cloud).
@@ -208,106 +207,6 @@ def inventory_design(inventory: str | Path | None, motions: str | Path | None, s
     return quick(design) if quick_run else design
 
 
-def run_inventory_study(design: InventoryDesign, out_dir: str | Path, *, workers: int | None = None,
-                        progress: bool = True, force: bool = False,
-                        store_dir: str | Path | None = None, case_timeout: float | None = None) -> InventoryStudy:
-    """Each item's overturning (and sliding) fragility per floor and direction, the expected numbers
-    overturned, and a pelicun folder, written into ``out_dir`` (resumable): the stages of
-    :class:`opsrock.inventory.stages.Assessment` on the route of the design's solver (:data:`PLANAR`, or
-    :data:`opsrock.inventory.three_d.THREE_D` for a solver in plan).
-
-    Parameters
-    ----------
-    design : InventoryDesign
-        The inventory, the motions and how to run and fit them.
-    out_dir : str or Path
-        Output folder (see the module docstring).
-    workers : int or None
-        Processes (default: all cores).
-    progress : bool
-        Progress on stderr.
-    force : bool
-        Delete stored results of other settings in the campaigns' folders instead of refusing them.
-    store_dir : str or Path, optional
-        Where the campaigns keep their stores; default ``out_dir/campaigns``.
-    case_timeout : float, optional
-        Wall-clock budget of one case (s); default the campaigns' (300 s). A case stored as timed out is computed
-        again by the next run, within the budget it is given; every other failure is kept as a result.
-
-    Returns
-    -------
-    InventoryStudy
-        The paths written, the case counts and the timings (s).
-
-    Raises
-    ------
-    InputError
-        Bad inputs (before anything is written), or every case failed (nothing written).
-    """
-    from opsrock.inventory.stages import Assessment
-
-    out = Path(out_dir)
-    store = Path(store_dir) if store_dir is not None else out / "campaigns"
-    route = THREE_D if SOLVER_INFO[design.solver].plan else PLANAR
-    return Assessment(design, route, out, store, workers=workers, progress=progress, force=force,
-                      case_timeout=case_timeout).run()
-
-
-def run_study(inventory: str | Path | None = None, motions: str | Path | None = None, out_dir: str | Path = "contents",
-              *, building: Any = None, quick: bool = False, workers: int | None = None, progress: bool = True,
-              force: bool = False, store_dir: str | Path | None = None, **settings: Any) -> InventoryStudy:
-    """One contents study from Python, as ``opsrock contents --inventory --motions`` runs it: each item's
-    fragility per floor and direction, the expected numbers damaged and a pelicun folder, in ``out_dir``.
-
-    Parameters
-    ----------
-    inventory : str, Path or None
-        An inventory file (CSV or TOML; m, kg); None: FEMA P-58's nine unanchored items.
-    motions : str, Path or None
-        A motions manifest (floor accelerations, m/s² or g as it says); None: the floor motions of the shipped
-        shear building ``building``.
-    out_dir : str or Path
-        The output folder (resumable: a second run computes only what is missing).
-    building : BuildingSource, optional
-        The shipped building, its floors and records when ``motions`` is None
-        (:class:`opsrock.inventory.sources.BuildingSource`; default its defaults).
-    quick : bool
-        A quick study (fewer levels and resamples; :func:`quick`).
-    workers : int or None
-        Processes (default: every core).
-    progress : bool
-        Progress on stderr.
-    force : bool
-        Delete stored results of other settings in the campaigns' folders instead of refusing them.
-    store_dir : str or Path, optional
-        Where the campaigns keep their stores (default ``out_dir/campaigns``).
-    **settings
-        Fields of :class:`InventoryDesign`: ``method`` (``"ida"`` or ``"cloud"``), ``solver`` (a solver in plan
-        for every item a box in three dimensions), ``levels``, ``n_boot``, ``seed``, ``slide_distance`` (m), ...
-
-    Returns
-    -------
-    InventoryStudy
-        The paths written (``tables``, ``pelicun``, ``report``), the case counts and the wall times (s).
-
-    Examples
-    --------
-    >>> import opsrock
-    >>> from importlib.resources import files
-    >>> data = files("opsrock.data")
-    >>> study = opsrock.run_study(data / "inventories" / "example.csv",
-    ...                           data / "examples" / "floor-motions" / "motions.csv", "my-building",
-    ...                           quick=True, progress=False)  # doctest: +SKIP
-    >>> sorted(study.tables)  # doctest: +SKIP
-    ['demands', 'expected', 'fits']
-    """
-    from opsrock.inventory.sources import BuildingSource
-
-    design = inventory_design(inventory, motions, building if building is not None else BuildingSource(), settings,
-                              quick_run=quick, workers=workers)
-    return run_inventory_study(design, out_dir, workers=workers, progress=progress, force=force, store_dir=store_dir)
-
-
 def _planar_scenes(design: InventoryDesign) -> list:
     """One campaign per group of items on the same floors, direction, support and solver."""
     from opsrock.inventory.campaigns import group_scenes, groups_of
@@ -320,4 +219,4 @@ def _planar_scenes(design: InventoryDesign) -> list:
 PLANAR: Route = Route("planar", _planar_scenes, lambda a: study_tables(a, a.cases), write_outputs, OUTPUTS)
 
 __all__ = ["DEFAULT_DEMAND_LEVELS_PFA", "DEFAULT_DEMAND_LEVELS_PFV", "DEFAULT_SLIDE_DISTANCE", "METHODS", "OUTPUTS",
-           "PLANAR", "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick", "run_inventory_study", "run_study"]
+           "PLANAR", "TABLES", "InventoryDesign", "InventoryStudy", "inventory_design", "quick"]

@@ -47,7 +47,7 @@ from opsrock.campaign.cases import read_cases
 from opsrock.campaign.run import Execution, Stage
 from opsrock.errors import InputError
 from opsrock.inventory.items import shipped_inventory
-from opsrock.inventory.outputs import InventoryStudy, Written
+from opsrock.inventory.outputs import Written
 from opsrock.inventory.stages import Ran, Route
 from opsrock.limits import int_at_least
 from opsrock.solvers.registry import METHODS, plan_solver
@@ -236,44 +236,6 @@ def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
     return tuple(out)
 
 
-def run_directionality_study(design: DirectionalityDesign, out_dir: str | Path, *, workers: int | None = None,
-                             progress: bool = True, quick_run: bool = False, force: bool = False,
-                             store_dir: str | Path | None = None) -> InventoryStudy:
-    """Run (or resume) the study and write its tables, figures and report into ``out_dir``: the stages of
-    :class:`opsrock.inventory.stages.Assessment` on the route :data:`BOTH`.
-
-    Parameters
-    ----------
-    design : DirectionalityDesign
-        What to cover.
-    out_dir : str or Path
-        Output folder: ``report.md``, the tables (CSV, full precision), ``figures/``.
-    workers : int or None
-        Processes (default: all cores).
-    progress : bool
-        Progress on stderr.
-    quick_run : bool
-        :func:`quick` first.
-    force : bool
-        Discard stored cases of other settings in the campaigns' folders instead of refusing them.
-    store_dir : str or Path, optional
-        The campaigns' folder; default ``out_dir/campaigns``.
-
-    Returns
-    -------
-    InventoryStudy
-        The paths written (``tables``, ``figures``, ``report``), the case counts, the wall times (s) and
-        ``summary``, the headline numbers the command prints
-        (:func:`opsrock.inventory.directionality.summary.headline`).
-    """
-    from opsrock.inventory.stages import Assessment
-
-    design = quick(design) if quick_run else design
-    out = Path(out_dir)
-    store = Path(store_dir) if store_dir is not None else out / "campaigns"
-    return Assessment(design, BOTH, out, store, workers=workers, progress=progress, force=force).run()
-
-
 def _motions(a: Any) -> Any:
     """The floor motions of every record pair in both directions (:func:`study_motions`)."""
     a.say(f"floor motions of {len(a.design.pairs) or 'every'} record pair(s) in both directions")
@@ -339,4 +301,4 @@ BOTH: Route = Route("both", study_items, _fit, _write, OUTPUTS, demands=_motions
 
 __all__ = ["BOTH", "DEFAULT_AZIMUTHS", "DEFAULT_ITEMS", "DEFAULT_LEVELS", "DEFAULT_PAIRS", "QUICK_ITEMS", "INVENTORIES",
            "MODELS", "OUTPUTS", "QUICK_PAIRS", "DirectionalityDesign", "StudyItem", "quick", "run_campaigns",
-           "run_directionality_study", "study_items"]
+           "study_items"]

@@ -1,5 +1,5 @@
 """FEMA P-58's nine unanchored items in the shipped building, beside FEMA's fragilities: the contents study's
-route :data:`FEMA_NINE` (``opsrock contents``), run end to end by :func:`run_contents_study`."""
+route :data:`FEMA_NINE` (``opsrock contents``), run end to end by :func:`opsrock.inventory.run.run_design`."""
 
 from __future__ import annotations
 
@@ -10,9 +10,7 @@ from typing import Any
 import pandas as pd
 
 from opsrock.inventory.fema.design import ContentsDesign, campaign_scenes
-from opsrock.inventory.fema.design import quick as quick_design
 from opsrock.inventory.fema.report import StudySummary
-from opsrock.inventory.outputs import InventoryStudy
 from opsrock.inventory.stages import Route
 
 #: Files the study writes into its folder (besides ``campaigns/``, ``figures/`` and ``pelicun/``).
@@ -53,47 +51,6 @@ def _figures(out: Path, fits: pd.DataFrame, cases: pd.DataFrame, result: dict, d
     if "default" in design.variants:
         paths.append(plot_rule(result["ratios"], result["sweep"], design, folder / "fema_rule.png"))
     return paths
-
-
-def run_contents_study(design: ContentsDesign, out_dir: str | Path, *, workers: int | None = None,
-                       progress: bool = True, quick: bool = False, force: bool = False,
-                       store_dir: str | Path | None = None) -> InventoryStudy:
-    """Each FEMA P-58 unanchored item's overturning fragility on the floors of one building, beside
-    FEMA P-58's, written into ``out_dir`` (resumable: a second call reuses every stored case): the stages of
-    :class:`opsrock.inventory.stages.Assessment` on the route :data:`FEMA_NINE`.
-
-    Parameters
-    ----------
-    design : ContentsDesign
-        The building (period s, storeys, damping), floors, record set and records, IDA levels, items,
-        variants, friction, record-bootstrap resamples and seed, and the sweep's buildings
-        (:data:`opsrock.inventory.fema.design.SWEEP_BUILDINGS` for the chart of the medians against the period).
-    out_dir : str or Path
-        Output folder: ``report.md``, the tables (:data:`TABLES`), ``figures/``, ``pelicun/`` (and the
-        campaigns, unless ``store_dir`` is given).
-    workers, progress : int or None, bool
-        Processes (default: all cores); progress on stderr.
-    quick : bool
-        A small study (:func:`opsrock.inventory.fema.design.quick`: six records, eight levels, ground and roof).
-    force : bool
-        Delete stored results of other settings in the campaigns' folders instead of refusing them.
-    store_dir : str or Path, optional
-        Where the campaigns keep their stores and case tables (large: about 35 MB per 25,000 cases);
-        default ``out_dir/campaigns``. A report folder kept under version control names another one.
-
-    Returns
-    -------
-    InventoryStudy
-        The design run, the paths written (``tables``, ``figures``, ``pelicun``, ``report``), the case counts,
-        the wall times (s) and ``summary`` (:class:`StudySummary`: counts and headline ratios).
-    """
-    from opsrock.inventory.stages import Assessment
-
-    if quick:
-        design = quick_design(design)
-    out = Path(out_dir)
-    store = Path(store_dir) if store_dir is not None else out / "campaigns"
-    return Assessment(design, FEMA_NINE, out, store, workers=workers, progress=progress, force=force).run()
 
 
 def _campaigns(a: Any) -> Any:
@@ -159,4 +116,4 @@ FEMA_NINE: Route = Route("fema-p58", campaign_scenes, _fit, _write, OUTPUTS, dem
                          campaigns=_campaigns)
 
 
-__all__ = ["FEMA_NINE", "OUTPUTS", "TABLES", "StudySummary", "run_contents_study"]
+__all__ = ["FEMA_NINE", "OUTPUTS", "TABLES", "StudySummary"]

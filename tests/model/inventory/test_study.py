@@ -1,4 +1,4 @@
-"""The inventory study end to end (:func:`opsrock.inventory.study.run_inventory_study`): a tiny inventory (a
+"""The inventory study end to end (:func:`opsrock.inventory.run.run_design`): a tiny inventory (a
 bookcase on every floor, a printer on a desk on one) on synthetic floor motions, run twice (the second run
 computes nothing), its tables and its pelicun folder checked against each other; the campaigns' blocks and
 groups; and ``opsrock contents --inventory/--motions`` through the console script (its refusals, and a
@@ -23,7 +23,8 @@ from opsrock.inventory.campaigns import DEMANDS_FILE, group_scenes, groups_of, i
 from opsrock.inventory.fits import FIT_COLUMNS
 from opsrock.inventory.items import FrictionLaw, Inventory, Item, Support
 from opsrock.inventory.motions import FloorMotion, MotionSet
-from opsrock.inventory.study import InventoryDesign, run_inventory_study
+from opsrock.inventory.run import run_design
+from opsrock.inventory.study import InventoryDesign
 
 FLOORS = ("1", "2")
 RECORDS = ("rec0", "rec1", "rec2", "rec3")
@@ -55,8 +56,8 @@ def study(tmp_path_factory):
     """The study run twice into one folder: ``(first, second)``."""
     out = tmp_path_factory.mktemp("inventory") / "out"
     design = InventoryDesign(INVENTORY, synthetic_motions(), levels=LEVELS, n_boot=10)
-    first = run_inventory_study(design, out, workers=1, progress=False)
-    second = run_inventory_study(design, out, workers=1, progress=False)
+    first = run_design(design, out, workers=1, progress=False)
+    second = run_design(design, out, workers=1, progress=False)
     return first, second
 
 

@@ -16,7 +16,8 @@ import pytest
 from opsrock.errors import InputError
 from opsrock.inventory.items import read_inventory
 from opsrock.inventory.motions import MotionSet, read_motions
-from opsrock.inventory.study import InventoryDesign, run_inventory_study
+from opsrock.inventory.run import run_design
+from opsrock.inventory.study import InventoryDesign
 from opsrock.inventory.three_d import NONDIRECTIONAL_FACTOR, PFV_CONVENTIONS, pfv_demands, three_d_scenes
 
 
@@ -82,8 +83,8 @@ def test_refusals_name_the_argument(inputs, tmp_path):
 def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_path):
     """Two cases (one level, azimuths 0 and 45 deg), about a second each with the floor measures."""
     design = _design(inputs)
-    first = run_inventory_study(design, tmp_path / "out", workers=1, progress=False)
-    again = run_inventory_study(design, tmp_path / "out", workers=1, progress=False)
+    first = run_design(design, tmp_path / "out", workers=1, progress=False)
+    again = run_design(design, tmp_path / "out", workers=1, progress=False)
     assert (first.n_cases, first.n_computed, again.n_computed) == (2, 2, 0)
     with open(first.tables["fits3d"], newline="") as fh:
         rows = list(csv.DictReader(fh))
@@ -116,7 +117,7 @@ def test_a_round_item_is_a_cylinder_in_its_own_campaign(inputs, tmp_path):
     block = scenes["d12-cylinder3d"].blocks[0].block
     assert (block.width, block.depth, block.height, block.restitution_factor) == (0.23, None, 1.5, 1.0)
     assert block.h_cm == 0.75 and block.r_gyration == pytest.approx(math.sqrt(0.23**2 / 16 + 1.5**2 / 12))
-    out = run_inventory_study(design, tmp_path / "out", workers=1, progress=False)
+    out = run_design(design, tmp_path / "out", workers=1, progress=False)
     assert out.n_cases == 4 and out.n_computed == 4
     with open(out.tables["fits3d"], newline="") as fh:
         assert {r["item"] for r in csv.DictReader(fh)} == {"cab", "o2"}

@@ -90,10 +90,10 @@ def contents(args: argparse.Namespace) -> int:
     output_dir("--out", args.out)
     if args.store is not None:
         output_dir("--store", args.store)
-    if args.model == "both":
-        return _both(args)
     if args.inventory is not None or args.motions is not None:
         return _inventory(args)
+    if args.model == "both":
+        return _both(args)
     from opsrock.inventory.fema.design import quick
     from opsrock.inventory.run import run_design
 
@@ -141,9 +141,11 @@ def _inventory(args: argparse.Namespace) -> int:
     if args.levels is not None and args.method == "cloud":
         raise UsageError(f"--levels {args.levels} does not apply with --method cloud (the motions are taken as "
                          "recorded, unscaled); leave out --levels, or use --method ida")
-    if args.azimuths is not None and not (args.solver in METHODS and METHODS[args.solver].plan):
-        raise UsageError(f"--azimuths applies to --solver {plan_solver()} (the items in three dimensions)")
+    if args.azimuths is not None and args.model != "both" and not (args.solver in METHODS and METHODS[args.solver].plan):
+        raise UsageError(f"--azimuths applies to --solver {plan_solver()} or --model both (the items in three "
+                         "dimensions)")
     settings["accept_implausible"] = args.accept_implausible
+    settings["side_by_side"] = args.model == "both"
     try:
         with named_options(INVENTORY_OPTIONS):
             source = BuildingSource(period=args.period, storeys=args.storeys, damping=args.damping,
@@ -177,14 +179,16 @@ _NOT_BOTH = {"--inventory": ("inventory", None), "--motions": ("motions", None),
 
 
 def _both(args: argparse.Namespace) -> int:
-    """The route of ``--model both``: the shipped inventories on the shipped building, in three dimensions and in
-    the plane of the weaker axis (its design's defaults)."""
+    """The route of ``--model both`` without ``--inventory`` or ``--motions``: the shipped inventories on the
+    shipped building, in three dimensions and in the plane of the weaker axis (its design's defaults). With
+    either, :func:`_inventory` runs the user's items both ways (:mod:`opsrock.inventory.side_by_side`)."""
     from opsrock.inventory.directionality.study import DirectionalityDesign, quick
     from opsrock.inventory.run import run_design
 
     command = f"opsrock {args.command}"
     _refuse(args, {k: v for k, v in _NOT_BOTH.items() if hasattr(args, v[0])},
-            "with --model both (it runs the shipped inventories on the shipped building, as designed)")
+            "with --model both and no --inventory or --motions (it runs the shipped inventories on the shipped "
+            "building, as designed)")
     try:
         design = quick(DirectionalityDesign()) if args.quick else DirectionalityDesign()
         res = run_design(design, args.out, workers=args.workers, progress=not args.no_progress, force=args.force,

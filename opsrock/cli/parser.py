@@ -399,9 +399,10 @@ def _contents(sub) -> None:
                         "timed out are computed again by the next run")
     p.add_argument("--model", choices=MODELS, default="planar",
                    help="planar (default: each item in the plane of each direction, or with --solver rigid3d a box in "
-                        "three dimensions) or both: FEMA P-58's items and the example inventory on the shipped "
-                        "building, in three dimensions under both components and in the plane of the weaker axis, "
-                        "side by side (the directionality study; alias: opsrock directionality)")
+                        "three dimensions) or both: with --inventory/--motions every item both ways, the 3-D and "
+                        "planar medians side by side per item and floor; without them FEMA P-58's items and the "
+                        "example inventory on the shipped building, in three dimensions under both components and in "
+                        "the plane of the weaker axis (the directionality study; alias: opsrock directionality)")
 
 
 #: The model choices of ``opsrock contents --model``.

@@ -7,6 +7,7 @@ chosen twice:
 
 * :class:`~opsrock.inventory.study.InventoryDesign` with a planar solver: :data:`~opsrock.inventory.study.PLANAR`
   (each item per axis); with a solver in plan (registry ``plan``): :data:`~opsrock.inventory.three_d.THREE_D`;
+  with ``side_by_side``: both, :data:`~opsrock.inventory.side_by_side.SIDE_BY_SIDE`;
 * :class:`~opsrock.inventory.fema.design.ContentsDesign` (the FEMA P-58 preset):
   :data:`~opsrock.inventory.fema.study.FEMA_NINE`;
 * :class:`~opsrock.inventory.directionality.study.DirectionalityDesign` (both models side by side):
@@ -26,6 +27,7 @@ from opsrock.inventory.fema.design import SWEEP_BUILDINGS, ContentsDesign
 from opsrock.inventory.fema.design import quick as quick_fema
 from opsrock.inventory.fema.study import FEMA_NINE
 from opsrock.inventory.outputs import InventoryStudy
+from opsrock.inventory.side_by_side import SIDE_BY_SIDE
 from opsrock.inventory.stages import Assessment, Route
 from opsrock.inventory.study import PLANAR, InventoryDesign, inventory_design
 from opsrock.inventory.three_d import THREE_D
@@ -45,6 +47,8 @@ def route_of(design: Any) -> Route:
         A design of no configuration.
     """
     if isinstance(design, InventoryDesign):
+        if design.side_by_side:
+            return SIDE_BY_SIDE
         return THREE_D if SOLVER_INFO[design.solver].plan else PLANAR
     if isinstance(design, ContentsDesign):
         return FEMA_NINE
@@ -99,8 +103,10 @@ def study_design(inventory: str | Path | None = None, motions: str | Path | None
     * either file, or ``model="3d"``: the inventory study (:class:`~opsrock.inventory.study.InventoryDesign`;
       without ``inventory`` FEMA P-58's nine as a shipped inventory, without ``motions`` the floor motions of
       ``building``); ``model="3d"`` every item a box in three dimensions (the registry's solver in plan);
-    * ``model="both"``: both models side by side
-      (:class:`~opsrock.inventory.directionality.study.DirectionalityDesign`; ``settings`` its fields).
+    * ``model="both"``: both models side by side; with neither file the directionality preset (the shipped
+      inventories on the shipped building, :class:`~opsrock.inventory.directionality.study.DirectionalityDesign`;
+      ``settings`` its fields), with either the inventory study with ``side_by_side``
+      (:mod:`opsrock.inventory.side_by_side`).
 
     Raises
     ------
@@ -113,10 +119,7 @@ def study_design(inventory: str | Path | None = None, motions: str | Path | None
         raise InputError(f"model must be one of {', '.join(MODELS)}, got {model!r}", argument="model")
     source = building if building is not None else BuildingSource()
     try:
-        if model == "both":
-            if inventory is not None or motions is not None:
-                raise InputError("model 'both' runs the shipped inventories on the shipped building; give no "
-                                 "inventory or motions", argument="model")
+        if model == "both" and inventory is None and motions is None:
             design = DirectionalityDesign(**settings)
             return quick_both(design) if quick else design
         if inventory is None and motions is None and model == "planar":
@@ -127,6 +130,8 @@ def study_design(inventory: str | Path | None = None, motions: str | Path | None
         raise InputError(f"{e}", argument="settings") from None
     if model == "3d":
         settings.setdefault("solver", plan_solver())
+    if model == "both":
+        settings["side_by_side"] = True
     return inventory_design(inventory, motions, source, settings, quick_run=quick, workers=workers)
 
 

@@ -92,6 +92,9 @@ class InventoryDesign:
     azimuths : tuple of float
         With a solver in plan: the items' azimuths in plan (deg, from direction 1 to an item's width),
         pooled in each fit (:data:`opsrock.inventory.three_d.DEFAULT_AZIMUTHS`); unused by the planar route.
+    side_by_side : bool
+        Also every item a box in three dimensions (the registry's solver in plan, at ``azimuths``), and the two
+        models' medians side by side (:mod:`opsrock.inventory.side_by_side`); ``solver`` stays the planar one.
     """
 
     inventory: Inventory
@@ -107,6 +110,7 @@ class InventoryDesign:
     friction_solver: str = field(default_factory=lambda: planar_solver(True))
     accept_implausible: bool = False
     azimuths: tuple[float, ...] = DEFAULT_AZIMUTHS
+    side_by_side: bool = False
 
     def __post_init__(self) -> None:
         from opsrock.limits import int_at_least
@@ -133,6 +137,11 @@ class InventoryDesign:
             if info is None or planar_slip != slips:
                 kind = "of the friction model" if slips else "without friction (no slip)"
                 raise InputError(f"{name} must name a solver {kind}, got {value!r}", argument=name)
+        if not isinstance(self.side_by_side, bool):
+            raise InputError(f"side_by_side must be True or False, got {self.side_by_side!r}", argument="side_by_side")
+        if self.side_by_side and SOLVERS[self.solver].plan:
+            raise InputError(f"side_by_side runs solver {self.solver!r} as the planar model beside the solver in "
+                             "plan: give a planar solver", argument="solver")
 
     def _check_inputs(self) -> None:
         from opsrock.limits import check_plausible

@@ -7,7 +7,10 @@ from __future__ import annotations
 from collections import Counter
 
 from _hostile import Case, sweep
-from _support import BLOCKS
+from _support import BLOCKS, DATA
+
+INVENTORY = DATA / "inventories" / "example.csv"
+MOTIONS = DATA / "examples" / "floor-motions" / "motions.csv"
 
 DIRECTIONALITY = ("directionality", "--out", "out", "--no-progress")
 BOTH = ("contents", "--model", "both", "--out", "out", "--no-progress")
@@ -21,7 +24,8 @@ CASES: list[Case] = [
     Case("directionality --workers x", (*DIRECTIONALITY, "--workers", "x"), ("--workers", "x")),
     Case("directionality --workers 1.5", (*DIRECTIONALITY, "--workers", "1.5"), ("--workers", "1.5")),
     Case("directionality --bogus", (*DIRECTIONALITY, "--bogus"), ("--bogus",)),
-    Case("contents --model both --inventory", (*BOTH, "--inventory", str(BLOCKS)), ("--inventory", "--model both")),
+    Case("contents --model both --solver rigid3d with files", (*BOTH, "--inventory", str(INVENTORY), "--motions",
+                                                                  str(MOTIONS), "--solver", "rigid3d"), ("--solver",)),
     Case("contents --model both --items", (*BOTH, "--items", "E.20.22.102a"), ("--items", "--model both")),
     Case("contents --model both --period", (*BOTH, "--period", "2"), ("--period", "--model both")),
     Case("contents --model both --solver", (*BOTH, "--solver", "rigid3d"), ("--solver", "--model both")),

@@ -9,6 +9,7 @@ import contextlib
 import json
 import os
 import sys
+import time
 
 import numpy as np
 
@@ -24,10 +25,6 @@ from opsrock.limits import ACCEPT_OPTION
 
 #: Periods (s) of the 5 %-damped spectrum ``records show`` prints for a record file.
 SHOW_PERIODS: tuple[float, ...] = (0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0)
-
-#: Seconds a response spectrum costs per sample and period (Nigam-Jennings through eqsig), for the line that
-#: announces a long ``records show``: 300,000 samples at 211 periods took 24.4 s (2 shared cores, issue 46).
-SPECTRUM_S_PER_SAMPLE_PERIOD: float = 0.4e-6
 
 #: ``records show`` of a record whose spectra are estimated to take longer than this (s) says so on stderr first.
 LONG_SHOW_S: float = 10.0
@@ -105,16 +102,19 @@ def _file_show(args: argparse.Namespace) -> int:
     """``records show FILE``: the record's sampling, PFA (m/s² and g), PFV, PFD, periods and 5 %-damped
     spectrum at :data:`SHOW_PERIODS` (:mod:`opsrock.intensity.records`)."""
     from opsrock.intensity.records import (SPECTRUM_DAMPING, SPECTRUM_PERIODS,  # lazy: scipy
-                                           motion_measures, response_spectrum)
+                                           motion_measures, response_spectrum, spectrum_seconds)
 
     rec = _record(args)
     periods = len(SPECTRUM_PERIODS) + len(SHOW_PERIODS)
-    estimate = rec.values.size * periods * SPECTRUM_S_PER_SAMPLE_PERIOD
+    estimate = (spectrum_seconds(rec.values.size, len(SPECTRUM_PERIODS))
+                + spectrum_seconds(rec.values.size, len(SHOW_PERIODS)))
+    told = None
     if estimate > LONG_SHOW_S:
         print(f"opsrock records: {rec.values.size:,} samples ({rec.duration:,.0f} s at dt {rec.dt:g} s): its response "
               f"spectra at {periods} periods take about {_minutes(estimate)}", file=sys.stderr, flush=True)
-    m = motion_measures(rec)
-    spec = response_spectrum(rec, periods=np.asarray(SHOW_PERIODS))
+        told = _SpectrumProgress(periods)
+    m = motion_measures(rec, progress=told)
+    spec = response_spectrum(rec, periods=np.asarray(SHOW_PERIODS), progress=None if told is None else told.then)
     out = {"name": rec.name, "source": rec.info.source, "units_in_file": rec.info.units_in_file, "dt": rec.dt,
            "npts": int(rec.values.size), "duration": rec.duration, "pfa": m.pfa, "pfa_g": m.pfa / G, "pfv": m.pfv,
            "pfd": m.pfd, "T_m": m.mean_period, "T_pred": m.predominant_period,
@@ -132,6 +132,28 @@ def _file_show(args: argparse.Namespace) -> int:
     for t, a in zip(spec["period"], spec["psa"]):
         print(f"{t:>10g} {a:>10.4g} {a / G:>8.4g}")
     return 0
+
+
+class _SpectrumProgress:
+    """The progress of a long ``records show`` on stderr, terminal or not: a line every progress interval
+    (``OPSROCK_PROGRESS_INTERVAL``, as campaigns), with the periods done of ``total``."""
+
+    def __init__(self, total: int) -> None:
+        from opsrock.campaign.run import progress_interval
+
+        self.total, self.offset, self.interval = total, 0, progress_interval()
+        self.last = time.monotonic()
+
+    def __call__(self, done: int, _of: int) -> None:
+        now = time.monotonic()
+        if now - self.last >= self.interval:
+            self.last = now
+            print(f"opsrock records: spectra {self.offset + done}/{self.total} periods", file=sys.stderr, flush=True)
+
+    def then(self, done: int, of: int) -> None:
+        """The second spectrum's progress, after the first's ``total - of`` periods."""
+        self.offset = self.total - of
+        self(done, of)
 
 
 def _minutes(seconds: float) -> str:

@@ -106,9 +106,34 @@ def mean_period(record: Record, band: tuple[float, float] = MEAN_PERIOD_BAND) ->
     return float(np.sum(c2[inside] / f[inside]) / np.sum(c2[inside]))
 
 
+#: Bytes the response spectrum's work arrays may take at once. eqsig keeps three arrays of periods x samples (response
+#: displacement, velocity and acceleration), 4.8 GB for 200 periods of a million samples: the periods are taken in
+#: chunks that fit, each period's values the same whatever the chunk (eqsig's recurrence works period by period,
+#: element-wise).
+SPECTRUM_WORK_BYTES: float = 400e6
+
+#: Seconds of eqsig's Nigam-Jennings per time step of one chunk of periods, and per time step and period (measured
+#: on 100,000 samples at 2, 20 and 200 periods on the project's 2-core machine, issue 46: 8.2 us and 0.07 us).
+SPECTRUM_S_PER_STEP: float = 8e-6
+SPECTRUM_S_PER_STEP_PERIOD: float = 0.07e-6
+
+
+def periods_per_chunk(n_samples: int) -> int:
+    """Periods of a response spectrum computed at once for a record of ``n_samples`` samples, within
+    :data:`SPECTRUM_WORK_BYTES` (at least one)."""
+    return max(1, int(SPECTRUM_WORK_BYTES // (3 * 8 * max(1, n_samples))))
+
+
+def spectrum_seconds(n_samples: int, n_periods: int) -> float:
+    """Expected seconds of CPU of :func:`response_spectrum` on ``n_samples`` samples at ``n_periods`` periods."""
+    chunks = math.ceil(n_periods / periods_per_chunk(n_samples))
+    return n_samples * (chunks * SPECTRUM_S_PER_STEP + n_periods * SPECTRUM_S_PER_STEP_PERIOD)
+
+
 def response_spectrum(record: Record, periods: np.ndarray = SPECTRUM_PERIODS,
-                      damping: float = SPECTRUM_DAMPING) -> dict[str, np.ndarray]:
-    """Elastic response spectra of ``record`` (Nigam-Jennings, via eqsig).
+                      damping: float = SPECTRUM_DAMPING, progress=None) -> dict[str, np.ndarray]:
+    """Elastic response spectra of ``record`` (Nigam-Jennings, via eqsig), the periods taken in chunks of
+    :func:`periods_per_chunk` so that the work arrays stay within :data:`SPECTRUM_WORK_BYTES`.
 
     Parameters
     ----------
@@ -118,6 +143,8 @@ def response_spectrum(record: Record, periods: np.ndarray = SPECTRUM_PERIODS,
         Oscillator periods (s), > 0.
     damping : float
         Damping ratio (dimensionless).
+    progress : callable, optional
+        Called as ``progress(done, total)`` (periods) after each chunk.
 
     Returns
     -------
@@ -130,15 +157,23 @@ def response_spectrum(record: Record, periods: np.ndarray = SPECTRUM_PERIODS,
     periods = np.asarray(periods, dtype=float)
     if periods.ndim != 1 or periods.size == 0 or not np.all(np.isfinite(periods) & (periods > 0)):
         raise InputError("periods must be a non-empty 1-D array of positive periods (s)")
-    sd, _, sa = eqsig.sdof.true_response_spectra(np.asarray(record.values), record.dt, periods, damping)
+    values = np.asarray(record.values)
+    step = periods_per_chunk(values.size)
+    sd, sa = np.empty(periods.size), np.empty(periods.size)
+    for start in range(0, periods.size, step):
+        part = slice(start, start + step)
+        sd[part], _, sa[part] = eqsig.sdof.true_response_spectra(values, record.dt, periods[part], damping)
+        if progress is not None:
+            progress(min(start + step, periods.size), periods.size)
     psa = (2.0 * math.pi / periods) ** 2 * sd
-    return {"period": periods, "sd": np.asarray(sd), "psa": psa, "sa": np.asarray(sa)}
+    return {"period": periods, "sd": sd, "psa": psa, "sa": sa}
 
 
-def motion_measures(record: Record) -> MotionMeasures:
-    """PFA, PFV, PFD, ``T_m`` and ``T_pred`` of ``record`` (see the module's conventions)."""
+def motion_measures(record: Record, progress=None) -> MotionMeasures:
+    """PFA, PFV, PFD, ``T_m`` and ``T_pred`` of ``record`` (see the module's conventions); ``progress`` as
+    :func:`response_spectrum` takes it."""
     v, d = velocity_displacement(record)
-    spec = response_spectrum(record)
+    spec = response_spectrum(record, progress=progress)
     return MotionMeasures(
         pfa=record.pfa,
         pfv=float(np.max(np.abs(v))),
@@ -182,5 +217,6 @@ def record_intensity_measures(alpha, R, p, e_R, measures: MotionMeasures) -> dic
     return {k: float(out[k]) for k in IM_NAMES}
 
 
-__all__ = ["MEAN_PERIOD_BAND", "MotionMeasures", "SPECTRUM_DAMPING", "SPECTRUM_PERIODS", "mean_period",
+__all__ = ["MEAN_PERIOD_BAND", "MotionMeasures", "SPECTRUM_DAMPING", "SPECTRUM_PERIODS", "SPECTRUM_S_PER_STEP",
+           "SPECTRUM_S_PER_STEP_PERIOD", "SPECTRUM_WORK_BYTES", "mean_period", "periods_per_chunk", "spectrum_seconds",
            "motion_measures", "record_intensity_measures", "response_spectrum", "velocity_displacement"]

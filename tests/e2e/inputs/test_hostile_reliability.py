@@ -85,12 +85,17 @@ def test_a_long_record_show_says_how_large_it_is_first(base, monkeypatch, capsys
     from opsrock.cli import main
     from opsrock.cli import records as cli_records
 
+    import opsrock.intensity.records as spectra
+
     monkeypatch.setattr(cli_records, "LONG_READ_BYTES", 0)
     monkeypatch.setattr(cli_records, "LONG_SHOW_S", 0.0)
+    monkeypatch.setattr(spectra, "SPECTRUM_WORK_BYTES", 3 * 8 * 100 * 50)  # 50 periods at a time: 5 chunks
+    monkeypatch.setenv("OPSROCK_PROGRESS_INTERVAL", "1e-9")  # a line after every chunk
     assert main(["records", "show", str(base / "h.txt"), "--units", "g", "--dt", "0.01"]) == 0
     err = capsys.readouterr().err.splitlines()
     assert err[0].startswith("opsrock records: reading ") and "h.txt (0.0 MB)" in err[0]
     assert "100 samples (1 s at dt 0.01 s): its response spectra at 211 periods take about 0 s" in err[1]
+    assert err[2:] == [f"opsrock records: spectra {k}/211 periods" for k in (50, 100, 150, 200, 211)], err
 
 
 def test_version_alone_prints_the_version(tmp_path):

@@ -217,10 +217,22 @@ def _run(argv: Sequence[str] | None, state: dict) -> int:
     args = build_parser().parse_args(argv)
     state["command"] = args.command
     state["output"] = next((str(v) for v in (getattr(args, n, None) for n in ("plot", "out")) if v), None)
-    status = int(handler(args.command)(args) or 0)
+    status = int(_imported_handler(args.command)(args) or 0)
     if sys.stdout is not None:
         sys.stdout.flush()  # a full or closed output is told here, not as "Exception ignored" at exit
     return status
+
+
+def _imported_handler(command: str) -> Callable[[argparse.Namespace], int]:
+    """:func:`handler`, its module and the libraries it loads (numpy, pandas, scipy: most of a command's start-up)
+    imported while a Ctrl-C is only recorded (:func:`opsrock._pool.deferred_interrupts`), then raised. A
+    ``KeyboardInterrupt`` raised inside a library's import can be lost there (C code that clears the error it
+    finds, a handler that catches everything) or turned into another error (Python 3.11 wraps one raised in
+    ``__set_name__`` in a ``RuntimeError``): both were seen, a Ctrl-C ignored or a traceback, issue 46."""
+    from opsrock._pool import deferred_interrupts
+
+    with deferred_interrupts():
+        return handler(command)
 
 
 def _interrupted(command: str | None, exc: KeyboardInterrupt) -> int:

@@ -14,3 +14,38 @@ def test_the_parser_loads_no_numpy():
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.strip() == "[]"
+
+
+SWALLOWING_IMPORT = r"""
+import importlib, os, signal, sys, time
+import opsrock.cli as cli
+
+real = importlib.import_module
+
+
+class Importer:
+    # a library whose import takes a Ctrl-C and loses it (C code that clears the error, a bare except):
+    # the Ctrl-C arrives while the handler's module is being imported
+    @staticmethod
+    def import_module(name):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.5)
+        except BaseException:
+            pass
+        return real(name)
+
+
+cli.importlib = Importer
+sys.exit(cli.main(["records", "list"]))
+"""
+
+
+def test_a_ctrl_c_during_the_handlers_imports_is_not_lost():
+    """Ctrl-C while the command's handler and its libraries are imported, in a library that swallows the
+    ``KeyboardInterrupt`` it would raise: recorded, then acted on once the imports are done (one line, exit 130),
+    not lost (the command ran on past the Ctrl-C, issue 46)."""
+    proc = subprocess.run([sys.executable, "-c", SWALLOWING_IMPORT], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 130, (proc.returncode, proc.stdout, proc.stderr)
+    assert proc.stdout == "" and proc.stderr.strip().endswith("interrupted (nothing written)"), proc.stderr
+    assert len(proc.stderr.splitlines()) == 1, proc.stderr

@@ -224,6 +224,26 @@ def deferred_interrupts():
             raise KeyboardInterrupt
 
 
+def pool_context():
+    """The start method of opsrock's post-processing pools (:class:`TaskPool`, :func:`process_pool`): ``fork`` on
+    Linux, the platform's default elsewhere (``spawn`` on macOS and Windows).
+
+    Chosen here, not left to Python: Python 3.14 makes ``forkserver`` Linux's default, which starts each worker by
+    importing the main script again, so a script read from standard input (``python3 - <<EOF``) could not start one,
+    and each worker would load numpy, scipy and the state anew where a forked one has them already. (The campaign's
+    :class:`~opsrock.campaign.executors.LocalPool` spawns its workers on purpose, and says why.)"""
+    if sys.platform.startswith("linux") and "fork" in multiprocessing.get_all_start_methods():
+        return multiprocessing.get_context("fork")
+    return multiprocessing.get_context()
+
+
+def tasks_stay_here() -> bool:
+    """True where :class:`TaskPool` runs its tasks in this process whatever ``workers`` says: its workers would
+    import the main script again (not ``fork``) and the main script has no file they could import
+    (:func:`unimportable_main`)."""
+    return pool_context().get_start_method() != "fork" and unimportable_main() is not None
+
+
 class TaskPool:
     """``[state.run(*task) for task in tasks]``, in this process (``workers`` 1) or in a pool of ``workers``
     processes, each given ``state`` once; the results in the order of ``tasks`` whatever the split.
@@ -236,7 +256,7 @@ class TaskPool:
     def __init__(self, state, tasks: list[tuple], workers: int = 1) -> None:
         self.state, self.tasks = state, list(tasks)
         self.pool = self.futures = self._done = None
-        if workers > 1 and len(self.tasks) > 1:
+        if workers > 1 and len(self.tasks) > 1 and not tasks_stay_here():
             self.pool = process_pool(min(workers, len(self.tasks)), _pool_init, (state,))
             try:
                 with deferred_interrupts():  # the workers are forked at the first submit
@@ -273,14 +293,15 @@ def _pool_run(*task):
 
 
 def process_pool(workers: int, initializer=None, initargs: tuple = ()):
-    """A ``ProcessPoolExecutor`` of ``workers`` processes whose workers die with this process and ignore SIGINT
-    (:func:`worker_start`), then run ``initializer``.
+    """A ``ProcessPoolExecutor`` of ``workers`` processes started by :func:`pool_context`, whose workers die with
+    this process and ignore SIGINT (:func:`worker_start`), then run ``initializer``.
 
     Submit the first task inside :func:`deferred_interrupts`: that is where the workers are forked.
     """
     from concurrent.futures import ProcessPoolExecutor
 
-    return ProcessPoolExecutor(max_workers=workers, initializer=_init, initargs=(os.getpid(), initializer, initargs))
+    return ProcessPoolExecutor(max_workers=workers, mp_context=pool_context(), initializer=_init,
+                               initargs=(os.getpid(), initializer, initargs))
 
 
 def _init(parent: int, initializer, initargs: tuple) -> None:

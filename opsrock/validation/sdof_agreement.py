@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 import os
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Sequence
@@ -19,6 +18,7 @@ from typing import Any, Sequence
 import numpy as np
 import pandas as pd
 
+from opsrock._pool import process_pool
 from opsrock.campaign.cases import PulseCase
 from opsrock.campaign.scene import load_scene
 from opsrock.data import scene_file
@@ -121,7 +121,7 @@ def compare(
     if workers == 1:
         rows = [_one(j) for j in jobs]
     else:
-        with ProcessPoolExecutor(max_workers=workers) as pool:
+        with process_pool(workers) as pool:
             rows = list(pool.map(_one, jobs, chunksize=max(1, len(jobs) // (8 * workers))))
     df = pd.DataFrame(rows)
     df["dtheta_over_alpha"] = (df["theta_max_over_alpha_a"] - df["theta_max_over_alpha_b"]).abs()

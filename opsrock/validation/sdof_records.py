@@ -22,11 +22,11 @@ import csv
 import os
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import numpy as np
 
+from opsrock._pool import process_pool
 from opsrock._files import atomic_metrics, atomic_text
 
 #: Blocks (2b, 2h in m).
@@ -135,7 +135,7 @@ def compute(path: Path, todo: list, workers: int) -> list[dict]:
         if rows:  # rewrite the kept rows: drops a line cut short by an interruption
             _rewrite(path, rows)
         fields = list(rows[0]) if rows else None
-        with ProcessPoolExecutor(workers) as pool, open(path, "a" if rows else "w", newline="") as fh:
+        with process_pool(workers) as pool, open(path, "a" if rows else "w", newline="") as fh:
             w = None
             for k, row in enumerate(pool.map(run_one, missing), start=1):
                 if w is None:

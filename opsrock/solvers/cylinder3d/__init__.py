@@ -30,11 +30,13 @@ cylinder the same law at the landing point gives what the planar coefficient can
 meets the floor flat (every rim point within the contact gap) is taken by all rim points: a plastic landing.
 
 Scheme (:mod:`~.step`): ``v_free = v_k + dt (body force, -omega x I omega)``, the impulses at the points in contact
-(one point: its exact local solve; several: nonsmooth Gauss-Seidel with the exact local solve per point), ``X`` and
-the quaternion advanced with the theta-blend of the velocities. A cylinder seated on its stuck base is held at rest
-in O(1) a step while the floor's load is carried (``g + a_v > 0``, ``|a_h| h <= r (g + a_v)``, ``|a_h| <= mu (g +
-a_v)``): the uplift threshold ``g r / h`` is exact in every direction. There are no smooth (Runge-Kutta) phases
-here (rigid3d has them): every step is a Moreau-Jean step.
+(one point: its exact local solve; the flat base: the lift about the load's rim point, else the closed forms of
+:mod:`~.flat`, the base staying down stuck or sliding and twisting on an ellipsoidal limit surface while its centre
+of pressure lies in the base, or lifting about one rim point; else nonsmooth Gauss-Seidel with the exact local solve
+per point), ``X`` and the quaternion advanced with the theta-blend of the velocities. A cylinder seated on its stuck
+base is held at rest in O(1) a step while the floor's load is carried (``g + a_v > 0``, ``|a_h| h <= r (g + a_v)``,
+``|a_h| <= mu (g + a_v)``): the uplift threshold ``g r / h`` is exact in every direction. There are no smooth
+(Runge-Kutta) phases here (rigid3d has them): every step is a Moreau-Jean step.
 
 Outputs as rigid3d's: ``theta`` the tilt signed by the lean along ``x``; ``plan``
 (:class:`~opsrock.result.PlanSummary`): tilt, twist, slide of the base centre, the mechanism of overturning

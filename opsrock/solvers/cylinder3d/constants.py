@@ -59,6 +59,7 @@ OUT_SLIDE_MAX = ST.OUT_COMMON + 6
 OUT_TWIST_MAX = ST.OUT_COMMON + 7
 OUT_INPUT_WORK = ST.OUT_COMMON + 8  # work of the floor's inertia force (J/kg)
 OUT_CONTACT_TURN = ST.OUT_COMMON + 9  # signed angle the single contact point ran round the rim, jumps left out (rad)
+OUT_FLAT_STEPS = ST.OUT_COMMON + 10  # steps solved by the flat base's closed form (stuck or sliding on it)
 OUT_NSGS_FAILED = ST.OUT_COMMON + 11  # steps whose NSGS did not converge
 OUT_NSGS_SWEEPS = ST.OUT_COMMON + 12  # sweeps over all contact steps
 OUT_CONTACT_STEPS = ST.OUT_COMMON + 13  # steps that solved a contact problem
@@ -72,7 +73,8 @@ OUT_STATE = ST.OUT_COMMON + 20  # final state, 13 slots
 OUT_TAIL_SETTLED = ST.OUT_COMMON + 33  # 1.0: the tail ended by the energy bound, the peak final, before rest
 OUT_TAIL_CUT = ST.OUT_COMMON + 34  # 1.0: the tail ended still moving, unable to overturn, the peak within TILT_SLACK
 OUT_TAIL_ENERGY = ST.OUT_COMMON + 35  # the energy bound over the lift to overturning when the tail's span ended
-OUT_SIZE = ST.OUT_COMMON + 36
+OUT_LIFT_STEPS = ST.OUT_COMMON + 36  # steps solved by the lift about the flat base's centre of pressure
+OUT_SIZE = ST.OUT_COMMON + 37
 
 # --- the physics' named thresholds and the iterations' tolerances -------------------------------------
 #: Speed of the base (m/s) below which the tail may end by the energy bound (rigid3d's rule "peak"): a base sliding

@@ -179,7 +179,9 @@ class Workspace(NamedTuple):
     """Scratch of a step: rotation ``Q``, floor-frame inverse inertia ``Iinv`` and inertia ``Iw`` (3 x 3), the rim
     points' arms from the centre of mass ``arms`` (n x 3), Delassus blocks ``W`` (n x 3 x 3), impulses ``P``
     (n x 3), body angles ``phi`` (n), the velocity ``vel`` (6: ``V``, ``omega``), the free velocity ``free`` (6),
-    the step's floor accelerations ``acc`` (3), the next state ``new`` (13) and 3-vectors ``tmp`` and ``q``."""
+    the step's floor accelerations ``acc`` (3), the next state ``new`` (13), 3-vectors ``tmp`` and ``q``, and the
+    lift's rim point off the rim points (:func:`.flat.lift_about`): its arm ``parm`` (3), Delassus block ``pW`` (3 x 3)
+    and impulse ``pP`` (3)."""
 
     Q: np.ndarray
     Iinv: np.ndarray
@@ -194,6 +196,9 @@ class Workspace(NamedTuple):
     new: np.ndarray
     tmp: np.ndarray
     q: np.ndarray
+    parm: np.ndarray
+    pW: np.ndarray  # noqa: N815  (a matrix)
+    pP: np.ndarray  # noqa: N815
 
 
 class State(NamedTuple):
@@ -236,7 +241,7 @@ def make_workspace(n_rim: int) -> Workspace:
     """The scratch arrays for ``n_rim`` rim points."""
     return Workspace(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((n_rim, 3)),
                      np.zeros((n_rim, 3, 3)), np.zeros((n_rim, 3)), np.zeros(n_rim), np.zeros(6), np.zeros(6),
-                     np.zeros(3), np.zeros(13), np.zeros(3), np.zeros(3))
+                     np.zeros(3), np.zeros(13), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros((3, 3)), np.zeros(3))
 
 
 def make_state(s0: np.ndarray) -> State:
@@ -248,4 +253,5 @@ def make_state(s0: np.ndarray) -> State:
 
 
 __all__ = ["ContactSolver", "CylinderProperties", "Design", "Floor", "Friction", "Limits", "Model", "Numerics",
-           "State", "Workspace", "cylinder_mass", "cylinder_properties", "make_floor", "make_model", "make_state", "make_workspace"]
+           "State", "Workspace", "cylinder_mass", "cylinder_properties", "make_floor", "make_model", "make_state",
+           "make_workspace"]

@@ -175,6 +175,7 @@ def _diagnostics(out: np.ndarray) -> dict[str, Any]:
             "contact_steps": int(out[C.OUT_CONTACT_STEPS]), "rest_skip_steps": int(out[C.OUT_REST_STEPS]),
             "nsgs_unconverged_steps": int(out[C.OUT_NSGS_FAILED]),
             "nsgs_mean_sweeps": float(out[C.OUT_NSGS_SWEEPS] / steps),
+            "flat_closed_steps": int(out[C.OUT_FLAT_STEPS]), "lift_steps": int(out[C.OUT_LIFT_STEPS]),
             "slip_unconverged": int(out[C.OUT_SLIP_UNCONVERGED]), "time_base": float(out[C.OUT_TIME_BASE]),
             "tail_settled": bool(out[C.OUT_TAIL_SETTLED] > 0.5), "tail_cut": bool(out[C.OUT_TAIL_CUT] > 0.5),
             "contact_turn": float(out[C.OUT_CONTACT_TURN]), "tail_energy_ratio": float(out[C.OUT_TAIL_ENERGY])}

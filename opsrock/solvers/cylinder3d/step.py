@@ -5,7 +5,8 @@ Scheme (theta-method)::
 
     v_free = v_k + dt (body force, -omega x I omega)       body force (-a_x, -a_y, -(g + a_v)) at t_k + theta dt
     contact: the lowest rim point (tilted), or rim_points points round the rim (base flat), if its height
-             predicted at mid-step, gap + dt/2 u_N, is at most the contact gap
+             predicted at mid-step, gap + dt/2 u_N, is at most the contact gap; on a flat base the lift about the
+             load's rim point, else the closed forms of the base on the floor or lifting (:mod:`.flat`), else NSGS
     v_{k+1} = v_free + sum_i H_i^T P_i                     (arms and Delassus blocks at q_k)
     X_{k+1} = X_k + dt [(1 - theta) V_k + theta V_{k+1}]; the quaternion turned by dt times the same blend of omega
 """
@@ -16,9 +17,10 @@ import math
 
 import numba
 
-from opsrock.solvers.cylinder3d.constants import (FLAT_GAP, FORCING_STEPWISE, OPEN, OUT_MAX_PENETRATION, SET_DOWN_GAPS,
-                                                  SLIP)
+from opsrock.solvers.cylinder3d.constants import (FLAT_GAP, FORCING_STEPWISE, OPEN, OUT_FLAT_STEPS, OUT_LIFT_STEPS,
+                                                  OUT_MAX_PENETRATION, SET_DOWN_GAPS, SLIP)
 from opsrock.solvers.cylinder3d.contact import apply_impulse, delassus, local, nsgs
+from opsrock.solvers.cylinder3d.flat import OUTSIDE, flat_base, lift_about, lowest_moving
 from opsrock.solvers.cylinder3d.geometry import inertia, lean, lowest_angle, rim_arm, rotation
 
 
@@ -153,6 +155,28 @@ def _set_down(model, ws):
 
 
 @numba.njit(cache=True)
+def _flat_closed(model, ws, n, out):
+    """The flat base's closed forms (:mod:`.flat`) where the lift about the load's rim point did not hold: the base
+    stays down (stuck, or sliding and twisting), or the cylinder lifts about one rim point, sought from the
+    centre of pressure that would have been outside the base, or from the rim point moving down fastest where the
+    base would not press. Returns the local status, or -1 (NSGS solves the step)."""
+    st = flat_base(model, ws, n, out)
+    if st >= 0:
+        out[OUT_FLAT_STEPS] += 1.0
+        return st
+    Q = ws.Q
+    if st == OUTSIDE:  # towards the centre of pressure
+        phi = math.atan2(Q[0, 1] * ws.q[0] + Q[1, 1] * ws.q[1], Q[0, 0] * ws.q[0] + Q[1, 0] * ws.q[1])
+    else:  # the base would not press: the rim point moving down fastest
+        phi = lowest_moving(Q, model.design.r, ws.free, 0.0)
+    st = lift_about(model, ws, n, phi, out)
+    if st >= 0:
+        out[OUT_LIFT_STEPS] += 1.0
+        return st
+    return -1
+
+
+@numba.njit(cache=True)
 def step(model, s, ws, out):
     """One Moreau-Jean step from ``s`` into ``ws.new`` (the floor's accelerations in ``ws.acc``). Returns the rim
     points in contact, the sweeps NSGS took (0: no contact), the points slipping, the first point's body angle
@@ -161,6 +185,8 @@ def step(model, s, ws, out):
     n, phi0, flat = contact_points(model, s, ws, out)
     sweeps, slipping = 0, 0
     alone = _pivot_alone(model, ws, n, phi0, out) if n > 1 else -1
+    if alone < 0 and n > 1 and flat:
+        alone = _flat_closed(model, ws, n, out)
     if alone >= 0:
         sweeps, slipping = 1, (1 if alone == SLIP else 0)
     elif n > 0:

@@ -364,14 +364,13 @@ def test_matches_housner_solver():
 
 
 @pytest.mark.slow
-def test_dense_spectrum_40000_cases_under_60_s():
-    """4 blocks x 100 x 100 pulses in under 60 s on the project's 2-core machine (docs/guide/modelling.md section 5),
-    all finishing without failure. Measured about 2-5 s (loaded machine)."""
-    hf.solve_grid(0.2, 0.9, 2.0, 2.0)  # compile / load the cache outside the timing
+def test_dense_spectrum_of_40000_cases_finishes_every_case():
+    """4 blocks x 100 x 100 pulses, the dense spectrum docs/reference.md times: every case finishes
+    without failure. Its speed (2-5 s measured, loaded machine) is a measurement for ``opsrock bench``, never a
+    test's verdict (issue 46)."""
     res = hf.solve_pulses(BLOCKS, np.linspace(1.0, 10.5, 100), np.linspace(0.5, 10.0, 100))
     assert res.theta_max.size == 40_000
     assert res.ok.all()
-    assert res.wall_time_s < 60.0
 
 
 def test_a_grids_wall_time_starts_once_the_kernel_is_loaded(monkeypatch):

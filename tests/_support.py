@@ -157,3 +157,13 @@ def drawn_figure(module, fn, *args):
         module.save_figure = real
     plt.close(kept["fig"])
     return kept["fig"]
+
+
+def library_mapped(pid: int, library: str) -> bool:
+    """Has process ``pid`` loaded a shared library whose path contains ``library`` (``/proc/<pid>/maps``)? A
+    readiness poll for "the command's imports are under way" (False once the process is gone)."""
+    try:
+        return library in Path(f"/proc/{pid}/maps").read_text()
+    except OSError:
+        return False
+

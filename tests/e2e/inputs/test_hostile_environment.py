@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from _hostile import Case, every_other, sweep
-from _support import BLOCKS, RECORD_SCENE, opsrock_command, run_opsrock
+from _support import BLOCKS, RECORD_SCENE, library_mapped, opsrock_command, run_opsrock
 
 SIM = ("simulate", "--width", "0.4", "--height", "2.2")
 
@@ -307,12 +307,6 @@ def test_sighup_stops_like_ctrl_c(tmp_path):
     assert _none_left(proc.pid) == []
 
 
-def _mapped(pid: int, library: str) -> bool:
-    with contextlib.suppress(OSError):
-        return library in Path(f"/proc/{pid}/maps").read_text()
-    return False
-
-
 def test_ctrl_c_during_the_heavy_imports_is_one_line(tmp_path):
     """Ctrl-C while numpy is being loaded (its extension mapped, the solvers not yet imported): one line,
     exit 130, no traceback (``import opsrock`` was heavy and ran before main's handling began)."""
@@ -321,7 +315,7 @@ def test_ctrl_c_during_the_heavy_imports_is_one_line(tmp_path):
                             text=True, start_new_session=True, stdin=subprocess.DEVNULL,
                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     deadline = time.monotonic() + 30
-    while not _mapped(proc.pid, "_multiarray_umath") and time.monotonic() < deadline and proc.poll() is None:
+    while not library_mapped(proc.pid, "_multiarray_umath") and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.001)
     os.kill(proc.pid, signal.SIGINT)
     _, err = proc.communicate(timeout=60)

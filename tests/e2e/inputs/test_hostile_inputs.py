@@ -14,6 +14,7 @@ byte-order mark) are at the end, with what the answer must say.
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import os
 import shutil
@@ -25,7 +26,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from _hostile import Case, listing, one_per_option, sweep
-from _support import BLOCKS, OPSROCK, RECORD_SCENE, permissions_bind_root, run_opsrock
+from _support import BLOCKS, OPSROCK, RECORD_SCENE, library_mapped, permissions_bind_root, run_opsrock
 
 
 #: The values every numeric option is tried with (each kept only where it is bad for that option).
@@ -487,11 +488,26 @@ def test_random_option_values_are_refused_or_answered(option, value):
 # minutes on 2 cores (each resumes a 144-case campaign, about 15 s; 0.3 s was in make test until issue 33's tests
 # needed the time): Ctrl-C in make test is test_ctrl_c_then_resume_computes_only_the_missing_cases
 # (tests/model/campaign/test_campaign.py) and test_ctrl_c_says_what_is_true_of_the_command (test_hostile_environment.py)
+def _stored_cases(store: Path) -> int:
+    """Cases a running campaign has stored so far (its SQLite store read read-only; 0 before it exists)."""
+    import sqlite3
+
+    if not store.exists():
+        return 0
+    try:
+        with contextlib.closing(sqlite3.connect(f"file:{store}?mode=ro", uri=True, timeout=5)) as db:
+            return int(db.execute("SELECT COUNT(*) FROM results").fetchone()[0])
+    except sqlite3.OperationalError:  # the table not made yet
+        return 0
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("delay", [0.3, 1.5, 3.0])
-def test_ctrl_c_at_any_moment_gives_one_line_and_resumes(base, tmp_path, delay):
-    """SIGINT to the whole process group (what a terminal's Ctrl-C does) while a campaign starts, spawns
-    its workers or solves: one line, exit 130, no worker's traceback; the same command then finishes."""
+@pytest.mark.parametrize("moment", ["starting", "spawning", "solving"])
+def test_ctrl_c_at_any_moment_gives_one_line_and_resumes(base, tmp_path, moment):
+    """SIGINT to the whole process group (what a terminal's Ctrl-C does) while a campaign starts (numpy loading), spawns
+    its workers (its store made, no case stored) or solves (a first case stored, 143 to go): one line, exit 130, no
+    worker's traceback; the same command then finishes. The moments are states polled, not delays, so that the
+    verdict does not depend on the machine's speed."""
     import signal
     import time
 
@@ -504,8 +520,11 @@ def test_ctrl_c_at_any_moment_gives_one_line_and_resumes(base, tmp_path, delay):
     # give the command the default disposition, as a terminal's foreground job has, or it never sees Ctrl-C.
     proc = subprocess.Popen(cmd, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                             start_new_session=True, preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
-    time.sleep(delay)
-    assert proc.poll() is None, "the campaign (144 cases, about 15 s) ended before the signal"
+    store, deadline = tmp_path / "out" / "results.sqlite", time.monotonic() + 300
+    reached = {"starting": lambda: library_mapped(proc.pid, "_multiarray_umath"), "spawning": store.exists, "solving": lambda: _stored_cases(store) >= 1}[moment]
+    while not reached():
+        assert proc.poll() is None and time.monotonic() < deadline, proc.communicate()
+        time.sleep(0.01)
     os.killpg(proc.pid, signal.SIGINT)
     out, err = proc.communicate(timeout=120)
     assert proc.returncode == 130, (proc.returncode, err)
@@ -521,10 +540,7 @@ def test_the_documented_maximum_of_storeys_finishes(base, tmp_path):
     # --storeys 200, the limit: a 400-sample record through a 200-storey building (T1 = 10 s), with the
     # building's 60-s free-vibration tail; before the filter was factorised once it did not finish in a
     # minute (50 storeys took 31 s). Measured since: 200 storeys on a 20-s record 16.5 s.
-    import time
-
-    t0 = time.monotonic()
+    # (It once asserted a time as well: a verdict never rests on the machine's speed, issue 46.)
     proc = run_opsrock([*SIM, "--record", f"{base}/rec.txt", "--units", "g", "--dt", "0.01", "--building-period", "10",
                  "--storeys", "200", "--solver", "housner_fast", "--json"], tmp_path, timeout=300)
     assert proc.returncode == 0, proc.stderr
-    assert time.monotonic() - t0 < 120

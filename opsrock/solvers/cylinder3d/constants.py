@@ -74,7 +74,9 @@ OUT_TAIL_SETTLED = ST.OUT_COMMON + 33  # 1.0: the tail ended by the energy bound
 OUT_TAIL_CUT = ST.OUT_COMMON + 34  # 1.0: the tail ended still moving, unable to overturn, the peak within TILT_SLACK
 OUT_TAIL_ENERGY = ST.OUT_COMMON + 35  # the energy bound over the lift to overturning when the tail's span ended
 OUT_LIFT_STEPS = ST.OUT_COMMON + 36  # steps solved by the lift about the flat base's centre of pressure
-OUT_SIZE = ST.OUT_COMMON + 37
+OUT_FRICTION_WORK = ST.OUT_COMMON + 37  # work the contact impulses take at the step's end velocities (J/kg)
+OUT_IMPACT_LOSS = ST.OUT_COMMON + 38  # kinetic energy of the impulses' velocity change at landings (J/kg)
+OUT_SIZE = ST.OUT_COMMON + 39
 
 # --- the physics' named thresholds and the iterations' tolerances -------------------------------------
 #: Speed of the base (m/s) below which the tail may end by the energy bound (rigid3d's rule "peak"): a base sliding

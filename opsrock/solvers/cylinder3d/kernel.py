@@ -18,7 +18,8 @@ import numba
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers.cylinder3d.constants import (H_DOWN, H_POS, H_ROT, H_SLIDE, H_T, H_THETA, H_THETA_DOT, H_TWIST,
                                                   LANDING_JUMP, MAX_SUBSTEPS, OUT_CONTACT_STEPS, OUT_CONTACT_TURN,
-                                                  OUT_EVENT_TIME, OUT_FIRST_MODE, OUT_IMPACTS, OUT_INPUT_WORK,
+                                                  OUT_EVENT_TIME, OUT_FIRST_MODE, OUT_FRICTION_WORK, OUT_IMPACT_LOSS,
+                                                  OUT_IMPACTS, OUT_INPUT_WORK,
                                                   OUT_NSGS_FAILED, OUT_NSGS_SWEEPS, OUT_N_HIST, OUT_OVERTURNED,
                                                   OUT_OVER_DIR, OUT_OVER_KIND, OUT_REST_STEPS, OUT_ROCKED,
                                                   OUT_SLIDE_MAX, OUT_STATE, OUT_STATUS, OUT_STEPS, OUT_TAIL_CUT,
@@ -181,6 +182,25 @@ def _tail_settled(model, state, tail_av):
 
 
 @numba.njit(cache=True)
+def _impulse_energy(ws):
+    """The energy per unit mass (J/kg) the step's contact impulses took: ``-dv . M v_end`` (their work at the step's
+    end velocities, ``dv = v_end - v_free``, ``M = diag(1, Iw)``: friction's alone where the normal impulses do none,
+    ``P_N u_N = 0`` at a solved contact) and ``-dv . M v_end + dv . M dv / 2`` (all the kinetic energy they took,
+    an impact's loss)."""
+    vel, free, Iw = ws.vel, ws.free, ws.Iw
+    work, quad = 0.0, 0.0
+    for i in range(3):
+        dv = vel[i] - free[i]
+        work -= dv * vel[i]
+        quad += 0.5 * dv * dv
+        dw = vel[3 + i] - free[3 + i]
+        for j in range(3):
+            work -= dw * Iw[i, j] * vel[3 + j]
+            quad += 0.5 * dw * Iw[i, j] * (vel[3 + j] - free[3 + j])
+    return work, work + quad
+
+
+@numba.njit(cache=True)
 def _sub_step(model, state, ws, k):
     """One Moreau-Jean step of ``model``'s step and its bookkeeping; returns False if the run must stop failed
     (non-finite state, NSGS unconverged too long: ``out[OUT_STATUS]`` set)."""
@@ -197,7 +217,10 @@ def _sub_step(model, state, ws, k):
             return False
     else:
         tr[T_UNCONVERGED] = 0.0
-    _book(model, state, n, slipping, phi0, flat)
+    if _book(model, state, n, slipping, phi0, flat):
+        out[OUT_IMPACT_LOSS] += _impulse_energy(ws)[1]
+    elif n > 0:
+        out[OUT_FRICTION_WORK] += _impulse_energy(ws)[0]
     fin = 0.0
     for a in range(13):
         fin += ws.new[a]

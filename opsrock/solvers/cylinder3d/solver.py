@@ -144,14 +144,15 @@ def mechanical_energy(block: Block, state: np.ndarray) -> tuple[float, float]:
 
 
 def _energy(block: Block, out: np.ndarray, state0: np.ndarray) -> dict[str, float]:
-    """The run's energy balance in J (for the block's mass): the floor's work, the initial and final kinetic and
-    potential energy and what was ``dissipated`` (their balance: impacts, slip and the scheme's own error, which
-    rolling without slip shows alone)."""
+    """The run's energy balance in J (for the block's mass), with rigid3d's keys: the floor's work, the initial and
+    final kinetic and potential energy, ``friction_work`` (the contact impulses' work at each contact step's end
+    velocities, landings apart: slip, and the rim point's drift while it rolls), ``impact_loss`` (the kinetic energy
+    the impulses took at each landing) and ``residual`` (the balance: the scheme's own error, ``O(dt)``)."""
     kinetic, potential = mechanical_energy(block, out[C.OUT_STATE:C.OUT_STATE + 13])
     initial = sum(mechanical_energy(block, state0))
-    work = block.mass * float(out[C.OUT_INPUT_WORK])
-    return {"input_work": work, "kinetic": kinetic, "potential": potential, "initial": initial,
-            "dissipated": work + initial - kinetic - potential}
+    work, fric, imp = (block.mass * float(out[i]) for i in (C.OUT_INPUT_WORK, C.OUT_FRICTION_WORK, C.OUT_IMPACT_LOSS))
+    return {"input_work": work, "kinetic": kinetic, "potential": potential, "friction_work": fric,
+            "impact_loss": imp, "initial": initial, "residual": work + initial - kinetic - potential - fric - imp}
 
 
 def _tilt_bound(block: Block, cyl: CylinderProperties, state: np.ndarray) -> float:

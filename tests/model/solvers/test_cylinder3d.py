@@ -173,6 +173,25 @@ def test_it_slides_before_it_rocks_when_mu_is_below_r_over_h():
     assert math.degrees(math.atan2(sy, sx)) == pytest.approx(60.0 - 180.0, abs=1e-4)
 
 
+def test_energy_balance_has_rigid3ds_terms_and_closes():
+    """The energy balance carries rigid3d's keys. A base sliding without lifting (mu = 0.2 < r/h, a pulse at 2 g tan
+    alpha): friction takes the floor's work, the residual (the scheme's) below 1e-5 of it (measured 1.1e-6, halving
+    with the step). A rocking block that overturns after one landing (no slip): no friction work, an impact loss,
+    the residual below 2e-3 of the input (measured 5.6e-4 at the default step, 1.2e-3 at twice it: first order).
+    The friction work is the impulses' whole work at the end velocities, the normal part zero at a solved contact."""
+    slide = cylinder_block(0.3, 1.2, friction=0.2)
+    e = solve(slide, PlanMotion.along(OneSinePulse.from_ratios(slide, 2.0, 3.0), 25.0)).plan.energy
+    assert set(e) >= {"input_work", "kinetic", "potential", "friction_work", "impact_loss", "residual"}
+    assert e["impact_loss"] == 0.0 and e["friction_work"] > 0.9 * e["input_work"] > 0.0
+    assert abs(e["residual"]) < 1e-5 * e["input_work"]
+    rock = cylinder_block(0.3, 1.2)
+    r = solve(rock, PlanMotion.along(OneSinePulse.from_ratios(rock, 2.0, 3.0), 25.0))
+    e = r.plan.energy
+    assert r.overturned and r.n_impacts == 1 and e["impact_loss"] > 0.0
+    assert abs(e["friction_work"]) < 1e-12 * e["input_work"]  # the normal impulses' P_N u_N: round-off (8e-15 J)
+    assert abs(e["residual"]) < 2e-3 * e["input_work"]
+
+
 def _flat_state(block, vx, vy, wz):
     """The kernel state of ``block`` standing on its base at rest position, moving in plan with ``(vx, vy)`` (m/s)
     and twisting at ``wz`` (rad/s)."""

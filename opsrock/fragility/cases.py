@@ -109,6 +109,11 @@ def _why_failed(cases: pd.DataFrame) -> str:
     return text
 
 
+def count_failed(cases: pd.DataFrame) -> int:
+    """How many of ``cases`` did not finish (``status`` other than ``"ok"``: stored failed with their reason)."""
+    return int((cases["status"] != "ok").sum())
+
+
 def check_some_finished(cases: pd.DataFrame, source: str) -> None:
     """Refuse a campaign's cases of which none finished: nothing to fit.
 

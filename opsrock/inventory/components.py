@@ -175,11 +175,10 @@ def three_d_components(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, 
     """:data:`COMPONENT_COLUMNS` from the cases of boxes in plan (:mod:`opsrock.inventory.three_d`): each item and
     floor's limit states fitted to every finished case against ``scale x pfv_max`` (m/s), the azimuths pooled,
     record-bootstrap intervals (:func:`opsrock.fragility.mle.plan_mle`)."""
-    from opsrock.fragility.mle import fit_plans, plan_mle
-    from opsrock.inventory.fits import fit_status, outcomes, slide_distance_of
+    from opsrock.inventory.fits import FitBatch, fit_status, outcomes, slide_distance_of
 
     items = {it.id: it for it in design.inventory.items}
-    rows, plans, where = [], [], []
+    batch = FitBatch(design.n_boot, design.seed)
     for (item_id, floor), g in cases.groupby(["item", "floor"], sort=False):
         ok = g[g["status"] == "ok"]
         pfv = record_pfv(demands, floor)["pfv_max"]
@@ -191,22 +190,17 @@ def three_d_components(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, 
             y = found[outcome].to_numpy(bool)
             row = _row(item_id, str(floor), ls, int(ok["record"].nunique()))
             row["source"] = f"3-D ({ok['azimuth'].nunique() if 'azimuth' in ok else 1} azimuths pooled)"
-            if y.any():
-                plans.append(plan_mle(x, y, n_boot=design.n_boot, seed=design.seed, groups=ok["record"].to_numpy()))
-                where.append((len(rows), len(y), int(y.sum()), float(x.max())))
-            else:
-                row["message"] = f"never {'overturned' if ls == 'overturned' else 'displaced'} in {len(y)} cases"
-            rows.append(row)
-    for (i, n, k, x_max), f in zip(where, fit_plans(plans, workers or 1)):
-        good = bool(f.success and math.isfinite(f.mu))
-        rows[i].update(median=f.mu if good else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
-                       beta=f.beta if good else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi,
-                       status="fitted" if good else fit_status(False, math.nan, math.nan, k, n),
-                       message="" if good else f.message)
-        if good and f.mu > x_max:  # kept (as the planar fits keep theirs), and said
-            rows[i]["message"] = (f"extrapolated: the median {f.mu:.3g} m/s lies beyond the largest demand of the "
-                                  f"cases ({x_max:.3g} m/s), from {k} of {n} cases")
-    return _numbered(pd.DataFrame(rows, columns=list(COMPONENT_COLUMNS)))
+            row.update(n=len(y), k=int(y.sum()), x_max=float(x.max()) if len(x) else math.nan)
+            batch.add(row, x, y, ok["record"].to_numpy(),
+                      never=f"never {'overturned' if ls == 'overturned' else 'displaced'} in {len(y)} cases")
+    for row, f in batch.run(workers):
+        good, n, k = row["ok"], row["n"], row["k"]
+        row.update(status="fitted" if good else fit_status(False, math.nan, math.nan, k, n),
+                   message="" if good else f.message)
+        if good and f.mu > row["x_max"]:  # kept (as the planar fits keep theirs), and said
+            row["message"] = (f"extrapolated: the median {f.mu:.3g} m/s lies beyond the largest demand of the "
+                              f"cases ({row['x_max']:.3g} m/s), from {k} of {n} cases")
+    return _numbered(pd.DataFrame(batch.rows, columns=list(COMPONENT_COLUMNS)))
 
 
 def _numbered(table: pd.DataFrame) -> pd.DataFrame:

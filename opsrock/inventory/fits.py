@@ -80,6 +80,71 @@ def slide_distance_of(item: Any, study: Any) -> float:
     return item.slide_distance if getattr(item, "slide_distance", None) is not None else study.slide_distance
 
 
+def no_fit(message: str) -> dict[str, Any]:
+    """The fit fields of a row without a fit (NaN medians and betas, not ``ok``), saying why in ``message``."""
+    nan = math.nan
+    return {"median": nan, "median_lo": nan, "median_hi": nan, "beta": nan, "beta_lo": nan, "beta_hi": nan,
+            "ok": False, "message": message}
+
+
+def fitted(f: Any) -> dict[str, Any]:
+    """The fit fields of a row fitted by ``f`` (:class:`~opsrock.fragility.mle.MLEFit`, medians in the demand's
+    unit): its median and beta where it succeeded with a finite median (``ok``), NaN otherwise; its intervals and
+    message as they are."""
+    ok = bool(f.success and math.isfinite(f.mu))
+    return {"median": f.mu if ok else math.nan, "median_lo": f.mu_lo, "median_hi": f.mu_hi,
+            "beta": f.beta if ok else math.nan, "beta_lo": f.beta_lo, "beta_hi": f.beta_hi, "ok": ok,
+            "message": f.message}
+
+
+class FitBatch:
+    """The rows of a fit table whose lognormal fits (maximum likelihood, record-bootstrap intervals:
+    :func:`opsrock.fragility.mle.plan_mle`) run together, their resamples shared among worker processes
+    (:func:`opsrock.fragility.mle.fit_plans`): every study's fit tables (the inventory's, in three dimensions,
+    FEMA P-58's nine, both models side by side) are made by it.
+
+    Parameters
+    ----------
+    n_boot : int
+        Record-bootstrap resamples of each fit (0: none).
+    seed : int
+        Seed of the resamples.
+    """
+
+    def __init__(self, n_boot: int, seed: int) -> None:
+        self.n_boot, self.seed = n_boot, seed
+        self.rows: list[dict[str, Any]] = []
+        self._plans: list[Any] = []
+        self._where: list[int] = []
+
+    def add(self, row: dict[str, Any], x: Any, y: Any, groups: Any, *, never: str = "",
+            n_boot: int | None = None, seed: int | None = None) -> dict[str, Any]:
+        """Add ``row``: fitted later to demands ``x`` (any unit) and outcomes ``y`` (bool) grouped by record
+        (``groups``) if any case exceeded, else given :func:`no_fit` fields saying ``never`` now; ``n_boot`` and
+        ``seed`` for this row only (default the batch's). Returns it."""
+        if not y.any():
+            row.update(no_fit(never))
+        else:
+            from opsrock.fragility.mle import plan_mle
+
+            self._plans.append(plan_mle(x, y, n_boot=self.n_boot if n_boot is None else n_boot,
+                                        seed=self.seed if seed is None else seed, groups=groups))
+            self._where.append(len(self.rows))
+        self.rows.append(row)
+        return row
+
+    def run(self, workers: int | None) -> list[tuple[dict[str, Any], Any]]:
+        """Fit every row added with cases and fill it with :func:`fitted`; the ``(row, fit)`` pairs, for the fields a
+        table adds of its own."""
+        from opsrock.fragility.mle import fit_plans
+
+        done = []
+        for i, f in zip(self._where, fit_plans(self._plans, workers or 1)):
+            self.rows[i].update(fitted(f))
+            done.append((self.rows[i], f))
+        return done
+
+
 def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: int | None) -> pd.DataFrame:
     """Every fit of the study (:data:`FIT_COLUMNS`), one row per item, floor, direction, outcome and demand.
 
@@ -94,35 +159,27 @@ def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: i
     workers : int or None
         Processes for the resamples (None or 1: this one).
     """
-    from opsrock.fragility.mle import fit_plans, plan_mle
-
     items = {it.id: it for it in study.inventory.items}
     scaled = _scaled_demands(cases, demands)
-    rows, plans, where = [], [], []
+    batch = FitBatch(study.n_boot, study.seed)
     for (item, floor, direction), g in scaled.groupby(["item", "floor", "direction"], sort=False):
         ok = g[g["status"] == "ok"]
         for outcome, y in outcomes(ok, slide_distance_of(items[item], study)).items():
             for demand, (unit, _, _) in DEMANDS.items():
                 row = _row_keys(items[item], floor, direction, outcome, demand, unit, study.method)
+                x = ok[f"x_{demand}"].to_numpy(float)
                 row.update(n_cases=len(ok), n_exceeded=int(y.sum()), n_failed=len(g) - len(ok),
-                           n_records=int(ok["record"].nunique()))
+                           n_records=int(ok["record"].nunique()), x_max=float(x.max()) if len(x) else math.nan)
                 row["status"] = fit_status(False, math.nan, math.nan, row["n_exceeded"], row["n_cases"])
-                if not y.any():
-                    row.update(_no_fit(f"never {_verb(outcome)} {_within(study.method)}"))
-                else:
-                    x = ok[f"x_{demand}"].to_numpy(float)
-                    plans.append(plan_mle(x, y.to_numpy(bool), n_boot=study.n_boot, seed=study.seed,
-                                          groups=ok["record"].to_numpy()))
-                    where.append((len(rows), float(x.max())))
-                rows.append(row)
-    for (i, x_max), f in zip(where, fit_plans(plans, workers or 1)):
-        ok = bool(f.success and math.isfinite(f.mu))
-        step = not ok and f.beta == 0.0 and math.isfinite(f.mu)  # separated outcomes: kept as a step at the gap
-        rows[i].update(median=f.mu if ok or step else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
-                       beta=f.beta if ok or step else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=ok,
-                       status=fit_status(ok, f.mu, x_max, rows[i]["n_exceeded"], rows[i]["n_cases"]))
-        rows[i]["message"] = _extrapolated(f.mu, x_max, rows[i]) if rows[i]["status"] == "extrapolated" else f.message
-    table = pd.DataFrame(rows, columns=list(FIT_COLUMNS))
+                batch.add(row, x, y.to_numpy(bool), ok["record"].to_numpy(),
+                          never=f"never {_verb(outcome)} {_within(study.method)}")
+    for row, f in batch.run(workers):
+        if not row["ok"] and f.beta == 0.0 and math.isfinite(f.mu):  # separated outcomes: kept as a step at the gap
+            row.update(median=f.mu, beta=f.beta)
+        row["status"] = fit_status(row["ok"], f.mu, row["x_max"], row["n_exceeded"], row["n_cases"])
+        if row["status"] == "extrapolated":
+            row["message"] = _extrapolated(f.mu, row["x_max"], row)
+    table = pd.DataFrame(batch.rows, columns=list(FIT_COLUMNS))
     table["ratio_fema"] = table["median"] / table["fema_median"]
     return table
 
@@ -165,10 +222,5 @@ def _within(method: str) -> str:
     return "within the levels" if method == "ida" else "under the motions as recorded"
 
 
-def _no_fit(message: str) -> dict[str, Any]:
-    nan = math.nan
-    return {"median": nan, "median_lo": nan, "median_hi": nan, "beta": nan, "beta_lo": nan, "beta_hi": nan,
-            "ok": False, "message": message}
-
-
-__all__ = ["DEMANDS", "FIT_COLUMNS", "FIT_STATUSES", "fit_status", "slide_distance_of", "fema_median", "fit_table", "outcomes"]
+__all__ = ["DEMANDS", "FIT_COLUMNS", "FIT_STATUSES", "FitBatch", "fema_median", "fit_status", "fit_table", "fitted",
+           "no_fit", "outcomes", "slide_distance_of"]

@@ -160,14 +160,9 @@ def run_study(inventory: str | Path | None = None, motions: str | Path | None = 
         (:class:`opsrock.inventory.sources.BuildingSource`; default its defaults: T1 = 1.0 s, 8 storeys).
     quick : bool
         A quick study (fewer levels, records and resamples).
-    workers : int or None
-        Processes (default: every core).
-    progress : bool
-        Progress on stderr.
-    force : bool
-        Delete stored results of other settings in the campaigns' folders instead of refusing them.
-    store_dir : str or Path, optional
-        Where the campaigns keep their stores (default ``out_dir/campaigns``).
+    workers, progress, force, store_dir
+        As :func:`run_design` takes them (processes, progress on stderr, whether stored results of other settings
+        are deleted, where the campaigns keep their stores).
     **settings
         Fields of the configuration's design: :class:`~opsrock.inventory.study.InventoryDesign` (``method``
         ``"ida"`` or ``"cloud"``, ``levels``, ``n_boot``, ``seed``, ``slide_distance`` in m, ``azimuths`` in

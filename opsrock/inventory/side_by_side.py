@@ -80,19 +80,16 @@ def _slid_share(cases: pd.DataFrame, distance: float) -> float:
 def _azimuth_medians(ok: pd.DataFrame, x: np.ndarray, y: np.ndarray, seed: int) -> dict[float, float]:
     """The lognormal median (m/s) fitted to each azimuth's cases alone (point fit, no resamples); NaN where it
     cannot be fitted (never or always exceeded)."""
-    from opsrock.fragility.mle import fit_plans, plan_mle
+    from opsrock.inventory.fits import FitBatch
 
-    out, plans = {}, []
+    batch = FitBatch(0, seed)
     azimuths = ok["azimuth"].to_numpy(float)
     for z in sorted(set(azimuths)):
         at = azimuths == z
-        if y[at].any() and not y[at].all():
-            plans.append((z, plan_mle(x[at], y[at], n_boot=0, seed=seed)))
-        else:
-            out[z] = math.nan
-    for (z, _), f in zip(plans, fit_plans([p for _, p in plans], 1)):
-        out[z] = f.mu if f.success and math.isfinite(f.mu) else math.nan
-    return out
+        mixed = bool(y[at].any() and not y[at].all())  # one outcome only: no finite median
+        batch.add({"azimuth": z}, x[at], y[at] & mixed, None)
+    batch.run(1)
+    return {row["azimuth"]: row["median"] for row in batch.rows}
 
 
 def _measured(cases3d: pd.DataFrame, planar: pd.DataFrame, demands: pd.DataFrame, item: Any, floor: str,

@@ -186,6 +186,7 @@ class OutputStage:
 
     def run(self, a: Assessment) -> InventoryStudy:
         from opsrock._files import staged_folder
+        from opsrock.fragility.cases import count_failed
 
         t0 = time.perf_counter()
         with staged_folder(a.out, a.route.outputs) as stage:
@@ -198,7 +199,7 @@ class OutputStage:
         return InventoryStudy(design=a.design, out_dir=str(a.out), tables={k: final[p] for k, p in w.tables.items()},
                               pelicun={k: final[p] for k, p in w.pelicun.items()}, report=final[w.report],
                               n_cases=len(a.cases), n_computed=a.n_computed,
-                              n_failed=int((a.cases["status"] != "ok").sum()), timings=a.timings,
+                              n_failed=count_failed(a.cases), timings=a.timings,
                               figures=[final[p] for p in w.figures], summary=w.summary)
 
 

@@ -141,12 +141,11 @@ def pfv_demands(cases: pd.DataFrame, demands: pd.DataFrame) -> pd.DataFrame:
 def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers: int | None) -> pd.DataFrame:
     """Every fit of the route (:data:`FIT3D_COLUMNS`): one row per item, floor and PFV convention, the azimuths
     pooled; lognormal maximum likelihood with a record bootstrap (:func:`opsrock.fragility.mle.plan_mle`)."""
-    from opsrock.fragility.mle import fit_plans, plan_mle
-    from opsrock.inventory.fits import fema_median
+    from opsrock.inventory.fits import FitBatch, fema_median
 
     items = {it.id: it for it in design.inventory.items}
     scaled = pfv_demands(cases, demands)
-    rows, plans, where = [], [], []
+    batch = FitBatch(design.n_boot, design.seed)
     for (item_id, floor), g in scaled.groupby(["item", "floor"], sort=False):
         ok, item = g[g["status"] == "ok"], items[item_id]
         y = ok["overturned"].to_numpy(bool)
@@ -156,23 +155,12 @@ def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers
                    "method": design.method, "n_cases": len(ok), "n_exceeded": int(y.sum()),
                    "n_corner": int((ok["overturned_over"] == "corner").sum()), "n_failed": len(g) - len(ok),
                    "n_records": int(ok["record"].nunique()), "n_azimuths": int(ok["azimuth"].nunique()),
-                   "fema_id": item.fema_id, "fema_median": fema if demand == "pfv_max_x1.2" else math.nan,
-                   "median": math.nan, "median_lo": math.nan, "median_hi": math.nan, "beta": math.nan,
-                   "beta_lo": math.nan, "beta_hi": math.nan, "ok": False, "message": ""}
-            if not y.any():
-                row["message"] = "never overturned " + ("within the levels" if design.method == "ida"
-                                                         else "under the motions as recorded")
-            else:
-                plans.append(plan_mle(ok[demand].to_numpy(float), y, n_boot=design.n_boot, seed=design.seed,
-                                      groups=ok["record"].to_numpy()))
-                where.append(len(rows))
-            rows.append(row)
-    for i, f in zip(where, fit_plans(plans, workers or 1)):
-        good = bool(f.success and math.isfinite(f.mu))
-        rows[i].update(median=f.mu if good else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
-                       beta=f.beta if good else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=good,
-                       message=f.message)
-    table = pd.DataFrame(rows, columns=list(FIT3D_COLUMNS))
+                   "fema_id": item.fema_id, "fema_median": fema if demand == "pfv_max_x1.2" else math.nan}
+            batch.add(row, ok[demand].to_numpy(float), y, ok["record"].to_numpy(),
+                      never="never overturned " + ("within the levels" if design.method == "ida"
+                                                   else "under the motions as recorded"))
+    batch.run(workers)
+    table = pd.DataFrame(batch.rows, columns=list(FIT3D_COLUMNS))
     table["ratio_fema"] = table["median"] / table["fema_median"]
     return table
 

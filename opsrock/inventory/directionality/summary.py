@@ -24,7 +24,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from opsrock.fragility.mle import fit_plans, plan_mle
+from opsrock.fragility.cases import count_failed
+from opsrock.inventory.fits import FitBatch
 
 #: Demand conventions fitted for each model.
 CONVENTIONS: dict[str, tuple[str, ...]] = {"3d": ("pfv_1", "pfv_2", "pfv_max", "pfv_nd", "pfv_weak"),
@@ -69,7 +70,7 @@ def fit_table(cases: pd.DataFrame, design: Any, workers: int = 1) -> pd.DataFram
     workers : int
         Processes for the resamples.
     """
-    rows, plans, where = [], [], []
+    batch = FitBatch(design.n_boot, design.seed)
     for (model, item, floor, azimuth), g in _groups(cases):
         ok = g[g["status"] == "ok"]
         y = ok["overturned"].to_numpy(bool)
@@ -77,25 +78,10 @@ def fit_table(cases: pd.DataFrame, design: Any, workers: int = 1) -> pd.DataFram
             row = {"model": model, "item": item, "floor": floor, "azimuth": azimuth, "demand": demand,
                    "n_cases": len(ok), "n_overturned": int(y.sum()), "n_failed": len(g) - len(ok),
                    "n_records": int(ok["record"].nunique())}
-            if not y.any():
-                row.update(_no_fit("never overturned within the levels"))
-            else:
-                plans.append(plan_mle(ok[demand].to_numpy(float), y, n_boot=design.n_boot, seed=design.seed,
-                                      groups=ok["record"].to_numpy()))
-                where.append(len(rows))
-            rows.append(row)
-    for i, f in zip(where, fit_plans(plans, workers)):
-        good = bool(f.success and math.isfinite(f.mu))
-        rows[i].update(median=f.mu if good else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
-                       beta=f.beta if good else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi, ok=good,
-                       message=f.message)
-    return pd.DataFrame(rows, columns=list(FIT_COLUMNS))
-
-
-def _no_fit(message: str) -> dict[str, Any]:
-    nan = math.nan
-    return {"median": nan, "median_lo": nan, "median_hi": nan, "beta": nan, "beta_lo": nan, "beta_hi": nan,
-            "ok": False, "message": message}
+            batch.add(row, ok[demand].to_numpy(float), y, ok["record"].to_numpy(),
+                      never="never overturned within the levels")
+    batch.run(workers)
+    return pd.DataFrame(batch.rows, columns=list(FIT_COLUMNS))
 
 
 def _wide(fits: pd.DataFrame) -> pd.DataFrame:
@@ -163,7 +149,7 @@ def cost_table(cases: pd.DataFrame) -> pd.DataFrame:
     rows = []
     for (model, solver), g in cases.groupby(["model", "solver_name"], sort=True):
         t = g["wall_time_s"].astype(float)
-        rows.append({"model": model, "solver": solver, "n_cases": len(g), "n_failed": int((g["status"] != "ok").sum()),
+        rows.append({"model": model, "solver": solver, "n_cases": len(g), "n_failed": count_failed(g),
                      "mean_s": float(t.mean()), "median_s": float(t.median()), "total_s": float(t.sum())})
     table = pd.DataFrame(rows)
     planar = table.loc[table["model"] == "planar", "median_s"]
@@ -200,7 +186,7 @@ def headline(tables: dict[str, pd.DataFrame], cases: pd.DataFrame, timings: dict
     half = (planar_all["median_hi"] - planar_all["median_lo"]) / (2.0 * planar_all["median"])
     counts = each["verdict"].value_counts()
     return {
-        "n_cases": len(cases), "n_failed": int((cases["status"] != "ok").sum()),
+        "n_cases": len(cases), "n_failed": count_failed(cases),
         "n_computed": int(timings.get("n_computed", 0)), "wall_time_s": float(timings.get("total_s", math.nan)),
         "timings": {k: float(v) for k, v in timings.items() if k.endswith("_s")},
         "cost_ratio_3d": float(three["ratio_to_planar"].max()) if len(three) else math.nan,

@@ -9,9 +9,6 @@ ground; point fit only), which measures what the PFV definition does to a median
 
 from __future__ import annotations
 
-import math
-from typing import Any
-
 import pandas as pd
 
 from opsrock.constants import G
@@ -22,12 +19,6 @@ DEMANDS: dict[str, tuple[str, float]] = {"pfv": ("m/s", 1.0), "pfa": ("g", G)}
 #: Columns of the fit table, after the group's keys.
 FIT_COLUMNS: tuple[str, ...] = ("median", "median_lo", "median_hi", "beta", "beta_lo", "beta_hi", "n_cases",
                                 "n_overturned", "n_failed", "n_boot_used", "ok", "message")
-
-
-def _nan_fit(message: str) -> dict[str, Any]:
-    nan = math.nan
-    return {"median": nan, "median_lo": nan, "median_hi": nan, "beta": nan, "beta_lo": nan, "beta_hi": nan,
-            "n_boot_used": 0, "ok": False, "message": message}
 
 
 def fit_tasks(cases: pd.DataFrame, n_boot: int, seed: int, relative: pd.DataFrame | None = None) -> list[tuple]:
@@ -54,22 +45,15 @@ def fit_tasks(cases: pd.DataFrame, n_boot: int, seed: int, relative: pd.DataFram
 def fit_table(tasks: list[tuple], workers: int | None = None) -> pd.DataFrame:
     """Run the fits (their record resamples shared among ``workers`` processes,
     :func:`opsrock.fragility.mle.fit_plans`: the same fits whatever ``workers``) and return one row per fit."""
-    from opsrock.fragility.mle import fit_plans, plan_mle
+    from opsrock.inventory.fits import FitBatch
 
-    rows, plans, where = [], [], []
+    batch = FitBatch(0, 0)  # each task names its resamples and seed
     for key, x, y, groups, n_boot, seed, n_failed in tasks:
-        rows.append(dict(key, n_cases=len(x), n_overturned=int(y.sum()), n_failed=n_failed))
-        if not y.any():
-            rows[-1].update(_nan_fit("never overturned within the levels"))
-        else:
-            plans.append(plan_mle(x, y, n_boot=n_boot, seed=seed, groups=groups))
-            where.append(len(rows) - 1)
-    for i, f in zip(where, fit_plans(plans, workers or 1)):
-        ok = bool(f.success and math.isfinite(f.mu))
-        rows[i].update(median=f.mu if ok else math.nan, median_lo=f.mu_lo, median_hi=f.mu_hi,
-                       beta=f.beta if ok else math.nan, beta_lo=f.beta_lo, beta_hi=f.beta_hi,
-                       n_boot_used=f.n_boot_used, ok=ok, message=f.message)
-    table = pd.DataFrame(rows)
+        row = dict(key, n_cases=len(x), n_overturned=int(y.sum()), n_failed=n_failed, n_boot_used=0)
+        batch.add(row, x, y, groups, never="never overturned within the levels", n_boot=n_boot, seed=seed)
+    for row, f in batch.run(workers):
+        row["n_boot_used"] = f.n_boot_used
+    table = pd.DataFrame(batch.rows)
     order = ["campaign", "variant", "item", "floor", "demand"]
     return table.sort_values(order, kind="stable").reset_index(drop=True)[
         [*order, "floor_number", "building_period", "unit", *FIT_COLUMNS]]

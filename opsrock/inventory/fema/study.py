@@ -9,6 +9,7 @@ from typing import Any
 
 import pandas as pd
 
+from opsrock.fragility.cases import count_failed
 from opsrock.inventory.fema.design import ContentsDesign, campaign_scenes
 from opsrock.inventory.fema.report import StudySummary
 from opsrock.inventory.stages import Route
@@ -103,7 +104,7 @@ def _summary(cases: pd.DataFrame, result: dict, timings: dict) -> StudySummary:
     ratios = result["ratios"]
     default = ratios[ratios["variant"] == "default"]["ratio_fema"].dropna()
     sweep = result["sweep"]["ratio_fema"].dropna() if not result["sweep"].empty else pd.Series(dtype=float)
-    return StudySummary(n_cases=len(cases), n_failed=int((cases["status"] != "ok").sum()),
+    return StudySummary(n_cases=len(cases), n_failed=count_failed(cases),
                         n_overturned=int(cases["overturned"].sum()), timings=timings,
                         ratio_range=(float(default.min()), float(default.max())) if len(default) else None,
                         sweep_ratio_range=(float(sweep.min()), float(sweep.max())) if len(sweep) else None)

@@ -80,11 +80,20 @@ def damage_and_loss(config: dict, folder: Path, repeat: int | None):
     return counts, size, cost, total
 
 
+def study_table(path: Path) -> pd.DataFrame:
+    """A table of the study (``expected.csv``, ``mapping.csv``): its ``Units`` row (the second line, pelicun's
+    tabular form) skipped; a folder written before the row has none, and these two tables' units did not change."""
+    with open(path, encoding="utf-8") as fh:
+        fh.readline()
+        units = fh.readline().startswith("Units,")
+    return pd.read_csv(path, dtype={"floor": str}, skiprows=[1] if units else None)
+
+
 def compare(folder: Path, counts: pd.Series, cost: pd.Series | None) -> pd.DataFrame:
     """One row per item and floor: pelicun's mean units damaged (any damage state), overturned (the
     overturned state, ``mapping.csv``) and repair cost beside the study's exact expectations (``expected.csv``)."""
-    mapping = pd.read_csv(folder / "mapping.csv", dtype={"floor": str})
-    expected = pd.read_csv(folder.parent / "expected.csv", dtype={"floor": str})
+    mapping = study_table(folder / "mapping.csv")
+    expected = study_table(folder.parent / "expected.csv")
     table = expected.merge(mapping[["pelicun_id", "location", "exported", *[c for c in mapping if c.startswith("ds")
                                                                             and c[2:].isdigit()]]],
                            on="pelicun_id", how="left")

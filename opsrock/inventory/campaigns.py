@@ -50,8 +50,11 @@ from opsrock.inventory.motions import MotionSet
 #: Label of the one-storey building that stands for a support (its top is the floor label ``support.f1``).
 SUPPORT_NAME: str = "support"
 
-#: Cases per batch sent to a worker (as the contents study: a case takes about a millisecond, and every
-#: batch costs a round trip and a store commit).
+#: Cases per batch sent to a worker by a planar campaign (as the contents study: a case takes about a
+#: millisecond, and every batch costs a round trip and a store commit). A campaign in plan (a case takes 0.1 to
+#: several seconds) lets the campaign engine size its batches, a few per worker
+#: (:func:`opsrock.campaign.executors.batch_size`): 256 cases in one batch kept a worker alone on a whole
+#: round item's campaign while the other waited.
 BATCH: int = 256
 
 #: Columns of a campaign's ``cases.csv`` the study reads (and :data:`OPTIONAL_CASE_COLUMNS` where written).
@@ -402,6 +405,7 @@ def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, 
     """
     from opsrock.campaign import run_campaign
     from opsrock.campaign.store import STORE_FILE, ResultStore
+    from opsrock.solvers.registry import METHODS as SOLVERS
 
     frames, t0, computed, retried = [], time.perf_counter(), 0, 0
     with study_pool([gs.scene for gs in scenes], workers, case_timeout) as (pool, budget):
@@ -411,7 +415,8 @@ def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, 
                 with ResultStore(folder / STORE_FILE) as stored:
                     retried += stored.forget_timeouts()
             seed_motions(gs, folder, demands)
-            summary = run_campaign(gs.scene, folder, executor=pool, progress=progress, force=force, batch=BATCH,
+            batch = None if SOLVERS[gs.scene.solver].plan else BATCH
+            summary = run_campaign(gs.scene, folder, executor=pool, progress=progress, force=force, batch=batch,
                                    case_timeout=budget)
             computed += summary.n_computed
             frames.append(_read_cases(summary.cases_csv, gs))

@@ -174,12 +174,14 @@ def planar_components(fits: pd.DataFrame, demands: pd.DataFrame, design: Any) ->
 def three_d_components(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers: int | None) -> pd.DataFrame:
     """:data:`COMPONENT_COLUMNS` from the cases of boxes in plan (:mod:`opsrock.inventory.three_d`): each item and
     floor's limit states fitted to every finished case against ``scale x pfv_max`` (m/s), the azimuths pooled,
-    record-bootstrap intervals (:func:`opsrock.fragility.mle.plan_mle`)."""
+    record-bootstrap intervals (:func:`opsrock.fragility.mle.plan_mle`); the cases of anything not in the design's
+    inventory (the box beside a round item, :func:`opsrock.inventory.three_d.box_of`) are left out."""
     from opsrock.inventory.fits import FitBatch, fit_status, outcomes, slide_distance_of
 
     items = {it.id: it for it in design.inventory.items}
     batch = FitBatch(design.n_boot, design.seed)
-    for (item_id, floor), g in cases.groupby(["item", "floor"], sort=False):
+    mine = cases[cases["item"].isin(list(items))]  # the boxes run beside round items are no components
+    for (item_id, floor), g in mine.groupby(["item", "floor"], sort=False):
         ok = g[g["status"] == "ok"]
         pfv = record_pfv(demands, floor)["pfv_max"]
         x = ok["scale"].to_numpy(float) * pfv.reindex(ok["record"]).to_numpy(float)

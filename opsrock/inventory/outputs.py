@@ -122,12 +122,15 @@ def study_tables(a: Any, cases: pd.DataFrame, components: pd.DataFrame | None = 
 
 
 def write_outputs(a: Any, stage: Path, notes: tuple[str, ...] = ()) -> Any:
-    """The tables of the assessment ``a`` (:data:`TABLES`, and any other ``<key>.csv``), its pelicun folder, then its report (which shows the
-    wall times), into the staging folder ``stage``; ``notes``: lines the route adds to the report."""
+    """The tables of the assessment ``a`` (:data:`TABLES`, and any other ``<key>.csv``; each with its units row,
+    :func:`opsrock.inventory.columns.write_table`), its pelicun folder, then its report (which shows the wall
+    times), into the staging folder ``stage``; ``notes``: lines the route adds to the report."""
     from opsrock.inventory.pelicun import write_pelicun_folder
 
     t0 = time.perf_counter()
-    paths = {k: write_csv(df, stage / TABLES.get(k, f"{k}.csv")) for k, df in a.tables.items()}
+    from opsrock.inventory.columns import write_table
+
+    paths = {k: write_table(df, stage / TABLES.get(k, f"{k}.csv")) for k, df in a.tables.items()}
     say_ground(a.design)
     pel = write_pelicun_folder(a.tables["components"], a.tables["fits"], a.demands, a.design, stage / "pelicun")
     a.timings["outputs_s"] = time.perf_counter() - t0
@@ -169,6 +172,7 @@ def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[
                           expected=study_tables["expected"],
                           inventory=pd.DataFrame([item_cells(i) for i in design.inventory.items]),
                           figures=figures, notes=notes, pelicun=pelicun, pelicun_notes=_pelicun_notes(design),
+                          boxes=study_tables.get("boxes"),
                           **computed)
     return write_report(stage / "report.md", inputs)
 

@@ -13,7 +13,7 @@ Files:
   ``Blocks`` separate units (each damaged on its own capacity draw). The units pelicun instantiates are the
   inventory's.
 * ``demands.csv``: the demand sample, as recorded: one realisation per record (``PFA-<loc-1>-<dir>`` in m/s²,
-  ``PFV-<loc-1>-<dir>`` in m/s, a ``Units`` row first; pelicun's ``Demand-Offset`` default -1 for floor demands
+  ``PFV-<loc-1>-<dir>`` in m/s, a ``Units`` row first in pelicun's spellings, ``mps2`` and ``mps``; pelicun's ``Demand-Offset`` default -1 for floor demands
   gives a component at location ``L`` the demand ``PFV-(L-1)``: the floor it stands on). A non-directional
   component takes the larger direction times ``NonDirectionalMultipliers``, set to 1.0 in ``config.json``
   (:data:`opsrock.inventory.components.NONDIRECTIONAL_MULTIPLIER`): ``pfv_max``, the demand of the fits.
@@ -22,7 +22,7 @@ Files:
   component: ``DS1`` of a two-state component the item's ``slide_cost`` (0 when not given), the overturned state
   its ``repair_cost`` (deterministic, the inventory's currency labelled ``USD`` for pelicun, which converts
   nothing).
-* ``mapping.csv``: per component its item, FEMA ID, floor label, pelicun location, quantity, and per limit state
+* ``mapping.csv`` (a ``Units`` row after its header, :mod:`opsrock.inventory.columns`): per component its item, FEMA ID, floor label, pelicun location, quantity, and per limit state
   its damage state, median (m/s), beta, status and source (``planar: ... combined`` or ``3-D``); components
   without a damage model (never damaged within the study, or a failed fit) are listed with the reason and
   left out of ``inventory.csv``.
@@ -32,6 +32,11 @@ Files:
   directions of an item to its units counts each unit twice, so ``inventory.csv`` never uses them.
 * ``config.json``: the assessment in the form of pelicun's ``DL_calculation`` configuration; file paths are
   relative to this folder (``CustomDLDataFolder/`` where pelicun substitutes its custom model folder).
+
+Units: every file of the folder states its own in pelicun's form (a ``Units`` row, ``Demand-Unit``,
+``DV-Unit``, a ``Units`` column). PFA is the one quantity the folder gives in another unit than the study's tables
+(g there): pelicun's files take it in SI (``mps2``) so that no convention of ``g`` enters (pelicun's is 9.80665
+m/s², opsrock's :data:`opsrock.constants.G` 9.81 m/s²).
 
 Locations (:func:`floor_locations`): the manifest's ``location`` column where given (pelicun's location number
 of each floor label: 1 the ground floor); otherwise ``ground`` (or ``0``) is location 1 and a whole number ``n``
@@ -53,6 +58,7 @@ from typing import Any
 import pandas as pd
 
 from opsrock.constants import G
+from opsrock.inventory.columns import write_table
 from opsrock.inventory.components import NONDIRECTIONAL_MULTIPLIER, STATES
 
 #: Realisations per record of the configured assessment (pelicun samples the capacities; the demands
@@ -154,7 +160,7 @@ def write_pelicun_folder(components: pd.DataFrame, fits: pd.DataFrame, demands: 
     floors = floor_locations(study.motions)
     mapping = _mapping(components, study, floors.locations)
     paths = {"fragility": _fragility(components, folder / "fragility.csv")}
-    paths["mapping"] = _csv(mapping, folder / "mapping.csv")
+    paths["mapping"] = write_table(mapping, folder / "mapping.csv")
     paths["inventory"] = _csv(_inventory(mapping), folder / "inventory.csv", index=True)
     sample, n_records = _demand_sample(demands, floors.locations)
     paths["demands"] = _csv(sample, folder / "demands.csv", index=True)
@@ -213,7 +219,7 @@ def _per_direction(fits: pd.DataFrame, folder: Path) -> dict[str, Path]:
     from opsrock.fragility.pelicun_export import ComponentFragility, write_pelicun_csv
 
     out = {}
-    for demand, factor in (("pfv", 1.0), ("pfa", G)):  # PFA fitted in g, exported in m/s2
+    for demand, factor in (("pfv", 1.0), ("pfa", G)):  # PFA fitted in g, exported in m/s2 (module docstring)
         ok = fits[(fits["demand"] == demand) & fits["ok"].astype(bool) & fits["outcome"].isin(["overturning", "sliding"])]
         comps = [ComponentFragility(f"{component_id(r.item, r.floor)}.d{r.direction}.{r.outcome}", demand,
                                     float(r.median) * factor, float(r.beta)) for r in ok.itertuples()]
@@ -238,7 +244,8 @@ def _inventory(mapping: pd.DataFrame) -> pd.DataFrame:
 
 
 def _demand_sample(demands: pd.DataFrame, locations: dict[str, int]) -> tuple[pd.DataFrame, int]:
-    """The records as realisations, PFA (m/s²) and PFV (m/s) per location - 1 and direction, a Units row first."""
+    """The records as realisations, PFA (m/s²) and PFV (m/s) per location - 1 and direction, a Units row first
+    (pelicun's spellings)."""
     d = demands.assign(n=demands["floor"].astype(str).map(locations) - 1)
     cols = {}
     for kind, column, unit in (("PFA", "pfa", "mps2"), ("PFV", "pfv", "mps")):

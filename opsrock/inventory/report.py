@@ -55,7 +55,7 @@ class ReportInputs:
     fits : pandas.DataFrame
         ``fits.csv`` (PFV in m/s, PFA in g).
     demands : pandas.DataFrame
-        ``demands.csv`` (PFA in m/s², PFV in m/s).
+        The floor demands (the study's table: PFA in m/s², PFV in m/s; ``demands.csv`` writes PFA in g).
     expected : pandas.DataFrame
         ``expected.csv`` (:func:`opsrock.inventory.components.expected_table`): per item and floor the units
         (counts) expected damaged, displaced only, overturned, and the expected repair cost.
@@ -88,6 +88,9 @@ class ReportInputs:
         The items that never overturned in any case (one line, no figure).
     slides : tuple of str
         The items that slid beyond their distance in some case.
+    boxes : pandas.DataFrame or None
+        :func:`opsrock.inventory.three_d.box_table` (``boxes.csv``): each round item beside the box of its size;
+        None: no round item.
     """
 
     title: str
@@ -109,6 +112,7 @@ class ReportInputs:
     reasons: pd.DataFrame | None = field(default=None, repr=False)
     never: tuple[str, ...] = ()
     slides: tuple[str, ...] = ()
+    boxes: pd.DataFrame | None = field(default=None, repr=False)
 
 
 def _num(v: float) -> str:
@@ -308,6 +312,37 @@ def _reason_lines(reasons: pd.DataFrame | None) -> list[str]:
     return [*lines, ""]
 
 
+def _share(v: float) -> str:
+    return f"{100 * v:.0f} %" if isinstance(v, float) and math.isfinite(v) else "-"
+
+
+def _box_lines(boxes: pd.DataFrame | None) -> list[str]:
+    """Each round item beside the box of its size (``boxes.csv``, computed in the study): the median overturning
+    PFV, the share of the overturnings by mechanism, the failed cases with their reasons."""
+    if boxes is None or boxes.empty:
+        return []
+    rows = []
+    for r in boxes.itertuples():
+        rows.append({"item": r.item, "floor": r.floor, "model": f"{r.model} ({r.shape})",
+                     "median pfv_max (m/s) [95 %]": "-" if not math.isfinite(r.median) else
+                     f"{r.median:.3g} [{r.median_lo:.3g}, {r.median_hi:.3g}]",
+                     "overturned / cases": f"{r.n_exceeded} / {r.n_cases}",
+                     "rim / rolling": f"{_share(r.share_rim)} / {_share(r.share_rolling)}" if r.shape == "cylinder"
+                     else "-",
+                     "edge / corner": f"{_share(r.share_edge)} / {_share(r.share_corner)}" if r.shape == "box" else "-",
+                     "box off by": (f"{100 * r.box_off:+.0f} %" if math.isfinite(r.box_off) else "-")
+                     if r.shape == "box" else "",
+                     "failed (reasons)": f"{r.n_failed}" + (f" ({r.failed_reasons})" if r.n_failed else "")})
+    return ["## Round items against the box of their size", "",
+            "Each round item (`shape = cylinder`, solved by `cylinder3d` at one azimuth: it is round) beside the box "
+            "of its size (side = its diameter, solved as every box, at every azimuth), on the same records and "
+            "levels: the median of the overturning fragility in `pfv_max`, the overturnings by mechanism (a cylinder "
+            "rocks over one rim point or rolls on its rim; a box tips over an edge or a corner), and how far the box's "
+            "median is off the cylinder's. A failed case is excluded from its fit and counted here with its reason "
+            "(`boxes.csv`). The box is in no other table, expected number or pelicun component.", "",
+            markdown_table(pd.DataFrame(rows)), ""]
+
+
 def _figure_lines(figures: dict[str, str], never: tuple[str, ...] = (), slides: tuple[str, ...] = ()) -> list[str]:
     lines = ["## Figures", "",
              "Each item's overturning fragility in PFV on each floor (one line style per floor and direction, the "
@@ -348,7 +383,7 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
                   markdown_table(formatted_table(inputs.sliding, "slid", inputs.confidence)), "",
                   *footnotes(inputs.sliding, "slid")]
     lines += [*_figure_lines(inputs.figures, inputs.never, inputs.slides), *_expected_lines(inputs.expected, inputs.pelicun),
-              *_failure_lines(inputs), *_pelicun_lines(inputs.pelicun, inputs.pelicun_notes)]
+              *_box_lines(inputs.boxes), *_failure_lines(inputs), *_pelicun_lines(inputs.pelicun, inputs.pelicun_notes)]
     path = Path(path)
     atomic_text(path, "\n".join(lines) + "\n")
     return path

@@ -43,6 +43,13 @@ from opsrock.inventory.outputs import OUTPUTS
 from opsrock.inventory.stages import Route
 from opsrock.solvers.registry import round_solver
 
+#: The id of the box that stands beside a round item (:func:`box_of`): the item's id and this.
+BOX_SUFFIX: str = ".as-box"
+
+#: Overturning mechanisms counted per fit: ``overturned_over`` of a box (``edge``, ``corner``) and of a cylinder
+#: (``rim``: rocking on one rim point, ``rolling``: while its contact point ran round the rim).
+MECHANISMS: tuple[str, ...] = ("edge", "corner", "rim", "rolling")
+
 #: Default azimuths of the items in plan (deg, from direction 1 to an item's width).
 DEFAULT_AZIMUTHS: tuple[float, ...] = (0.0, 45.0, 90.0)
 
@@ -60,16 +67,27 @@ PFV_CONVENTIONS: dict[str, str] = {
 
 #: Columns of ``fits3d.csv``, in order: per item, floor and demand convention (``demand``, m/s) the lognormal
 #: median (m/s) and ``beta`` with their 95 % intervals, the cases, the overturnings and how many of them were
-#: over a corner (``n_corner``), the azimuths pooled, and FEMA P-58's median for its item (m/s) where named.
+#: over an edge or a corner of a box, or on the rim of a cylinder, rocking or rolling (:data:`MECHANISMS`:
+#: ``n_edge``, ``n_corner``, ``n_rim``, ``n_rolling``), the azimuths pooled, and FEMA P-58's median for its item (m/s) where named.
 FIT3D_COLUMNS: tuple[str, ...] = (
     "item", "description", "floor", "demand", "unit", "method", "median", "median_lo", "median_hi", "beta",
-    "beta_lo", "beta_hi", "n_cases", "n_exceeded", "n_corner", "n_failed", "n_records", "n_azimuths", "ok",
+    "beta_lo", "beta_hi", "n_cases", "n_exceeded", "n_edge", "n_corner", "n_rim", "n_rolling", "n_failed",
+    "n_records", "n_azimuths", "ok",
     "message", "fema_id", "fema_median", "ratio_fema",
 )  # fmt: skip
 
 #: Files this route writes into its folder (globs relative to it; :func:`opsrock._files.staged_folder`): the
-#: planar route's and ``fits3d.csv``.
-OUTPUTS_3D: tuple[str, ...] = (*OUTPUTS, "fits3d.csv")
+#: planar route's, ``fits3d.csv`` and, with a round item, ``boxes.csv`` (:data:`BOX_COLUMNS`).
+OUTPUTS_3D: tuple[str, ...] = (*OUTPUTS, "fits3d.csv", "boxes.csv")
+
+#: Columns of ``boxes.csv``: per round item and floor, the item (``model`` ``as given``) and the box of its size
+#: (``box of its size``) side by side: the lognormal fit in ``pfv_max`` (m/s), the overturnings by mechanism and
+#: their shares, the failed cases by reason, and how far the box's median is off the cylinder's (``box_off``).
+BOX_COLUMNS: tuple[str, ...] = (
+    "item", "floor", "model", "shape", "demand", "unit", "median", "median_lo", "median_hi", "beta", "n_cases",
+    "n_exceeded", "n_failed", "n_edge", "n_corner", "n_rim", "n_rolling", "share_edge", "share_corner", "share_rim",
+    "share_rolling", "failed_reasons", "box_off",
+)  # fmt: skip
 
 
 def check_azimuths(azimuths: tuple) -> tuple[float, ...]:
@@ -81,6 +99,29 @@ def check_azimuths(azimuths: tuple) -> tuple[float, ...]:
         raise InputError(f"azimuths must be distinct angles in degrees within [-360, 360], got {azimuths!r}",
                          argument="azimuths")
     return tuple(float(z) for z in values)
+
+
+def box_of(item: Any) -> Any:
+    """The box a round item would have been without ``shape``: ``width = depth =`` its diameter (m), its height,
+    mass and any mass distribution or friction it gives (a blank one the box's own: homogeneous), its id
+    ``<id>`` :data:`BOX_SUFFIX`. The study runs it beside the item and reports how far it is off
+    (:func:`box_table`); it is in no table of items, no expected number, no pelicun component."""
+    import dataclasses
+
+    return dataclasses.replace(item, id=f"{item.id}{BOX_SUFFIX}", shape="box",
+                               description=f"the box of {item.id}'s size ({item.width:g} x {item.width:g} m base)")
+
+
+def study_items(design: Any) -> tuple:
+    """The items the route runs: the inventory's, then the box of each round item's size (:func:`box_of`);
+    ``InputError`` when an inventory id is already a box's."""
+    items = tuple(design.inventory.items)
+    boxes = tuple(box_of(it) for it in items if it.shape == "cylinder")
+    taken = {it.id for it in items} & {b.id for b in boxes}
+    if taken:
+        raise InputError(f"item id {sorted(taken)[0]!r} ends with {BOX_SUFFIX!r}, the id of the box the study runs "
+                         "beside a round item: rename it", argument="inventory")
+    return items + boxes
 
 
 def three_d_scenes(design: Any) -> list:
@@ -101,7 +142,7 @@ def three_d_scenes(design: Any) -> list:
     pairs = paired_motions(design.motions)
     floors = design.motions.floors
     groups: dict[Any, list] = {}
-    for item in design.inventory.items:
+    for item in study_items(design):
         own = tuple(f for f in floors if f in item.floors) if item.floors else floors
         solver = round_solver() if item.shape == "cylinder" else design.solver  # a round base: the cylinder's solver
         groups.setdefault(Group(own, own == floors, "12", item.support, solver), []).append(item)
@@ -111,10 +152,12 @@ def three_d_scenes(design: Any) -> list:
         names = {p: f"{safe_name(p.record)}.{safe_name(p.floor)}" for p in chosen}
         floor = Floor(None, 0) if g.support is None else Floor(
             ShearBuilding(SUPPORT_NAME, g.support.period, 1, g.support.damping), 1)
+        # a cylinder is round: one azimuth (its rotation invariance is a check of cylinder3d, to round-off)
+        azimuths = design.azimuths[:1] if g.solver == round_solver() else design.azimuths
         records = RecordSet(grounds=tuple(p.first.motion.with_name(names[p]) for p in chosen), floors=(floor,),
                             source=design.motions.source, intensity=design.intensity,
                             seconds=tuple(p.second.motion.with_name(names[p] + ".d2") for p in chosen),
-                            second="manifest", azimuth=design.azimuths)
+                            second="manifest", azimuth=azimuths)
         blocks = tuple(item_block_spec(it, "1", f"{it.id}-3d", design.seed, g.solver) for it in items)
         scene = Scene(name=f"inventory-{g.name}", path="", blocks=blocks, grid=None, solver=g.solver,
                       records=records)
@@ -138,13 +181,16 @@ def pfv_demands(cases: pd.DataFrame, demands: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
-def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers: int | None) -> pd.DataFrame:
+def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers: int | None,
+                items: dict | None = None) -> pd.DataFrame:
     """Every fit of the route (:data:`FIT3D_COLUMNS`): one row per item, floor and PFV convention, the azimuths
-    pooled; lognormal maximum likelihood with a record bootstrap (:func:`opsrock.fragility.mle.plan_mle`)."""
+    pooled; lognormal maximum likelihood with a record bootstrap (:func:`opsrock.fragility.mle.plan_mle`).
+    ``items``: id -> item of the items fitted (default the design's inventory; the cases of others, the boxes
+    beside round items, :func:`box_of`, are left out)."""
     from opsrock.inventory.fits import FitBatch, fema_median
 
-    items = {it.id: it for it in design.inventory.items}
-    scaled = pfv_demands(cases, demands)
+    items = items if items is not None else {it.id: it for it in design.inventory.items}
+    scaled = pfv_demands(cases[cases["item"].isin(list(items))], demands)  # a round item's box: not an item
     batch = FitBatch(design.n_boot, design.seed)
     for (item_id, floor), g in scaled.groupby(["item", "floor"], sort=False):
         ok, item = g[g["status"] == "ok"], items[item_id]
@@ -153,7 +199,8 @@ def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers
             fema = fema_median(item.fema_id)
             row = {"item": item_id, "description": item.description, "floor": floor, "demand": demand, "unit": "m/s",
                    "method": design.method, "n_cases": len(ok), "n_exceeded": int(y.sum()),
-                   "n_corner": int((ok["overturned_over"] == "corner").sum()), "n_failed": len(g) - len(ok),
+                   **{f"n_{m}": int((ok["overturned_over"] == m).sum()) for m in MECHANISMS},
+                   "n_failed": len(g) - len(ok),
                    "n_records": int(ok["record"].nunique()), "n_azimuths": int(ok["azimuth"].nunique()),
                    "fema_id": item.fema_id, "fema_median": fema if demand == "pfv_max_x1.2" else math.nan}
             batch.add(row, ok[demand].to_numpy(float), y, ok["record"].to_numpy(),
@@ -165,6 +212,35 @@ def fit3d_table(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers
     return table
 
 
+def box_table(fits: pd.DataFrame, cases: pd.DataFrame) -> pd.DataFrame:
+    """``boxes.csv`` (:data:`BOX_COLUMNS`): per round item and floor, its ``pfv_max`` fit (:func:`fit3d_table`
+    rows of the item and of the box of its size, :func:`box_of`), each with its overturnings' shares by mechanism
+    and its failed cases by reason (:func:`opsrock.inventory.summary.failure_table`); ``box_off`` on the box's
+    row: its median over the item's, less 1 (NaN where either has no median)."""
+    from opsrock.inventory.summary import failure_table
+
+    rows = []
+    pfv = fits[fits["demand"] == "pfv_max"].set_index(["item", "floor"])
+    for item, floor in [k for k in pfv.index if not k[0].endswith(BOX_SUFFIX) and (k[0] + BOX_SUFFIX, k[1]) in pfv.index]:
+        pair = []
+        for model, key in (("as given", item), ("box of its size", item + BOX_SUFFIX)):
+            f = pfv.loc[(key, floor)]
+            n = int(f["n_exceeded"])
+            mine = cases[(cases["item"] == key) & (cases["floor"].astype(str) == str(floor))]
+            reasons = failure_table(mine)
+            row = {"item": item, "floor": floor, "model": model, "shape": "box" if key != item else "cylinder",
+                   **{c: f[c] for c in ("demand", "unit", "median", "median_lo", "median_hi", "beta", "n_cases",
+                                        "n_exceeded", "n_failed")},
+                   **{f"n_{m}": int(f[f"n_{m}"]) for m in MECHANISMS},
+                   **{f"share_{m}": int(f[f"n_{m}"]) / n if n else math.nan for m in MECHANISMS},
+                   "failed_reasons": "; ".join(f"{r.n_cases} x {r.reason}" for r in reasons.itertuples()),
+                   "box_off": math.nan}
+            pair.append(row)
+        pair[1]["box_off"] = pair[1]["median"] / pair[0]["median"] - 1.0
+        rows += pair
+    return pd.DataFrame(rows, columns=list(BOX_COLUMNS))
+
+
 def per_direction(cases: pd.DataFrame) -> pd.DataFrame:
     """Each case of a box in plan once per horizontal direction (``direction`` ``"1"`` and ``"2"``): its outcome
     read against the demand of that direction, so that the planar route's tables, report and pelicun folder
@@ -173,14 +249,24 @@ def per_direction(cases: pd.DataFrame) -> pd.DataFrame:
 
 
 def _fit(a: Any) -> dict[str, pd.DataFrame]:
-    """The planar route's tables from :func:`per_direction` cases, and ``fits3d`` (:func:`fit3d_table`)."""
+    """The planar route's tables from :func:`per_direction` cases of the inventory's items, ``fits3d``
+    (:func:`fit3d_table`), and with a round item ``boxes`` (:func:`box_table`: the item beside the box of its
+    size, whose cases are in no other table)."""
+    from opsrock.inventory.components import three_d_components
     from opsrock.inventory.outputs import study_tables, workers_of
 
-    from opsrock.inventory.components import three_d_components
-
-    components = three_d_components(a.cases, a.demands, a.design, workers_of(a.workers))
-    return {**study_tables(a, per_direction(a.cases), components),
-            "fits3d": fit3d_table(a.cases, a.demands, a.design, workers_of(a.workers))}
+    workers = workers_of(a.workers)
+    ids = {it.id for it in a.design.inventory.items}
+    mine = a.cases[a.cases["item"].isin(ids)]
+    components = three_d_components(mine, a.demands, a.design, workers)
+    tables = {**study_tables(a, per_direction(mine), components),
+              "fits3d": fit3d_table(mine, a.demands, a.design, workers)}
+    everything = {it.id: it for it in study_items(a.design)}
+    if len(everything) > len(ids):
+        round_ids = {i for i, it in everything.items() if it.shape == "cylinder"}
+        pairs = a.cases[a.cases["item"].map(lambda i: i in round_ids or i.removesuffix(BOX_SUFFIX) in round_ids)]
+        tables["boxes"] = box_table(fit3d_table(pairs, a.demands, a.design, workers, everything), pairs)
+    return tables
 
 
 def _write(a: Any, stage: Path) -> Any:
@@ -188,9 +274,13 @@ def _write(a: Any, stage: Path) -> Any:
     report's lines on the model in three dimensions."""
     from opsrock.inventory.outputs import write_outputs
 
+    round_items = [it.id for it in a.design.inventory.items if it.shape == "cylinder"]
     notes = (f"Model: every item a box in three dimensions (solver {a.design.solver}) under both horizontal "
              f"components at once, turned in plan to {', '.join(f'{z:g}' for z in a.design.azimuths)} deg, the "
-             "azimuths pooled; the rows of direction 1 (2) read each case against the PFV and PFA of direction 1 (2).",
+             "azimuths pooled"
+             + (f"; the round items ({', '.join(round_items)}) cylinders (solver {round_solver()}) at "
+                f"{a.design.azimuths[0]:g} deg only, being round" if round_items else "")
+             + "; the rows of direction 1 (2) read each case against the PFV and PFA of direction 1 (2).",
              "fits3d.csv: the PFV medians in each convention, "
              + "; ".join(f"`{k}` {v}" for k, v in PFV_CONVENTIONS.items()) + " (pelicun's non-directional demand: "
              "NHERI-SimCenter/pelicun, pelicun/base.py NonDirectionalMultipliers).")
@@ -200,6 +290,7 @@ def _write(a: Any, stage: Path) -> Any:
 #: The route in three dimensions (:class:`opsrock.inventory.stages.Route`).
 THREE_D: Route = Route("3d", three_d_scenes, _fit, _write, OUTPUTS_3D)
 
-__all__ = ["DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
+__all__ = ["BOX_COLUMNS", "BOX_SUFFIX", "DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "MECHANISMS", "box_of", "box_table",
+           "study_items", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
            "PFV_CONVENTIONS", "check_azimuths", "fit3d_table", "per_direction", "pfv_demands",
            "THREE_D", "three_d_scenes"]

@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from _support import run_opsrock
+from opsrock.inventory.columns import read_table
 
 INVENTORY = """id,description,width,depth,height,mass,friction,floor,quantity,repair_cost,slide_distance,slide_cost
 cylinder,an oxygen cylinder in a stand (square in plan: isotropic),0.25,0.25,1.4,60,,L1;L2,2,900,,
@@ -47,7 +48,7 @@ def test_one_command_from_the_engineers_files_to_a_pelicun_folder_counting_each_
     assert "pelicun locations" not in proc.stderr  # given by the manifest: nothing assumed
     folder = tmp_path / "out" / "pelicun"
     inventory = pd.read_csv(folder / "inventory.csv", index_col=0)
-    mapping = pd.read_csv(folder / "mapping.csv", index_col=0)
+    mapping, _ = read_table(folder / "mapping.csv", index_col=0)
     quantity = {"cylinder": 2, "trolley": 3, "cabinet": 1}
     # each unit once: one non-directional component per item and floor, its quantity as that many blocks
     assert inventory.index.is_unique and set(inventory["Direction"].astype(str)) == {"0"}
@@ -65,7 +66,7 @@ def test_one_command_from_the_engineers_files_to_a_pelicun_folder_counting_each_
     assert trolley["ds1"].startswith("displaced") and bool(trolley["exported"])
     loss = pd.read_csv(folder / "loss_repair.csv", index_col=0)
     assert loss.loc["opsrock.trolley.L2-Cost", "DS1-Theta_0"] == 150.0
-    expected = pd.read_csv(tmp_path / "out" / "expected.csv")
+    expected, _ = read_table(tmp_path / "out" / "expected.csv")
     assert (expected["expected_damaged"] <= expected["quantity"]).all()
     assert expected.loc[expected["item"] == "trolley", "expected_damaged"].item() > 0
     report = (tmp_path / "out" / "report.md").read_text()

@@ -59,11 +59,12 @@ def test_3d_tables_are_the_3d_route_s(studies):
 
 @pytest.mark.slow
 def test_the_side_by_side_table_reads_both_models(studies):
-    side = pd.read_csv(studies["both"] / "side_by_side.csv", dtype={"floor": str})
+    side = pd.read_csv(studies["both"] / "side_by_side.csv", skiprows=[1], dtype={"floor": str})
     assert list(side.columns) == list(SIDE_COLUMNS)
-    c3 = pd.read_csv(studies["3d"] / "components.csv", dtype={"floor": str}).set_index(["item", "limit_state"])
-    cp = pd.read_csv(studies["planar"] / "components.csv", dtype={"floor": str}).set_index(["item", "limit_state"])
-    fits3d = pd.read_csv(studies["3d"] / "fits3d.csv").query("demand == 'pfv_max'").set_index("item")
+    c3 = pd.read_csv(studies["3d"] / "components.csv", skiprows=[1], dtype={"floor": str})  # [1]: the Units row
+    cp = pd.read_csv(studies["planar"] / "components.csv", skiprows=[1], dtype={"floor": str})
+    c3, cp = (c.set_index(["item", "limit_state"]) for c in (c3, cp))
+    fits3d = pd.read_csv(studies["3d"] / "fits3d.csv", skiprows=[1]).query("demand == 'pfv_max'").set_index("item")
     assert set(zip(side["item"], side["limit_state"])) == set(c3.index)
     for r in side.itertuples():
         assert r.median_3d == c3.loc[(r.item, r.limit_state), "median"] or math.isnan(r.median_3d)

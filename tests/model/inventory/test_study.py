@@ -25,6 +25,7 @@ from opsrock.inventory.items import FrictionLaw, Inventory, Item, Support
 from opsrock.inventory.motions import FloorMotion, MotionSet
 from opsrock.inventory.run import run_design
 from opsrock.inventory.study import InventoryDesign
+from opsrock.inventory.columns import read_table
 
 FLOORS = ("1", "2")
 RECORDS = ("rec0", "rec1", "rec2", "rec3")
@@ -62,8 +63,9 @@ def study(tmp_path_factory):
 
 
 def test_fits_csv_has_the_columns_the_report_reads(study):
-    fits = pd.read_csv(study[0].tables["fits"], dtype={"floor": str, "direction": str})
+    fits, units = read_table(study[0].tables["fits"], dtype={"floor": str, "direction": str})
     assert tuple(fits.columns) == FIT_COLUMNS
+    assert units["median"] == "see unit" and units["fema_median"] == "m/s" and units["n_cases"] == "-"
     # bookcase: 2 floors; printer: floor 1 only; one direction; no friction: overturning only; two demands
     assert len(fits) == (2 + 1) * 2
     assert set(fits["outcome"]) == {"overturning"} and set(fits["method"]) == {"ida"}
@@ -82,7 +84,7 @@ def test_the_second_run_computes_nothing_and_writes_the_same_fits(study):
     assert first.n_cases == second.n_cases == 3 * len(RECORDS) * len(LEVELS)
     assert first.n_computed == first.n_cases and second.n_computed == 0
     assert (Path(first.out_dir) / "campaigns" / DEMANDS_FILE).exists()  # the demands are not measured again
-    a, b = (pd.read_csv(s.tables["fits"]) for s in study)
+    a, b = (read_table(s.tables["fits"])[0] for s in study)
     pd.testing.assert_frame_equal(a, b)
 
 
@@ -90,10 +92,11 @@ def test_expected_is_the_exact_expectation_over_the_records(study):
     """``quantity x mean_r Phi(ln(pfv_max_r / theta) / beta)`` with the component's fragility, recomputed from
     components.csv and demands.csv with scipy's normal CDF (an independent evaluation of the same closed form:
     agreement to rounding); one direction here, so ``pfv_max`` is its PFV."""
-    comps = pd.read_csv(study[0].tables["components"], dtype={"floor": str})
-    demands = pd.read_csv(study[0].tables["demands"], dtype={"floor": str, "direction": str})
-    expected = pd.read_csv(study[0].tables["expected"], dtype={"floor": str})
+    comps, _ = read_table(study[0].tables["components"], dtype={"floor": str})
+    demands, units = read_table(study[0].tables["demands"], dtype={"floor": str, "direction": str})
+    expected, _ = read_table(study[0].tables["expected"], dtype={"floor": str})
     assert {"pfa", "pfv", "pfd", "mean_period", "predominant_period"} <= set(demands.columns)
+    assert [units[c] for c in ("pfa", "pfv", "pfd", "mean_period")] == ["g", "m/s", "m", "s"]
     assert len(demands) == len(RECORDS) * len(FLOORS)
     assert len(expected) == 3  # the bookcase on two floors, the printer on one: each unit once
     for _, r in expected.iterrows():
@@ -109,7 +112,7 @@ def test_expected_is_the_exact_expectation_over_the_records(study):
 
 def test_the_pelicun_folder_is_complete_and_consistent(study):
     folder = Path(study[0].out_dir) / "pelicun"
-    mapping = pd.read_csv(folder / "mapping.csv", dtype={"floor": str})
+    mapping, _ = read_table(folder / "mapping.csv", dtype={"floor": str})
     frag = pd.read_csv(folder / "fragility.csv", index_col=0)
     inv = pd.read_csv(folder / "inventory.csv", index_col=0)
     ok = mapping[mapping["exported"]]

@@ -5,7 +5,6 @@ argument, and one tiny study end to end, stored and resumed."""
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
@@ -18,6 +17,7 @@ from opsrock.inventory.items import read_inventory
 from opsrock.inventory.motions import MotionSet, read_motions
 from opsrock.inventory.run import run_design
 from opsrock.inventory.study import InventoryDesign
+from opsrock.inventory.columns import read_table
 from opsrock.inventory.three_d import NONDIRECTIONAL_FACTOR, PFV_CONVENTIONS, pfv_demands, three_d_scenes
 
 
@@ -86,17 +86,16 @@ def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_pat
     first = run_design(design, tmp_path / "out", workers=1, progress=False)
     again = run_design(design, tmp_path / "out", workers=1, progress=False)
     assert (first.n_cases, first.n_computed, again.n_computed) == (2, 2, 0)
-    with open(first.tables["fits3d"], newline="") as fh:
-        rows = list(csv.DictReader(fh))
+    rows = read_table(first.tables["fits3d"], dtype=str, keep_default_na=False)[0].to_dict("records")
     assert [r["demand"] for r in rows] == list(PFV_CONVENTIONS)
     assert all(r["item"] == "cab" and r["floor"] == "1" and int(r["n_azimuths"]) == 2 for r in rows)
     assert all(int(r["n_cases"]) + int(r["n_failed"]) == 2 for r in rows)
     assert "1.2" in Path(first.report).read_text()
     # the planar route's outputs too (the same stages): fits per direction, expected numbers, a pelicun folder
     assert set(first.tables) == {"fits", "components", "demands", "expected", "fits3d"} and first.pelicun
-    comps = pd.read_csv(first.tables["components"], dtype={"floor": str})
+    comps, _ = read_table(first.tables["components"], dtype={"floor": str})
     assert set(comps["source"]) == {"3-D (2 azimuths pooled)"} and set(comps["demand"]) == {"pfv_max"}
-    fits = pd.read_csv(first.tables["fits"], dtype={"direction": str, "floor": str})
+    fits, _ = read_table(first.tables["fits"], dtype={"direction": str, "floor": str})
     assert set(fits["direction"]) == {"1", "2"} and set(fits["item"]) == {"cab"}
     assert (fits["n_cases"] + fits["n_failed"] == 2).all()  # each case once per direction, not twice
 
@@ -118,6 +117,11 @@ def test_a_round_item_is_a_cylinder_in_its_own_campaign(inputs, tmp_path):
     assert (block.width, block.depth, block.height, block.restitution_factor) == (0.23, None, 1.5, 1.0)
     assert block.h_cm == 0.75 and block.r_gyration == pytest.approx(math.sqrt(0.23**2 / 16 + 1.5**2 / 12))
     out = run_design(design, tmp_path / "out", workers=1, progress=False)
-    assert out.n_cases == 4 and out.n_computed == 4
-    with open(out.tables["fits3d"], newline="") as fh:
-        assert {r["item"] for r in csv.DictReader(fh)} == {"cab", "o2"}
+    # the cylinder at one azimuth (it is round), the box of its size beside it at both, in no item's table
+    assert out.n_cases == 5 and out.n_computed == 5
+    assert set(read_table(out.tables["fits3d"])[0]["item"]) == {"cab", "o2"}
+    assert set(read_table(out.tables["expected"])[0]["item"]) == {"cab", "o2"}
+    boxes, units = read_table(out.tables["boxes"], dtype={"floor": str})
+    assert list(boxes["model"]) == ["as given", "box of its size"] and list(boxes["shape"]) == ["cylinder", "box"]
+    assert list(boxes["n_cases"] + boxes["n_failed"]) == [1, 2] and units["median"] == "see unit"
+    assert set(boxes["demand"]) == {"pfv_max"} and units["share_rim"] == "-"

@@ -279,12 +279,13 @@ def test_fema_p58_nine_is_the_blocks_library():
 
 def test_the_example_inventory_loads():
     inv = shipped_inventory("example")
-    assert inv.ids == ("low_cabinet", "bookcase", "server_rack", "printer")
-    cab, book, rack, printer = inv.items
+    assert inv.ids == ("low_cabinet", "bookcase", "server_rack", "printer", "oxygen_cylinder")
+    cab, book, rack, printer, o2 = inv.items
     assert cab.width / cab.height > math.sqrt(2) and not cab.friction.fixed  # a wide block, friction drawn
     assert book.cm_height < book.height / 2 and book.radius_of_gyration is not None and book.fema_id
     assert rack.repair_cost and printer.support is not None and 0.1 <= printer.support.period <= 0.3
     assert {f for it in inv.items for f in it.floors} == {"1", "2", "3"}
+    assert o2.shape == "cylinder" and o2.width == o2.depth == 0.23 and o2.height == 1.5  # a round item (issue 45)
 
 
 def test_an_unknown_shipped_inventory_is_refused():

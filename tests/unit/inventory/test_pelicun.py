@@ -21,6 +21,7 @@ from opsrock.inventory.fits import FIT_COLUMNS
 from opsrock.inventory.items import FrictionLaw, Inventory, Item
 from opsrock.inventory.motions import FloorMotion, MotionSet
 from opsrock.inventory.pelicun import floor_locations, write_pelicun_folder
+from opsrock.inventory.columns import read_table
 from opsrock.inventory.study import InventoryDesign
 
 
@@ -112,7 +113,7 @@ def test_each_unit_once_with_sliding_as_the_first_damage_state(tmp_path):
     assert inventory.loc["opsrock.cab.ground", "Location"] == 1 and inventory.loc["opsrock.cab.2", "Location"] == 3
     per_dir = pd.read_csv(paths["per_direction_pfa"], index_col=0)  # marked per direction, PFA in m/s2
     assert "opsrock.cab.ground.d1.overturning" in per_dir.index and np.allclose(per_dir["LS1-Theta_0"], 0.5 * G)
-    mapping = pd.read_csv(paths["mapping"])
+    mapping, _ = read_table(paths["mapping"])
     assert mapping.loc[mapping["item"] == "rack", "status"].str.contains("never").all()
     loss = pd.read_csv(paths["loss_repair"], index_col=0)
     assert (loss["DS1-Theta_0"] == 40.0).all() and (loss["DS2-Theta_0"] == 250.0).all()

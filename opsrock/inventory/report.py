@@ -334,7 +334,7 @@ def _box_lines(boxes: pd.DataFrame | None) -> list[str]:
                      if r.shape == "box" else "",
                      "failed (reasons)": f"{r.n_failed}" + (f" ({r.failed_reasons})" if r.n_failed else "")})
     return ["## Round items against the box of their size", "",
-            "Each round item (`shape = cylinder`, solved by `cylinder3d` at one azimuth: it is round) beside the box "
+            "Each round item (`shape = cylinder`, solved as a cylinder at one azimuth: it is round) beside the box "
             "of its size (side = its diameter, solved as every box, at every azimuth), on the same records and "
             "levels: the median of the overturning fragility in `pfv_max`, the overturnings by mechanism (a cylinder "
             "rocks over one rim point or rolls on its rim; a box tips over an edge or a corner), and how far the box's "

@@ -91,6 +91,7 @@ API_GROUPS: dict[str, tuple[str, ...]] = {
     "Campaigns": ("opsrock.campaign", "opsrock.campaign."),
     "Fragility": ("opsrock.fragility", "opsrock.fragility.", "opsrock.intensity", "opsrock.intensity."),
     "Contents studies": ("opsrock.inventory.run", "opsrock.inventory.study", "opsrock.inventory.three_d",
+                         "opsrock.inventory.side_by_side",
                          "opsrock.inventory.fema", "opsrock.inventory.directionality.study",
                          "opsrock.inventory.items", "opsrock.inventory.friction", "opsrock.inventory.motions",
                          "opsrock.inventory.sources", "opsrock.inventory.stages", "opsrock.inventory.outputs"),

@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from opsrock.campaign import run_campaign
+from opsrock import run_campaign
 from opsrock.excitations.readers import read_record
 from opsrock.fragility import fit_lognormal_mle, fragility_probability
 

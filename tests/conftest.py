@@ -67,6 +67,11 @@ def pytest_sessionstart(session):
 TIERS = ("unit", "model", "validation", "e2e")
 
 
+#: The order the tiers run in: the slowest files first, so that under ``pytest -n 2 --dist loadfile`` (``make test``)
+#: the last files to run are the unit tests' short ones, and neither worker waits long at the end for the other.
+RUN_ORDER = ("e2e", "validation", "model", "unit")
+
+
 def pytest_collection_modifyitems(config, items):
     for item in items:
         parts = item.path.relative_to(config.rootpath).parts
@@ -74,6 +79,7 @@ def pytest_collection_modifyitems(config, items):
         if tier not in TIERS:
             raise pytest.UsageError(f"{item.nodeid}: a test module lives in one of tests/{{{','.join(TIERS)}}}/")
         item.add_marker(tier)
+    items.sort(key=lambda item: RUN_ORDER.index(item.path.relative_to(config.rootpath).parts[1]))  # stable
 
 
 @pytest.fixture(scope="session")

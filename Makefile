@@ -95,6 +95,8 @@ test-pelicun: install
 # pandas >= 2, Debian has 1.5). The quick form (21 cases: every tenth of validation/siconos3d's set) runs both
 # solvers, prints the agreement table and fails below its targets; `make test-siconos SICONOS_FULL=1` runs the
 # 208 cases and the interleaved timing run and writes validation/siconos3d/{cases,summary,cost}.csv and tilt.png.
+# The same for the cylinder (opsrock/data/siconos/siconos_cylinder3d.py against cylinder3d, issue 45): quick form 7
+# cases, full form 32 written to validation/siconos_cylinder/{cases,summary}.csv.
 SICONOS_PY := /usr/bin/python3
 
 test-siconos: install
@@ -103,6 +105,7 @@ test-siconos: install
 	    || { echo "opsrock: install Debian's python3-siconos (sudo apt-get install python3-siconos) and retry" >&2; exit 1; }
 	@test -x .siconos-venv/bin/python || $(SICONOS_PY) -m venv --system-site-packages .siconos-venv
 	$(BIN)/python -m opsrock.validation.siconos3d_compare $(if $(SICONOS_FULL),--out validation/siconos3d --cost,--quick)
+	$(BIN)/python -m opsrock.validation.siconos_cylinder $(if $(SICONOS_FULL),--out validation/siconos_cylinder,--quick)
 
 # A wheel built from this checkout, installed (not editable) into a fresh venv, runs `opsrock run tiny`,
 # `opsrock validate --quick` and `opsrock reproduce` from an empty folder elsewhere (.ci/run calls it).

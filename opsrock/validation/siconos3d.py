@@ -17,6 +17,7 @@ import dataclasses
 import json
 import math
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -172,15 +173,20 @@ def _vertical_after(motion: PlanMotion) -> float:
     return float(vertical) if vertical is not None and np.ndim(vertical) == 0 else 0.0
 
 
-def write_cases(path: str | Path, cases: list[Case]) -> Path:
-    """Write ``cases`` as the .npz the Siconos model reads (opsrock/data/siconos/siconos_block3d.py's docstring); return the path."""
+def box_geometry(block: Block) -> dict:
+    """The box's fields of a case file: half-width ``b``, half-depth ``d``, centre-of-mass height ``h`` (m) and the
+    principal inertia per unit mass (m², :func:`box_properties`)."""
+    return {"b": block.b, "d": block.d, "h": block.h_cm, "inertia": list(box_properties(block).inertia)}
+
+
+def write_cases(path: str | Path, cases: list[Case], geometry: Callable[[Block], dict] = box_geometry) -> Path:
+    """Write ``cases`` as the .npz the Siconos model reads (opsrock/data/siconos/siconos_block3d.py's docstring), each
+    block's fields from ``geometry`` (the box's by default); return the path."""
     meta, ax, ay, av, start = [], [], [], [], 0
     for i, case in enumerate(cases):
         dt, x, y, v = _samples(case.motion)
-        b = case.block
-        meta.append({"index": i, "label": case.label, "b": b.b, "d": b.d, "h": b.h_cm,
-                     "inertia": list(box_properties(b).inertia), "mu": b.friction, "dt": dt, "start": start,
-                     "n": int(x.size), "tail": TAIL, "av_tail": _vertical_after(case.motion)})
+        meta.append({"index": i, "label": case.label, **geometry(case.block), "mu": case.block.friction, "dt": dt,
+                     "start": start, "n": int(x.size), "tail": TAIL, "av_tail": _vertical_after(case.motion)})
         ax.append(x)
         ay.append(y)
         av.append(v)
@@ -191,8 +197,8 @@ def write_cases(path: str | Path, cases: list[Case]) -> Path:
     return path
 
 
-__all__ = ["BOXES", "Case", "all_cases", "pulse_cases", "quick_cases", "record_cases", "smoke_cases", "uplift_threshold",
-           "write_cases"]
+__all__ = ["BOXES", "Case", "all_cases", "box_geometry", "pulse_cases",
+           "quick_cases", "record_cases", "smoke_cases", "uplift_threshold", "write_cases"]
 
 if __name__ == "__main__":
     _SETS = {"smoke": smoke_cases, "quick": quick_cases, "all": all_cases}

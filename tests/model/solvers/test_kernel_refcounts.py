@@ -19,7 +19,7 @@ from opsrock.excitations.pulses import OneSinePulse
 from opsrock.solvers import simulate, warm_up
 
 #: Kernels whose functions go without reference counting.
-SOLVERS = ("rigid3d",)
+SOLVERS = ("rigid3d", "friction", "moreau_jean", "housner_fast")
 
 
 def _holds_array(t) -> bool:
@@ -31,7 +31,7 @@ def _holds_array(t) -> bool:
 def _dispatchers(solver: str):
     prefix = f"opsrock.solvers.{solver}."
     for name, module in list(sys.modules.items()):
-        if name.startswith(prefix) and module is not None:
+        if (name.startswith(prefix) or name == "opsrock.solvers.forcing") and module is not None:
             for value in vars(module).values():
                 if isinstance(value, CPUDispatcher) and value.__module__ == name:
                     yield value

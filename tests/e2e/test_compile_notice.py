@@ -1,5 +1,5 @@
 """The one-line notice while a numba kernel compiles (:mod:`opsrock.solvers._compile`), and the cold start of a
-first planar solve (issue 43).
+first planar and a first 3-D solve (issue 43).
 
 The fast tests use a one-line kernel of their own in a temporary module, compiled in fresh processes with an
 empty ``NUMBA_CACHE_DIR`` of the test's own (a second process loads it from that cache); the slow test runs the
@@ -68,17 +68,19 @@ def test_every_compiled_solver_declares_its_compile_time():
     assert set(COMPILE_CPU_S) == compiled and all(v > 0.0 for v in COMPILE_CPU_S.values())
 
 
-# --- cold start of a first planar solve -------------------------------------------------------------------------
-#: Issue 43: the first planar solve in a fresh process with an empty numba cache spends at most this much CPU
-#: (s), compile included.
-PLANAR_COLD_CPU_S = 10.0
-#: The block and pulse of issue 43's measurement; ``moreau_jean`` takes Housner's impact only.
+# --- cold start of a first solve -----------------------------------------------------------------------------------
+#: Issue 43: the first solve in a fresh process with an empty numba cache spends at most this much CPU (s), compile
+#: included: 10 s for a planar solver, 30 s for ``rigid3d``.
+COLD_CPU_S = {"housner_fast": 10.0, "friction": 10.0, "moreau_jean": 10.0, "rigid3d": 30.0}
+#: The block and pulse of issue 43's measurement; ``moreau_jean`` takes Housner's impact only, ``rigid3d`` a depth.
 CASE = ["simulate", "--json", "--width", "0.4", "--height", "2.2", "--pfa-ratio", "4", "--freq-ratio", "6"]
-EXTRA = {"housner_fast": [], "friction": [], "moreau_jean": ["--restitution-law", "housner"]}
-#: Solvers whose cold start is not reliably within the limit (issue 43 open), marked as expected to fail, not
-#: strictly: measured (``/usr/bin/time``, user + system, same command as the test) friction 11.4-15.5 s and
-#: moreau_jean 9.6-11.6 s of CPU, the spread being the machine's load; housner_fast 5.9-6.8 s.
-OVER_LIMIT = {"friction", "moreau_jean"}
+EXTRA = {"housner_fast": [], "friction": [], "moreau_jean": ["--restitution-law", "housner"],
+         "rigid3d": ["--depth", "0.6"]}
+#: Solvers whose cold start is not within the limit (issue 43 open), marked as expected to fail, not strictly:
+#: measured (``/usr/bin/time``, user + system, same command as the test, after the kernels went without reference
+#: counting) friction 19.1 s, moreau_jean 10.3 s (9.6-11.6 s before), rigid3d 54.7 and 64.6 s of CPU, the spread
+#: being the machine's load (up to a fifth); housner_fast 5.7 s.
+OVER_LIMIT = {"friction", "moreau_jean", "rigid3d"}
 
 
 def _child_cpu(run):
@@ -99,8 +101,8 @@ def _child_cpu(run):
 @pytest.mark.parametrize("solver", [
     pytest.param(s, marks=pytest.mark.xfail(strict=False, reason="issue 43: cold start not reliably within the limit"))
     if s in OVER_LIMIT else s for s in sorted(EXTRA)])
-def test_first_planar_solve_from_an_empty_cache(solver, tmp_path):
-    """A fresh process, an empty ``NUMBA_CACHE_DIR``: the answer within :data:`PLANAR_COLD_CPU_S` of CPU, the
+def test_first_solve_from_an_empty_cache(solver, tmp_path):
+    """A fresh process, an empty ``NUMBA_CACHE_DIR``: the answer within :data:`COLD_CPU_S` of CPU, the
     notice on stderr and the JSON alone on stdout; a second process, warm, prints no notice."""
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
     args = [*CASE, "--solver", solver, *EXTRA[solver]]
@@ -111,4 +113,4 @@ def test_first_planar_solve_from_an_empty_cache(solver, tmp_path):
     warm = run_opsrock(args, tmp_path, env=env, timeout=900)
     assert warm.returncode == 0 and json.loads(warm.stdout)["theta_max"] == json.loads(cold.stdout)["theta_max"]
     assert NOTICE not in warm.stderr
-    assert cpu <= PLANAR_COLD_CPU_S, f"{solver}: {cpu:.1f} s of CPU from an empty cache"
+    assert cpu <= COLD_CPU_S[solver], f"{solver}: {cpu:.1f} s of CPU from an empty cache"

@@ -20,6 +20,10 @@ SWALLOWING_IMPORT = r"""
 import importlib, os, signal, sys, time
 import opsrock.cli as cli
 
+# Ctrl-C as a terminal's foreground process has it: a process started with SIGINT ignored (as a pytest-xdist
+# worker may start its children) inherits the ignored disposition, and an ignored Ctrl-C is no Ctrl-C at all
+signal.signal(signal.SIGINT, signal.default_int_handler)
+
 real = importlib.import_module
 
 

@@ -17,7 +17,7 @@ from typing import Any
 #: CPU time (s) a first solve spends compiling each solver's kernel from an empty numba cache: the user plus
 #: system time of ``NUMBA_CACHE_DIR=$(mktemp -d) /usr/bin/time opsrock simulate --width 0.4 --height 2.2
 #: --pfa-ratio 4 --freq-ratio 6 --solver NAME`` (``--restitution-law housner`` for ``moreau_jean``, ``--depth 0.6``
-#: for ``rigid3d``; measured after issue 43's kernels went without reference counting: housner_fast 5.7 s,
+#: for ``rigid3d``; measured in issue 43: housner_fast 5.7 s,
 #: moreau_jean 10.3 s, friction 19.1 s, rigid3d 54.7 and 64.6 s; for ``cylinder3d`` the same of ``python -c 'from
 #: opsrock.solvers import warm_up; warm_up("cylinder3d")'``, 15.4 s cold) less that of the same command with the
 #: cache warm (about 1.3 s), measured on the project's shared 2-core development machine (numba 0.68, Python 3.11;

@@ -66,7 +66,7 @@ def record_forcing(kvals: np.ndarray, dtau: float, tau_end: float) -> Excitation
     return Excitation(FORM_LINEAR, 0.0, 0.0, 0.0, float(tau_end), kvals, float(dtau))
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def forcing(tau, form, c0, c1, c2):
     """Floor acceleration over g at ``tau`` inside a segment of the given form."""
     if form == FORM_LINEAR:
@@ -77,7 +77,7 @@ def forcing(tau, form, c0, c1, c2):
     return c0 * (1.0 - 2.0 * x * x) * math.exp(-x * x)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def next_exceedance_sine(tau, level, k, nu, phase, tau_end):
     """First time >= tau at which ``|k sin(nu tau + phase)| > level`` before ``tau_end``, and the
     sign of a there; (-1.0, 0.0) if none. Closed form: the exceedance windows in the phase
@@ -103,7 +103,7 @@ def next_exceedance_sine(tau, level, k, nu, phase, tau_end):
         return (lo - phase) / nu, sgn
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def next_exceedance_ricker(tau, level, k, c, t0, tau_end):
     """First time >= tau at which the Ricker wavelet ``|a|/g`` exceeds ``level`` before ``tau_end``,
     and the sign of a there; (-1.0, 0.0) if none. ``a`` is monotone between its extremes
@@ -146,7 +146,7 @@ def next_exceedance_ricker(tau, level, k, c, t0, tau_end):
     return -1.0, 0.0
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def next_exceedance_record(tau, level, kvals, dtau):
     """First time >= tau at which |a|/g > level for the piecewise-linear record ``kvals``
     (a/g at ``tau = i dtau``), exact on the linear segments, and the sign of a there;
@@ -172,7 +172,7 @@ def next_exceedance_record(tau, level, kvals, dtau):
     return -1.0, 0.0
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def next_exceedance_scaled(tau, level, kvals, gvals, dtau):
     """First time >= tau at which ``|a|/g > level (1 + a_v/g)`` for the piecewise-linear records
     ``kvals`` (``a/g``) and ``gvals`` (``1 + a_v/g``) on the same grid ``tau = i dtau``, exact on the
@@ -204,7 +204,7 @@ def next_exceedance_scaled(tau, level, kvals, gvals, dtau):
     return -1.0, 0.0
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def next_exceedance(tau, level, exc):
     """First uplift time >= tau (``|a|/g > level``) and the sign of a there, for any form of the
     :class:`Excitation` ``exc``."""
@@ -215,7 +215,7 @@ def next_exceedance(tau, level, exc):
     return next_exceedance_ricker(tau, level, exc.c0, exc.c1, exc.c2, exc.tau_end)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def segment(exc, tau, i):
     """Forcing of the :class:`Excitation` ``exc`` on the segment that holds ``tau`` (the search starts at segment
     ``i``): (segment index, c0, c1, c2, segment end) with ``(c0, c1, c2)`` the coefficients of :func:`forcing`. An
@@ -231,7 +231,7 @@ def segment(exc, tau, i):
     return i, kvals[i], (kvals[i + 1] - kvals[i]) / dtau, i * dtau, end
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def pulse_forcing(pulse, k, nu):
     """The :class:`Excitation` of an analytic pulse of peak ``k = PFA/g`` and ``nu = omega_p/p``, in the
     dimensionless time ``tau = p t``."""

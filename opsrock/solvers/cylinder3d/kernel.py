@@ -35,7 +35,7 @@ from opsrock.solvers.cylinder3d.model import Model, Numerics
 from opsrock.solvers.cylinder3d.step import floor_at, step
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _signed(s):
     """The tilt signed by the lean along ``x`` (rad) and the angular velocity about ``y`` (rad/s): the planar
     solvers' ``theta`` and ``theta'`` in motion along ``x``."""
@@ -43,7 +43,7 @@ def _signed(s):
     return (t if (lx > 0.0 or (lx == 0.0 and ly >= 0.0)) else -t), s[11]
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _record(j, t, s, down, h, hist):
     """Store one history row at time ``t`` (s) if there is room; returns the next free row."""
     if j >= hist.shape[0]:
@@ -61,7 +61,7 @@ def _record(j, t, s, down, h, hist):
     return j + 1
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _rest_holds(model, acc):
     """A seated cylinder stays at rest this step: the floor's load pushes down (``g + a_v > 0``), its centre of
     pressure ``|a_h| h / (g + a_v)`` lies inside the base's circle of radius ``r`` and friction carries ``|a_h|``.
@@ -72,7 +72,7 @@ def _rest_holds(model, acc):
     return gz > 0.0 and ah * d.h <= d.r * gz and (f.infinite or ah <= f.mu_s * gz)
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def _seat(s, h):
     """Set a cylinder at rest on its stuck base down level: its base centre and twist kept, its velocities zero."""
     bx, by = base_centre(s, h)
@@ -82,7 +82,7 @@ def _seat(s, h):
     s[7:] = 0.0
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _book(model, state, n, slipping, phi0, flat):
     """The step's bookkeeping: the contact mode and the time in it, a landing (an impact: a rim point touching down
     after a flight, the contact jumping across the base, or the base landing flat), the contact point's run round
@@ -117,7 +117,7 @@ def _book(model, state, n, slipping, phi0, flat):
     return landing
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def _track(model, state, ws):
     """The peaks after a step (tilt, slide, twist) and the input work; returns True if the cylinder overturned
     (tilt ``>= pi/2``), its mechanism and direction then written."""
@@ -137,7 +137,7 @@ def _track(model, state, ws):
     return True
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _tail_energy(model, s, tail_av):
     """Energy per unit mass above rest on the still floor after the excitation (J/kg): ``|V|²/2``, the rotation's
     ``(i_h |omega|² + (i_z - i_h) (omega . a)²) / 2`` (``a`` the axis) and ``(g + tail_av) (z - h)``. Nothing feeds
@@ -149,7 +149,7 @@ def _tail_energy(model, s, tail_av):
     return 0.5 * (s[7] * s[7] + s[8] * s[8] + s[9] * s[9] + rot) + (d.g + tail_av) * (s[2] - d.h)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _lift(model, tilt_, tail_av):
     """The energy per unit mass (J/kg) that raises the centre of mass to the tilt ``tilt_`` (rad) on a rim point:
     ``(g + tail_av) (h cos tilt + r sin tilt - h)``."""
@@ -157,7 +157,7 @@ def _lift(model, tilt_, tail_av):
     return (d.g + tail_av) * (d.h * math.cos(tilt_) + d.r * math.sin(tilt_) - d.h)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _tail_settled(model, state, tail_av):
     """The tail may end before rest (1: settled; 2: bounded): its energy (:func:`_tail_energy`), which nothing feeds
     any more, cannot raise the centre of mass to the overturning tilt (below ``TAIL_CUT_MARGIN`` of the lift to it),
@@ -181,7 +181,7 @@ def _tail_settled(model, state, tail_av):
     return 1 if math.hypot(s[7] + s[11] * c2 - s[12] * c1, s[8] + s[12] * c0 - s[10] * c2) < PEAK_BASE_SPEED else 0
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _impulse_energy(ws):
     """The energy per unit mass (J/kg) the step's contact impulses took: ``-dv . M v_end`` (their work at the step's
     end velocities, ``dv = v_end - v_free``, ``M = diag(1, Iw)``: friction's alone where the normal impulses do none,
@@ -200,7 +200,7 @@ def _impulse_energy(ws):
     return work, work + quad
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _sub_step(model, state, ws, k):
     """One Moreau-Jean step of ``model``'s step and its bookkeeping; returns False if the run must stop failed
     (non-finite state, NSGS unconverged too long: ``out[OUT_STATUS]`` set)."""
@@ -236,7 +236,7 @@ def _sub_step(model, state, ws, k):
     return True
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _contact_step(model, state, ws, k):
     """One step ``dt`` of Moreau-Jean, cut into sub-steps while the contact point runs fast round the rim (at most
     ``PHI_STEP`` rad a sub-step at its last rate, at most ``MAX_SUBSTEPS`` of them): a cylinder rolling through a
@@ -256,7 +256,7 @@ def _contact_step(model, state, ws, k):
     return 0
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def run(model, floor, state, ws, hist):
     """Integrate one case: ``state`` (:class:`.model.State`) from its start to the end of the excitation and the
     tail (rest), writing ``state.out`` (``OUT_*``) and the history rows ``hist`` (``H_*``, one every
@@ -308,7 +308,7 @@ def run(model, floor, state, ws, hist):
     return _finish(model, state, hist, j, k)
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def _finish(model, state, hist, j, k):
     """The last history row and the output vector's totals; returns the status."""
     s, out, tr, dt = state.s, state.out, state.track, model.numerics.dt

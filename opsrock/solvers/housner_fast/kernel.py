@@ -84,7 +84,7 @@ _THETA_ZERO, _OMEGA_ZERO, _ZERO, _NO = np.int64(0), np.int64(1), np.int64(0), np
 _OK, _MAX_STEPS, _EVENT_FAILED = np.int64(STATUS_OK), np.int64(STATUS_MAX_STEPS), np.int64(STATUS_EVENT_FAILED)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def case_params(alpha, e, lineq, h_nom, rest_velocity, max_impacts, max_steps):
     """The :class:`Params` of one case (``alpha`` rad, ``e``, ``lineq`` bool, ``h_nom`` units of 1/p,
     ``rest_velocity`` units of p, the limits counts), typed alike wherever it is built."""
@@ -93,7 +93,7 @@ def case_params(alpha, e, lineq, h_nom, rest_velocity, max_impacts, max_steps):
                   int(max_impacts), int(max_steps))
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _accel(theta, tau, side, par, pc):
     """d²theta/dtau² on pivot ``side`` (+1/-1) under the forcing :class:`Piece` ``pc``; the exact
     equation, or its small-angle form when ``par.lineq``."""
@@ -104,7 +104,7 @@ def _accel(theta, tau, side, par, pc):
     return -(math.sin(phi) + ag * math.cos(phi))
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _rk4(theta, omega, tau, h, side, par, pc):
     """One classical RK4 step of size ``h`` (the right side does not depend on omega)."""
     a1 = _accel(theta, tau, side, par, pc)
@@ -122,7 +122,7 @@ def _rk4(theta, omega, tau, h, side, par, pc):
     return theta_new, omega_new
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _locate(which, st, h, par, pc):
     """Step length ``d`` in (0, h] from the state ``st`` at which the RK4 map's ``theta`` (which=0) or
     ``omega`` (which=1) vanishes, given a sign change over ``[0, h]``. Safeguarded Newton (bisection
@@ -159,7 +159,7 @@ def _locate(which, st, h, par, pc):
     return d, False
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _free_verdict(par, st):
     """Exact verdict after the excitation (a = 0) from the rocking energy of the state ``st`` (per m g R in the
     exact form, per m g R alpha-scaled in the linearised one): returns (overturned, peak |theta| of the next
@@ -199,7 +199,7 @@ def _free_verdict(par, st):
     return False, 0.0, n_imp, False
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _record(hist, n, tau, theta, omega):
     """Append one row to the history if it has room; returns the rows written."""
     if n < hist.tau.shape[0]:
@@ -210,13 +210,13 @@ def _record(hist, n, tau, theta, omega):
     return n
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _outcome(tl, overturned, status):
     """The :class:`Outcome` of a case ended with ``status``."""
     return Outcome(tl.theta_max, overturned, tl.rocked, status, tl.n_imp, tl.n_steps, tl.n_hist)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _start(theta0, omega0, hist):
     """The :class:`State` and :class:`Tally` of a case starting from ``theta0`` (rad), ``omega0`` (units of p)."""
     n_hist = _record(hist, _ZERO, 0.0, theta0, omega0)
@@ -233,7 +233,7 @@ def _start(theta0, omega0, hist):
     return State(0.0, theta0, omega0, side, fresh, 0), Tally(abs(theta0), rocked, 0, 0, n_hist)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _trial(par, exc, st, tl):
     """The step from the rocking state ``st`` on its forcing segment: ``(piece, trial, steps so far, seated,
     segment)``;
@@ -268,7 +268,7 @@ def _trial(par, exc, st, tl):
     return pc, Trial(h, last, seg_end, th1, w1), n_steps, seated, seg
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _impact(par, pc, st, tl, tr, hist):
     """The step ``tr`` crosses ``theta = 0``: to the impact (and a peak before it), Housner's impact, and the
     block seated if it leaves too slowly towards a restoring acceleration. ``(state, tally, end)``: ``end`` -1
@@ -306,7 +306,7 @@ def _impact(par, pc, st, tl, tr, hist):
     return State(tau, 0.0, omega, side, fresh, st.seg), Tally(theta_max, tl.rocked, n_imp, n_steps, n_hist), -1
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _ordinary(par, pc, st, tl, tr, hist):
     """The step ``tr`` stays on its side: a peak inside it, then the new state, overturned or not. ``(state,
     tally, end)`` as :func:`_impact`."""
@@ -326,7 +326,7 @@ def _ordinary(par, pc, st, tl, tr, hist):
     return new, tally, (STATUS_OK if abs(theta) >= OVERTURNING_ANGLE else -1)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _step(par, exc, st, tl, hist):
     """One step of a rocking block: ``(state, tally, end)`` as :func:`_impact` (``end`` :data:`STATUS_OK`: it
     overturned)."""
@@ -342,7 +342,7 @@ def _step(par, exc, st, tl, hist):
     return _ordinary(par, pc, st, tl, tr, hist)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def solve_case(par, exc, theta0, omega0, hist):
     """Solve one case in dimensionless time ``tau = p t``, from rotation ``theta0`` (rad) and
     angular velocity ``omega0`` (units of p), zero for a block at rest: the block and numerics
@@ -376,7 +376,7 @@ def solve_case(par, exc, theta0, omega0, hist):
     return _outcome(Tally(max(tl.theta_max, peak), tl.rocked, tl.n_imp, tl.n_steps, tl.n_hist), ov, _OK)
 
 
-@numba.njit(cache=True, _nrt=True, nogil=True)
+@numba.njit(cache=True, nogil=True)
 def _solve_chunk(cases, opts, start, stop, answers):
     """Solve cases ``start:stop`` of :class:`Cases` under the analytic pulse and :class:`BatchSettings` ``opts``
     one after the other, into :class:`Answers` (releases the GIL, so Python threads can run chunks in parallel;

@@ -143,14 +143,14 @@ def history(every, cap):
     return History(int(every), np.zeros(cap), np.zeros(cap), np.zeros(cap), np.zeros(cap))
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def scratch(previous_pair):
     """A :class:`Scratch`, ``previous_pair`` the status pair taken last (-1: none)."""
     return Scratch(np.zeros((4, 3, 3)), np.zeros((2, 3), dtype=np.int64), np.zeros((2, 4)),
                    np.full(1, previous_pair, dtype=np.int64))
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def workspace(bd):
     """A fresh :class:`Workspace` for the :class:`Body` ``bd``."""
     new = np.zeros(6)
@@ -159,7 +159,7 @@ def workspace(bd):
                      np.zeros(2, dtype=np.bool_), np.zeros(2, dtype=np.bool_), new, scratch(-1))
 
 
-@numba.njit(cache=True, _nrt=False, inline="always")
+@numba.njit(cache=True, inline="always")
 def _floor(k, theta_mj, fm):
     """Floor accelerations ``(a_h, a_v)`` (m/s²) of :class:`FloorMotion` ``fm`` at the evaluation time ``(k +
     theta_mj) dt`` of step ``k``."""
@@ -173,7 +173,7 @@ def _floor(k, theta_mj, fm):
     return ah[j] + f * (ah[j + 1] - ah[j]), av[j] + f * (av[j + 1] - av[j])
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _rows(c, b, h, th):
     """``(gn_c, gt_c)``: the rotation entries of the normal and tangential Jacobian rows of corner ``c``."""
     s = math.sin(th)
@@ -181,13 +181,13 @@ def _rows(c, b, h, th):
     return h * s - c * b * co, -(c * b * s + h * co)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _gap(c, b, h, y, th):
     """Height of corner ``c`` above the floor (m)."""
     return y - c * b * math.sin(th) - h * math.cos(th)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _local(wnn, wnt, wtt, un, ut, mu_s, mu_k, stick_only):
     """One contact, exactly (docs/guide/friction.md, the impact at ``theta = 0``, with ``e_n = 0``): the impulse
     ``(P_N, P_T)`` making ``U+ = U + W P`` satisfy ``0 <= U_N+ _|_ P_N >= 0`` and Coulomb's law, and a
@@ -249,7 +249,7 @@ _ORDER_FINITE = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [2, 0], [3, 0], [0, 2]
 _ORDER_INFINITE = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [4, 0], [0, 4], [1, 4], [4, 1], [4, 4]])
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _solve_small(a, r, n):
     """Solve ``a[:n, :n] z = r[:n]`` in place by Gaussian elimination with partial pivoting; returns False
     if a pivot is below 1e-12 of the matrix's largest entry (singular status pair: skip it)."""
@@ -280,7 +280,7 @@ def _solve_small(a, r, n):
     return True
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _check(st, pn, pt, un, ut, mu_s, eps):
     """Does a contact with status ``st``, impulse ``(pn, pt)`` and end-of-step velocity ``(un, ut)`` obey
     its law (within ``eps``, m/s)?"""
@@ -297,7 +297,7 @@ def _check(st, pn, pt, un, ut, mu_s, eps):
     return pt * ut <= eps * (abs(pt) + eps)  # _LIMIT: friction opposes the slip
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _try_pair(sr, sl, prob, fr, eps, sol, sc):
     """Impulses of both contacts for the status pair ``(sr, sl)`` (not both stick), by one small linear
     system: each status adds its unknowns (stick: ``P_N``, ``P_T``; slip ``sigma``: ``P_N`` with ``P_T = -sigma
@@ -355,7 +355,7 @@ def _try_pair(sr, sl, prob, fr, eps, sol, sc):
     return True
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _stick_both(prob, fr, strict, eps, sol, wb):
     """Both corners stick: then ``v = 0`` (their four velocity rows span the three freedoms) and the
     impulses solve ``G^T P = -M v_free``, a one-parameter family ``P(s)``, ``s = P_T`` of the left corner
@@ -405,7 +405,7 @@ def _stick_both(prob, fr, strict, eps, sol, wb):
     return True
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _try(k, order, prob, fr, strict, eps, sol, sc):
     """Try status pair ``order[k]`` (:func:`_stick_both`, with ``strict``, or :func:`_try_pair`)."""
     sr, sl = order[k, 0], order[k, 1]
@@ -414,7 +414,7 @@ def _try(k, order, prob, fr, strict, eps, sol, sc):
     return _try_pair(sr, sl, prob, fr, eps, sol, sc)
 
 
-@numba.njit(cache=True, _nrt=False, inline="always")
+@numba.njit(cache=True, inline="always")
 def _impulses(prob, act, R, fr, tol, scale, sol, sc):
     """Contact impulses of one step and the end-of-step velocity ``v`` (:class:`Solution` ``sol``) from the
     free velocity ``vf`` of the :class:`Problem` ``prob``, the corners ``act`` active.
@@ -473,7 +473,7 @@ def _impulses(prob, act, R, fr, tol, scale, sol, sc):
     return STATUS_LOCAL
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _slide_of(b, h, x, th):
     """Horizontal displacement of the lower base corner from where it was at rest, ``x_c(q) - c b`` (m):
     the base's displacement as a rigid body; the CM displacement at ``theta = 0``."""
@@ -481,7 +481,7 @@ def _slide_of(b, h, x, th):
     return x + c * b * (math.cos(th) - 1.0) - h * math.sin(th)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _mode(touch, slip):
     """Contact mode (a ``MODE_*`` index) from the two corners' contact and slip flags."""
     n = int(touch[0]) + int(touch[1])
@@ -493,7 +493,7 @@ def _mode(touch, slip):
     return MODE_FLIGHT
 
 
-@numba.njit(cache=True, _nrt=False, inline="always")
+@numba.njit(cache=True, inline="always")
 def _copy(src, dst, at):
     """``dst[at:at + len(src)] = src``, element by element: a slice assignment would compile numba's shape-mismatch
     error message (string formatting: about 1.5 s of CPU of a cold compile) for a mismatch that cannot happen."""
@@ -501,7 +501,7 @@ def _copy(src, dst, at):
         dst[at + i] = src[i]
 
 
-@numba.njit(cache=True, _nrt=False, inline="always")
+@numba.njit(cache=True, inline="always")
 def _record(hist, j, t, th, vt, sl):
     """Store one row of the :class:`History` if there is room; returns the next free row."""
     if j < hist.t.size:
@@ -513,7 +513,7 @@ def _record(hist, j, t, th, vt, sl):
     return j
 
 
-@numba.njit(cache=True, _nrt=False, inline="always")
+@numba.njit(cache=True, inline="always")
 def _step(state, a_h, a_v, bd, fr, num, wk):
     """One Moreau-Jean step (docs/guide/friction.md, the reference ``moreau_jean``) from ``state = (x, y, theta, x',
     y', theta')`` into ``wk.new``: free velocity under the step's forces, active corners from the mid-step
@@ -537,7 +537,7 @@ def _step(state, a_h, a_v, bd, fr, num, wk):
     return st
 
 
-@numba.njit(cache=True, _nrt=False, inline="always")
+@numba.njit(cache=True, inline="always")
 def _contacts(bd, lim, wk, out):
     """After a step: friction work of the impulses, and each corner's contact and slip flags; returns
     True if a corner landed (an impact).
@@ -571,7 +571,7 @@ def _contacts(bd, lim, wk, out):
     return impact
 
 
-@numba.njit(cache=True, _nrt=False, inline="always")
+@numba.njit(cache=True, inline="always")
 def _book(state, a_h, a_v, bd, lim, wk, out):
     """Energy bookkeeping of the step from ``state`` to ``wk.new`` (docs/guide/friction.md, per unit mass): input
     work over the step's displacement, friction work in :func:`_contacts`, and at an impact the kinetic energy of
@@ -584,7 +584,7 @@ def _book(state, a_h, a_v, bd, lim, wk, out):
         out[OUT_IMPACTS] += 1.0
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _tally(mode, dt, out):
     """First mode left rest into, time sliding and time rocking."""
     if mode != MODE_REST and out[OUT_FIRST_MODE] < 0.0:
@@ -595,7 +595,7 @@ def _tally(mode, dt, out):
         out[OUT_TIME_ROCKING] += dt
 
 
-@numba.njit(cache=True, _nrt=False, inline="always")
+@numba.njit(cache=True, inline="always")
 def _slides_on(k, state, mode, bd, fr, fm, num, lim):
     """After step ``k`` of the tail: sliding flat on a still floor, decelerated by ``mu_k (g + a_v)`` without tipping
     (``mu_k <= b / h``), the block would still slide when the tail ends (a frictionless block, always)."""
@@ -604,7 +604,7 @@ def _slides_on(k, state, mode, bd, fr, fm, num, lim):
             and fr.mu_k * (bd.g + fm.tail_av) * (fm.n_exc + lim.max_tail - k) * num.dt < abs(state[3]))
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def run(bd, fr, num, fm, state, lim, hist, out):
     """Integrate one case of the :class:`Body` ``bd`` with :class:`Friction` ``fr``, :class:`Numerics` ``num``
     under the :class:`FloorMotion` ``fm`` from ``state`` (``(x, y, theta, x', y', theta')``, m and m/s, rad and

@@ -58,7 +58,7 @@ from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _copy,
 from opsrock.solvers.rigid3d.workspace import (Probe, make_corners, make_workspace)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _record(hist, t, s, theta, theta_dot, down, h, out):
     """Store one history row if there is room (``out[OUT_N_HIST]``: the rows stored, counted on)."""
     j = int(out[OUT_N_HIST])
@@ -80,7 +80,7 @@ def _record(hist, t, s, theta, theta_dot, down, h, out):
     out[OUT_N_HIST] = j + 1
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _mode(touch, slip):
     """Contact mode (a ``MODE_*`` index) and corners down from the corners' contact and slip flags."""
     n = 0
@@ -96,7 +96,7 @@ def _mode(touch, slip):
     return MODE_FLIGHT, n
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _tally(mode, n_down, dt, out):
     """First mode left rest into, and the times in each state."""
     if mode != MODE_REST and out[OUT_FIRST_MODE] < 0.0:
@@ -113,7 +113,7 @@ def _tally(mode, n_down, dt, out):
         out[OUT_TIME_FLIGHT] += dt
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _settle(state, touch, body, Q, r, gap_max, out):
     """A block at rest on three corners (``touch``) whose fourth hangs above the floor by at most ``gap_max`` (m):
     the gap is the Moreau-Jean steps' drift (a corner that rose above the contact gap while the block came to rest
@@ -142,7 +142,7 @@ def _settle(state, touch, body, Q, r, gap_max, out):
     return True
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _peak_reached(s, body, tilt_max, tail_av):
     """The tail rule "peak": after the excitation (a still floor, ``g' = g + tail_av``), the block's energy per
     unit mass above rest, bounded above by ``|V|²/2 + I_max |omega|²/2 + g' (z - h)``, can only fall; at a tilt
@@ -164,7 +164,7 @@ def _peak_reached(s, body, tilt_max, tail_av):
     return math.hypot(s[7] + w1 * c2 - w2 * c1, s[8] + w2 * c0 - w0 * c2) < PEAK_BASE_SPEED
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _finite(state):
     """Is every component of the state finite (their sum is)?"""
     fin = 0.0
@@ -173,7 +173,7 @@ def _finite(state):
     return math.isfinite(fin)
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _in_phase(j, act, corners, P):
     """After a Moreau-Jean step: is the block in the phase ``j`` (``PH_PIVOT``, ``PH_SLIP``, ``PH_SLIDE``)?"""
     touch, slip = corners.touch, corners.slip
@@ -184,7 +184,7 @@ def _in_phase(j, act, corners, P):
     return _flat_slip(act, touch, slip)
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _next_phase(phase, impact, act, corners, P):
     """The phase counts after a Moreau-Jean step (slots ``PH_PIVOT``, ``PH_SLIP``, ``PH_SLIDE`` of ``phase``): one
     more step in the phase the block is in if no corner landed (``impact``), the others back to 0; a cool-down
@@ -198,7 +198,7 @@ def _next_phase(phase, impact, act, corners, P):
             phase[j] = 0
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _smooth_step(model, floor, state, k, phase, work, corners, trial):
     """A smooth step of the phase the block has been in for ``pivot.CALM_STEPS`` Moreau-Jean steps (``phase``):
     about stuck corners (:func:`.smooth._smooth`), on slipping corners (:func:`.smooth._smooth_slip`), sliding flat
@@ -229,7 +229,7 @@ def _smooth_step(model, floor, state, k, phase, work, corners, trial):
     return n, tilt_sub
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _mj_step(model, state, acc, ws, trial, corners, phase):
     """One Moreau-Jean step (:func:`.step._step`, the corners down tried first) under the floor accelerations
     ``acc``, its bookkeeping (:func:`.step._book`) and the phase counts after it (:func:`_next_phase`). Returns
@@ -249,7 +249,7 @@ def _mj_step(model, state, acc, ws, trial, corners, phase):
     return True
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _rest_skip(model, floor, k, state, theta, phase, hist, out):
     """The rest skip from step ``k`` (a seated, stuck block whose load the base carries stays at rest this step, and
     a whole sample interval of a record if it does at both its samples, and the whole rest of a still tail:
@@ -267,7 +267,7 @@ def _rest_skip(model, floor, k, state, theta, phase, hist, out):
     return k
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _start(model, state, ws, corners, hist, out):
     """The run's start from ``state``: ``out`` cleared, the corners within ``lift_gap`` of the floor down, the first
     history row, the peaks of the start. Returns ``(corners down, signed tilt)``."""
@@ -287,7 +287,7 @@ def _start(model, state, ws, corners, hist, out):
     return n_down, theta
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _track(body, state, n_down, tilt_sub, r1, phase, out):
     """After a step to ``state`` (``r1`` its arms, ``n_down`` corners down, ``tilt_sub`` the largest tilt inside a
     smooth step): the peaks of tilt, slide and twist into ``out``, the corners down last and how the block would
@@ -306,7 +306,7 @@ def _track(body, state, n_down, tilt_sub, r1, phase, out):
     return theta, math.atan2(ly, lx)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _seat(model, state, n_down, ws, corners, phase, out):
     """A block at rest and still enough (``limits.velocity_tol``) on four corners, or on three with the fourth within
     the settling gap (:func:`_settle`, set down), is seated: its velocities zeroed, the rest skip on."""
@@ -317,7 +317,7 @@ def _seat(model, state, n_down, ws, corners, phase, out):
             state[a] = 0.0
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _finish(model, state, k, status, corners, hist, out):
     """The run's end at step ``k`` with ``status``: the last state's history row (if not stored) and the outputs."""
     dt, body = model.numerics.dt, model.body
@@ -335,7 +335,7 @@ def _finish(model, state, k, status, corners, hist, out):
     return status
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def run(model, floor, state, hist, out):
     """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history rows ``hist`` (columns ``H_*``);
     returns the status. Each step: the rest skip if the block is seated and the floor's load carried; else a

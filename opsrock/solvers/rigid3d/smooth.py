@@ -23,7 +23,7 @@ from opsrock.solvers.rigid3d.step import (_book, _floor, _step)
 from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y, Probe)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _flat_slip(act, touch, slip):
     """After a Moreau-Jean step: all four corners active and down, some slipping (a block sliding flat)."""
     sl = False
@@ -34,7 +34,7 @@ def _flat_slip(act, touch, slip):
     return sl
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _stuck_pivot(act, touch, slip, P):
     """After a Moreau-Jean step: one corner or two down, exactly those solved in contact, loaded, none slipping
     (the phase :mod:`.pivot` integrates)."""
@@ -46,7 +46,7 @@ def _stuck_pivot(act, touch, slip, P):
     return n == 1 or n == 2
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _copy(dst, src):
     """``dst[:] = src`` (1-D, or 2-D row by row) element by element: numba compiles a slice assignment with its
     shape-mismatch error message, string formatting included (seconds of a cold compile)."""
@@ -59,7 +59,7 @@ def _copy(dst, src):
                 dst[i, j] = src[i, j]
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _span(floor, k, n_max):
     """The Moreau-Jean steps a smooth step from step ``k`` spans at first: to the next sample of the floor motion or
     the end of the excitation, at most ``n_max``; -1 if that is fewer than two (none is tried)."""
@@ -67,14 +67,14 @@ def _span(floor, k, n_max):
     return -1 if n < 2 else n
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _halved(n):
     """The steps of the next smooth step tried after one of ``n`` steps left its phase: half of them, at least
     ``pivot.MIN_STEPS``; 0 if ``n`` was already that short (the Moreau-Jean steps then locate the event)."""
     return 0 if n <= PV.MIN_STEPS else max(PV.MIN_STEPS, n // 2)
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _same_phase(model, new, piv, n_piv, a, ws, probe):
     """Is the end state ``new`` of a smooth step still in its phase? Every other corner above ``lift_gap``, and
     a Moreau-Jean probe step from it (``a``: the floor's accelerations of that step) solved with exactly the
@@ -107,7 +107,7 @@ def _same_phase(model, new, piv, n_piv, a, ws, probe):
     return math.hypot(u0, u1) <= vel_tol
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _smooth(model, floor, state, k, work, corners, trial):
     """A smooth step (:mod:`opsrock.solvers.rigid3d.pivot`) about the corners down (``corners.touch``): from ``k`` to
     the next sample (at most ``pivot.MAX_DTAU``), halved while it leaves its phase (:func:`_halved`), into
@@ -147,7 +147,7 @@ def _smooth(model, floor, state, k, work, corners, trial):
             return 0, 0.0
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _slip_free(model, y, F, sw):
     """The free motion of :func:`_slip_rhs` at the state ``y`` under the body force ``F``: into ``sw`` the arms,
     inertia, the contact corners' velocities ``u`` and free accelerations ``q`` (rows ``EVEC_U``, ``EVEC_Q``), their
@@ -182,7 +182,7 @@ def _slip_free(model, y, F, sw):
     return True, (al0, al1, al2)
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _slip_loads(sw, mu_s):
     """The contact forces ``P6`` (row ``EVEC_P6``) of :func:`_slip_rhs` checked: ``(holds, friction power, stop
     time)`` as it returns them."""
@@ -209,7 +209,7 @@ def _slip_loads(sw, mu_s):
     return holds, power, t_stop
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _slip_derivative(y, F, al, sw, dy):
     """``dy`` of :func:`_slip_rhs`: the body force ``F`` and the contact forces ``P6`` on the centre of mass, their
     torques and ``al`` (``alpha_f``) on the rotation, the quaternion's rate."""
@@ -239,7 +239,7 @@ def _slip_derivative(y, F, al, sw, dy):
     dy[6] = 0.5 * (qw * w2 + w0 * qy - w1 * qx)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _slip_rhs(model, y, F, sw, dy):
     """Time derivative ``dy`` of the state ``y`` (13) of a block on the corners ``sw.idx`` with the statuses
     ``sw.st`` (0 stuck, 1 slipping, 2 not in contact) under the body force ``F`` (m/s², per unit mass): the contact
@@ -271,7 +271,7 @@ def _slip_rhs(model, y, F, sw, dy):
     return holds, power, t_stop
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _slip_integrate(model, floor, s, k0, n_steps, new, sw):
     """Classical Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps on the slipping
     (and stuck) corners ``sw.idx`` / ``sw.st`` (:func:`_slip_rhs`) into ``new``, in sub-steps of at most
@@ -335,7 +335,7 @@ def _slip_integrate(model, floor, s, k0, n_steps, new, sw):
     return tilt_max, work
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _slip_pivot(act, touch, slip, P):
     """After a Moreau-Jean step: one corner or two down, exactly those solved in contact, loaded, at least one
     slipping (the phase :func:`_smooth_slip` integrates)."""
@@ -349,7 +349,7 @@ def _slip_pivot(act, touch, slip, P):
     return sl and (n == 1 or n == 2)
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _same_slip(model, new, idx, st, a, ws, probe, sw):
     """Is the end state ``new`` of a smooth step on slipping corners still in its phase? Every corner not in
     contact above ``lift_gap``, and a Moreau-Jean probe step from it (``a``: its floor accelerations) solved with
@@ -387,7 +387,7 @@ def _same_slip(model, new, idx, st, a, ws, probe, sw):
     return True
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _smooth_slip(model, floor, state, k, work, corners, trial):
     """A smooth step on one or two corners of which at least one slips (:func:`_slip_integrate`): from ``k`` to
     the next sample (at most ``pivot.MAX_DTAU``), halved while it leaves its phase (:func:`_same_slip`,
@@ -431,14 +431,14 @@ def _smooth_slip(model, floor, state, k, work, corners, trial):
             return 0, 0.0
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _coarse_steps(model):
     """The longest coarse Moreau-Jean step of a block sliding flat (:func:`_coarse_slide`), in Moreau-Jean steps:
     ``pivot.SLIDE_DTAU``, at least two."""
     return max(2, int(PV.SLIDE_DTAU / (model.body.p * model.numerics.dt)))
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _coarse_slide(model, floor, state, k, work, corners, trial):
     """A block sliding flat on its four corners: one Moreau-Jean step of up to :func:`_coarse_steps` steps (to the
     next sample) into ``trial.state``, kept if its contact problem is the same, all four corners active, solved by

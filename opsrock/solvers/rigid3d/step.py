@@ -21,7 +21,7 @@ from opsrock.solvers.rigid3d.sliding import (_edge_slip, _slide_flat)
 from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_V, VEC_VF)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _floor(floor, k, theta_mj):
     """Floor accelerations ``(a_x, a_y, a_v)`` (m/s²) of ``floor`` (:class:`.model.Floor`) at the evaluation time
     ``(k + theta_mj) dt`` of step ``k``."""
@@ -35,7 +35,7 @@ def _floor(floor, k, theta_mj):
     return (ax[j] + f * (ax[j + 1] - ax[j]), ay[j] + f * (ay[j + 1] - ay[j]), av[j] + f * (av[j + 1] - av[j]))
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _free_velocity(s, acc, dt, g, cw):
     """The free velocity of a step from ``s`` under the floor accelerations ``acc = (a_x, a_y, a_v)`` (m/s²):
     gravity and the floor's inertia force on the centre of mass, the gyroscopic torque ``-omega x I omega`` at
@@ -56,7 +56,7 @@ def _free_velocity(s, acc, dt, g, cw):
     vf[0], vf[1], vf[2], vf[3], vf[4], vf[5] = V[0], V[1], V[2], Om[0], Om[1], Om[2]
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _closed_form(ws, act, n_act, guess, P, fric, tol, out):
     """The step's contact problem by a closed form, tried in turn (docs/guide/three-dimensions.md): the corners that
     were down (``guess``) alone stuck, or else those that were not (:func:`_stick_subset`: a block rocking on an
@@ -87,7 +87,7 @@ def _closed_form(ws, act, n_act, guess, P, fric, tol, out):
     return True
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _gauss_seidel(cw, act, n_act, P, fric, tol, nsgs, out):
     """The step's contact problem by NSGS (:func:`_solve_contacts`): the active corners' Delassus blocks at ``q_k``,
     the velocity warm-started from the impulses ``P`` (an inactive corner's zeroed). Returns the sweeps."""
@@ -107,7 +107,7 @@ def _gauss_seidel(cw, act, n_act, P, fric, tol, nsgs, out):
     return _solve_contacts(cw, act, P, fric, tol, nsgs, out, n_act == 1)
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _step(model, s, acc, dt, ws, trial, guess):
     """One Moreau-Jean step of length ``dt`` (s) from ``s`` under the floor accelerations ``acc = (a_x, a_y, a_v)``
     (m/s²) into ``trial`` (:class:`.workspace.Probe`: the active corners, the impulses ``P``, warm start on entry,
@@ -150,7 +150,7 @@ def _step(model, s, acc, dt, ws, trial, guess):
     return sweeps
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _contacts(new, ws, act, P, corners, limits, out):
     """After a step: friction work of the impulses, and each corner's contact and slip flags (``corners``:
     :class:`.workspace.Corners`; the arms ``ws.contact.r`` of the step's start: the velocity rows the solver enforced;
@@ -185,7 +185,7 @@ def _contacts(new, ws, act, P, corners, limits, out):
     return impact
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _rest_holds(a_x, a_y, a_v, body, fric):
     """Does a block at rest on its four corners, stuck, stay at rest under the floor accelerations? Iff
     ``g + a_v > 0``, the centre of pressure ``(a_x, a_y) h / (g + a_v)`` lies in the base ``[-b, b] x [-d, d]``
@@ -199,7 +199,7 @@ def _rest_holds(a_x, a_y, a_v, body, fric):
     return fric.infinite or math.hypot(a_x, a_y) <= fric.mu_s * gz
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _count_sweeps(sweeps, nsgs, out):
     """A Moreau-Jean step's contact-solver counts (:func:`_step`'s ``sweeps``); returns True if it converged."""
     if sweeps > 0:
@@ -212,7 +212,7 @@ def _count_sweeps(sweeps, nsgs, out):
     return converged
 
 
-@numba.njit(cache=True, _nrt=False, inline='always')
+@numba.njit(cache=True, inline='always')
 def _book(state, trial, ws, corners, model):
     """The bookkeeping of a Moreau-Jean step from ``state`` to ``trial.state`` under the accelerations ``ws.a`` with
     the active corners ``trial.act`` and impulses ``trial.P``, into ``trial.out``: input work, the corners' flags
@@ -238,7 +238,7 @@ def _book(state, trial, ws, corners, model):
     return impact
 
 
-@numba.njit(cache=True, _nrt=False)
+@numba.njit(cache=True)
 def _rest_span(model, floor, k, tail_left):
     """Steps a seated block whose load the base carries at step ``k`` stays at rest (>= 1): a record's whole
     sample interval from its start if the base carries the load at both samples, the tail's remaining rest

@@ -13,14 +13,9 @@ the arrays passed one by one). So the functions called several times a step take
 (:class:`Contact`, 8), the small ones called once a step are inlined into theirs, and the 6-vectors of one role
 share a 2-D array (rows named ``VEC_*``, ``EVEC_*``): fewer arrays to count.
 
-Since issue 43 no function of the kernel counts them at all except those that allocate (``run``, the ``make_*``
-here and the flat slide's :func:`.sliding._slide_flat` and :func:`.sliding._flat_newton`): every other one is
-compiled with ``_nrt=False`` (numba's reference counting off for that function), which is safe because such a
-function allocates nothing and returns no array (it only reads and writes arrays its caller owns for the whole
-call; ``tests/model/solvers/test_kernel_refcounts.py`` checks the compiled return types and that a run frees every
-allocation). The allocating ones say ``_nrt=True``: numba otherwise takes the setting of the function that first
-compiles them. The same holds in the other compiled kernels (``friction``, ``moreau_jean``, ``housner_fast``).
-On the quick directionality study's 3-D cases: about 1.3 times less CPU a case, results bit for bit the same.
+Numba's own option to switch the counting off per function (``_nrt=False``) cut a 3-D case's CPU by a factor
+of about 1.3 with results bit for bit the same (issue 43), but it is not part of numba's public interface, which is
+all opsrock uses: the counting stays, and fewer arrays passed per call remain the public way to cut it.
 """
 
 from __future__ import annotations
@@ -172,14 +167,14 @@ class Workspace(NamedTuple):
     slip: SlipWork
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def make_edge_work():
     """The scratch of the closed-form slip on two corners (:class:`EdgeWork`), zeroed."""
     return EdgeWork(np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
                     np.zeros(1, dtype=np.int64), np.zeros((5, 2)), np.zeros(4, dtype=np.int64))
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def make_workspace(out_size):
     """The kernel's scratch, zeroed: a :class:`Workspace` (``out_size``: the length of the kernel's output vector,
     for the probe's)."""
@@ -197,7 +192,7 @@ def make_workspace(out_size):
     return Workspace(ws, wk, probe, sw)
 
 
-@numba.njit(cache=True, _nrt=True)
+@numba.njit(cache=True)
 def make_corners():
     """The corners' flags (:class:`Corners`), all False."""
     return Corners(np.zeros(4, dtype=np.bool_), np.zeros(4, dtype=np.bool_))

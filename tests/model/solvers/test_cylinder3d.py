@@ -252,39 +252,3 @@ def test_refuses_a_base_that_is_not_round_and_other_restitutions():
         solve(Block(0.3, 1.2, restitution_factor=0.9), OneSinePulse.from_ratios(CYL, 2.0, 3.0))
     r = simulate(CYL, OneSinePulse.from_ratios(CYL, 2.0, 3.0), solver="cylinder3d")
     assert r.solver == "cylinder3d" and r.plan is not None
-
-
-# =============================================================================================
-# 8. Reference counting off where it is safe (as rigid3d's, tests/model/solvers/test_kernel_refcounts.py)
-# =============================================================================================
-
-
-def test_kernel_functions_without_counting_return_no_array_and_a_run_frees_everything():
-    """A compiled function with numba's reference counting off (``_nrt=False``) must allocate nothing and return no
-    array; every function says which it is (else it takes its first caller's setting); a wobbling, sliding run's
-    allocations inside the kernel are all freed (a function without counting that kept a new array would leak)."""
-    import sys
-
-    from numba.core import types
-    from numba.core.registry import CPUDispatcher
-    from numba.core.runtime import _nrt_python, rtsys
-
-    block = cylinder_block(0.3, 1.2, friction=0.2)
-    motion = PlanMotion(OneSinePulse.from_ratios(block, 3.0, 3.0), OneSinePulse.from_ratios(block, 2.0, 4.0), 30.0)
-    solve(block, motion, record=False)  # compiled or loaded
-    found = [v for name, m in list(sys.modules.items()) if name.startswith("opsrock.solvers.cylinder3d.") and m
-             for v in vars(m).values() if isinstance(v, CPUDispatcher) and v.__module__ == name]
-    assert found and all(d.targetoptions.get("_nrt") is not None for d in found)
-    uncounted = [d for d in found if d.targetoptions.get("_nrt") is False]
-    assert uncounted and not [d.__name__ for d in uncounted for s in d.nopython_signatures
-                              if isinstance(s.return_type, types.Array)
-                              or (isinstance(s.return_type, types.BaseTuple)
-                                  and any(isinstance(t, types.Array) for t in s.return_type.types))]
-    _nrt_python.memsys_enable_stats()
-    try:
-        before = rtsys.get_allocation_stats()
-        r = solve(block, motion, record=False)
-        after = rtsys.get_allocation_stats()
-    finally:
-        _nrt_python.memsys_disable_stats()
-    assert r.ok and after.alloc - before.alloc == after.free - before.free

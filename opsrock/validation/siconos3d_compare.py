@@ -194,10 +194,15 @@ def summarize(rows: list[Row]) -> Agreement:
 
 def read_siconos(path: str | Path, step: float) -> dict[int, dict]:
     """Siconos's CSV (opsrock/data/siconos/siconos_block3d.py) as ``{index: row}`` with typed values and the step (s)."""
+    import pandas as pd
+
+    from opsrock.campaign.cases import as_bool
+
+    verdicts = as_bool(pd.read_csv(path, usecols=["overturned"], dtype=str)["overturned"], "overturned")
     out = {}
     with open(path, newline="") as fh:
-        for row in csv.DictReader(fh):
-            out[int(row["index"])] = {"overturned": row["overturned"] == "True", "tilt_max": float(row["tilt_max"]),
+        for row, overturned in zip(csv.DictReader(fh), verdicts):
+            out[int(row["index"])] = {"overturned": bool(overturned), "tilt_max": float(row["tilt_max"]),
                                       "slide_max": float(row["slide_max"]), "twist_max": float(row["twist_max"]),
                                       "wall_s": float(row["wall_s"]), "steps": int(row["steps"]),
                                       "status": "ok" if row["status"] == "ok" else "failed", "step": step}

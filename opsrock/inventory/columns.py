@@ -16,7 +16,8 @@ One unit per quantity in the study's tables and report: PFV in m/s, PFA in g (1 
 files state their units in pelicun's own form and give PFA in m/s² (``mps2``), so that no convention of g enters
 pelicun (its g is 9.80665 m/s²): :mod:`opsrock.inventory.pelicun`.
 
-Reading a table back: ``pandas.read_csv(path, skiprows=[1])`` (the values as written), a spreadsheet as it is,
+Reading a table back: ``pandas.read_csv(path, skiprows=[1])`` (the values as written on pandas 3; pandas 2's default
+parser can differ in a value's last digit, unless given ``float_precision="round_trip"``), a spreadsheet as it is,
 or :func:`read_table` (the values and the units, a file without the ``Units`` row refused: written by an
 opsrock before the row, its ``demands.csv`` had PFA in m/s²).
 """
@@ -231,7 +232,9 @@ def read_table(path: str | Path, **read_csv: object) -> tuple[pd.DataFrame, dict
         raise OldTableError(f"{path}: no {UNITS_ROW!r} row after the header: written by an older opsrock (its "
                             "demands.csv gave PFA in m/s2); run the study again into the same folder (the campaigns "
                             "resume from their stores)")
-    table = pd.read_csv(path, skiprows=[1], **read_csv)  # type: ignore[arg-type]
+    from opsrock._files import read_table as read_exactly
+
+    table = read_exactly(path, skiprows=[1], **read_csv)  # every float as written, on pandas 2 as on pandas 3
     return table, {h: u for h, u in zip(header, units)}
 
 

@@ -44,7 +44,10 @@ def test_the_units_row_follows_the_header_and_the_values_round_trip(tmp_path):
     table, units = read_table(path, dtype={"floor": str, "direction": str})
     assert units["pfa"] == "g" and units["pfv"] == "m/s"
     assert table["pfv"].tolist() == x and table["pfa"].tolist() == [v / G for v in x]
-    plain = pd.read_csv(path, skiprows=[1])  # the documented pandas way
+    # the documented pandas way; pandas 2's default parser is not correctly rounded (0.1 + 0.2 read back as
+    # 0.30000000000000004), so there it takes float_precision="round_trip", which pandas 3 makes the default
+    exact = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
+    plain = pd.read_csv(path, skiprows=[1], **exact)
     assert np.array_equal(plain["pfd"].to_numpy(), np.array(x))
 
 

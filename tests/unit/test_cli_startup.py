@@ -17,7 +17,7 @@ def test_the_parser_loads_no_numpy():
 
 
 SWALLOWING_IMPORT = r"""
-import importlib, os, signal, sys, time
+import importlib, signal, sys
 import opsrock.cli as cli
 
 # Ctrl-C as a terminal's foreground process has it: a process started with SIGINT ignored (as a pytest-xdist
@@ -33,8 +33,11 @@ class Importer:
     @staticmethod
     def import_module(name):
         try:
-            os.kill(os.getpid(), signal.SIGINT)
-            time.sleep(0.5)
+            # raise() delivers the signal to this thread before it returns; Python runs its handler at the next
+            # instruction, inside this try (no waiting: nothing depends on how fast the machine is)
+            signal.raise_signal(signal.SIGINT)
+            for _ in range(100):
+                pass
         except BaseException:
             pass
         return real(name)

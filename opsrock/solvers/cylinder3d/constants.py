@@ -76,17 +76,24 @@ OUT_TAIL_ENERGY = ST.OUT_COMMON + 35  # the energy bound over the lift to overtu
 OUT_LIFT_STEPS = ST.OUT_COMMON + 36  # steps solved by the lift about the flat base's centre of pressure
 OUT_FRICTION_WORK = ST.OUT_COMMON + 37  # work the contact impulses take at the step's end velocities (J/kg)
 OUT_IMPACT_LOSS = ST.OUT_COMMON + 38  # kinetic energy of the impulses' velocity change at landings (J/kg)
-OUT_SIZE = ST.OUT_COMMON + 39
+OUT_TAIL_BOUND = ST.OUT_COMMON + 39  # 1.0: the tail ended at its span, the energy below what overturning takes
+OUT_TILT_BOUND = ST.OUT_COMMON + 40  # largest tilt the final energy can reach (rad; at a tail ending by the energy)
+OUT_SIZE = ST.OUT_COMMON + 41
 
 # --- the physics' named thresholds and the iterations' tolerances -------------------------------------
 #: Speed of the base (m/s) below which the tail may end by the energy bound (rigid3d's rule "peak"): a base sliding
 #: at 1 mm/s under friction ``mu`` stops within ``(1e-3)² / (2 mu g)``, 5e-8/mu m.
 PEAK_BASE_SPEED = 1e-3
-#: A cylinder still moving at the end of the tail's span ends ``ok`` (the verdict holds) if its energy bound is below
-#: ``TAIL_CUT_MARGIN`` of what overturning takes (the lift of its centre of mass over the rim, ``g (R - h)``): after
-#: the excitation nothing feeds its energy, up to the scheme's error, measured +1.8e-4 of it a second rolling at the
-#: default step (tests/model/solvers/test_cylinder3d.py), 0.3 % over the default tail: the margin is 30 times that.
+#: The tail may end before its span (rule "bounded", :func:`opsrock.solvers.cylinder3d.kernel._tail_settled`) only if
+#: the energy bound is below ``TAIL_CUT_MARGIN`` of what overturning takes (the lift of its centre of mass over the
+#: rim, ``g (R - h)``), besides the rule's own bound on the tilt.
 TAIL_CUT_MARGIN = 0.9
+#: Round-off allowance of the energy test at the end of the tail's span, relative to the sum of the magnitudes of the
+#: energy's terms (``|V|²/2``, ``i_h |omega|²/2``, ``|i_z - i_h| (omega . a)²/2``, ``(g + a_v)(z + h)``; J/kg): the
+#: energy is some thirty floating-point operations on those terms, so its rounding error is below about ``30 eps``
+#: (6.7e-15) of that sum (Higham, *Accuracy and Stability of Numerical Algorithms*, the error of a sum); the allowance
+#: is 150 times that.
+ENERGY_ROUNDOFF = 1e-12
 #: The tail may end, the cylinder still moving, once its energy cannot raise its tilt more than ``TILT_SLACK`` of
 #: ``alpha`` above the peak so far (``diagnostics["tilt_bound"]`` says how far it could): a wobble keeps its energy.
 #: A fifth of the planar limit's tolerance on the peak (tests/model/solvers/test_cylinder3d.py), so that a block still

@@ -28,6 +28,7 @@ from opsrock.solvers.cylinder3d.constants import (H_DOWN, H_POS, H_ROT, H_SLIDE,
                                                   OUT_TIME_SLIDING, OUT_TWIST_MAX, PEAK_BASE_SPEED, PHI_STEP, ROLL_RATE,
                                                   ROLL_TURN, STATUS_CONTACT, STATUS_MAX_STEPS, STATUS_NONFINITE,
                                                   STATUS_OK, STATUS_TAIL, TAIL_CUT_MARGIN, TILT_SLACK, T_CONTACT_RATE,
+                                                  ENERGY_ROUNDOFF, OUT_TAIL_BOUND, OUT_TILT_BOUND,
                                                   T_LAST_N, T_PHI, T_RESTING, T_SEATED, T_SLIDE_MAX, T_TILT_MAX, T_TURN,
                                                   T_TWIST_MAX, T_UNCONVERGED)
 from opsrock.solvers.cylinder3d.geometry import base_centre, tilt, twist
@@ -158,6 +159,34 @@ def _lift(model, tilt_, tail_av):
 
 
 @numba.njit(cache=True)
+def _below_overturning(model, state, tail_av):
+    """At the end of the tail's span: True if the cylinder can never overturn, its energy (:func:`_tail_energy`, its
+    centre of mass raised to put its lowest rim point on the floor if it lies below it) with ``ENERGY_ROUNDOFF`` of
+    its terms' magnitudes added being below ``(g + a_v)(R - h)``, what raising the centre of mass over a rim point
+    takes, and its tilt below ``alpha``. After the excitation the floor is still (or moves at a constant velocity,
+    or accelerates vertically at a constant ``a_v > -g``): nothing works on the cylinder, rolling without slip
+    keeps its energy and slip and impacts take from it; overturning needs the tilt to pass ``alpha``, where the
+    centre of mass stands at least ``R`` high (``h cos t + r sin t`` peaks there). Writes the energy over that
+    threshold (``OUT_TAIL_ENERGY``) and, if True, the largest tilt the energy can reach, ``alpha - acos((e / (g +
+    a_v) + h) / R)`` (``OUT_TILT_BOUND``, rad)."""
+    s, d, out = state.s, model.design, state.out
+    gz = d.g + tail_av
+    w, x, y, z = s[3], s[4], s[5], s[6]
+    along = s[10] * 2.0 * (x * z + w * y) + s[11] * 2.0 * (y * z - w * x) + s[12] * (1.0 - 2.0 * (x * x + y * y))
+    size = 0.5 * (s[7] ** 2 + s[8] ** 2 + s[9] ** 2 + d.i_h * (s[10] ** 2 + s[11] ** 2 + s[12] ** 2)
+                  + abs(d.i_z - d.i_h) * along * along) + abs(gz) * (abs(s[2]) + d.h)
+    t = tilt(s)[0]
+    seated = d.h * math.cos(t) + d.r * math.sin(t)  # the centre of mass's height, the lowest rim point down
+    e = _tail_energy(model, s, tail_av) + gz * max(0.0, seated - s[2])
+    need = gz * (d.R - d.h)
+    out[OUT_TAIL_ENERGY] = e / need if gz > 0.0 else math.inf
+    if gz <= 0.0 or t >= d.alpha or e + ENERGY_ROUNDOFF * size >= need:
+        return False
+    out[OUT_TILT_BOUND] = d.alpha - math.acos(min(1.0, ((e + ENERGY_ROUNDOFF * size) / gz + d.h) / d.R))
+    return True
+
+
+@numba.njit(cache=True)
 def _tail_settled(model, state, tail_av):
     """The tail may end before rest (1: settled; 2: bounded): its energy (:func:`_tail_energy`), which nothing feeds
     any more, cannot raise the centre of mass to the overturning tilt (below ``TAIL_CUT_MARGIN`` of the lift to it),
@@ -272,15 +301,15 @@ def run(model, floor, state, ws, hist):
         if k >= floor.n_exc and (lim.max_tail < 0 or tr[T_RESTING] >= lim.rest_steps):
             break
         if k >= floor.n_exc + max(lim.max_tail, 0) or k >= lim.max_steps:
-            out[OUT_TAIL_ENERGY] = _tail_energy(model, s, floor.tail_av) / _lift(model, d.alpha, floor.tail_av)
-            if k < lim.max_steps and out[OUT_TAIL_ENERGY] < TAIL_CUT_MARGIN:
-                out[OUT_TAIL_CUT] = 1.0  # still rolling, with too little energy ever to overturn: the verdict holds
+            if k < lim.max_steps and _below_overturning(model, state, floor.tail_av):
+                out[OUT_TAIL_BOUND] = 1.0  # still rolling, unable ever to overturn: the verdict holds
             else:
                 out[OUT_STATUS] = STATUS_TAIL if k < lim.max_steps else STATUS_MAX_STEPS
             break
         settled = _tail_settled(model, state, floor.tail_av) if (k > floor.n_exc and lim.max_tail >= 0) else 0
         if settled > 0:
             out[OUT_TAIL_SETTLED if settled == 1 else OUT_TAIL_CUT] = 1.0
+            _below_overturning(model, state, floor.tail_av)  # the tilt bound
             break
         floor_at(floor, k, num.theta_mj, ws.acc)
         if not math.isfinite(ws.acc[0] + ws.acc[1] + ws.acc[2]):

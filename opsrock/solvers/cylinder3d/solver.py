@@ -155,20 +155,6 @@ def _energy(block: Block, out: np.ndarray, state0: np.ndarray) -> dict[str, floa
             "impact_loss": imp, "initial": initial, "residual": work + initial - kinetic - potential - fric - imp}
 
 
-def _tilt_bound(block: Block, cyl: CylinderProperties, state: np.ndarray) -> float:
-    """The largest tilt (rad) the energy of the state ``state`` could still raise the cylinder to on a still floor
-    (all of its energy turned into height on a rim point; nothing feeds it any more)."""
-    bound = sum(mechanical_energy(block, state)) / (block.mass * G)
-    lift = lambda t: cyl.h * math.cos(t) + cyl.r * math.sin(t) - cyl.h  # noqa: E731
-    if bound >= lift(cyl.alpha):
-        return math.pi / 2
-    lo, hi = 0.0, cyl.alpha
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if lift(mid) < bound else (lo, mid)
-    return hi
-
-
 def _diagnostics(out: np.ndarray) -> dict[str, Any]:
     """The kernel's bookkeeping, JSON-serialisable."""
     steps = max(1.0, out[C.OUT_CONTACT_STEPS])
@@ -179,7 +165,25 @@ def _diagnostics(out: np.ndarray) -> dict[str, Any]:
             "flat_closed_steps": int(out[C.OUT_FLAT_STEPS]), "lift_steps": int(out[C.OUT_LIFT_STEPS]),
             "slip_unconverged": int(out[C.OUT_SLIP_UNCONVERGED]), "time_base": float(out[C.OUT_TIME_BASE]),
             "tail_settled": bool(out[C.OUT_TAIL_SETTLED] > 0.5), "tail_cut": bool(out[C.OUT_TAIL_CUT] > 0.5),
-            "contact_turn": float(out[C.OUT_CONTACT_TURN]), "tail_energy_ratio": float(out[C.OUT_TAIL_ENERGY])}
+            "tail_bound": bool(out[C.OUT_TAIL_BOUND] > 0.5), "contact_turn": float(out[C.OUT_CONTACT_TURN]),
+            "tail_energy_ratio": float(out[C.OUT_TAIL_ENERGY])}
+
+
+def _ending(out: np.ndarray, cyl: CylinderProperties, tail: bool) -> str:
+    """How a finished run ended, in words (``diagnostics["ending"]``)."""
+    if out[C.OUT_OVERTURNED] > 0.5:
+        return "overturned"
+    bound = f"tilt bounded by {out[C.OUT_TILT_BOUND]:.6g} rad ({out[C.OUT_TILT_BOUND] / cyl.alpha:.4g} alpha)"
+    if out[C.OUT_TAIL_BOUND] > 0.5:
+        return (f"energy below overturning energy ({out[C.OUT_TAIL_ENERGY]:.6g} of m (g + a_v) (sqrt(r² + h_cm²) - "
+                f"h_cm)) at "
+                f"the end of max_free_time after the excitation, still moving: it can never overturn "
+                f"(nothing works on it any more); {bound}")
+    if out[C.OUT_TAIL_SETTLED] > 0.5:
+        return f"peak final: energy below half of what the peak took, the base at most {C.PEAK_BASE_SPEED} m/s; {bound}"
+    if out[C.OUT_TAIL_CUT] > 0.5:
+        return (f"peak final to {C.TILT_SLACK} alpha: energy cannot raise the tilt further, still moving; {bound}")
+    return "at rest" if tail else "end_time"
 
 
 def _result(run: SolverRun, cyl: CylinderProperties, out: np.ndarray, hist: np.ndarray, record: dict[str, Any],
@@ -190,13 +194,15 @@ def _result(run: SolverRun, cyl: CylinderProperties, out: np.ndarray, hist: np.n
     slide = hist[:, C.H_SLIDE].copy()
     status, steps = int(out[C.OUT_STATUS]), int(out[C.OUT_STEPS])
     diagnostics = _diagnostics(out)
-    if diagnostics["tail_cut"] or diagnostics["tail_settled"]:
-        diagnostics["tilt_bound"] = _tilt_bound(block, cyl, out[C.OUT_STATE:C.OUT_STATE + 13])
+    diagnostics["ending"] = "failed" if status != C.STATUS_OK else _ending(out, cyl, run.excitation is not None)
+    if diagnostics["tail_cut"] or diagnostics["tail_settled"] or diagnostics["tail_bound"]:
+        diagnostics["tilt_bound"] = float(out[C.OUT_TILT_BOUND])
     if status != C.STATUS_OK:
         reason = REASONS[status]
         if status == C.STATUS_TAIL:
-            reason += (f" (still rolling on its rim, its energy {out[C.OUT_TAIL_ENERGY]:.3g} times what overturning "
-                       f"takes: the rigid model has no rolling resistance; a longer max_free_time may settle it)")
+            reason += (f" (still rolling on its rim, its energy {out[C.OUT_TAIL_ENERGY]:.6g} times what overturning "
+                       f"takes, m (g + a_v) (sqrt(r² + h_cm²) - h_cm), or tilted past alpha: it may still overturn; the rigid "
+                       f"model has no rolling resistance; a longer max_free_time may settle it)")
         if status == C.STATUS_CONTACT:
             reason += (f": the NSGS contact solver did not converge in {run.settings.nsgs_fail_steps} consecutive "
                        f"steps (t = {out[C.OUT_TIME]:.6g} s)")

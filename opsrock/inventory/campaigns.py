@@ -31,13 +31,14 @@ computes them again.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import pickle
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Iterator
+from typing import Any, Callable, Iterator
 
 import numpy as np
 import pandas as pd
@@ -50,8 +51,9 @@ from opsrock.inventory.motions import MotionSet
 #: Label of the one-storey building that stands for a support (its top is the floor label ``support.f1``).
 SUPPORT_NAME: str = "support"
 
-#: Cases per batch sent to a worker by a planar campaign (as the contents study: a case takes about a
-#: millisecond, and every batch costs a round trip and a store commit). A campaign in plan (a case takes 0.1 to
+#: Cases per batch sent to a worker by a planar campaign: a case takes about a millisecond, and every batch
+#: costs a round trip and a store commit (measured on FEMA P-58's nine: 16 -> 256 cut the solve phase of 25,344
+#: cases from 18.7 to 15.6 s on a loaded 2-core machine). A campaign in plan (a case takes 0.1 to
 #: several seconds) lets the campaign engine size its batches, a few per worker
 #: (:func:`opsrock.campaign.executors.batch_size`): 256 cases in one batch kept a worker alone on a whole
 #: round item's campaign while the other waited.
@@ -361,9 +363,8 @@ def study_pool(scenes: list, workers: int | None, case_timeout: float | None = N
     Every solver the ``scenes`` (:class:`~opsrock.campaign.scene.Scene`) use is compiled here once (announced
     when the cache is cold) and loaded by each worker before it takes a case, so that no case's budget pays for a
     compile; ``budget`` is the case budget (s) of ``case_timeout`` (:func:`opsrock.campaign.run.case_budget`; None:
-    the scenes' default), the pool's hard limit per case too. The campaign stage of every configuration of the
-    study runs its campaigns on it (:func:`run_groups`, :func:`opsrock.inventory.fema.campaigns.run_campaigns`,
-    :func:`opsrock.inventory.directionality.study.run_campaigns`).
+    the scenes' default), the pool's hard limit per case too. The study's one campaign runner (:func:`run_campaigns`) runs every
+    configuration's campaigns on it.
 
     Parameters
     ----------
@@ -386,43 +387,115 @@ def study_pool(scenes: list, workers: int | None, case_timeout: float | None = N
         yield pool, budget
 
 
-def run_groups(scenes: list[GroupScene], store: Path, demands: pd.DataFrame, *, workers: int | None,
-               progress: bool, force: bool, case_timeout: float | None = None) -> tuple[pd.DataFrame, dict[str, Any]]:
-    """Run (or resume) every group's campaign into ``store/<group>``, on one pool of worker processes.
+@dataclass(frozen=True)
+class CampaignJob:
+    """One campaign of a study as the study's one runner (:func:`run_campaigns`) takes it, whatever configuration
+    built it (the inventory's groups, FEMA P-58's variants, the directionality study's record pairs).
 
-    A case stored as failed on its case budget (reason ``"timeout..."``: a machine's load or a cold compile as much
-    as the case) is computed again on a resume, within ``case_timeout`` (s; default the campaigns'
-    :data:`opsrock.campaign.timeout.DEFAULT_CASE_TIMEOUT`); every other failure is a result and stays. Counted in
-    the timings' ``n_retried``.
+    Parameters
+    ----------
+    name : str
+        Its folder in the store.
+    scene : Scene
+        Its scene (:class:`~opsrock.campaign.scene.Scene`).
+    read : callable
+        ``read(cases_csv) -> DataFrame``: the study's rows of its ``cases.csv`` (path, str).
+    cases : list or None
+        The scene's cases when the configuration built them (their floor motions computed already); None: the
+        engine builds them from the scene.
+    seed : callable or None
+        ``seed(folder) -> bool``: give the campaign its floor motions before it runs, so it computes none
+        (returns whether it did); None: it computes its own.
+    """
+
+    name: str
+    scene: Any
+    read: Callable[[str], pd.DataFrame]
+    cases: list | None = None
+    seed: Callable[[Path], bool] | None = None
+
+
+@dataclass(frozen=True)
+class RunSettings:
+    """How a study's campaigns run.
+
+    Parameters
+    ----------
+    workers : int or None
+        Processes (None: every core).
+    progress : bool
+        Progress on stderr.
+    force : bool
+        Delete stored results of other settings instead of refusing them.
+    case_timeout : float or None
+        Wall-clock budget of one case (s); None: the scenes' default.
+    """
+
+    workers: int | None = None
+    progress: bool = True
+    force: bool = False
+    case_timeout: float | None = None
+
+
+@dataclass(frozen=True)
+class CampaignRun:
+    """What one campaign of :func:`run_campaigns` did: its folder name, its cases, those computed now, those stored as
+    timed out that were computed again, its wall time (s) and whether its floor motions were seeded."""
+
+    name: str
+    n_cases: int
+    n_computed: int
+    n_retried: int
+    seconds: float
+    seeded: bool
+
+
+def run_campaigns(jobs: list[CampaignJob], store: Path, how: RunSettings) -> tuple[pd.DataFrame, tuple[CampaignRun, ...]]:
+    """Run (or resume) every campaign of a study into ``store/<name>``, in order, on one pool of worker processes
+    (:func:`study_pool`): the one campaign runner of every configuration of the study.
+
+    A campaign in plan (registry ``plan``) lets the engine size its batches; a planar one sends :data:`BATCH`
+    cases per batch. A case stored as failed on its case budget (reason ``"timeout..."``: a machine's load or a
+    cold compile as much as the case) is computed again on a resume, within ``how.case_timeout`` (s; default the
+    campaigns' :data:`opsrock.campaign.timeout.DEFAULT_CASE_TIMEOUT`); every other failure is a result and stays.
 
     Returns
     -------
     cases : DataFrame
-        Every case (:data:`CASE_COLUMNS`, ``slide_max`` (m) where friction is modelled, else NaN) with
-        ``item``, ``floor``, ``direction``, ``group``, ``overturned`` as bool and ``record`` as the motions name it.
-    timings : dict
-        Wall time of the campaigns (s), their cases and those computed now.
+        Every campaign's rows (each job's ``read``), joined in order.
+    runs : tuple of CampaignRun
+        What each campaign did.
     """
-    from opsrock.campaign import run_campaign
+    from opsrock.campaign.run import Execution, Stage
     from opsrock.campaign.store import STORE_FILE, ResultStore
     from opsrock.solvers.registry import METHODS as SOLVERS
 
-    frames, t0, computed, retried = [], time.perf_counter(), 0, 0
-    with study_pool([gs.scene for gs in scenes], workers, case_timeout) as (pool, budget):
-        for gs in scenes:
-            folder = store / gs.group.name
-            if not force and (folder / STORE_FILE).is_file():
+    frames, runs = [], []
+    with study_pool([j.scene for j in jobs], how.workers, how.case_timeout) as (pool, budget):
+        for job in jobs:
+            t0, folder, retried = time.perf_counter(), store / job.name, 0
+            if not how.force and (folder / STORE_FILE).is_file():
                 with ResultStore(folder / STORE_FILE) as stored:
-                    retried += stored.forget_timeouts()
-            seed_motions(gs, folder, demands)
-            batch = None if SOLVERS[gs.scene.solver].plan else BATCH
-            summary = run_campaign(gs.scene, folder, executor=pool, progress=progress, force=force, batch=batch,
-                                   case_timeout=budget)
-            computed += summary.n_computed
-            frames.append(_read_cases(summary.cases_csv, gs))
-    cases = pd.concat(frames, ignore_index=True)
-    return cases, {"campaigns_s": time.perf_counter() - t0, "n_cases": len(cases), "n_computed": computed,
-                   "n_retried": retried}
+                    retried = stored.forget_timeouts()
+            seeded = bool(job.seed(folder)) if job.seed is not None else False
+            batch = None if SOLVERS[job.scene.solver].plan else BATCH
+            execution = Execution(how.workers, pool, how.force, how.progress, batch, budget)
+            summary, _ = Stage(execution)(job.scene, folder, cases=job.cases)
+            frames.append(job.read(summary.cases_csv))
+            runs.append(CampaignRun(job.name, summary.n_cases, summary.n_computed, retried,
+                                    time.perf_counter() - t0, seeded))
+    return pd.concat(frames, ignore_index=True), tuple(runs)
+
+
+def group_jobs(scenes: list[GroupScene], demands: pd.DataFrame) -> list[CampaignJob]:
+    """The inventory study's campaigns as :class:`CampaignJob`: each group's into its folder
+    (:attr:`Group.name`), an unfiltered group's seeded with the motions' measures (:func:`seed_motions`)."""
+    return [CampaignJob(gs.group.name, gs.scene, functools.partial(_read_cases, gs=gs),
+                        seed=functools.partial(_seed, gs, demands)) for gs in scenes]
+
+
+def _seed(gs: GroupScene, demands: pd.DataFrame, folder: Path) -> bool:
+    return seed_motions(gs, folder, demands)
 
 
 def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
@@ -439,6 +512,6 @@ def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
     return df
 
 
-__all__ = ["BATCH", "CASE_COLUMNS", "DEFAULT_LEVELS", "OPTIONAL_CASE_COLUMNS", "DEMANDS_FILE", "SUPPORT_NAME", "Group", "GroupScene", "block_name",
+__all__ = ["BATCH", "CampaignJob", "CampaignRun", "RunSettings", "group_jobs", "CASE_COLUMNS", "DEFAULT_LEVELS", "OPTIONAL_CASE_COLUMNS", "DEMANDS_FILE", "SUPPORT_NAME", "Group", "GroupScene", "block_name",
            "cached_demands", "floor_demands", "group_scenes", "groups_of", "item_block_spec", "motions_digest",
-           "run_groups", "seed_motions", "study_pool"]
+           "run_campaigns", "seed_motions", "study_pool"]

@@ -151,7 +151,7 @@ def fit_table(cases: pd.DataFrame, demands: pd.DataFrame, study: Any, workers: i
     Parameters
     ----------
     cases : DataFrame
-        :func:`opsrock.inventory.campaigns.run_groups`.
+        :func:`opsrock.inventory.campaigns.run_campaigns`.
     demands : DataFrame
         :func:`opsrock.inventory.campaigns.floor_demands` (pfa m/s², pfv m/s).
     study : InventoryDesign

@@ -28,17 +28,6 @@ import pandas as pd
 from opsrock.inventory.outputs import InventoryStudy, Written, workers_of
 
 
-@dataclass(frozen=True)
-class Ran:
-    """What a route's campaign stage ran: every case (one table), the cases computed by this call, wall times (s)
-    and counts for the report, and the cases stored as timed out that this call computed again."""
-
-    cases: pd.DataFrame
-    n_computed: int
-    timings: dict[str, Any]
-    n_retried: int = 0
-
-
 def inventory_demands(a: "Assessment") -> pd.DataFrame:
     """Each motion's measures of the user's motion set (:func:`opsrock.inventory.campaigns.cached_demands`)."""
     from opsrock.inventory.campaigns import cached_demands
@@ -46,15 +35,11 @@ def inventory_demands(a: "Assessment") -> pd.DataFrame:
     return cached_demands(a.design.motions, a.store, workers_of(a.workers))
 
 
-def inventory_campaigns(a: "Assessment") -> Ran:
-    """Every group's campaign on one pool of workers (:func:`opsrock.inventory.campaigns.run_groups`)."""
-    from opsrock.inventory.campaigns import run_groups
+def inventory_jobs(a: "Assessment") -> list:
+    """Every group's campaign (:func:`opsrock.inventory.campaigns.group_jobs`)."""
+    from opsrock.inventory.campaigns import group_jobs
 
-    a.say(f"{sum(s.scene.n_cases for s in a.scenes)} cases in {len(a.scenes)} campaigns ({a.route.name}) into "
-          f"{a.store}")
-    cases, t = run_groups(a.scenes, a.store, a.demands, workers=a.workers, progress=a.progress, force=a.force,
-                          case_timeout=a.case_timeout)
-    return Ran(cases, int(t["n_computed"]), {"campaigns_s": t["campaigns_s"]}, int(t["n_retried"]))
+    return group_jobs(a.scenes, a.demands)
 
 
 @dataclass(frozen=True)
@@ -78,8 +63,10 @@ class Route:
         Globs (relative to the output folder) of the files it writes (:func:`opsrock._files.staged_folder`).
     demands : callable
         ``demands(assessment)``: the floor motions' measures (default :func:`inventory_demands`).
-    campaigns : callable
-        ``campaigns(assessment) -> Ran``: every campaign run or resumed (default :func:`inventory_campaigns`).
+    jobs : callable
+        ``jobs(assessment) -> list of CampaignJob``: the campaigns (:class:`opsrock.inventory.campaigns.CampaignJob`),
+        which the study's one runner (:func:`opsrock.inventory.campaigns.run_campaigns`) runs or resumes in order
+        (default :func:`inventory_jobs`).
     """
 
     name: str
@@ -88,7 +75,7 @@ class Route:
     write: Callable[["Assessment", Path], Written]
     outputs: tuple[str, ...]
     demands: Callable[["Assessment"], Any] = inventory_demands
-    campaigns: Callable[["Assessment"], Ran] = inventory_campaigns
+    jobs: Callable[["Assessment"], list] = inventory_jobs
 
 
 @dataclass
@@ -113,7 +100,7 @@ class Assessment:
         Delete stored results of other settings in the campaigns' folders instead of refusing them.
     case_timeout : float or None
         Wall-clock budget of one case (s); None: the campaigns' default. Cases stored as timed out are computed
-        again (:func:`opsrock.inventory.campaigns.run_groups`).
+        again (:func:`opsrock.inventory.campaigns.run_campaigns`).
     """
 
     design: Any
@@ -128,6 +115,7 @@ class Assessment:
     demands: Any = field(default=None, repr=False)
     cases: pd.DataFrame | None = field(default=None, repr=False)
     tables: dict[str, pd.DataFrame] = field(default_factory=dict, repr=False)
+    runs: tuple = ()
     n_computed: int = 0
     n_retried: int = 0
     timings: dict[str, float] = field(default_factory=dict)
@@ -156,16 +144,21 @@ class DemandStage:
 
 
 class CampaignStage:
-    """Every campaign of the route, run or resumed; refuses a study whose every case failed
-    (:func:`opsrock.fragility.cases.check_some_finished`)."""
+    """Every campaign of the route (its :attr:`Route.jobs`), run or resumed by the study's one runner
+    (:func:`opsrock.inventory.campaigns.run_campaigns`); refuses a study whose every case failed
+    (:func:`opsrock.fragility.cases.check_some_finished`). Leaves each campaign's record in ``runs``."""
 
     def run(self, a: Assessment) -> None:
         from opsrock.fragility.cases import check_some_finished
+        from opsrock.inventory.campaigns import RunSettings, run_campaigns
 
         t0 = time.perf_counter()
-        ran = a.route.campaigns(a)
-        a.cases, a.n_computed, a.n_retried = ran.cases, ran.n_computed, ran.n_retried
-        a.timings.update({"campaigns_s": time.perf_counter() - t0, **ran.timings})
+        jobs = a.route.jobs(a)
+        a.say(f"{sum(j.scene.n_cases for j in jobs)} cases in {len(jobs)} campaigns ({a.route.name}) into {a.store}")
+        a.cases, a.runs = run_campaigns(jobs, a.store, RunSettings(a.workers, a.progress, a.force, a.case_timeout))
+        a.n_computed = sum(r.n_computed for r in a.runs)
+        a.n_retried = sum(r.n_retried for r in a.runs)
+        a.timings["campaigns_s"] = time.perf_counter() - t0
         if a.n_retried:
             a.say(f"{a.n_retried} cases stored as timed out were computed again")
         check_some_finished(a.cases, str(a.store))
@@ -203,5 +196,5 @@ class OutputStage:
                               figures=[final[p] for p in w.figures], summary=w.summary)
 
 
-__all__ = ["Assessment", "CampaignStage", "DemandStage", "FitStage", "OutputStage", "Ran", "Route",
-           "inventory_campaigns", "inventory_demands"]
+__all__ = ["Assessment", "CampaignStage", "DemandStage", "FitStage", "OutputStage", "Route", "inventory_demands",
+           "inventory_jobs"]

@@ -30,6 +30,7 @@ three-dimensional cases in the plane of the weaker axis instead (the plumbing of
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import time
 from dataclasses import dataclass, field
@@ -44,11 +45,10 @@ from opsrock.inventory.directionality import summary
 from opsrock.inventory.directionality.cases import study_campaigns, study_motions
 from opsrock.inventory.directionality.report import write_figures, write_report
 from opsrock.campaign.cases import read_cases
-from opsrock.campaign.run import Execution, Stage
 from opsrock.errors import InputError
 from opsrock.inventory.items import shipped_inventory
 from opsrock.inventory.outputs import Written
-from opsrock.inventory.stages import Ran, Route
+from opsrock.inventory.stages import Route
 from opsrock.limits import int_at_least
 from opsrock.solvers.registry import METHODS, plan_solver
 
@@ -242,33 +242,18 @@ def _motions(a: Any) -> Any:
     return study_motions(a.design, a.scenes, a.workers)
 
 
-def _campaigns(a: Any) -> Ran:
-    """Both models' campaigns (:func:`opsrock.inventory.directionality.cases.study_campaigns`) on one pool."""
-    campaigns = study_campaigns(a.design, a.scenes, a.demands)
-    a.say(f"{sum(len(c.cases) for c in campaigns)} cases in {len(campaigns)} campaigns into {a.store}")
-    cases, computed = run_campaigns(campaigns, a.store, workers=a.workers, progress=a.progress, force=a.force)
-    return Ran(cases, computed, {"n_computed": computed})
+def _jobs(a: Any) -> list:
+    """Both models' campaigns (:func:`opsrock.inventory.directionality.cases.study_campaigns`), each with the cases
+    it built, as the study's one runner takes them (:class:`opsrock.inventory.campaigns.CampaignJob`): their
+    ``cases.csv`` with ``campaign`` and ``solver_name`` (the campaign's solver)."""
+    from opsrock.inventory.campaigns import CampaignJob
+
+    return [CampaignJob(c.name, c.scene, functools.partial(_read, campaign=c.name, solver=c.scene.solver),
+                        cases=c.cases) for c in study_campaigns(a.design, a.scenes, a.demands)]
 
 
-def run_campaigns(campaigns: list, store: Path, *, workers: int | None, progress: bool,
-                  force: bool) -> tuple[pd.DataFrame, int]:
-    """Every campaign (:class:`opsrock.inventory.directionality.cases.Campaign`) run or resumed by the campaign
-    engine into ``store/<name>`` on the study's one pool of workers (:func:`opsrock.inventory.campaigns.study_pool`): their ``cases.csv`` joined, with ``campaign`` and
-    ``solver_name`` (the campaign's solver), and the number of cases this call computed (the others were
-    stored)."""
-
-    from opsrock.inventory.campaigns import study_pool
-
-    frames, computed = [], 0
-    with study_pool([c.scene for c in campaigns], workers) as (pool, budget):
-        for c in campaigns:
-            how = Execution(workers, pool, force, progress, None, budget)
-            summary, _ = Stage(how)(c.scene, store / c.name, cases=c.cases)
-            frames.append(read_cases(summary.cases_csv)
-                          .assign(campaign=c.name, solver_name=c.scene.solver))
-            computed += summary.n_computed
-    cases = pd.concat(frames, ignore_index=True)
-    return cases, computed
+def _read(path: str, campaign: str, solver: str) -> pd.DataFrame:
+    return read_cases(path).assign(campaign=campaign, solver_name=solver)
 
 
 def _fit(a: Any) -> dict[str, pd.DataFrame]:
@@ -288,7 +273,8 @@ def _write(a: Any, stage: Path) -> Written:
     figures = write_figures(a.tables, stage / "figures", a.design.tolerance)
     a.timings["outputs_s"] = time.perf_counter() - t0
     a.timings["total_s"] = time.perf_counter() - a.t_start
-    head = summary.headline(a.tables, a.cases, {**a.timings, "motions_s": a.timings.get("demands_s", 0.0)})
+    head = summary.headline(a.tables, a.cases, {**a.timings, "motions_s": a.timings.get("demands_s", 0.0),
+                                                "n_computed": a.n_computed})
     report = write_report(stage / "report.md", summary.report_inputs(a.design, a.tables, head, figures))
     return Written(paths, report, {}, tuple(figures), head)
 
@@ -296,9 +282,8 @@ def _write(a: Any, stage: Path) -> Written:
 #: Both models side by side (:class:`opsrock.inventory.stages.Route`): the same items under the same record pairs,
 #: in three dimensions (both components at once) and in the plane of the weaker axis, and the 3-D over planar
 #: medians per item and floor.
-BOTH: Route = Route("both", study_items, _fit, _write, OUTPUTS, demands=_motions, campaigns=_campaigns)
+BOTH: Route = Route("both", study_items, _fit, _write, OUTPUTS, demands=_motions, jobs=_jobs)
 
 
 __all__ = ["BOTH", "DEFAULT_AZIMUTHS", "DEFAULT_ITEMS", "DEFAULT_LEVELS", "DEFAULT_PAIRS", "QUICK_ITEMS", "INVENTORIES",
-           "MODELS", "OUTPUTS", "QUICK_PAIRS", "DirectionalityDesign", "StudyItem", "quick", "run_campaigns",
-           "study_items"]
+           "MODELS", "OUTPUTS", "QUICK_PAIRS", "DirectionalityDesign", "StudyItem", "quick", "study_items"]

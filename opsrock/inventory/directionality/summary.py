@@ -64,7 +64,7 @@ def fit_table(cases: pd.DataFrame, design: Any, workers: int = 1) -> pd.DataFram
     Parameters
     ----------
     cases : DataFrame
-        The campaigns' cases (:func:`opsrock.inventory.directionality.study.run_campaigns`).
+        The campaigns' cases (:func:`opsrock.inventory.campaigns.run_campaigns` of the study's campaigns).
     design : DirectionalityDesign
         Its ``n_boot`` and ``seed``.
     workers : int

@@ -1,4 +1,5 @@
-"""Run the study's campaigns (resumable, :func:`opsrock.campaign.run_campaign`) and gather their cases.
+"""The study's campaigns as the contents study's one runner takes them (:func:`campaign_jobs`, run by
+:func:`opsrock.inventory.campaigns.run_campaigns`), and the floor velocities of a campaign that ran.
 
 The floor motions depend on the records and the building only, not on the blocks or the solver, but
 a campaign keys its cache of them by its whole digest. So that the friction campaign does not filter
@@ -9,9 +10,9 @@ seed is simply not recognised and the campaign computes the motions itself.
 
 from __future__ import annotations
 
+import functools
 import math
 import pickle
-import time
 from pathlib import Path
 from typing import Any
 
@@ -25,11 +26,6 @@ from opsrock.fragility.cases import check_some_finished
 #: Columns of ``cases.csv`` the study reads.
 CASE_COLUMNS: tuple[str, ...] = ("case_id", "block", "width", "height", "alpha", "R", "p", "e", "e_R", "record",
                                  "floor", "level", "level_value", "scale", "pfa", "pfv", "status", "overturned")
-
-#: Cases per batch sent to a worker: bigger than the campaign default (16) because a contents case takes
-#: about a millisecond, and every batch costs a round trip and a store commit (measured: 16 -> 256 cut the
-#: solve phase of 25,344 cases from 18.7 to 15.6 s on a loaded 2-core machine).
-BATCH: int = 256
 
 
 def seed_motions(src: Path, dst: Path, src_scene, dst_scene) -> bool:
@@ -54,51 +50,32 @@ def seed_motions(src: Path, dst: Path, src_scene, dst_scene) -> bool:
     return True
 
 
-def run_campaigns(scenes: dict[str, Any], store: Path, *, workers: int | None, progress: bool,
-                  force: bool = False) -> tuple[pd.DataFrame, dict[str, Any]]:
-    """Run (or resume) the study's campaigns (:func:`opsrock.inventory.fema.design.campaign_scenes`) into
-    ``store/<name>`` (``rocking``, ``friction``, ``sweep``), on one pool of workers
-    (:func:`opsrock.inventory.campaigns.study_pool`).
+def campaign_jobs(scenes: dict[str, Any]) -> list[Any]:
+    """The study's campaigns (:func:`opsrock.inventory.fema.design.campaign_scenes`: ``rocking``, ``friction``,
+    ``sweep``) as the study's one runner takes them (:class:`opsrock.inventory.campaigns.CampaignJob`), each into
+    ``store/<name>``: the friction campaign's floor motions seeded from the no-slip one's (:func:`seed_motions`),
+    and a campaign whose every case failed refused as it is read (nothing to fit:
+    :func:`opsrock.fragility.cases.check_some_finished`, one line, exit 2)."""
+    from opsrock.inventory.campaigns import CampaignJob
 
-    Returns
-    -------
-    cases : DataFrame
-        Every case of every campaign (:data:`CASE_COLUMNS`, and ``campaign``, ``item``, ``variant``,
-        ``floor_number``, ``building_period``, ``overturned`` as bool, ``response``).
-    timings : dict
-        Wall time of each campaign (s), its cases and those computed now, and whether the friction
-        campaign's floor motions were seeded.
+    jobs = []
+    for name, scene in scenes.items():
+        seed = None
+        if name == "friction" and "rocking" in scenes:
+            seed = functools.partial(_seed_from_rocking, scenes["rocking"], scene)
+        jobs.append(CampaignJob(name, scene, functools.partial(_read_cases, campaign=name, scene=scene), seed=seed))
+    return jobs
 
-    Raises
-    ------
-    AllCasesFailedError
-        Every case of a campaign failed (:func:`opsrock.fragility.cases.check_some_finished`).
-    """
-    from opsrock.campaign import run_campaign
-    from opsrock.inventory.campaigns import study_pool
 
-    frames, timings = [], {}
-    with study_pool(list(scenes.values()), workers) as (pool, budget):
-        for name, scene in scenes.items():
-            folder = store / name
-            if name == "friction" and "rocking" in scenes:
-                timings["friction_motions_seeded"] = seed_motions(store / "rocking", folder,
-                                                                  scenes["rocking"], scene)
-            t0 = time.perf_counter()
-            summary = run_campaign(scene, folder, executor=pool, progress=progress, force=force, batch=BATCH,
-                                   case_timeout=budget)
-            if summary.n_failed == summary.n_cases:  # nothing to fit: one line (AllCasesFailedError), exit 2
-                check_some_finished(read_cases(summary.cases_csv, usecols=["status", "reason"]), str(folder))
-            timings[f"{name}_s"] = time.perf_counter() - t0
-            timings[f"{name}_cases"] = summary.n_cases
-            timings[f"{name}_computed"] = summary.n_computed
-            frames.append(_read_cases(summary.cases_csv, name, scene))
-    return pd.concat(frames, ignore_index=True), timings
+def _seed_from_rocking(rocking, scene, folder: Path) -> bool:
+    return seed_motions(folder.parent / "rocking", folder, rocking, scene)
 
 
 def _read_cases(path: str, campaign: str, scene) -> pd.DataFrame:
     cols = list(CASE_COLUMNS) + (["response"] if campaign == "friction" else [])
     df = read_cases(path, usecols=cols)
+    if not (df["status"].astype(str) == "ok").any():  # nothing to fit: one line (AllCasesFailedError), exit 2
+        check_some_finished(read_cases(path, usecols=["status", "reason"]), str(Path(path).parent))
     df["campaign"] = campaign
     parts = df["block"].map(split_block_name)
     df["item"] = [p[0] for p in parts]
@@ -147,4 +124,4 @@ def floor_velocities(scene, folder: Path) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-__all__ = ["BATCH", "CASE_COLUMNS", "floor_velocities", "run_campaigns", "seed_motions"]
+__all__ = ["CASE_COLUMNS", "campaign_jobs", "floor_velocities", "seed_motions"]

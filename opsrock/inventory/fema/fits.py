@@ -22,7 +22,8 @@ FIT_COLUMNS: tuple[str, ...] = ("median", "median_lo", "median_hi", "beta", "bet
 
 
 def fit_tasks(cases: pd.DataFrame, n_boot: int, seed: int, relative: pd.DataFrame | None = None) -> list[tuple]:
-    """The fits of a case table (:func:`opsrock.inventory.fema.campaigns.run_campaigns`), as picklable tasks.
+    """The fits of a case table (:func:`opsrock.inventory.campaigns.run_campaigns` of
+    :func:`opsrock.inventory.fema.campaigns.campaign_jobs`), as picklable tasks.
 
     ``relative`` (:func:`opsrock.inventory.fema.campaigns.floor_velocities` of the no-slip campaign) adds the
     ``pfv_rel`` fits of the default variant on the building's floors."""

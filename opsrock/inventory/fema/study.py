@@ -54,16 +54,23 @@ def _figures(out: Path, fits: pd.DataFrame, cases: pd.DataFrame, result: dict, d
     return paths
 
 
-def _campaigns(a: Any) -> Any:
-    """The study's campaigns (no slip, friction, the sweep's roofs), run or resumed one after the other."""
-    from opsrock.inventory.fema.campaigns import run_campaigns
-    from opsrock.inventory.stages import Ran
+def _jobs(a: Any) -> list:
+    """The study's campaigns (no slip, friction, the sweep's roofs), in that order
+    (:func:`opsrock.inventory.fema.campaigns.campaign_jobs`)."""
+    from opsrock.inventory.fema.campaigns import campaign_jobs
 
-    scenes = a.scenes
-    a.say(f"{sum(len(s.blocks) * s.records.n_per_block for s in scenes.values())} cases in "
-          f"{len(scenes)} campaigns ({', '.join(scenes)}) into {a.store}")
-    cases, timings = run_campaigns(scenes, a.store, workers=a.workers, progress=a.progress, force=a.force)
-    return Ran(cases, sum(int(v) for k, v in timings.items() if k.endswith("_computed")), timings)
+    return campaign_jobs(a.scenes)
+
+
+def _campaign_timings(runs: tuple) -> dict[str, Any]:
+    """Each campaign's wall time (s), cases and cases computed now, and whether the friction campaign's floor
+    motions were seeded, as the report and the summary name them."""
+    out: dict[str, Any] = {}
+    for r in runs:
+        if r.name == "friction" and any(q.name == "rocking" for q in runs):
+            out["friction_motions_seeded"] = r.seeded
+        out.update({f"{r.name}_s": r.seconds, f"{r.name}_cases": r.n_cases, f"{r.name}_computed": r.n_computed})
+    return out
 
 
 def _fit(a: Any) -> dict[str, pd.DataFrame]:
@@ -95,7 +102,8 @@ def _write(a: Any, stage: Path) -> Any:
                                   stage / "pelicun")
     a.timings["outputs_s"] = time.perf_counter() - t0
     a.timings["total_s"] = time.perf_counter() - a.t_start
-    summary = _summary(a.cases, result, {k: v for k, v in a.timings.items() if k not in ("demands_s", "campaigns_s")})
+    timings = {**_campaign_timings(a.runs), **{k: v for k, v in a.timings.items() if k not in ("demands_s", "campaigns_s")}}
+    summary = _summary(a.cases, result, timings)
     report = write_report(stage / "report.md", a.design, result, summary)
     return Written(paths, report, pelicun, tuple(figures), summary)
 
@@ -113,8 +121,7 @@ def _summary(cases: pd.DataFrame, result: dict, timings: dict) -> StudySummary:
 #: FEMA P-58's nine in the shipped building, beside FEMA's fragilities (:class:`opsrock.inventory.stages.Route`):
 #: the campaigns of :func:`opsrock.inventory.fema.design.campaign_scenes` (no floor-motion demand stage: the
 #: campaigns filter the records through the building themselves), their fits, the tables and the pelicun files.
-FEMA_NINE: Route = Route("fema-p58", campaign_scenes, _fit, _write, OUTPUTS, demands=lambda a: None,
-                         campaigns=_campaigns)
+FEMA_NINE: Route = Route("fema-p58", campaign_scenes, _fit, _write, OUTPUTS, demands=lambda a: None, jobs=_jobs)
 
 
 __all__ = ["FEMA_NINE", "OUTPUTS", "TABLES", "StudySummary"]

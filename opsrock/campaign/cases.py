@@ -223,6 +223,30 @@ def _one_line(text: str) -> str:
     return text if len(text) <= MAX_REASON else text[: MAX_REASON - 3] + "..."
 
 
+#: The code of a failure reason that no solver status names (an exception, a case that could not be run).
+OTHER_REASON: str = "other"
+
+
+def reason_code(reason: str | None) -> str:
+    """The kind of a stored failure ``reason``, the same for every case that failed the same way, whatever
+    numbers (times, budgets, settings) the reason holds: ``"lost"`` for a case lost to the infrastructure
+    (:data:`~opsrock.campaign.executors.LOST_MARKERS`), ``"timeout"`` for a case budget's or ``max_wall_time``'s,
+    else the failure kind (:data:`opsrock.solvers.status.FAILURES`) whose reason text begins it (a solver appends
+    where and when), else :data:`OTHER_REASON`."""
+    from opsrock.campaign.executors import is_lost
+    from opsrock.solvers.status import FAILURES, REASONS, TIMEOUT
+
+    text = " ".join(str(reason or "").split())
+    if is_lost(text):
+        return "lost"
+    if text.startswith("timeout"):
+        return FAILURES[TIMEOUT]
+    for code, kind in FAILURES.items():
+        if kind is not None and REASONS[code] and text.startswith(REASONS[code]):
+            return kind
+    return OTHER_REASON
+
+
 def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math.nan) -> dict[str, Any]:
     """A store row for a case that produced no result (status ``"failed"``, verdict ``"failed"``)."""
     return {
@@ -358,6 +382,6 @@ def typed_cases(df: "Any") -> "Any":
 
 
 __all__ = ["BLOCK_COLUMNS", "BOOL_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PLAN_COLUMNS", "PULSE_COLUMNS",
-           "PulseCase", "RECORD_COLUMNS",
-           "RESULT_COLUMNS", "RecordCase", "TEXT_COLUMNS", "as_bool", "case_table", "failed_row", "read_cases", "result_row",
+           "OTHER_REASON", "PulseCase", "RECORD_COLUMNS",
+           "RESULT_COLUMNS", "RecordCase", "TEXT_COLUMNS", "as_bool", "case_table", "failed_row", "read_cases", "reason_code", "result_row",
            "typed_cases", "write_cases_csv"]

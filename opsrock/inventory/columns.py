@@ -143,7 +143,8 @@ COLUMNS: dict[str, Column] = {
     "share_rolling": Column("-", "n_rolling / n_exceeded: the share of the overturnings while rolling"),
     "share_edge": Column("-", "n_edge / n_exceeded: the share of the overturnings over an edge"),
     "share_corner": Column("-", "n_corner / n_exceeded: the share of the overturnings over a corner"),
-    "failed_reasons": Column("", "the failed cases by reason (count x reason; ...)"),
+    "failed_reasons": Column("", "the failed cases by the kind of their reason (count x code (the first such reason); "
+                                "...; opsrock.campaign.cases.reason_code)"),
     # the two models side by side (--model both: opsrock.inventory.side_by_side)
     "median_3d": Column("m/s", "the 3-D component's median in pfv_max"),
     "median_planar": Column("m/s", "the planar component's median in pfv_max (the two planes combined)"),

@@ -22,7 +22,10 @@ modelled (no slip) an item has one damage state, DS1 *overturned*.
 
 Where the items were modelled in three dimensions (:mod:`opsrock.inventory.three_d`) each case already felt both
 components: the fragility is fitted to its cases against ``pfv_max`` (the azimuths pooled, a record bootstrap
-for the intervals). Where they were modelled in each plane (the planar route), each direction's fragility
+for the intervals); where the demand separated the outcomes perfectly (no finite maximum-likelihood fit) the limit
+state is a step at the middle of the gap in ``pfv_max``, as a planar direction's below, given to pelicun as a
+deterministic capacity (a blank ``Family``: pelicun 3.10, ``damage_model.py``, "Normalize missing / empty family
+specifications to `deterministic`"). Where they were modelled in each plane (the planar route), each direction's fragility
 ``P_d`` (:mod:`opsrock.inventory.fits`, in that direction's PFV) is combined into one: under record ``r`` with
 directional PFVs ``v_1r, v_2r`` the unit reaches the state if it does in either plane, the planes taken as
 independent given their demands, ``1 - prod_d (1 - P_d(v_dr))``; at ``pfv_max = x`` each record's directions
@@ -31,7 +34,8 @@ lognormal given to pelicun is the one through that curve's quantiles at probabil
 :data:`Z_GRID` (least squares in ``ln x``); ``max_error`` is its largest distance (in probability) from the
 combined curve. A direction in which the item never reached the state contributes nothing; one whose outcomes
 were perfectly separated by the demand (no finite maximum-likelihood fit) contributes a step at the middle of the
-gap (it reaches the state above it, certainly); one whose fit failed otherwise (or in which every case reached it)
+gap (it reaches the state above it, certainly; where every record's combined curve is that one step, the
+component's limit state is the step, a deterministic capacity, as in three dimensions); one whose fit failed otherwise (or in which every case reached it)
 leaves the item without a component, with the reason.
 
 ``components.csv`` (:data:`COMPONENT_COLUMNS`): one row per item, floor and limit state.
@@ -59,6 +63,10 @@ NONDIRECTIONAL_MULTIPLIER: float = 1.0
 #: Limit states in pelicun's order -> (the fits' outcome, the damage state it leads to).
 STATES: dict[str, tuple[str, str]] = {"displaced": ("displaced", "displaced (slid beyond the distance, or overturned)"),
                                       "overturned": ("overturning", "overturned")}
+
+#: What ``source`` adds for a limit state whose outcomes the demand separated perfectly (no finite
+#: maximum-likelihood lognormal): a step at the middle of the gap, which pelicun takes as a deterministic capacity.
+STEP_SOURCE: str = " (a step at the gap of separated outcomes)"
 
 #: Standard normal quantiles at which the combined curve is matched (P from 0.006 to 0.994).
 Z_GRID: np.ndarray = np.linspace(-2.5, 2.5, 21)
@@ -126,6 +134,8 @@ def lognormal_through(curves: dict[str, tuple[float, float]], pfv: pd.DataFrame)
                                   math.log(lo), math.log(hi), xtol=1e-12)))
     slope, intercept = np.polyfit(Z_GRID, np.log(xs), 1)
     median, beta = math.exp(intercept), float(slope)
+    if not beta > 1e-9:  # every quantile the same demand (to the fit's round-off): a step there
+        median, beta = float(np.median(xs)), 0.0
     grid = np.geomspace(xs[0], xs[-1], 200)
     err = float(np.max(np.abs(fragility_probability(grid, median, beta) - combined_probability(grid, curves, pfv))))
     return median, beta, err
@@ -159,13 +169,11 @@ def planar_components(fits: pd.DataFrame, demands: pd.DataFrame, design: Any) ->
                 row["message"] = f"never {'overturned' if ls == 'overturned' else 'displaced'} in any direction"
             else:
                 median, beta, err = lognormal_through(curves, pfv)
-                if not beta > 0.0:
-                    row.update(status="no fit", message="every direction a step at the same demand: no dispersion")
-                    rows.append(row)
-                    continue
                 steps = [d for d, (_, b) in curves.items() if b == 0.0]
                 if steps:
                     row["source"] += f" (direction {' and '.join(steps)}: a step at the gap of separated outcomes)"
+                if beta == 0.0:  # every record's combined curve a step at one demand: that step, as the 3-D route's
+                    row["message"] = "every direction a step at the same demand: a deterministic capacity"
                 row.update(median=median, beta=beta, max_error=err, status="fitted")
             rows.append(row)
     return _numbered(pd.DataFrame(rows, columns=list(COMPONENT_COLUMNS)))
@@ -199,6 +207,10 @@ def three_d_components(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, 
         good, n, k = row["ok"], row["n"], row["k"]
         row.update(status="fitted" if good else fit_status(False, math.nan, math.nan, k, n),
                    message="" if good else f.message)
+        if not good and f.beta == 0.0 and math.isfinite(f.mu):  # separated outcomes: a step, as the planar route's
+            row.update(status="fitted", median=f.mu, beta=0.0, median_lo=math.nan, median_hi=math.nan,
+                       beta_lo=math.nan, beta_hi=math.nan, source=row["source"] + STEP_SOURCE,
+                       message=f"{f.message}: pelicun is given that demand as a deterministic capacity")
         if good and f.mu > row["x_max"]:  # kept (as the planar fits keep theirs), and said
             row["message"] = (f"extrapolated: the median {f.mu:.3g} m/s lies beyond the largest demand of the "
                               f"cases ({row['x_max']:.3g} m/s), from {k} of {n} cases")
@@ -290,6 +302,6 @@ def _combined_at_records(fits: pd.DataFrame, item: str, floor: str, first: Any, 
     return float((1.0 - survive).mean())
 
 
-__all__ = ["COMPONENT_COLUMNS", "DEMAND", "EXPECTED_COLUMNS", "NONDIRECTIONAL_MULTIPLIER", "STATES", "Z_GRID",
+__all__ = ["COMPONENT_COLUMNS", "DEMAND", "EXPECTED_COLUMNS", "NONDIRECTIONAL_MULTIPLIER", "STATES", "STEP_SOURCE", "Z_GRID",
            "combined_probability", "component_id", "damage_states", "expected_table", "lognormal_through",
            "planar_components", "record_pfv", "three_d_components"]

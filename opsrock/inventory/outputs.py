@@ -149,10 +149,11 @@ def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[
     from opsrock.inventory.report import ReportInputs, write_report
     from opsrock.inventory.summary import demand_table, fema_ratio_reasons, report_tables
 
-    design, fits, cases = study_tables["design"], study_tables["fits"], study_tables["cases"]
-    levels = {"pfv": design.demand_levels_pfv, "pfa": design.demand_levels_pfa}
-    computed = report_tables(fits, levels, cases)
+    design, fits, every = study_tables["design"], study_tables["fits"], study_tables["cases"]
     items = {it.id: it for it in design.inventory.items}
+    cases, beside = every[every["item"].isin(list(items))], every[~every["item"].isin(list(items))]
+    levels = {"pfv": design.demand_levels_pfv, "pfa": design.demand_levels_pfa}
+    computed = report_tables(fits, levels, cases)  # the items' failures; the boxes' are in their own section
     computed["reasons"] = fema_ratio_reasons(computed["table"], items, study_tables["demands"])
     computed["never"] = tuple(i for i in items if i not in set(computed["curves"].query(
         "outcome == 'overturning' and demand == 'pfv'")["item"]))
@@ -160,8 +161,7 @@ def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[
     figures = {item: f"figures/{p.name}" for item, p in item_figures(computed["curves"], stage / "figures").items()}
     figures["demands"] = f"figures/{plot_floor_demands(demand_table(study_tables['demands']), stage / 'figures' / 'demands.png').name}"
     t = study_tables["timings"]
-    notes = (f"{len(cases)} cases, {int((cases['status'] != 'ok').sum())} failed; "
-             f"{study_tables['n_computed']} computed in this run"
+    notes = (f"{case_count(cases, beside)}; {study_tables['n_computed']} of all these computed in this run"
              + (f" ({study_tables['n_retried']} of them stored as timed out before, computed again)."
                 if study_tables.get("n_retried") else "."),
              f"Wall time (s): demands {t.get('demands_s', 0.0):.1f}, campaigns {t.get('campaigns_s', 0.0):.1f}, "
@@ -175,6 +175,19 @@ def _write_report(stage: Path, study_tables: dict[str, Any], route_notes: tuple[
                           boxes=study_tables.get("boxes"),
                           **computed)
     return write_report(stage / "report.md", inputs)
+
+
+def case_count(cases: pd.DataFrame, beside: pd.DataFrame) -> str:
+    """What the report says it counts: the inventory's items' ``cases`` and their failed ones, then (where there
+    are any) the cases of the boxes run ``beside`` the round items, counted apart."""
+    def failed(c: pd.DataFrame) -> int:
+        return int((c["status"] != "ok").sum())
+
+    text = f"{len(cases)} cases of the inventory's items, {failed(cases)} failed"
+    if len(beside):
+        text += (f"; {len(beside)} more of the boxes run beside the round items, {failed(beside)} failed (their own "
+                 "section)")
+    return text
 
 
 def say_ground(design: Any) -> None:
@@ -213,4 +226,4 @@ def _pelicun_notes(design: Any) -> tuple[str, ...]:
             "both directions to the same units counts each unit twice.")
 
 
-__all__ = ["OUTPUTS", "TABLES", "InventoryStudy", "Written", "study_tables", "workers_of", "write_csv", "write_outputs"]
+__all__ = ["OUTPUTS", "TABLES", "InventoryStudy", "Written", "case_count", "study_tables", "workers_of", "write_csv", "write_outputs"]

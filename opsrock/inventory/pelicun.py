@@ -7,7 +7,8 @@ Files:
   (:func:`opsrock.inventory.components.component_id`), in PFV (m/s), ``Demand-Directional`` 0: its damage
   states in sequence, ``DS1`` displaced (slid beyond the item's ``slide_distance`` or overturned) and ``DS2``
   overturned where friction is modelled, else ``DS1`` overturned (:mod:`opsrock.inventory.components`, which
-  says why sequential); each limit state lognormal, fitted in ``pfv_max``.
+  says why sequential); each limit state lognormal, fitted in ``pfv_max``, or where the demand separated the
+  outcomes perfectly a step at the middle of the gap: a deterministic capacity (a blank ``Family``).
 * ``inventory.csv``: pelicun's component assignment (``ID, Units, Location, Direction, Theta_0, Blocks,
   Comment``): each item's ``quantity`` once at its floor's location, direction 0 (non-directional), as
   ``Blocks`` separate units (each damaged on its own capacity draw). The units pelicun instantiates are the
@@ -205,9 +206,10 @@ def _fragility(components: pd.DataFrame, path: Path) -> Path:
             continue
         row = {"ID": cid, "Incomplete": 0, "Demand-Type": "Peak Floor Velocity", "Demand-Unit": "mps",
                "Demand-Offset": 0, "Demand-Directional": 0}
-        for r in c.itertuples():
-            row.update({f"{r.ls}-Family": "lognormal", f"{r.ls}-Theta_0": repr(float(r.median)),
-                        f"{r.ls}-Theta_1": repr(float(r.beta))})
+        for r in c.itertuples():  # a step (beta 0, separated outcomes): a deterministic capacity, pelicun's blank Family
+            step = float(r.beta) == 0.0
+            row.update({f"{r.ls}-Family": "" if step else "lognormal", f"{r.ls}-Theta_0": repr(float(r.median)),
+                        f"{r.ls}-Theta_1": "" if step else repr(float(r.beta))})
         rows.append(row)
     columns = ["ID", "Incomplete", "Demand-Type", "Demand-Unit", "Demand-Offset", "Demand-Directional",
                *(f"LS{k}-{p}" for k in range(1, n_ls + 1) for p in ("Family", "Theta_0", "Theta_1"))]

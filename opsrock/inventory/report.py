@@ -19,6 +19,9 @@ import pandas as pd
 from opsrock._files import atomic_text
 from opsrock.report.markdown import markdown_table
 
+#: The headers of the failed cases' table (:func:`opsrock.inventory.summary.failure_table`) in a report.
+FAILURE_HEADERS: dict[str, str] = {"code": "kind", "n_failed": "failed cases", "first_reason": "the first reason in full"}
+
 #: Mark of a point estimate outside its own bootstrap interval.
 OUTSIDE_MARK: str = "†"
 #: Mark of a median beyond the largest demand of the cases (a fit's extrapolation from a few exceedances).
@@ -75,7 +78,7 @@ class ReportInputs:
     findings : tuple of Finding or None
         :func:`opsrock.inventory.summary.floor_findings`; None: no statement about the floors.
     failures : pandas.DataFrame or None
-        :func:`opsrock.inventory.summary.failure_table` (``reason, n_cases``); None: not counted.
+        :func:`opsrock.inventory.summary.failure_table` (``code, n_failed, first_reason``); None: not counted.
     sliding : pandas.DataFrame or None
         :func:`opsrock.inventory.summary.item_floor_table` of sliding; None: no friction modelled.
     confidence : float
@@ -277,10 +280,10 @@ def _failure_lines(inputs: ReportInputs) -> list[str]:
     n_failed = int(inputs.fits["n_failed"].max()) if len(inputs.fits) else 0
     lines = ["## Cases", ""]
     if inputs.failures is not None and len(inputs.failures):
-        total = int(inputs.failures["n_cases"].sum())
+        total = int(inputs.failures["n_failed"].sum())
         lines += [f"{total} case{'s' if total != 1 else ''} failed (excluded from the fits, never counted as a "
                   f"verdict); {'their reasons' if total != 1 else 'its reason'}:", "",
-                  markdown_table(inputs.failures, ".3g"), ""]
+                  markdown_table(inputs.failures.rename(columns=FAILURE_HEADERS), ".3g"), ""]
     elif inputs.failures is not None or n_failed == 0:
         lines += ["No case failed.", ""]
     else:
@@ -389,5 +392,5 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
     return path
 
 
-__all__ = ["DEFINITIONS", "METHODS", "OUTSIDE_MARK", "ReportInputs", "footnotes", "formatted_table", "method_lines",
+__all__ = ["DEFINITIONS", "FAILURE_HEADERS", "METHODS", "OUTSIDE_MARK", "ReportInputs", "footnotes", "formatted_table", "method_lines",
            "write_report"]

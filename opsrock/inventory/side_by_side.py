@@ -147,15 +147,16 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
     :func:`side_by_side_table`."""
     from opsrock.inventory.components import three_d_components
     from opsrock.inventory.outputs import study_tables, workers_of
-    from opsrock.inventory.three_d import fit3d_table
+    from opsrock.inventory.three_d import fit3d_table, round_boxes
 
     planar, cases3d = split_cases(a.cases)
     design3d, workers = three_d_design(a.design), workers_of(a.workers)
     tables = study_tables(a, planar)
     components3d = three_d_components(cases3d, a.demands, design3d, workers)
     side = side_by_side_table(tables["components"], components3d, planar, cases3d, a.demands, a.design)
+    boxes = round_boxes(cases3d, a.demands, design3d, workers)
     return {**tables, "fits3d": fit3d_table(cases3d, a.demands, design3d, workers), "components3d": components3d,
-            "side_by_side": side}
+            "side_by_side": side, **({} if boxes is None else {"boxes": boxes})}
 
 
 def side_by_side_lines(table: pd.DataFrame, design3d: Any) -> list[str]:
@@ -188,16 +189,23 @@ def _at(median: float, azimuth: float) -> str:
 
 
 def _write(a: Any, stage: Path) -> Any:
-    """The planar route's outputs from the planar cases (the pelicun folder is the planar one), the 3-D and
-    side-by-side tables, and the report's section on the two models (:func:`side_by_side_lines`)."""
+    """The planar route's outputs from the planar tables (the pelicun folder is the planar one), the 3-D and
+    side-by-side tables, and the report's section on the two models (:func:`side_by_side_lines`); the report's
+    cases are both models' (every failed case of an item listed by reason)."""
     from opsrock._files import atomic_write
     from opsrock.inventory.outputs import write_outputs
 
     planar, cases3d = split_cases(a.cases)
     design3d = three_d_design(a.design)
-    notes = (f"Both models: these {len(planar)} planar cases, and {len(cases3d)} cases in three dimensions "
-             f"({int((cases3d['status'] != 'ok').sum())} failed): the section 3-D and planar side by side.",)
-    written = write_outputs(dataclasses.replace(a, cases=planar), stage, notes)
+    items = [it.id for it in a.design.inventory.items]
+
+    def failed(c: pd.DataFrame) -> int:
+        return int((c["status"] != "ok").sum())
+
+    mine = cases3d[cases3d["item"].isin(items)]
+    notes = (f"Both models: of the items' cases, {len(planar)} planar ({failed(planar)} failed) and {len(mine)} in "
+             f"three dimensions ({failed(mine)} failed): the section 3-D and planar side by side.",)
+    written = write_outputs(a, stage, notes)
     text = Path(written.report).read_text() + "\n".join(side_by_side_lines(a.tables["side_by_side"], design3d))
     atomic_write(Path(written.report), lambda fh: fh.write(text), durable=False)
     return written

@@ -257,16 +257,23 @@ def demand_table(demands: pd.DataFrame) -> pd.DataFrame:
 
 
 def failure_table(cases: pd.DataFrame) -> pd.DataFrame:
-    """Failed cases counted by reason (``status`` not ``"ok"``; the reason's first line, to its first colon
-    when it has one): columns ``reason, n_cases``, most frequent first."""
+    """Failed cases (``status`` not ``"ok"``) counted by the kind of their reason
+    (:func:`opsrock.campaign.cases.reason_code`: the same for every case that failed the same way, whatever
+    times or settings its reason holds): columns ``code, n_failed, first_reason`` (one of those reasons in full,
+    the first in the table's order), most frequent first."""
+    from opsrock.campaign.cases import reason_code
+
+    columns = ["code", "n_failed", "first_reason"]
     if cases.empty or "status" not in cases.columns:
-        return pd.DataFrame(columns=["reason", "n_cases"])
+        return pd.DataFrame(columns=columns)
     failed = cases[cases["status"] != "ok"]
-    reasons = failed["reason"].fillna("no reason recorded").astype(str) if "reason" in failed else \
-        pd.Series("no reason recorded", index=failed.index)
-    short = reasons.str.split("\n").str[0].str.split(":").str[0].str.strip()
-    counts = short.value_counts(sort=True)
-    return pd.DataFrame({"reason": counts.index.astype(str), "n_cases": counts.to_numpy(int)})
+    reasons = failed["reason"].fillna("").astype(str) if "reason" in failed else pd.Series("", index=failed.index)
+    reasons = reasons.where(reasons.str.strip() != "", "no reason recorded")
+    codes = reasons.map(reason_code)
+    counts = codes.value_counts().reindex(codes.unique()).sort_values(ascending=False, kind="stable")  # ties: first seen
+    first = reasons.groupby(codes, sort=False).first()
+    return pd.DataFrame({"code": counts.index.astype(str), "n_failed": counts.to_numpy(int),
+                         "first_reason": first.reindex(counts.index).to_numpy(str)}, columns=columns)
 
 
 @dataclass(frozen=True)

@@ -233,7 +233,7 @@ def box_table(fits: pd.DataFrame, cases: pd.DataFrame) -> pd.DataFrame:
                                         "n_exceeded", "n_failed")},
                    **{f"n_{m}": int(f[f"n_{m}"]) for m in MECHANISMS},
                    **{f"share_{m}": int(f[f"n_{m}"]) / n if n else math.nan for m in MECHANISMS},
-                   "failed_reasons": "; ".join(f"{r.n_cases} x {r.reason}" for r in reasons.itertuples()),
+                   "failed_reasons": "; ".join(f"{r.n_failed} x {r.code} ({r.first_reason})" for r in reasons.itertuples()),
                    "box_off": math.nan}
             pair.append(row)
         pair[1]["box_off"] = pair[1]["median"] / pair[0]["median"] - 1.0
@@ -261,12 +261,19 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
     components = three_d_components(mine, a.demands, a.design, workers)
     tables = {**study_tables(a, per_direction(mine), components),
               "fits3d": fit3d_table(mine, a.demands, a.design, workers)}
-    everything = {it.id: it for it in study_items(a.design)}
-    if len(everything) > len(ids):
-        round_ids = {i for i, it in everything.items() if it.shape == "cylinder"}
-        pairs = a.cases[a.cases["item"].map(lambda i: i in round_ids or i.removesuffix(BOX_SUFFIX) in round_ids)]
-        tables["boxes"] = box_table(fit3d_table(pairs, a.demands, a.design, workers, everything), pairs)
-    return tables
+    boxes = round_boxes(a.cases, a.demands, a.design, workers)
+    return tables if boxes is None else {**tables, "boxes": boxes}
+
+
+def round_boxes(cases: pd.DataFrame, demands: pd.DataFrame, design: Any, workers: int) -> pd.DataFrame | None:
+    """``boxes.csv`` (:func:`box_table`) from the 3-D ``cases`` of the round items and of the boxes of their size
+    run beside them (:func:`study_items`); None when the inventory has no round item."""
+    everything = {it.id: it for it in study_items(design)}
+    round_ids = {i for i, it in everything.items() if it.shape == "cylinder"}
+    if not round_ids:
+        return None
+    pairs = cases[cases["item"].map(lambda i: i in round_ids or i.removesuffix(BOX_SUFFIX) in round_ids)]
+    return box_table(fit3d_table(pairs, demands, design, workers, everything), pairs)
 
 
 def _write(a: Any, stage: Path) -> Any:
@@ -293,4 +300,4 @@ THREE_D: Route = Route("3d", three_d_scenes, _fit, _write, OUTPUTS_3D)
 __all__ = ["BOX_COLUMNS", "BOX_SUFFIX", "DEFAULT_AZIMUTHS", "FIT3D_COLUMNS", "MECHANISMS", "box_of", "box_table",
            "study_items", "NONDIRECTIONAL_FACTOR", "OUTPUTS_3D",
            "PFV_CONVENTIONS", "check_azimuths", "fit3d_table", "per_direction", "pfv_demands",
-           "THREE_D", "three_d_scenes"]
+           "THREE_D", "round_boxes", "three_d_scenes"]

@@ -14,7 +14,7 @@ import pandas as pd
 
 from opsrock._files import atomic_text
 from opsrock.intensity.table1 import IMS
-from opsrock.inventory.report import DEFINITIONS, footnotes, formatted_table, method_lines
+from opsrock.inventory.report import DEFINITIONS, FAILURE_HEADERS, footnotes, formatted_table, method_lines
 from opsrock.report.markdown import markdown_table
 
 
@@ -50,7 +50,7 @@ class RecordReport:
     findings : tuple of Finding
         :func:`opsrock.inventory.summary.floor_findings` of ``table``.
     failures : pandas.DataFrame
-        :func:`opsrock.inventory.summary.failure_table` of the cases (``reason, n_cases``).
+        :func:`opsrock.inventory.summary.failure_table` of the cases (``code, n_failed, first_reason``).
     measure : str
         The scene's measure (:data:`opsrock.analysis.record_report.MEASURE_LABELS` key: ``pfa_g``,
         ``pfa_ratio``, ``""`` for a cloud, ``unknown``).
@@ -212,9 +212,9 @@ def _block_lines(out: Path, report: RecordReport) -> list[str]:
 def _case_lines(report: RecordReport) -> list[str]:
     lines = [*_solver_lines(report.source, report.study.cases)]
     if len(report.failures):
-        n = int(report.failures["n_cases"].sum())
+        n = int(report.failures["n_failed"].sum())
         lines += [f"{n} case{'s' if n != 1 else ''} failed (excluded from every fit, never counted as a verdict); "
-                  f"{'their reasons' if n != 1 else 'its reason'}:", "", markdown_table(report.failures), ""]
+                  f"{'their reasons' if n != 1 else 'its reason'}:", "", markdown_table(report.failures.rename(columns=FAILURE_HEADERS)), ""]
     return lines
 
 

@@ -125,3 +125,26 @@ def test_a_round_item_is_a_cylinder_in_its_own_campaign(inputs, tmp_path):
     assert list(boxes["model"]) == ["as given", "box of its size"] and list(boxes["shape"]) == ["cylinder", "box"]
     assert list(boxes["n_cases"] + boxes["n_failed"]) == [1, 2] and units["median"] == "see unit"
     assert set(boxes["demand"]) == {"pfv_max"} and units["share_rim"] == "-"
+    # the report counts the items' cases, and the boxes' apart (they are in no item's table)
+    n_box_failed = int(boxes.loc[boxes["model"] == "box of its size", "n_failed"].iloc[0])
+    assert "3 cases of the inventory's items" in Path(out.report).read_text()
+    assert f"2 more of the boxes run beside the round items, {n_box_failed} failed" in Path(out.report).read_text()
+
+
+@pytest.mark.slow
+def test_both_models_write_the_box_beside_a_round_item(inputs, tmp_path):
+    """``--model both`` computes the box of a round item's size beside it in three dimensions, as the 3-D route
+    does: it writes its table and the report's section (before, the box was computed and left unreported). About
+    15 s (a cylinder case and the planar campaigns): slow."""
+    inv, motions = inputs
+    (tmp_path / "round.csv").write_text("id,description,width,depth,height,shape,diameter\n"
+                                        "o2,an oxygen cylinder,,,1.5,cylinder,0.23\n")
+    design = InventoryDesign(read_inventory(tmp_path / "round.csv"), read_motions(motions), side_by_side=True,
+                             azimuths=(0.0, 45.0), levels=(4.0,), n_boot=0)
+    both = run_design(design, tmp_path / "both", workers=1, progress=False)
+    boxes, _ = read_table(both.tables["boxes"], dtype={"floor": str})
+    assert list(boxes["model"]) == ["as given", "box of its size"]
+    assert list(boxes["n_cases"] + boxes["n_failed"]) == [1, 2]
+    report = Path(both.report).read_text()
+    assert "## Round items against the box of their size" in report
+    assert "in three dimensions 1 cases of the inventory's items" in report and "2 more of the boxes" in report

@@ -43,7 +43,7 @@ def synthetic_campaign(n_records: int = 10, seed: int = 5) -> pd.DataFrame:
                                  "distance_km": 10.0 + r, "building_period": np.nan,
                                  **{f"IM{i}": lv * (1 + 0.1 * i) * (1 + 0.05 * r) for i in range(1, 10)}})
     cases = pd.DataFrame(rows)
-    cases.loc[0, ["status", "reason"]] = ["failed", "max_steps reached: 10000000 steps"]
+    cases.loc[0, ["status", "reason"]] = ["failed", "max_steps reached before the end of the run (max_steps = 10000000, t = 12.5 s)"]
     return cases
 
 
@@ -103,7 +103,7 @@ def test_sentences_and_failures_agree_with_the_numbers(report):
         assert [t.loc[(f.item, fl), "median_pfv"] for fl in f.floors] == list(f.medians)
         if f.kind == "same":
             assert max(f.medians) - min(f.medians) <= 1e-6 * max(f.medians)
-    assert "1 case failed" in text and "| max_steps reached | 1 |" in text
+    assert "1 case failed" in text and "| max_steps | 1 | max_steps reached before the end of the run (max_steps = 10000000, t = 12.5 s) |" in text
 
 
 def test_no_figure_pools_blocks_or_floors(report):

@@ -137,3 +137,39 @@ def test_each_unit_once_with_sliding_as_the_first_damage_state(tmp_path):
         assert r.expected_damaged == pytest.approx(2.0 * np.maximum(p["displaced"], p["overturned"]).mean(), rel=1e-12)
         assert r.expected_damaged <= r.quantity
         assert r.expected_cost == pytest.approx(40.0 * r.expected_displaced_only + 250.0 * r.expected_overturned)
+
+
+def test_separated_outcomes_are_a_step_in_both_routes_and_pelicun_gets_a_deterministic_capacity(tmp_path):
+    """Outcomes the demand separates perfectly have no finite maximum-likelihood lognormal; the planar route has
+    always kept such a direction as a step at the middle of the gap (in ln x: the geometric mean of its ends).
+    The 3-D route now does the same in ``pfv_max`` instead of leaving the item without a component, and a
+    combined planar curve that is one step is that step: pelicun gets a blank ``Family`` (deterministic)."""
+    from opsrock.inventory.components import STEP_SOURCE, three_d_components
+
+    motions = _motions(("2",))
+    pfv = {("a", "1"): 0.4, ("a", "2"): 0.2, ("b", "1"): 0.6, ("b", "2"): 0.3}  # m/s: direction 1 the larger
+    demands = _demands(motions, pfv)
+    inv = Inventory((Item("rack", "rack", 0.6, 1.0, 2.0, quantity=2.0, repair_cost=100.0),), "test")
+    design = InventoryDesign(inv, motions, levels=(1.0, 2.0), n_boot=4)
+    # 3-D: x = scale x pfv_max is 0.2, 0.4, 0.6, 0.8 (record a) and 0.3, 0.6, 0.9, 1.2 (b); overturned above 0.5
+    cases = pd.DataFrame([{"item": "rack", "floor": "2", "record": r, "scale": s, "azimuth": z, "status": "ok",
+                           "overturned": s * {"a": 0.4, "b": 0.6}[r] > 0.5, "slide_max": math.nan,
+                           "overturned_over": ""} for r in ("a", "b") for s in (0.5, 1.0, 1.5, 2.0) for z in (0.0, 30.0)])
+    three_d = three_d_components(cases, demands, design, 1).iloc[0]
+    assert three_d["status"] == "fitted" and three_d["beta"] == 0.0 and three_d["source"].endswith(STEP_SOURCE)
+    assert three_d["median"] == pytest.approx(math.sqrt(0.4 * 0.6), rel=1e-12)  # the gap 0.4 .. 0.6
+    # planar: direction 1 a step at 0.49 m/s, direction 2 never; direction 1 is pfv_max under both records
+    fits = pd.DataFrame([_fit("rack", "2", "1", "pfv", math.sqrt(0.4 * 0.6), 0.0, ok=False, status="no fit",
+                              message="separated"),
+                         _fit("rack", "2", "2", "pfv", math.nan, math.nan, ok=False, status="never", message="never")],
+                        columns=list(FIT_COLUMNS))
+    planar = planar_components(fits, demands, design).iloc[0]
+    assert planar["status"] == "fitted" and planar["beta"] == 0.0
+    assert planar["median"] == pytest.approx(three_d["median"], rel=1e-9)
+    for name, components in (("3d", three_d_components(cases, demands, design, 1)), ("planar",
+                                                                                     planar_components(fits, demands, design))):
+        frag = pd.read_csv(write_pelicun_folder(components, fits, demands, design, tmp_path / name)["fragility"],
+                           index_col=0, keep_default_na=False)
+        assert (frag.loc["opsrock.rack.2", "LS1-Family"], frag.loc["opsrock.rack.2", "LS1-Theta_1"]) == ("", "")
+        # the exact expectation with the step: record a (pfv_max 0.4) below it, b (0.6) above: 2 units x 1/2
+        assert expected_table(components, demands, design).iloc[0]["expected_overturned"] == 1.0

@@ -20,6 +20,10 @@ from scipy.stats import norm
 
 from opsrock.inventory import plots, summary
 from opsrock.inventory.report import OUTSIDE_MARK, ReportInputs, write_report
+from opsrock.solvers.status import MAX_STEPS, REASONS
+
+#: The reason a solver stores with max_steps (it appends where it stopped).
+MAX_STEPS_REASON = REASONS[MAX_STEPS]
 
 #: item -> (description, fema_id, fema median PFV m/s, {floor: (median PFV m/s, lo, hi, beta, beta_lo, beta_hi)}).
 ITEMS = {
@@ -76,7 +80,10 @@ def built(tmp_path_factory):
     drawn["demands"] = plots.plot_floor_demands(summary.demand_table(synthetic_demands()), out / "figures" / "demands.png")
     figs["demands"] = "figures/demands.png"
     cases = pd.DataFrame({"status": ["ok"] * 5 + ["failed"] * 3,
-                          "reason": [""] * 5 + ["max_steps reached: 1e7", "max_steps reached: 2e7", "worker died"]})
+                          "reason": [""] * 5 + [f"{MAX_STEPS_REASON} (max_steps = 10000000, t = 12.5 s)",
+                                                f"{MAX_STEPS_REASON} (max_steps = 20000000, t = 31 s)",
+                                                "lost to the infrastructure: worker process died while solving this "
+                                                "case alone (signal: 9)"]})
     expected = pd.DataFrame({"item": ["rack"], "floor": ["1"], "direction": ["1"], "quantity": [4.0],
                              "expected_overturned": [0.5]})
     tables = summary.report_tables(fits, LEVELS, cases)
@@ -127,8 +134,9 @@ def test_cells_flags_and_explanations(built):
     # floor 1 at 0.25 m/s: Phi(ln(0.25/0.8)/0.3) = 5.3e-5, below the table's resolution
     assert "| 0.996 |" in rows[("rack", "3")] and "| < 0.001 |" in rows[("cabinet", "1")]
     assert "0.4 (E.20.22.102a)" in rows[("rack", "1")] and "not mapped" in rows[("cabinet", "1")]
-    # failures counted and their reasons summarised (the reason up to its first colon)
-    assert "3 cases failed" in text and "| max_steps reached | 2 |" in text and "| worker died | 1 |" in text
+    # failures counted by the kind of their reason (their numbers differ), the first reason of each kind in full
+    assert "3 cases failed" in text and "| lost | 1 | lost to the infrastructure: worker process died" in text
+    assert f"| max_steps | 2 | {MAX_STEPS_REASON} (max_steps = 10000000, t = 12.5 s) |" in text
 
 
 def test_sentences_agree_with_the_numbers(built):

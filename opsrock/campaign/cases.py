@@ -47,9 +47,12 @@ _SOLVED_CONTACT_COLUMNS: tuple[str, ...] = CONTACT_COLUMNS[3:]
 #: :data:`CONTACT_COLUMNS`, whose ``slide_max`` and ``slide_residual`` are then the magnitudes of the base's
 #: horizontal displacement, m): the block's full ``depth`` (m) and ``azimuth`` (deg, from motion axis 1 to its
 #: width; :class:`~opsrock.excitations.plan.PlanMotion`), the second horizontal component's record (empty: none),
-#: and what it did (:class:`~opsrock.result.PlanSummary`): ``tilt_max`` and ``twist_max`` (rad) and
-#: ``overturned_over`` (``edge``, ``corner`` or empty).
-PLAN_COLUMNS: tuple[str, ...] = ("depth", "azimuth", "record2", "tilt_max", "twist_max", "overturned_over")
+#: and what it did (:class:`~opsrock.result.PlanSummary`): ``tilt_max`` and ``twist_max`` (rad),
+#: ``overturned_over`` (``edge``, ``corner``, a cylinder's ``rim`` or ``rolling``, or empty), and a cylinder's
+#: ``time_rim`` and ``time_rolling`` (s: on one rim point, and of that rolling round the rim; 0 for a box; NaN for a
+#: case stored before they were, store schema version 3).
+PLAN_COLUMNS: tuple[str, ...] = ("depth", "azimuth", "record2", "tilt_max", "twist_max", "overturned_over",
+                                 "time_rim", "time_rolling")
 
 #: The plan columns a solver fills (the others are the scene's).
 _SOLVED_PLAN_COLUMNS: tuple[str, ...] = PLAN_COLUMNS[3:]
@@ -255,7 +258,8 @@ def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math
         "rocked": False, "solver": solver, "wall_time_s": wall_time_s, "n_steps": None, "n_impacts": None,
         "response": "failed", "first_mode": None, "time_sliding": math.nan, "time_rocking": math.nan,
         "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan,
-        "tilt_max": math.nan, "twist_max": math.nan, "overturned_over": None,
+        "tilt_max": math.nan, "twist_max": math.nan, "overturned_over": None, "time_rim": math.nan,
+        "time_rolling": math.nan,
     }
 
 
@@ -269,8 +273,10 @@ def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[
     elif result.status == "failed":
         contact["response"] = "failed"
     plan = result.plan
-    in_plan = ({"tilt_max": math.nan, "twist_max": math.nan, "overturned_over": None} if plan is None else
-               {"tilt_max": plan.tilt_max, "twist_max": plan.twist_max, "overturned_over": plan.overturned_over})
+    in_plan = ({"tilt_max": math.nan, "twist_max": math.nan, "overturned_over": None, "time_rim": math.nan,
+                "time_rolling": math.nan} if plan is None else
+               {"tilt_max": plan.tilt_max, "twist_max": plan.twist_max, "overturned_over": plan.overturned_over,
+                "time_rim": plan.time_rim, "time_rolling": plan.time_rolling})
     return {
         "case_id": case_id, "status": s["status"], "reason": _one_line(s["reason"]), "verdict": s["verdict"],
         "theta_max": s["theta_max"], "theta_max_over_alpha": s["theta_max_over_alpha"],

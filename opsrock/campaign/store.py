@@ -61,10 +61,12 @@ MANIFEST_FILE: str = "manifest.json"
 #: File locked by the campaign that writes to a folder.
 LOCK_FILE: str = ".lock"
 
-#: Version of the table layout below. A version-1 store (before the contact columns) or version-2 store
-#: (before the plan columns) is migrated in place when opened (the columns are added, empty: its cases were
-#: solved without friction, or in a plane); a store of any other version is refused.
-SCHEMA_VERSION: int = 3
+#: Version of the table layout below. A version-1 store (before the contact columns), version-2 store (before
+#: the plan columns) or version-3 store (before a cylinder's ``time_rim`` and ``time_rolling``) is migrated in
+#: place when opened (the columns are added, empty: its cases were solved without friction, or in a plane, or
+#: their times on the rim were not recorded: NaN, and ``--force`` computes them again to record them); a store of
+#: a newer version is refused.
+SCHEMA_VERSION: int = 4
 
 #: Columns stored per case (besides ``case_id``), with their SQLite types. Inputs (block,
 #: pulse, intensity measures) are not stored: they follow from the scene, whose digest the
@@ -93,6 +95,9 @@ RESULT_COLUMNS: dict[str, str] = {
     "tilt_max": "REAL",
     "twist_max": "REAL",
     "overturned_over": "TEXT",
+    # a cylinder's time on one rim point and rolling round its rim (s; 0 for a box in plan, NULL for the others)
+    "time_rim": "REAL",
+    "time_rolling": "REAL",
 }
 
 #: The columns schema version 2 added to version 1.
@@ -101,6 +106,18 @@ _ADDED_IN_2: tuple[str, ...] = ("response", "first_mode", "time_sliding", "time_
 
 #: The columns schema version 3 added to version 2.
 _ADDED_IN_3: tuple[str, ...] = ("tilt_max", "twist_max", "overturned_over")
+
+#: The columns schema version 4 added to version 3.
+_ADDED_IN_4: tuple[str, ...] = ("time_rim", "time_rolling")
+
+#: The columns each schema version added, by version.
+_ADDED: dict[int, tuple[str, ...]] = {2: _ADDED_IN_2, 3: _ADDED_IN_3, 4: _ADDED_IN_4}
+
+
+def _columns_of(version: int) -> dict[str, str]:
+    """The result columns (and their SQLite types) of a store of schema ``version``."""
+    later = {c for v, cols in _ADDED.items() if v > version for c in cols}
+    return {k: v for k, v in RESULT_COLUMNS.items() if k not in later}
 
 #: The manifest table's columns, with their SQLite types.
 MANIFEST_COLUMNS: dict[str, str] = {"key": "TEXT PRIMARY KEY", "value": "TEXT NOT NULL"}
@@ -131,7 +148,7 @@ def _lost_sql(table: str = "") -> str:
 
 _BOOL_COLUMNS = ("overturned", "rocked")
 _FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s", "time_sliding", "time_rocking", "time_flight",
-                  "slide_max", "slide_residual", "tilt_max", "twist_max")
+                  "slide_max", "slide_residual", "tilt_max", "twist_max", "time_rim", "time_rolling")
 
 
 class ResultStore:
@@ -225,7 +242,7 @@ class ResultStore:
                 raise
 
     def _create(self) -> None:
-        """Make the tables of a new store, or check an existing one's (and migrate a version-1 or -2 store)."""
+        """Make the tables of a new store, or check an existing one's (and migrate an older version's)."""
         cols = ",\n  ".join(f"{name} {kind}" for name, kind in RESULT_COLUMNS.items())
         with self._transaction():
             tables = _tables(self._db)
@@ -237,7 +254,7 @@ class ResultStore:
                 return
             version = check_layout(self.path, self._db)
             if version < SCHEMA_VERSION:
-                for name in (*(_ADDED_IN_2 if version < 2 else ()), *_ADDED_IN_3):
+                for name in (c for v in range(version + 1, SCHEMA_VERSION + 1) for c in _ADDED[v]):
                     self._db.execute(f"ALTER TABLE results ADD COLUMN {name} {RESULT_COLUMNS[name]}")
                 self._db.execute("UPDATE manifest SET value = ? WHERE key = 'schema_version'",
                                  (json.dumps(SCHEMA_VERSION),))
@@ -292,15 +309,15 @@ class ResultStore:
         Parameters
         ----------
         rows : iterable of dict
-            Each with ``case_id`` and every key of :data:`RESULT_COLUMNS` (the plan columns, schema version 3's,
-            may be left out: stored NULL, a planar solver's row). A ``case_id``
+            Each with ``case_id`` and every key of :data:`RESULT_COLUMNS` (the plan columns, schema versions 3's
+            and 4's, may be left out: stored NULL, a planar solver's row). A ``case_id``
             already stored is left as it is (the first result wins), unless its stored row is that of a
             case lost to the infrastructure: the new row replaces it.
         """
         names = ["case_id", *RESULT_COLUMNS]
         values = []
         for row in rows:
-            missing = [n for n in names if n not in row and n not in _ADDED_IN_3]
+            missing = [n for n in names if n not in row and n not in (*_ADDED_IN_3, *_ADDED_IN_4)]
             if missing:
                 raise StoreError(f"result row for {row.get('case_id')!r} lacks {missing}")
             values.append(tuple(_to_sql(n, row.get(n)) for n in names))
@@ -363,7 +380,8 @@ _VALUES: dict[str, tuple] = {"status": STATUSES, "verdict": VERDICTS, "overturne
 
 
 def check_layout(path: Path, db: sqlite3.Connection) -> int:
-    """Check an existing store's whole layout and return its schema version (1 or 2: to migrate, or 3).
+    """Check an existing store's whole layout and return its schema version (below :data:`SCHEMA_VERSION`: to
+    migrate).
 
     Checked: the tables ``manifest`` and ``results``; every column of each, with its declared type, NOT
     NULL and key; the ``schema_version`` (JSON, a whole number, not newer than :data:`SCHEMA_VERSION`); every
@@ -381,9 +399,7 @@ def check_layout(path: Path, db: sqlite3.Connection) -> int:
             raise damaged(path, f"it has no table {name!r}" if name not in tables else f"{name!r} is a {tables[name]}")
     _check_columns(path, db, "manifest", {k: _declared(v) for k, v in MANIFEST_COLUMNS.items()})
     version = _schema_version(path, db)
-    expected = {"case_id": ("TEXT", False, True), **{k: _declared(v) for k, v in RESULT_COLUMNS.items()
-                                                       if (version >= 2 or k not in _ADDED_IN_2)
-                                                       and (version >= 3 or k not in _ADDED_IN_3)}}
+    expected = {"case_id": ("TEXT", False, True), **{k: _declared(v) for k, v in _columns_of(version).items()}}
     _check_columns(path, db, "results", expected)
     _check_manifest(path, db)
     _check_values(path, db, expected)

@@ -116,4 +116,5 @@ def test_a_tiny_campaign_in_three_dimensions_is_stored_and_resumed(tmp_path):
         # rigid3d's theta_max is the peak tilt (opsrock.result: RockingResult.theta_max for rigid3d)
         assert float(r["tilt_max"]) == float(r["theta_max"]) and math.isfinite(float(r["twist_max"]))
         assert (r["overturned_over"] in ("edge", "corner")) == (r["verdict"] == "overturned")
+        assert (r["time_rim"], r["time_rolling"]) == ("0.0", "0.0")  # a cylinder's (PlanSummary): 0 for a box
     assert [r["azimuth"] for r in rows] == ["0.0", "45.0"]

@@ -176,7 +176,8 @@ def _version_1_store(path):
         store.append([row("old", 0.5)])
     db = sqlite3.connect(path)
     for name in ("response", "first_mode", "time_sliding", "time_rocking", "time_flight", "slide_max",
-                 "slide_residual", "tilt_max", "twist_max", "overturned_over"):  # version 2's and 3's columns
+                 "slide_residual", "tilt_max", "twist_max", "overturned_over", "time_rim",
+                 "time_rolling"):  # version 2's, 3's and 4's columns
         db.execute(f"ALTER TABLE results DROP COLUMN {name}")
     db.execute("UPDATE manifest SET value = '1' WHERE key = 'schema_version'")
     db.commit()
@@ -193,6 +194,26 @@ def test_a_version_1_store_is_migrated_and_keeps_its_rows(tmp_path):
     db = sqlite3.connect(path)
     assert db.execute("SELECT value FROM manifest WHERE key = 'schema_version'").fetchone()[0] == str(SCHEMA_VERSION)
     db.close()
+
+
+def test_a_version_3_store_reads_its_cases_with_the_times_on_the_rim_unrecorded(tmp_path):
+    """Schema version 4 stores a cylinder's time on its rim and rolling; a version-3 store (a study of the last
+    release) is migrated: its cases read as they were, those two times NaN (not recorded), new rows keep theirs."""
+    path = tmp_path / STORE_FILE
+    with ResultStore(path) as store:
+        store.append([{**row("old", 0.5), "tilt_max": 0.1, "overturned_over": "rim"}])
+    db = sqlite3.connect(path)
+    for name in ("time_rim", "time_rolling"):
+        db.execute(f"ALTER TABLE results DROP COLUMN {name}")
+    db.execute("UPDATE manifest SET value = '3' WHERE key = 'schema_version'")
+    db.commit()
+    db.close()
+    with ResultStore(path) as store:
+        old = store.rows()["old"]
+        assert (old["tilt_max"], old["overturned_over"]) == (0.1, "rim")
+        assert math.isnan(old["time_rim"]) and math.isnan(old["time_rolling"])
+        store.append([{**row("new", 0.25), "time_rim": 1.5, "time_rolling": 0.75}])
+        assert (store.rows()["new"]["time_rim"], store.rows()["new"]["time_rolling"]) == (1.5, 0.75)
 
 
 @pytest.mark.parametrize(("statement", "words"), [

@@ -6,6 +6,7 @@ argument, and one tiny study end to end, stored and resumed."""
 from __future__ import annotations
 
 import math
+import sqlite3
 from pathlib import Path
 
 import numpy as np
@@ -98,6 +99,19 @@ def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_pat
     fits, _ = read_table(first.tables["fits"], dtype={"direction": str, "floor": str})
     assert set(fits["direction"]) == {"1", "2"} and set(fits["item"]) == {"cab"}
     assert (fits["n_cases"] + fits["n_failed"] == 2).all()  # each case once per direction, not twice
+    # a case stored as failed on its case budget (a loaded machine, a cold compile) is computed again by a plain
+    # re-run, no --force, and the report says so; every other stored failure stays a result
+    store = next((tmp_path / "out" / "campaigns").glob("*/results.sqlite"))
+    db = sqlite3.connect(store)
+    db.execute("UPDATE results SET status = 'failed', verdict = 'failed', "
+               "reason = 'timeout: no answer within the case budget of 300 s' WHERE case_id = "
+               "(SELECT MIN(case_id) FROM results)")
+    db.commit()
+    db.close()
+    retried = run_design(design, tmp_path / "out", workers=1, progress=False)
+    assert (retried.n_computed, retried.n_failed) == (1, 0)
+    assert "1 of all these computed in this run (1 of them stored as timed out before, computed again)" in \
+        Path(retried.report).read_text()
 
 
 def test_a_round_item_is_a_cylinder_in_its_own_campaign(inputs, tmp_path):

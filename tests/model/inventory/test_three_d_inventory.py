@@ -161,4 +161,6 @@ def test_both_models_write_the_box_beside_a_round_item(inputs, tmp_path):
     assert list(boxes["n_cases"] + boxes["n_failed"]) == [1, 2]
     report = Path(both.report).read_text()
     assert "## Round items against the box of their size" in report
-    assert "in three dimensions 1 cases of the inventory's items" in report and "2 more of the boxes" in report
+    # the items' cases of both models (2 planar, 1 in three dimensions), the boxes' apart
+    assert "3 cases of the inventory's items" in report and "2 more of the boxes run beside the round items" in report
+    assert "of the items' cases, 2 planar (" in report and "and 1 in three dimensions (" in report

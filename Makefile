@@ -82,7 +82,8 @@ test-pelicun: install
 	     C('opsrock.sample.PFV', 'pfv', 0.6115985322309946, 0.36682703654629484)], '.pelicun-venv/sample.csv')"
 	.pelicun-venv/bin/python tools/pelicun_load.py .pelicun-venv/sample.csv
 	$(BIN)/opsrock contents --quick --no-progress --force --out .pelicun-venv/contents
-	for f in .pelicun-venv/contents/pelicun/fragility_*.csv; do .pelicun-venv/bin/python tools/pelicun_load.py $$f || exit 1; done
+	.pelicun-venv/bin/python tools/pelicun_load.py .pelicun-venv/contents/pelicun/fragility.csv
+	.pelicun-venv/bin/python tools/pelicun_inventory.py .pelicun-venv/contents/pelicun --repeat 20
 	.pelicun-venv/bin/python tools/pelicun_assess.py .pelicun-venv/contents/pelicun --repeat 20
 	.pelicun-venv/bin/python tools/pelicun_assess.py studies/contents/pelicun
 	$(BIN)/opsrock contents --inventory $(EXAMPLE_INVENTORY) --motions $(EXAMPLE_MOTIONS) \

@@ -1,32 +1,32 @@
-"""A pelicun damage assessment of a small inventory of unanchored furniture, run twice: with FEMA P-58's
-E.20.22 fragilities and with opsrock's (the contents study's ``pelicun/`` folder). Runs in a venv that
-has pelicun 3.10 (``.pelicun-venv``; pelicun pins scipy < 1.16 and pandas < 3, so it cannot share
-opsrock's venv); it does not import opsrock.
+"""A pelicun damage assessment of FEMA P-58's nine unanchored items on the floors of the contents study, run
+twice: with FEMA P-58's E.20.22 fragilities and with opsrock's (the study's ``pelicun/`` folder). Runs in a venv
+that has pelicun 3.10 (``.pelicun-venv``; pelicun pins scipy < 1.16 and pandas < 3, so it cannot share opsrock's
+venv); it does not import opsrock.
 
-    python tools/pelicun_assess.py STUDY/pelicun [--variant default] [--fema FILE] [--repeat 100]
-                                   [--seed 0] [--nondirectional-multiplier 1.2] [--out FILE.json]
+    python tools/pelicun_assess.py STUDY/pelicun [--fema FILE] [--repeat 100] [--seed 0]
+                                   [--nondirectional-multiplier 1.2] [--out FILE.json]
 
-Inputs, all in the folder (written by ``opsrock.inventory.fema``):
+Inputs, all in the folder (written by the study's one pelicun writer, ``opsrock.inventory.pelicun``):
 
-* ``inventory.csv``: ``count`` of each FEMA item (``fema_id``) at each pelicun ``location`` (1 the
-  ground floor, ``n + 1`` floor slab ``n``);
+* ``mapping.csv`` (a ``Units`` row after its header): each opsrock component (``pelicun_id``, one per item and
+  floor, each physical unit once), its FEMA item (``fema_id``), pelicun ``location`` (1 the ground floor, ``n + 1``
+  floor slab ``n``), ``quantity`` and whether it was ``exported`` (``status`` says why not);
 * ``demands.csv``: the demand sample, one realisation per record (``PFV-<n>-1``, m/s; pelicun's default
-  ``DemandOffset`` of -1 for PFV gives a component at location ``n + 1`` the demand ``PFV-n``);
-* ``fragility_<variant>.csv`` and ``mapping.csv``: opsrock's components and which FEMA item and floor
-  each stands for.
+  ``Demand-Offset`` of -1 for floor demands gives a component at location ``n + 1`` the demand ``PFV-n``);
+* ``fragility.csv`` and ``config.json``: opsrock's non-directional components and the multiplier that makes their
+  demand the one they were fitted in (``NonDirectionalMultipliers``, 1.0), and the building's storeys.
 
-FEMA's fragilities come from pelicun's own copy of the FEMA P-58 database
-(``PelicunDefault/FEMA P-58/fragility.csv``) unless ``--fema`` names a file. Each record is repeated
-``--repeat`` times so that pelicun's sampling of the capacities averages out; the expected number of
-overturned items is pelicun's mean over the realisations. Beside it the exact expectation over the
-records, ``sum count * mean_r Phi(ln(m d_r / theta) / beta)``, with ``m`` the demand multiplier pelicun
-applies (``--nondirectional-multiplier``, default 1.2 as pelicun's ``NonDirectionalMultipliers``, for
-FEMA's items, which the database marks non-directional; 1 for opsrock's, which are directional: a
-block rocks about one axis), checks that pelicun did what we think. Exit status 1 if they differ by
-more than the sampling allows.
+Both runs place the same units: each item's ``quantity`` at its location, as that many blocks (each unit damaged
+on its own capacity draw). FEMA's fragilities come from pelicun's own copy of the FEMA P-58 database
+(``PelicunDefault/FEMA P-58/fragility.csv``) unless ``--fema`` names a file; the database marks them
+non-directional, and pelicun multiplies their demand by ``--nondirectional-multiplier`` (default 1.2, as pelicun's
+default). Each record is repeated ``--repeat`` times so that pelicun's sampling of the capacities averages out; the
+expected number of overturned items is pelicun's mean over the realisations. Beside it the exact expectation over
+the records, ``sum quantity * mean_r Phi(ln(m d_r / theta) / beta)``, with ``m`` each run's multiplier, checks that
+pelicun did what we think. Exit status 1 if they differ by more than the sampling allows.
 
-An item that never overturned within the study's levels has no opsrock component (``mapping.csv``
-says so); it counts as never overturning here, and the output lists it.
+An item that never overturned within the study's levels has no opsrock component (``mapping.csv`` says so); it
+counts as never overturning here, and the output lists it.
 """
 
 from __future__ import annotations
@@ -62,10 +62,10 @@ def pelicun_sample(values: pd.DataFrame, units: pd.Series, repeat: int) -> pd.Da
 
 
 def marginals(inventory: pd.DataFrame, ids: pd.Series) -> pd.DataFrame:
-    """pelicun's component marginals: ``ids[i]`` placed ``count`` times at its location, direction 1, as
-    ``count`` blocks (each item overturns or not on its own capacity, not all of a floor's together)."""
+    """pelicun's component marginals: ``ids[i]`` placed ``count`` times at its location, non-directional (direction
+    0), as ``count`` blocks (each unit overturns or not on its own capacity, not all of a floor's together)."""
     return pd.DataFrame({"Units": "ea", "Location": inventory["location"].astype(str).to_numpy(),
-                         "Direction": "1", "Theta_0": inventory["count"].astype(float).to_numpy(),
+                         "Direction": "0", "Theta_0": inventory["count"].astype(float).to_numpy(),
                          "Blocks": inventory["count"].astype(int).to_numpy()},
                         index=pd.Index(ids.to_numpy(), name="ID"))
 
@@ -111,46 +111,49 @@ def exact(inv: pd.DataFrame, ids: pd.Series, params: pd.DataFrame, values: pd.Da
     return np.array(out)
 
 
-def opsrock_ids(inv: pd.DataFrame, mapping: pd.DataFrame, variant: str) -> pd.Series:
-    """The opsrock component of each inventory row (``""``: none, because the item never overturned
-    within the study's levels); ``SystemExit`` if a row has none for another reason."""
-    m = mapping[(mapping["variant"] == variant) & (mapping["demand"] == "pfv")].set_index(["fema_id", "floor"])
-    ids, bad = [], []
-    for key in zip(inv["fema_id"], inv["floor"]):
-        if key in m.index and m.loc[key, "status"] == "ok":
-            ids.append(m.loc[key, "opsrock_id"])
-        elif key in m.index and str(m.loc[key, "status"]).startswith("never overturned"):
-            ids.append("")
-        else:
-            bad.append(key)
-    if bad:
-        raise SystemExit(f"no opsrock component of variant {variant!r} for {bad} (mapping.csv says why)")
-    return pd.Series(ids, dtype=object)
+def study_table(path: Path) -> pd.DataFrame:
+    """A table of the study with its ``Units`` row (the second line, pelicun's tabular form) skipped."""
+    return pd.read_csv(path, dtype={"floor": str}, skiprows=[1])
 
 
-def assess(folder: Path, variant: str, fema: str, repeat: int, seed: int, multiplier: float) -> pd.DataFrame:
-    """Both assessments; one row per inventory entry."""
-    inv = pd.read_csv(folder / "inventory.csv")
-    ids = opsrock_ids(inv, pd.read_csv(folder / "mapping.csv"), variant)
+def placed(mapping: pd.DataFrame) -> tuple[pd.DataFrame, pd.Series]:
+    """The units both runs place (``fema_id``, ``floor``, ``location``, ``count``) and opsrock's component of each
+    (``""``: none, because the item never overturned within the study's levels); ``SystemExit`` if one has none
+    for another reason."""
+    exported = mapping["exported"].astype(str).str.lower() == "true"
+    never = mapping["status"].astype(str).str.contains("never")
+    bad = mapping[~exported & ~never]
+    if len(bad):
+        raise SystemExit(f"no opsrock component for {list(zip(bad['item'], bad['floor']))} (mapping.csv says why)")
+    inv = pd.DataFrame({"fema_id": mapping["fema_id"], "floor": mapping["floor"], "location": mapping["location"],
+                        "count": mapping["quantity"]})
+    return inv, pd.Series(np.where(exported, mapping["pelicun_id"], ""), dtype=object)
+
+
+def assess(folder: Path, fema: str, repeat: int, seed: int, multiplier: float) -> pd.DataFrame:
+    """Both assessments; one row per item and floor."""
+    config = json.loads((folder / "config.json").read_text())
+    own = float(config["DL"]["Options"]["NonDirectionalMultipliers"]["ALL"])
+    stories = int(config["DL"]["Asset"]["NumberOfStories"])
+    inv, ids = placed(study_table(folder / "mapping.csv"))
     values, units = read_demands(folder / "demands.csv")
     sample = pelicun_sample(values, units, repeat)
-    stories = max(1, int(inv["location"].max()) - 1)
     out = inv.copy()
-    for name, cids, frag in (("fema", inv["fema_id"], fema), ("opsrock", ids, str(folder / f"fragility_{variant}.csv"))):
+    for name, cids, frag, mult in (("fema", inv["fema_id"], fema, multiplier),
+                                   ("opsrock", ids, str(folder / "fragility.csv"), own)):
         have = (cids != "").to_numpy()
-        got = run_pelicun(marginals(inv[have], cids[have]), frag, sample, stories, seed, multiplier)
+        got = run_pelicun(marginals(inv[have], cids[have]), frag, sample, stories, seed, mult)
         out[f"{name}_id"] = cids.to_numpy()
         out[f"{name}_pelicun"] = [float(got.get((i, str(loc)), math.nan)) if i else 0.0
                                   for i, loc in zip(cids, inv["location"])]
         out[f"{name}_exact"] = 0.0
-        out.loc[have, f"{name}_exact"] = exact(inv[have], cids[have], fragility_params(frag), values, multiplier)
+        out.loc[have, f"{name}_exact"] = exact(inv[have], cids[have], fragility_params(frag), values, mult)
     return out
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("folder", type=Path, help="the contents study's pelicun/ folder")
-    ap.add_argument("--variant", default="default", help="opsrock variant (fragility_<variant>.csv)")
     ap.add_argument("--fema", default=FEMA_DEFAULT, help=f"FEMA P-58 damage models (default {FEMA_DEFAULT!r})")
     ap.add_argument("--repeat", type=int, default=100, help="realisations per record (default 100)")
     ap.add_argument("--seed", type=int, default=0)
@@ -158,10 +161,10 @@ def main(argv: list[str] | None = None) -> int:
                     help="pelicun's demand multiplier of non-directional components, FEMA's items (default 1.2)")
     ap.add_argument("--out", type=Path, help="also write the results (JSON)")
     args = ap.parse_args(argv)
-    table = assess(args.folder, args.variant, args.fema, args.repeat, args.seed, args.nondirectional_multiplier)
+    table = assess(args.folder, args.fema, args.repeat, args.seed, args.nondirectional_multiplier)
     n_real = args.repeat * len(read_demands(args.folder / "demands.csv")[0])
     print(f"pelicun damage assessment: {int(table['count'].sum())} items, {n_real} realisations "
-          f"({args.repeat} per record); opsrock variant {args.variant!r}; FEMA's demands x "
+          f"({args.repeat} per record), each unit once; FEMA's demands x "
           f"{args.nondirectional_multiplier:g} (non-directional); expected number overturned (pelicun / exact)")
     never = sorted(set(table.loc[table["opsrock_id"] == "", "fema_id"]))
     if never:
@@ -180,7 +183,7 @@ def main(argv: list[str] | None = None) -> int:
     tol = 4.0 * math.sqrt(total["count"] / 4.0 / n_real)
     bad = [k for k in ("fema", "opsrock") if abs(total[f"{k}_pelicun"] - total[f"{k}_exact"]) > tol]
     if args.out:
-        args.out.write_text(json.dumps({"variant": args.variant, "fema": args.fema, "repeat": args.repeat,
+        args.out.write_text(json.dumps({"fema": args.fema, "repeat": args.repeat,
                                         "nondirectional_multiplier": args.nondirectional_multiplier,
                                         "realisations": n_real, "total": total.to_dict(),
                                         "by_item": by_item.reset_index().to_dict("records"),

@@ -450,7 +450,8 @@ class CampaignRun:
     seeded: bool
 
 
-def run_campaigns(jobs: list[CampaignJob], store: Path, how: RunSettings) -> tuple[pd.DataFrame, tuple[CampaignRun, ...]]:
+def run_campaigns(jobs: list[CampaignJob], store: Path,
+                  how: RunSettings) -> tuple[pd.DataFrame, tuple[CampaignRun, ...]]:
     """Run (or resume) every campaign of a study into ``store/<name>``, in order, on one pool of worker processes
     (:func:`study_pool`): the one campaign runner of every configuration of the study.
 
@@ -512,6 +513,7 @@ def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
     return df
 
 
-__all__ = ["BATCH", "CampaignJob", "CampaignRun", "RunSettings", "group_jobs", "CASE_COLUMNS", "DEFAULT_LEVELS", "OPTIONAL_CASE_COLUMNS", "DEMANDS_FILE", "SUPPORT_NAME", "Group", "GroupScene", "block_name",
-           "cached_demands", "floor_demands", "group_scenes", "groups_of", "item_block_spec", "motions_digest",
+__all__ = ["BATCH", "CASE_COLUMNS", "CampaignJob", "CampaignRun", "DEFAULT_LEVELS", "DEMANDS_FILE", "Group",
+           "GroupScene", "OPTIONAL_CASE_COLUMNS", "RunSettings", "SUPPORT_NAME", "block_name", "cached_demands",
+           "floor_demands", "group_jobs", "group_scenes", "groups_of", "item_block_spec", "motions_digest",
            "run_campaigns", "seed_motions", "study_pool"]

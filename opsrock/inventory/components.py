@@ -161,7 +161,9 @@ def planar_components(fits: pd.DataFrame, demands: pd.DataFrame, design: Any) ->
             if ls == "displaced" and not slides:
                 continue
             row = _row(item, str(floor), ls, len(pfv))
-            row["source"] = "planar: directions " + " and ".join(sorted(g["direction"].astype(str).unique())) + " combined"
+            directions = sorted(g["direction"].astype(str).unique())
+            row["source"] = (f"planar: direction {directions[0]} alone" if len(directions) == 1 else
+                             "planar: directions " + " and ".join(directions) + " combined")
             curves, why = _direction_curves(g[g["outcome"] == outcome])
             if why is not None:
                 row.update(status="no fit", message=why)

@@ -7,7 +7,8 @@ record-bootstrap intervals, tables, figures, the report and pelicun's damage-mod
 :mod:`~opsrock.inventory.fema.design` holds what it computes (building, floors, records, IDA levels, items,
 variants), :mod:`~opsrock.inventory.fema.campaigns` runs the campaigns, :mod:`~opsrock.inventory.fema.fits`
 fits, :mod:`~opsrock.inventory.fema.tables` and :mod:`~opsrock.inventory.fema.drivers` measure, and
-:mod:`~opsrock.inventory.fema.pelicun` writes pelicun's files. FEMA's own rule is :mod:`opsrock.published.fema_p58`.
+:mod:`~opsrock.inventory.fema.pelicun` hands the default variant to the study's one pelicun writer. FEMA's own
+rule is :mod:`opsrock.published.fema_p58`.
 """
 
 from opsrock.inventory.fema.design import DEFAULT_FRICTION, DEFAULT_LEVELS, SWEEP_BUILDINGS, VARIANTS, ContentsDesign

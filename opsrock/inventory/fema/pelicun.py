@@ -1,93 +1,144 @@
-"""The study's files for a pelicun assessment (``tools/pelicun_assess.py`` runs it, in pelicun's own venv).
+"""FEMA P-58's nine in the contents study's pelicun folder, written by the study's one writer
+(:func:`opsrock.inventory.pelicun.write_pelicun_folder`), as for any inventory: **each physical unit once**.
 
-* ``fragility_<variant>.csv``: opsrock's fragilities in FEMA P-58 / pelicun's damage-model form
-  (:func:`opsrock.fragility.pelicun_export.write_pelicun_csv`), one component per item, floor and
-  demand. A pelicun component has one fragility wherever it stands, and opsrock's differ by floor, so
-  each item gets new IDs, ``opsrock.<FEMA ID>.<floor>.<PFV|PFA>`` (``opsrock.E.20.22.104a.f8.PFV``),
-  with ``<floor>`` ``ground`` or ``f<n>``; ``mapping.csv`` maps each to its FEMA ID and pelicun location.
-* ``mapping.csv``: ``opsrock_id``, ``fema_id``, ``variant``, ``demand``, ``floor``, ``floor_number``,
-  ``location`` (pelicun's: 1 the ground floor, ``n + 1`` the floor slab ``n``, the roof ``storeys + 1``),
-  ``median``, ``beta``, ``status`` (``ok`` or why there is no component: an item that never overturned
-  within the levels has none).
-* ``demands.csv``: a demand sample in pelicun's format (one realisation per record, a ``Units`` row):
-  ``PFV-<n>-1`` the peak absolute velocity of floor slab ``n`` (``0`` the ground, i.e. the PGV) of each
-  record, unscaled (as recorded), through the study's building. pelicun's default ``DemandOffset`` of
-  -1 for PFV makes a component at location ``L`` use ``PFV-(L-1)``: the floor it stands on.
-* ``inventory.csv``: the small inventory the assessment places: ``count`` of each item on each floor.
+The nine are the shipped inventory ``fema-p58-nine`` (:data:`opsrock.inventory.fema.design.INVENTORY`: no slip,
+the project's default restitution, one unit per floor), which is the study's ``default`` variant; so the folder
+holds that variant (no folder when the study leaves it out). What this module gives the writer:
+
+* the floors as the shipped building labels them (:mod:`opsrock.inventory.sources`: ``ground``, the floor numbers
+  ``"1"`` .. ``"<storeys>"``, the roof the top number), so that pelicun's locations follow (1 the ground floor,
+  ``n + 1`` the slab ``n``) and ``NumberOfStories`` is the building's storeys;
+* the demands: each record's unscaled floor motion (PFA m/s², PFV m/s; :func:`opsrock.inventory.fema.campaigns.
+  floor_velocities`), direction ``"1"``: the study runs each recorded component as a motion along the items'
+  weaker axis (their ``width``), so each component is one realisation with one direction;
+* the fits in the inventory study's form (:data:`opsrock.inventory.fits.FIT_COLUMNS` keys: ``direction`` 1,
+  ``outcome`` overturning, ``status`` :func:`opsrock.inventory.fits.fit_status`), from which the writer's components
+  (:func:`opsrock.inventory.components.planar_components`: one non-directional PFV component per item and floor, its
+  demand ``pfv_max``, with one direction the direction's own lognormal) and the expected numbers
+  (:func:`opsrock.inventory.components.expected_table`) follow.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from pathlib import Path
+from dataclasses import dataclass, field
+from typing import Any
 
 import pandas as pd
 
-from opsrock.constants import G
-from opsrock.inventory.fema.design import ContentsDesign, floor_label
+from opsrock.inventory.fema.design import INVENTORY, ContentsDesign
 
-#: Items of each kind on each floor of the assessment's inventory.
-INVENTORY_COUNT: int = 3
+#: The variant the pelicun folder holds: the shipped inventory's items as they are (no slip, default restitution).
+PELICUN_VARIANT: str = "default"
 
-
-def component_id(fema_id: str, floor: str, demand: str) -> str:
-    """``opsrock.<FEMA ID>.<floor>.<PFV|PFA>``."""
-    return f"opsrock.{fema_id}.{floor}.{demand.upper()}"
+#: The one direction of the study's motions (each recorded component along the items' weaker axis).
+DIRECTION: str = "1"
 
 
-def write_pelicun_files(fits: pd.DataFrame, velocities: pd.DataFrame, design: ContentsDesign, folder: Path,
-                        count: int = INVENTORY_COUNT) -> dict[str, Path]:
-    """Write the files of the module docstring into ``folder``; returns their paths by name."""
-    from opsrock._files import atomic_write
-    from opsrock.fragility.pelicun_export import ComponentFragility, write_pelicun_csv
+@dataclass(frozen=True)
+class BuildingFloors:
+    """The floors of the study as the writer reads a motion set's (:func:`opsrock.inventory.pelicun.floor_locations`):
+    their labels (``ground``, floor numbers), no ``location`` column (pelicun's follow from the numbers)."""
 
-    folder.mkdir(parents=True, exist_ok=True)
-    paths: dict[str, Path] = {}
-    mapping = []
-    study = fits[(fits["campaign"] != "sweep") & fits["demand"].isin(("pfv", "pfa"))]
-    for variant, g in study.groupby("variant", sort=False):
-        components = []
-        for _, r in g.iterrows():
-            floor = floor_label(int(r["floor_number"]), design.storeys)
-            cid = component_id(r["item"], floor, r["demand"])
-            median = r["median"] * (G if r["demand"] == "pfa" else 1.0)  # fitted in g; exported in m/s2
-            ok = bool(r["ok"]) and math.isfinite(median) and math.isfinite(r["beta"]) and r["beta"] > 0
-            if ok:
-                components.append(ComponentFragility(cid, r["demand"], float(median), float(r["beta"])))
-            mapping.append({"opsrock_id": cid, "fema_id": r["item"], "variant": variant, "demand": r["demand"],
-                            "floor": floor, "floor_number": int(r["floor_number"]),
-                            "location": int(r["floor_number"]) + 1, "median": median if ok else math.nan,
-                            "beta": r["beta"] if ok else math.nan, "status": "ok" if ok else r["message"]})
-        paths[f"fragility_{variant}"] = write_pelicun_csv(components, folder / f"fragility_{variant}.csv")
-    table = pd.DataFrame(mapping)
-    paths["mapping"] = folder / "mapping.csv"
-    atomic_write(paths["mapping"], lambda fh: table.to_csv(fh, index=False), durable=False)
-    paths["demands"] = _write_demands(velocities, design, folder / "demands.csv")
-    items = sorted(study["item"].unique())
-    inv = pd.DataFrame([{"fema_id": i, "floor": floor_label(n, design.storeys), "floor_number": n, "location": n + 1,
-                         "count": count} for n in design.floor_numbers for i in items])
-    paths["inventory"] = folder / "inventory.csv"
-    atomic_write(paths["inventory"], lambda fh: inv.to_csv(fh, index=False), durable=False)
-    return paths
+    floors: tuple[str, ...]
+    locations: dict[str, int] = field(default_factory=dict)
 
 
-def _write_demands(velocities: pd.DataFrame, design: ContentsDesign, path: Path) -> Path:
-    from opsrock._files import atomic_write
+@dataclass(frozen=True)
+class PelicunStudy:
+    """What the writer reads of a study: the items (quantities, costs), the floors and the seed, and the method
+    (IDA) for the expected numbers.
 
-    numbers = dict(zip(velocities["floor"], velocities["floor"].map(_floor_number)))
-    wide = velocities.assign(n=velocities["floor"].map(numbers)).pivot(index="record", columns="n", values="pfv")
-    wide = wide[sorted(wide.columns)]
-    wide.columns = [f"PFV-{n}-1" for n in wide.columns]
-    wide = wide.reset_index(drop=True)
-    units = pd.DataFrame([["mps"] * wide.shape[1]], columns=wide.columns, index=["Units"])
-    out = pd.concat([units, wide.astype(object)])
-    atomic_write(path, lambda fh: out.to_csv(fh), durable=False)
-    return path
+    Parameters
+    ----------
+    inventory : Inventory
+        The study's items of the shipped inventory (:class:`opsrock.inventory.items.Inventory`).
+    motions : BuildingFloors
+        The floors.
+    seed : int
+        pelicun's seed in ``config.json``.
+    method : str
+        ``"ida"``.
+    """
+
+    inventory: Any
+    motions: BuildingFloors
+    seed: int
+    method: str = "ida"
 
 
-def _floor_number(label: str) -> int:
+def floor_of(number: int) -> str:
+    """The shipped building's label of floor ``number``: ``ground`` (0) or the number (the roof the top one)."""
+    return "ground" if number == 0 else str(number)
+
+
+def _number(label: str) -> int:
     """Floor number of a campaign floor label (``ground``: 0, ``<building>.f<n>``: n)."""
     return 0 if label == "ground" else int(label.rsplit(".f", 1)[1])
 
 
-__all__ = ["INVENTORY_COUNT", "component_id", "write_pelicun_files"]
+def pelicun_study(design: ContentsDesign) -> PelicunStudy:
+    """The study as the writer reads it: the design's items of :data:`INVENTORY` on its floors."""
+    from opsrock.inventory.items import shipped_inventory
+
+    inventory = shipped_inventory(INVENTORY)
+    chosen = [it for it in inventory.items if not design.items or it.id in design.items]
+    floors = tuple(floor_of(n) for n in sorted(design.floor_numbers))
+    return PelicunStudy(dataclasses.replace(inventory, items=tuple(chosen)), BuildingFloors(floors), design.seed)
+
+
+def writer_demands(velocities: pd.DataFrame) -> pd.DataFrame:
+    """Each record's unscaled floor motion on the study's floors, as the writer reads the motions' measures
+    (:func:`opsrock.inventory.campaigns.floor_demands`'s ``record``, ``floor``, ``direction``, ``pfa`` m/s²,
+    ``pfv`` m/s)."""
+    floors = velocities["floor"].map(lambda f: floor_of(_number(f)))
+    return pd.DataFrame({"record": velocities["record"].to_numpy(), "floor": floors.to_numpy(),
+                         "direction": DIRECTION, "pfa": velocities["pfa"].to_numpy(float),
+                         "pfv": velocities["pfv"].to_numpy(float)})
+
+
+def writer_fits(fits: pd.DataFrame) -> pd.DataFrame:
+    """The :data:`PELICUN_VARIANT`'s fits on the study's floors (the sweep's roofs left out), PFV (m/s) and PFA (g),
+    in the inventory study's form (module docstring)."""
+    from opsrock.inventory.fits import fit_status
+
+    own = fits[(fits["campaign"] != "sweep") & (fits["variant"] == PELICUN_VARIANT)
+               & fits["demand"].isin(("pfv", "pfa"))]
+    rows = []
+    for r in own.sort_values(["item", "floor_number"], kind="stable").itertuples():
+        ok = bool(r.ok) and math.isfinite(r.median) and math.isfinite(r.beta) and r.beta > 0
+        finished = int(r.n_cases) - int(r.n_failed)
+        rows.append({"item": r.item, "floor": floor_of(int(r.floor_number)), "direction": DIRECTION,
+                     "outcome": "overturning", "demand": r.demand, "unit": r.unit, "median": r.median,
+                     "beta": r.beta, "ok": ok, "status": fit_status(ok, r.median, math.inf, int(r.n_overturned),
+                                                                    finished),
+                     "message": "" if ok else r.message})
+    return pd.DataFrame(rows, columns=["item", "floor", "direction", "outcome", "demand", "unit", "median", "beta",
+                                       "ok", "status", "message"])
+
+
+def pelicun_tables(fits: pd.DataFrame, velocities: pd.DataFrame, design: ContentsDesign) -> dict[str, Any]:
+    """What the writer and the study's tables need: ``components`` and ``expected`` (tables of the study),
+    ``fits``, ``demands`` and ``study`` (the writer's inputs); empty without the :data:`PELICUN_VARIANT`."""
+    from opsrock.inventory.components import expected_table, planar_components
+
+    if PELICUN_VARIANT not in design.variants:
+        return {}
+    study, demands, own = pelicun_study(design), writer_demands(velocities), writer_fits(fits)
+    components = planar_components(own, demands, study)
+    return {"components": components, "expected": expected_table(components, demands, study, own),
+            "fits": own, "demands": demands, "study": study}
+
+
+def write_pelicun_files(tables: dict[str, Any], folder: Any) -> dict[str, Any]:
+    """The pelicun folder of :func:`pelicun_tables` by the study's writer (nothing without them)."""
+    from opsrock.inventory.pelicun import write_pelicun_folder
+
+    if not tables:
+        return {}
+    return write_pelicun_folder(tables["components"], tables["fits"], tables["demands"], tables["study"], folder)
+
+
+__all__ = ["DIRECTION", "PELICUN_VARIANT", "BuildingFloors", "PelicunStudy", "floor_of", "pelicun_study",
+           "pelicun_tables", "write_pelicun_files", "writer_demands", "writer_fits"]

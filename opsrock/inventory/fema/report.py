@@ -185,14 +185,23 @@ def write_report(path: Path, design: ContentsDesign, result: dict, summary: Stud
 
 
 def _pelicun_section(design: ContentsDesign) -> list[str]:
+    if "default" not in design.variants:
+        return ["", "## Into pelicun", "", "No pelicun folder: it holds the items as the shipped inventory has them "
+                "(no slip, e = 0.95 e_R), the `default` variant, which this study leaves out."]
     return ["", "## Into pelicun", "",
-            ("`pelicun/` holds opsrock's fragilities as pelicun damage models (`fragility_<variant>.csv`, new IDs "
-            "`opsrock.<FEMA ID>.<floor>.<PFV|PFA>` because a pelicun component has one fragility on every floor), "
-            "`mapping.csv` (each ID's FEMA ID, floor and pelicun location: the ground floor is location 1, floor "
-            "slab n location n + 1), `demands.csv` (the unscaled records' PFV on each floor of interest, one "
-            "realisation per record) and `inventory.csv` (the small inventory). `tools/pelicun_assess.py` (in "
-            "pelicun's venv) runs pelicun's damage assessment of that inventory with the database's E.20.22 "
-            "fragilities and with opsrock's, and reports the expected number of overturned items each way.")]
+            ("`pelicun/` is written by the contents study's one pelicun writer, as for any inventory, from the "
+             "`default` variant (the shipped inventory `fema-p58-nine`: no slip, e = 0.95 e_R, one unit of each item "
+             "on each floor): each item on each floor is one non-directional component, `opsrock.<FEMA ID>.<floor>` "
+             "(`fragility.csv`, PFV in m/s, `DS1` overturned), each physical unit counted once; `inventory.csv` "
+             "places them, `mapping.csv` gives each component's FEMA ID, floor, pelicun location (the ground floor "
+             "is location 1, floor slab n location n + 1) and quantity, `demands.csv` the unscaled records' PFA and "
+             "PFV on each floor of interest (one realisation per record, direction 1: each recorded component "
+             "along the items' weaker axis), and `config.json` the assessment (`NonDirectionalMultipliers` 1.0, so "
+             "that pelicun's demand is the PFV the fragilities were fitted in). `components.csv` and `expected.csv` "
+             "beside this report hold the components and the expected number overturned per item and floor, exact "
+             "over the records. `tools/pelicun_inventory.py` (in pelicun's venv) runs that assessment; "
+             "`tools/pelicun_assess.py` runs pelicun's damage assessment of the same units with the database's "
+             "E.20.22 fragilities and with opsrock's, and reports the expected number of overturned items each way.")]
 
 
 __all__ = ["StudySummary", "headline", "ratio_matrix", "write_report"]

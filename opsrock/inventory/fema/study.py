@@ -22,10 +22,17 @@ TABLES: dict[str, str] = {
 }
 
 
+#: The tables of the study's pelicun folder (:func:`opsrock.inventory.fema.pelicun.pelicun_tables`), written as the
+#: inventory study writes them (a ``Units`` row after the header): each item and floor's component, and the expected
+#: numbers damaged over the records.
+PELICUN_TABLES: dict[str, str] = {"components": "components.csv", "expected": "expected.csv"}
+
+
 #: Every output the study owns in its folder (globs relative to it): a new study replaces them all, and
 #: removes those it does not write again (:func:`opsrock._files.staged_folder`); anything else in the folder
 #: (the campaigns' stores, files of the user's) is kept.
-OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), "figures/*.png", "pelicun/*.csv")
+OUTPUTS: tuple[str, ...] = ("report.md", *TABLES.values(), *PELICUN_TABLES.values(), "figures/*.png", "pelicun/*.csv",
+                             "pelicun/*.json", "pelicun/per_direction/*.csv")
 
 
 def _tables(fits: pd.DataFrame, cases: pd.DataFrame, velocities: pd.DataFrame, design: ContentsDesign) -> dict:
@@ -74,35 +81,40 @@ def _campaign_timings(runs: tuple) -> dict[str, Any]:
 
 
 def _fit(a: Any) -> dict[str, pd.DataFrame]:
-    """The fits (:func:`opsrock.inventory.fema.fits.fit_table`), the floor velocities and the tables computed
-    from them (:data:`TABLES`)."""
+    """The fits (:func:`opsrock.inventory.fema.fits.fit_table`), the floor velocities, the tables computed
+    from them (:data:`TABLES`) and what the study's pelicun writer takes (:data:`PELICUN_TABLES`)."""
     from opsrock.inventory.fema.campaigns import floor_velocities
     from opsrock.inventory.fema.fits import fit_table, fit_tasks
+    from opsrock.inventory.fema.pelicun import pelicun_tables
 
     base = "rocking" if "rocking" in a.scenes else "friction"
     velocities = floor_velocities(a.scenes[base], a.store / base)
     tasks = fit_tasks(a.cases, a.design.n_boot, a.design.seed, velocities if base == "rocking" else None)
     fits = fit_table(tasks, a.workers)
-    return {**_tables(fits, a.cases, velocities, a.design), "velocities": velocities}
+    own = velocities[velocities["floor"].isin(set(a.cases["floor"]))]
+    return {**_tables(fits, a.cases, velocities, a.design), "velocities": velocities,
+            "pelicun": pelicun_tables(fits, own, a.design)}
 
 
 def _write(a: Any, stage: Path) -> Any:
     """The tables, figures, pelicun files and report into the staging folder ``stage``."""
+    from opsrock.inventory.columns import write_table
     from opsrock.inventory.fema.pelicun import write_pelicun_files
     from opsrock.inventory.fema.report import write_report
     from opsrock.inventory.outputs import Written, write_csv
 
     t0 = time.perf_counter()
     result = {k: v for k, v in a.tables.items() if k in TABLES}
-    fits, velocities = result["fits"], a.tables["velocities"]
+    fits, pel = result["fits"], a.tables["pelicun"]
     a.say(f"tables, figures, pelicun files and report into {a.out}")
     paths = {k: write_csv(df, stage / TABLES[k]) for k, df in result.items() if not df.empty}
+    paths.update({k: write_table(pel[k], stage / name) for k, name in PELICUN_TABLES.items() if k in pel})
     figures = _figures(stage, fits, a.cases, result, a.design)
-    pelicun = write_pelicun_files(fits, velocities[velocities["floor"].isin(set(a.cases["floor"]))], a.design,
-                                  stage / "pelicun")
+    pelicun = write_pelicun_files(pel, stage / "pelicun")
     a.timings["outputs_s"] = time.perf_counter() - t0
     a.timings["total_s"] = time.perf_counter() - a.t_start
-    timings = {**_campaign_timings(a.runs), **{k: v for k, v in a.timings.items() if k not in ("demands_s", "campaigns_s")}}
+    timings = {**_campaign_timings(a.runs),
+               **{k: v for k, v in a.timings.items() if k not in ("demands_s", "campaigns_s")}}
     summary = _summary(a.cases, result, timings)
     report = write_report(stage / "report.md", a.design, result, summary)
     return Written(paths, report, pelicun, tuple(figures), summary)

@@ -166,10 +166,12 @@ def _outputs(out: Path) -> set[str]:
 def _expected(variants: tuple[str, ...], items: tuple[str, ...]) -> set[str]:
     """The files of a study of one floor (``--floors roof``, ``--no-sweep``) with these variants and items."""
     files = {"report.md", "fragility.csv", "ratios.csv", "rule_reproduction.csv", "velocity_definition.csv",
-             "pelicun/demands.csv", "pelicun/inventory.csv", "pelicun/mapping.csv",
-             *(f"figures/{i}.png" for i in items), *(f"pelicun/fragility_{v}.csv" for v in variants)}
-    if "default" in variants:
-        files |= {"decomposition.csv", "figures/fema_rule.png"}
+             *(f"figures/{i}.png" for i in items)}
+    if "default" in variants:  # the pelicun folder holds the default variant (the shipped inventory's items)
+        files |= {"decomposition.csv", "figures/fema_rule.png", "components.csv", "expected.csv",
+                  *(f"pelicun/{f}" for f in ("config.json", "demands.csv", "fragility.csv", "inventory.csv",
+                                              "mapping.csv", "per_direction/fragility_pfv.csv",
+                                              "per_direction/fragility_pfa.csv"))}
         files |= {"paired_variants.csv"} if len(variants) > 1 else set()
     return files | ({"sliding.csv"} if "friction" in variants else set())
 

@@ -26,7 +26,7 @@ motions = data / "examples" / "floor-motions" / "motions.csv"
 print(pd.read_csv(inventory, comment="#")[["id", "width", "depth", "height"]].to_string(index=False))
 
 out = Path(tempfile.mkdtemp()) / "my-building"
-study = opsrock.run_study(inventory, motions, out, quick=True, progress=False)  # on every core
+study = opsrock.run_study(inventory, motions, out, quick=True, options=opsrock.StudyOptions(progress=False))  # every core
 print(f"{study.n_cases} cases ({study.n_failed} failed); report: {Path(study.report).name}")
 print("pelicun folder:", sorted(p.name for p in (out / "pelicun").iterdir()))
 

@@ -16,8 +16,10 @@ One way in from Python, by what you do:
 * one block under one floor motion: :func:`simulate` (a :class:`Block`, a :class:`OneSinePulse` or
   :class:`Record`, a solver of :data:`SOLVERS`);
 * a campaign of many cases, stored and resumable: :func:`run_campaign` (a scene file or a
-  :class:`~opsrock.campaign.scene.Scene`);
-* a contents study from an inventory and floor motions to a pelicun folder: :func:`run_study`.
+  :class:`~opsrock.campaign.scene.Scene`; executor, solve function, batches and case budget in a
+  :class:`CampaignOptions`);
+* a contents study from an inventory and floor motions to a pelicun folder: :func:`run_study` (workers,
+  progress, stores and case budget in a :class:`StudyOptions`).
 
 ``opsrock.__version__`` is the installed distribution's version (:func:`importlib.metadata.version`), whose one
 source is ``pyproject.toml``; ``opsrock --version`` prints the same.
@@ -32,7 +34,8 @@ _EXPORTS: dict[str, str] = {
     "Block": "opsrock.block", "G": "opsrock.constants", "OneSinePulse": "opsrock.excitations",
     "Record": "opsrock.excitations", "SDOFModel": "opsrock.model", "RockingResult": "opsrock.result",
     "SOLVERS": "opsrock.solvers", "simulate": "opsrock.solvers", "run_campaign": "opsrock.campaign.workflow",
-    "run_study": "opsrock.inventory.run",
+    "run_study": "opsrock.inventory.run", "CampaignOptions": "opsrock.campaign.workflow",
+    "StudyOptions": "opsrock.inventory.run",
 }
 
 
@@ -65,12 +68,14 @@ def _installed_version() -> str:
 
 __all__ = [
     "Block",
+    "CampaignOptions",
     "G",
     "OneSinePulse",
     "Record",
     "RockingResult",
     "SDOFModel",
     "SOLVERS",
+    "StudyOptions",
     "run_campaign",
     "run_study",
     "simulate",

@@ -22,6 +22,7 @@ import importlib
 _EXPORTS = {
     "CASES_FILE": "opsrock.campaign.run", "MANIFEST_FILE": "opsrock.campaign.run",
     "CampaignSummary": "opsrock.campaign.run", "run_campaign": "opsrock.campaign.workflow",
+    "CampaignOptions": "opsrock.campaign.workflow",
     "MultiFidelity": "opsrock.campaign.multifidelity", "MultiFidelitySummary": "opsrock.campaign.multifidelity",
     "BlockSpec": "opsrock.campaign.scene", "Scene": "opsrock.campaign.scene", "load_blocks": "opsrock.campaign.scene",
     "load_scene": "opsrock.campaign.scene", "CampaignConflictError": "opsrock.errors", "SceneError": "opsrock.errors",

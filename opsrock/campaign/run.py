@@ -455,7 +455,7 @@ class Stage:
     how : Execution
         Where and how the cases run.
     solve_fn : callable or None
-        Replaces :func:`opsrock.solvers.simulate` (see :func:`opsrock.campaign.workflow.run_campaign`).
+        Replaces :func:`opsrock.solvers.simulate` (see :class:`opsrock.campaign.workflow.CampaignOptions`).
     """
 
     how: Execution

@@ -9,6 +9,7 @@ module sits above both: the engine knows no policy, and a policy knows the engin
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
@@ -30,42 +31,17 @@ def policy_for(scene: Scene):
     return None if strategy == "single" else POLICIES[strategy](scene.choice)
 
 
-def run_campaign(
-    scene: Scene | str | os.PathLike,
-    out_dir: str | os.PathLike,
-    *,
-    solver: str | None = None,
-    workers: int | None = None,
-    executor: Executor | None = None,
-    force: bool = False,
-    progress: bool = True,
-    solve_fn: Callable[..., RockingResult] | None = None,
-    batch: int | None = None,
-    case_timeout: float | None = None,
-    policy: MultiFidelity | None = None,
-) -> CampaignSummary | MultiFidelitySummary:
-    """Run (or resume) every case of a scene into ``out_dir``, by the workflow its ``[needs]`` chose.
+@dataclass(frozen=True)
+class CampaignOptions:
+    """How :func:`run_campaign` runs a scene beyond its everyday keywords: where, in what batches, within what case
+    budget, with what solve function and workflow.
 
     Parameters
     ----------
-    scene : Scene or path
-        The scene, or its TOML file or shipped name (validated before anything is written).
-    out_dir : str or Path
-        Output folder: ``results.sqlite`` (the store), ``cases.csv``, ``manifest.json``.
-    solver : str, optional
-        Run with this solver instead of the scene's (:meth:`Scene.with_solver`: the scene's settings
-        are dropped if they belong to another solver); a named solver runs every case.
-    workers : int, optional
-        Processes of the default :class:`~opsrock.campaign.executors.LocalPool` (default: all cores);
-        ignored when ``executor`` is given.
     executor : Executor, optional
         Where to run (:class:`~opsrock.campaign.executors.LocalPool`,
-        :class:`~opsrock.campaign.executors.DaskExecutor`); the caller closes it.
-    force : bool, optional
-        Delete the folder's stored results first, even of other settings. Default False: resume, and
-        refuse a folder of other settings.
-    progress : bool, optional
-        A progress bar on stderr (only when stderr is a terminal). Default True.
+        :class:`~opsrock.campaign.executors.DaskExecutor`); the caller closes it. Default: a local pool of
+        ``workers`` processes.
     solve_fn : callable, optional
         Replace :func:`opsrock.solvers.simulate` (tests, custom solvers), picklable:
         ``solve_fn(block, excitation, solver=..., **settings) -> RockingResult``. Its name enters the
@@ -81,6 +57,47 @@ def run_campaign(
     policy : MultiFidelity, optional
         The workflow. Default: the one the scene's ``[needs]`` chose (:func:`policy_for`), else one
         solver on every case (:class:`Stage`).
+    """
+
+    executor: Executor | None = None
+    solve_fn: Callable[..., RockingResult] | None = None
+    batch: int | None = None
+    case_timeout: float | None = None
+    policy: MultiFidelity | None = None
+
+
+def run_campaign(
+    scene: Scene | str | os.PathLike,
+    out_dir: str | os.PathLike,
+    *,
+    solver: str | None = None,
+    workers: int | None = None,
+    force: bool = False,
+    progress: bool = True,
+    options: CampaignOptions | None = None,
+) -> CampaignSummary | MultiFidelitySummary:
+    """Run (or resume) every case of a scene into ``out_dir``, by the workflow its ``[needs]`` chose.
+
+    Parameters
+    ----------
+    scene : Scene or path
+        The scene, or its TOML file or shipped name (validated before anything is written).
+    out_dir : str or Path
+        Output folder: ``results.sqlite`` (the store), ``cases.csv``, ``manifest.json``.
+    solver : str, optional
+        Run with this solver instead of the scene's (:meth:`Scene.with_solver`: the scene's settings
+        are dropped if they belong to another solver); a named solver runs every case.
+    workers : int, optional
+        Processes of the default :class:`~opsrock.campaign.executors.LocalPool` (default: all cores);
+        ignored when ``options.executor`` is given.
+    force : bool, optional
+        Delete the folder's stored results first, even of other settings. Default False: resume, and
+        refuse a folder of other settings.
+    progress : bool, optional
+        A progress bar on stderr (only when stderr is a terminal). Default True.
+    options : CampaignOptions, optional
+        Executor, solve function, batch size, case budget (s) and workflow (:class:`CampaignOptions`; default
+        its defaults).
 
     Returns
     -------
@@ -109,14 +126,15 @@ def run_campaign(
     (18, 0)
     """
     leave_if_reimported()  # a worker process re-running an unguarded script ends here, quietly
+    o = options if options is not None else CampaignOptions()
     scene = scene if isinstance(scene, Scene) else load_scene(scene)
     if solver is not None:
         scene = scene.with_solver(solver)
-    policy = policy_for(scene) if policy is None else policy
-    how = Execution(workers, executor, force, progress, batch, case_budget(scene, case_timeout))
+    policy = policy_for(scene) if o.policy is None else o.policy
+    how = Execution(workers, o.executor, force, progress, o.batch, case_budget(scene, o.case_timeout))
     if policy is None:
-        return Stage(how, solve_fn)(scene, out_dir)[0]
-    return policy.run(scene, Path(out_dir), Stage(how, solve_fn))
+        return Stage(how, o.solve_fn)(scene, out_dir)[0]
+    return policy.run(scene, Path(out_dir), Stage(how, o.solve_fn))
 
 
-__all__ = ["POLICIES", "policy_for", "run_campaign"]
+__all__ = ["POLICIES", "CampaignOptions", "policy_for", "run_campaign"]

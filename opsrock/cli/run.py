@@ -14,7 +14,7 @@ import sys
 from opsrock._files import output_dir
 from opsrock.campaign.executors import DaskExecutor
 from opsrock.campaign.scene import load_scene
-from opsrock.campaign.workflow import run_campaign
+from opsrock.campaign.workflow import CampaignOptions, run_campaign
 from opsrock.cli import EXIT_INTERRUPTED
 from opsrock.errors import InputError, SceneError, UsageError
 
@@ -38,8 +38,9 @@ def run(args: argparse.Namespace) -> int:
     except OSError as exc:  # no scheduler at that address
         raise UsageError(" ".join(str(exc).split())) from None
     try:
-        summary = run_campaign(scene, args.out, workers=args.workers, executor=executor, force=args.force,
-                               progress=not args.no_progress, batch=args.batch, case_timeout=args.case_timeout)
+        options = CampaignOptions(executor=executor, batch=args.batch, case_timeout=args.case_timeout)
+        summary = run_campaign(scene, args.out, workers=args.workers, force=args.force,
+                               progress=not args.no_progress, options=options)
     except KeyboardInterrupt:
         print(f"opsrock run: interrupted; finished cases are stored in {args.out}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)

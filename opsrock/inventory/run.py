@@ -17,6 +17,7 @@ chosen twice:
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -135,10 +136,34 @@ def study_design(inventory: str | Path | None = None, motions: str | Path | None
     return inventory_design(inventory, motions, source, settings, quick_run=quick, workers=workers)
 
 
+@dataclass(frozen=True)
+class StudyOptions:
+    """How :func:`run_study` runs its study (what :func:`run_design` takes besides the design).
+
+    Parameters
+    ----------
+    workers : int or None
+        Processes (default: every core).
+    progress : bool
+        Progress on stderr.
+    force : bool
+        Delete stored results of other settings in the campaigns' folders instead of refusing them.
+    store_dir : str, Path or None
+        Where the campaigns keep their stores (default ``out_dir/campaigns``).
+    case_timeout : float or None
+        Wall-clock budget of one case (s); default the campaigns' (300 s).
+    """
+
+    workers: int | None = None
+    progress: bool = True
+    force: bool = False
+    store_dir: str | Path | None = None
+    case_timeout: float | None = None
+
+
 def run_study(inventory: str | Path | None = None, motions: str | Path | None = None, out_dir: str | Path = "contents",
-              *, model: str = "planar", building: Any = None, quick: bool = False, workers: int | None = None,
-              progress: bool = True, force: bool = False, store_dir: str | Path | None = None,
-              **settings: Any) -> InventoryStudy:
+              *, model: str = "planar", building: Any = None, quick: bool = False,
+              options: StudyOptions | None = None, **settings: Any) -> InventoryStudy:
     """One contents study from Python, as ``opsrock contents`` runs it for the same arguments: each item's
     fragility per floor, the expected numbers damaged, the report and a pelicun folder, in ``out_dir``.
 
@@ -160,9 +185,9 @@ def run_study(inventory: str | Path | None = None, motions: str | Path | None = 
         (:class:`opsrock.inventory.sources.BuildingSource`; default its defaults: T1 = 1.0 s, 8 storeys).
     quick : bool
         A quick study (fewer levels, records and resamples).
-    workers, progress, force, store_dir
-        As :func:`run_design` takes them (processes, progress on stderr, whether stored results of other settings
-        are deleted, where the campaigns keep their stores).
+    options : StudyOptions, optional
+        Processes, progress on stderr, whether stored results of other settings are deleted, where the campaigns
+        keep their stores, the case budget (s) (:class:`StudyOptions`; default its defaults).
     **settings
         Fields of the configuration's design: :class:`~opsrock.inventory.study.InventoryDesign` (``method``
         ``"ida"`` or ``"cloud"``, ``levels``, ``n_boot``, ``seed``, ``slide_distance`` in m, ``azimuths`` in
@@ -181,7 +206,7 @@ def run_study(inventory: str | Path | None = None, motions: str | Path | None = 
     >>> data = files("opsrock.data")
     >>> study = opsrock.run_study(data / "inventories" / "example.csv",
     ...                           data / "examples" / "floor-motions" / "motions.csv", "my-building",
-    ...                           quick=True, progress=False)  # doctest: +SKIP
+    ...                           quick=True, options=opsrock.StudyOptions(progress=False))  # doctest: +SKIP
     >>> sorted(study.tables)  # doctest: +SKIP
     ['demands', 'expected', 'fits']
 
@@ -190,9 +215,11 @@ def run_study(inventory: str | Path | None = None, motions: str | Path | None = 
     >>> opsrock.run_study(out_dir="fema-nine", quick=True)  # doctest: +SKIP
     >>> opsrock.run_study(out_dir="fema-nine-3d", model="3d", quick=True)  # doctest: +SKIP
     """
-    design = study_design(inventory, motions, model=model, building=building, quick=quick, workers=workers,
+    o = options if options is not None else StudyOptions()
+    design = study_design(inventory, motions, model=model, building=building, quick=quick, workers=o.workers,
                           **settings)
-    return run_design(design, out_dir, workers=workers, progress=progress, force=force, store_dir=store_dir)
+    return run_design(design, out_dir, workers=o.workers, progress=o.progress, force=o.force, store_dir=o.store_dir,
+                      case_timeout=o.case_timeout)
 
 
-__all__ = ["MODELS", "route_of", "run_design", "run_study", "study_design"]
+__all__ = ["MODELS", "StudyOptions", "route_of", "run_design", "run_study", "study_design"]

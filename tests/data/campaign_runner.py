@@ -8,7 +8,7 @@ import json
 import sys
 import time
 
-from opsrock.campaign import run_campaign
+from opsrock.campaign import CampaignOptions, run_campaign
 from opsrock.solvers import simulate
 
 #: Extra time per case (s): long enough that the killing test catches the run between cases.
@@ -23,5 +23,6 @@ def slow_housner(block, excitation, solver, **settings):
 
 if __name__ == "__main__":
     scene, out, workers = sys.argv[1], sys.argv[2], int(sys.argv[3])
-    summary = run_campaign(scene, out, workers=workers, solve_fn=slow_housner, progress=False, batch=1)
+    summary = run_campaign(scene, out, workers=workers,
+                           options=CampaignOptions(solve_fn=slow_housner, batch=1), progress=False)
     print(json.dumps({"n_computed": summary.n_computed, "n_reused": summary.n_reused, "n_cases": summary.n_cases}))

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from opsrock.campaign import CampaignConflictError, run_campaign
+from opsrock.campaign import CampaignConflictError, CampaignOptions, run_campaign
 from opsrock.campaign.cases import IDENTITY_EXCLUDED
 from opsrock.campaign.cases import PULSE_COLUMNS as CASES_COLUMNS
 from opsrock.campaign.executors import LOST_PREFIX, DaskExecutor, LocalPool
@@ -153,13 +153,13 @@ def test_identical_tables_whatever_the_executor(tmp_path):
     scene = small_scene(tmp_path)
     tables = {}
     with LocalPool(1) as one:
-        run_campaign(scene, tmp_path / "one", executor=one, progress=False)
+        run_campaign(scene, tmp_path / "one", options=CampaignOptions(executor=one), progress=False)
     tables["one"] = read_csv(tmp_path / "one" / "cases.csv")
     with LocalPool(2) as two:
-        run_campaign(scene, tmp_path / "two", executor=two, progress=False, batch=2)
+        run_campaign(scene, tmp_path / "two", options=CampaignOptions(executor=two, batch=2), progress=False)
     tables["two"] = read_csv(tmp_path / "two" / "cases.csv")
     with DaskExecutor(local_workers=2) as dask:
-        run_campaign(scene, tmp_path / "dask", executor=dask, progress=False, batch=1)
+        run_campaign(scene, tmp_path / "dask", options=CampaignOptions(executor=dask, batch=1), progress=False)
     tables["dask"] = read_csv(tmp_path / "dask" / "cases.csv")
     assert identity_view(tables["one"]) == identity_view(tables["two"]) == identity_view(tables["dask"])
     verdicts = {r["verdict"] for r in tables["one"]}
@@ -181,12 +181,13 @@ def test_changed_settings_are_refused_unless_forced(tmp_path, capsys):
     assert json.loads((out / "manifest.json").read_text())["solver_settings"] == {"rtol": 1e-9}
     # an injected solve function is another "setting": its rows never mix with the real solver's
     with pytest.raises(CampaignConflictError, match="solve_fn"):
-        run_campaign(changed, out, workers=1, progress=False, solve_fn=fake_solve)
+        run_campaign(changed, out, workers=1, progress=False, options=CampaignOptions(solve_fn=fake_solve))
 
 
 def test_failed_cases_are_stored_as_failed_with_reasons(tmp_path):
     out = tmp_path / "out"
-    summary = run_campaign(small_scene(tmp_path), out, workers=2, progress=False, solve_fn=failing_solve, batch=2)
+    summary = run_campaign(small_scene(tmp_path), out, workers=2, progress=False,
+                           options=CampaignOptions(solve_fn=failing_solve, batch=2))
     assert (summary.n_cases, summary.n_failed) == (9, 2)
     rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
     raised, reported = rows["medicine_cabinet/f02/a02"], rows["medicine_cabinet/f03/a03"]
@@ -197,7 +198,8 @@ def test_failed_cases_are_stored_as_failed_with_reasons(tmp_path):
         assert math.isnan(float(r["theta_max"]))
     assert all(r["status"] == "ok" for k, r in rows.items() if r not in (raised, reported))
     # failed cases are results: a resume does not retry them
-    again = run_campaign(small_scene(tmp_path), out, workers=1, progress=False, solve_fn=failing_solve)
+    again = run_campaign(small_scene(tmp_path), out, workers=1, progress=False,
+                         options=CampaignOptions(solve_fn=failing_solve))
     assert (again.n_computed, again.n_reused, again.n_failed) == (0, 9, 2)
 
 
@@ -222,14 +224,16 @@ def test_a_dying_worker_loses_only_its_case_and_a_resume_computes_it(tmp_path):
     # A worker that dies is the infrastructure's failure, not the solver's: the case is stored failed (never a
     # verdict) with a reason marked lost (LOST_PREFIX), and a resume computes it again instead of reusing it.
     out, counter = tmp_path / "out", tmp_path / "deaths"
-    summary = run_campaign(small_scene(tmp_path), out, workers=2, progress=False, solve_fn=DiesTwice(counter), batch=3)
+    summary = run_campaign(small_scene(tmp_path), out, workers=2, progress=False,
+                           options=CampaignOptions(solve_fn=DiesTwice(counter), batch=3))
     rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
     dead = rows["medicine_cabinet/f02/a03"]
     assert dead["status"] == "failed" and dead["verdict"] == "failed" and dead["reason"].startswith(LOST_PREFIX)
     assert "worker process died" in dead["reason"] and counter.stat().st_size == 2
     assert (summary.n_failed, summary.n_lost, len(rows)) == (1, 1, 9)
     assert any("1 cases lost to the infrastructure" in line for line in summary.lines())
-    again = run_campaign(small_scene(tmp_path), out, workers=1, progress=False, solve_fn=DiesTwice(counter))
+    again = run_campaign(small_scene(tmp_path), out, workers=1, progress=False,
+                         options=CampaignOptions(solve_fn=DiesTwice(counter)))
     assert (again.n_computed, again.n_reused, again.n_failed, again.n_lost) == (1, 8, 0, 0)
     assert read_rows(out)["medicine_cabinet/f02/a03"]["status"] == "ok"
 
@@ -238,26 +242,28 @@ def test_a_store_of_the_old_code_has_its_lost_cases_computed_again(tmp_path):
     # Before LOST_PREFIX, a case whose worker died was stored failed with "worker process died ..." and reused by
     # every resume (the 320 failed cases, 0 computed): such a row is a lost case, computed again.
     scene, out = small_scene(tmp_path), tmp_path / "out"
-    run_campaign(scene, out, workers=1, progress=False, solve_fn=fake_solve)
+    run_campaign(scene, out, workers=1, progress=False, options=CampaignOptions(solve_fn=fake_solve))
     before = identity_view(read_csv(out / "cases.csv"))
     old = "worker process died while solving this case alone (BrokenProcessPool: A process in the pool was terminated)"
     with sqlite3.connect(out / STORE_FILE) as db:
         db.execute("UPDATE results SET status = 'failed', verdict = 'failed', reason = ?, theta_max = NULL "
                    "WHERE case_id IN ('medicine_cabinet/f01/a01', 'medicine_cabinet/f03/a02')", (old,))
-    resumed = run_campaign(scene, out, workers=1, progress=False, solve_fn=fake_solve)
+    resumed = run_campaign(scene, out, workers=1, progress=False, options=CampaignOptions(solve_fn=fake_solve))
     assert (resumed.n_computed, resumed.n_reused, resumed.n_failed) == (2, 7, 0)
     assert identity_view(read_csv(out / "cases.csv")) == before  # the lost rows replaced by their results
 
 
 def test_ctrl_c_then_resume_computes_only_the_missing_cases(tmp_path):
     scene, out = small_scene(tmp_path), tmp_path / "out"
-    reference = run_campaign(scene, tmp_path / "ref", workers=1, progress=False, solve_fn=Interrupt(10**6))
+    reference = run_campaign(scene, tmp_path / "ref", workers=1, progress=False,
+                             options=CampaignOptions(solve_fn=Interrupt(10**6)))
     assert reference.n_computed == 9
     with pytest.raises(KeyboardInterrupt):
-        run_campaign(scene, out, workers=1, progress=False, solve_fn=Interrupt(4, tmp_path / "count"), batch=1)
+        run_campaign(scene, out, workers=1, progress=False,
+                     options=CampaignOptions(solve_fn=Interrupt(4, tmp_path / "count"), batch=1))
     before = read_rows(out)
     assert len(before) == 4 and not (out / "cases.csv").exists()  # no table until complete
-    resumed = run_campaign(scene, out, workers=1, progress=False, solve_fn=Interrupt(10**6))
+    resumed = run_campaign(scene, out, workers=1, progress=False, options=CampaignOptions(solve_fn=Interrupt(10**6)))
     assert (resumed.n_reused, resumed.n_computed) == (4, 5)
     after = read_rows(out)
     assert all(after[k] == v for k, v in before.items())  # stored rows untouched, not recomputed
@@ -299,8 +305,9 @@ def test_sigkill_mid_campaign_then_resume(tmp_path):
 
 def test_scene_path_and_scene_object_agree(tmp_path):
     path = small_scene(tmp_path)
-    a = run_campaign(path, tmp_path / "a", workers=1, progress=False, solve_fn=fake_solve)
-    b = run_campaign(load_scene(path), tmp_path / "b", workers=1, progress=False, solve_fn=fake_solve)
+    a = run_campaign(path, tmp_path / "a", workers=1, progress=False, options=CampaignOptions(solve_fn=fake_solve))
+    b = run_campaign(load_scene(path), tmp_path / "b", workers=1, progress=False,
+                     options=CampaignOptions(solve_fn=fake_solve))
     assert a.digest == b.digest
     assert identity_view(read_csv(Path(a.cases_csv))) == identity_view(read_csv(Path(b.cases_csv)))
 
@@ -346,7 +353,8 @@ def seated_at_once(block, excitation, solver, **settings) -> RockingResult:
 
 def test_a_case_past_its_budget_is_stored_as_timeout_and_the_campaign_goes_on(tmp_path):
     out = tmp_path / "out"
-    summary = run_campaign(slow_scene(tmp_path, timeout=1.0), out, workers=1, progress=False, solve_fn=seated_at_once)
+    summary = run_campaign(slow_scene(tmp_path, timeout=1.0), out, workers=1, progress=False,
+                           options=CampaignOptions(solve_fn=seated_at_once))
     rows = {r["case_id"]: r for r in read_csv(out / "cases.csv")}
     slow, seated = rows["medicine_cabinet/f01/a02"], rows["medicine_cabinet/f01/a01"]
     assert (slow["status"], slow["verdict"]) == ("failed", "failed")
@@ -399,13 +407,16 @@ def test_a_dask_worker_killed_mid_campaign_loses_no_finished_case(tmp_path):
         victim = sorted(dask.client.run(os.getpid).values())[0]
         killer = threading.Thread(target=kill_after, args=(3, victim))
         killer.start()
-        summary = run_campaign(scene, out, executor=dask, progress=False, batch=1, solve_fn=slow_fake_solve)
+        summary = run_campaign(scene, out,
+                               options=CampaignOptions(executor=dask, batch=1, solve_fn=slow_fake_solve),
+                               progress=False)
         killer.join()
     assert 3 <= len(snapshot) < 9, "the kill must land mid-way"
     after = read_rows(out)
     assert all(after[k] == v for k, v in snapshot.items())  # finished cases kept as they were
     assert summary.n_cases == 9 and summary.n_failed == 0  # the killed worker's cases were re-run
-    run_campaign(scene, tmp_path / "local", workers=2, progress=False, solve_fn=slow_fake_solve)
+    run_campaign(scene, tmp_path / "local", workers=2, progress=False,
+                 options=CampaignOptions(solve_fn=slow_fake_solve))
     assert identity_view(read_csv(out / "cases.csv")) == identity_view(read_csv(tmp_path / "local" / "cases.csv"))
 
 
@@ -429,7 +440,8 @@ def test_a_campaign_that_computed_no_case_raises_instead_of_returning(tmp_path):
     from opsrock.errors import AllCasesLostError
 
     with pytest.raises(AllCasesLostError, match=r"no case could be computed: all 9 cases were lost .*exit code 1"):
-        run_campaign(small_scene(tmp_path), tmp_path / "out", executor=_LosingExecutor(), progress=False,
-                     solve_fn=fake_solve)
-    again = run_campaign(small_scene(tmp_path), tmp_path / "out", workers=1, progress=False, solve_fn=fake_solve)
+        run_campaign(small_scene(tmp_path), tmp_path / "out",
+                     options=CampaignOptions(executor=_LosingExecutor(), solve_fn=fake_solve), progress=False)
+    again = run_campaign(small_scene(tmp_path), tmp_path / "out", workers=1, progress=False,
+                         options=CampaignOptions(solve_fn=fake_solve))
     assert again.n_computed == 9 and again.n_lost == 0

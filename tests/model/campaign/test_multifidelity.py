@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from opsrock.campaign import run_campaign
+from opsrock.campaign import CampaignOptions, run_campaign
 from opsrock.campaign.multifidelity import (
     EVIDENCE,
     EscalationRule,
@@ -58,9 +58,10 @@ AUDIT = 0.2
 POLICY = MultiFidelity(solver="housner", margin=MARGIN, escalate_overturned=True, audit_fraction=AUDIT, seed=3)
 
 
-def run_multifidelity(scene, out, *, policy=POLICY, progress=False, **how):
-    """The multi-fidelity policy over ``run_campaign`` (the one engine), quietly."""
-    return run_campaign(scene, out, policy=policy, progress=progress, **how)
+def run_multifidelity(scene, out, *, policy=POLICY, progress=False, force=False, **how):
+    """The multi-fidelity policy over ``run_campaign`` (the one engine), quietly; ``how``: the other
+    :class:`~opsrock.campaign.workflow.CampaignOptions` (executor, batch)."""
+    return run_campaign(scene, out, progress=progress, force=force, options=CampaignOptions(policy=policy, **how))
 
 
 class InProcess:
@@ -113,7 +114,7 @@ def scene_path(tmp_path_factory) -> Path:
 def full(scene_path, tmp_path_factory) -> dict[str, dict[str, str]]:
     """A full campaign of the scene with the expensive solver: what every escalated row must equal."""
     out = tmp_path_factory.mktemp("full")
-    run_campaign(scene_path, out, solver="housner", executor=InProcess(), progress=False)
+    run_campaign(scene_path, out, solver="housner", options=CampaignOptions(executor=InProcess()), progress=False)
     return {r["case_id"]: r for r in read_csv(out / "cases.csv")}
 
 

@@ -99,8 +99,15 @@ def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_pat
     fits, _ = read_table(first.tables["fits"], dtype={"direction": str, "floor": str})
     assert set(fits["direction"]) == {"1", "2"} and set(fits["item"]) == {"cab"}
     assert (fits["n_cases"] + fits["n_failed"] == 2).all()  # each case once per direction, not twice
-    # a case stored as failed on its case budget (a loaded machine, a cold compile) is computed again by a plain
-    # re-run, no --force, and the report says so; every other stored failure stays a result
+
+
+@pytest.mark.slow
+def test_a_case_stored_as_timed_out_is_computed_again_by_a_plain_rerun(inputs, tmp_path):
+    """A case stored as failed on its case budget (a loaded machine, a cold compile) is computed again by a plain
+    re-run, no --force, and the report says so; every other stored failure stays a result (issue 44). About 15 s
+    (a study, then its re-run): slow."""
+    design = _design(inputs)
+    run_design(design, tmp_path / "out", workers=1, progress=False)
     store = next((tmp_path / "out" / "campaigns").glob("*/results.sqlite"))
     db = sqlite3.connect(store)
     db.execute("UPDATE results SET status = 'failed', verdict = 'failed', "

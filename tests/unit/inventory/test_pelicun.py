@@ -155,7 +155,8 @@ def test_separated_outcomes_are_a_step_in_both_routes_and_pelicun_gets_a_determi
     cases = pd.DataFrame([{"item": "rack", "floor": "2", "record": r, "scale": s, "azimuth": z, "status": "ok",
                            "overturned": s * {"a": 0.4, "b": 0.6}[r] > 0.5, "slide_max": math.nan,
                            "overturned_over": ""} for r in ("a", "b") for s in (0.5, 1.0, 1.5, 2.0) for z in (0.0, 30.0)])
-    three_d = three_d_components(cases, demands, design, 1).iloc[0]
+    components3d = three_d_components(cases, demands, design, 1)
+    three_d = components3d.iloc[0]
     assert three_d["status"] == "fitted" and three_d["beta"] == 0.0 and three_d["source"].endswith(STEP_SOURCE)
     assert three_d["median"] == pytest.approx(math.sqrt(0.4 * 0.6), rel=1e-12)  # the gap 0.4 .. 0.6
     # planar: direction 1 a step at 0.49 m/s, direction 2 never; direction 1 is pfv_max under both records
@@ -163,11 +164,11 @@ def test_separated_outcomes_are_a_step_in_both_routes_and_pelicun_gets_a_determi
                               message="separated"),
                          _fit("rack", "2", "2", "pfv", math.nan, math.nan, ok=False, status="never", message="never")],
                         columns=list(FIT_COLUMNS))
-    planar = planar_components(fits, demands, design).iloc[0]
+    components = planar_components(fits, demands, design)
+    planar = components.iloc[0]
     assert planar["status"] == "fitted" and planar["beta"] == 0.0
     assert planar["median"] == pytest.approx(three_d["median"], rel=1e-9)
-    for name, components in (("3d", three_d_components(cases, demands, design, 1)), ("planar",
-                                                                                     planar_components(fits, demands, design))):
+    for name, components in (("3d", components3d), ("planar", components)):
         frag = pd.read_csv(write_pelicun_folder(components, fits, demands, design, tmp_path / name)["fragility"],
                            index_col=0, keep_default_na=False)
         assert (frag.loc["opsrock.rack.2", "LS1-Family"], frag.loc["opsrock.rack.2", "LS1-Theta_1"]) == ("", "")

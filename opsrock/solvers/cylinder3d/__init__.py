@@ -35,8 +35,10 @@ Scheme (:mod:`~.step`): ``v_free = v_k + dt (body force, -omega x I omega)``, th
 of pressure lies in the base, or lifting about one rim point; else nonsmooth Gauss-Seidel with the exact local solve
 per point), ``X`` and the quaternion advanced with the theta-blend of the velocities. A cylinder seated on its stuck
 base is held at rest in O(1) a step while the floor's load is carried (``g + a_v > 0``, ``|a_h| h <= r (g + a_v)``,
-``|a_h| <= mu (g + a_v)``): the uplift threshold ``g r / h`` is exact in every direction. There are no smooth
-(Runge-Kutta) phases here (rigid3d has them): every step is a Moreau-Jean step.
+``|a_h| <= mu (g + a_v)``): the uplift threshold ``g r / h`` is exact in every direction. A cylinder rolling
+without slip on one rim point (rocking on it, wobbling) for a few steps is crossed by fourth-order Runge-Kutta
+sub-steps (:mod:`~.rolling`, ``smooth=True``), its contact force from the no-slip condition at every stage, the
+Moreau-Jean steps keeping lift-off, the onset of slip, landings, the base flat, flight and overturning.
 
 Outputs as rigid3d's: ``theta`` the tilt signed by the lean along ``x``; ``plan``
 (:class:`~opsrock.result.PlanSummary`): tilt, twist, slide of the base centre, the mechanism of overturning

@@ -43,7 +43,8 @@ T_PHI = 6  # body angle of the last single rim contact (rad; NaN: none)
 T_TURN = 7  # angle the contact point has run round the rim since the rim phase began (rad)
 T_LAST_N = 8  # rim points in contact at the previous step
 T_CONTACT_RATE = 9  # |d phi / dt| of the contact point at the last step (rad/s)
-T_SIZE = 10
+T_CALM = 10  # Moreau-Jean steps in a row on one stuck, loaded rim point (negative: cooling after a smooth sub-step failed)
+T_SIZE = 11
 
 # --- layout of the kernel's output vector: the shared slots, then this kernel's own -----------------
 OUT_STATUS, OUT_THETA_MAX, OUT_OVERTURNED = ST.OUT_STATUS, ST.OUT_THETA_MAX, ST.OUT_OVERTURNED
@@ -78,7 +79,10 @@ OUT_FRICTION_WORK = ST.OUT_COMMON + 37  # work the contact impulses take at the 
 OUT_IMPACT_LOSS = ST.OUT_COMMON + 38  # kinetic energy of the impulses' velocity change at landings (J/kg)
 OUT_TAIL_BOUND = ST.OUT_COMMON + 39  # 1.0: the tail ended at its span, the energy below what overturning takes
 OUT_TILT_BOUND = ST.OUT_COMMON + 40  # largest tilt the final energy can reach (rad; at a tail ending by the energy)
-OUT_SIZE = ST.OUT_COMMON + 41
+OUT_ROLL_STEPS = ST.OUT_COMMON + 41  # Runge-Kutta sub-steps rolling on a rim point kept (:mod:`.rolling`)
+OUT_ROLL_SPAN = ST.OUT_COMMON + 42  # Moreau-Jean steps those spanned
+OUT_ROLL_FAILED = ST.OUT_COMMON + 43  # Runge-Kutta sub-steps tried and not kept
+OUT_SIZE = ST.OUT_COMMON + 44
 
 # --- the physics' named thresholds and the iterations' tolerances -------------------------------------
 #: Speed of the base (m/s) below which the tail may end by the energy bound (rigid3d's rule "peak"): a base sliding
@@ -127,3 +131,21 @@ LANDING_JUMP = 1.0
 #: The base counts as flat (every rim point equally low; the contact runs on ``rim_points`` points round the rim)
 #: while the rim's height varies by less than ``FLAT_GAP`` contact gaps (``2 r sin(tilt) <= FLAT_GAP * lift_gap``).
 FLAT_GAP = 1.0
+
+# --- the smooth phase rolling on a rim point (:mod:`opsrock.solvers.cylinder3d.rolling`) --------------------------
+#: Longest Runge-Kutta sub-step, in units of ``1/p`` (twice rigid3d's ``RK_DTAU``): the peak tilt is read at the
+#: sub-steps' ends, so it is missed by at most ``p² sin(alpha) (ROLL_DTAU / p)² / 8`` (below 1.3e-5 rad), and the
+#: method's own error per unit time is of order ``ROLL_DTAU^4``.
+ROLL_DTAU = 1e-2
+#: Moreau-Jean steps in a row on one stuck, loaded rim point, without a landing, before a sub-step is tried.
+ROLL_CALM = 4
+#: Shortest sub-step tried, in Moreau-Jean steps: a sub-step that leaves the phase is halved down to it, and then
+#: the Moreau-Jean steps cross the event that ended the phase (it lies within that many of them).
+ROLL_MIN_STEPS = 8
+#: Largest angle (rad) the contact point may run round the rim over a sub-step (and at its rate, over one): where it
+#: whips round faster (the base passing through flat, Srinivasan & Ruina) the Moreau-Jean steps, cut into pieces of
+#: ``PHI_STEP``, take it.
+ROLL_PHI = 0.1
+#: The phase holds only while the rim's height varies by more than ``ROLL_FLAT`` contact gaps (``2 r sin tilt``), a
+#: hundred times the flat base's ``FLAT_GAP``: the contact point's rate ``phi'`` grows as ``1 / sin tilt`` near flat.
+ROLL_FLAT = 100.0

@@ -34,7 +34,7 @@ def delassus(arm, Iinv, W):
 
 
 @numba.njit(cache=True)
-def _stick(W, q, P):
+def stick(W, q, P):
     """``P = -W^-1 q`` by Cramer's rule (``W`` symmetric positive definite)."""
     a, b, c = W[0, 0], W[0, 1], W[0, 2]
     d, e, f = W[1, 0], W[1, 1], W[1, 2]
@@ -84,7 +84,7 @@ def local(W, q, friction, P, out, ring):
     if q[2] >= 0.0:
         P[0], P[1], P[2] = 0.0, 0.0, 0.0
         return OPEN
-    _stick(W, q, P)
+    stick(W, q, P)
     if P[2] > 0.0 and (friction.infinite or math.hypot(P[0], P[1]) <= friction.mu_s * P[2] * (1.0 + CONE_SLACK)):
         return STICK
     if friction.infinite and ring:
@@ -135,4 +135,4 @@ def apply_impulse(vel, Iinv, a, p0, p1, p2):
         vel[3 + i] += Iinv[i, 0] * c0 + Iinv[i, 1] * c1 + Iinv[i, 2] * c2
 
 
-__all__ = ["apply_impulse", "delassus", "local", "nsgs"]
+__all__ = ["apply_impulse", "delassus", "local", "nsgs", "stick"]

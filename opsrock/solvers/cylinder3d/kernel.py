@@ -28,11 +28,13 @@ from opsrock.solvers.cylinder3d.constants import (H_DOWN, H_POS, H_ROT, H_SLIDE,
                                                   OUT_TIME_SLIDING, OUT_TWIST_MAX, PEAK_BASE_SPEED, PHI_STEP, ROLL_RATE,
                                                   ROLL_TURN, STATUS_CONTACT, STATUS_MAX_STEPS, STATUS_NONFINITE,
                                                   STATUS_OK, STATUS_TAIL, TAIL_CUT_MARGIN, TILT_SLACK, T_CONTACT_RATE,
-                                                  ENERGY_ROUNDOFF, OUT_TAIL_BOUND, OUT_TILT_BOUND,
+                                                  ENERGY_ROUNDOFF, OUT_TAIL_BOUND, OUT_TILT_BOUND, OUT_ROLL_FAILED,
+                                                  OUT_ROLL_SPAN, OUT_ROLL_STEPS, ROLL_CALM, ROLL_MIN_STEPS, T_CALM,
                                                   T_LAST_N, T_PHI, T_RESTING, T_SEATED, T_SLIDE_MAX, T_TILT_MAX, T_TURN,
                                                   T_TWIST_MAX, T_UNCONVERGED)
 from opsrock.solvers.cylinder3d.geometry import base_centre, tilt, twist
 from opsrock.solvers.cylinder3d.model import Model, Numerics
+from opsrock.solvers.cylinder3d.rolling import RV_Y, roll, span_end
 from opsrock.solvers.cylinder3d.step import floor_at, step
 
 
@@ -119,17 +121,60 @@ def _book(model, state, n, slipping, phi0, flat):
 
 
 @numba.njit(cache=True)
+def _peaks(model, state):
+    """The peaks of tilt, slide and twist after a step into the tracker; returns the tilt (rad) and the axis's
+    horizontal components."""
+    s, tr = state.s, state.track
+    t, lx, ly = tilt(s)
+    bx, by = base_centre(s, model.design.h)
+    tr[T_TILT_MAX] = max(tr[T_TILT_MAX], t)
+    tr[T_SLIDE_MAX] = max(tr[T_SLIDE_MAX], math.hypot(bx, by))
+    tr[T_TWIST_MAX] = max(tr[T_TWIST_MAX], abs(twist(s)))
+    return t, lx, ly
+
+
+@numba.njit(cache=True)
+def _roll_step(model, floor, state, rw, k):
+    """A Runge-Kutta sub-step rolling on the rim point (:func:`.rolling.roll`) from step ``k`` to the next sample
+    (at most ``roll_steps`` steps) and its bookkeeping: the time on the rim (rolling, if the contact point turned
+    faster than ``ROLL_RATE p``), the contact point's run round the rim, the floor's work, the peaks; a sub-step that
+    leaves the phase is halved, down to ``ROLL_MIN_STEPS`` steps. Returns the steps it spanned; 0 if none was kept
+    (the Moreau-Jean steps go on, ``ROLL_MIN_STEPS`` of them at least before another is tried: the event lies
+    within them)."""
+    s, out, tr, num = state.s, state.out, state.track, model.numerics
+    n = span_end(model, floor, k) - k
+    while True:
+        if n < ROLL_MIN_STEPS:
+            tr[T_CALM] = -ROLL_MIN_STEPS
+            return 0
+        kept, work, phi, turn = roll(model, floor, s, k, n, rw)
+        if kept:
+            break
+        out[OUT_ROLL_FAILED] += 1.0
+        n //= 2
+    s[:] = rw.v[RV_Y]
+    span = n * num.dt
+    rate = abs(turn) / span
+    out[OUT_INPUT_WORK] += work
+    out[OUT_CONTACT_TURN] += turn
+    tr[T_TURN] += abs(turn)
+    tr[T_PHI], tr[T_CONTACT_RATE], tr[T_LAST_N], tr[T_RESTING] = phi, rate, 1.0, 0.0
+    out[OUT_TIME_ROCKING] += span
+    out[OUT_TIME_ROLLING] += span if rate > ROLL_RATE * model.design.p else 0.0
+    out[OUT_ROLL_STEPS] += 1.0
+    out[OUT_ROLL_SPAN] += n
+    _peaks(model, state)
+    return n
+
+
+@numba.njit(cache=True)
 def _track(model, state, ws):
     """The peaks after a step (tilt, slide, twist) and the input work; returns True if the cylinder overturned
     (tilt ``>= pi/2``), its mechanism and direction then written."""
     s, new, out, tr, acc = state.s, ws.new, state.out, state.track, ws.acc
     out[OUT_INPUT_WORK] -= acc[0] * (new[0] - s[0]) + acc[1] * (new[1] - s[1]) + acc[2] * (new[2] - s[2])
     s[:] = new
-    t, lx, ly = tilt(s)
-    bx, by = base_centre(s, model.design.h)
-    tr[T_TILT_MAX] = max(tr[T_TILT_MAX], t)
-    tr[T_SLIDE_MAX] = max(tr[T_SLIDE_MAX], math.hypot(bx, by))
-    tr[T_TWIST_MAX] = max(tr[T_TWIST_MAX], abs(twist(s)))
+    t, lx, ly = _peaks(model, state)
     if t < OVERTURNING_ANGLE:
         return False
     out[OUT_OVERTURNED] = 1.0
@@ -246,10 +291,13 @@ def _sub_step(model, state, ws, k):
             return False
     else:
         tr[T_UNCONVERGED] = 0.0
-    if _book(model, state, n, slipping, phi0, flat):
+    landing = _book(model, state, n, slipping, phi0, flat)
+    if landing:
         out[OUT_IMPACT_LOSS] += _impulse_energy(ws)[1]
     elif n > 0:
         out[OUT_FRICTION_WORK] += _impulse_energy(ws)[0]
+    calm = n == 1 and not flat and slipping == 0 and ws.P[0, 2] > 0.0 and not landing
+    tr[T_CALM] = tr[T_CALM] + 1.0 if calm else min(0.0, tr[T_CALM] + 1.0)
     fin = 0.0
     for a in range(13):
         fin += ws.new[a]
@@ -275,8 +323,8 @@ def _contact_step(model, state, ws, k):
     m = min(MAX_SUBSTEPS, max(1, int(math.ceil(state.track[T_CONTACT_RATE] * num.dt / PHI_STEP))))
     sub = model
     if m > 1:
-        sub = Model(model.design, model.friction, Numerics(num.dt / m, num.theta_mj, num.hist_every), model.nsgs,
-                    model.limits)
+        sub = Model(model.design, model.friction, Numerics(num.dt / m, num.theta_mj, num.hist_every, num.smooth,
+                                                           num.roll_steps), model.nsgs, model.limits)
     for _ in range(m):
         if not _sub_step(sub, state, ws, k):
             return 1
@@ -286,10 +334,11 @@ def _contact_step(model, state, ws, k):
 
 
 @numba.njit(cache=True)
-def run(model, floor, state, ws, hist):
+def run(model, floor, state, ws, rw, hist):
     """Integrate one case: ``state`` (:class:`.model.State`) from its start to the end of the excitation and the
     tail (rest), writing ``state.out`` (``OUT_*``) and the history rows ``hist`` (``H_*``, one every
-    ``hist_every`` steps and the last state); ``ws`` the scratch (:class:`.model.Workspace`). Returns the status."""
+    ``hist_every`` steps and the last state); ``ws`` the scratch (:class:`.model.Workspace`), ``rw`` the smooth
+    phase's (:class:`.model.RollWork`). Returns the status."""
     num, lim, d = model.numerics, model.limits, model.design
     s, out, tr = state.s, state.out, state.track
     j = _record(0, 0.0, s, 0.0, d.h, hist)
@@ -318,21 +367,25 @@ def run(model, floor, state, ws, hist):
         if tr[T_SEATED] > 0.5 and _rest_holds(model, ws.acc):
             out[OUT_REST_STEPS] += 1.0
             out[OUT_TIME_BASE] += num.dt
-            k += 1
+            k, n = k + 1, 1
             if k >= floor.n_exc:
                 tr[T_RESTING] = lim.rest_steps  # seated on a still floor: it stays so
         else:
             if tr[T_SEATED] > 0.5:
                 tr[T_SEATED] = 0.0
-            done = _contact_step(model, state, ws, k - floor.n_exc)
-            if done == 1:
-                break
-            k += 1
-            if done == 2:
-                break
-            if tr[T_SEATED] > 0.5:
-                _seat(s, d.h)
-        if k % num.hist_every == 0:
+            n = _roll_step(model, floor, state, rw, k) if (num.smooth and tr[T_CALM] >= ROLL_CALM) else 0
+            if n > 0:
+                k += n
+            else:
+                done = _contact_step(model, state, ws, k - floor.n_exc)
+                if done == 1:
+                    break
+                k, n = k + 1, 1
+                if done == 2:
+                    break
+                if tr[T_SEATED] > 0.5:
+                    _seat(s, d.h)
+        if k // num.hist_every != (k - n) // num.hist_every:
             j = _record(j, k * num.dt, s, tr[T_LAST_N], d.h, hist)
     return _finish(model, state, hist, j, k)
 

@@ -17,7 +17,7 @@ import numpy as np
 from opsrock.block import Block
 from opsrock.constants import G
 from opsrock.errors import InputError
-from opsrock.solvers.cylinder3d.constants import OUT_SIZE, T_LAST_N, T_PHI, T_SIZE
+from opsrock.solvers.cylinder3d.constants import OUT_SIZE, ROLL_DTAU, T_LAST_N, T_PHI, T_SIZE
 from opsrock.solvers.cylinder3d.settings import DEFAULT_TAIL_DTAU, Cylinder3DSettings
 
 
@@ -123,11 +123,14 @@ class Friction(NamedTuple):
 
 class Numerics(NamedTuple):
     """The time stepping: the Moreau-Jean step ``dt`` (s), the theta-method's ``theta_mj``, a history row every
-    ``hist_every`` steps."""
+    ``hist_every`` steps, ``smooth`` (Runge-Kutta sub-steps while rolling on a rim point, :mod:`.rolling`) of at
+    most ``roll_steps`` Moreau-Jean steps."""
 
     dt: float
     theta_mj: float
     hist_every: int
+    smooth: bool
+    roll_steps: int
 
 
 class ContactSolver(NamedTuple):
@@ -201,6 +204,17 @@ class Workspace(NamedTuple):
     pP: np.ndarray  # noqa: N815
 
 
+class RollWork(NamedTuple):
+    """Scratch of a Runge-Kutta sub-step rolling on a rim point (:mod:`.rolling`), in two arrays (few arguments for
+    the compiler): ``m`` (4 x 3 x 3) the rotation ``Q``, floor-frame inertia ``Iw`` and its inverse ``Iinv`` and the
+    contact's Delassus block ``W`` (rows ``RM_*``); ``v`` (10 x 13) the arm, the rim's tangent, the contact point's
+    free acceleration, ``alpha_f``, the contact force and the body force (first 3 columns), the end state, a stage's
+    derivative, the weighted sum and the stage state (rows ``RV_*``)."""
+
+    m: np.ndarray
+    v: np.ndarray
+
+
 class State(NamedTuple):
     """The run's state: ``s`` (13 floats: centre of mass ``X``, unit quaternion ``(w, x, y, z)``, ``V``,
     ``omega``, floor frame), the tracker ``track`` (``T_*`` slots) and the output vector ``out`` (``OUT_*``)."""
@@ -220,7 +234,8 @@ def make_model(block: Block, cyl: CylinderProperties, settings: Cylinder3DSettin
                     int(settings.rim_points))
     inf = block.friction is None
     friction = Friction(0.0 if inf else float(block.friction), 0.0 if inf else float(block.friction_kinetic), inf)
-    numerics = Numerics(float(dt), float(settings.theta_mj), int(max(1, round(settings.history_dtau / (p * dt)))))
+    numerics = Numerics(float(dt), float(settings.theta_mj), int(max(1, round(settings.history_dtau / (p * dt)))),
+                        bool(settings.smooth), int(max(1, ROLL_DTAU / (p * dt))))
     nsgs = ContactSolver(float(settings.nsgs_tol), int(settings.nsgs_max_sweeps), int(settings.nsgs_fail_steps))
     tail_dtau = DEFAULT_TAIL_DTAU if settings.max_free_time is None else settings.max_free_time * p
     limits = Limits(int(settings.step_limit), int(math.ceil(tail_dtau / (p * dt))) if tail else -1,
@@ -244,6 +259,11 @@ def make_workspace(n_rim: int) -> Workspace:
                      np.zeros(3), np.zeros(13), np.zeros(3), np.zeros(3), np.zeros(3), np.zeros((3, 3)), np.zeros(3))
 
 
+def make_roll_work() -> RollWork:
+    """The scratch arrays of the smooth phase (:class:`RollWork`)."""
+    return RollWork(np.zeros((4, 3, 3)), np.zeros((10, 13)))
+
+
 def make_state(s0: np.ndarray) -> State:
     """The run's :class:`State` from the initial 13-float state ``s0`` (copied)."""
     track = np.zeros(T_SIZE)
@@ -253,5 +273,5 @@ def make_state(s0: np.ndarray) -> State:
 
 
 __all__ = ["ContactSolver", "CylinderProperties", "Design", "Floor", "Friction", "Limits", "Model", "Numerics",
-           "State", "Workspace", "cylinder_mass", "cylinder_properties", "make_floor", "make_model", "make_state",
+           "RollWork", "State", "Workspace", "cylinder_mass", "cylinder_properties", "make_floor", "make_model", "make_roll_work", "make_state",
            "make_workspace"]

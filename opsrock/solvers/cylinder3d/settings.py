@@ -58,6 +58,11 @@ class Cylinder3DSettings(SolverSettings):
         dt²`` (m; dimensionless factor), in [2, 1e4]. Default 20 (rigid3d's).
     rocked_theta : float
         The cylinder *rocked* if its tilt ever exceeds this (rad). Default 1e-9.
+    smooth : bool
+        Cross the phase in which the cylinder rolls without slip on one rim point (rocking on it, wobbling) with
+        fourth-order Runge-Kutta sub-steps of up to ``5e-3/p`` (:mod:`opsrock.solvers.cylinder3d.rolling`), the
+        Moreau-Jean steps keeping landings, lift-off, the onset of slip, the base flat, flight and overturning
+        (True, default); False: Moreau-Jean steps throughout.
     """
 
     max_steps: int | None = 200_000_000
@@ -73,6 +78,7 @@ class Cylinder3DSettings(SolverSettings):
     velocity_tol: float = 1e-8
     contact_gap: float = 20.0
     rocked_theta: float = 1e-9
+    smooth: bool = True
 
     @property
     def step_limit(self) -> int:

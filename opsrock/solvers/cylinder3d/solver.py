@@ -21,7 +21,7 @@ from opsrock.solvers.registry import check_model
 from opsrock.solvers.cylinder3d import constants as C
 from opsrock.solvers.cylinder3d import kernel as kn
 from opsrock.solvers.cylinder3d.model import (CylinderProperties, cylinder_mass, cylinder_properties, make_floor,
-                                              make_model, make_state, make_workspace)
+                                              make_model, make_roll_work, make_state, make_workspace)
 from opsrock.solvers.cylinder3d.settings import Cylinder3DSettings
 from opsrock.solvers.status import REASONS, failure_of
 
@@ -124,7 +124,7 @@ def _run(run: SolverRun, forcing: _Forcing, state0: np.ndarray, tail: bool) -> R
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": forcing.dt}
     announce_compile(kn.run, SOLVER_NAME)
     try:
-        run.compiled_call(kn.run, model, floor, state, make_workspace(model.design.n_rim), hist)
+        run.compiled_call(kn.run, model, floor, state, make_workspace(model.design.n_rim), make_roll_work(), hist)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, cyl.alpha, f"{type(exc).__name__}: {exc}",
                              wall_time_s=run.elapsed())
@@ -165,7 +165,8 @@ def _diagnostics(out: np.ndarray) -> dict[str, Any]:
             "flat_closed_steps": int(out[C.OUT_FLAT_STEPS]), "lift_steps": int(out[C.OUT_LIFT_STEPS]),
             "slip_unconverged": int(out[C.OUT_SLIP_UNCONVERGED]), "time_base": float(out[C.OUT_TIME_BASE]),
             "tail_settled": bool(out[C.OUT_TAIL_SETTLED] > 0.5), "tail_cut": bool(out[C.OUT_TAIL_CUT] > 0.5),
-            "tail_bound": bool(out[C.OUT_TAIL_BOUND] > 0.5), "contact_turn": float(out[C.OUT_CONTACT_TURN]),
+            "roll_steps": int(out[C.OUT_ROLL_STEPS]), "roll_span": int(out[C.OUT_ROLL_SPAN]),
+            "roll_failed": int(out[C.OUT_ROLL_FAILED]), "tail_bound": bool(out[C.OUT_TAIL_BOUND] > 0.5), "contact_turn": float(out[C.OUT_CONTACT_TURN]),
             "tail_energy_ratio": float(out[C.OUT_TAIL_ENERGY])}
 
 

@@ -17,6 +17,12 @@ above the base), at ``r_i = Q c_i`` from the centre of mass; its velocity is ``u
 the height ``X_z + r_i,z``. The contact frame is the floor's: tangents ``x``, ``y``, normal ``z``. An impulse
 ``P_j`` at corner ``j`` changes ``u_i`` by ``W_ij P_j``, ``W_ij = 1 - S_i I^-1 S_j`` (``S`` the cross-product
 matrix of ``r``).
+
+Only :func:`run` is a numba dispatcher (``cache=True``); every function it calls, here and in the modules it
+imports, is registered with :func:`numba.extending.register_jitable` and compiled into it, without the CPython
+wrapper a dispatcher gets (the conversion of each argument from a Python object, every array of a named tuple)
+whether or not Python calls it: those wrappers were about a fifth of the cold compile (issue 43). Called from
+Python (as the closed-form tests do), a helper runs as plain Python.
 """
 
 from __future__ import annotations
@@ -25,6 +31,7 @@ import math
 
 import numba
 import numpy as np
+from numba.extending import register_jitable
 
 from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, CORNER_SX, CORNER_SY, DIRECTION_TOL,
                                                EDGE_STATUSES, FD_STEP, FLAT_ROUNDOFF, FORCING_LINEAR,
@@ -58,7 +65,7 @@ from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _copy,
 from opsrock.solvers.rigid3d.workspace import (Probe, make_corners, make_workspace)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _record(hist, t, s, theta, theta_dot, down, h, out):
     """Store one history row if there is room (``out[OUT_N_HIST]``: the rows stored, counted on)."""
     j = int(out[OUT_N_HIST])
@@ -80,7 +87,7 @@ def _record(hist, t, s, theta, theta_dot, down, h, out):
     out[OUT_N_HIST] = j + 1
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _mode(touch, slip):
     """Contact mode (a ``MODE_*`` index) and corners down from the corners' contact and slip flags."""
     n = 0
@@ -96,7 +103,7 @@ def _mode(touch, slip):
     return MODE_FLIGHT, n
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _tally(mode, n_down, dt, out):
     """First mode left rest into, and the times in each state."""
     if mode != MODE_REST and out[OUT_FIRST_MODE] < 0.0:
@@ -113,7 +120,7 @@ def _tally(mode, n_down, dt, out):
         out[OUT_TIME_FLIGHT] += dt
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _settle(state, touch, body, Q, r, gap_max, out):
     """A block at rest on three corners (``touch``) whose fourth hangs above the floor by at most ``gap_max`` (m):
     the gap is the Moreau-Jean steps' drift (a corner that rose above the contact gap while the block came to rest
@@ -142,7 +149,7 @@ def _settle(state, touch, body, Q, r, gap_max, out):
     return True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _peak_reached(s, body, tilt_max, tail_av):
     """The tail rule "peak": after the excitation (a still floor, ``g' = g + tail_av``), the block's energy per
     unit mass above rest, bounded above by ``|V|²/2 + I_max |omega|²/2 + g' (z - h)``, can only fall; at a tilt
@@ -267,7 +274,7 @@ def _rest_skip(model, floor, k, state, theta, phase, hist, out):
     return k
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _start(model, state, ws, corners, hist, out):
     """The run's start from ``state``: ``out`` cleared, the corners within ``lift_gap`` of the floor down, the first
     history row, the peaks of the start. Returns ``(corners down, signed tilt)``."""
@@ -306,7 +313,7 @@ def _track(body, state, n_down, tilt_sub, r1, phase, out):
     return theta, math.atan2(ly, lx)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _seat(model, state, n_down, ws, corners, phase, out):
     """A block at rest and still enough (``limits.velocity_tol``) on four corners, or on three with the fourth within
     the settling gap (:func:`_settle`, set down), is seated: its velocities zeroed, the rest skip on."""
@@ -317,7 +324,7 @@ def _seat(model, state, n_down, ws, corners, phase, out):
             state[a] = 0.0
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _finish(model, state, k, status, corners, hist, out):
     """The run's end at step ``k`` with ``status``: the last state's history row (if not stored) and the outputs."""
     dt, body = model.numerics.dt, model.body

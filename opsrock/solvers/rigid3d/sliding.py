@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import math
 
-import numba
 import numpy as np
+from numba.extending import register_jitable
 
 from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, EDGE_STATUSES, FD_STEP, FLAT_ROUNDOFF, LIMIT_MU,
                                                NEWTON_TOL, OUT_LIMIT_STEPS, PIVOT_TOL, SIX, ZERO)
@@ -18,13 +18,13 @@ from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y, 
                                                FlatWork)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _solve6(A, y):
     """Solve ``A y_new = y`` in place (6 x 6, :func:`_solve_n`)."""
     return _solve_n(A, y, SIX)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _solve_n(A, y, n):
     """Solve ``A[:n, :n] y_new = y[:n]`` in place (Gaussian elimination with partial pivoting; ``A`` is
     overwritten); False if a pivot is below 1e-13 of the largest entry."""
@@ -56,7 +56,7 @@ def _solve_n(A, y, n):
     return True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _flat_system(cw, fw, n, mu_k):
     """The linear momentum equations of :func:`_slide_flat` for the slip directions ``fw.sdir``: ``fw.xs`` gets the
     normal impulses of the ``n`` corners ``fw.idx`` and ``(V_x, V_y, omega_z)``; False if singular. ``cw`` is the
@@ -119,7 +119,7 @@ def _flat_system(cw, fw, n, mu_k):
     return True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _flat_directions(v0, v1, wz, idx, n, r, sdir):
     """Each of the ``n`` corners ``idx``'s slip direction ``sdir`` for the level block's velocities ``(V_x, V_y,
     omega_z) = (v0, v1, wz)``; returns the largest change of a direction's component, or -1 if a corner does not
@@ -137,7 +137,7 @@ def _flat_directions(v0, v1, wz, idx, n, r, sdir):
     return moved
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _flat_eval(cw, fw, n, mu_k, x, g):
     """``g = G(x) - x`` for the velocities ``x = (V_x, V_y, omega_z)``: the slip directions of ``x``, then the
     velocities :func:`_flat_system` gives for them. False if a corner does not slip or the system is singular."""
@@ -151,7 +151,7 @@ def _flat_eval(cw, fw, n, mu_k, x, g):
     return True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _flat_newton(cw, fw, n, mu_k, x):
     """Newton on ``G(x) = x`` (:func:`_flat_eval`) from ``x``, with a forward-difference Jacobian and step
     halving, to ``1e-12`` of the velocities' scale. Returns True with ``fw.xs`` and ``fw.sdir`` of the solution."""
@@ -195,7 +195,7 @@ def _flat_newton(cw, fw, n, mu_k, x):
     return False
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _slide_flat(cw, act, P, mu_k, sdir, Am):
     """Three or four active corners all slipping, in closed form for given slip directions: the block keeps its corners
     on the floor (``V_z = 0``, no rotation about a horizontal axis: with the floor's normal ``z`` the corners'
@@ -264,7 +264,7 @@ def _slide_flat(cw, act, P, mu_k, sdir, Am):
     return True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
     """The linear system of :func:`_edge_slip` for the statuses ``st`` (0 stick, 1 slip, 2 open) and the slip
     directions ``sdir``: the unknowns are a stuck corner's impulse (3) and a slipping corner's normal impulse ``N``
@@ -299,7 +299,7 @@ def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
     return m
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _edge_eval(ew, st, mu_k, f):
     """The impulses ``P6`` and corner velocities ``u`` (``ew.vec`` rows ``EVEC_P6``, ``EVEC_U``) of
     :func:`_edge_system` for the slip directions ``ew.sdir``, and per slipping corner ``k`` the angle from its
@@ -329,7 +329,7 @@ def _edge_eval(ew, st, mu_k, f):
     return True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _edge_try(ew, st, mu_s, mu_k):
     """One status pair of :func:`_edge_slip`: the slip directions brought to consistency (each along that corner's
     tangential velocity; a few fixed-point steps ``s <- u_t / |u_t|``, then Newton on the directions' angles with a
@@ -411,7 +411,7 @@ def _edge_try(ew, st, mu_s, mu_k):
     return True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _edge_slip(cw, ew, act, P, fric, out):
     """Two active corners, one stuck and one slipping, both slipping, or one slipping and the other leaving the
     floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or twists

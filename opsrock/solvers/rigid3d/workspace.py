@@ -22,8 +22,8 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
-import numba
 import numpy as np
+from numba.extending import register_jitable
 
 #: Rows of :attr:`StepWork.vec`: the velocities ``V`` and ``omega`` after the impulses, the free velocity
 #: ``(V_f, omega_f)`` (6), a 6-vector of scratch for the closed forms (``y6``) and NSGS's local velocity ``q``, and
@@ -167,14 +167,14 @@ class Workspace(NamedTuple):
     slip: SlipWork
 
 
-@numba.njit(cache=True)
+@register_jitable
 def make_edge_work():
     """The scratch of the closed-form slip on two corners (:class:`EdgeWork`), zeroed."""
     return EdgeWork(np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
                     np.zeros(1, dtype=np.int64), np.zeros((5, 2)), np.zeros(4, dtype=np.int64))
 
 
-@numba.njit(cache=True)
+@register_jitable
 def make_workspace(out_size):
     """The kernel's scratch, zeroed: a :class:`Workspace` (``out_size``: the length of the kernel's output vector,
     for the probe's)."""
@@ -192,7 +192,7 @@ def make_workspace(out_size):
     return Workspace(ws, wk, probe, sw)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def make_corners():
     """The corners' flags (:class:`Corners`), all False."""
     return Corners(np.zeros(4, dtype=np.bool_), np.zeros(4, dtype=np.bool_))

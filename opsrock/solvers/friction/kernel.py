@@ -19,6 +19,7 @@ from collections import namedtuple
 
 import numba
 import numpy as np
+from numba.extending import register_jitable
 
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers import status as ST
@@ -106,7 +107,7 @@ _EVENT_MAX_ITER = 100
 _MIN_STEP = 1e-14
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _floor(tau, fc):
     """``(a_h/g, 1 + a_v/g)`` at ``tau`` on the current segment (``a_h = 0`` after the excitation)."""
     gv = fc[_FC_G0] + fc[_FC_G1] * (tau - fc[_FC_GT0])
@@ -115,7 +116,7 @@ def _floor(tau, fc):
     return forcing(tau, int(fc[_FC_FORM]), fc[_FC_C0], fc[_FC_C1], fc[_FC_C2]), gv
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _body(params):
     """The :class:`~.modes.Body` of the parameter vector (slots ``P_*``)."""
     return body(params[P_ALPHA], params[P_MU_S], params[P_MU_K], params[P_F_REST], params[P_KAPPA])
@@ -126,14 +127,14 @@ def history(cap):
     return np.zeros((cap, H_SIZE))
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _deriv(m, fc, bd):
     """:func:`opsrock.solvers.friction.modes.accelerations` at the :class:`Motion` ``m``."""
     ah, gv = _floor(m.tau, fc)
     return accelerations(m, ah, gv, bd)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _rk4(m, h, fc, bd):
     """One RK4 step of the :class:`Motion` ``m``: ``(th, om, u, w, input work, friction work)`` after ``h``."""
     mode, s, sig, th, om, u, w, tau = m.mode, m.s, m.sig, m.th, m.om, m.u, m.w, m.tau
@@ -150,7 +151,7 @@ def _rk4(m, h, fc, bd):
             k * (p1 + 2.0 * p2 + 2.0 * p3 + p4), k * (q1 + 2.0 * q2 + 2.0 * q3 + q4))
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _event(ev, m, fc, bd):
     """Value of event ``ev`` (it happens when the value falls to zero from above): 0 impact (``s theta``),
     1 stick-slip (rock: ``mu_s N - |F|``; slide, slide-rock: ``sig w``), 2 contact (``N``; slide:
@@ -173,14 +174,14 @@ def _event(ev, m, fc, bd):
     return 1.0 if mu_s == math.inf else mu_s * n - abs(f)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _event_after(ev, sgn, m, d, fc, bd):
     """Value of event ``ev`` on the RK4 map after a step of length ``d`` from the :class:`Motion` ``m``."""
     th1, om1, u1, w1, _, _ = _rk4(m, d, fc, bd)
     return _event(ev, Motion(m.mode, sgn if ev == 3 else m.s, m.sig, th1, om1, u1, w1, m.tau + d), fc, bd)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _illinois(d, f, lo, hi, f_lo, f_hi, side):
     """The bracket after a trial at ``d`` with value ``f``: ``(lo, hi, f_lo, f_hi, side)``, the end kept twice
     in a row has its value halved (Illinois regula falsi)."""
@@ -193,7 +194,7 @@ def _illinois(d, f, lo, hi, f_lo, f_hi, side):
     return d, hi, f, f_hi, 1
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _locate(ev, sgn, f_lo, f_hi, m, h, fc, bd):
     """Smallest step ``d`` in (0, h] after which event ``ev`` has happened (its value <= 0), to
     round-off, given ``f_lo > 0`` at 0 and ``f_hi <= 0`` at ``h``: Illinois regula falsi with a
@@ -215,7 +216,7 @@ def _locate(ev, sgn, f_lo, f_hi, m, h, fc, bd):
     return hi, hi - lo <= _EVENT_SLACK * tol
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _set_segment(fc, tau, seg, exc, gvals, g_const):
     """Load the forcing segment holding ``tau`` into ``fc``; returns ``(segment index, segment end)``."""
     seg, c0, c1, c2, seg_end = segment(exc, tau, seg)
@@ -231,7 +232,7 @@ def _set_segment(fc, tau, seg, exc, gvals, g_const):
     return seg, seg_end
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _next_departure(tau, level, exc, gvals, g_const):
     """First time >= tau at which a block at rest is overcome (``|a_h| > level (g + a_v)``)."""
     if gvals.shape[0] > 0:
@@ -239,7 +240,7 @@ def _next_departure(tau, level, exc, gvals, g_const):
     return next_exceedance(tau, level * g_const, exc)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _settle(m, ah, gv, bd, rest_velocity):
     """The mode a block takes after an impact or a landing: seated if, at ``theta = 0``, the rotation
     left is below ``rest_velocity`` and pulled back; slide-rock if a stuck pivot cannot hold; a
@@ -270,7 +271,7 @@ def _settle(m, ah, gv, bd, rest_velocity):
 
 
 # --- free flight ------------------------------------------------------------------------------------
-@numba.njit(cache=True)
+@register_jitable
 def _flight_rhs(vx, vy, tau, fc):
     """Accelerations of the centre of mass in flight (units of ``R p²``: ``g / (R p²) = (kap + 1) / kap``, 4/3
     homogeneous) and the input power."""
@@ -279,7 +280,7 @@ def _flight_rhs(vx, vy, tau, fc):
     return -c * ah, -c * gv, -(ah * vx + (gv - 1.0) * vy)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _rk4_flight(x, vx, y, vy, tau, h, fc):
     """One RK4 step of the flight of the centre of mass: ``(x, vx, y, vy, input work)`` after ``h``
     (the rotation rate is constant in flight)."""
@@ -301,13 +302,13 @@ def _rk4_flight(x, vx, y, vy, tau, h, fc):
 _GAP_TOL = 1e-12
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _gap(c, th, y, sa, ca):
     """Height of corner ``c`` above the floor (units of ``R``), plus :data:`_GAP_TOL`."""
     return y - c * sa * math.sin(th) - ca * math.cos(th) + _GAP_TOL
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _takeoff(m, bd):
     """The centre of mass's ``(x, vx, y, vy)`` (units of ``R``, ``R p``) of a block leaving the floor in
     the :class:`Motion` ``m``; ``x`` is measured from the centre's position at rest, as the base displacement
@@ -320,7 +321,7 @@ def _takeoff(m, bd):
     return u, w, ca, 0.0
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _locate_landing(c, f_lo, f_hi, fl, h, fc, bd):
     """Smallest flight time ``d`` in (0, h] after which corner ``c`` touches the floor: Illinois regula
     falsi with a bisection every fourth iteration, on the RK4 flight map from the :class:`Flight` ``fl``.
@@ -341,7 +342,7 @@ def _locate_landing(c, f_lo, f_hi, fl, h, fc, bd):
     return hi, hi - lo <= _EVENT_SLACK * tol
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _fly(fl, h, fc, fresh, bd):
     """One step of free flight of at most ``h`` from the :class:`Flight` ``fl``: ``(th, om, x, vx, y, vy, d, input
     work, landed, ok)``; ``landed``: a corner reached the floor after ``d`` (``d = 0``: a lift-off that does not
@@ -383,7 +384,7 @@ def _record(hist, out, m):
         out[OUT_N_HIST] = n_hist + 1
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _first_event(m, h, y1, fc, bd):
     """The earliest event inside a step of length ``h`` from the :class:`Motion` ``m`` ending in the state
     ``y1``: ``(event, d, ok)``, ``event = -1`` if none (then ``d = h``)."""
@@ -403,7 +404,7 @@ def _first_event(m, h, y1, fc, bd):
     return best, d_best, True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _peak(m, d, om_end, fc, bd):
     """``|theta|`` at a turning point inside a step of length ``d`` from the :class:`Motion` ``m`` (0 if
     ``omega`` keeps its sign)."""
@@ -416,7 +417,7 @@ def _peak(m, d, om_end, fc, bd):
     return abs(th_p), ok
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _energy(mode, s, th, om, w, fy, fvy, bd):
     """Kinetic plus potential energy of any mode's state (units of ``m g R``)."""
     alpha, ca, kap = bd.alpha, bd.ca, bd.kap
@@ -425,7 +426,7 @@ def _energy(mode, s, th, om, w, fy, fvy, bd):
     return kinetic_energy(mode, s, th, om, w, alpha, kap) + potential_energy(s if mode != SLIDE else 0.0, th, alpha)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _unstoppable(w, mu_k, g_tail, time_left, kap):
     """Whether a pure slide at slip velocity ``w`` on the still floor after the excitation (closed form:
     uniform deceleration ``(kap + 1) / kap mu_k g_tail``, 4/3 homogeneous, units of ``R p²``) cannot stop within
@@ -433,7 +434,7 @@ def _unstoppable(w, mu_k, g_tail, time_left, kap):
     return (kap + 1.0) / kap * mu_k * g_tail * time_left < abs(w)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _start_slip(mode, s, th, om, tau, fc, alpha, mu_s):
     """The slip direction ``sig`` of a block started rocking on a stuck pivot (``theta0``, ``omega0``): 0 if
     the pivot holds (``|F| <= mu_s N``), else ``-sgn(F)`` (it starts slide-rocking)."""
@@ -468,7 +469,7 @@ Setup = namedtuple("Setup", ["exc", "gvals", "g_const", "g_tail", "tau_end", "h_
                              "max_impacts", "max_steps", "max_tail", "level"])
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _setup(params, kvals, gvals):
     """The case's :class:`Setup` and :class:`~.modes.Body` from the parameter vector (slots ``P_*``)."""
     exc = Excitation(int(params[P_FORM]), params[P_K], params[P_NU], params[P_PHASE], params[P_TAU_END], kvals,
@@ -500,7 +501,7 @@ def _first_mode(out, mode):
         out[OUT_FIRST_MODE] = mode
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _start(params, cfg, bd, fc, cs, out, hist):
     """The case's start: from rest, or rocking on a stuck pivot from ``theta0``, ``omega0`` (slide-rocking if the
     pivot cannot hold, :func:`_start_slip`); ``out`` cleared but for the start's energy, the first history row."""
@@ -525,7 +526,7 @@ def _start(params, cfg, bd, fc, cs, out, hist):
     _record(hist, out, _motion(cs))
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _take_off(bd, cs, out, hist):
     """The block leaves the floor (its contact force would turn negative): the flight's start from its mode."""
     fx, fvx, fy, fvy = _takeoff(_motion(cs), bd)
@@ -536,7 +537,7 @@ def _take_off(bd, cs, out, hist):
     _record(hist, out, _motion(cs))
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _leave_rest(cfg, bd, fc, cs, out, hist):
     """A block at rest jumps to the next time the floor overcomes it and takes the mode it starts in
     (:func:`~.modes.start_mode`; flight: a take-off next). Returns :data:`_GO`, or ``STATUS_OK`` if it stays at
@@ -568,7 +569,7 @@ def _leave_rest(cfg, bd, fc, cs, out, hist):
     return _GO
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _seat_slide(cfg, bd, cs, out):
     """The ending rule (docs/guide/friction.md): a pure slide on the still floor after the excitation that friction
     stops only after ``max_tail``, or never, ends the case; its slip velocity into ``OUT_SLIP_END``, one slower than
@@ -614,7 +615,7 @@ def _fly_step(cfg, bd, fc, cs, h, last, out, hist):
     return _land(cfg, bd, fc, cs, out, hist)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _land(cfg, bd, fc, cs, out, hist):
     """A corner lands from flight (:func:`_fly_step`): the impact law, then the mode the block settles in."""
     th, om, fy, fvy, tau = cs[_CS_TH], cs[_CS_OM], cs[_CS_FY], cs[_CS_FVY], cs[_CS_TAU]
@@ -667,7 +668,7 @@ def _trial_step(bd, fc, cs, h, last, out):
     return y1, h, last, True
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _drop_undeveloped(bd, cs, y1, out):
     """A new mode that does not develop within 1e-14/p (:func:`_trial_step`, ending in ``y1``): the part that does
     not (the rotation or the slip), or both, is dropped; the energy that takes away counted as lost."""
@@ -853,7 +854,7 @@ def _phase(cfg, bd, fc, cs, out, hist):
     return _rk_step(cfg, bd, fc, cs, h, last, out, hist)
 
 
-@numba.njit(cache=True)
+@register_jitable
 def _finish(bd, cs, status, out):
     """The case's outputs at its end with ``status``: its time, peak tilt, first mode, base displacement and the
     energies of its last state."""

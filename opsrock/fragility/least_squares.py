@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import special
 
 from opsrock.errors import InputError
 from opsrock.fragility.lognormal import BETA_BOUNDS, LognormalFit, failed_fit
@@ -54,6 +53,8 @@ def fit_lognormal_least_squares(
         return failed_fit(method, int(x.size), decreasing,
                            "every strip fraction is 0 or 1: the strip fractions are a step and "
                            "beta is not identified")
+    from scipy import special  # scipy.special here, not at the top: it imports numpy.f2py and numpy.testing (0.2 s of every command's start)
+
     s = -1.0 if decreasing else 1.0
     lx = np.log(x)
 

@@ -11,7 +11,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 from opsrock.errors import InputError
 from opsrock.fragility.optimise import newton
@@ -52,6 +51,8 @@ class LogisticFit:
 
     def probability(self, x: np.ndarray | float) -> np.ndarray:
         """Fitted ``P(overturning | IM = x)``."""
+        from scipy import special  # scipy.special here, not at the top: it imports numpy.f2py and numpy.testing (0.2 s of every command's start)
+
         s = -1.0 if self.decreasing else 1.0
         return special.expit(s * np.log(np.asarray(x, dtype=float) / self.mu) / self.scale)
 
@@ -83,6 +84,8 @@ def fit_logistic(values: np.ndarray, overturned: np.ndarray, decreasing: bool = 
     mean, sd = float(u.mean()), float(u.std()) or 1.0
     v = (u - mean) / sd
     yf = y.astype(float)
+
+    from scipy import special  # scipy.special here, not at the top: it imports numpy.f2py and numpy.testing (0.2 s of every command's start)
 
     def nll(q):  # concave log-likelihood in (a, b): the optimiser cannot wander off
         z = q[0] + q[1] * v

@@ -6,7 +6,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 #: CDF is a step at the resolution of any IM table; above 20 it is flat over 10 decades.
 BETA_BOUNDS: tuple[float, float] = (1e-3, 20.0)
@@ -34,6 +33,8 @@ def fragility_probability(
     ndarray
         ``P(overturning | IM = x)``.
     """
+    from scipy import special  # scipy.special here, not at the top: it imports numpy.f2py and numpy.testing (0.2 s of every command's start)
+
     x = np.asarray(x, dtype=float)
     s = -1.0 if decreasing else 1.0
     z = s * np.log(x / mu)

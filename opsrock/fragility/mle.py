@@ -20,7 +20,6 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from scipy import special
 
 from opsrock._pool import TaskPool
 from opsrock.errors import InputError
@@ -95,6 +94,8 @@ class _ProbitNLL:
 
     def __call__(self, ab: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
         """The value, the gradient and the Hessian in ``(a, b)`` at ``ab``."""
+        from scipy import special  # scipy.special here, not at the top: it imports numpy.f2py and numpy.testing (0.2 s of every command's start)
+
         z = ab[0] + ab[1] * self.v
         lp = special.log_ndtr(self.sign * z)  # log Phi(z) if overturned, log Phi(-z) if safe
         log_phi = -0.5 * z**2 - _HALF_LN_2PI

@@ -35,7 +35,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.integrate
 
 from opsrock.constants import G
 from opsrock.errors import InputError
@@ -85,6 +84,7 @@ class MotionMeasures:
 def velocity_displacement(record: Record) -> tuple[np.ndarray, np.ndarray]:
     """Baseline-corrected velocity (m/s) and displacement (m) at the sample times (see module)."""
     import eqsig
+    import scipy.integrate  # here, as eqsig: every command that reads records imports this module, few integrate
 
     v = np.asarray(eqsig.AccSignal(np.asarray(record.values), record.dt).velocity, dtype=float)
     t = record.time

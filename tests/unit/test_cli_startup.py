@@ -16,6 +16,19 @@ def test_the_parser_loads_no_numpy():
     assert proc.stdout.strip() == "[]"
 
 
+def test_the_study_and_campaign_handlers_load_no_scipy_submodule():
+    """``opsrock contents``, ``run`` and ``records`` load scipy's submodules only where they compute with them
+    (scipy.special imports numpy.f2py and numpy.testing, scipy.integrate scipy.optimize: 0.4 s of CPU of every
+    refusal of these commands before, about 0.5 s of a contents refusal's 0.96 s)."""
+    code = ("import sys; from opsrock.cli import handler\n"
+            "for c in ('contents', 'run', 'records', 'fragility'): handler(c)\n"
+            "print(sorted(m for m in ('scipy.special', 'scipy.integrate', 'scipy.optimize', 'scipy.stats')"
+            " if m in sys.modules))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.strip() == "[]"
+
+
 SWALLOWING_IMPORT = r"""
 import importlib, signal, sys
 import opsrock.cli as cli

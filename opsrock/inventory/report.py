@@ -360,6 +360,40 @@ def _figure_lines(figures: dict[str, str], never: tuple[str, ...] = (), slides: 
     return lines
 
 
+@dataclass(frozen=True)
+class Section:
+    """One section of a contents study's report: every configuration's report (the inventory's,
+    :func:`write_report`; FEMA P-58's nine, :func:`opsrock.inventory.fema.report.write_report`; the directionality
+    study's, :func:`opsrock.inventory.directionality.report.write_report`) is a title and its sections, written by
+    :func:`write_sections`.
+
+    Parameters
+    ----------
+    heading : str
+        The section's ``##`` heading; empty: lines under the title, before any heading.
+    lines : tuple of str
+        Its Markdown lines (tables already rendered; nothing computed here).
+    """
+
+    heading: str
+    lines: tuple[str, ...]
+
+
+def render_sections(title: str, sections: list[Section]) -> str:
+    """``# title``, then each section (its ``## heading`` if any, then its lines), one blank line between them."""
+    lines = [f"# {title}"]
+    for s in sections:
+        lines += ["", *((f"## {s.heading}", "") if s.heading else ()), *s.lines]
+    return "\n".join(lines) + "\n"
+
+
+def write_sections(path: str | Path, title: str, sections: list[Section]) -> Path:
+    """Write ``report.md`` (atomically) from its title and sections (:func:`render_sections`); its path."""
+    path = Path(path)
+    atomic_text(path, render_sections(title, sections))
+    return path
+
+
 def write_report(path: str | Path, inputs: ReportInputs) -> Path:
     """Write ``report.md`` (atomically) from ``inputs`` and return its path.
 
@@ -371,11 +405,9 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
         The computed tables.
     """
     t = inputs.table
-    lines = [f"# {inputs.title}", "",
-             "Each item's fragility on each floor of the building, in two demands: " + "; ".join(DEFINITIONS.values())
-             + ". Overturning first; table rows are one item on one floor.", "",
-             "## Per item and floor: overturning", "",
-             markdown_table(formatted_table(t, "overturned", inputs.confidence)) if len(t) else "(no item was fitted)", "",
+    lead = ("Each item's fragility on each floor of the building, in two demands: " + "; ".join(DEFINITIONS.values())
+            + ". Overturning first; table rows are one item on one floor.")
+    lines = [markdown_table(formatted_table(t, "overturned", inputs.confidence)) if len(t) else "(no item was fitted)", "",
              *(footnotes(t, "overturned") if len(t) else []),
              *_reason_lines(inputs.reasons),
              *method_lines(inputs.method, inputs.confidence)]
@@ -387,10 +419,9 @@ def write_report(path: str | Path, inputs: ReportInputs) -> Path:
                   *footnotes(inputs.sliding, "slid")]
     lines += [*_figure_lines(inputs.figures, inputs.never, inputs.slides), *_expected_lines(inputs.expected, inputs.pelicun),
               *_box_lines(inputs.boxes), *_failure_lines(inputs), *_pelicun_lines(inputs.pelicun, inputs.pelicun_notes)]
-    path = Path(path)
-    atomic_text(path, "\n".join(lines) + "\n")
-    return path
+    return write_sections(path, inputs.title, [Section("", (lead,)),
+                                               Section("Per item and floor: overturning", tuple(lines))])
 
 
-__all__ = ["DEFINITIONS", "FAILURE_HEADERS", "METHODS", "OUTSIDE_MARK", "ReportInputs", "footnotes", "formatted_table", "method_lines",
-           "write_report"]
+__all__ = ["DEFINITIONS", "FAILURE_HEADERS", "METHODS", "OUTSIDE_MARK", "ReportInputs", "Section", "footnotes",
+           "formatted_table", "method_lines", "render_sections", "write_report", "write_sections"]

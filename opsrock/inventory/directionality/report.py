@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from opsrock._files import atomic_text
+from opsrock.inventory.report import Section, write_sections
 from opsrock.plots import save_figure
 from opsrock.report.markdown import markdown_table
 from opsrock.solvers.registry import planar_solver
@@ -138,14 +138,13 @@ def write_report(path: Path, inputs: Any) -> Path:
                                              "median_3d_pfv_max", "median_3d_pfv_nd", "median_planar_pfv_weak",
                                              "factor_implied", "ratio_weak", "share_corner", "verdict"]]
     cells = h["cells"]
-    lines = [
-        "# Directionality: contents under two horizontal components, in three dimensions", "",
+    head = Section("", (
         "    opsrock directionality --out studies/directionality", "",
         f"{h['n_cases']} cases ({h['n_failed']} failed; {h['n_computed']} computed by this run, the others read from "
         f"the stores) in {h['wall_time_s']:.0f} s of wall time (motions {h['timings'].get('motions_s', 0):.0f} s, "
         f"campaigns {h['timings'].get('campaigns_s', 0):.0f} s, fits {h['timings'].get('fits_s', 0):.0f} s). Design:", "",
-        *_design_lines(d), "",
-        "## Headline", "",
+        *_design_lines(d)))
+    headline = Section("Headline", (
         f"* the factor on max(PFV_1, PFV_2) that makes the planar fragility of the weaker axis match the 3-D one "
         f"(orientations pooled): median {_fmt(h['factor_implied_median'])}, range {_fmt(h['factor_implied_range'])}; "
         "pelicun uses 1.2",
@@ -157,18 +156,18 @@ def write_report(path: Path, inputs: Any) -> Path:
         f"{d.tolerance:.0%} beside the median half-width of the planar medians' 95 % intervals, "
         f"{_fmt(h['planar_ci_halfwidth_median'])}",
         f"* share of 3-D overturnings over a corner: {_fmt(h['share_corner'])}",
-        f"* cost: a 3-D case took {_fmt(h['cost_ratio_3d'])} times a planar case's wall time (this run)", "",
-        "## Medians, orientations pooled (m/s)", "", markdown_table(pooled), "",
-        "## Where planar analysis suffices", "", f"![map]({fig.get('map', 'figures/map.png')})", "",
-        "## The factor on max(PFV_1, PFV_2)", "", f"![factor]({fig.get('factor', 'figures/factor.png')})", "",
-        "## Edge or corner", "", f"![mechanisms]({fig.get('mechanisms', 'figures/mechanisms.png')})", "",
-        "## Cost per case", "", markdown_table(t["cost"]), "",
-        "## Files", "",
-        "`directionality.csv` (every orientation and pooled), `fits.csv` (every fit), `map.csv`, `mechanisms.csv`, "
-        "`cost.csv`, `demands.csv`: full precision. The campaigns' stores are not part of the folder's outputs.", "",
-    ]
-    atomic_text(path, "\n".join(lines))
-    return path
+        f"* cost: a 3-D case took {_fmt(h['cost_ratio_3d'])} times a planar case's wall time (this run)"))
+    return write_sections(path, "Directionality: contents under two horizontal components, in three dimensions", [
+        head, headline,
+        Section("Medians, orientations pooled (m/s)", (markdown_table(pooled),)),
+        Section("Where planar analysis suffices", (f"![map]({fig.get('map', 'figures/map.png')})",)),
+        Section("The factor on max(PFV_1, PFV_2)", (f"![factor]({fig.get('factor', 'figures/factor.png')})",)),
+        Section("Edge or corner", (f"![mechanisms]({fig.get('mechanisms', 'figures/mechanisms.png')})",)),
+        Section("Cost per case", (markdown_table(t["cost"]),)),
+        Section("Files", ("`directionality.csv` (every orientation and pooled), `fits.csv` (every fit), `map.csv`, "
+                          "`mechanisms.csv`, `cost.csv`, `demands.csv`: full precision. The campaigns' stores are not "
+                          "part of the folder's outputs.",)),
+    ])
 
 
 __all__ = ["plot_map", "write_figures", "write_report"]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import pandas as pd
 
 from opsrock.inventory.fema.design import ContentsDesign, floor_name
+from opsrock.inventory.report import Section
 from opsrock.report.markdown import markdown_table
 from opsrock.solvers.registry import planar_solver
 
@@ -209,9 +210,9 @@ def _variant_claims(result: dict, design: ContentsDesign) -> list[str]:
     return out
 
 
-def drivers_section(result: dict, design: ContentsDesign) -> list[str]:
-    """The section's lines."""
-    out = ["", "## What drives the differences (measured)", "", *_claims(result, design)]
+def drivers_section(result: dict, design: ContentsDesign) -> Section:
+    """The report's section (:class:`opsrock.inventory.report.Section`)."""
+    out = [*_claims(result, design)]
     out += _floors(result, design)
     out += _uplift_and_velocity(result, design)
     out += _size(result, design)
@@ -224,7 +225,7 @@ def drivers_section(result: dict, design: ContentsDesign) -> list[str]:
                    "rock, and a sliding base caps the force the floor passes to it.", design)
     out += _sliding(result)
     out += _definition(result, design)
-    return out
+    return Section("What drives the differences (measured)", tuple(out))
 
 
 __all__ = ["drivers_section"]

@@ -11,6 +11,7 @@ from typing import Any
 import pandas as pd
 
 from opsrock.inventory.fema.design import ContentsDesign, floor_name
+from opsrock.inventory.report import Section, write_sections
 from opsrock.published import fema_p58
 from opsrock.report.markdown import markdown_table
 
@@ -88,13 +89,15 @@ def _article(n: int) -> str:
     return "an" if str(n).startswith("8") or n in (11, 18) else "a"
 
 
-def _head(design: ContentsDesign, summary: StudySummary) -> list[str]:
+def _title(design: ContentsDesign) -> str:
+    return (f"Unanchored contents beside FEMA P-58: {_article(design.storeys)} {design.storeys}-storey building, "
+            f"T1 = {design.period:g} s")
+
+
+def _head(design: ContentsDesign, summary: StudySummary) -> Section:
     t = summary.timings
     floors = ", ".join(floor_name(n, design.storeys) for n in design.floor_numbers)
-    return [
-        (f"# Unanchored contents beside FEMA P-58: {_article(design.storeys)} {design.storeys}-storey building, "
-         f"T1 = {design.period:g} s"),
-        "",
+    return Section("", (
         f"The nine unanchored items of FEMA P-58 (`fema-p58-contents`) as rigid blocks (width = depth, height = "
         f"height) on the {floors} of a linear shear building (T1 = {design.period:g} s, {design.storeys} storeys, "
         f"{design.damping:.0%} modal damping), under the {len(design.names) or 44} components of "
@@ -113,7 +116,7 @@ def _head(design: ContentsDesign, summary: StudySummary) -> list[str]:
                                                         if k.endswith("_s") and k != "total_s") + ").",
         "",
         headline(design, summary),
-    ]
+    ))
 
 
 def headline(design: ContentsDesign, summary: StudySummary) -> str:
@@ -131,9 +134,8 @@ def headline(design: ContentsDesign, summary: StudySummary) -> str:
                if summary.sweep_ratio_range else "."))
 
 
-def _ratio_section(result: dict, design: ContentsDesign) -> list[str]:
-    out = ["", "## opsrock over FEMA P-58, per item and floor", "",
-           ("PFV medians of opsrock over the database's (95 % interval from the records), and opsrock's beta "
+def _ratio_section(result: dict, design: ContentsDesign) -> Section:
+    out = [("PFV medians of opsrock over the database's (95 % interval from the records), and opsrock's beta "
            "range over the floors (FEMA: 0.5). All numbers in `ratios.csv`; the curves per item in "
            "`figures/<item>.png`.")]
     for v in design.variants:
@@ -144,10 +146,10 @@ def _ratio_section(result: dict, design: ContentsDesign) -> list[str]:
                 "acceleration g b/h, which is FEMA's rule in PFA (`PFV_50 = g (b/h) T / 2 pi` is `PFA_50 = g b/h` "
                 "for a harmonic floor motion); FEMA P-58 itself has no PFA fragility for these items:"), "",
                 markdown_table(pfa_matrix(result["ratios"], "default", design))]
-    return out
+    return Section("opsrock over FEMA P-58, per item and floor", tuple(out))
 
 
-def _rule_section(result: dict, with_figure: bool) -> list[str]:
+def _rule_section(result: dict, with_figure: bool) -> Section:
     """FEMA's rule and how well it reproduces the database; the figure (``figures/fema_rule.png``, drawn
     only with the default variant, whose medians it shows) when ``with_figure``."""
     rule = result["rule"].copy()
@@ -155,7 +157,7 @@ def _rule_section(result: dict, with_figure: bool) -> list[str]:
                  "implied_hi"]]
     books = rule[rule["fema_id"].isin([i.fema_id for i in fema_p58.ITEMS if i.kind == "bookcase"])]
     cabinets = rule[~rule.index.isin(books.index)]
-    return ["", "## FEMA P-58's rule", "",
+    return Section("FEMA P-58's rule", (
             ("The database says that each median is worked out from the item's aspect ratio and the building period "
             "T, but not how; the formula was not found in any source we could reach (the FEMA P-58 volumes and "
             "background reports could not be read). The best candidate we found is `PFV_50 = g (b/h) T / 2 pi`: the "
@@ -170,25 +172,23 @@ def _rule_section(result: dict, with_figure: bool) -> list[str]:
             "all nine the rule does not reproduce the database, and we could not find the further input (another "
             "period, other dimensions, a lower centre of mass) that would."), "",
             markdown_table(rule, ".4g"),
-            *(["", "![FEMA's rule against T and b/h beside opsrock](figures/fema_rule.png)"] if with_figure else [])]
+            *(["", "![FEMA's rule against T and b/h beside opsrock](figures/fema_rule.png)"] if with_figure else [])))
 
 
 def write_report(path: Path, design: ContentsDesign, result: dict, summary: StudySummary) -> Path:
     """Write ``report.md``."""
-    from opsrock._files import atomic_write
     from opsrock.inventory.fema.drivers import drivers_section
 
-    lines = [*_head(design, summary), *_ratio_section(result, design), *_rule_section(result, "default" in design.variants),
-             *drivers_section(result, design), *_pelicun_section(design)]
-    atomic_write(Path(path), lambda fh: fh.write("\n".join(lines) + "\n"), durable=False)
-    return Path(path)
+    return write_sections(path, _title(design), [
+        _head(design, summary), _ratio_section(result, design), _rule_section(result, "default" in design.variants),
+        drivers_section(result, design), _pelicun_section(design)])
 
 
-def _pelicun_section(design: ContentsDesign) -> list[str]:
+def _pelicun_section(design: ContentsDesign) -> Section:
     if "default" not in design.variants:
-        return ["", "## Into pelicun", "", "No pelicun folder: it holds the items as the shipped inventory has them "
-                "(no slip, e = 0.95 e_R), the `default` variant, which this study leaves out."]
-    return ["", "## Into pelicun", "",
+        return Section("Into pelicun", ("No pelicun folder: it holds the items as the shipped inventory has them "
+                                        "(no slip, e = 0.95 e_R), the `default` variant, which this study leaves out.",))
+    return Section("Into pelicun", (
             ("`pelicun/` is written by the contents study's one pelicun writer, as for any inventory, from the "
              "`default` variant (the shipped inventory `fema-p58-nine`: no slip, e = 0.95 e_R, one unit of each item "
              "on each floor): each item on each floor is one non-directional component, `opsrock.<FEMA ID>.<floor>` "
@@ -201,7 +201,7 @@ def _pelicun_section(design: ContentsDesign) -> list[str]:
              "beside this report hold the components and the expected number overturned per item and floor, exact "
              "over the records. `tools/pelicun_inventory.py` (in pelicun's venv) runs that assessment; "
              "`tools/pelicun_assess.py` runs pelicun's damage assessment of the same units with the database's "
-             "E.20.22 fragilities and with opsrock's, and reports the expected number of overturned items each way.")]
+             "E.20.22 fragilities and with opsrock's, and reports the expected number of overturned items each way."),))
 
 
 __all__ = ["StudySummary", "headline", "ratio_matrix", "write_report"]

@@ -131,14 +131,5 @@ def pelicun_tables(fits: pd.DataFrame, velocities: pd.DataFrame, design: Content
             "fits": own, "demands": demands, "study": study}
 
 
-def write_pelicun_files(tables: dict[str, Any], folder: Any) -> dict[str, Any]:
-    """The pelicun folder of :func:`pelicun_tables` by the study's writer (nothing without them)."""
-    from opsrock.inventory.pelicun import write_pelicun_folder
-
-    if not tables:
-        return {}
-    return write_pelicun_folder(tables["components"], tables["fits"], tables["demands"], tables["study"], folder)
-
-
 __all__ = ["DIRECTION", "PELICUN_VARIANT", "BuildingFloors", "PelicunStudy", "floor_of", "pelicun_study",
-           "pelicun_tables", "write_pelicun_files", "writer_demands", "writer_fits"]
+           "pelicun_tables", "writer_demands", "writer_fits"]

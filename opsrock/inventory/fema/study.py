@@ -99,9 +99,9 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
 def _write(a: Any, stage: Path) -> Any:
     """The tables, figures, pelicun files and report into the staging folder ``stage``."""
     from opsrock.inventory.columns import write_table
-    from opsrock.inventory.fema.pelicun import write_pelicun_files
     from opsrock.inventory.fema.report import write_report
     from opsrock.inventory.outputs import Written, write_csv
+    from opsrock.inventory.pelicun import write_pelicun_folder
 
     t0 = time.perf_counter()
     result = {k: v for k, v in a.tables.items() if k in TABLES}
@@ -110,7 +110,8 @@ def _write(a: Any, stage: Path) -> Any:
     paths = {k: write_csv(df, stage / TABLES[k]) for k, df in result.items() if not df.empty}
     paths.update({k: write_table(pel[k], stage / name) for k, name in PELICUN_TABLES.items() if k in pel})
     figures = _figures(stage, fits, a.cases, result, a.design)
-    pelicun = write_pelicun_files(pel, stage / "pelicun")
+    pelicun = write_pelicun_folder(pel["components"], pel["fits"], pel["demands"], pel["study"],
+                                   stage / "pelicun") if pel else {}
     a.timings["outputs_s"] = time.perf_counter() - t0
     a.timings["total_s"] = time.perf_counter() - a.t_start
     timings = {**_campaign_timings(a.runs),

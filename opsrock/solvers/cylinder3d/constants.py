@@ -44,7 +44,12 @@ T_TURN = 7  # angle the contact point has run round the rim since the rim phase 
 T_LAST_N = 8  # rim points in contact at the previous step
 T_CONTACT_RATE = 9  # |d phi / dt| of the contact point at the last step (rad/s)
 T_CALM = 10  # Moreau-Jean steps in a row on one stuck, loaded rim point (negative: cooling after a smooth sub-step failed)
-T_SIZE = 11
+T_W_LAST = 11  # tilt at the last sub-step's end of the rolling phase after the excitation, unbroken (NaN: none)
+T_W_RISING = 12  # 1.0: the tilt rose over that sub-step
+T_W_MAXES = 13  # local maxima of the tilt in that unbroken rolling
+T_W_TOP = 14  # largest tilt since the first of them (rad)
+T_W_RATE = 15  # largest |omega_h| over those sub-steps (rad/s): the tilt's rate is at most it
+T_SIZE = 16
 
 # --- layout of the kernel's output vector: the shared slots, then this kernel's own -----------------
 OUT_STATUS, OUT_THETA_MAX, OUT_OVERTURNED = ST.OUT_STATUS, ST.OUT_THETA_MAX, ST.OUT_OVERTURNED
@@ -82,7 +87,8 @@ OUT_TILT_BOUND = ST.OUT_COMMON + 40  # largest tilt the final energy can reach (
 OUT_ROLL_STEPS = ST.OUT_COMMON + 41  # Runge-Kutta sub-steps rolling on a rim point kept (:mod:`.rolling`)
 OUT_ROLL_SPAN = ST.OUT_COMMON + 42  # Moreau-Jean steps those spanned
 OUT_ROLL_FAILED = ST.OUT_COMMON + 43  # Runge-Kutta sub-steps tried and not kept
-OUT_SIZE = ST.OUT_COMMON + 44
+OUT_TAIL_WOBBLE = ST.OUT_COMMON + 44  # 1.0: the tail ended at its span in a steady wobble, its tilt periodic
+OUT_SIZE = ST.OUT_COMMON + 45
 
 # --- the physics' named thresholds and the iterations' tolerances -------------------------------------
 #: Speed of the base (m/s) below which the tail may end by the energy bound (rigid3d's rule "peak"): a base sliding

@@ -30,6 +30,7 @@ from opsrock.solvers.cylinder3d.constants import (H_DOWN, H_POS, H_ROT, H_SLIDE,
                                                   STATUS_OK, STATUS_TAIL, TAIL_CUT_MARGIN, TILT_SLACK, T_CONTACT_RATE,
                                                   ENERGY_ROUNDOFF, OUT_TAIL_BOUND, OUT_TILT_BOUND, OUT_ROLL_FAILED,
                                                   OUT_ROLL_SPAN, OUT_ROLL_STEPS, ROLL_CALM, ROLL_MIN_STEPS, T_CALM,
+                                                  OUT_TAIL_WOBBLE, T_W_LAST, T_W_MAXES, T_W_RATE, T_W_RISING, T_W_TOP,
                                                   T_LAST_N, T_PHI, T_RESTING, T_SEATED, T_SLIDE_MAX, T_TILT_MAX, T_TURN,
                                                   T_TWIST_MAX, T_UNCONVERGED)
 from opsrock.solvers.cylinder3d.geometry import base_centre, tilt, twist
@@ -163,8 +164,52 @@ def _roll_step(model, floor, state, rw, k):
     out[OUT_TIME_ROLLING] += span if rate > ROLL_RATE * model.design.p else 0.0
     out[OUT_ROLL_STEPS] += 1.0
     out[OUT_ROLL_SPAN] += n
-    _peaks(model, state)
+    t = _peaks(model, state)[0]
+    if k >= floor.n_exc:
+        _wobble(tr, t, math.hypot(s[10], s[11]))
+    else:
+        _wobble_broken(tr)
     return n
+
+
+@numba.njit(cache=True)
+def _wobble_broken(tr):
+    """The unbroken rolling after the excitation ends (a Moreau-Jean step, or the excitation still on)."""
+    tr[T_W_LAST], tr[T_W_RISING], tr[T_W_MAXES] = math.nan, 0.0, 0.0
+
+
+@numba.njit(cache=True)
+def _wobble(tr, t, rate):
+    """The tilt ``t`` (rad) and ``|omega_h|`` ``rate`` (rad/s) at the end of a sub-step of unbroken rolling after the
+    excitation: counts the tilt's local maxima and keeps, from the first, its largest value and the largest rate."""
+    last = tr[T_W_LAST]
+    if math.isfinite(last):
+        rising = t > last
+        if tr[T_W_RISING] > 0.5 and not rising:
+            tr[T_W_MAXES] += 1.0
+            if tr[T_W_MAXES] == 1.0:
+                tr[T_W_TOP], tr[T_W_RATE] = last, rate
+        tr[T_W_RISING] = 1.0 if rising else 0.0
+    if tr[T_W_MAXES] >= 1.0:
+        tr[T_W_TOP], tr[T_W_RATE] = max(tr[T_W_TOP], t), max(tr[T_W_RATE], rate)
+    tr[T_W_LAST] = t
+
+
+@numba.njit(cache=True)
+def _steady_wobble(model, state):
+    """At the end of the tail's span, still rolling: True if the cylinder can never overturn because it has rolled
+    without slip, unbroken, through a full period of its tilt (two of its maxima) after the excitation. A body of
+    revolution rolling without slip on a still plane is integrable (Chaplygin 1897: the energy and two integrals
+    linear in the angular velocity), so its tilt is periodic between fixed turning points, the contact's forces
+    with it: the largest tilt of one period, sampled at the sub-steps' ends and raised by ``|omega_h|`` (which
+    bounds the tilt's rate) times a sub-step, is its tilt for ever. Writes that bound (``OUT_TILT_BOUND``) and
+    ``OUT_TAIL_WOBBLE`` if it is below ``alpha``."""
+    tr, out, d = state.track, state.out, model.design
+    bound = tr[T_W_TOP] + tr[T_W_RATE] * model.numerics.roll_steps * model.numerics.dt
+    if tr[T_W_MAXES] < 2.0 or not math.isfinite(tr[T_W_LAST]) or bound >= d.alpha:
+        return False
+    out[OUT_TAIL_WOBBLE], out[OUT_TILT_BOUND] = 1.0, bound
+    return True
 
 
 @numba.njit(cache=True)
@@ -298,6 +343,7 @@ def _sub_step(model, state, ws, k):
         out[OUT_FRICTION_WORK] += _impulse_energy(ws)[0]
     calm = n == 1 and not flat and slipping == 0 and ws.P[0, 2] > 0.0 and not landing
     tr[T_CALM] = tr[T_CALM] + 1.0 if calm else min(0.0, tr[T_CALM] + 1.0)
+    _wobble_broken(tr)
     fin = 0.0
     for a in range(13):
         fin += ws.new[a]
@@ -352,7 +398,7 @@ def run(model, floor, state, ws, rw, hist):
         if k >= floor.n_exc + max(lim.max_tail, 0) or k >= lim.max_steps:
             if k < lim.max_steps and _below_overturning(model, state, floor.tail_av):
                 out[OUT_TAIL_BOUND] = 1.0  # still rolling, unable ever to overturn: the verdict holds
-            else:
+            elif not (k < lim.max_steps and _steady_wobble(model, state)):
                 out[OUT_STATUS] = STATUS_TAIL if k < lim.max_steps else STATUS_MAX_STEPS
             break
         settled = _tail_settled(model, state, floor.tail_av) if (k > floor.n_exc and lim.max_tail >= 0) else 0

@@ -17,7 +17,7 @@ import numpy as np
 from opsrock.block import Block
 from opsrock.constants import G
 from opsrock.errors import InputError
-from opsrock.solvers.cylinder3d.constants import OUT_SIZE, ROLL_DTAU, T_LAST_N, T_PHI, T_SIZE
+from opsrock.solvers.cylinder3d.constants import OUT_SIZE, ROLL_DTAU, T_LAST_N, T_PHI, T_SIZE, T_W_LAST
 from opsrock.solvers.cylinder3d.settings import DEFAULT_TAIL_DTAU, Cylinder3DSettings
 
 
@@ -269,6 +269,7 @@ def make_state(s0: np.ndarray) -> State:
     track = np.zeros(T_SIZE)
     track[T_PHI] = math.nan
     track[T_LAST_N] = -1.0  # unknown: the first step's contact is no landing
+    track[T_W_LAST] = math.nan
     return State(np.array(s0, dtype=np.float64), track, np.zeros(OUT_SIZE))
 
 

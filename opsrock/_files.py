@@ -12,6 +12,10 @@
 * :func:`not_a_file`, :func:`input_file`: the check every file opsrock reads passes first (records, scenes,
   blocks files): a regular file, never a device, a FIFO, a socket or a folder. A character device reports
   size 0 (``/dev/zero`` would pass a size limit and then fill the memory) and a FIFO blocks the reader.
+* :data:`UNITS_ROW`, :func:`units_row_text`, :func:`read_units`: the units row of a table (the SimCenter tabular
+  form pelicun reads and writes: the header, then a row whose first cell is ``Units`` and whose other cells give
+  each column's unit), written and read the same way by every layer that writes one (the campaign's
+  ``cases.csv``, the contents study's tables); each layer defines its own columns' units.
 * :func:`staged_folder`: a report folder written whole or not at all, that holds only the new run's
   outputs afterwards (:func:`remove_stale` removes an earlier run's outputs that the new run does not
   write, and only those: files a writer does not own are kept).
@@ -20,6 +24,8 @@
 from __future__ import annotations
 
 import contextlib
+import csv
+import io
 import os
 import shutil
 import stat
@@ -275,5 +281,35 @@ def read_table(path: str | os.PathLike, **options: Any) -> "pd.DataFrame":
     return pd.read_csv(path, float_precision="round_trip", **options)
 
 
-__all__ = ["atomic_csv", "atomic_text", "atomic_write", "input_file", "not_a_file", "output_dir", "output_file",
-           "read_table", "remove_stale", "staged_folder"]
+#: The first cell of a table's units row (pelicun's spelling, ``pelicun.file_io.load_data``).
+UNITS_ROW: str = "Units"
+
+
+def units_row_text(names: Sequence[str], units: Sequence[str]) -> str:
+    """The first two lines of a table with a units row: the header ``names``, then ``Units`` and the units of the
+    columns after the first (``units[0]``, the first column's, must be empty: a label or an id has no unit)."""
+    if len(names) != len(units):
+        raise ValueError(f"{len(names)} columns but {len(units)} units")
+    if units and units[0]:
+        raise ValueError(f"the first column of a table with a units row has no unit, not {names[0]!r}: {units[0]!r}")
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(list(names))
+    w.writerow([UNITS_ROW, *units[1:]])
+    return buf.getvalue()
+
+
+def read_units(path: str | os.PathLike) -> tuple[list[str], list[str] | None]:
+    """The header of the CSV table at ``path`` and its units (column by column, the first column's ``""``), or
+    None when the second row is not a units row (its first cell is not :data:`UNITS_ROW`, or there is no second
+    row). Reads two lines."""
+    with open(path, encoding="utf-8", newline="") as fh:
+        rows = csv.reader(fh)
+        header, second = next(rows, []), next(rows, [])
+    if not second or second[0] != UNITS_ROW:
+        return header, None
+    return header, ["", *second[1:]]
+
+
+__all__ = ["UNITS_ROW", "atomic_csv", "atomic_text", "atomic_write", "input_file", "not_a_file", "output_dir", "output_file",
+           "read_table", "read_units", "remove_stale", "staged_folder", "units_row_text"]

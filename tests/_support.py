@@ -167,3 +167,14 @@ def library_mapped(pid: int, library: str) -> bool:
     except OSError:
         return False
 
+
+
+def case_rows(path: str | os.PathLike) -> list[dict[str, str]]:
+    """The cases of a campaign's ``cases.csv`` as text, column -> cell, as written; asserts that its second row is
+    the units row (first cell ``Units``, opsrock.campaign.cases.UNITS) and leaves it out."""
+    import csv
+
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows and next(iter(rows[0].values())) == "Units", f"{path}: no units row"
+    return rows[1:]

@@ -5,7 +5,7 @@
 
 What is kept (one gzipped CSV per table in DIR, every float at full precision):
 
-* ``cases.csv`` of three campaigns, every column but ``wall_time_s`` (the one measured column):
+* ``cases.csv`` of three campaigns, every column but ``wall_time_s`` (the one measured column), values only (its ``Units`` row left out):
   the paper scene with ``housner`` and with ``opensees``, the FEMA P695 IDA scene with ``housner_fast``;
 * the quick outputs of every validation case (``opsrock validate --quick --out DIR``): each CSV
   without its timing columns and rows (wall and CPU seconds, rates per second, and the
@@ -95,8 +95,11 @@ def _scene(name: str) -> str:
 
 
 def _table(path: Path) -> pd.DataFrame:
-    """The CSV as written (text: no re-rounding), without its timing columns and rows."""
-    df = pd.read_csv(path, keep_default_na=False, dtype=str)
+    """The CSV as written (text: no re-rounding), without its units row (a campaign's ``cases.csv``: the kept
+    tables hold the values alone), its timing columns and rows."""
+    from opsrock._files import read_units
+
+    df = pd.read_csv(path, keep_default_na=False, dtype=str, skiprows=None if read_units(path)[1] is None else [1])
     df = df[[c for c in df.columns if not TIMING.search(str(c))]]
     if len(df.columns) >= 2 and df.columns[-1] == "value":  # a metric,value summary: drop timing rows
         df = df[~df[df.columns[0]].str.contains(TIMING)]

@@ -55,18 +55,23 @@ def read_cases(source: str | Path) -> pd.DataFrame:
     file, the column and the row with its case id), and a table shorter than the campaign it came from
     (its ``manifest.json`` beside it says how many cases).
     """
+    from opsrock.campaign.cases import units_row
+
     p = Path(source)
     csv_path = p / "cases.csv" if p.is_dir() else p
     if not csv_path.is_file():
         raise InputError(f"cases: no cases.csv at {source!s} (give the --out folder of `opsrock run` or a cases.csv)")
     try:
-        cases = read_table(csv_path)
+        skip = units_row(csv_path)  # the units row of a cases.csv, checked; none in one of an older opsrock
+        cases = read_table(csv_path, skiprows=skip)
+    except InputError:
+        raise
     except (ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
         raise InputError(f"cases: {csv_path} cannot be read as a table: {str(exc).splitlines()[0]}") from None
     if "record" not in cases.columns:
         raise InputError(f"cases: {csv_path} is not from a record scene (no 'record' column); "
                          "pulse campaigns go through `opsrock reproduce`")
-    _check_table(csv_path, cases)
+    _check_table(csv_path, cases, 2 if skip is None else 3)
     _check_complete(csv_path, len(cases))
     return cases
 
@@ -85,7 +90,9 @@ _FINISHED_FINITE = ("level_value", "pfa", "pfv", "theta_max_over_alpha", "slide_
 _NOT_NEGATIVE = ("pfa", "pfv", "theta_max_over_alpha", "slide_max")
 
 
-def _check_table(csv_path: Path, cases: pd.DataFrame) -> None:
+def _check_table(csv_path: Path, cases: pd.DataFrame, first: int) -> None:
+    """Refuse a table the study cannot read; ``first``: the file's line of the first case (2, or 3 after a units
+    row), for the line a message names."""
     missing = [c for c in _STUDY_COLUMNS if c not in cases.columns]
     if missing:
         raise InputError(f"cases: {csv_path} lacks the column(s) {', '.join(missing)} of a record campaign's table")
@@ -95,15 +102,15 @@ def _check_table(csv_path: Path, cases: pd.DataFrame) -> None:
         if not pd.api.types.is_numeric_dtype(cases[col]):
             bad = pd.to_numeric(cases[col], errors="coerce").isna() & cases[col].notna()
             row = int(bad.to_numpy().nonzero()[0][0]) if bad.any() else 0
-            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + 2}: "
+            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + first}: "
                              f"{str(cases[col].iloc[row])!r} is not a number")
     if not cases["status"].isin(("ok", "failed")).all():
         bad = cases.loc[~cases["status"].isin(("ok", "failed")), "status"].iloc[0]
         raise InputError(f"cases: {csv_path}, column 'status': {bad!r} is neither 'ok' nor 'failed'")
-    _check_finished(csv_path, cases)
+    _check_finished(csv_path, cases, first)
 
 
-def _check_finished(csv_path: Path, cases: pd.DataFrame) -> None:
+def _check_finished(csv_path: Path, cases: pd.DataFrame, first: int) -> None:
     """Every finished case gives its demands, peak rotation and slides as finite numbers, the peaks and the
     peak slide never negative: else the file, the column and the row (line of the file, and case id)."""
     finished = cases["status"].eq("ok").to_numpy()
@@ -116,7 +123,7 @@ def _check_finished(csv_path: Path, cases: pd.DataFrame) -> None:
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
             case = f" (case {cases['case_id'].iloc[row]})" if "case_id" in cases.columns else ""
-            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + 2}{case}: {float(values[row])!r} {what}")
+            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + first}{case}: {float(values[row])!r} {what}")
 
 
 def _check_complete(csv_path: Path, n_rows: int) -> None:

@@ -218,13 +218,14 @@ def _campaign(out: Path, paper_scene, solver: str, workers, force: bool, progres
     """Step 2: the paper's 400 cases with the chosen solver, resumable; returns the scene, the campaign's
     summary and its ``cases.csv``."""
     from opsrock.campaign import run_campaign
+    from opsrock.campaign.cases import units_row
     from opsrock.campaign.scene import load_scene
 
     scene = load_scene(paper_scene)
     if solver != scene.solver:
         scene = scene.with_solver(solver)
     summary = run_campaign(scene, out, workers=workers, force=force, progress=progress)
-    return scene, summary, read_table(summary.cases_csv)
+    return scene, summary, read_table(summary.cases_csv, skiprows=units_row(summary.cases_csv))
 
 
 def _spectrum(out: Path, spectrum_scene, workers) -> pd.DataFrame:

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping, Sequence
 
-from opsrock._files import atomic_write
+from opsrock._files import atomic_write, read_units, units_row_text
 from opsrock.block import Block
 from opsrock.excitations import Pulse, Record
 from opsrock.excitations.plan import PlanMotion
@@ -77,6 +77,52 @@ RECORD_COLUMNS: tuple[str, ...] = (
     "level", "level_value", "scale",
     "pfa", "pfv", "pfd", "T_m", "T_pred", "pfa_ratio", *IM_COLUMNS, *RESULT_COLUMNS,
 )  # fmt: skip
+
+#: The column a multi-fidelity campaign adds last (:mod:`opsrock.campaign.multifidelity`): which stage's result
+#: a case's row holds (screen, escalated, audit).
+SOURCE_COLUMN: str = "source"
+
+#: The unit of every column of ``cases.csv``, defined once, as its units row writes it: SI (``m/s2`` for m/s²),
+#: ``rad``, ``deg``, ``km`` for ``distance_km``, ``-`` for a dimensionless number, ``""`` for text, labels and flags.
+#: ``level_value`` is in the scene's intensity measure (:data:`MEASURE_UNITS`). These are the campaign's meanings:
+#: the contents study's tables (:mod:`opsrock.inventory.columns`) use some of the same names (``status``,
+#: ``floor``, ``pfa``) with their own meaning and unit (``pfa`` there in g).
+UNITS: dict[str, str] = {
+    # the block (BLOCK_COLUMNS)
+    "case_id": "", "block": "", "width": "m", "height": "m", "alpha": "rad", "R": "m", "p": "rad/s", "e": "-",
+    "e_R": "-",
+    # a pulse (PULSE_COLUMNS)
+    "pfa": "m/s2", "omega_p": "rad/s", "T_p": "s", "pfv": "m/s", "freq_ratio": "-", "pfa_ratio": "-",
+    # a floor motion (RECORD_COLUMNS)
+    "record": "", "event": "", "component": "", "magnitude": "-", "distance_km": "km", "floor": "",
+    "building_period": "s", "level": "-", "level_value": "see measure", "scale": "-", "pfd": "m", "T_m": "s",
+    "T_pred": "s",
+    **dict.fromkeys(IM_COLUMNS, "-"),
+    # the solver's (RESULT_COLUMNS)
+    "theta_max": "rad", "theta_max_over_alpha": "-", "overturned": "", "rocked": "", "status": "", "reason": "",
+    "verdict": "", "solver": "", "wall_time_s": "s",
+    # with friction (CONTACT_COLUMNS)
+    "friction": "-", "friction_kinetic": "-", "pfa_vertical": "m/s2", "response": "", "first_mode": "",
+    "time_sliding": "s", "time_rocking": "s", "time_flight": "s", "slide_max": "m", "slide_residual": "m",
+    # in three dimensions (PLAN_COLUMNS)
+    "depth": "m", "azimuth": "deg", "record2": "", "tilt_max": "rad", "twist_max": "rad", "overturned_over": "",
+    "time_rim": "s", "time_rolling": "s",
+    SOURCE_COLUMN: "",
+}  # fmt: skip
+
+#: The unit of ``level_value`` for each intensity measure of a record scene
+#: (:data:`opsrock.campaign.records.MEASURES`); ``""``: a pulse scene or a cloud (``level_value`` NaN).
+MEASURE_UNITS: dict[str, str] = {"pfa_g": "g", "pfa_ratio": "-", "pfa_onset": "-", "": "-"}
+
+
+def units_of(columns: Sequence[str], measure: str = "") -> list[str]:
+    """The units row of a ``cases.csv`` with these ``columns`` (:data:`UNITS`), ``level_value`` in ``measure``'s
+    unit (:data:`MEASURE_UNITS`); ``KeyError`` naming a column without a unit."""
+    missing = [c for c in columns if c not in UNITS]
+    if missing:
+        raise KeyError(f"columns without a unit in opsrock.campaign.cases.UNITS: {missing!r}")
+    return [MEASURE_UNITS[measure] if c == "level_value" else UNITS[c] for c in columns]
+
 
 #: Columns that differ between two runs of the same campaign: measured, not computed. Two
 #: ``cases.csv`` of the same scene and settings agree in every other column, whatever the
@@ -317,12 +363,16 @@ def _format(value: Any) -> str:
     return str(value)
 
 
-def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], columns: Sequence[str]) -> None:
-    """Write a case table atomically (temporary file, fsync, ``os.replace``), columns ``columns``."""
+def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], columns: Sequence[str],
+                    measure: str = "") -> None:
+    """Write a case table atomically (temporary file, fsync, ``os.replace``): the header ``columns``, the units row
+    (:func:`units_of`; ``measure``, the scene's intensity measure, gives ``level_value``'s), then the cases, every
+    float at full precision (its shortest ``repr``)."""
+    head = units_row_text(list(columns), units_of(columns, measure))
 
     def write(fh):
+        fh.write(head)
         w = csv.writer(fh, lineterminator="\n")
-        w.writerow(columns)
         for rec in table:
             w.writerow([_format(rec[c]) for c in columns])
 
@@ -358,6 +408,11 @@ def read_cases(path: str | Path, usecols: Sequence[str] | None = None) -> "Any":
     (:func:`opsrock._files.read_table`), :data:`BOOL_COLUMNS` as booleans, :data:`TEXT_COLUMNS` as text with
     ``""`` where empty. The one reader of a campaign's cases: nothing downstream parses them again.
 
+    The units row (the second row, first cell ``Units``) is checked against :data:`UNITS` and skipped. A
+    ``cases.csv`` written by an opsrock before the row (its second row a case: its first cell a ``case_id``,
+    which always holds a ``/``, never ``Units``) is read as it is, to the same frame: its values were in the same
+    units.
+
     Parameters
     ----------
     path : str or Path
@@ -368,11 +423,37 @@ def read_cases(path: str | Path, usecols: Sequence[str] | None = None) -> "Any":
     Returns
     -------
     pandas.DataFrame
+
+    Raises
+    ------
+    InputError
+        The units row gives a column another unit than :data:`UNITS` (one line naming the file and the column):
+        the file is not a ``cases.csv`` as opsrock writes it.
     """
     from opsrock._files import read_table
 
-    df = read_table(path, usecols=None if usecols is None else list(usecols), dtype=dict.fromkeys(TEXT_COLUMNS, str))
+    df = read_table(path, usecols=None if usecols is None else list(usecols), dtype=dict.fromkeys(TEXT_COLUMNS, str),
+                    skiprows=units_row(path))
     return typed_cases(df)
+
+
+def units_row(path: str | Path) -> list[int] | None:
+    """The rows to skip to read the ``cases.csv`` at ``path`` as a table (``skiprows`` of
+    :func:`pandas.read_csv`): ``[1]``, its units row, once checked against :data:`UNITS`; None for a ``cases.csv``
+    of an opsrock before the row (its second row a case). ``InputError`` for a units row that gives a column
+    another unit (one line naming the file and the column); columns :data:`UNITS` does not know are the user's
+    own and pass."""
+    from opsrock.errors import InputError
+
+    header, units = read_units(path)
+    if units is None:
+        return None
+    for col, unit in zip(header[1:], units[1:]):
+        want = set(MEASURE_UNITS.values()) if col == "level_value" else {UNITS.get(col, unit)}
+        if unit not in want:
+            raise InputError(f"{path}: column {col!r} in {unit!r} in its units row, expected "
+                             f"{' or '.join(map(repr, sorted(want)))}: not a cases.csv as opsrock writes it")
+    return [1]
 
 
 def typed_cases(df: "Any") -> "Any":
@@ -388,6 +469,6 @@ def typed_cases(df: "Any") -> "Any":
 
 
 __all__ = ["BLOCK_COLUMNS", "BOOL_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PLAN_COLUMNS", "PULSE_COLUMNS",
-           "OTHER_REASON", "PulseCase", "RECORD_COLUMNS",
+           "MEASURE_UNITS", "OTHER_REASON", "SOURCE_COLUMN", "UNITS", "units_of", "units_row", "PulseCase", "RECORD_COLUMNS",
            "RESULT_COLUMNS", "RecordCase", "TEXT_COLUMNS", "as_bool", "case_table", "failed_row", "read_cases", "reason_code", "result_row",
            "typed_cases", "write_cases_csv"]

@@ -56,7 +56,7 @@ from typing import Any
 
 from opsrock import __version__
 from opsrock._files import atomic_write
-from opsrock.campaign.cases import CASES_FILE, case_table, write_cases_csv
+from opsrock.campaign.cases import CASES_FILE, SOURCE_COLUMN, case_table, write_cases_csv
 from opsrock.campaign.run import Stage
 from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import MANIFEST_FILE, read_rows
@@ -434,8 +434,12 @@ class MultiFidelitySummary:
 
 # --- the policy ----------------------------------------------------------------------------------
 def _read_table(path: str | Path) -> list[dict[str, str]]:
+    """The screen's ``cases.csv`` as text rows (its units row skipped)."""
+    from opsrock._files import read_units
+
+    units = read_units(path)[1]
     with open(path, newline="") as fh:
-        return list(csv.DictReader(fh))
+        return list(csv.DictReader(fh))[units is not None:]
 
 
 def _audit(selection: Selection, screen_rows: Mapping, rows: Mapping) -> tuple[int, int, tuple[str, ...]]:
@@ -458,8 +462,8 @@ def _write_table(out: Path, scene_x: Scene, cases: Sequence, selection: Selectio
     audited = set(selection.audited)
     for rec in table:
         cid = rec["case_id"]
-        rec["source"] = "escalated" if cid in selection.escalated else "audit" if cid in audited else "screen"
-    write_cases_csv(out / CASES_FILE, table, (*scene_x.columns, "source"))
+        rec[SOURCE_COLUMN] = "escalated" if cid in selection.escalated else "audit" if cid in audited else "screen"
+    write_cases_csv(out / CASES_FILE, table, (*scene_x.columns, SOURCE_COLUMN), scene_x.measure)
     return table
 
 

@@ -316,6 +316,12 @@ class Scene:
         return (*self.design.columns, *(c for g in METHODS.get(self.solver).result_columns for c in groups[g]))
 
     @property
+    def measure(self) -> str:
+        """The intensity measure of a record scene's levels (:data:`opsrock.campaign.records.MEASURES`; the unit of
+        ``cases.csv``'s ``level_value``); ``""`` for a pulse scene or a cloud."""
+        return "" if self.records is None else self.records.intensity.measure
+
+    @property
     def n_cases(self) -> int:
         """Number of cases: blocks x pulses, or blocks x floor motions x levels."""
         return len(self.blocks) * self.design.n_per_block

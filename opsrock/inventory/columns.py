@@ -24,17 +24,13 @@ opsrock before the row, its ``demands.csv`` had PFA in m/s²).
 
 from __future__ import annotations
 
-import csv
-import io
 from dataclasses import dataclass
 from pathlib import Path
 
 import pandas as pd
 
+from opsrock._files import UNITS_ROW, read_units, units_row_text
 from opsrock.constants import G
-
-#: The first cell of the units row (pelicun's spelling).
-UNITS_ROW: str = "Units"
 
 #: A units-row cell of a column whose unit is given per row in the column ``unit``.
 PER_ROW: str = "see unit"
@@ -61,6 +57,8 @@ class Column:
 
 
 _FIT = "a lognormal fragility's"
+#: A campaign's ``cases.csv`` (under ``campaigns/``) is not one of these tables: its columns, some of the same names
+#: with another meaning (``status``, ``floor``, ``pfa`` in m/s²), are defined in :data:`opsrock.campaign.cases.UNITS`.
 #: Every column of ``fits.csv``, ``fits3d.csv``, ``components.csv`` (and ``components3d.csv``), ``demands.csv``,
 #: ``expected.csv``, ``boxes.csv``, ``side_by_side.csv`` and ``pelicun/mapping.csv``: one meaning and one unit per
 #: name.
@@ -192,12 +190,7 @@ def table_text(df: pd.DataFrame, index: bool = False) -> str:
     units = ([""] if index else []) + units_of(list(df.columns))
     if units[0]:
         raise ValueError(f"the first column of a study table is a label without a unit, not {names[0]!r}")
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(names)
-    w.writerow([UNITS_ROW, *units[1:]])
-    as_written(df).to_csv(buf, index=index, header=False, lineterminator="\n")
-    return buf.getvalue()
+    return units_row_text(names, units) + as_written(df).to_csv(index=index, header=False, lineterminator="\n")
 
 
 def write_table(df: pd.DataFrame, path: Path, index: bool = False) -> Path:
@@ -226,10 +219,8 @@ def read_table(path: str | Path, **read_csv: object) -> tuple[pd.DataFrame, dict
         their stores, so nothing is computed twice).
     """
     path = Path(path)
-    with open(path, encoding="utf-8", newline="") as fh:
-        rows = csv.reader(fh)
-        header, units = next(rows, []), next(rows, [])
-    if not units or units[0] != UNITS_ROW:
+    header, units = read_units(path)
+    if units is None:
         raise OldTableError(f"{path}: no {UNITS_ROW!r} row after the header: written by an older opsrock (its "
                             "demands.csv gave PFA in m/s2); run the study again into the same folder (the campaigns "
                             "resume from their stores)")

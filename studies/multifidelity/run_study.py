@@ -32,6 +32,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from opsrock.campaign.cases import read_cases
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 BIN = Path(sys.executable).parent
@@ -112,9 +114,9 @@ def escalation_table(work: Path) -> pd.DataFrame:
     from opsrock.campaign.multifidelity import derive_rule, escalation_reason
 
     rule = derive_rule("opensees", "housner_fast")
-    screen = pd.read_csv(work / "mf" / "screen" / "cases.csv")
-    full = pd.read_csv(work / "full_opensees" / "cases.csv").set_index("case_id")
-    mf = pd.read_csv(work / "mf" / "cases.csv").set_index("case_id")
+    screen = read_cases(work / "mf" / "screen" / "cases.csv")
+    full = read_cases(work / "full_opensees" / "cases.csv").set_index("case_id")
+    mf = read_cases(work / "mf" / "cases.csv").set_index("case_id")
     screen["reason"] = [escalation_reason(rule, r) or "kept" for r in screen.to_dict("records")]
     screen["source"] = mf.loc[screen["case_id"], "source"].to_numpy()
     screen["full_verdict"] = full.loc[screen["case_id"], "verdict"].to_numpy()
@@ -126,8 +128,8 @@ def escalation_table(work: Path) -> pd.DataFrame:
 
 def check_rows(work: Path) -> int:
     """Every OpenSees row of the multi-fidelity table is the full campaign's row of that case."""
-    full = pd.read_csv(work / "full_opensees" / "cases.csv").set_index("case_id")
-    mf = pd.read_csv(work / "mf" / "cases.csv").set_index("case_id")
+    full = read_cases(work / "full_opensees" / "cases.csv").set_index("case_id")
+    mf = read_cases(work / "mf" / "cases.csv").set_index("case_id")
     x = mf[mf["source"] != "screen"]
     cols = ["verdict", "status", "theta_max_over_alpha", "solver"]
     same = (x[cols].fillna(-1) == full.loc[x.index, cols].fillna(-1)).all(axis=1)
@@ -171,8 +173,8 @@ def variants(work: Path) -> pd.DataFrame:
 
     from opsrock.campaign.multifidelity import EVIDENCE, derive_rule
 
-    screen = pd.read_csv(work / "mf" / "screen" / "cases.csv")
-    full = pd.read_csv(work / "full_opensees" / "cases.csv")
+    screen = read_cases(work / "mf" / "screen" / "cases.csv")
+    full = read_cases(work / "full_opensees" / "cases.csv")
     ref = pd.read_csv(work / "fragility_full" / "ims.csv").set_index("im")
     base = derive_rule("opensees", "housner_fast")
     ev = EVIDENCE["opensees"]

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import math
 import textwrap
 
@@ -19,6 +18,7 @@ from opsrock.restitution import (
 )
 from opsrock.campaign.scene import load_scene
 from opsrock.errors import InputError, SceneError
+from _support import case_rows
 
 
 def test_named_laws():
@@ -93,8 +93,7 @@ def _scene(tmp_path, seed=3):
 
 def test_each_case_draws_its_own_restitution(tmp_path):
     summary = run_campaign(_scene(tmp_path), tmp_path / "out", workers=1, progress=False)
-    with open(summary.cases_csv) as fh:
-        rows = list(csv.DictReader(fh))
+    rows = case_rows(summary.cases_csv)
     e_r = Block(0.4, 1.6).e_R
     uncertain = [float(r["e"]) for r in rows if r["block"] == "uncertain"]
     assert len(set(uncertain)) == 6  # one draw per case

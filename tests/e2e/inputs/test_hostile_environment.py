@@ -295,7 +295,7 @@ def test_a_stopped_campaign_leaves_no_process_and_resumes(signum, tmp_path):
         assert "Traceback" not in err and len(err.splitlines()) == 1 and "interrupted" in err, err
     again = run_opsrock(args, tmp_path, timeout=300)
     assert again.returncode == 0, again.stderr
-    assert len((tmp_path / "out" / "cases.csv").read_text().splitlines()) == 1 + 2 * 3 * 3
+    assert len((tmp_path / "out" / "cases.csv").read_text().splitlines()) == 2 + 2 * 3 * 3  # header, units row, cases
 
 
 def test_sighup_stops_like_ctrl_c(tmp_path):

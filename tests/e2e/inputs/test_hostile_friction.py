@@ -9,7 +9,6 @@ sliding when its floor stops, and a short free flight (docs/guide/friction.md: t
 
 from __future__ import annotations
 
-import csv
 import json
 import time
 from collections import Counter
@@ -18,7 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from _hostile import Case, every_other, one_per_option, sweep
-from _support import run_opsrock, without_compile_notice
+from _support import case_rows, run_opsrock, without_compile_notice
 
 SIM = ("simulate", "--width", "0.4", "--height", "2.2")
 PULSE = ("--pfa", "1", "--freq", "1")
@@ -155,8 +154,7 @@ def test_a_blocks_file_with_a_frictionless_block_runs(tmp_path):
                                          '[grid.freq_ratio]\nvalues = [1.0, 3.0]\n[grid.pfa_ratio]\nvalues = [0.8, 2.0]\n')
     proc = run_opsrock(("run", "scene.toml", "--out", "out", "--no-progress", "--workers", "1"), tmp_path, timeout=120)
     assert proc.returncode == 0, proc.stderr
-    with open(tmp_path / "out" / "cases.csv", newline="") as fh:
-        rows = list(csv.DictReader(fh))
+    rows = case_rows(tmp_path / "out" / "cases.csv")
     assert len(rows) == 4
     assert {r["status"] for r in rows} == {"ok"} and {r["response"] for r in rows} == {"slid"}
     # the one-sine floors end at rest: each block is left -x_g(T) = -pfa T_p / omega_p behind

@@ -117,17 +117,21 @@ def _write_campaigns(base: Path) -> None:
         proc = run_opsrock(["run", f"{name}.toml", "--out", f"run_{name}", "--no-progress", "--workers", "1"], camp)
         assert proc.returncode == 0, proc.stderr
     full = (camp / "run_mixed" / "cases.csv").read_text().splitlines(keepends=True)
-    (camp / "one.csv").write_text("".join(full[:2]))
+    (camp / "one.csv").write_text("".join(full[:3]))  # header, units row, one case
     (camp / "header.csv").write_text(full[0])
     (camp / "cols.csv").write_text("".join(",".join(line.rstrip("\n").split(",")[:20]) + "\n" for line in full))
     rows = list(csv.reader(full))
     rows[3][rows[0].index("IM3")] = "abc"
     with open(camp / "text.csv", "w", newline="") as fh:
         csv.writer(fh).writerows(rows)
+    assert rows[1][0] == "Units" and rows[1][rows[0].index("pfa")] == "m/s2"
+    rows[1][rows[0].index("pfa")] = "g"  # a units row that says another unit than the values are in
+    with open(camp / "units.csv", "w", newline="") as fh:
+        csv.writer(fh).writerows(rows)
     (camp / "pulse.csv").write_text("case_id,block\nb/f01/a01,b\n")
     (camp / "trunc").mkdir()
     shutil.copy(camp / "run_mixed" / "manifest.json", camp / "trunc")
-    (camp / "trunc" / "cases.csv").write_text("".join(full[:12]))
+    (camp / "trunc" / "cases.csv").write_text("".join(full[:13]))  # header, units row, 11 cases
 
 
 @pytest.fixture(scope="module")
@@ -293,6 +297,8 @@ def _report_cases(b: str) -> list[Case]:
         Case("fragility header only", ("fragility", f"{c}/header.csv", "--out", "rep"), ("header.csv", "no cases")),
         Case("fragility missing columns", ("fragility", f"{c}/cols.csv", "--out", "rep"), ("cols.csv", "lacks")),
         Case("fragility text in a number column", ("fragility", f"{c}/text.csv", "--out", "rep"), ("text.csv", "IM3", "abc")),
+        Case("fragility units row in another unit", ("fragility", f"{c}/units.csv", "--out", "rep"),
+             ("units.csv", "'pfa' in 'g'", "expected 'm/s2'")),
         Case("fragility truncated table", ("fragility", f"{c}/trunc", "--out", "rep"), ("11 of the 24",)),
         Case("fragility pulse table", ("fragility", f"{c}/pulse.csv", "--out", "rep"), ("pulse.csv", "record")),
         Case("fragility no table", ("fragility", f"{b}/folder", "--out", "rep"), ("no cases.csv",)),
@@ -532,7 +538,7 @@ def test_ctrl_c_at_any_moment_gives_one_line_and_resumes(base, tmp_path, moment)
     assert len(err.splitlines()) == 1 and "interrupted" in err, err
     again = run_opsrock(cmd[1:], tmp_path, timeout=300)
     assert again.returncode == 0, again.stderr
-    assert len((tmp_path / "out" / "cases.csv").read_text().splitlines()) == 1 + 2 * 12 * 6
+    assert len((tmp_path / "out" / "cases.csv").read_text().splitlines()) == 2 + 2 * 12 * 6  # header, units row, cases
 
 
 @pytest.mark.slow

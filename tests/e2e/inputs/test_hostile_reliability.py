@@ -227,7 +227,7 @@ def test_a_script_read_from_standard_input_refuses_several_workers_at_once(base,
     one = subprocess.run([sys.executable, "-"], input=STDIN_SCRIPT.format(scene=str(base / "scene.toml"), workers=1),
                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert one.returncode == 0 and "returned" in one.stdout, one.stderr
-    assert len((tmp_path / "out" / "cases.csv").read_text().splitlines()) == 1 + 4
+    assert len((tmp_path / "out" / "cases.csv").read_text().splitlines()) == 2 + 4  # header, units row, cases
 
 
 def test_a_hopeless_study_is_refused_up_front_with_its_number_of_cases(tmp_path):

@@ -340,4 +340,4 @@ def test_a_full_disk_keeps_the_finished_cases_and_resumes(tmp_path):
     assert (work / "second.rc").read_text().strip() == "0", (work / "second.err").read_text()
     assert f"({40 - kept} computed, {kept} reused)" in second
     _assert_intact(work / "out" / "results.sqlite", 40)
-    assert len((work / "out" / "cases.csv").read_text().splitlines()) == 41
+    assert len((work / "out" / "cases.csv").read_text().splitlines()) == 42  # header, units row, 40 cases

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 import os
@@ -16,7 +15,8 @@ from pathlib import Path
 import pytest
 
 from opsrock.campaign import CampaignConflictError, CampaignOptions, run_campaign
-from opsrock.campaign.cases import IDENTITY_EXCLUDED
+from opsrock._files import read_units
+from opsrock.campaign.cases import IDENTITY_EXCLUDED, units_of
 from opsrock.campaign.cases import PULSE_COLUMNS as CASES_COLUMNS
 from opsrock.campaign.executors import LOST_PREFIX, DaskExecutor, LocalPool
 from opsrock.campaign.scene import load_scene
@@ -24,7 +24,7 @@ from opsrock.campaign.store import STORE_FILE, read_rows
 from opsrock.cli import main as cli_main
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.result import RockingResult, failed_result
-from _support import ROOT, TEST_DATA
+from _support import ROOT, TEST_DATA, case_rows
 
 
 
@@ -59,10 +59,9 @@ def small_scene(tmp_path: Path, rtol: str = "1e-10") -> Path:
 
 
 def read_csv(path: Path) -> list[dict[str, str]]:
-    with open(path, newline="") as fh:
-        reader = csv.DictReader(fh)
-        assert tuple(reader.fieldnames) == CASES_COLUMNS
-        return list(reader)
+    rows = case_rows(path)
+    assert tuple(rows[0]) == CASES_COLUMNS and read_units(path)[1] == units_of(CASES_COLUMNS)
+    return rows
 
 
 def identity_view(rows: list[dict[str, str]]) -> list[dict[str, str]]:

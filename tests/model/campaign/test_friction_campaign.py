@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import csv
 import json
 import sqlite3
 import textwrap
@@ -19,6 +18,7 @@ from opsrock.campaign.store import STORE_FILE, ResultStore
 from opsrock.errors import SceneError
 from opsrock.excitations import library
 from opsrock.excitations.vertical import VERTICAL_TO_HORIZONTAL, partner, synthetic_vertical
+from _support import case_rows
 
 BLOCKS = """
 [[block]]
@@ -57,8 +57,7 @@ def _scene(tmp_path, solver="friction", blocks=BLOCKS):
 
 
 def _rows(path):
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(fh))
+    return case_rows(path)
 
 
 def test_friction_scene_writes_the_contact_columns(tmp_path):

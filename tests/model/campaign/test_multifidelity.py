@@ -30,7 +30,7 @@ from opsrock.campaign.multifidelity import (
 )
 from opsrock.campaign.scene import load_scene
 from opsrock.errors import CampaignConflictError, InputError
-from _support import ROOT, BLOCKS
+from _support import ROOT, BLOCKS, case_rows
 
 
 SCENE = """
@@ -126,8 +126,7 @@ def mf(scene_path, tmp_path_factory):
 
 
 def read_csv(path: Path) -> list[dict[str, str]]:
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(fh))
+    return case_rows(path)
 
 
 def without_time(rows: list[dict[str, str]]) -> list[dict[str, str]]:
@@ -203,7 +202,8 @@ def test_evidence_agrees_with_the_shipped_solver_evidence():
     """The p95 the margin uses is also the one the package ships for ``solver = "auto"``."""
     shipped = ROOT / "opsrock" / "data" / "evidence" / "solvers.csv"
     assert shipped.is_file()  # package data (pyproject.toml): the evidence solver = "auto" reads
-    rows = {r["solver"]: r for r in read_csv(shipped)}
+    with open(shipped, newline="") as fh:
+        rows = {r["solver"]: r for r in csv.DictReader(fh)}
     for solver in ("opensees", "sdof"):  # both SDOF implementations are shipped with their model-form p95
         assert float(rows[solver]["model_form_p95_alpha"]) == EVIDENCE[solver].abs_error[95]
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import json
 import subprocess
 import sys
@@ -16,7 +15,7 @@ from opsrock.campaign.scene import load_scene
 from opsrock.errors import InputError, SceneError
 from opsrock.solvers import SOLVERS
 from opsrock.solvers.registry import plan_solver, solver_names
-from _support import ROOT
+from _support import ROOT, case_rows
 
 
 
@@ -136,8 +135,7 @@ def test_sdof_verdicts_at_scale_run_as_a_multifidelity_campaign(tmp_path, monkey
     assert main(["run", str(path), "--out", str(tmp_path / "out"), "--no-progress", "--workers", "1"]) == 0
     out = capsys.readouterr().out
     assert "screened with housner_fast" in out and "multi-fidelity" in out
-    with open(tmp_path / "out" / "cases.csv") as fh:
-        rows = list(csv.DictReader(fh))
+    rows = case_rows(tmp_path / "out" / "cases.csv")
     assert len(rows) == 2 and {r["source"] for r in rows} <= {"screen", "escalated", "audit"}
 
 
@@ -166,8 +164,7 @@ def test_run_campaign_and_opsrock_run_take_the_same_multifidelity_workflow(tmp_p
     assert len(stored(tmp_path / "lib" / "screen")) == lib.n_cases == 2
 
     def table(folder: Path) -> list[dict]:
-        with open(folder / "cases.csv", newline="") as fh:
-            return [{c: v for c, v in row.items() if c != "wall_time_s"} for row in csv.DictReader(fh)]
+        return [{c: v for c, v in row.items() if c != "wall_time_s"} for row in case_rows(folder / "cases.csv")]
 
     assert table(tmp_path / "lib") == table(tmp_path / "cli")
     # the expensive solver's store holds the selected cases only, the ones the table takes from it

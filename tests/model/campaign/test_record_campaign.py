@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import json
 import sqlite3
 import subprocess
@@ -15,7 +14,7 @@ import pytest
 from opsrock.campaign import run_campaign
 from opsrock.campaign.cases import RECORD_COLUMNS as RECORD_CASES_COLUMNS
 from opsrock.campaign.scene import SceneError, load_scene
-from _support import ROOT, BLOCKS, OPSROCK
+from _support import ROOT, BLOCKS, OPSROCK, case_rows
 
 
 
@@ -57,8 +56,7 @@ def scene_file(tmp_path: Path, intensity: str = IDA, extra: str = "") -> Path:
 
 
 def read_csv(path: Path) -> list[dict[str, str]]:
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(fh))
+    return case_rows(path)
 
 
 def test_record_ida_scene_runs_with_stable_ids_and_its_own_columns(tmp_path):

@@ -8,6 +8,7 @@ import pytest
 
 from opsrock.analysis import reproduce as rp
 from opsrock.validation.sdof_agreement import Agreement
+from opsrock.campaign.cases import read_cases
 from _support import SCENES
 
 TINY = SCENES / "tiny.toml"
@@ -25,7 +26,7 @@ def test_reproduce_end_to_end_on_tiny_scene(tmp_path):
     res = rp.reproduce(out, rp.ReproduceSettings(paper_scene=TINY, spectrum_scene=TINY, robustness_sets=4), workers=2,
                        progress=False)
     assert not res.stopped and res.gate.passed
-    cases = pd.read_csv(out / "cases.csv")
+    cases = read_cases(out / "cases.csv")
     # tiny scene: 2 blocks x 3 x 3 pulses; its PFA/(g tan alpha) = 0.8 row cannot uplift (Eq. 4)
     assert len(cases) == 18
     assert set(cases.loc[cases["pfa_ratio"] < 1, "verdict"]) == {"no_uplift"}

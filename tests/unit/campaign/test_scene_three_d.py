@@ -5,7 +5,6 @@ resumed, with the three-dimensional columns in ``cases.csv``."""
 
 from __future__ import annotations
 
-import csv
 import math
 import re
 from pathlib import Path
@@ -17,6 +16,7 @@ from opsrock.campaign.scene import load_scene
 from opsrock.campaign.workflow import run_campaign
 from opsrock.errors import SceneError
 from opsrock.excitations.plan import PlanMotion
+from _support import case_rows
 
 BLOCKS = """[[block]]
 name = "box"
@@ -108,8 +108,7 @@ def test_a_tiny_campaign_in_three_dimensions_is_stored_and_resumed(tmp_path):
     first = run_campaign(path, tmp_path / "out", workers=1, progress=False)
     again = run_campaign(path, tmp_path / "out", workers=1, progress=False)
     assert (first.n_computed, again.n_computed, again.n_reused) == (2, 0, 2)
-    with open(tmp_path / "out" / "cases.csv", newline="") as fh:
-        rows = list(csv.DictReader(fh))
+    rows = case_rows(tmp_path / "out" / "cases.csv")
     assert [r["case_id"] for r in rows] == ["box/f01/a01/z01", "box/f01/a01/z02"]
     for r in rows:
         assert r["status"] == "ok" and r["solver"] == "rigid3d" and r["depth"] == "0.6"

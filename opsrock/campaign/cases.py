@@ -115,13 +115,15 @@ UNITS: dict[str, str] = {
 MEASURE_UNITS: dict[str, str] = {"pfa_g": "g", "pfa_ratio": "-", "pfa_onset": "-", "": "-"}
 
 
-def units_of(columns: Sequence[str], measure: str = "") -> list[str]:
+def units_of(columns: Sequence[str], measure: str = "", extra: Mapping[str, str] | None = None) -> list[str]:
     """The units row of a ``cases.csv`` with these ``columns`` (:data:`UNITS`), ``level_value`` in ``measure``'s
-    unit (:data:`MEASURE_UNITS`); ``KeyError`` naming a column without a unit."""
-    missing = [c for c in columns if c not in UNITS]
+    unit (:data:`MEASURE_UNITS`), the columns a scene of its own adds in its ``extra`` units (a study's scene:
+    :attr:`opsrock.campaign.scene.Scene.units`); ``KeyError`` naming a column without a unit."""
+    known = {**UNITS, **(extra or {})}
+    missing = [c for c in columns if c not in known]
     if missing:
-        raise KeyError(f"columns without a unit in opsrock.campaign.cases.UNITS: {missing!r}")
-    return [MEASURE_UNITS[measure] if c == "level_value" else UNITS[c] for c in columns]
+        raise KeyError(f"columns without a unit in opsrock.campaign.cases.UNITS or the scene's: {missing!r}")
+    return [MEASURE_UNITS[measure] if c == "level_value" else known[c] for c in columns]
 
 
 #: Columns that differ between two runs of the same campaign: measured, not computed. Two
@@ -364,11 +366,11 @@ def _format(value: Any) -> str:
 
 
 def write_cases_csv(path: str | Path, table: Sequence[Mapping[str, Any]], columns: Sequence[str],
-                    measure: str = "") -> None:
+                    units: Sequence[str] | None = None) -> None:
     """Write a case table atomically (temporary file, fsync, ``os.replace``): the header ``columns``, the units row
-    (:func:`units_of`; ``measure``, the scene's intensity measure, gives ``level_value``'s), then the cases, every
-    float at full precision (its shortest ``repr``)."""
-    head = units_row_text(list(columns), units_of(columns, measure))
+    ``units`` (the scene's, :attr:`opsrock.campaign.scene.Scene.units`; default :func:`units_of` ``columns``), then
+    the cases, every float at full precision (its shortest ``repr``)."""
+    head = units_row_text(list(columns), units_of(columns) if units is None else list(units))
 
     def write(fh):
         fh.write(head)

@@ -56,7 +56,7 @@ from typing import Any
 
 from opsrock import __version__
 from opsrock._files import atomic_write
-from opsrock.campaign.cases import CASES_FILE, SOURCE_COLUMN, case_table, write_cases_csv
+from opsrock.campaign.cases import CASES_FILE, SOURCE_COLUMN, UNITS, case_table, write_cases_csv
 from opsrock.campaign.run import Stage
 from opsrock.campaign.scene import Scene
 from opsrock.campaign.store import MANIFEST_FILE, read_rows
@@ -463,7 +463,7 @@ def _write_table(out: Path, scene_x: Scene, cases: Sequence, selection: Selectio
     for rec in table:
         cid = rec["case_id"]
         rec[SOURCE_COLUMN] = "escalated" if cid in selection.escalated else "audit" if cid in audited else "screen"
-    write_cases_csv(out / CASES_FILE, table, (*scene_x.columns, SOURCE_COLUMN), scene_x.measure)
+    write_cases_csv(out / CASES_FILE, table, (*scene_x.columns, SOURCE_COLUMN), (*scene_x.units, UNITS[SOURCE_COLUMN]))
     return table
 
 

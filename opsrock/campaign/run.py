@@ -491,7 +491,7 @@ class Stage:
                 if how.executor is None:
                     run.executor.close()
             table = case_table(chosen, store.rows())
-            write_cases_csv(out / CASES_FILE, table, scene.columns, scene.measure)
+            write_cases_csv(out / CASES_FILE, table, scene.columns, scene.units)
         summary = run.summary(table, time.perf_counter() - t_start)
         _some_computed(summary, table)
         return summary, cases

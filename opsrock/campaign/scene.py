@@ -59,7 +59,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping
 
 from opsrock.block import Block
-from opsrock.campaign.cases import CONTACT_COLUMNS, PLAN_COLUMNS
+from opsrock.campaign.cases import CONTACT_COLUMNS, PLAN_COLUMNS, units_of
 from opsrock.campaign.grid import Grid, parse_grid
 from opsrock.campaign.needs import HISTORY_ANSWERS, Choice, Needs, check, choose
 from opsrock.campaign.toml import MAX_AXIS_POINTS, TomlFile, canonical
@@ -314,6 +314,11 @@ class Scene:
         :data:`opsrock.campaign.cases.PLAN_COLUMNS`)."""
         groups = {"contact": CONTACT_COLUMNS, "plan": PLAN_COLUMNS}
         return (*self.design.columns, *(c for g in METHODS.get(self.solver).result_columns for c in groups[g]))
+
+    @property
+    def units(self) -> list[str]:
+        """The units row of the scene's ``cases.csv`` (:func:`opsrock.campaign.cases.units_of`), column by column."""
+        return units_of(self.columns, self.measure)
 
     @property
     def measure(self) -> str:

@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 
 from opsrock._pool import TaskPool
-from opsrock.campaign.cases import CONTACT_COLUMNS, PLAN_COLUMNS, RESULT_COLUMNS
+from opsrock.campaign.cases import CONTACT_COLUMNS, PLAN_COLUMNS, RESULT_COLUMNS, units_of
 from opsrock.campaign.records import Floor, Intensity, RecordSet
 from opsrock.campaign.scene import BlockSpec, Scene
 from opsrock.constants import G
@@ -47,6 +47,11 @@ SCENE_COLUMNS: tuple[str, ...] = (
     "case_id", "block", "item", "model", "record", "floor", "azimuth", "level", "level_value", "scale", "b_over_h",
     "pfa", "pfv_1", "pfv_2", "pfv_max", "pfv_nd", "pfv_weak",
 )  # fmt: skip
+
+#: The units of the scene's columns that a campaign's own scenes do not have (the others':
+#: :data:`opsrock.campaign.cases.UNITS`), as the units row of its ``cases.csv`` writes them.
+SCENE_UNITS: dict[str, str] = {"item": "", "model": "", "b_over_h": "-", "pfv_1": "m/s", "pfv_2": "m/s",
+                               "pfv_max": "m/s", "pfv_nd": "m/s", "pfv_weak": "m/s"}
 
 #: Columns of a campaign's ``cases.csv``: the scene's, then what the solver stored (the contact and plan columns
 #: a solver fills: :data:`opsrock.campaign.cases.CONTACT_COLUMNS`, :data:`~opsrock.campaign.cases.PLAN_COLUMNS`;
@@ -229,6 +234,11 @@ class PlanScene(Scene):
     def columns(self) -> tuple[str, ...]:
         """:data:`CASE_COLUMNS`."""
         return CASE_COLUMNS
+
+    @property
+    def units(self) -> list[str]:
+        """The units row of its ``cases.csv``: the campaign's units, and :data:`SCENE_UNITS`."""
+        return units_of(self.columns, self.measure, SCENE_UNITS)
 
     @property
     def n_cases(self) -> int:

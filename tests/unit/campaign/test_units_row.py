@@ -10,7 +10,8 @@ import pytest
 
 from opsrock._files import read_units
 from opsrock.campaign.cases import (
-    CONTACT_COLUMNS, PLAN_COLUMNS, PULSE_COLUMNS, RECORD_COLUMNS, SOURCE_COLUMN, UNITS, read_cases, write_cases_csv,
+    CONTACT_COLUMNS, PLAN_COLUMNS, PULSE_COLUMNS, RECORD_COLUMNS, SOURCE_COLUMN, UNITS, read_cases, units_of,
+    write_cases_csv,
 )  # fmt: skip
 from opsrock.errors import InputError
 
@@ -33,7 +34,7 @@ def test_every_column_a_campaign_writes_has_one_unit():
 
 def test_a_written_cases_csv_has_the_units_row_and_is_read_as_an_old_one_is(tmp_path):
     new, old = tmp_path / "cases.csv", tmp_path / "old.csv"
-    write_cases_csv(new, [_row(0), _row(1)], COLUMNS, "pfa_g")
+    write_cases_csv(new, [_row(0), _row(1)], COLUMNS, units_of(COLUMNS, "pfa_g"))
     lines = new.read_text().splitlines(keepends=True)
     header, units = read_units(new)
     assert header == list(COLUMNS) and lines[1].startswith("Units,")
@@ -44,7 +45,7 @@ def test_a_written_cases_csv_has_the_units_row_and_is_read_as_an_old_one_is(tmp_
         "pfa": "m/s2", "pfa_vertical": "m/s2", "pfv": "m/s", "pfd": "m", "width": "m", "alpha": "rad", "p": "rad/s",
         "T_m": "s", "wall_time_s": "s", "slide_max": "m", "tilt_max": "rad", "azimuth": "deg", "distance_km": "km",
         "level_value": "g", "IM3": "-", "e_R": "-", "floor": "", "status": "", "overturned": ""}
-    write_cases_csv(tmp_path / "ratio.csv", [_row(0)], COLUMNS, "pfa_ratio")
+    write_cases_csv(tmp_path / "ratio.csv", [_row(0)], COLUMNS, units_of(COLUMNS, "pfa_ratio"))
     assert dict(zip(*read_units(tmp_path / "ratio.csv")))["level_value"] == "-"
     old.write_text(lines[0] + "".join(lines[2:]))  # as an opsrock before the row wrote it: values untouched
     assert read_units(old)[1] is None
@@ -56,7 +57,7 @@ def test_a_written_cases_csv_has_the_units_row_and_is_read_as_an_old_one_is(tmp_
 
 def test_a_units_row_in_other_units_is_refused_naming_the_file(tmp_path):
     path = tmp_path / "cases.csv"
-    write_cases_csv(path, [_row(0)], COLUMNS, "pfa_g")
+    write_cases_csv(path, [_row(0)], COLUMNS)
     lines = path.read_text().splitlines(keepends=True)
     cells = lines[1].split(",")
     cells[COLUMNS.index("pfa")] = "g"

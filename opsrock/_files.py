@@ -311,5 +311,6 @@ def read_units(path: str | os.PathLike) -> tuple[list[str], list[str] | None]:
     return header, ["", *second[1:]]
 
 
-__all__ = ["UNITS_ROW", "atomic_csv", "atomic_text", "atomic_write", "input_file", "not_a_file", "output_dir", "output_file",
+__all__ = ["UNITS_ROW", "atomic_csv", "atomic_text", "atomic_write", "input_file", "not_a_file", "output_dir",
+           "output_file",
            "read_table", "read_units", "remove_stale", "staged_folder", "units_row_text"]

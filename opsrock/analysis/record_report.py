@@ -123,7 +123,8 @@ def _check_finished(csv_path: Path, cases: pd.DataFrame, first: int) -> None:
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
             case = f" (case {cases['case_id'].iloc[row]})" if "case_id" in cases.columns else ""
-            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + first}{case}: {float(values[row])!r} {what}")
+            raise InputError(f"cases: {csv_path}, column {col!r}, row {row + first}{case}: {float(values[row])!r} "
+                             f"{what}")
 
 
 def _check_complete(csv_path: Path, n_rows: int) -> None:

@@ -471,6 +471,7 @@ def typed_cases(df: "Any") -> "Any":
 
 
 __all__ = ["BLOCK_COLUMNS", "BOOL_COLUMNS", "CASES_FILE", "CONTACT_COLUMNS", "IDENTITY_EXCLUDED", "IM_COLUMNS", "PLAN_COLUMNS", "PULSE_COLUMNS",
-           "MEASURE_UNITS", "OTHER_REASON", "SOURCE_COLUMN", "UNITS", "units_of", "units_row", "PulseCase", "RECORD_COLUMNS",
+           "MEASURE_UNITS", "OTHER_REASON", "SOURCE_COLUMN", "UNITS", "units_of", "units_row", "PulseCase",
+           "RECORD_COLUMNS",
            "RESULT_COLUMNS", "RecordCase", "TEXT_COLUMNS", "as_bool", "case_table", "failed_row", "read_cases", "reason_code", "result_row",
            "typed_cases", "write_cases_csv"]

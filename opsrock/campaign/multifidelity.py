@@ -463,7 +463,8 @@ def _write_table(out: Path, scene_x: Scene, cases: Sequence, selection: Selectio
     for rec in table:
         cid = rec["case_id"]
         rec[SOURCE_COLUMN] = "escalated" if cid in selection.escalated else "audit" if cid in audited else "screen"
-    write_cases_csv(out / CASES_FILE, table, (*scene_x.columns, SOURCE_COLUMN), (*scene_x.units, UNITS[SOURCE_COLUMN]))
+    write_cases_csv(out / CASES_FILE, table, (*scene_x.columns, SOURCE_COLUMN),
+                    (*scene_x.units, UNITS[SOURCE_COLUMN]))
     return table
 
 

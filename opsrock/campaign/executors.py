@@ -226,12 +226,11 @@ class LocalPool(_Closing):
     def _unguarded(self) -> bool:
         """After a break: did a worker end re-running the main script (status :data:`UNGUARDED_EXIT`)? Then
         ``workers=1`` goes on in this process (with a warning) and more workers raise :func:`unguarded_error`."""
-        deadline = time.monotonic() + 2.0
-        codes = []
-        for proc in list(self._processes.values()):
+        deadline = time.monotonic() + UNGUARDED_WAIT
+        procs = list(self._processes.values())
+        for proc in procs:
             proc.join(timeout=max(0.0, deadline - time.monotonic()))
-            codes.append(proc.exitcode)
-        if UNGUARDED_EXIT not in codes:
+        if UNGUARDED_EXIT not in exit_codes(procs, deadline):
             return False
         self._kill_pool()
         if self.workers > 1:
@@ -375,6 +374,29 @@ class LocalPool(_Closing):
             self._kill_pool()
             return lost(item, f"timeout: no answer within {budget:g} s (the case budget plus {KILL_GRACE:g} s "
                               "of grace); its worker process was killed")
+
+
+#: Seconds a broken pool's workers are given to end, and their exit statuses to be read (:meth:`LocalPool._unguarded`).
+UNGUARDED_WAIT: float = 2.0
+
+
+def exit_codes(procs: Sequence, deadline: float) -> list[int | None]:
+    """The exit statuses of the ``multiprocessing`` processes ``procs`` (None: still running), read again until one
+    is :data:`~opsrock._pool.UNGUARDED_EXIT`, every process has one, or ``deadline`` (``time.monotonic()``) passes.
+
+    A broken ``ProcessPoolExecutor``'s manager thread reaps its dead workers while this thread reads them, and the
+    reader that loses that race gets no status for an instant (``Popen.poll`` returns None on ``ECHILD`` until the
+    winner records it). Read once, a worker that ended re-running an unguarded script could pass unseen: the pool
+    was then started again, and the script ran five times where three is the rule (once in CI, loaded)."""
+    while True:
+        codes = [proc.exitcode for proc in procs]
+        if UNGUARDED_EXIT in codes or None not in codes or time.monotonic() >= deadline:
+            return codes
+        time.sleep(EXIT_POLL)
+
+
+#: Seconds between two readings of the workers' exit statuses (:func:`exit_codes`).
+EXIT_POLL: float = 0.005
 
 
 def _give_back(todo: list[int], running: dict, suspects: list[int] | None = None) -> None:

@@ -70,8 +70,10 @@ def test_an_unguarded_script_stops_at_once_with_one_error_naming_the_fix(tmp_pat
     assert "script.py" in last and 'if __name__ == "__main__":' in last and "workers=1" in last
     # the old code re-ran every case alone in a new worker (each a new start of the script) and stored all four
     # failed; now each of the two workers stops as soon as the script reaches run_campaign, and nothing is stored.
-    # The user's start and the two workers', and the pool may start a replacement before it reads a stopped
-    # worker's exit status (as in the one-worker test below): a few, never a loop
+    # The user's start and the two workers': 3. Once in CI (loaded) it was 5: the pool's own thread had reaped the
+    # stopped worker as this one read its status, the status read None, and a second pool of two was started.
+    # The status is now read again until it shows (tests/unit/campaign/test_exit_codes.py replays that race);
+    # the bound stays a little above 3 (a few, never a loop) for a race not yet seen
     assert starts <= 4 and read_rows(tmp_path / "out") == {}  # a few start-ups, never a loop (no bound on time:
     # the count says it, whatever the machine's speed; measured about 4 s on a loaded 2-core machine)
 
@@ -87,8 +89,8 @@ def test_a_guarded_script_runs_in_workers(tmp_path):
 def test_an_unguarded_script_with_one_worker_runs_its_cases_here(tmp_path):
     proc, _, starts = run_script(tmp_path, RUN.format(workers=1))
     assert proc.returncode == 0, proc.stderr
-    # the user's start and the worker that stopped at once; the pool may start replacements before it reads the
-    # first one's exit status (3 starts seen 1 run in 3, 4 once in a fresh clone): a few, never a loop
+    # the user's start and the worker that stopped at once: 2 (3 and 4 were seen before the exit statuses were
+    # read again after losing a race with the pool's reaper, see the test above): a few, never a loop
     assert "computed 4" in proc.stdout and 2 <= starts <= 6
     assert "RuntimeWarning" in proc.stderr and "script.py" in proc.stderr  # says why: no guard
     rows = read_rows(tmp_path / "out")

@@ -266,8 +266,9 @@ def atomic_csv(path: Path, df: "pd.DataFrame") -> None:
 
 def read_table(path: str | os.PathLike, **options: Any) -> "pd.DataFrame":
     """A CSV table that opsrock wrote, read back to the last bit: every float exactly as written, on every
-    pandas of the declared range (pandas 2's default C parser may differ from the written value in the last
-    digit; ``float_precision="round_trip"`` parses with the shortest-repr rule the writer used).
+    pandas of the declared range. pandas 2's default C parser may differ from the written value in the last
+    digit, so it is given ``float_precision="round_trip"`` (the shortest-repr rule the writer used); pandas 3.1
+    parses every float exactly whatever the option and deprecates it (:func:`exact_float_options`).
 
     Parameters
     ----------
@@ -278,7 +279,17 @@ def read_table(path: str | os.PathLike, **options: Any) -> "pd.DataFrame":
     """
     import pandas as pd  # lazy: the command line's start-up does not need pandas
 
-    return pd.read_csv(path, float_precision="round_trip", **options)
+    return pd.read_csv(path, **exact_float_options(), **options)
+
+
+def exact_float_options() -> dict[str, str]:
+    """The :func:`pandas.read_csv` keywords that read every float exactly as written, on this pandas: none from
+    pandas 3.1 (one exact converter for every mode; ``float_precision`` deprecated), else
+    ``float_precision="round_trip"``."""
+    import pandas as pd
+
+    major, minor = (int(part) for part in pd.__version__.split(".")[:2])
+    return {} if (major, minor) >= (3, 1) else {"float_precision": "round_trip"}
 
 
 #: The first cell of a table's units row (pelicun's spelling, ``pelicun.file_io.load_data``).

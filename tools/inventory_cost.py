@@ -25,7 +25,7 @@ import numpy as np
 
 from opsrock.inventory.items import Inventory, Item
 from opsrock.inventory.sources import BuildingSource, building_motions
-from opsrock.inventory.run import run_design
+from opsrock.inventory.run import StudyOptions, run_design
 from opsrock.inventory.study import InventoryDesign
 
 
@@ -61,7 +61,7 @@ def main(argv: list[str] | None = None) -> int:
     design = InventoryDesign(synthetic_inventory(args.items), motions, n_boot=args.n_boot)
     out = args.out or Path(tempfile.mkdtemp(prefix="inventory-cost-"))
     t0, cpu0 = time.perf_counter(), _cpu()
-    study = run_design(design, out, workers=args.workers, progress=True)
+    study = run_design(design, out, StudyOptions(workers=args.workers, progress=True))
     wall, cpu = time.perf_counter() - t0, _cpu() - cpu0
     print(json.dumps({"cases": study.n_cases, "computed": study.n_computed, "failed": study.n_failed,
                       "items": args.items, "floors": len(motions.floors), "records": len(motions.records),

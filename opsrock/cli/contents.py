@@ -11,12 +11,16 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from opsrock._files import output_dir
 from opsrock.cli import EXIT_INTERRUPTED
 from opsrock.cli.common import named_options
 from opsrock.inventory.fema import SWEEP_BUILDINGS, ContentsDesign
 from opsrock.errors import UsageError
+
+if TYPE_CHECKING:
+    from opsrock.inventory.campaigns import StudyOptions
 
 #: Fields of :class:`opsrock.inventory.fema.ContentsDesign` (``records``: its ``names``, as the design's check
 #: calls them) -> the option that gives them.
@@ -107,8 +111,7 @@ def contents(args: argparse.Namespace) -> int:
                                     variants=_comma_list("--variants", args.variants),
                                     friction=args.friction, sweep=() if args.no_sweep else SWEEP_BUILDINGS,
                                     n_boot=args.n_boot, seed=args.seed)
-            res = run_design(quick(design) if args.quick else design, args.out, workers=args.workers,
-                             progress=not args.no_progress, force=args.force, store_dir=args.store)
+            res = run_design(quick(design) if args.quick else design, args.out, _options(args))
     except KeyboardInterrupt:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)
@@ -153,8 +156,7 @@ def _inventory(args: argparse.Namespace) -> int:
                                     names=_comma_list("--records", args.records))
             design = inventory_design(args.inventory, args.motions, source, settings, quick_run=args.quick,
                                       workers=args.workers)
-            res = run_design(design, args.out, workers=args.workers, progress=not args.no_progress,
-                             force=args.force, store_dir=args.store, case_timeout=args.case_timeout)
+            res = run_design(design, args.out, _options(args))
     except KeyboardInterrupt:
         print(f"opsrock contents: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)
@@ -163,6 +165,14 @@ def _inventory(args: argparse.Namespace) -> int:
     print(f"opsrock contents: {len(design.inventory.items)} items, {res.n_cases} cases ({res.n_computed} computed now, "
           f"{res.n_failed} failed) in {res.timings['total_s']:.1f} s; {where}; see {res.report}")
     return 0
+
+
+def _options(args: argparse.Namespace) -> "StudyOptions":
+    """The :class:`~opsrock.inventory.campaigns.StudyOptions` of the command line's options."""
+    from opsrock.inventory.campaigns import StudyOptions
+
+    return StudyOptions(workers=args.workers, progress=not args.no_progress, force=args.force, store_dir=args.store,
+                        case_timeout=getattr(args, "case_timeout", None))
 
 
 def directionality(args: argparse.Namespace) -> int:
@@ -191,8 +201,7 @@ def _both(args: argparse.Namespace) -> int:
             "building, as designed)")
     try:
         design = quick(DirectionalityDesign()) if args.quick else DirectionalityDesign()
-        res = run_design(design, args.out, workers=args.workers, progress=not args.no_progress, force=args.force,
-                         store_dir=args.store)
+        res = run_design(design, args.out, _options(args))
     except KeyboardInterrupt:
         print(f"{command}: interrupted; finished cases are stored in {args.store or Path(args.out) / 'campaigns'}: "
               "run the same command again to compute only the missing ones", file=sys.stderr)

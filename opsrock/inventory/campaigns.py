@@ -416,8 +416,9 @@ class CampaignJob:
 
 
 @dataclass(frozen=True)
-class RunSettings:
-    """How a study's campaigns run.
+class StudyOptions:
+    """How a contents study runs (:func:`opsrock.run_study`, :func:`opsrock.inventory.run.run_design`), its
+    campaigns included (:func:`run_campaigns`), whatever it computes.
 
     Parameters
     ----------
@@ -426,14 +427,18 @@ class RunSettings:
     progress : bool
         Progress on stderr.
     force : bool
-        Delete stored results of other settings instead of refusing them.
+        Delete stored results of other settings in the campaigns' folders instead of refusing them.
+    store_dir : str, Path or None
+        Where the campaigns keep their stores (None: the study's ``out_dir/campaigns``).
     case_timeout : float or None
-        Wall-clock budget of one case (s); None: the scenes' default.
+        Wall-clock budget of one case (s); None: the campaigns' default (300 s). Cases stored as timed out are
+        computed again (:func:`run_campaigns`).
     """
 
     workers: int | None = None
     progress: bool = True
     force: bool = False
+    store_dir: str | Path | None = None
     case_timeout: float | None = None
 
 
@@ -451,7 +456,7 @@ class CampaignRun:
 
 
 def run_campaigns(jobs: list[CampaignJob], store: Path,
-                  how: RunSettings) -> tuple[pd.DataFrame, tuple[CampaignRun, ...]]:
+                  how: StudyOptions) -> tuple[pd.DataFrame, tuple[CampaignRun, ...]]:
     """Run (or resume) every campaign of a study into ``store/<name>``, in order, on one pool of worker processes
     (:func:`study_pool`): the one campaign runner of every configuration of the study.
 
@@ -514,6 +519,6 @@ def _read_cases(path: str, gs: GroupScene) -> pd.DataFrame:
 
 
 __all__ = ["BATCH", "CASE_COLUMNS", "CampaignJob", "CampaignRun", "DEFAULT_LEVELS", "DEMANDS_FILE", "Group",
-           "GroupScene", "OPTIONAL_CASE_COLUMNS", "RunSettings", "SUPPORT_NAME", "block_name", "cached_demands",
+           "GroupScene", "OPTIONAL_CASE_COLUMNS", "SUPPORT_NAME", "StudyOptions", "block_name", "cached_demands",
            "floor_demands", "group_jobs", "group_scenes", "groups_of", "item_block_spec", "motions_digest",
            "run_campaigns", "seed_motions", "study_pool"]

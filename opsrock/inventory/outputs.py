@@ -112,7 +112,7 @@ def study_tables(a: Any, cases: pd.DataFrame, components: pd.DataFrame | None = 
     from opsrock.inventory.components import component_id, expected_table, planar_components
     from opsrock.inventory.fits import fit_table
 
-    fits = fit_table(cases, a.demands, a.design, workers_of(a.workers))
+    fits = fit_table(cases, a.demands, a.design, workers_of(a.options.workers))
     fits["pelicun_id"] = [component_id(i, str(f)) for i, f in zip(fits["item"], fits["floor"])]
     planar = components is None
     if planar:

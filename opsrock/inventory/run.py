@@ -17,7 +17,6 @@ chosen twice:
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -26,6 +25,7 @@ from opsrock.inventory.directionality.study import BOTH, DirectionalityDesign
 from opsrock.inventory.directionality.study import quick as quick_both
 from opsrock.inventory.fema.design import SWEEP_BUILDINGS, ContentsDesign
 from opsrock.inventory.fema.design import quick as quick_fema
+from opsrock.inventory.campaigns import StudyOptions
 from opsrock.inventory.fema.study import FEMA_NINE
 from opsrock.inventory.outputs import InventoryStudy
 from opsrock.inventory.side_by_side import SIDE_BY_SIDE
@@ -59,9 +59,7 @@ def route_of(design: Any) -> Route:
                      f"{type(design).__name__}", argument="design")
 
 
-def run_design(design: Any, out_dir: str | Path, *, workers: int | None = None, progress: bool = True,
-               force: bool = False, store_dir: str | Path | None = None,
-               case_timeout: float | None = None) -> InventoryStudy:
+def run_design(design: Any, out_dir: str | Path, options: StudyOptions | None = None) -> InventoryStudy:
     """Run (or resume) ``design`` by the stages of :class:`~opsrock.inventory.stages.Assessment` on its route
     (:func:`route_of`) and write its outputs into ``out_dir``.
 
@@ -71,26 +69,19 @@ def run_design(design: Any, out_dir: str | Path, *, workers: int | None = None, 
         What to compute (made quick, if wanted, by its module's ``quick``).
     out_dir : str or Path
         Output folder (``report.md``, the tables, ``figures/``, ``pelicun/``); written together, all or nothing.
-    workers : int or None
-        Processes (default: every core).
-    progress : bool
-        Progress on stderr.
-    force : bool
-        Delete stored results of other settings in the campaigns' folders instead of refusing them.
-    store_dir : str or Path, optional
-        Where the campaigns keep their stores (default ``out_dir/campaigns``).
-    case_timeout : float, optional
-        Wall-clock budget of one case (s) of the inventory routes; default the campaigns' (300 s).
+    options : StudyOptions, optional
+        Processes, progress on stderr, whether stored results of other settings are deleted, where the campaigns
+        keep their stores, the case budget (s) (:class:`StudyOptions`; default its defaults).
 
     Returns
     -------
     InventoryStudy
         The paths written, the case counts, the wall times (s) and the route's ``summary``.
     """
+    o = options if options is not None else StudyOptions()
     out = Path(out_dir)
-    store = Path(store_dir) if store_dir is not None else out / "campaigns"
-    return Assessment(design, route_of(design), out, store, workers=workers, progress=progress, force=force,
-                      case_timeout=case_timeout).run()
+    store = Path(o.store_dir) if o.store_dir is not None else out / "campaigns"
+    return Assessment(design, route_of(design), out, store, o).run()
 
 
 def study_design(inventory: str | Path | None = None, motions: str | Path | None = None, *, model: str = "planar",
@@ -134,31 +125,6 @@ def study_design(inventory: str | Path | None = None, motions: str | Path | None
     if model == "both":
         settings["side_by_side"] = True
     return inventory_design(inventory, motions, source, settings, quick_run=quick, workers=workers)
-
-
-@dataclass(frozen=True)
-class StudyOptions:
-    """How :func:`run_study` runs its study (what :func:`run_design` takes besides the design).
-
-    Parameters
-    ----------
-    workers : int or None
-        Processes (default: every core).
-    progress : bool
-        Progress on stderr.
-    force : bool
-        Delete stored results of other settings in the campaigns' folders instead of refusing them.
-    store_dir : str, Path or None
-        Where the campaigns keep their stores (default ``out_dir/campaigns``).
-    case_timeout : float or None
-        Wall-clock budget of one case (s); default the campaigns' (300 s).
-    """
-
-    workers: int | None = None
-    progress: bool = True
-    force: bool = False
-    store_dir: str | Path | None = None
-    case_timeout: float | None = None
 
 
 def run_study(inventory: str | Path | None = None, motions: str | Path | None = None, out_dir: str | Path = "contents",
@@ -218,8 +184,7 @@ def run_study(inventory: str | Path | None = None, motions: str | Path | None = 
     o = options if options is not None else StudyOptions()
     design = study_design(inventory, motions, model=model, building=building, quick=quick, workers=o.workers,
                           **settings)
-    return run_design(design, out_dir, workers=o.workers, progress=o.progress, force=o.force, store_dir=o.store_dir,
-                      case_timeout=o.case_timeout)
+    return run_design(design, out_dir, o)
 
 
 __all__ = ["MODELS", "StudyOptions", "route_of", "run_design", "run_study", "study_design"]

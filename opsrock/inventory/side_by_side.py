@@ -150,7 +150,7 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
     from opsrock.inventory.three_d import fit3d_table, round_boxes
 
     planar, cases3d = split_cases(a.cases)
-    design3d, workers = three_d_design(a.design), workers_of(a.workers)
+    design3d, workers = three_d_design(a.design), workers_of(a.options.workers)
     tables = study_tables(a, planar)
     components3d = three_d_components(cases3d, a.demands, design3d, workers)
     side = side_by_side_table(tables["components"], components3d, planar, cases3d, a.demands, a.design)

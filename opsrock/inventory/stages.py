@@ -25,6 +25,7 @@ from typing import Any, Callable
 
 import pandas as pd
 
+from opsrock.inventory.campaigns import StudyOptions
 from opsrock.inventory.outputs import InventoryStudy, Written, workers_of
 
 
@@ -32,7 +33,7 @@ def inventory_demands(a: "Assessment") -> pd.DataFrame:
     """Each motion's measures of the user's motion set (:func:`opsrock.inventory.campaigns.cached_demands`)."""
     from opsrock.inventory.campaigns import cached_demands
 
-    return cached_demands(a.design.motions, a.store, workers_of(a.workers))
+    return cached_demands(a.design.motions, a.store, workers_of(a.options.workers))
 
 
 def inventory_jobs(a: "Assessment") -> list:
@@ -92,25 +93,16 @@ class Assessment:
         The output folder.
     store : Path
         Where the campaigns keep their stores.
-    workers : int or None
-        Processes (None: every core).
-    progress : bool
-        Progress on stderr.
-    force : bool
-        Delete stored results of other settings in the campaigns' folders instead of refusing them.
-    case_timeout : float or None
-        Wall-clock budget of one case (s); None: the campaigns' default. Cases stored as timed out are computed
-        again (:func:`opsrock.inventory.campaigns.run_campaigns`).
+    options : StudyOptions
+        How it runs: processes, progress, force, the case budget (s)
+        (:class:`opsrock.inventory.campaigns.StudyOptions`; its ``store_dir`` is already ``store``).
     """
 
     design: Any
     route: Route
     out: Path
     store: Path
-    workers: int | None = None
-    progress: bool = True
-    force: bool = False
-    case_timeout: float | None = None
+    options: StudyOptions = field(default_factory=StudyOptions)
     scenes: Any = field(default=None, repr=False)
     demands: Any = field(default=None, repr=False)
     cases: pd.DataFrame | None = field(default=None, repr=False)
@@ -123,7 +115,7 @@ class Assessment:
 
     def say(self, text: str) -> None:
         """One progress line on stderr (when :attr:`progress`)."""
-        if self.progress:
+        if self.options.progress:
             print(f"contents: {text}", file=sys.stderr, flush=True)
 
     def run(self) -> InventoryStudy:
@@ -150,12 +142,12 @@ class CampaignStage:
 
     def run(self, a: Assessment) -> None:
         from opsrock.fragility.cases import check_some_finished
-        from opsrock.inventory.campaigns import RunSettings, run_campaigns
+        from opsrock.inventory.campaigns import run_campaigns
 
         t0 = time.perf_counter()
         jobs = a.route.jobs(a)
         a.say(f"{sum(j.scene.n_cases for j in jobs)} cases in {len(jobs)} campaigns ({a.route.name}) into {a.store}")
-        a.cases, a.runs = run_campaigns(jobs, a.store, RunSettings(a.workers, a.progress, a.force, a.case_timeout))
+        a.cases, a.runs = run_campaigns(jobs, a.store, a.options)
         a.n_computed = sum(r.n_computed for r in a.runs)
         a.n_retried = sum(r.n_retried for r in a.runs)
         a.timings["campaigns_s"] = time.perf_counter() - t0

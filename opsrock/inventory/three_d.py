@@ -255,7 +255,7 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
     from opsrock.inventory.components import three_d_components
     from opsrock.inventory.outputs import study_tables, workers_of
 
-    workers = workers_of(a.workers)
+    workers = workers_of(a.options.workers)
     ids = {it.id for it in a.design.inventory.items}
     mine = a.cases[a.cases["item"].isin(ids)]
     components = three_d_components(mine, a.demands, a.design, workers)

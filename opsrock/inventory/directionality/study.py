@@ -239,7 +239,7 @@ def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
 def _motions(a: Any) -> Any:
     """The floor motions of every record pair in both directions (:func:`study_motions`)."""
     a.say(f"floor motions of {len(a.design.pairs) or 'every'} record pair(s) in both directions")
-    return study_motions(a.design, a.scenes, a.workers)
+    return study_motions(a.design, a.scenes, a.options.workers)
 
 
 def _jobs(a: Any) -> list:
@@ -259,7 +259,7 @@ def _read(path: str, campaign: str, solver: str) -> pd.DataFrame:
 def _fit(a: Any) -> dict[str, pd.DataFrame]:
     """The fits of both models and the tables computed from them
     (:func:`opsrock.inventory.directionality.summary.study_tables`)."""
-    fits = summary.fit_table(a.cases, a.design, a.workers or 1)
+    fits = summary.fit_table(a.cases, a.design, a.options.workers or 1)
     return summary.study_tables(fits, a.cases, a.demands.demands, a.design, a.scenes)
 
 

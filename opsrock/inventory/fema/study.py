@@ -90,7 +90,7 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
     base = "rocking" if "rocking" in a.scenes else "friction"
     velocities = floor_velocities(a.scenes[base], a.store / base)
     tasks = fit_tasks(a.cases, a.design.n_boot, a.design.seed, velocities if base == "rocking" else None)
-    fits = fit_table(tasks, a.workers)
+    fits = fit_table(tasks, a.options.workers)
     own = velocities[velocities["floor"].isin(set(a.cases["floor"]))]
     return {**_tables(fits, a.cases, velocities, a.design), "velocities": velocities,
             "pelicun": pelicun_tables(fits, own, a.design)}

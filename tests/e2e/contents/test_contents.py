@@ -21,7 +21,7 @@ from opsrock.campaign.scene import load_blocks, load_scene
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR, G
 from opsrock.inventory.fema import DEFAULT_FRICTION, ContentsDesign
 from opsrock.inventory.fema.design import quick
-from opsrock.inventory.run import run_design
+from opsrock.inventory.run import StudyOptions, run_design
 from opsrock.inventory.fema.design import DEFAULT_FRICTION_KINETIC, campaign_scenes, library_friction, quick
 from opsrock.data import block_library, block_library_names
 from opsrock.errors import InputError
@@ -104,7 +104,8 @@ def test_variants_share_campaigns_by_solver():
 @pytest.mark.usefixtures("record_library")
 def test_study_refuses_bad_records_and_items_before_writing(tmp_path, kwargs, needle):
     with pytest.raises(InputError, match=needle):
-        run_design(quick(ContentsDesign(period=1.0, storeys=8, **kwargs)), tmp_path / "out", progress=False)
+        run_design(quick(ContentsDesign(period=1.0, storeys=8, **kwargs)), tmp_path / "out",
+                   StudyOptions(progress=False))
     assert not (tmp_path / "out").exists()
 
 
@@ -113,9 +114,9 @@ def study(record_library, tmp_path_factory):
     out = tmp_path_factory.mktemp("contents")
     items = ("E.20.22.102a", "E.20.22.106a", "E.20.22.124a")
     design = ContentsDesign(period=1.0, storeys=8, items=items)
-    first = run_design(quick(design), out, workers=1, progress=False)
+    first = run_design(quick(design), out, StudyOptions(workers=1, progress=False))
     ratios_text = (out / "ratios.csv").read_text()
-    again = run_design(quick(design), out, workers=1, progress=False)
+    again = run_design(quick(design), out, StudyOptions(workers=1, progress=False))
     return out, first, again, ratios_text
 
 

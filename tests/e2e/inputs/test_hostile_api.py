@@ -92,12 +92,12 @@ def test_api_case_counts(campaigns):
 def test_contents_campaigns_with_nothing_to_fit_are_refused_in_one_line(campaigns):
     # the study's campaign step (opsrock contents) resumes the failed campaign (all 12 cases reused, none computed)
     # and stops before any fit, naming it: the same check as opsrock fragility
-    from opsrock.inventory.campaigns import RunSettings, run_campaigns
+    from opsrock.inventory.campaigns import StudyOptions, run_campaigns
     from opsrock.inventory.fema.campaigns import campaign_jobs
 
     scene = load_scene(campaigns / "failed" / "scene.toml")
     with pytest.raises(AllCasesFailedError) as err:
-        run_campaigns(campaign_jobs({"rocking": scene}), campaigns / "failed", RunSettings(workers=1, progress=False))
+        run_campaigns(campaign_jobs({"rocking": scene}), campaigns / "failed", StudyOptions(workers=1, progress=False))
     message = str(err.value)
     assert message.startswith(f"every case of {campaigns / 'failed' / 'rocking'} failed ({N_CASES} cases; first "
                               "reason: floor motion failed")

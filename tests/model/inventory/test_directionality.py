@@ -12,7 +12,7 @@ import pandas as pd
 import pytest
 
 from opsrock.inventory.directionality.study import DirectionalityDesign, StudyItem, quick
-from opsrock.inventory.run import run_design
+from opsrock.inventory.run import StudyOptions, run_design
 from opsrock.inventory.directionality.cases import weak_cosines
 from opsrock.inventory.directionality.summary import (ALL, PELICUN_FACTOR, cost_table, directionality_table,
                                                      mechanisms, verdict)
@@ -104,7 +104,7 @@ def test_design_refuses_naming_the_field(field, value):
 
 def test_quick_study_end_to_end_with_a_planar_stand_in(tmp_path):
     design = DirectionalityDesign(solver3d="housner_fast")
-    res = run_design(quick(design), tmp_path / "out", workers=1, progress=False)
+    res = run_design(quick(design), tmp_path / "out", StudyOptions(workers=1, progress=False))
     q = quick(design)
     n = len(q.items) * len(q.floors) * len(q.pairs) * len(q.azimuths) * len(q.levels)
     assert res.summary["n_cases"] == 2 * n and res.summary["n_failed"] == 0

@@ -16,7 +16,7 @@ import pytest
 from opsrock.errors import InputError
 from opsrock.inventory.items import read_inventory
 from opsrock.inventory.motions import read_motions
-from opsrock.inventory.run import route_of, run_design
+from opsrock.inventory.run import StudyOptions, route_of, run_design
 from opsrock.inventory.side_by_side import SIDE_BY_SIDE, SIDE_COLUMNS
 from opsrock.inventory.study import InventoryDesign
 
@@ -41,7 +41,7 @@ def studies(tmp_path_factory):
     both = _inputs(folder)
     planar = dataclasses.replace(both, side_by_side=False)
     three_d = dataclasses.replace(planar, solver="rigid3d")
-    return {name: Path(run_design(d, folder / name, workers=1, progress=False).out_dir)
+    return {name: Path(run_design(d, folder / name, StudyOptions(workers=1, progress=False)).out_dir)
             for name, d in (("both", both), ("planar", planar), ("3d", three_d))}
 
 

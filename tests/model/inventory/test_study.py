@@ -23,7 +23,7 @@ from opsrock.inventory.campaigns import DEMANDS_FILE, group_scenes, groups_of, i
 from opsrock.inventory.fits import FIT_COLUMNS
 from opsrock.inventory.items import FrictionLaw, Inventory, Item, Support
 from opsrock.inventory.motions import FloorMotion, MotionSet
-from opsrock.inventory.run import run_design
+from opsrock.inventory.run import StudyOptions, run_design
 from opsrock.inventory.study import InventoryDesign
 from opsrock.inventory.columns import read_table
 
@@ -57,8 +57,8 @@ def study(tmp_path_factory):
     """The study run twice into one folder: ``(first, second)``."""
     out = tmp_path_factory.mktemp("inventory") / "out"
     design = InventoryDesign(INVENTORY, synthetic_motions(), levels=LEVELS, n_boot=10)
-    first = run_design(design, out, workers=1, progress=False)
-    second = run_design(design, out, workers=1, progress=False)
+    first = run_design(design, out, StudyOptions(workers=1, progress=False))
+    second = run_design(design, out, StudyOptions(workers=1, progress=False))
     return first, second
 
 

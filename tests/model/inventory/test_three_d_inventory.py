@@ -16,7 +16,7 @@ import pytest
 from opsrock.errors import InputError
 from opsrock.inventory.items import read_inventory
 from opsrock.inventory.motions import MotionSet, read_motions
-from opsrock.inventory.run import run_design
+from opsrock.inventory.run import StudyOptions, run_design
 from opsrock.inventory.study import InventoryDesign
 from opsrock.inventory.columns import read_table
 from opsrock.inventory.three_d import NONDIRECTIONAL_FACTOR, PFV_CONVENTIONS, pfv_demands, three_d_scenes
@@ -84,8 +84,8 @@ def test_refusals_name_the_argument(inputs, tmp_path):
 def test_a_tiny_study_in_three_dimensions_is_written_and_resumed(inputs, tmp_path):
     """Two cases (one level, azimuths 0 and 45 deg), about a second each with the floor measures."""
     design = _design(inputs)
-    first = run_design(design, tmp_path / "out", workers=1, progress=False)
-    again = run_design(design, tmp_path / "out", workers=1, progress=False)
+    first = run_design(design, tmp_path / "out", StudyOptions(workers=1, progress=False))
+    again = run_design(design, tmp_path / "out", StudyOptions(workers=1, progress=False))
     assert (first.n_cases, first.n_computed, again.n_computed) == (2, 2, 0)
     rows = read_table(first.tables["fits3d"], dtype=str, keep_default_na=False)[0].to_dict("records")
     assert [r["demand"] for r in rows] == list(PFV_CONVENTIONS)
@@ -107,7 +107,7 @@ def test_a_case_stored_as_timed_out_is_computed_again_by_a_plain_rerun(inputs, t
     re-run, no --force, and the report says so; every other stored failure stays a result (issue 44). About 15 s
     (a study, then its re-run): slow."""
     design = _design(inputs)
-    run_design(design, tmp_path / "out", workers=1, progress=False)
+    run_design(design, tmp_path / "out", StudyOptions(workers=1, progress=False))
     store = next((tmp_path / "out" / "campaigns").glob("*/results.sqlite"))
     db = sqlite3.connect(store)
     db.execute("UPDATE results SET status = 'failed', verdict = 'failed', "
@@ -115,7 +115,7 @@ def test_a_case_stored_as_timed_out_is_computed_again_by_a_plain_rerun(inputs, t
                "(SELECT MIN(case_id) FROM results)")
     db.commit()
     db.close()
-    retried = run_design(design, tmp_path / "out", workers=1, progress=False)
+    retried = run_design(design, tmp_path / "out", StudyOptions(workers=1, progress=False))
     assert (retried.n_computed, retried.n_failed) == (1, 0)
     assert "1 of all these computed in this run (1 of them stored as timed out before, computed again)" in \
         Path(retried.report).read_text()
@@ -137,7 +137,7 @@ def test_a_round_item_is_a_cylinder_in_its_own_campaign(inputs, tmp_path):
     block = scenes["d12-cylinder3d"].blocks[0].block
     assert (block.width, block.depth, block.height, block.restitution_factor) == (0.23, None, 1.5, 1.0)
     assert block.h_cm == 0.75 and block.r_gyration == pytest.approx(math.sqrt(0.23**2 / 16 + 1.5**2 / 12))
-    out = run_design(design, tmp_path / "out", workers=1, progress=False)
+    out = run_design(design, tmp_path / "out", StudyOptions(workers=1, progress=False))
     # the cylinder at one azimuth (it is round), the box of its size beside it at both, in no item's table
     assert out.n_cases == 5 and out.n_computed == 5
     assert set(read_table(out.tables["fits3d"])[0]["item"]) == {"cab", "o2"}
@@ -162,7 +162,7 @@ def test_both_models_write_the_box_beside_a_round_item(inputs, tmp_path):
                                         "o2,an oxygen cylinder,,,1.5,cylinder,0.23\n")
     design = InventoryDesign(read_inventory(tmp_path / "round.csv"), read_motions(motions), side_by_side=True,
                              azimuths=(0.0, 45.0), levels=(4.0,), n_boot=0)
-    both = run_design(design, tmp_path / "both", workers=1, progress=False)
+    both = run_design(design, tmp_path / "both", StudyOptions(workers=1, progress=False))
     boxes, _ = read_table(both.tables["boxes"], dtype={"floor": str})
     assert list(boxes["model"]) == ["as given", "box of its size"]
     assert list(boxes["n_cases"] + boxes["n_failed"]) == [1, 2]

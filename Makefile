@@ -68,6 +68,9 @@ test-fuzz: install
 # FEMA P-58's E.20.22 fragilities and with opsrock's: first on a quick study made now from this checkout,
 # then on the committed study (studies/contents/pelicun/), whose expected numbers of overturned items
 # studies/contents/README.md quotes.
+# tools/pelicun_inventory.py --dl-calculation runs pelicun's own DL_calculation on the quick study's folder too: the
+# FEMA P-58 nine have no repair cost, so it has no loss model and DL_calculation runs its damage assessment only
+# (its outputs kept in .pelicun-venv/contents/pelicun/results/; the tool says that no loss was computed and why).
 # Then the user's route (opsrock contents --inventory --motions): the shipped example inventory on the shipped
 # example floor motions, quick, into .pelicun-venv/inventory; pelicun runs its pelicun/ folder as it is (damage
 # and loss, tools/pelicun_inventory.py, and pelicun's own DL_calculation on its config.json, its outputs kept in
@@ -86,7 +89,7 @@ test-pelicun: install
 	.pelicun-venv/bin/python tools/pelicun_load.py .pelicun-venv/sample.csv
 	$(BIN)/opsrock contents --quick --no-progress --force --out .pelicun-venv/contents
 	.pelicun-venv/bin/python tools/pelicun_load.py .pelicun-venv/contents/pelicun/fragility.csv
-	.pelicun-venv/bin/python tools/pelicun_inventory.py .pelicun-venv/contents/pelicun --repeat 20
+	.pelicun-venv/bin/python tools/pelicun_inventory.py .pelicun-venv/contents/pelicun --repeat 20 --dl-calculation
 	.pelicun-venv/bin/python tools/pelicun_assess.py .pelicun-venv/contents/pelicun --repeat 20
 	.pelicun-venv/bin/python tools/pelicun_assess.py studies/contents/pelicun
 	$(BIN)/opsrock contents --inventory $(EXAMPLE_INVENTORY) --motions $(EXAMPLE_MOTIONS) \

@@ -15,7 +15,11 @@ status 1 when pelicun's mean units damaged or overturned (all components) differ
 more than four standard errors of that sampling (each unit one Bernoulli draw per realisation, variance at most
 1/4). ``--dl-calculation`` also runs pelicun's own ``DL_calculation.run_pelicun`` on the configuration (schema
 check included) and keeps its outputs (``DL_summary.csv``, ``DV_repair_*``, ``DMG_*``, its log) in
-``FOLDER/results/``.
+``FOLDER/results/``. On a folder without a repair-cost model (no ``DL/Losses`` in ``config.json``: no item of the
+inventory has a ``repair_cost``, as the FEMA P-58 nine of ``opsrock contents``) it runs the damage assessment only:
+DL_calculation's default outputs include the loss's, which it refuses without ``DL/Losses`` ("No loss data
+specified"), so the configuration it gets names its outputs (``DL/Outputs``, pelicun's input schema: demand, asset
+and damage, CSV) without the loss; one line says that no loss was computed and why.
 """
 
 from __future__ import annotations
@@ -154,6 +158,10 @@ def main(argv: list[str] | None = None) -> int:
     if args.dl_calculation:
         made = dl_calculation(config, folder, size)
         print(f"pelicun DL_calculation ran the configuration; its outputs in {folder / 'results'}: {', '.join(made)}")
+    why = no_loss_reason(config)
+    if why is not None:
+        print(f"no loss computed: {why}" + ("; DL_calculation ran the damage assessment only" if args.dl_calculation
+                                             else ""))
     if args.out:
         args.out.write_text(json.dumps(result, indent=1))
     if bad:
@@ -163,20 +171,45 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
+# DL_calculation's outputs without the loss's (pelicun 3.10's input schema, DL/Outputs): what it writes of a
+# configuration without DL/Losses, whose default outputs (the loss's included) it refuses
+DAMAGE_OUTPUTS = {"Demand": {"Sample": True, "Statistics": True}, "Asset": {"Sample": True, "Statistics": True},
+                  "Damage": {"Sample": True, "Statistics": True, "GroupedSample": True, "GroupedStatistics": True},
+                  "Format": {"CSV": True, "JSON": False}}
+
+
+def no_loss_reason(config: dict) -> str | None:
+    """Why the folder's assessment computes no loss (None when it has a repair-cost model, ``DL/Losses/Repair``):
+    the writer adds one only when an item of the inventory has a ``repair_cost``."""
+    if config["DL"].get("Losses", {}).get("Repair"):
+        return None
+    return "config.json has no repair-cost model (DL/Losses), as no item of the inventory has a repair_cost"
+
+
+def dl_configuration(config: dict, out: Path) -> dict:
+    """The configuration DL_calculation runs, its log into ``out``; without a repair-cost model
+    (:func:`no_loss_reason`) its outputs named, the damage assessment's only (:data:`DAMAGE_OUTPUTS`)."""
+    run = json.loads(json.dumps(config))
+    run["DL"]["Options"]["LogFile"] = str(out / "pelicun_log.txt")
+    if no_loss_reason(run) is not None:
+        run["DL"]["Outputs"] = json.loads(json.dumps(DAMAGE_OUTPUTS))
+    return run
+
+
 def dl_calculation(config: dict, folder: Path, size: int) -> list[str]:
     """pelicun's own ``DL_calculation.run_pelicun`` on the configuration (schema check included), its outputs
-    (``DL_summary.csv``, ``DV_repair_*``, ``DMG_*``, its log) kept in ``folder/results/``; the file names."""
+    (``DL_summary.csv``, ``DV_repair_*`` where the folder prices damage, ``DMG_*``, its log) kept in
+    ``folder/results/``; the file names."""
     from pelicun.tools.DL_calculation import run_pelicun
 
     out = folder / "results"
     out.mkdir(exist_ok=True)
     path = out / "config.json"
-    config["DL"]["Options"]["LogFile"] = str(out / "pelicun_log.txt")
-    path.write_text(json.dumps(config, indent=2))
-    run_pelicun(str(path), config["DL"]["Demands"]["DemandFilePath"], str(out), size, None, str(folder), ["csv"],
+    run = dl_configuration(config, out)
+    path.write_text(json.dumps(run, indent=2))
+    run_pelicun(str(path), run["DL"]["Demands"]["DemandFilePath"], str(out), size, None, str(folder), ["csv"],
                 detailed_results=True, coupled_edp=True)
     return sorted(p.name for p in out.iterdir())
-
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -273,7 +273,19 @@ def _expected_lines(expected: pd.DataFrame, pelicun: dict[str, str]) -> list[str
             "(the lognormal's own error).", "",
             markdown_table(pd.concat([units, shown.astype(object)], ignore_index=True), ".3g"), "",
             f"Total expected repair cost: {cost:,.0f} (the inventory's currency)." if math.isfinite(cost) else
-            "No item gives a `repair_cost`: no repair cost is computed.", ""]
+            "No item gives a `repair_cost`: no repair cost is computed.", "", *_unpriced_slide_lines(expected)]
+
+
+def _unpriced_slide_lines(expected: pd.DataFrame) -> list[str]:
+    """One line per item expected to slide (units displaced and not overturned on a floor) without a ``slide_cost``:
+    its sliding adds nothing to the repair cost."""
+    if not {"expected_displaced_only", "slide_cost"} <= set(expected.columns):
+        return []
+    slid = expected[(expected["expected_displaced_only"] > 0) & expected["slide_cost"].isna()]
+    lines = [f"- **{item}** slides (units displaced and not overturned expected on floor{'s' if len(g) > 1 else ''} "
+             f"{', '.join(g['floor'].astype(str))}) but has no `slide_cost`: its sliding adds nothing to the repair "
+             "cost." for item, g in slid.groupby("item", sort=False)]
+    return [*lines, ""] if lines else []
 
 
 def _failure_lines(inputs: ReportInputs) -> list[str]:

@@ -285,3 +285,23 @@ def test_each_ratio_to_fema_splits_into_fema_s_own_rule_and_what_it_leaves_out()
     assert r["rule_factor"] == pytest.approx((0.3 / 1.6) / ref.aspect_ratio * period / REFERENCE_PERIOD, rel=1e-12)
     assert r["rule_factor"] * r["beyond_factor"] == pytest.approx(2.0, rel=1e-12)
     assert r["slides_first"] and "slides before it rocks" in r["reason"]  # friction 0.1 < b/h 0.19
+
+
+def test_an_item_that_slides_without_a_slide_cost_is_named_once(tmp_path):
+    """An item expected to slide (units displaced, not overturned) that has no ``slide_cost`` gets one line saying
+    its sliding adds nothing to the repair cost, naming its floors; a priced slider and an item that never slides
+    (its displaced units all overturned) get none."""
+    expected = pd.DataFrame({
+        "item": ["cabinet", "cabinet", "rack", "bookcase", "printer"], "floor": ["1", "2", "1", "1", "1"],
+        "quantity": [4.0, 4.0, 6.0, 12.0, 3.0], "expected_damaged": [1.0, 2.5, 0.3, 4.0, 0.0],
+        "expected_displaced_only": [1.0, 2.5, 0.1, 0.0, 0.0], "expected_overturned": [0.0, 0.0, 0.2, 4.0, 0.0],
+        "slide_cost": [math.nan, math.nan, 3000.0, math.nan, math.nan],
+        "repair_cost": [500.0, 500.0, 30000.0, 300.0, 800.0], "expected_cost": [0.0, 0.0, 6300.0, 1200.0, 0.0]})
+    tables = summary.report_tables(synthetic_fits(), LEVELS)
+    inputs = ReportInputs(title="t", method="ida", fits=synthetic_fits(), demands=synthetic_demands(),
+                          expected=expected, inventory=pd.DataFrame(), figures={}, notes=(), pelicun={}, **tables)
+    text = write_report(tmp_path / "report.md", inputs).read_text()
+    lines = [line for line in text.splitlines() if "no `slide_cost`" in line]
+    assert lines == ["- **cabinet** slides (units displaced and not overturned expected on floors 1, 2) but has no "
+                     "`slide_cost`: its sliding adds nothing to the repair cost."]
+    assert text.index("Total expected repair cost") < text.index(lines[0])

@@ -10,4 +10,6 @@
   gate to the figures and the report;
 * :mod:`~opsrock.analysis.record_report`: ``opsrock fragility``, the record fragility workflow of a record
   campaign, from its ``cases.csv`` to the figures and the report.
+* :mod:`~opsrock.analysis.record_columns`: the unit of every column of ``opsrock fragility``'s tables, and their
+  writer and reader with a units row.
 """

@@ -11,7 +11,8 @@ Reads the ``cases.csv`` of a record scene's run (:func:`read_cases`), fits every
 also the pulse study over N seeded block sets (``robustness.csv``). A campaign solved with friction (its
 table has the contact columns) also gets the fragility of sliding beyond :data:`SLIDE_DISTANCES`
 (:mod:`opsrock.fragility.sliding`): ``sliding.csv``, ``figures/sliding.png``, a section of the report and
-the ``SLIDE`` components in ``fragility_pelicun.csv``; any other campaign's outputs are as they were.
+the ``SLIDE`` components in ``fragility_pelicun.csv``; any other campaign's outputs are as they were. Every table
+but pelicun's file has a units row after its header (:mod:`opsrock.analysis.record_columns`).
 """
 
 from __future__ import annotations
@@ -24,7 +25,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from opsrock._files import atomic_csv, read_table
+from opsrock._files import read_table
+from opsrock.analysis.record_columns import write_record_table
 from opsrock.constants import G
 from opsrock.errors import InputError
 from opsrock.fragility.sliding import DEFAULT_DISTANCES
@@ -276,9 +278,10 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
         from opsrock.analysis.robustness import ranking_robustness
 
         robust = ranking_robustness(robustness_sets, seed=seed, workers=workers).shares
-        atomic_csv(out / "robustness.csv", robust)
+        write_record_table(robust, out / "robustness.csv")
+    measure = scene_measure(cases)
     for name in STUDY_TABLES:
-        atomic_csv(out / f"{name}.csv", getattr(study, name))
+        write_record_table(getattr(study, name), out / f"{name}.csv", measure)
     fits = record_fits(study.blocks, cases, scene_method(cases))
     comps, skipped = _exports(fits)
     sliding = _sliding(cases, out, n_boot, seed, workers)
@@ -287,7 +290,6 @@ def write_record_report(cases: pd.DataFrame, out: Path, *, n_boot: int = 200, se
         comps, skipped = comps + slide_comps, skipped + slide_skipped
     pel = write_pelicun_csv(comps, out / "fragility_pelicun.csv")
     table = summary.item_floor_table(fits, demand_levels)
-    measure = scene_measure(cases)
     figs = _figures(cases, study, summary.curve_table(fits), robust, sliding, out / "figures", workers,
                     MEASURE_LABELS[measure])
     report = RecordReport(study=study, robustness=robust, robustness_sets=robustness_sets, sliding=sliding,
@@ -327,8 +329,10 @@ def _figures(cases: pd.DataFrame, study, curves: pd.DataFrame, robust: pd.DataFr
 
 def _sliding(cases: pd.DataFrame, out: Path, n_boot: int, seed: int, workers: int) -> pd.DataFrame | None:
     """The sliding fragilities of a campaign solved with friction, per block and floor (``sliding.csv``:
-    :func:`opsrock.fragility.sliding.sliding_table` of each floor's cases, its ``floor`` column after
-    ``block``), None for another campaign."""
+    :func:`opsrock.fragility.sliding.sliding_table` of each floor's cases, its ``floor`` column after ``block`` and
+    the unit of the row's demand and medians after ``demand``: the cases' PFA in m/s2, PFV in m/s), None for another
+    campaign."""
+    from opsrock.campaign.cases import UNITS as CASE_UNITS
     from opsrock.fragility.sliding import has_slides, sliding_table
 
     if not has_slides(cases):
@@ -339,7 +343,8 @@ def _sliding(cases: pd.DataFrame, out: Path, n_boot: int, seed: int, workers: in
         part.insert(1, "floor", floor)
         parts.append(part)
     table = pd.concat(parts, ignore_index=True)
-    atomic_csv(out / "sliding.csv", table)
+    table.insert(table.columns.get_loc("demand") + 1, "unit", table["demand"].map(CASE_UNITS))
+    write_record_table(table, out / "sliding.csv")
     return table
 
 

@@ -121,8 +121,7 @@ def _sliding_lines(sliding: pd.DataFrame, distances: tuple[float, ...], figure: 
              "same record-bootstrap intervals as above (`sliding.csv`); the fits are exported to "
              "`fragility_pelicun.csv` as `opsrock.<block>.<floor>.SLIDE<d in mm>MM.<PFA|PFV>`, one per block and floor.",
              ""]
-    table = sliding.assign(distance_cm=100 * sliding["distance"],
-                           unit=sliding["demand"].map({"pfa": "m/s2", "pfv": "m/s"}))
+    table = sliding.assign(distance_cm=100 * sliding["distance"])  # its unit column: the demand's
     cols = ["distance_cm", "demand", "unit", "median", "median_lo", "median_hi", "beta", "beta_lo", "beta_hi",
             "n_beyond", "n_cases"]
     for (block, floor), rows in table.groupby(["block", "floor"], sort=False):

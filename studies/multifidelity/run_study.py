@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from opsrock.analysis.record_columns import read_record_table
 from opsrock.campaign.cases import read_cases
 
 HERE = Path(__file__).resolve().parent
@@ -92,10 +93,10 @@ def campaigns(work: Path, reuse: bool) -> list[dict]:
 def fragility_table(work: Path) -> pd.DataFrame:
     """Medians and betas of the multi-fidelity run and the screen against the full run's intervals."""
     cols = ["im", "n_overturned", "mu", "mu_lo", "mu_hi", "beta", "beta_lo", "beta_hi"]
-    full = pd.read_csv(work / "fragility_full" / "ims.csv")[cols]
+    full = read_record_table(work / "fragility_full" / "ims.csv")[cols]
     out = full.rename(columns={c: f"{c}_full" for c in cols if c != "im"})
     for name in ("mf", "screen"):
-        x = pd.read_csv(work / f"fragility_{name}" / "ims.csv")[["im", "n_overturned", "mu", "beta"]]
+        x = read_record_table(work / f"fragility_{name}" / "ims.csv")[["im", "n_overturned", "mu", "beta"]]
         x = x.rename(columns={c: f"{c}_{name}" for c in ("n_overturned", "mu", "beta")})
         out = out.merge(x, on="im")
         out[f"mu_{name}_in_ci"] = out[f"mu_{name}"].between(out["mu_lo_full"], out["mu_hi_full"])
@@ -175,7 +176,7 @@ def variants(work: Path) -> pd.DataFrame:
 
     screen = read_cases(work / "mf" / "screen" / "cases.csv")
     full = read_cases(work / "full_opensees" / "cases.csv")
-    ref = pd.read_csv(work / "fragility_full" / "ims.csv").set_index("im")
+    ref = read_record_table(work / "fragility_full" / "ims.csv").set_index("im")
     base = derive_rule("opensees", "housner_fast")
     ev = EVIDENCE["opensees"]
     rules = [("screen only", None), ("default: p95 case 9, overturned escalated", base),

@@ -39,8 +39,9 @@ def main(argv: list[str]) -> int:
     from pathlib import Path
 
     from opsrock._files import atomic_csv
+    from opsrock.analysis.record_columns import read_record_table  # its units row skipped (none in an older one)
 
-    out = compare(pd.read_csv(argv[0]), pd.read_csv(argv[1]))
+    out = compare(read_record_table(argv[0]), read_record_table(argv[1]))
     atomic_csv(Path(argv[2]), out)
     with pd.option_context("display.width", 200, "display.max_columns", 30):
         print(out[["im", "mu_rigid", "mu_sdof", "mu_ratio", "mu_sdof_in_rigid_ci", "mu_cis_overlap",

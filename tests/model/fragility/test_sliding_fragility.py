@@ -11,10 +11,15 @@ import pytest
 from scipy.stats import norm
 
 from _support import write_friction_campaign
-from opsrock._files import read_table
+from opsrock._files import read_table, read_units
+from opsrock.analysis.record_columns import TABLE_UNITS, read_record_table, units_of
 from opsrock.errors import InputError
 from opsrock.fragility.pelicun_export import read_pelicun_csv, write_pelicun_csv
 from opsrock.fragility.sliding import fit_sliding, slid_beyond, sliding_component_id, sliding_components, sliding_table
+
+
+#: sliding.csv's columns, in order (its units row: ``TABLE_UNITS["sliding"]``).
+SLIDING_COLUMNS = tuple(TABLE_UNITS["sliding"])
 
 
 def _cases(n_records: int = 40, median: float = 4.0, beta: float = 0.4, seed: int = 1) -> pd.DataFrame:
@@ -124,12 +129,16 @@ def test_fragility_report_of_a_friction_campaign_has_a_sliding_section(friction_
         assert (tmp_path / "with" / f"{name}.csv").read_bytes() == (tmp_path / "without" / f"{name}.csv").read_bytes()
 
     # sliding.csv is sliding_table of each floor's finished cases (one floor here), every block x distance x demand,
-    # with the floor after the block
-    # read_table parses round-trip: pandas before 3 reads the last digit of some floats differently by default
-    table = read_table(tmp_path / "with" / "sliding.csv")
+    # with the floor after the block and the demand's unit after the demand (the cases': PFA m/s2, PFV m/s), under
+    # its units row; read_table parses round-trip: pandas before 3 reads the last digit of some floats differently
+    assert read_units(tmp_path / "with" / "sliding.csv")[1] == units_of("sliding", list(SLIDING_COLUMNS))
+    table = read_record_table(tmp_path / "with" / "sliding.csv")
     (floor,) = friction_cases["floor"].unique()
     expected = sliding_table(friction_cases, SLIDE_DISTANCES, n_boot=n_boot, seed=2)
     expected.insert(1, "floor", floor)
+    expected.insert(expected.columns.get_loc("demand") + 1, "unit", expected["demand"].map({"pfa": "m/s2",
+                                                                                            "pfv": "m/s"}))
+    assert list(table.columns) == list(SLIDING_COLUMNS)
     assert len(table) == 2 * len(SLIDE_DISTANCES) * 2
     pd.testing.assert_frame_equal(table, read_table(io.StringIO(expected.to_csv(index=False))))
     fitted = table[table["success"] & (table["beta"] > 0)]

@@ -6,6 +6,7 @@ IDs carry the floor, no figure pools blocks or floors, and every axis names its 
 
 from __future__ import annotations
 
+import io
 import math
 import re
 
@@ -15,7 +16,9 @@ import pytest
 from _support import drawn_figure
 from scipy import stats
 
+from opsrock._files import read_table, read_units
 from opsrock.analysis import record_report as rr
+from opsrock.analysis.record_columns import read_record_table, units_of
 from opsrock.constants import G
 from opsrock.fragility.pelicun_export import read_pelicun_csv
 from opsrock.plots import record_fragility as rplots
@@ -91,8 +94,34 @@ def test_pelicun_ids_carry_the_floor(report):
     fitted = res.study.blocks[res.study.blocks["success"]]
     assert ids == {f"opsrock.{r.block}.{r.floor}.{r.demand.upper()}" for r in fitted.itertuples()}
     assert len(res.study.blocks) == 2 * 2 * 2  # blocks x floors x (PFA, PFV): no fit pools floors
-    blocks = pd.read_csv(out / "blocks.csv")
+    blocks = read_record_table(out / "blocks.csv")
     assert list(blocks.columns[:3]) == ["block", "floor", "demand"]
+
+
+def test_every_table_has_a_units_row_and_reads_back_to_the_study(report, tmp_path):
+    """Each CSV table ``opsrock fragility`` writes (but pelicun's own file) has its ``Units`` row after the header, one
+    unit per column (``TABLE_UNITS``; the scene's measure ``pfa_ratio`` dimensionless, the blocks' medians in their
+    row's unit), and reads back to the study's frame to the last bit; the same table without the row (an older
+    opsrock's) reads to the same frame."""
+    out, res, _ = report
+    written = sorted(p.name for p in out.glob("*.csv"))
+    assert written == sorted([*(f"{t}.csv" for t in rr.STUDY_TABLES), "fragility_pelicun.csv"])
+    for name in rr.STUDY_TABLES:
+        header, units = read_units(out / f"{name}.csv")
+        assert units == units_of(name, header), name
+        assert units[0] == "" and all(isinstance(u, str) for u in units)
+        table = read_record_table(out / f"{name}.csv")
+        pd.testing.assert_frame_equal(table, read_table(io.StringIO(getattr(res.study, name).to_csv(index=False))),
+                                      check_dtype=False)
+        lines = (out / f"{name}.csv").read_text().splitlines(keepends=True)
+        old = tmp_path / f"{name}.csv"
+        old.write_text(lines[0] + "".join(lines[2:]))
+        pd.testing.assert_frame_equal(read_record_table(old), table)
+    header, units = read_units(out / "measure_fits.csv")
+    assert dict(zip(header, units))["mu"] == "-"  # the scene's measure, PFA / (g tan alpha)
+    blocks = dict(zip(*read_units(out / "blocks.csv")))
+    assert blocks["mu"] == "see unit" and blocks["unit"] == "" and blocks["beta"] == "-"
+    assert dict(zip(*read_units(out / "ims.csv")))["cv_percent"] == "%"
 
 
 def test_sentences_and_failures_agree_with_the_numbers(report):

@@ -30,14 +30,15 @@ study = opsrock.run_study(inventory, motions, out, quick=True, options=opsrock.S
 print(f"{study.n_cases} cases ({study.n_failed} failed); report: {Path(study.report).name}")
 print("pelicun folder:", sorted(p.name for p in (out / "pelicun").iterdir()))
 
-fits = pd.read_csv(study.tables["fits"])
+# Each table has a Units row after its header (pelicun's tabular form): skipped here, the units are in the report
+fits = pd.read_csv(study.tables["fits"], skiprows=[1], dtype={"floor": str, "direction": str})
 shown = fits[fits.ok & (fits.demand == "pfa")][["item", "floor", "direction", "outcome", "median", "beta"]]
 print("medians in g:")
 print(shown.to_string(index=False, float_format="%.3f"))
 
 # Each unit once, whatever the direction: expected units damaged (displaced or overturned) and repair cost per
 # item and floor, the exact expectation over the records with the fragilities the pelicun folder holds.
-expected = pd.read_csv(study.tables["expected"])
+expected = pd.read_csv(study.tables["expected"], skiprows=[1], dtype={"floor": str})
 print(expected[["item", "floor", "quantity", "expected_damaged", "expected_overturned", "expected_cost"]]
       .to_string(index=False, float_format="%.3f"))
 

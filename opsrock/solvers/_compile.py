@@ -18,14 +18,15 @@ from typing import Any
 #: system time of ``NUMBA_CACHE_DIR=$(mktemp -d) /usr/bin/time opsrock simulate --width 0.4 --height 2.2
 #: --pfa-ratio 4 --freq-ratio 6 --solver NAME`` (``--restitution-law housner`` for ``moreau_jean``, ``--depth 0.6``
 #: for ``rigid3d``; measured in issue 43 once only the kernels' entry points were numba dispatchers: housner_fast
-#: 5.0 s, moreau_jean 8.1-8.6 s, friction 18.2 s, rigid3d 52.6 s; for ``cylinder3d`` the same of ``python -c 'from
-#: opsrock.solvers import warm_up; warm_up("cylinder3d")'``, 15.4 s cold; 31.1 s with its rolling phase, against 24.1
-#: s without it in the same run, issue 45) less that of the same command with the
+#: 5.0 s, moreau_jean 8.1-8.6 s, friction 18.2 s (12.3 s once its helpers were compiled once each), rigid3d
+#: 52.6 s; for ``cylinder3d`` the same of ``python -c 'from opsrock.solvers import warm_up; warm_up("cylinder3d")'``,
+#: 15.4 s cold; 31.1 s with its rolling phase, against 24.1 s without it in the same run, issue 45) less that of the
+#: same command with the
 #: cache warm (about 1.3 s), measured on the project's shared 2-core development machine (numba 0.68, Python 3.11;
 #: the CPU time varies by up to a fifth with the machine's load: these at load average 6-12). The wall time is
 #: longer on a loaded machine.
 COMPILE_CPU_S: dict[str, float] = {
-    "friction": 18.0,
+    "friction": 11.0,
     "housner_fast": 4.0,
     "moreau_jean": 7.0,
     "rigid3d": 51.0,

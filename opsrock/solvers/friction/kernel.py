@@ -10,6 +10,12 @@ corner lands. After the excitation the block is followed (``a_h = 0``, the verti
 the pulse kept) until it is at rest or has overturned, or, in a pure slide its friction cannot stop
 within ``max_tail`` (:func:`_unstoppable`), until that is known: the case then ends with its slip
 velocity in ``OUT_SLIP_END`` (docs/guide/friction.md, the ending rule).
+
+Compilation (issue 43: a first solve's compile time): the helpers are ``register_jitable`` functions, each
+compiled once into its callers. Only a step's path (:func:`_phase`, :func:`_rk_step`, :func:`_trial_step`,
+:func:`_fly_step`, :func:`_record`) is inlined into the loop by numba (``inline='always'``): a call that is not
+inlined takes and drops a reference to each array it is passed, a dozen atomic counts on every step (measured: the
+kernel 10-15 % slower per case without it). Everything else inlined as well took half as much compile time again.
 """
 
 from __future__ import annotations
@@ -481,20 +487,20 @@ def _setup(params, kvals, gvals):
     return cfg, bd
 
 
-@numba.njit(cache=True, inline='always')
+@register_jitable
 def _motion(cs):
     """The :class:`Motion` of the case state ``cs``."""
     return Motion(int(cs[_CS_MODE]), cs[_CS_S], cs[_CS_SIG], cs[_CS_TH], cs[_CS_OM], cs[_CS_U], cs[_CS_W],
                   cs[_CS_TAU])
 
 
-@numba.njit(cache=True, inline='always')
+@register_jitable
 def _set_mode(cs, mode, s, sig, om, w):
     """A new mode ``(mode, s, sig)`` with rate ``om`` and slip velocity ``w`` into the case state ``cs``."""
     cs[_CS_MODE], cs[_CS_S], cs[_CS_SIG], cs[_CS_OM], cs[_CS_W] = mode, s, sig, om, w
 
 
-@numba.njit(cache=True, inline='always')
+@register_jitable
 def _first_mode(out, mode):
     """Count ``mode`` as the first the block left rest into, if it is."""
     if out[OUT_FIRST_MODE] < 0.0:
@@ -732,10 +738,13 @@ def _rk_step(cfg, bd, fc, cs, h, last, out, hist):
         out[OUT_OVERTURNED] = 1.0
         _record(hist, out, _motion(cs))
         return STATUS_OK
+    if ev < 0:  # the common step, no event: its history row (no call with the arrays on every step)
+        _record(hist, out, _motion(cs))
+        return _GO
     return _at_event(cfg, bd, fc, cs, ev, out, hist)
 
 
-@numba.njit(cache=True, inline='always')
+@register_jitable
 def _impact(cfg, bd, fc, cs, out, hist):
     """An impact at ``theta = 0`` (:func:`~.impacts.impact`), then the mode the block settles in (:func:`_settle`;
     a take-off next if it cannot). Returns :data:`_GO` or the case's status."""
@@ -763,7 +772,7 @@ def _impact(cfg, bd, fc, cs, out, hist):
     return _GO
 
 
-@numba.njit(cache=True, inline='always')
+@register_jitable
 def _stick_slip(bd, fc, cs, out, hist):
     """The stick-slip event: a rocking block's pivot starts slipping, a slide-rocking one's slip stops (it sticks,
     or slips back), a sliding one stops and takes the mode it starts in (a take-off next if flight). Returns
@@ -798,24 +807,21 @@ def _stick_slip(bd, fc, cs, out, hist):
     return _GO
 
 
-@numba.njit(cache=True, inline='always')
+@register_jitable
 def _at_event(cfg, bd, fc, cs, ev, out, hist):
     """The mode change at the end of a step cut by event ``ev`` (0 impact, 1 stick-slip, 2 contact lost: a take-off
-    next, or overturning if the block leaves the floor beyond its hump turning outwards; none: the step's history
-    row). Returns :data:`_GO` or the case's status."""
+    next, or overturning if the block leaves the floor beyond its hump turning outwards). Returns :data:`_GO` or the
+    case's status."""
     if ev == 0:
         return _impact(cfg, bd, fc, cs, out, hist)
     if ev == 1:
         return _stick_slip(bd, fc, cs, out, hist)
-    if ev == 2:
-        if cs[_CS_MODE] != SLIDE and cs[_CS_S] * cs[_CS_TH] > bd.alpha and cs[_CS_S] * cs[_CS_OM] > 0.0:
-            # it leaves the floor beyond its hump, turning outwards: nothing brings it back
-            out[OUT_OVERTURNED] = 1.0
-            out[OUT_THETA_MAX] = OVERTURNING_ANGLE
-            return STATUS_OK
-        cs[_CS_TAKEOFF] = True
-        return _GO
-    _record(hist, out, _motion(cs))
+    if cs[_CS_MODE] != SLIDE and cs[_CS_S] * cs[_CS_TH] > bd.alpha and cs[_CS_S] * cs[_CS_OM] > 0.0:
+        # it leaves the floor beyond its hump, turning outwards: nothing brings it back
+        out[OUT_OVERTURNED] = 1.0
+        out[OUT_THETA_MAX] = OVERTURNING_ANGLE
+        return STATUS_OK
+    cs[_CS_TAKEOFF] = True
     return _GO
 
 
@@ -888,6 +894,15 @@ def solve_case(params, kvals, gvals, out, hist):
     entered, the forcing segment); each turn of the loop is one :func:`_phase`; the counts and peaks accumulate
     in ``out`` as they go.
     """
+    _solve(params, kvals, gvals, out, hist)
+
+
+@register_jitable
+def _solve(params, kvals, gvals, out, hist):
+    """:func:`solve_case`'s work. The entry point calls this one helper only: numba compiles a helper once for each
+    set of compile flags it is called under, and an entry point's differ from a helper's (it has a CPython wrapper),
+    so a helper called both from the entry point and from another helper would be compiled twice (issue 43: cold
+    compile time)."""
     cfg, bd = _setup(params, kvals, gvals)
     fc = np.zeros(9)
     fc[_FC_KAPPA] = params[P_KAPPA]

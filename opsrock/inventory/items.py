@@ -132,7 +132,8 @@ class Item:
         Sliding (or rolling, on casters) beyond it (m) displaces the item: the damage state below overturning
         where friction is modelled; None: the study's ``slide_distance``.
     slide_cost : float or None
-        Cost of one unit displaced but not overturned (the inventory's currency), >= 0; None: not priced (0).
+        Cost of one unit displaced but not overturned (the inventory's currency), >= 0, with ``repair_cost``;
+        None: not priced (0).
     shape : str
         ``"box"`` (the default) or ``"cylinder"``: a round base of diameter ``width`` (``depth`` equal to it), whose
         planar block has a homogeneous solid cylinder's ``cm_height`` and ``radius_of_gyration`` unless given, and
@@ -186,6 +187,10 @@ class Item:
             object.__setattr__(self, "repair_cost", cost)
         if self.slide_cost is not None:
             object.__setattr__(self, "slide_cost", _argued("slide_cost", check_nonnegative, "slide_cost", self.slide_cost))
+            if self.repair_cost is None:
+                raise InputError(f"item {self.id!r} prices a displaced unit (slide_cost) but not an overturned one: give "
+                                 "its repair_cost too (without it, the loss would count an overturned unit as costing "
+                                 "nothing)", argument="slide_cost")
         if self.slide_distance is not None:
             value = self.slide_distance
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:

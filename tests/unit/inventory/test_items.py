@@ -331,6 +331,8 @@ BAD_CELLS = [
     ("support_period|0", "support_period = '0': support_period must lie in [0.01, 10] s"),
     ("support_period,support_damping|0.2,0.9", "support_damping = '0.9': support_damping must lie in [0, 0.5]"),
     ("repair_cost|-1", "repair_cost = '-1': repair_cost must be a finite number >= 0"),
+    # a priced slide without a priced overturning: pelicun's loss would count an overturned unit at nothing
+    ("slide_cost|60", "slide_cost = '60': item 'box' prices a displaced unit (slide_cost) but not an overturned one"),
 ]
 
 

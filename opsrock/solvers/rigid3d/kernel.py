@@ -206,6 +206,15 @@ def _next_phase(phase, impact, act, corners, P):
 
 
 @numba.njit(cache=True, inline='always')
+def _smooth_due(model, phase):
+    """Is a smooth step due (:func:`_smooth_step`): smooth steps on and the block ``pivot.CALM_STEPS`` Moreau-Jean
+    steps in a phase that has them (``phase``)? Tested apart, before the call: the call binds the whole workspace
+    (52 arrays), and numba counts a reference to each, so calling it at every step took about a tenth of a 3-D case's
+    CPU (issue 43)."""
+    return model.numerics.smooth and max(phase[PH_PIVOT], phase[PH_SLIP], phase[PH_SLIDE]) >= PV.CALM_STEPS
+
+
+@numba.njit(cache=True, inline='always')
 def _smooth_step(model, floor, state, k, phase, work, corners, trial):
     """A smooth step of the phase the block has been in for ``pivot.CALM_STEPS`` Moreau-Jean steps (``phase``):
     about stuck corners (:func:`.smooth._smooth`), on slipping corners (:func:`.smooth._smooth_slip`), sliding flat
@@ -237,15 +246,15 @@ def _smooth_step(model, floor, state, k, phase, work, corners, trial):
 
 
 @numba.njit(cache=True, inline='always')
-def _mj_step(model, state, acc, ws, trial, corners, phase):
+def _mj_step(model, state, acc, ws, end, trial, corners, phase):
     """One Moreau-Jean step (:func:`.step._step`, the corners down tried first) under the floor accelerations
     ``acc``, its bookkeeping (:func:`.step._book`) and the phase counts after it (:func:`_next_phase`). Returns
     False once NSGS has failed ``nsgs.fail_steps`` steps in a row (the run fails)."""
     converged = _count_sweeps(_step(model, state, acc, model.numerics.dt, ws, trial, corners.touch), model.nsgs,
                               trial.out)
-    a = ws.a
+    a = end.a
     a[0], a[1], a[2] = acc
-    impact = _book(state, trial, ws, corners, model)
+    impact = _book(state, trial, ws, end, corners, model)
     if not converged:
         phase[PH_UNCONVERGED] += 1
         if phase[PH_UNCONVERGED] > model.nsgs.fail_steps:
@@ -315,10 +324,10 @@ def _track(body, state, n_down, tilt_sub, r1, phase, out):
 
 
 @register_jitable
-def _seat(model, state, n_down, ws, corners, phase, out):
+def _seat(model, state, n_down, end, corners, phase, out):
     """A block at rest and still enough (``limits.velocity_tol``) on four corners, or on three with the fourth within
     the settling gap (:func:`_settle`, set down), is seated: its velocities zeroed, the rest skip on."""
-    if n_down == 4 or _settle(state, corners.touch, model.body, ws.Q1, ws.r1, SETTLE_GAP * model.limits.lift_gap,
+    if n_down == 4 or _settle(state, corners.touch, model.body, end.Q1, end.r1, SETTLE_GAP * model.limits.lift_gap,
                               out):
         phase[PH_SEATED] = 1
         for a in range(7, 13):
@@ -368,7 +377,7 @@ def run(model, floor, state, hist, out):
     """
     body, lim, dt, n_exc = model.body, model.limits, model.numerics.dt, floor.n_exc
     work = make_workspace(OUT_SIZE)
-    ws = work.step
+    ws, end = work.step, work.end
     corners = make_corners()
     trial = Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), out)
     phase = np.zeros(PH_SIZE, dtype=np.int64)
@@ -394,10 +403,11 @@ def run(model, floor, state, hist, out):
             P, gz = trial.P, body.g + acc[2]
             for i in range(4):
                 P[i, 0], P[i, 1], P[i, 2] = 0.25 * acc[0] * dt, 0.25 * acc[1] * dt, 0.25 * gz * dt
-        n, tilt_sub = _smooth_step(model, floor, state, k, phase, work, corners, trial)
+        n, tilt_sub = _smooth_step(model, floor, state, k, phase, work, corners, trial) if _smooth_due(model, phase) \
+            else (0, 0.0)
         if n <= 0:
             n = 1
-            if not _mj_step(model, state, acc, ws, trial, corners, phase):
+            if not _mj_step(model, state, acc, ws, end, trial, corners, phase):
                 status = STATUS_CONTACT
                 break
         _copy(state, trial.state)
@@ -407,7 +417,7 @@ def run(model, floor, state, hist, out):
             break
         mode, n_down = _mode(corners.touch, corners.slip)
         _tally(mode, n_down, n * dt, out)
-        theta, lean = _track(body, state, n_down, tilt_sub, ws.r1, phase, out)
+        theta, lean = _track(body, state, n_down, tilt_sub, end.r1, phase, out)
         if k // model.numerics.hist_every != (k - n) // model.numerics.hist_every:
             _record(hist, k * dt, state, theta, -state[10] if body.weak_y else state[11], n_down, body.h, out)
         if out[OUT_THETA_MAX] >= OVERTURNING_ANGLE:
@@ -421,5 +431,5 @@ def run(model, floor, state, hist, out):
             out[OUT_PEAK_STOP] = 1.0
             break
         if mode == MODE_REST and speed < lim.velocity_tol:
-            _seat(model, state, n_down, ws, corners, phase, out)
+            _seat(model, state, n_down, end, corners, phase, out)
     return _finish(model, state, k, status, corners, hist, out)

@@ -70,19 +70,27 @@ class Contact(NamedTuple):
 
 
 class StepWork(NamedTuple):
-    """Scratch of a Moreau-Jean step (``step._step``): its :class:`Contact`, the rotation ``Q`` (3 x 3), the flat
-    slide's slip directions ``sdir`` (4 x 2) and ``Am`` (6 x 7), the end state's rotation ``Q1`` and arms ``r1``,
-    the smooth step's pivots ``piv`` (2, int), floor accelerations ``a`` (3), and :class:`EdgeWork`."""
+    """Scratch of a Moreau-Jean step (``step._step``), what it takes and nothing more (its arrays are counted at
+    every call, several a step): its :class:`Contact`, the rotation ``Q`` (3 x 3), the flat slide's slip directions
+    ``sdir`` (4 x 2) and ``Am`` (6 x 7), and :class:`EdgeWork`."""
 
     contact: Contact
     Q: np.ndarray
     sdir: np.ndarray
     Am: np.ndarray
+    edge: EdgeWork
+
+
+class EndWork(NamedTuple):
+    """Scratch around a step, kept out of :class:`StepWork` (``step._step`` reads none of it, and numba counts a
+    reference to every array of its arguments at each call, several a step; issue 43): the end state's rotation
+    ``Q1`` (3 x 3) and arms ``r1`` (4 x 3), the smooth step's pivots ``piv`` (2, int) and the step's floor
+    accelerations ``a`` (3)."""
+
     Q1: np.ndarray
     r1: np.ndarray
     piv: np.ndarray
     a: np.ndarray
-    edge: EdgeWork
 
 
 class PivotWork(NamedTuple):
@@ -157,11 +165,12 @@ class Corners(NamedTuple):
 
 
 class Workspace(NamedTuple):
-    """All the kernel's scratch: the Moreau-Jean step's (:class:`StepWork`), the smooth steps' about stuck corners
-    (:class:`PivotWork`), a probe step's (:class:`Probe`) and the smooth steps' on slipping corners
-    (:class:`SlipWork`)."""
+    """All the kernel's scratch: the Moreau-Jean step's (:class:`StepWork`) and that around it (:class:`EndWork`),
+    the smooth steps' about stuck corners (:class:`PivotWork`), a probe step's (:class:`Probe`) and the smooth steps'
+    on slipping corners (:class:`SlipWork`)."""
 
     step: StepWork
+    end: EndWork
     pivot: PivotWork
     probe: Probe
     slip: SlipWork
@@ -181,15 +190,15 @@ def make_workspace(out_size):
     edge = make_edge_work()
     contact = Contact(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)), np.zeros((4, 3, 3)),
                       np.zeros((5, 6)), np.zeros((6, 6)), np.zeros(4, dtype=np.bool_))
-    ws = StepWork(contact, np.zeros((3, 3)), np.zeros((4, 2)), np.zeros((6, 7)), np.zeros((3, 3)), np.zeros((4, 3)),
-                  np.zeros(2, dtype=np.int64), np.zeros(3), edge)
+    ws = StepWork(contact, np.zeros((3, 3)), np.zeros((4, 2)), np.zeros((6, 7)), edge)
+    end = EndWork(np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3))
     wk = PivotWork(np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
                    np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
     probe = Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), np.zeros(out_size))
     sw = SlipWork(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((6, 6)),
                   np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)), np.zeros(13), np.zeros(13),
                   np.zeros(13), np.zeros(3), np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64))
-    return Workspace(ws, wk, probe, sw)
+    return Workspace(ws, end, wk, probe, sw)
 
 
 @register_jitable
@@ -199,5 +208,5 @@ def make_corners():
 
 
 __all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Contact", "Corners",
-           "EdgeWork", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace", "make_corners",
+           "EdgeWork", "EndWork", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace", "make_corners",
            "make_edge_work", "make_workspace"]

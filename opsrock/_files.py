@@ -12,7 +12,8 @@
 * :func:`not_a_file`, :func:`input_file`: the check every file opsrock reads passes first (records, scenes,
   blocks files): a regular file, never a device, a FIFO, a socket or a folder. A character device reports
   size 0 (``/dev/zero`` would pass a size limit and then fill the memory) and a FIFO blocks the reader.
-* :data:`UNITS_ROW`, :func:`units_row_text`, :func:`read_units`: the units row of a table (the SimCenter tabular
+* :data:`UNITS_ROW`, :func:`units_row_text`, :func:`read_units`, :func:`write_units_table`,
+  :func:`read_units_table`: the units row of a table (the SimCenter tabular
   form pelicun reads and writes: the header, then a row whose first cell is ``Units`` and whose other cells give
   each column's unit), written and read the same way by every layer that writes one (the campaign's
   ``cases.csv``, the contents study's tables); each layer defines its own columns' units.
@@ -322,6 +323,29 @@ def read_units(path: str | os.PathLike) -> tuple[list[str], list[str] | None]:
     return header, ["", *second[1:]]
 
 
+def write_units_table(df: "pd.DataFrame", path: str | os.PathLike, units: Sequence[str]) -> Path:
+    """``df`` (no index) as the CSV table ``path`` with its units row (:func:`units_row_text`; ``units`` one per
+    column), atomically, every float at full precision (its shortest repr)."""
+    path = Path(path)
+    head = units_row_text(list(df.columns), units)
+
+    def write(fh) -> None:
+        fh.write(head)
+        df.to_csv(fh, index=False, header=False, lineterminator="\n")
+
+    atomic_write(path, write, durable=False)
+    return path
+
+
+def read_units_table(path: str | os.PathLike, **options: Any) -> "pd.DataFrame":
+    """A table :func:`write_units_table` wrote, every float as written (:func:`read_table`), its units row skipped;
+    a table written before it had one (no units row after the header) reads to the same frame. ``options`` go to
+    :func:`pandas.read_csv`."""
+    _, units = read_units(path)
+    return read_table(path, skiprows=[1] if units is not None else None, **options)
+
+
 __all__ = ["UNITS_ROW", "atomic_csv", "atomic_text", "atomic_write", "input_file", "not_a_file", "output_dir",
            "output_file",
-           "read_table", "read_units", "remove_stale", "staged_folder", "units_row_text"]
+           "read_table", "read_units", "read_units_table", "remove_stale", "staged_folder", "units_row_text",
+           "write_units_table"]

@@ -2,7 +2,7 @@
 reader with a units row (:func:`write_record_table`, :func:`read_record_table`).
 
 Each table is written as the contents study's tables and a campaign's ``cases.csv`` are, through the same writer
-(:func:`opsrock._files.units_row_text`): the header, then a row whose first cell is ``Units`` and whose other cells
+(:func:`opsrock._files.write_units_table`): the header, then a row whose first cell is ``Units`` and whose other cells
 give each column's unit (pelicun's tabular form), then the rows at full precision. The units are the campaign's
 (:data:`opsrock.campaign.cases.UNITS`): SI, ``m/s2`` for m/s², ``-`` for a dimensionless number (the paper's nine
 IMs, the dispersions, counts, ranks and shares), ``%`` for ``cv_percent``, blank for text, labels and flags. Two
@@ -24,7 +24,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from opsrock._files import atomic_write, read_table, read_units, units_row_text
+from opsrock._files import read_units_table, write_units_table
 from opsrock.campaign.cases import MEASURE_UNITS
 from opsrock.inventory.columns import PER_ROW
 
@@ -82,22 +82,14 @@ def write_record_table(df: pd.DataFrame, path: Path, measure: str = "") -> Path:
     """``df`` (no index) as ``path`` (``<table>.csv``) with its units row, atomically, every float at full precision;
     ``measure``: the scene's (:func:`measure_unit`)."""
     path = Path(path)
-    head = units_row_text(list(df.columns), units_of(path.stem, list(df.columns), measure))
-
-    def write(fh) -> None:
-        fh.write(head)
-        df.to_csv(fh, index=False, header=False, lineterminator="\n")
-
-    atomic_write(path, write, durable=False)
-    return path
+    return write_units_table(df, path, units_of(path.stem, list(df.columns), measure))
 
 
 def read_record_table(path: str | Path, **read_csv: object) -> pd.DataFrame:
     """A table :func:`write_record_table` wrote, every float as written, its units row skipped; a table of an opsrock
     before the row (none after the header) reads to the same frame. Keyword arguments go to
     :func:`pandas.read_csv`."""
-    _, units = read_units(path)
-    return read_table(path, skiprows=[1] if units is not None else None, **read_csv)
+    return read_units_table(path, **read_csv)
 
 
 __all__ = ["MEASURE", "SHARE_PREFIXES", "TABLE_UNITS", "measure_unit", "read_record_table", "units_of",

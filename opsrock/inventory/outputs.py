@@ -94,14 +94,6 @@ def workers_of(workers: int | None) -> int:
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
 
 
-def write_csv(df: pd.DataFrame, path: Path) -> Path:
-    """``df`` as CSV at full precision."""
-    from opsrock._files import atomic_write
-
-    atomic_write(path, lambda fh: df.to_csv(fh, index=False), durable=False)
-    return path
-
-
 def study_tables(a: Any, cases: pd.DataFrame, components: pd.DataFrame | None = None) -> dict[str, pd.DataFrame]:
     """The tables (:data:`TABLES`) of the assessment ``a`` (:class:`opsrock.inventory.stages.Assessment`) from
     ``cases``: ``fits`` one row per item, floor, direction, outcome and demand (each with the ``pelicun_id`` of the
@@ -226,4 +218,4 @@ def _pelicun_notes(design: Any) -> tuple[str, ...]:
             "both directions to the same units counts each unit twice.")
 
 
-__all__ = ["OUTPUTS", "TABLES", "InventoryStudy", "Written", "case_count", "study_tables", "workers_of", "write_csv", "write_outputs"]
+__all__ = ["OUTPUTS", "TABLES", "InventoryStudy", "Written", "case_count", "study_tables", "workers_of", "write_outputs"]

@@ -14,7 +14,8 @@ from opsrock.inventory.fema.design import ContentsDesign, campaign_scenes
 from opsrock.inventory.fema.report import StudySummary
 from opsrock.inventory.stages import Route
 
-#: Files the study writes into its folder (besides ``campaigns/``, ``figures/`` and ``pelicun/``).
+#: Files the study writes into its folder (besides ``campaigns/``, ``figures/`` and ``pelicun/``), each with a
+#: ``Units`` row after its header (:mod:`opsrock.inventory.fema.columns`).
 TABLES: dict[str, str] = {
     "fits": "fragility.csv", "ratios": "ratios.csv", "rule": "rule_reproduction.csv",
     "size": "size_regression.csv", "velocity": "velocity_definition.csv", "decomposition": "decomposition.csv",
@@ -99,15 +100,16 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
 def _write(a: Any, stage: Path) -> Any:
     """The tables, figures, pelicun files and report into the staging folder ``stage``."""
     from opsrock.inventory.columns import write_table
+    from opsrock.inventory.fema.columns import write_fema_table
     from opsrock.inventory.fema.report import write_report
-    from opsrock.inventory.outputs import Written, write_csv
+    from opsrock.inventory.outputs import Written
     from opsrock.inventory.pelicun import write_pelicun_folder
 
     t0 = time.perf_counter()
     result = {k: v for k, v in a.tables.items() if k in TABLES}
     fits, pel = result["fits"], a.tables["pelicun"]
     a.say(f"tables, figures, pelicun files and report into {a.out}")
-    paths = {k: write_csv(df, stage / TABLES[k]) for k, df in result.items() if not df.empty}
+    paths = {k: write_fema_table(df, stage / TABLES[k]) for k, df in result.items() if not df.empty}
     paths.update({k: write_table(pel[k], stage / name) for k, name in PELICUN_TABLES.items() if k in pel})
     figures = _figures(stage, fits, a.cases, result, a.design)
     pelicun = write_pelicun_folder(pel["components"], pel["fits"], pel["demands"], pel["study"],

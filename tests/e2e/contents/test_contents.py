@@ -14,13 +14,13 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from opsrock._files import read_table
+from opsrock._files import read_units
 from opsrock.inventory.columns import read_table as study_table
 from opsrock.campaign import run_campaign
 from opsrock.campaign.scene import load_blocks, load_scene
 from opsrock.constants import DEFAULT_RESTITUTION_FACTOR, G
 from opsrock.inventory.fema import DEFAULT_FRICTION, ContentsDesign
-from opsrock.inventory.fema.design import quick
+from opsrock.inventory.fema.columns import read_fema_table, units_of
 from opsrock.inventory.run import StudyOptions, run_design
 from opsrock.inventory.fema.design import DEFAULT_FRICTION_KINETIC, campaign_scenes, library_friction, quick
 from opsrock.data import block_library, block_library_names
@@ -141,7 +141,9 @@ def test_quick_study_resumes_and_repeats_itself(study):
 
 def test_ratio_table_against_the_database(study):
     out, _, _, _ = study
-    ratios = pd.read_csv(out / "ratios.csv")
+    ratios = read_fema_table(out / "ratios.csv")
+    header, units = read_units(out / "ratios.csv")  # the units row, each column's from its one definition
+    assert units == units_of(header) and dict(zip(header, units))["median_pfv"] == "m/s"
     assert set(ratios["variant"]) == {"default", "housner", "friction"}
     assert set(ratios["floor"]) == {"ground", "f8"}
     ok = ratios.dropna(subset=["median_pfv"])
@@ -168,7 +170,7 @@ def test_pelicun_export_round_trips(study):
     # the study's one pelicun writer: each item on each floor one non-directional component (each unit once), the
     # default variant's PFV fit (one direction: the direction's own lognormal, through the writer's quantile match)
     out, _, _, _ = study
-    fits = read_table(out / "fragility.csv")  # every float exactly as written, on every pandas
+    fits = read_fema_table(out / "fragility.csv")  # every float exactly as written, on every pandas
     mapping, units = study_table(out / "pelicun" / "mapping.csv", dtype={"floor": str})
     assert units["median_ds1"] == "m/s"
     comps = {c.component_id: c for c in read_pelicun_csv(out / "pelicun" / "fragility.csv")}

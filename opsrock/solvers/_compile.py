@@ -4,13 +4,13 @@ numba compiles a kernel the first time it is called in a process and keeps the m
 (``cache=True``: ``__pycache__`` next to the module, or ``NUMBA_CACHE_DIR``); every later process loads it in
 a fraction of a second. A first call with an empty cache waits for the compiler instead, silently, for
 seconds to minutes: :func:`announce_compile`, called by each compiled solver just before it calls its
-kernel, prints one line on standard error then, with the expected duration (:data:`COMPILE_CPU_S`), and
-nothing when the cache is warm. Standard output stays the answer's alone (``opsrock simulate --json``).
+kernel, has one line printed on standard error as the compile starts, with the expected duration
+(:data:`COMPILE_CPU_S`), and nothing when the kernel is loaded from the cache. Standard output stays the
+answer's alone (``opsrock simulate --json``).
 """
 
 from __future__ import annotations
 
-import os
 import sys
 from typing import Any
 
@@ -34,27 +34,47 @@ COMPILE_CPU_S: dict[str, float] = {
 }
 
 
-def cache_is_cold(kernel: Any) -> bool:
-    """Whether calling ``kernel`` (a numba dispatcher) now would compile it: nothing compiled or loaded for it
-    in this process yet, and no cache index of it on disk (numba writes one per function with its first
-    compiled signature). Cheap: one attribute and one ``stat``. A kernel whose cache cannot be located counts as
-    cold."""
-    if kernel.signatures:
-        return False
-    cache_file = getattr(getattr(kernel, "_cache", None), "_cache_file", None)
-    index = getattr(cache_file, "_index_path", None)
-    return index is None or not os.path.exists(index)
+#: The kernels whose compile start is to be announced: ``id(kernel) -> (kernel, solver)`` (:func:`announce_compile`).
+_WATCHED: dict[int, tuple[Any, str]] = {}
+#: The one listener of numba's ``"numba:compile"`` event, registered on the first announcement.
+_LISTENER: list[Any] = []
 
 
 def announce_compile(kernel: Any, solver: str) -> None:
-    """One line on standard error if ``kernel`` is about to be compiled (:func:`cache_is_cold`), naming the
-    solver and its expected compile time (:data:`COMPILE_CPU_S`, s of CPU); nothing otherwise."""
-    if not cache_is_cold(kernel):
+    """One line on standard error when ``kernel`` (a numba dispatcher) starts compiling in this process, naming
+    ``solver`` and its expected compile time (:data:`COMPILE_CPU_S`, s of CPU); nothing when it is loaded from
+    numba's cache or already compiled. Call it just before calling the kernel.
+
+    numba broadcasts ``"numba:compile"`` (its documented event API, :mod:`numba.core.event`) when a dispatcher
+    compiles, and only then: a kernel found in the cache is loaded without it. A kernel already in this process
+    (it has ``signatures``) is not watched at all, so a solve costs one attribute look-up."""
+    if kernel.signatures:
         return
+    _WATCHED[id(kernel)] = (kernel, solver)
+    if not _LISTENER:
+        from numba.core import event
+
+        class CompileNotice(event.Listener):
+            """Prints the notice when a watched dispatcher starts compiling."""
+
+            def on_start(self, ev: Any) -> None:
+                dispatcher = ev.data.get("dispatcher") if isinstance(ev.data, dict) else None
+                watched = _WATCHED.pop(id(dispatcher), None)
+                if watched is not None and watched[0] is dispatcher:
+                    _say_compiling(watched[1])
+
+            def on_end(self, ev: Any) -> None:
+                pass
+
+        _LISTENER.append(CompileNotice())
+        event.register("numba:compile", _LISTENER[0])
+
+
+def _say_compiling(solver: str) -> None:
     seconds = COMPILE_CPU_S.get(solver)
     expected = f"about {seconds:.0f} s of CPU" if seconds is not None else "a while"
     print(f"opsrock: compiling the {solver} kernel (numba, once: later runs load it from the cache); {expected}",
           file=sys.stderr, flush=True)
 
 
-__all__ = ["COMPILE_CPU_S", "announce_compile", "cache_is_cold"]
+__all__ = ["COMPILE_CPU_S", "announce_compile"]

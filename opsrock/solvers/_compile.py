@@ -36,6 +36,8 @@ COMPILE_CPU_S: dict[str, float] = {
 
 #: The kernels whose compile start is to be announced: ``id(kernel) -> (kernel, solver)`` (:func:`announce_compile`).
 _WATCHED: dict[int, tuple[Any, str]] = {}
+#: The kernels found compiled or loaded in this process (never announced again).
+_READY: set[Any] = set()
 #: The one listener of numba's ``"numba:compile"`` event, registered on the first announcement.
 _LISTENER: list[Any] = []
 
@@ -47,8 +49,11 @@ def announce_compile(kernel: Any, solver: str) -> None:
 
     numba broadcasts ``"numba:compile"`` (its documented event API, :mod:`numba.core.event`) when a dispatcher
     compiles, and only then: a kernel found in the cache is loaded without it. A kernel already in this process
-    (it has ``signatures``) is not watched at all, so a solve costs one attribute look-up."""
-    if kernel.signatures:
+    (it has ``signatures``) is not watched, and is remembered: a later solve costs one set look-up."""
+    if kernel in _READY:
+        return
+    if kernel.signatures:  # builds a list (about 5 us): asked once per kernel and process
+        _READY.add(kernel)
         return
     _WATCHED[id(kernel)] = (kernel, solver)
     if not _LISTENER:

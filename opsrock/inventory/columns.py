@@ -61,7 +61,8 @@ _FIT = "a lognormal fragility's"
 #: with another meaning (``status``, ``floor``, ``pfa`` in m/s²), are defined in :data:`opsrock.campaign.cases.UNITS`.
 #: Every column of ``fits.csv``, ``fits3d.csv``, ``components.csv`` (and ``components3d.csv``), ``demands.csv``,
 #: ``expected.csv``, ``boxes.csv``, ``side_by_side.csv`` and ``pelicun/mapping.csv``: one meaning and one unit per
-#: name.
+#: name. The FEMA P-58 nine's and the directionality study's tables use these names in this meaning, and define
+#: their other columns in :mod:`opsrock.inventory.fema.columns` and :mod:`opsrock.inventory.directionality.columns`.
 COLUMNS: dict[str, Column] = {
     # who and where
     "item": Column("", "the inventory item's id"),
@@ -70,10 +71,13 @@ COLUMNS: dict[str, Column] = {
     "record": Column("", "the record, as the motions manifest names it"),
     "direction": Column("", "a horizontal direction of the motions, 1 or 2 (a fit's: the plane it was computed in)"),
     "shape": Column("", "the item's base: box or cylinder"),
-    "model": Column("", "the body a row describes: as given (the round item), or box of its size"),
+    "model": Column("", "the model a row describes: the body (as given, the round item, or box of its size) or, in "
+                        "the directionality study, the analysis (3d or planar)"),
     "pelicun_id": Column("", "the pelicun component of the item on the floor (opsrock.<item>.<floor>)"),
     "fema_id": Column("", "the item's FEMA P-58 fragility ID, where the inventory names one"),
     "location": Column("-", "pelicun's location number of the floor (1 the ground floor)"),
+    "b_over_h": Column("-", "the item's base width over its height in the plane it rocks in most easily (tan alpha; "
+                            "FEMA P-58's aspect ratio)"),
     # floor demands
     "pfa": Column("g", "peak floor acceleration: the largest absolute acceleration of the floor motion", G),
     "pfv": Column("m/s", "peak floor velocity: the largest absolute velocity of the floor motion"),
@@ -87,7 +91,8 @@ COLUMNS: dict[str, Column] = {
     "limit_state": Column("", "a component's limit state: displaced, then overturned"),
     "ls": Column("", "the limit state's pelicun label, LS1 or LS2"),
     "demand": Column("", "the demand a fragility is fitted in: pfv, pfa (one direction), pfv_1, pfv_2, pfv_max "
-                         "(the larger direction) or pfv_max_x1.2 (pelicun's default non-directional demand)"),
+                         "(the larger direction), pfv_max_x1.2 (pelicun's default non-directional demand), pfv_nd "
+                         "(the peak of the velocity vector) or pfv_weak (along the item's weaker axis)"),
     "unit": Column("", "the unit of the row's demand and of its median, median_lo and median_hi"),
     "method": Column("", "ida (each motion scaled to the levels) or cloud (the motions as recorded)"),
     "median": Column(PER_ROW, f"{_FIT} median, in the row's unit"),
@@ -98,6 +103,7 @@ COLUMNS: dict[str, Column] = {
     "beta_hi": Column("-", "the upper end of beta's 95 % record-bootstrap interval"),
     "n_cases": Column("-", "cases that finished (failed cases are not in it)"),
     "n_exceeded": Column("-", "of the finished cases, those that reached the outcome"),
+    "n_overturned": Column("-", "of the finished cases, those that overturned"),
     "n_failed": Column("-", "cases the solver did not finish (stored as failed with their reason)"),
     "n_records": Column("-", "records the row's cases come from"),
     "n_azimuths": Column("-", "azimuths in plan pooled in the fit"),
@@ -140,7 +146,8 @@ COLUMNS: dict[str, Column] = {
     "share_rim": Column("-", "n_rim / n_exceeded: the share of the overturnings on one rim point"),
     "share_rolling": Column("-", "n_rolling / n_exceeded: the share of the overturnings while rolling"),
     "share_edge": Column("-", "n_edge / n_exceeded: the share of the overturnings over an edge"),
-    "share_corner": Column("-", "n_corner / n_exceeded: the share of the overturnings over a corner"),
+    "share_corner": Column("-", "the share of the overturnings over a corner: n_corner / n_exceeded, n_corner / "
+                                "(n_edge + n_corner) where n_unstated counts those that state neither"),
     "failed_reasons": Column("", "the failed cases by the kind of their reason (count x code (the first such reason); "
                                 "...; opsrock.campaign.cases.reason_code)"),
     # the two models side by side (--model both: opsrock.inventory.side_by_side)

@@ -5,6 +5,7 @@ the route :data:`~opsrock.inventory.directionality.study.BOTH` of :class:`opsroc
 
 :mod:`~opsrock.inventory.directionality.study` holds the design and runs it,
 :mod:`~opsrock.inventory.directionality.cases` builds the motions and cases,
-:mod:`~opsrock.inventory.directionality.summary` computes the tables, and
+:mod:`~opsrock.inventory.directionality.summary` computes the tables,
+:mod:`~opsrock.inventory.directionality.columns` defines their columns and writes and reads them, and
 :mod:`~opsrock.inventory.directionality.report` writes the report and figures.
 """

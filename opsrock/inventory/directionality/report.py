@@ -165,8 +165,9 @@ def write_report(path: Path, inputs: Any) -> Path:
         Section("Edge or corner", (f"![mechanisms]({fig.get('mechanisms', 'figures/mechanisms.png')})",)),
         Section("Cost per case", (markdown_table(t["cost"]),)),
         Section("Files", ("`directionality.csv` (every orientation and pooled), `fits.csv` (every fit), `map.csv`, "
-                          "`mechanisms.csv`, `cost.csv`, `demands.csv`: full precision. The campaigns' stores are not "
-                          "part of the folder's outputs.",)),
+                          "`mechanisms.csv`, `cost.csv`, `demands.csv`: full precision, each with a `Units` row after "
+                          "its header (PFV in m/s, PFA in g: docs/guide/directionality.md). The campaigns' stores are "
+                          "not part of the folder's outputs.",)),
     ])
 
 

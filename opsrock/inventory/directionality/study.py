@@ -40,7 +40,6 @@ from typing import Any, Mapping
 import numpy as np
 import pandas as pd
 
-from opsrock._files import atomic_csv
 from opsrock.inventory.directionality import summary
 from opsrock.inventory.directionality.cases import study_campaigns, study_motions
 from opsrock.inventory.directionality.report import write_figures, write_report
@@ -75,6 +74,10 @@ INVENTORIES: tuple[str, ...] = ("fema-p58-nine", "example")
 
 #: The models of a case: three dimensions, and the plane of the weaker axis.
 MODELS: tuple[str, ...] = ("3d", "planar")
+
+#: Files the study writes into its folder (besides ``figures/``), by table, each with a ``Units`` row after its
+#: header (:mod:`opsrock.inventory.directionality.columns`).
+TABLES: dict[str, str] = {k: f"{k}.csv" for k in ("directionality", "fits", "mechanisms", "cost", "demands", "map")}
 
 #: Every output the study owns in its folder (globs relative to it; :func:`opsrock._files.staged_folder`).
 OUTPUTS: tuple[str, ...] = ("report.md", "*.csv", "figures/*.png")
@@ -264,12 +267,12 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
 
 
 def _write(a: Any, stage: Path) -> Written:
-    """The tables (CSV, full precision), the figures and the report into the staging folder ``stage``; the
-    3-D over planar medians per item and floor (``directionality.csv``) among the tables."""
+    """The tables (CSV, full precision, each with its units row), the figures and the report into the staging
+    folder ``stage``; the 3-D over planar medians per item and floor (``directionality.csv``) among the tables."""
+    from opsrock.inventory.directionality.columns import write_directionality_table
+
     t0 = time.perf_counter()
-    paths = {k: stage / f"{k}.csv" for k in a.tables}
-    for k, df in a.tables.items():
-        atomic_csv(paths[k], df)
+    paths = {k: write_directionality_table(df, stage / TABLES[k]) for k, df in a.tables.items()}
     figures = write_figures(a.tables, stage / "figures", a.design.tolerance)
     a.timings["outputs_s"] = time.perf_counter() - t0
     a.timings["total_s"] = time.perf_counter() - a.t_start
@@ -286,4 +289,4 @@ BOTH: Route = Route("both", study_items, _fit, _write, OUTPUTS, demands=_motions
 
 
 __all__ = ["BOTH", "DEFAULT_AZIMUTHS", "DEFAULT_ITEMS", "DEFAULT_LEVELS", "DEFAULT_PAIRS", "QUICK_ITEMS", "INVENTORIES",
-           "MODELS", "OUTPUTS", "QUICK_PAIRS", "DirectionalityDesign", "StudyItem", "quick", "study_items"]
+           "MODELS", "OUTPUTS", "QUICK_PAIRS", "TABLES", "DirectionalityDesign", "StudyItem", "quick", "study_items"]

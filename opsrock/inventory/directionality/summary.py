@@ -143,13 +143,14 @@ def mechanisms(cases: pd.DataFrame) -> pd.DataFrame:
 
 
 def cost_table(cases: pd.DataFrame) -> pd.DataFrame:
-    """Wall time per case (s) of each campaign's solver, measured in this run, and the ratio of its median to the
-    fastest planar solver's (the median: the first case a worker solves also compiles the solver's kernel, when
-    the compiled cache is cold, which the mean would count)."""
+    """Wall time per case (s) of each campaign's solver (its finished and failed cases), measured in this run, and
+    the ratio of its median to the fastest planar solver's (the median: the first case a worker solves also
+    compiles the solver's kernel, when the compiled cache is cold, which the mean would count)."""
     rows = []
     for (model, solver), g in cases.groupby(["model", "solver_name"], sort=True):
         t = g["wall_time_s"].astype(float)
-        rows.append({"model": model, "solver": solver, "n_cases": len(g), "n_failed": count_failed(g),
+        failed = count_failed(g)  # n_cases: the finished ones, as in every table (opsrock.inventory.columns)
+        rows.append({"model": model, "solver": solver, "n_cases": len(g) - failed, "n_failed": failed,
                      "mean_s": float(t.mean()), "median_s": float(t.median()), "total_s": float(t.sum())})
     table = pd.DataFrame(rows)
     planar = table.loc[table["model"] == "planar", "median_s"]

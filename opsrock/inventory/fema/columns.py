@@ -41,11 +41,9 @@ COLUMNS: dict[str, Column] = {
     "period": Column("s", "the period T of the harmonic PFA T / 2 pi: T1 on a building floor, the rule's "
                           "reference period on the ground"),
     # the item
-    "b_over_h": Column("-", "the item's base width over its height (FEMA P-58's aspect ratio)"),
     "aspect_ratio": Column("-", "the FEMA P-58 item's aspect ratio b/h"),
     "R": Column("m", "the item's half-diagonal in its rocking plane"),
     # fits
-    "n_overturned": Column("-", "of the finished cases, those that overturned"),
     "n_boot_used": Column("-", "record resamples whose fit converged (the interval's sample)"),
     "median_pfv": Column("m/s", _MEDIAN),
     "median_pfv_lo": Column("m/s", "the lower end of median_pfv's 95 % record-bootstrap interval"),

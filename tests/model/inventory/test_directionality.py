@@ -14,8 +14,10 @@ import pytest
 from opsrock.inventory.directionality.study import DirectionalityDesign, StudyItem, quick
 from opsrock.inventory.run import StudyOptions, run_design
 from opsrock.inventory.directionality.cases import weak_cosines
+from opsrock.inventory.directionality.columns import read_directionality_table, units_of
 from opsrock.inventory.directionality.summary import (ALL, PELICUN_FACTOR, cost_table, directionality_table,
                                                      mechanisms, verdict)
+from opsrock._files import read_units
 from opsrock.errors import InputError
 from opsrock.excitations import PlanMotion, Record
 
@@ -80,6 +82,10 @@ def test_cost_ratio_is_of_the_medians():
     table = cost_table(cases).set_index("solver")
     assert table.loc["rigid3d", "ratio_to_planar"] == pytest.approx(0.5 / 0.002, rel=1e-12)
     assert table.loc["housner_fast", "ratio_to_planar"] == 1.0
+    # n_cases counts the finished cases, as in every table; the wall times are of all of them
+    failed = cost_table(cases.assign(status=["ok", "failed", "ok", "ok", "ok", "ok"])).set_index("solver")
+    assert failed.loc["rigid3d", ["n_cases", "n_failed"]].tolist() == [2, 1]
+    assert failed.loc["rigid3d", "median_s"] == 0.5
 
 
 @pytest.mark.parametrize("weak", ["x", "y"])
@@ -113,12 +119,15 @@ def test_quick_study_end_to_end_with_a_planar_stand_in(tmp_path):
             "figures"} <= names
     assert sorted(p.name for p in (tmp_path / "out" / "figures").iterdir()) == ["factor.png", "map.png",
                                                                                   "mechanisms.png"]
-    fits = pd.read_csv(res.tables["fits"])  # the same planar cases twice: the same outcomes and fits, bit for bit
+    for path in res.tables.values():  # each table's units row, each column's unit from its one definition
+        header, units = read_units(path)
+        assert units == units_of(header)
+    fits = read_directionality_table(res.tables["fits"])  # the same planar cases twice: the same fits, bit for bit
     weak = {m: fits[(fits["model"] == m) & (fits["demand"] == "pfv_weak")].reset_index(drop=True) for m in ("3d", "planar")}
     assert weak["3d"]["n_overturned"].sum() > 0
     assert weak["3d"][["item", "azimuth", "n_overturned"]].equals(weak["planar"][["item", "azimuth", "n_overturned"]])
     assert np.array_equal(weak["3d"]["median"], weak["planar"]["median"], equal_nan=True)
-    demands = pd.read_csv(res.tables["demands"])  # the vector's peak lies between the larger peak and sqrt 2 of it
+    demands = read_directionality_table(res.tables["demands"])  # the vector's peak: between the larger and sqrt 2 of it
     assert ((demands["nd_over_max"] >= 1.0) & (demands["nd_over_max"] <= math.sqrt(2.0) + 1e-12)).all()
 
 
@@ -131,5 +140,5 @@ def test_quick_study_through_the_console_script_with_rigid3d(tmp_path):
                        timeout=900)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.startswith("opsrock directionality: 48 cases (0 failed)"), proc.stdout
-    cost = pd.read_csv(tmp_path / "out" / "cost.csv").set_index("solver")
+    cost = read_directionality_table(tmp_path / "out" / "cost.csv").set_index("solver")
     assert cost.loc["rigid3d", "n_cases"] == 24 and cost.loc["rigid3d", "ratio_to_planar"] > 1.0

@@ -114,7 +114,7 @@ def _fmt(value: Any, digits: str = ".3g") -> str:
     return format(value, digits) if isinstance(value, float) else str(value)
 
 
-def _design_lines(d: Any) -> list[str]:
+def _design_lines(d: Any, rounds: tuple[str, ...]) -> list[str]:
     return [
         f"* building: linear shear building, T1 = {d.period:g} s, {d.storeys} storeys, damping {d.damping:g}; floors "
         f"{', '.join(map(str, d.floors))}",
@@ -127,6 +127,8 @@ def _design_lines(d: Any) -> list[str]:
         f"{planar_solver(True)} (items with friction); Housner's restitution throughout ({d.solver3d} models no other)",
         f"* fits: lognormal MLE, 95 % intervals from {d.n_boot} resamples of whole record pairs (seed {d.seed}); "
         f"planar analysis suffices within {d.tolerance:.0%}",
+        *([f"* left out: {', '.join(rounds)} (a round base: no orientation to turn; the contents study solves it in "
+           "three dimensions, `opsrock contents --inventory FILE --motions FILE --model 3d`)"] if rounds else []),
     ]
 
 
@@ -143,7 +145,7 @@ def write_report(path: Path, inputs: Any) -> Path:
         f"{h['n_cases']} cases ({h['n_failed']} failed; {h['n_computed']} computed by this run, the others read from "
         f"the stores) in {h['wall_time_s']:.0f} s of wall time (motions {h['timings'].get('motions_s', 0):.0f} s, "
         f"campaigns {h['timings'].get('campaigns_s', 0):.0f} s, fits {h['timings'].get('fits_s', 0):.0f} s). Design:", "",
-        *_design_lines(d)))
+        *_design_lines(d, inputs.left_out)))
     headline = Section("Headline", (
         f"* the factor on max(PFV_1, PFV_2) that makes the planar fragility of the weaker axis match the 3-D one "
         f"(orientations pooled): median {_fmt(h['factor_implied_median'])}, range {_fmt(h['factor_implied_range'])}; "

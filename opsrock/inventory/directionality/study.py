@@ -59,7 +59,8 @@ DEFAULT_PAIRS: tuple[str, ...] = ("NORTHR_MUL009", "NORTHR_LOS000", "KOBE_NIS000
                                   "FRIULI_A-TMZ000", "LOMAP_G03000", "IMPVALL_H-E11140")
 
 #: The items of the full study: empty, every item of the shipped inventories (:data:`INVENTORIES`): FEMA P-58's nine
-#: and the example's four (its low cabinet, server rack and printer with friction, its bookcase without).
+#: and the example's four boxes (its low cabinet, server rack and printer with friction, its bookcase without; its
+#: round item is left out, :func:`round_items`).
 DEFAULT_ITEMS: tuple[str, ...] = ()
 
 #: Plan orientations of the full study (deg): 0 to 90 in steps of 22.5 (a box is symmetric about its axes).
@@ -217,13 +218,25 @@ class StudyItem:
         return float(self.planar.tan_alpha)
 
 
-def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
-    """The study's items from the shipped inventories (:data:`INVENTORIES`), in inventory order."""
+def round_items() -> tuple[str, ...]:
+    """The shipped inventories' items with a round base (``shape`` ``cylinder``), which the study leaves out: it
+    turns a box in plan, and a cylinder has no orientation to turn (the contents study solves it in three
+    dimensions with its own solver: ``opsrock contents --inventory FILE --motions FILE --model 3d``)."""
+    return tuple(item.id for name in INVENTORIES for item in shipped_inventory(name).items if item.shape != "box")
 
+
+def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
+    """The study's items from the shipped inventories (:data:`INVENTORIES`), in inventory order, boxes only
+    (:func:`round_items`)."""
+    named_round = [i for i in design.items if i in round_items()]
+    if named_round:
+        raise InputError(f"items {named_round!r} have a round base: the directionality study turns boxes in plan, and a "
+                         "cylinder has no orientation to turn; its 3-D fragility is the contents study's (opsrock "
+                         "contents --inventory FILE --motions FILE --model 3d)", argument="items")
     out = []
     for name in INVENTORIES:
         for item in shipped_inventory(name).items:
-            if design.items and item.id not in design.items:
+            if (design.items and item.id not in design.items) or item.shape != "box":
                 continue
             weak = "1" if item.width <= item.depth else "2"
             housner = {"restitution": None, "restitution_factor": 1.0}
@@ -289,4 +302,4 @@ BOTH: Route = Route("both", study_items, _fit, _write, OUTPUTS, demands=_motions
 
 
 __all__ = ["BOTH", "DEFAULT_AZIMUTHS", "DEFAULT_ITEMS", "DEFAULT_LEVELS", "DEFAULT_PAIRS", "QUICK_ITEMS", "INVENTORIES",
-           "MODELS", "OUTPUTS", "QUICK_PAIRS", "TABLES", "DirectionalityDesign", "StudyItem", "quick", "study_items"]
+           "MODELS", "OUTPUTS", "QUICK_PAIRS", "TABLES", "DirectionalityDesign", "StudyItem", "quick", "round_items", "study_items"]

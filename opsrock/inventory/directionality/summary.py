@@ -227,17 +227,24 @@ class ReportInputs:
         :func:`headline`.
     figures : dict of str to str
         Figure key -> path relative to the report.
+    left_out : tuple of str
+        The shipped inventories' round items, which the study leaves out
+        (:func:`opsrock.inventory.directionality.study.round_items`).
     """
 
     design: Any
     tables: dict
     headline: dict
     figures: dict
+    left_out: tuple[str, ...] = ()
 
 
 def report_inputs(design: Any, tables: dict, head: dict, figures: list) -> ReportInputs:
     """:class:`ReportInputs` of the study (figures relative to the report's folder)."""
-    return ReportInputs(design, tables, head, {Path(p).stem: f"figures/{Path(p).name}" for p in figures})
+    from opsrock.inventory.directionality.study import round_items
+
+    return ReportInputs(design, tables, head, {Path(p).stem: f"figures/{Path(p).name}" for p in figures},
+                        () if design.items else round_items())
 
 
 __all__ = ["ALL", "CONVENTIONS", "FIT_COLUMNS", "PELICUN_FACTOR", "VERDICTS", "ReportInputs", "cost_table",

@@ -8,32 +8,16 @@ from __future__ import annotations
 import re
 
 import pandas as pd
-import pytest
 
-from opsrock._files import UNITS_ROW, read_units
+from opsrock._files import UNITS_ROW
 from opsrock.constants import G
 from opsrock.inventory.columns import COLUMNS as STUDY_COLUMNS
 from opsrock.inventory.directionality.columns import (COLUMNS, read_directionality_table, units_of,
                                                       write_directionality_table)
-from opsrock.inventory.directionality.study import TABLES
 from opsrock.inventory.fema.columns import COLUMNS as FEMA_COLUMNS
 from _support import ROOT
 
 DOCS = ROOT / "docs" / "guide" / "directionality.md"
-STUDY = ROOT / "studies" / "directionality"
-
-
-@pytest.mark.parametrize("name", sorted(TABLES.values()))
-def test_the_committed_study_tables_carry_their_one_units_row(name):
-    """The committed study (regenerated with the row) holds every table; its units row is the definitions'."""
-    header, units = read_units(STUDY / name)
-    assert units is not None and units == units_of(header)
-
-
-def test_a_column_without_a_definition_is_not_written(tmp_path):
-    with pytest.raises(KeyError, match="no_such_column"):
-        write_directionality_table(pd.DataFrame({"item": ["a"], "no_such_column": [1.0]}), tmp_path / "t.csv")
-    assert not (tmp_path / "t.csv").exists()
 
 
 def test_one_definition_per_name_across_the_three_lists():

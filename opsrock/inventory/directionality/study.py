@@ -228,7 +228,8 @@ def round_items() -> tuple[str, ...]:
 def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
     """The study's items from the shipped inventories (:data:`INVENTORIES`), in inventory order, boxes only
     (:func:`round_items`)."""
-    named_round = [i for i in design.items if i in round_items()]
+    rounds = set(round_items()) if design.items else set()
+    named_round = [i for i in design.items if i in rounds]
     if named_round:
         raise InputError(f"items {named_round!r} have a round base: the directionality study turns boxes in plan, and a "
                          "cylinder has no orientation to turn; its 3-D fragility is the contents study's (opsrock "

@@ -42,6 +42,7 @@ import pandas as pd
 
 from opsrock.inventory.directionality import summary
 from opsrock.inventory.directionality.cases import study_campaigns, study_motions
+from opsrock.inventory.directionality.columns import write_directionality_table
 from opsrock.inventory.directionality.report import write_figures, write_report
 from opsrock.campaign.cases import read_cases
 from opsrock.errors import InputError
@@ -225,6 +226,12 @@ def round_items() -> tuple[str, ...]:
     return tuple(item.id for name in INVENTORIES for item in shipped_inventory(name).items if item.shape != "box")
 
 
+def left_out(design: DirectionalityDesign) -> tuple[str, ...]:
+    """The round items the study leaves out, for its report: every shipped one (:func:`round_items`) unless the
+    design names its items (a named round item is refused, :func:`study_items`)."""
+    return () if design.items else round_items()
+
+
 def study_items(design: DirectionalityDesign) -> tuple[StudyItem, ...]:
     """The study's items from the shipped inventories (:data:`INVENTORIES`), in inventory order, boxes only
     (:func:`round_items`)."""
@@ -283,8 +290,6 @@ def _fit(a: Any) -> dict[str, pd.DataFrame]:
 def _write(a: Any, stage: Path) -> Written:
     """The tables (CSV, full precision, each with its units row), the figures and the report into the staging
     folder ``stage``; the 3-D over planar medians per item and floor (``directionality.csv``) among the tables."""
-    from opsrock.inventory.directionality.columns import write_directionality_table
-
     t0 = time.perf_counter()
     paths = {k: write_directionality_table(df, stage / TABLES[k]) for k, df in a.tables.items()}
     figures = write_figures(a.tables, stage / "figures", a.design.tolerance)
@@ -292,7 +297,8 @@ def _write(a: Any, stage: Path) -> Written:
     a.timings["total_s"] = time.perf_counter() - a.t_start
     head = summary.headline(a.tables, a.cases, {**a.timings, "motions_s": a.timings.get("demands_s", 0.0),
                                                 "n_computed": a.n_computed})
-    report = write_report(stage / "report.md", summary.report_inputs(a.design, a.tables, head, figures))
+    report = write_report(stage / "report.md", summary.report_inputs(a.design, a.tables, head, figures,
+                                                                             left_out(a.design)))
     return Written(paths, report, {}, tuple(figures), head)
 
 
@@ -303,4 +309,5 @@ BOTH: Route = Route("both", study_items, _fit, _write, OUTPUTS, demands=_motions
 
 
 __all__ = ["BOTH", "DEFAULT_AZIMUTHS", "DEFAULT_ITEMS", "DEFAULT_LEVELS", "DEFAULT_PAIRS", "QUICK_ITEMS", "INVENTORIES",
-           "MODELS", "OUTPUTS", "QUICK_PAIRS", "TABLES", "DirectionalityDesign", "StudyItem", "quick", "round_items", "study_items"]
+           "MODELS", "OUTPUTS", "QUICK_PAIRS", "TABLES", "DirectionalityDesign", "StudyItem", "left_out", "quick", "round_items",
+           "study_items"]

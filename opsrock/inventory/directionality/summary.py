@@ -239,12 +239,11 @@ class ReportInputs:
     left_out: tuple[str, ...] = ()
 
 
-def report_inputs(design: Any, tables: dict, head: dict, figures: list) -> ReportInputs:
-    """:class:`ReportInputs` of the study (figures relative to the report's folder)."""
-    from opsrock.inventory.directionality.study import round_items
-
-    return ReportInputs(design, tables, head, {Path(p).stem: f"figures/{Path(p).name}" for p in figures},
-                        () if design.items else round_items())
+def report_inputs(design: Any, tables: dict, head: dict, figures: list,
+                  left_out: tuple[str, ...] = ()) -> ReportInputs:
+    """:class:`ReportInputs` of the study (figures relative to the report's folder; ``left_out`` the round items the
+    study left out, :func:`opsrock.inventory.directionality.study.left_out`)."""
+    return ReportInputs(design, tables, head, {Path(p).stem: f"figures/{Path(p).name}" for p in figures}, left_out)
 
 
 __all__ = ["ALL", "CONVENTIONS", "FIT_COLUMNS", "PELICUN_FACTOR", "VERDICTS", "ReportInputs", "cost_table",

@@ -12,10 +12,13 @@ within ``max_tail`` (:func:`_unstoppable`), until that is known: the case then e
 velocity in ``OUT_SLIP_END`` (docs/guide/friction.md, the ending rule).
 
 Compilation (issue 43: a first solve's compile time): the helpers are ``register_jitable`` functions, each
-compiled once into its callers. Only a step's path (:func:`_phase`, :func:`_rk_step`, :func:`_trial_step`,
-:func:`_fly_step`, :func:`_record`) is inlined into the loop by numba (``inline='always'``): a call that is not
-inlined takes and drops a reference to each array it is passed, a dozen atomic counts on every step (measured: the
-kernel 10-15 % slower per case without it). Everything inlined, as before, made the compile about a third longer.
+compiled once into its callers. Only a step's path (:func:`_rk_step`, :func:`_trial_step`, :func:`_fly_step`,
+:func:`_record`) is inlined into the loop by numba (``inline='always'``): a call that is not inlined takes and drops
+a reference to each array it is passed, a dozen atomic counts on every step (measured: the kernel 10-15 % slower per
+case without it). Everything inlined, as before, made the compile about a third longer. The loop's turn is written in
+:func:`_solve` itself, not in an inlined helper: numba copies an inlined function's IR block by block, each block with
+the function's whole variable scope, so the cost grows as blocks times variables; inlining the turn (105 blocks, 1,181
+variables with the step path in it) cost a first solve about 1 s of CPU (issue 43).
 The flight path (:func:`_fly_step` and what it calls) is about a fifth of the compile (measured with
 ``tools/compile_profile.py``; without it a first solve took 9.3-9.5 s of CPU against 11.7-12.0 s).
 """
@@ -827,41 +830,6 @@ def _at_event(cfg, bd, fc, cs, ev, out, hist):
     return _GO
 
 
-@numba.njit(cache=True, inline='always')
-def _phase(cfg, bd, fc, cs, out, hist):
-    """One turn of :func:`solve_case`'s loop: a take-off if one is due; the excitation's end (a still floor, the
-    vertical acceleration ``g_tail``); then by mode: a block at rest leaves it (:func:`_leave_rest`; after the
-    excitation the case ends), a slide friction cannot stop ends it (:func:`_seat_slide`), a flight step
-    (:func:`_fly_step`) or a step on the floor (:func:`_rk_step`), each ending on the forcing segment's end.
-    Returns :data:`_GO` or the case's status."""
-    if cs[_CS_TAKEOFF] > 0.0:
-        _take_off(bd, cs, out, hist)
-    if out[OUT_STEPS] >= cfg.max_steps:
-        return STATUS_MAX_STEPS
-    tau = cs[_CS_TAU]
-    if cs[_CS_TAIL] == 0.0 and tau >= cfg.tau_end:
-        cs[_CS_TAIL] = 1.0
-        fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, cfg.g_tail, 0.0, 0.0
-        cs[_CS_SEG_END] = math.inf
-    tail = cs[_CS_TAIL] > 0.0
-    mode = int(cs[_CS_MODE])
-    if mode == REST:
-        return STATUS_OK if tail else _leave_rest(cfg, bd, fc, cs, out, hist)
-    if tail and mode == SLIDE and _unstoppable(cs[_CS_W], bd.mu_k, cfg.g_tail, cfg.max_tail - (tau - cfg.tau_end),
-                                               bd.kap):
-        _seat_slide(cfg, bd, cs, out)
-        return STATUS_OK
-    if tail and tau - cfg.tau_end > cfg.max_tail:
-        return STATUS_TAIL
-    if not tail and tau >= cs[_CS_SEG_END]:
-        cs[_CS_SEG], cs[_CS_SEG_END] = _set_segment(fc, tau, int(cs[_CS_SEG]), cfg.exc, cfg.gvals, cfg.g_const)
-    h = min(cfg.h_tail if tail else cfg.h_nom, cs[_CS_SEG_END] - tau)
-    last = h == cs[_CS_SEG_END] - tau
-    if mode == FLIGHT:
-        return _fly_step(cfg, bd, fc, cs, h, last, out, hist)
-    return _rk_step(cfg, bd, fc, cs, h, last, out, hist)
-
-
 @register_jitable
 def _finish(bd, cs, status, out):
     """The case's outputs at its end with ``status``: its time, peak tilt, first mode, base displacement and the
@@ -893,8 +861,8 @@ def solve_case(params, kvals, gvals, out, hist):
     may be ``inf`` (no slip). Steps: ``h_nom`` during the excitation, ``h_tail`` after it (units of
     ``1/p``), followed for at most ``max_tail``. The case's state between steps is the vector ``cs`` (slots
     ``_CS_*``: the :class:`Motion`, in flight the centre's height and vertical velocity, the flags of a mode just
-    entered, the forcing segment); each turn of the loop is one :func:`_phase`; the counts and peaks accumulate
-    in ``out`` as they go.
+    entered, the forcing segment); each turn of :func:`_solve`'s loop is one phase (a take-off, a block leaving
+    rest, a flight step or a step on the floor); the counts and peaks accumulate in ``out`` as they go.
     """
     _solve(params, kvals, gvals, out, hist)
 
@@ -904,15 +872,46 @@ def _solve(params, kvals, gvals, out, hist):
     """:func:`solve_case`'s work. The entry point calls this one helper only: numba compiles a helper once for each
     set of compile flags it is called under, and an entry point's differ from a helper's (it has a CPython wrapper),
     so a helper called both from the entry point and from another helper would be compiled twice (issue 43: cold
-    compile time)."""
+    compile time). Measured: this body written in the entry point itself saves the entry's second optimisation of
+    the whole kernel but compiles four helpers twice, and took as long (alternated runs, 11.3 s against 10.8 s)."""
     cfg, bd = _setup(params, kvals, gvals)
     fc = np.zeros(9)
     fc[_FC_KAPPA] = params[P_KAPPA]
     cs = np.zeros(_CS_SIZE)
     _start(params, cfg, bd, fc, cs, out, hist)
     status = _GO
-    while status == _GO:
-        status = _phase(cfg, bd, fc, cs, out, hist)
+    while status == _GO:  # a turn: a take-off if one is due, the excitation's end, then a phase by mode
+        if cs[_CS_TAKEOFF] > 0.0:
+            _take_off(bd, cs, out, hist)
+        if out[OUT_STEPS] >= cfg.max_steps:
+            status = STATUS_MAX_STEPS
+            break
+        tau = cs[_CS_TAU]
+        if cs[_CS_TAIL] == 0.0 and tau >= cfg.tau_end:  # a still floor from here, the vertical acceleration g_tail
+            cs[_CS_TAIL] = 1.0
+            fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, cfg.g_tail, 0.0, 0.0
+            cs[_CS_SEG_END] = math.inf
+        tail = cs[_CS_TAIL] > 0.0
+        mode = int(cs[_CS_MODE])
+        if mode == REST:  # it leaves rest; after the excitation the case ends
+            status = STATUS_OK if tail else _leave_rest(cfg, bd, fc, cs, out, hist)
+            continue
+        if tail and mode == SLIDE and _unstoppable(cs[_CS_W], bd.mu_k, cfg.g_tail,
+                                                   cfg.max_tail - (tau - cfg.tau_end), bd.kap):
+            _seat_slide(cfg, bd, cs, out)
+            status = STATUS_OK
+            break
+        if tail and tau - cfg.tau_end > cfg.max_tail:
+            status = STATUS_TAIL
+            break
+        if not tail and tau >= cs[_CS_SEG_END]:
+            cs[_CS_SEG], cs[_CS_SEG_END] = _set_segment(fc, tau, int(cs[_CS_SEG]), cfg.exc, cfg.gvals, cfg.g_const)
+        h = min(cfg.h_tail if tail else cfg.h_nom, cs[_CS_SEG_END] - tau)
+        last = h == cs[_CS_SEG_END] - tau
+        if mode == FLIGHT:
+            status = _fly_step(cfg, bd, fc, cs, h, last, out, hist)
+        else:
+            status = _rk_step(cfg, bd, fc, cs, h, last, out, hist)
     _finish(bd, cs, status, out)
 
 

@@ -58,7 +58,10 @@ def excitation_parameters(block: Block, excitation: Pulse | Record | None, setti
         forcing = (FORM_LINEAR, 0.0, 0.0, 0.0, excitation.duration * p, 1.0, 1.0, dtau, min(settings.max_dtau, dtau))
     elif isinstance(excitation, Pulse) and excitation.shape in PULSE_IDS:
         nu = excitation.omega_p / p
-        form, k, nu_, phase, tau_end, kvals, dtau = pulse_forcing(PULSE_IDS[excitation.shape], excitation.pfa / G, nu)
+        # the plain Python of the compiled function (numba's documented ``py_func``), the same IEEE operations: called
+        # once a case, compiling it cost a first solve about 0.4 s of CPU (issue 43)
+        form, k, nu_, phase, tau_end, kvals, dtau = pulse_forcing.py_func(PULSE_IDS[excitation.shape],
+                                                                           excitation.pfa / G, nu)
         g = 1.0 + excitation.vertical / G
         gvals = np.zeros(0)
         forcing = (form, k, nu_, phase, tau_end, g, g, dtau, min(settings.max_dtau, 2.0 * math.pi / nu / settings.steps_per_pulse))

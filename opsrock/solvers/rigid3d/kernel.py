@@ -223,6 +223,7 @@ def _smooth_step(model, floor, state, k, phase, work, corners, trial):
     n, tilt_sub, smoothed = 0, 0.0, False
     if not model.numerics.smooth:
         return n, tilt_sub
+    F = work.pivot.F
     if phase[PH_PIVOT] >= PV.CALM_STEPS:
         n, tilt_sub = _smooth(model, floor, state, k, work, corners, trial)
         smoothed = n > 0
@@ -238,7 +239,7 @@ def _smooth_step(model, floor, state, k, phase, work, corners, trial):
         if n == 0:
             phase[PH_SLIDE] = -_coarse_steps(model)
     if smoothed:  # a smooth step's input work (the floor's force at its middle)
-        F, g, new = work.pivot.F, model.body.g, trial.state
+        g, new = model.body.g, trial.state
         PV.floor_at(floor, k + 0.5 * n, k, model.numerics.theta_mj, F, g)
         trial.out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
             (F[2] + g) * (new[2] - state[2])
@@ -324,6 +325,16 @@ def _track(body, state, n_down, tilt_sub, r1, phase, out):
 
 
 @register_jitable
+def _warm_start(P, acc, g, dt):
+    """The impulses ``P`` (4 x 3, m/s) of a block leaving rest: the static impulses of the step's load (the floor
+    accelerations ``acc``, m/s²; ``g``, m/s²; ``dt``, s), shared by the four corners, the contact solver's warm
+    start."""
+    gz = g + acc[2]
+    for i in range(4):
+        P[i, 0], P[i, 1], P[i, 2] = 0.25 * acc[0] * dt, 0.25 * acc[1] * dt, 0.25 * gz * dt
+
+
+@register_jitable
 def _seat(model, state, n_down, end, corners, phase, out):
     """A block at rest and still enough (``limits.velocity_tol``) on four corners, or on three with the fourth within
     the settling gap (:func:`_settle`, set down), is seated: its velocities zeroed, the rest skip on."""
@@ -383,38 +394,36 @@ def run(model, floor, state, hist, out):
     phase = np.zeros(PH_SIZE, dtype=np.int64)
     last_down, theta = _start(model, state, ws, corners, hist, out)
     phase[PH_LAST_DOWN] = last_down
-    status = STATUS_OK
-    k = ZERO
-    while True:
+    status, k, going = STATUS_OK, ZERO, True
+    while going:  # (one exit, its test: numba drops every array the loop holds at each exit; issue 43)
         if k >= n_exc and (lim.max_tail < 0 or phase[PH_RESTING] >= lim.rest_steps):
-            break
+            going = False
+            continue
         if k >= n_exc + max(lim.max_tail, 0) or k >= lim.max_steps:
-            status = STATUS_TAIL if k < lim.max_steps else STATUS_MAX_STEPS
-            break
+            status, going = STATUS_TAIL if k < lim.max_steps else STATUS_MAX_STEPS, False
+            continue
         acc = _floor(floor, k, model.numerics.theta_mj)
         if not math.isfinite(acc[0] + acc[1] + acc[2]):
-            status = STATUS_NONFINITE
-            break
+            status, going = STATUS_NONFINITE, False
+            continue
         if phase[PH_SEATED] and _rest_holds(acc[0], acc[1], acc[2], body, model.friction):
             k = _rest_skip(model, floor, k, state, theta, phase, hist, out)
             continue
-        if phase[PH_SEATED]:  # leaving rest: warm start from the static impulses of the step's load
+        if phase[PH_SEATED]:  # leaving rest
             phase[PH_SEATED] = 0
-            P, gz = trial.P, body.g + acc[2]
-            for i in range(4):
-                P[i, 0], P[i, 1], P[i, 2] = 0.25 * acc[0] * dt, 0.25 * acc[1] * dt, 0.25 * gz * dt
+            _warm_start(trial.P, acc, body.g, dt)
         n, tilt_sub = _smooth_step(model, floor, state, k, phase, work, corners, trial) if _smooth_due(model, phase) \
             else (0, 0.0)
         if n <= 0:
             n = 1
             if not _mj_step(model, state, acc, ws, end, trial, corners, phase):
-                status = STATUS_CONTACT
-                break
+                status, going = STATUS_CONTACT, False
+                continue
         _copy(state, trial.state)
         k += n
         if not _finite(state):
-            status = STATUS_NONFINITE
-            break
+            status, going = STATUS_NONFINITE, False
+            continue
         mode, n_down = _mode(corners.touch, corners.slip)
         _tally(mode, n_down, n * dt, out)
         theta, lean = _track(body, state, n_down, tilt_sub, end.r1, phase, out)
@@ -422,14 +431,16 @@ def run(model, floor, state, hist, out):
             _record(hist, k * dt, state, theta, -state[10] if body.weak_y else state[11], n_down, body.h, out)
         if out[OUT_THETA_MAX] >= OVERTURNING_ANGLE:
             out[OUT_OVERTURNED], out[OUT_OVER_KIND], out[OUT_OVER_DIR] = 1.0, phase[PH_OVER_KIND], lean
-            break
+            going = False
+            continue
         speed = max(abs(state[7]), abs(state[8]), abs(state[9]),
                     body.R * (abs(state[10]) + abs(state[11]) + abs(state[12])))
         rest = k >= n_exc and mode == MODE_REST and speed < lim.rest_velocity
         phase[PH_RESTING] = phase[PH_RESTING] + min(n, k - n_exc + 1) if rest else 0
         if lim.peak_rule and k >= n_exc and _peak_reached(state, body, out[OUT_THETA_MAX], floor.tail_av):
             out[OUT_PEAK_STOP] = 1.0
-            break
+            going = False
+            continue
         if mode == MODE_REST and speed < lim.velocity_tol:
             _seat(model, state, n_down, end, corners, phase, out)
     return _finish(model, state, k, status, corners, hist, out)

@@ -76,13 +76,14 @@ def _halved(n):
 
 
 @numba.njit(cache=True, inline='always')
-def _same_phase(model, new, piv, n_piv, a, work, probe):
+def _same_phase(model, new, n_piv, ws, end, probe):
     """Is the end state ``new`` of a smooth step still in its phase? Every other corner above ``lift_gap``, and
-    a Moreau-Jean probe step from it (``a``: the floor's accelerations of that step) solved with exactly the
-    pivots active, each loaded and stuck. ``probe`` is ``(act, P, state, out)`` scratch (``P`` holds the warm
-    start on entry and the probe's impulses on return). ``work``: the kernel's :class:`.workspace.Workspace`."""
+    a Moreau-Jean probe step from it (``end.a``: the floor's accelerations of that step) solved with exactly the
+    pivots ``end.piv[:n_piv]`` active, each loaded and stuck. ``probe`` is ``(act, P, state, out)`` scratch (``P``
+    holds the warm start on entry and the probe's impulses on return); ``ws`` and ``end`` the kernel's
+    :class:`.workspace.StepWork` and :class:`.workspace.EndWork`."""
     actp, Pp, sp, outp = probe.act, probe.P, probe.state, probe.out
-    ws, Q1, r1 = work.step, work.end.Q1, work.end.r1
+    piv, a, Q1, r1 = end.piv, end.a, end.Q1, end.r1
     lift_gap, vel_tol = model.limits.lift_gap, model.limits.velocity_tol
     _arms(new, model.body, Q1, r1)
     for i in range(4):
@@ -115,10 +116,14 @@ def _smooth(model, floor, state, k, work, corners, trial):
     ``trial.state`` (its impulses ``trial.P``, its counts ``trial.out``). Returns ``(steps, largest tilt)``; 0 steps
     if none was kept, -1 if none could be tried (fewer than two steps to the next sample, or not one corner or two
     down); the Moreau-Jean steps then go on. ``work``: the kernel's :class:`.workspace.Workspace`."""
-    touch, wk, probe = corners.touch, work.pivot, work.probe
+    ws = work.step  # (each taken apart once: numba counts a reference to every array of a named tuple at each
+    end = work.end  # place it is dropped, and ``work`` (52 arrays) dropped at each return was a fifth of the
+    wk = work.pivot  # kernel's compiled code; issue 43)
+    probe = work.probe
+    touch = corners.touch
     P, new, out = trial.P, trial.state, trial.out
     n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (model.body.p * model.numerics.dt)))
-    piv = work.end.piv
+    piv = end.piv
     n_piv = ZERO
     for i in range(4):
         if touch[i]:
@@ -131,14 +136,14 @@ def _smooth(model, floor, state, k, work, corners, trial):
     n = _span(floor, k, n_max)
     if n < 0:
         return -1, 0.0
-    a = work.end.a
+    a = end.a
     Pp = probe.P
     while True:
         out[OUT_SMOOTH_TRIED] += 1.0
         tilt = PV.integrate(model, floor, state, piv[:n_piv], k, n, new, wk)
         a[0], a[1], a[2] = _floor(floor, k + n, model.numerics.theta_mj)
         _copy(Pp, P)
-        if 0.0 <= tilt < OVERTURNING_ANGLE and _same_phase(model, new, piv, n_piv, a, work, probe):
+        if 0.0 <= tilt < OVERTURNING_ANGLE and _same_phase(model, new, n_piv, ws, end, probe):
             _copy(P, Pp)
             out[OUT_SMOOTH_STEPS] += 1.0
             out[OUT_SMOOTH_SPAN] += n
@@ -351,14 +356,14 @@ def _slip_pivot(act, touch, slip, P):
 
 
 @numba.njit(cache=True, inline='always')
-def _same_slip(model, new, idx, st, a, work, probe, sw):
+def _same_slip(model, new, a, ws, end, probe, sw):
     """Is the end state ``new`` of a smooth step on slipping corners still in its phase? Every corner not in
     contact above ``lift_gap``, and a Moreau-Jean probe step from it (``a``: its floor accelerations) solved with
     exactly the contact corners active, each loaded, slipping where it slipped (along the direction it slipped,
-    in the half-plane of the end state's slip velocity) and stuck where it stuck. ``probe`` as in
-    :func:`_same_phase`."""
+    in the half-plane of the end state's slip velocity) and stuck where it stuck (the contact corners ``sw.idx``
+    with the statuses ``sw.st``). ``probe``, ``ws`` and ``end`` as in :func:`_same_phase`."""
     actp, Pp, sp, outp = probe.act, probe.P, probe.state, probe.out
-    ws, end = work.step, work.end
+    idx, st = sw.idx, sw.st
     guess = ws.contact.mask
     for i in range(4):
         guess[i] = (i == idx[0] and st[0] != 2) or (i == idx[1] and st[1] != 2)
@@ -395,7 +400,11 @@ def _smooth_slip(model, floor, state, k, work, corners, trial):
     the next sample (at most ``pivot.MAX_DTAU``), halved while it leaves its phase (:func:`_same_slip`,
     :func:`_halved`). Returns ``(steps, largest tilt)`` as :func:`_smooth` does, with its arguments; the friction
     work into ``trial.out``."""
-    touch, slip, sw, probe = corners.touch, corners.slip, work.slip, work.probe
+    ws = work.step  # (each taken apart once, as in _smooth)
+    end = work.end
+    sw = work.slip
+    probe = work.probe
+    touch, slip = corners.touch, corners.slip
     P, new, out = trial.P, trial.state, trial.out
     n_max = max(PV.MIN_STEPS, int(PV.MAX_DTAU / (model.body.p * model.numerics.dt)))
     idx, st = sw.idx, sw.st
@@ -414,7 +423,7 @@ def _smooth_slip(model, floor, state, k, work, corners, trial):
     n = _span(floor, k, n_max)
     if n < 0:
         return -1, 0.0
-    a = work.end.a
+    a = end.a
     Pp = probe.P
     while True:
         out[OUT_SLIP_TRIED] += 1.0
@@ -422,7 +431,7 @@ def _smooth_slip(model, floor, state, k, work, corners, trial):
         if tilt >= 0.0:
             a[0], a[1], a[2] = _floor(floor, k + n, model.numerics.theta_mj)
             _copy(Pp, P)
-            if _same_slip(model, new, idx, st, a, work, probe, sw):
+            if _same_slip(model, new, a, ws, end, probe, sw):
                 _copy(P, Pp)
                 out[OUT_SLIP_STEPS] += 1.0
                 out[OUT_SLIP_SPAN] += n
@@ -447,12 +456,15 @@ def _coarse_slide(model, floor, state, k, work, corners, trial):
     the closed-form flat slide or stick (:mod:`.pivot`, ``SLIDE_DTAU``) and kept on the floor (no corner's normal
     velocity above ``vel_tol``; a corner may carry none of the load, the four corners' loads being indeterminate).
     Returns the steps taken (0: none kept, -1: none tried); arguments as :func:`_smooth`'s."""
+    ws = work.step  # (each taken apart once, as in _smooth)
+    end = work.end
+    probe = work.probe
     vel_tol = model.limits.velocity_tol
-    ws, probe, P, new, out = work.step, work.probe, trial.P, trial.state, trial.out
+    P, new, out = trial.P, trial.state, trial.out
     n = _span(floor, k, _coarse_steps(model))
     if n < 0:
         return -1
-    a = work.end.a
+    a = end.a
     PV.mean_floor(floor, k, n, model.numerics.theta_mj, a)
     actp, Pp, outp = probe.act, probe.P, probe.out
     for i in range(4):
@@ -467,7 +479,7 @@ def _coarse_slide(model, floor, state, k, work, corners, trial):
         ri = ws.contact.r[i]
         if not actp[i] or abs(new[9] + new[10] * ri[1] - new[11] * ri[0]) > vel_tol:
             return 0
-    _book(state, Probe(actp, Pp, new, out), ws, work.end, corners, model)
+    _book(state, Probe(actp, Pp, new, out), ws, end, corners, model)
     for i in range(4):
         for c in range(3):
             P[i, c] = Pp[i, c] / n

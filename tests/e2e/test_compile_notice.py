@@ -67,6 +67,26 @@ def test_every_compiled_solver_declares_its_compile_time():
     assert set(COMPILE_CPU_S) == compiled and all(v > 0.0 for v in COMPILE_CPU_S.values())
 
 
+def test_fewer_collections_restores_the_collector_however_the_block_ends():
+    import gc
+
+    from opsrock.solvers._compile import COMPILE_GC_THRESHOLDS, fewer_collections
+
+    before = gc.get_threshold()
+    with fewer_collections():
+        inside = gc.get_threshold()
+    assert inside == tuple(max(o, n) for o, n in zip(before, COMPILE_GC_THRESHOLDS)) and inside != before
+    with pytest.raises(KeyError), fewer_collections():
+        raise KeyError("a failed compile")
+    assert gc.get_threshold() == before
+    gc.set_threshold(0, *before[1:])  # the program turned collection off: it stays off
+    try:
+        with fewer_collections():
+            assert gc.get_threshold()[0] == 0
+    finally:
+        gc.set_threshold(*before)
+
+
 # --- cold start of a first solve -----------------------------------------------------------------------------------
 #: Issue 43: the first solve in a fresh process with an empty numba cache spends at most this much CPU (s), compile
 #: included: 10 s for a planar solver, 30 s for ``rigid3d``.

@@ -29,12 +29,12 @@ MODE_FLIGHT = 4
 FORCING_STEPWISE = 0
 FORCING_LINEAR = PV.FORCING_LINEAR
 
-# --- history columns --------------------------------------------------------------------------------
+# --- history rows (``kernel.run``'s ``hist``: a row per quantity, a column per sample) ---------------------------
 H_T, H_THETA, H_THETA_DOT = 0, 1, 2
-H_ROT = 3  # rotation vector, 3 columns
-H_POS = 6  # CM displacement from rest, 3 columns
+H_ROT = 3  # rotation vector, 3 rows
+H_POS = 6  # CM displacement from rest, 3 rows
 H_TWIST = 9
-H_SLIDE = 10  # base centre's horizontal displacement, 2 columns
+H_SLIDE = 10  # base centre's horizontal displacement, 2 rows
 H_DOWN = 12
 H_SIZE = 13
 

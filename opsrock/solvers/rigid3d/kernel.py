@@ -67,23 +67,24 @@ from opsrock.solvers.rigid3d.workspace import (Probe, make_corners, make_workspa
 
 @register_jitable
 def _record(hist, t, s, theta, theta_dot, down, h, out):
-    """Store one history row if there is room (``out[OUT_N_HIST]``: the rows stored, counted on)."""
+    """Store one history sample, column ``j`` of ``hist`` (a row per quantity, ``H_*``), if there is room
+    (``out[OUT_N_HIST]``: the samples stored, counted on)."""
     j = int(out[OUT_N_HIST])
-    if j >= hist.shape[0]:
+    if j >= hist.shape[1]:
         return
     w, x, y, z = s[3], s[4], s[5], s[6]
     nv = math.sqrt(x * x + y * y + z * z)
     ang = 2.0 * math.atan2(nv, w)
     f = ang / nv if nv > 0.0 else 2.0
-    hist[j, H_T] = t
-    hist[j, H_THETA] = theta
-    hist[j, H_THETA_DOT] = theta_dot
-    hist[j, H_ROT], hist[j, H_ROT + 1], hist[j, H_ROT + 2] = f * x, f * y, f * z
-    hist[j, H_POS], hist[j, H_POS + 1], hist[j, H_POS + 2] = s[0], s[1], s[2] - h
-    hist[j, H_TWIST] = _twist(s)
+    hist[H_T, j] = t
+    hist[H_THETA, j] = theta
+    hist[H_THETA_DOT, j] = theta_dot
+    hist[H_ROT, j], hist[H_ROT + 1, j], hist[H_ROT + 2, j] = f * x, f * y, f * z
+    hist[H_POS, j], hist[H_POS + 1, j], hist[H_POS + 2, j] = s[0], s[1], s[2] - h
+    hist[H_TWIST, j] = _twist(s)
     q02, q12 = 2.0 * (x * z + w * y), 2.0 * (y * z - w * x)
-    hist[j, H_SLIDE], hist[j, H_SLIDE + 1] = s[0] - h * q02, s[1] - h * q12
-    hist[j, H_DOWN] = down
+    hist[H_SLIDE, j], hist[H_SLIDE + 1, j] = s[0] - h * q02, s[1] - h * q12
+    hist[H_DOWN, j] = down
     out[OUT_N_HIST] = j + 1
 
 
@@ -365,7 +366,7 @@ def _finish(model, state, k, status, corners, hist, out):
 
 @numba.njit(cache=True)
 def run(model, floor, state, hist, out):
-    """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history rows ``hist`` (columns ``H_*``);
+    """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history ``hist`` (rows ``H_*``);
     returns the status. Each step: the rest skip if the block is seated and the floor's load carried; else a
     smooth step of the phase the block is in (``phase``, slots ``PH_*``), or a Moreau-Jean step; then the
     bookkeeping of the new state (peaks, history, overturning, the ending rules, seating).
@@ -381,8 +382,9 @@ def run(model, floor, state, hist, out):
         horizontal motion and ``a_v = tail_av`` (m/s²).
     state : float64[13]
         Initial state; holds the final one on return.
-    hist : float64[n, H_SIZE]
-        History rows, one every ``model.numerics.hist_every`` steps (and the last state).
+    hist : float64[H_SIZE, n]
+        History, a row per quantity (``H_*``) and a column every ``model.numerics.hist_every`` steps (and the last
+        state).
     out : float64[OUT_SIZE]
         The run's results and bookkeeping.
     """

@@ -178,7 +178,9 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     floor = make_floor(forcing.form, forcing.ax, forcing.ay, forcing.av, forcing.sub, forcing.n_exc, forcing.tail_av)
     every, max_tail = model.numerics.hist_every, model.limits.max_tail
     cap = min(forcing.n_exc + max(max_tail, 0), settings.step_limit) // every + 3 if settings.record else 0
-    hist = np.empty((cap, kn.H_SIZE))  # the kernel writes the rows it returns; zeroing them cost about 2 ms a case
+    # a row per quantity (each then copied out whole; a column per quantity, copied out strided, cost about 0.3 ms
+    # a case, issue 43); the kernel writes the samples it returns (zeroing them cost about 2 ms a case)
+    hist = np.empty((kn.H_SIZE, cap))
     out = np.zeros(kn.OUT_SIZE)
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": forcing.dt}
     announce_compile(kn.run, SOLVER_NAME)
@@ -187,7 +189,17 @@ def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> Ro
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, box.alpha, f"{type(exc).__name__}: {exc}",
                              wall_time_s=run.elapsed())
-    return _result(run, box, out, hist[:int(out[kn.OUT_N_HIST])], record, state)
+    return _result(run, box, out, hist[:, :int(out[kn.OUT_N_HIST])], record, state)
+
+
+def _samples(hist: np.ndarray, first: int, count: int) -> np.ndarray:
+    """Rows ``first`` to ``first + count - 1`` of the kernel's history (a row per quantity) as an array of a row per
+    sample, ``count`` columns (C order; copied column by column, each a contiguous read: the transposed copy took
+    several times longer)."""
+    out = np.empty((hist.shape[1], count))
+    for c in range(count):
+        out[:, c] = hist[first + c]
+    return out
 
 
 def _mechanical(block: Block, box: BoxProperties, state: np.ndarray) -> tuple[float, float]:
@@ -234,9 +246,9 @@ def _result(run: SolverRun, box: BoxProperties, out: np.ndarray, hist: np.ndarra
             state0: np.ndarray) -> RockingResult:
     """The :class:`RockingResult` of a finished kernel run."""
     block = run.block
-    time_s, theta, theta_dot = (hist[:, c].copy() for c in (kn.H_T, kn.H_THETA, kn.H_THETA_DOT))
+    time_s, theta, theta_dot = (hist[c].copy() for c in (kn.H_T, kn.H_THETA, kn.H_THETA_DOT))
     axis = 1 if box.weak_y else 0
-    slide = hist[:, kn.H_SLIDE + axis].copy()
+    slide = hist[kn.H_SLIDE + axis].copy()
     status, steps = int(out[kn.OUT_STATUS]), int(out[kn.OUT_STEPS])
     diagnostics = _diagnostics(out)
     if status != kn.STATUS_OK:
@@ -269,10 +281,9 @@ def _result(run: SolverRun, box: BoxProperties, out: np.ndarray, hist: np.ndarra
         time_flight=plan.time_flight, energy=energy)
     history = None
     if run.settings.record:
-        history = PlanHistory(rotation=hist[:, kn.H_ROT:kn.H_ROT + 3].copy(),
-                              position=hist[:, kn.H_POS:kn.H_POS + 3].copy(), twist=hist[:, kn.H_TWIST].copy(),
-                              slide=hist[:, kn.H_SLIDE:kn.H_SLIDE + 2].copy(),
-                              corners_down=hist[:, kn.H_DOWN].astype(int))
+        history = PlanHistory(rotation=_samples(hist, kn.H_ROT, 3), position=_samples(hist, kn.H_POS, 3),
+                              twist=hist[kn.H_TWIST].copy(), slide=_samples(hist, kn.H_SLIDE, 2),
+                              corners_down=hist[kn.H_DOWN].astype(int))
     theta_max = float(out[kn.OUT_THETA_MAX])
     return RockingResult(
         solver=SOLVER_NAME, settings=record, alpha=box.alpha, time=time_s, theta=theta, theta_dot=theta_dot,

@@ -383,8 +383,7 @@ def run(model, floor, state, hist, out):
     state : float64[13]
         Initial state; holds the final one on return.
     hist : float64[H_SIZE, n]
-        History, a row per quantity (``H_*``) and a column every ``model.numerics.hist_every`` steps (and the last
-        state).
+        History: rows ``H_*``, a column every ``model.numerics.hist_every`` steps (and the last state).
     out : float64[OUT_SIZE]
         The run's results and bookkeeping.
     """

@@ -26,11 +26,13 @@ from typing import Any, Iterator
 #: same command with the
 #: cache warm (about 1.3 s), measured on the project's shared 2-core development machine (numba 0.68, Python 3.11;
 #: the CPU time varies by up to a fifth with the machine's load: these at load average 6-12). The wall time is
-#: longer on a loaded machine.
+#: longer on a loaded machine. Later in issue 43, once friction's loop turn was no longer an inlined helper and the
+#: garbage collector ran less during a compile (:func:`fewer_collections`): friction 9.9-10.5 s cold less 0.85 s warm,
+#: moreau_jean 6.3-6.5 s cold less 0.85 s warm (load average 2-3).
 COMPILE_CPU_S: dict[str, float] = {
-    "friction": 11.0,
+    "friction": 9.5,
     "housner_fast": 4.0,
-    "moreau_jean": 7.0,
+    "moreau_jean": 6.0,
     "rigid3d": 51.0,
     "cylinder3d": 30.0,
 }

@@ -99,8 +99,11 @@ EXTRA = {"housner_fast": [], "friction": [], "moreau_jean": ["--restitution-law"
 #: measured (``/usr/bin/time``, user + system, same command as the test, once only the kernels' entry points were
 #: numba dispatchers) friction 18.2 s (11.5-12.6 s once its helpers were compiled once each), moreau_jean 8.1-8.6 s
 #: (within 10 s, but by less than the fifth the load moves the CPU time: not yet robustly), rigid3d 52.6 s of CPU;
-#: housner_fast 5.0 s.
-OVER_LIMIT = {"friction", "moreau_jean", "rigid3d"}
+#: housner_fast 5.0 s. Later in issue 43 (friction's loop turn no longer an inlined helper, the garbage collector run
+#: less during a compile; alternated with the code before, load average 2-3): friction 9.9/10.4/10.5 s against
+#: 11.8/11.9/12.3 s, still not within 10 s with the fifth's margin; moreau_jean 6.3/6.4/6.5 s against 6.7/7.1/7.2 s,
+#: within 10 s by more than a fifth, so no longer expected to fail.
+OVER_LIMIT = {"friction", "rigid3d"}
 
 
 def _child_cpu(run):

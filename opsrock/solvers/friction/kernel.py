@@ -381,7 +381,7 @@ def _fly(fl, h, fc, fresh, bd):
     return th + d * om, om, f1[0], f1[1], f1[2], f1[3], d, f1[4], best != 0.0, True
 
 
-@numba.njit(cache=True, inline='always')
+@register_jitable
 def _record(hist, out, m):
     """Append the :class:`Motion` ``m`` to the history rows ``hist`` (columns ``H_*``) if it has room
     (``out[OUT_N_HIST]``: the rows stored, counted on)."""
@@ -393,6 +393,12 @@ def _record(hist, out, m):
         hist[n_hist, H_U] = m.u
         hist[n_hist, H_MODE] = m.mode
         out[OUT_N_HIST] = n_hist + 1
+
+
+#: :func:`_record` inlined by numba (``inline='always'``) where it runs on every step (:func:`_rk_step`,
+#: :func:`_fly_step`); called elsewhere (an impact, a take-off), it is one function compiled once: inlined at each of
+#: those seven calls, its IR was copied and compiled seven more times (issue 43: cold compile time).
+_record_step = numba.njit(inline='always')(_record)
 
 
 @register_jitable
@@ -614,7 +620,7 @@ def _fly_step(cfg, bd, fc, cs, h, last, out, hist):
     cs[_CS_TH], cs[_CS_OM], cs[_CS_U], cs[_CS_W], cs[_CS_FY], cs[_CS_FVY], cs[_CS_TAU] = th, om, u, w, fy, fvy, tau
     out[OUT_THETA_MAX] = max(out[OUT_THETA_MAX], abs(th))
     out[OUT_SLIDE_MAX] = max(out[OUT_SLIDE_MAX], abs(u))
-    _record(hist, out, _motion(cs))
+    _record_step(hist, out, _motion(cs))
     if abs(th) >= OVERTURNING_ANGLE:
         out[OUT_OVERTURNED] = 1.0
         return STATUS_OK
@@ -705,11 +711,13 @@ def _drop_undeveloped(bd, cs, y1, out):
 
 
 @numba.njit(cache=True, inline='always')
-def _rk_step(cfg, bd, fc, cs, h, last, out, hist):
-    """A step of a mode on the floor (rock, slide, slide-rock) of at most ``h`` (:func:`_trial_step`), cut at its
-    first event (:func:`_first_event`), its peak of ``|theta|`` (:func:`_peak`) and tallies, then the event's mode
-    change (:func:`_at_event`). Returns :data:`_GO` or the case's status."""
-    y1, h, last, developed = _trial_step(bd, fc, cs, h, last, out)
+def _rk_step(cfg, bd, fc, cs, trial, out, hist):
+    """A step of a mode on the floor (rock, slide, slide-rock), ``trial`` its RK4 step (:func:`_trial_step`'s
+    ``(end state, h, last, developed)``), cut at its first event (:func:`_first_event`), its peak of ``|theta|``
+    (:func:`_peak`) and tallies, then the event's mode change (:func:`_at_event`). Returns :data:`_GO` or the case's
+    status. The loop calls :func:`_trial_step` itself: numba copies an inlined function's IR block by block with its
+    whole variable scope, so one inlined into another costs more than both inlined into the loop (issue 43)."""
+    y1, h, last, developed = trial
     if not developed:
         _drop_undeveloped(bd, cs, y1, out)
         return _GO
@@ -741,10 +749,10 @@ def _rk_step(cfg, bd, fc, cs, h, last, out, hist):
     out[OUT_SLIDE_MAX] = max(out[OUT_SLIDE_MAX], abs(y1[2]))
     if abs(y1[0]) >= OVERTURNING_ANGLE:
         out[OUT_OVERTURNED] = 1.0
-        _record(hist, out, _motion(cs))
+        _record_step(hist, out, _motion(cs))
         return STATUS_OK
     if ev < 0:  # the common step, no event: its history row (no call with the arrays on every step)
-        _record(hist, out, _motion(cs))
+        _record_step(hist, out, _motion(cs))
         return _GO
     return _at_event(cfg, bd, fc, cs, ev, out, hist)
 
@@ -911,7 +919,7 @@ def _solve(params, kvals, gvals, out, hist):
         if mode == FLIGHT:
             status = _fly_step(cfg, bd, fc, cs, h, last, out, hist)
         else:
-            status = _rk_step(cfg, bd, fc, cs, h, last, out, hist)
+            status = _rk_step(cfg, bd, fc, cs, _trial_step(bd, fc, cs, h, last, out), out, hist)
     _finish(bd, cs, status, out)
 
 

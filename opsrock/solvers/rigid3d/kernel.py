@@ -30,7 +30,6 @@ from __future__ import annotations
 import math
 
 import numba
-import numpy as np
 from numba.extending import register_jitable
 
 from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, CORNER_SX, CORNER_SY, DIRECTION_TOL,
@@ -62,7 +61,7 @@ from opsrock.solvers.rigid3d.geometry import (_arms, _cm_outside, _geometry, _ti
 from opsrock.solvers.rigid3d.step import (_book, _count_sweeps, _floor, _rest_holds, _rest_span, _step)
 from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _copy, _flat_slip, _slip_pivot, _smooth,
                                             _smooth_slip, _stuck_pivot)
-from opsrock.solvers.rigid3d.workspace import (Probe, make_corners, make_workspace)
+from opsrock.solvers.rigid3d.workspace import (make_corners, make_phase, make_trial, make_workspace)
 
 
 @register_jitable
@@ -220,10 +219,9 @@ def _smooth_step(model, floor, state, k, phase, work, corners, trial):
     """A smooth step of the phase the block has been in for ``pivot.CALM_STEPS`` Moreau-Jean steps (``phase``):
     about stuck corners (:func:`.smooth._smooth`), on slipping corners (:func:`.smooth._smooth_slip`), sliding flat
     (:func:`.smooth._coarse_slide`), into ``trial``, with its input work; a phase whose smooth step failed cools
-    down. Returns ``(steps, largest tilt)``, steps <= 0 if none was taken (the Moreau-Jean step then goes on)."""
+    down. Returns ``(steps, largest tilt)``, steps <= 0 if none was taken (the Moreau-Jean step then goes on). Called
+    once :func:`_smooth_due` (smooth steps on, a phase calm): each branch drops ``work`` (52 arrays) once."""
     n, tilt_sub, smoothed = 0, 0.0, False
-    if not model.numerics.smooth:
-        return n, tilt_sub
     F = work.pivot.F
     if phase[PH_PIVOT] >= PV.CALM_STEPS:
         n, tilt_sub = _smooth(model, floor, state, k, work, corners, trial)
@@ -235,7 +233,7 @@ def _smooth_step(model, floor, state, k, phase, work, corners, trial):
         smoothed = n > 0
         if n == 0:
             phase[PH_SLIP] = -4 * PV.MIN_STEPS
-    elif phase[PH_SLIDE] >= PV.CALM_STEPS:
+    else:  # phase[PH_SLIDE] >= PV.CALM_STEPS
         n = _coarse_slide(model, floor, state, k, work, corners, trial)
         if n == 0:
             phase[PH_SLIDE] = -_coarse_steps(model)
@@ -391,8 +389,8 @@ def run(model, floor, state, hist, out):
     work = make_workspace(OUT_SIZE)
     ws, end = work.step, work.end
     corners = make_corners()
-    trial = Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), out)
-    phase = np.zeros(PH_SIZE, dtype=np.int64)
+    trial = make_trial(out)
+    phase = make_phase(PH_SIZE)
     last_down, theta = _start(model, state, ws, corners, hist, out)
     phase[PH_LAST_DOWN] = last_down
     status, k, going = STATUS_OK, ZERO, True

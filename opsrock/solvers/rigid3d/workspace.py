@@ -202,6 +202,21 @@ def make_workspace(out_size):
 
 
 @register_jitable
+def make_trial(out):
+    """The run's own step's :class:`Probe`: its active corners, impulses and end state, zeroed, and the run's
+    ``out``. Built here rather than in ``kernel.run``: numba compiles ``np.zeros`` once for each set of compile flags
+    it is met under, and an entry point's differ from a helper's (issue 43)."""
+    return Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), out)
+
+
+@register_jitable
+def make_phase(size):
+    """The run loop's phase counts (``size`` int64 slots, ``kernel``'s ``PH_*``), zeroed; built here for the reason
+    :func:`make_trial` gives."""
+    return np.zeros(size, dtype=np.int64)
+
+
+@register_jitable
 def make_corners():
     """The corners' flags (:class:`Corners`), all False."""
     return Corners(np.zeros(4, dtype=np.bool_), np.zeros(4, dtype=np.bool_))
@@ -209,4 +224,4 @@ def make_corners():
 
 __all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Contact", "Corners",
            "EdgeWork", "EndWork", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace", "make_corners",
-           "make_edge_work", "make_workspace"]
+           "make_edge_work", "make_phase", "make_trial", "make_workspace"]

@@ -7,6 +7,7 @@ module-level tables (parametrised cases) can use them too.
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import shutil
 import subprocess
@@ -34,6 +35,14 @@ OPSROCK = Path(sys.executable).parent / "opsrock"
 #: where running as another user ('nobody') could not even start the interpreter.
 WITHOUT_DAC = ["setpriv", "--inh-caps=-dac_override,-dac_read_search",
                "--bounding-set=-dac_override,-dac_read_search", "--"]
+
+
+def load_tool(name: str):
+    """The checkout's ``tools/<name>.py`` as a module (the tools are scripts, not part of the package)."""
+    spec = importlib.util.spec_from_file_location(name, ROOT / "tools" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def permissions_bind_root() -> bool:

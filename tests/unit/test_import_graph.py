@@ -5,16 +5,11 @@ packages (scipy ``_ivp``'s rule: solvers never import each other's privates)."""
 
 from __future__ import annotations
 
-import importlib.util
-
-from _support import ROOT
+from _support import ROOT, load_tool
 
 
 def _metrics():
-    spec = importlib.util.spec_from_file_location("structure_metrics", ROOT / "tools" / "structure_metrics.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.metrics(ROOT / "opsrock")
+    return load_tool("structure_metrics").metrics(ROOT / "opsrock")
 
 
 def test_no_import_cycle_and_no_private_import_across_packages():

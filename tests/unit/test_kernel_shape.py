@@ -3,16 +3,12 @@
 
 from __future__ import annotations
 
-import importlib.util
 
-from _support import ROOT
+from _support import ROOT, load_tool
 
 
 def _metrics():
-    spec = importlib.util.spec_from_file_location("structure_metrics", ROOT / "tools" / "structure_metrics.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_tool("structure_metrics")
 
 
 def _offences():

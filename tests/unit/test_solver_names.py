@@ -5,18 +5,14 @@ restitution it models, its base, its model), never by its name (issue 42): no st
 from __future__ import annotations
 
 import ast
-import importlib.util
 
-from _support import ROOT
+from _support import ROOT, load_tool
 
 from opsrock.solvers.registry import SOLVERS
 
 
 def _metrics():
-    spec = importlib.util.spec_from_file_location("structure_metrics", ROOT / "tools" / "structure_metrics.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_tool("structure_metrics")
 
 
 def test_the_walk_finds_a_solver_named_in_a_string(tmp_path):

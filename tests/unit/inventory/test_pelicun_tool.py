@@ -7,17 +7,13 @@ this checks the configuration without pelicun (the tool imports pelicun only ins
 
 from __future__ import annotations
 
-import importlib.util
 import json
 
-from _support import ROOT
+from _support import ROOT, load_tool
 
 
 def _tool():
-    spec = importlib.util.spec_from_file_location("pelicun_inventory", ROOT / "tools" / "pelicun_inventory.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_tool("pelicun_inventory")
 
 
 def _config(study):

@@ -490,6 +490,10 @@ class DaskExecutor(_Closing):
                 processes=True,
                 host="127.0.0.1",
                 dashboard_address=None,
+                # no dashboard, and the scheduler's HTTP routes on a free loopback port: with no address given,
+                # distributed binds them to port 8787 and warns "Port 8787 is already in use" whenever another
+                # cluster (a second campaign, a user's own) holds it
+                scheduler_kwargs={"dashboard": False, "dashboard_address": "127.0.0.1:0"},
                 silence_logs=40,  # logging.ERROR: keep worker chatter off the user's terminal
             )
             self.client = distributed.Client(self._cluster)

@@ -151,6 +151,30 @@ def test_dask_local_cluster_two_processes():
     assert os.getpid() not in {r[2] for r in results}  # worker processes, not threads
 
 
+@pytest.mark.slow  # a cluster's start-up, as above
+def test_a_local_cluster_starts_without_warning_when_port_8787_is_taken():
+    """Two campaigns at once (or a user's own Dask cluster) hold 8787, distributed's default HTTP port: the local
+    cluster needs no fixed port, so nothing is said about it (two make test runs side by side showed the warning)."""
+    pytest.importorskip("distributed")
+    import socket
+    import warnings
+
+    holder = socket.socket()
+    try:
+        holder.bind(("127.0.0.1", 8787))
+        holder.listen()
+    except OSError:
+        pass  # already held by another process: the same situation
+    try:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            with DaskExecutor(local_workers=1) as ex:
+                assert collect(ex, square_batch, make_batches([3], 1))[0][:2] == (3, 9)
+    finally:
+        holder.close()
+    assert not [str(w.message) for w in caught if "8787" in str(w.message)]
+
+
 def kernel_loaded_batch(batch: list[int]) -> list[tuple[int, bool, int]]:
     """(item, whether housner_fast's kernel was compiled or loaded in this worker before the item, pid)."""
     from opsrock.solvers.housner_fast import kernel

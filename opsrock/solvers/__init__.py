@@ -69,7 +69,8 @@ def warm_up(solver: str) -> None:
     on a slipping base for one with friction). Nothing for a solver that is not compiled (registry ``compiled``).
     A campaign calls it before its first case, so that no case's time budget pays for a compile; when the cache is
     cold the solver says so on standard error with the expected duration
-    (:func:`opsrock.solvers._compile.announce_compile`)."""
+    (:func:`opsrock.solvers._compile.announce_compile`). A solver whose kernel compiles a path only when a case first
+    needs it (``friction``'s free flight) makes that path ready too, by its ``warm_up_paths``."""
     entry = info(solver)
     if not entry.compiled:
         return
@@ -80,6 +81,9 @@ def warm_up(solver: str) -> None:
                   friction=0.5 if entry.friction else None)
     pulse = OneSinePulse.from_ratios(Block(0.3, 1.2, restitution_factor=1.0), 1.35, 3.0)
     simulate(block, PlanMotion.along(pulse, 30.0) if entry.plan else pulse, solver=solver)
+    paths = getattr(get_solver(solver), "warm_up_paths", None)
+    if paths is not None:
+        paths()
 
 
 def simulate(block: Block, excitation: Excitation | PlanMotion | None, solver: str = "opensees",

@@ -30,13 +30,24 @@ from typing import Any, Iterator
 #: garbage collector ran less during a compile (:func:`fewer_collections`): friction 9.9-10.5 s cold less 0.85 s warm,
 #: moreau_jean 6.3-6.5 s cold less 0.85 s warm (load average 2-3); rigid3d, once its run loop had one exit and its
 #: smooth steps took the workspace apart once (numba drops every array of a named tuple at each place a variable
-#: holding it dies), 37.8-39.9 s cold less 1.0 s warm (load average 2).
+#: holding it dies), 37.8-39.9 s cold less 1.0 s warm (load average 2). friction, once its free flight was a kernel
+#: of its own compiled only when a block first leaves the floor: 7.9-9.3 s cold (against 9.6-10.5 s before, alternated,
+#: load average 1.4-3) less 0.8 s warm.
 COMPILE_CPU_S: dict[str, float] = {
-    "friction": 9.5,
+    "friction": 7.5,
     "housner_fast": 4.0,
     "moreau_jean": 6.0,
     "rigid3d": 38.0,
     "cylinder3d": 30.0,
+}
+
+#: CPU time (s) of the parts of a kernel compiled only when a case first needs them, by ``(solver, part)``: the
+#: difference between a first solve from an empty cache that needs the part and one that does not (issue 43).
+#: ``friction``'s free flight, a kernel of its own compiled when a block first leaves the floor: a block thrown by a
+#: floor falling at 3 g took 12.1 and 11.6 s of CPU, one rocking under a one-sine pulse 9.7 and 9.3 s (alternated,
+#: load average 2.5).
+COMPILE_PART_CPU_S: dict[tuple[str, str], float] = {
+    ("friction", "flight"): 2.3,
 }
 
 
@@ -64,7 +75,8 @@ def fewer_collections() -> Iterator[None]:
         gc.set_threshold(*old)
 
 
-#: The kernels whose compile start is to be announced: ``id(kernel) -> (kernel, solver)`` (:func:`announce_compile`).
+#: The kernels whose compile start is to be announced: ``id(kernel) -> (kernel, solver, part)``
+#: (:func:`announce_compile`).
 _WATCHED: dict[int, tuple[Any, str]] = {}
 #: The kernels found compiled or loaded in this process (never announced again).
 _READY: set[Any] = set()
@@ -72,9 +84,10 @@ _READY: set[Any] = set()
 _LISTENER: list[Any] = []
 
 
-def announce_compile(kernel: Any, solver: str) -> None:
+def announce_compile(kernel: Any, solver: str, part: str | None = None) -> None:
     """One line on standard error when ``kernel`` (a numba dispatcher) starts compiling in this process, naming
-    ``solver`` and its expected compile time (:data:`COMPILE_CPU_S`, s of CPU); nothing when it is loaded from
+    ``solver`` and its expected compile time (:data:`COMPILE_CPU_S`, s of CPU), or, for a ``part`` of the kernel
+    compiled only when a case first needs it, that part (:data:`COMPILE_PART_CPU_S`); nothing when it is loaded from
     numba's cache or already compiled. Call it just before calling the kernel.
 
     numba broadcasts ``"numba:compile"`` (its documented event API, :mod:`numba.core.event`) when a dispatcher
@@ -85,7 +98,7 @@ def announce_compile(kernel: Any, solver: str) -> None:
     if kernel.signatures:  # builds a list (about 5 us): asked once per kernel and process
         _READY.add(kernel)
         return
-    _WATCHED[id(kernel)] = (kernel, solver)
+    _WATCHED[id(kernel)] = (kernel, solver, part)
     if not _LISTENER:
         from numba.core import event
 
@@ -96,7 +109,7 @@ def announce_compile(kernel: Any, solver: str) -> None:
                 dispatcher = ev.data.get("dispatcher") if isinstance(ev.data, dict) else None
                 watched = _WATCHED.pop(id(dispatcher), None)
                 if watched is not None and watched[0] is dispatcher:
-                    _say_compiling(watched[1])
+                    _say_compiling(*watched[1:])
 
             def on_end(self, ev: Any) -> None:
                 pass
@@ -105,11 +118,12 @@ def announce_compile(kernel: Any, solver: str) -> None:
         event.register("numba:compile", _LISTENER[0])
 
 
-def _say_compiling(solver: str) -> None:
-    seconds = COMPILE_CPU_S.get(solver)
+def _say_compiling(solver: str, part: str | None) -> None:
+    seconds = COMPILE_CPU_S.get(solver) if part is None else COMPILE_PART_CPU_S.get((solver, part))
     expected = f"about {seconds:.0f} s of CPU" if seconds is not None else "a while"
-    print(f"opsrock: compiling the {solver} kernel (numba, once: later runs load it from the cache); {expected}",
+    what = f"the {solver} kernel" if part is None else f"the {solver} kernel's {part} path"
+    print(f"opsrock: compiling {what} (numba, once: later runs load it from the cache); {expected}",
           file=sys.stderr, flush=True)
 
 
-__all__ = ["COMPILE_CPU_S", "COMPILE_GC_THRESHOLDS", "announce_compile", "fewer_collections"]
+__all__ = ["COMPILE_CPU_S", "COMPILE_GC_THRESHOLDS", "COMPILE_PART_CPU_S", "announce_compile", "fewer_collections"]

@@ -435,9 +435,10 @@ class SolverRun:
 
             from opsrock.solvers._compile import fewer_collections
 
+            start = _time.perf_counter()
             with fewer_collections():  # about a tenth of a compile's CPU was Python's garbage collector (issue 43)
                 kernel.compile(tuple(numba.typeof(a) for a in args))
-            self.t_wall = _time.perf_counter()
+            self.t_wall += _time.perf_counter() - start  # a kernel may be compiled mid-solve (friction's flight)
         return kernel(*args)
 
     def run(self) -> RockingResult:

@@ -60,11 +60,31 @@ def test_notice_on_a_cold_cache_only_once_and_never_on_stdout(tmp_path):
 
 def test_every_compiled_solver_declares_its_compile_time():
     from opsrock.solvers import SOLVERS
-    from opsrock.solvers._compile import COMPILE_CPU_S
+    from opsrock.solvers._compile import COMPILE_CPU_S, COMPILE_PART_CPU_S
 
     compiled = {"friction", "housner_fast", "moreau_jean", "rigid3d", "cylinder3d"}
     assert compiled <= set(SOLVERS)
     assert set(COMPILE_CPU_S) == compiled and all(v > 0.0 for v in COMPILE_CPU_S.values())
+    assert {solver for solver, _ in COMPILE_PART_CPU_S} <= compiled
+    assert all(v > 0.0 for v in COMPILE_PART_CPU_S.values())
+
+
+def test_notice_names_a_part_compiled_when_a_case_first_needs_it(capfd):
+    import numba
+
+    from opsrock.solvers._compile import COMPILE_PART_CPU_S, announce_compile
+
+    @numba.njit
+    def flight(x):
+        return x + 1.0
+
+    announce_compile(flight, "friction", part="flight")
+    assert flight(1.0) == 2.0
+    announce_compile(flight, "friction", part="flight")  # compiled now: silent
+    flight(2.0)
+    seconds = COMPILE_PART_CPU_S[("friction", "flight")]
+    assert capfd.readouterr().err == (f"opsrock: compiling the friction kernel's flight path (numba, once: later runs "
+                                      f"load it from the cache); about {seconds:.0f} s of CPU\n")
 
 
 def test_fewer_collections_restores_the_collector_however_the_block_ends():
@@ -104,8 +124,11 @@ EXTRA = {"housner_fast": [], "friction": [], "moreau_jean": ["--restitution-law"
 #: 11.8/11.9/12.3 s, still not within 10 s with the fifth's margin; moreau_jean 6.3/6.4/6.5 s against 6.7/7.1/7.2 s,
 #: within 10 s by more than a fifth, so no longer expected to fail. rigid3d, once its run loop had one exit and its
 #: smooth steps took the workspace apart once: 42.7-44.5 s against 44.7-48.0 s before (alternated, load average
-#: 2-7), then with the collector change 37.8-39.9 s: still over 30 s, expected to fail.
-OVER_LIMIT = {"friction", "rigid3d"}
+#: 2-7), then with the collector change 37.8-39.9 s: still over 30 s, expected to fail. friction, once its free flight
+#: was a kernel of its own compiled only when a block first leaves the floor (this case never does): 7.9/7.9/8.6 s and,
+#: at load average 3, 9.2/8.8/9.3 s, against 9.6/9.6/10.1 and 10.5/10.4/10.3 s before (alternated): within 10 s, so no
+#: longer expected to fail.
+OVER_LIMIT = {"rigid3d"}
 
 
 def _child_cpu(run):

@@ -28,6 +28,6 @@ Without ``friction`` the base never slips and the solver is the no-slip rigid bl
 
 from opsrock.solvers.friction.kernel import STATUS_OK
 from opsrock.solvers.friction.settings import FrictionSettings
-from opsrock.solvers.friction.solver import SOLVER_NAME, solve
+from opsrock.solvers.friction.solver import SOLVER_NAME, solve, warm_up_paths
 
-__all__ = ["SOLVER_NAME", "STATUS_OK", "FrictionSettings", "solve"]
+__all__ = ["SOLVER_NAME", "STATUS_OK", "FrictionSettings", "solve", "warm_up_paths"]

@@ -5,8 +5,8 @@ Runge-Kutta with a fixed step inside each forcing segment (:mod:`opsrock.solvers
 step ending on a segment end; the events of the current mode (impact ``theta = 0``, stick-slip,
 loss of contact, and peaks of ``theta``) located on the Runge-Kutta map itself, so an event's time
 is consistent with the integrator to round-off; a block at rest jumps in closed form to the next
-time the floor overcomes it; a block leaving the floor flies ballistically (:func:`_fly`) until a
-corner lands. After the excitation the block is followed (``a_h = 0``, the vertical acceleration of
+time the floor overcomes it; a block leaving the floor flies ballistically (:func:`_fly`, in :func:`fly_case`) until
+a corner lands. After the excitation the block is followed (``a_h = 0``, the vertical acceleration of
 the pulse kept) until it is at rest or has overturned, or, in a pure slide its friction cannot stop
 within ``max_tail`` (:func:`_unstoppable`), until that is known: the case then ends with its slip
 velocity in ``OUT_SLIP_END`` (docs/guide/friction.md, the ending rule).
@@ -19,8 +19,15 @@ case without it). Everything inlined, as before, made the compile about a third 
 :func:`_solve` itself, not in an inlined helper: numba copies an inlined function's IR block by block, each block with
 the function's whole variable scope, so the cost grows as blocks times variables; inlining the turn (105 blocks, 1,181
 variables with the step path in it) cost a first solve about 1 s of CPU (issue 43).
-The flight path (:func:`_fly_step` and what it calls) is about a fifth of the compile (measured with
-``tools/compile_profile.py``; without it a first solve took 9.3-9.5 s of CPU against 11.7-12.0 s).
+Free flight (:func:`_fly_step` and what it calls, about a sixth of the compile) is an entry point of its own,
+:func:`fly_case`, compiled only when a block first leaves the floor: most cases never do (it takes the floor falling
+faster than ``g``, or a contact force turning negative). :func:`solve_case` hands the case over when the block takes
+off and takes it back when it lands, through a state vector (:func:`state`): the case state and the forcing context,
+copied whole, so the two kernels compute exactly what one loop would. A first solve from an empty cache took 7.9-8.6 s
+of CPU with it against 9.6-10.1 s with flight in the one loop (alternated; issue 43), at the same cost per case. An
+earlier attempt (branch ``planar-lazy-flight``) cost 5-6 % per case on cases that never fly: not the hand-over, but
+two ``inline='always'`` helpers it put on the step path (the excitation's end and the step size; written back in
+the loop, its kernel was as fast as before).
 """
 
 from __future__ import annotations
@@ -91,6 +98,7 @@ P_SIZE = 21
 # --- slots of the forcing context: a_h/g of the segment, 1 + a_v/g = g0 + g1 (tau - gt0), tail flag, and the
 # block's kap (it travels with the context to every function that evaluates the equations)
 _FC_FORM, _FC_C0, _FC_C1, _FC_C2, _FC_G0, _FC_G1, _FC_GT0, _FC_TAIL, _FC_KAPPA = 0, 1, 2, 3, 4, 5, 6, 7, 8
+_FC_SIZE = 9
 
 # --- the named tuples the kernel passes (QuantEcon's layout; Body and Motion are :mod:`.modes`') -------------
 #: A block in free flight at ``tau``: rotation ``th`` (rad) and rate ``om`` (units of p), the centre of mass's
@@ -475,7 +483,8 @@ _CS_FRESH_TH, _CS_FRESH_W, _CS_FRESH_FLY, _CS_TAKEOFF = 10, 11, 12, 13
 _CS_TAIL, _CS_SEG, _CS_SEG_END = 14, 15, 16
 _CS_SIZE = 17
 
-#: What a phase of :func:`solve_case` returns to go on (any other value: the status the case ends with).
+#: What a phase of :func:`solve_case` or :func:`fly_case` returns to go on (any other value: the status the case ends
+#: with, or a hand-over, :data:`AIRBORNE` and :data:`LANDED`).
 _GO = np.int64(-1)
 
 #: The case's fixed inputs, read from the parameter vector once (:func:`_setup`): the :class:`Excitation`, the
@@ -856,11 +865,52 @@ def _finish(bd, cs, status, out):
     out[OUT_KINETIC] = total - out[OUT_POTENTIAL]
 
 
+#: The hand-over state between the two entry points (:func:`solve_case`, :func:`fly_case`): the case state ``cs``
+#: (slots ``_CS_*``), the forcing context ``fc`` (slots ``_FC_*``), then 1.0 once a kernel has handed the case over.
+ST_CS, ST_FC, ST_RESUME = 0, _CS_SIZE, _CS_SIZE + _FC_SIZE
+ST_SIZE = ST_RESUME + 1
+#: What :func:`solve_case` returns when the block leaves the floor (:func:`fly_case` goes on from ``state``), and
+#: :func:`fly_case` when it is back on it (:func:`solve_case` goes on); any other value: the case's status.
+AIRBORNE, LANDED = np.int64(-2), np.int64(-3)
+
+
+def state():
+    """A fresh hand-over state (:data:`ST_SIZE` slots): :func:`solve_case` starts the case from it."""
+    return np.zeros(ST_SIZE)
+
+
+@register_jitable
+def _resume(state, cs, fc):
+    """The case state and forcing context handed over in ``state`` copied into ``cs`` and ``fc``."""
+    for i in range(_CS_SIZE):
+        cs[i] = state[ST_CS + i]
+    for i in range(_FC_SIZE):
+        fc[i] = state[ST_FC + i]
+
+
+@register_jitable
+def _hand_over(bd, cs, fc, status, out, state):
+    """The end of an entry point's call with ``status``: the state handed over to the other entry point
+    (:data:`AIRBORNE`, :data:`LANDED`), or the case's outputs (:func:`_finish`). Returns ``status``."""
+    if status != AIRBORNE and status != LANDED:
+        _finish(bd, cs, status, out)
+        return status
+    for i in range(_CS_SIZE):
+        state[ST_CS + i] = cs[i]
+    for i in range(_FC_SIZE):
+        state[ST_FC + i] = fc[i]
+    state[ST_RESUME] = 1.0
+    return status
+
+
 @numba.njit(cache=True)
-def solve_case(params, kvals, gvals, out, hist):
-    """Solve one case from rest (or from ``theta0``, ``omega0`` rocking without slip); ``params`` holds
-    the scalars (slots ``P_*``), results go in ``out`` (slots ``OUT_*``), the history in the rows ``hist``
-    (:func:`history`, columns ``H_*``).
+def solve_case(params, kvals, gvals, out, hist, state):
+    """Solve one case from rest (or from ``theta0``, ``omega0`` rocking without slip) while the block stays on the
+    floor; ``params`` holds the scalars (slots ``P_*``), results go in ``out`` (slots ``OUT_*``), the history in the
+    rows ``hist`` (:func:`history`, columns ``H_*``). Returns the case's status, or :data:`AIRBORNE` when the block
+    leaves the floor: :func:`fly_case` goes on from ``state`` (:func:`state`: fresh, the case starts; handed over,
+    it goes on from there). Free flight is a kernel of its own, compiled only when a block first leaves the floor
+    (about a sixth of the compile; most cases never fly: issue 43).
 
     Excitation: ``(form, k, nu, phase)`` of :func:`opsrock.solvers.forcing.forcing` up to ``tau_end``
     for an analytic pulse; for ``form == FORM_LINEAR`` the samples ``kvals`` (``a_h/g`` at
@@ -869,36 +919,40 @@ def solve_case(params, kvals, gvals, out, hist):
     may be ``inf`` (no slip). Steps: ``h_nom`` during the excitation, ``h_tail`` after it (units of
     ``1/p``), followed for at most ``max_tail``. The case's state between steps is the vector ``cs`` (slots
     ``_CS_*``: the :class:`Motion`, in flight the centre's height and vertical velocity, the flags of a mode just
-    entered, the forcing segment); each turn of :func:`_solve`'s loop is one phase (a take-off, a block leaving
-    rest, a flight step or a step on the floor); the counts and peaks accumulate in ``out`` as they go.
+    entered, the forcing segment); each turn of :func:`_solve`'s loop is one phase (a block leaving rest or a step
+    on the floor); the counts and peaks accumulate in ``out`` as they go.
     """
-    _solve(params, kvals, gvals, out, hist)
+    return _solve(params, kvals, gvals, out, hist, state)
 
 
 @register_jitable
-def _solve(params, kvals, gvals, out, hist):
+def _solve(params, kvals, gvals, out, hist, state):
     """:func:`solve_case`'s work. The entry point calls this one helper only: numba compiles a helper once for each
     set of compile flags it is called under, and an entry point's differ from a helper's (it has a CPython wrapper),
     so a helper called both from the entry point and from another helper would be compiled twice (issue 43: cold
     compile time). Measured: this body written in the entry point itself saves the entry's second optimisation of
-    the whole kernel but compiles four helpers twice, and took as long (alternated runs, 11.3 s against 10.8 s)."""
+    the whole kernel but compiles four helpers twice, and took as long (alternated runs, 11.3 s against 10.8 s).
+    ``cs`` and ``fc`` are allocated here, the handed-over state copied in: passed in, the kernel was 7 % slower per
+    case (LLVM cannot tell that they overlap no other array)."""
     cfg, bd = _setup(params, kvals, gvals)
-    fc = np.zeros(9)
-    fc[_FC_KAPPA] = params[P_KAPPA]
+    fc = np.zeros(_FC_SIZE)
     cs = np.zeros(_CS_SIZE)
-    _start(params, cfg, bd, fc, cs, out, hist)
+    if state[ST_RESUME] > 0.0:
+        _resume(state, cs, fc)
+    else:
+        fc[_FC_KAPPA] = params[P_KAPPA]
+        _start(params, cfg, bd, fc, cs, out, hist)
     status = _GO
-    while status == _GO:  # a turn: a take-off if one is due, the excitation's end, then a phase by mode
+    while status == _GO:  # a turn: the block leaving the floor, the excitation's end, then a phase by mode
         if cs[_CS_TAKEOFF] > 0.0:
-            _take_off(bd, cs, out, hist)
+            status = AIRBORNE
+            break
         if out[OUT_STEPS] >= cfg.max_steps:
             status = STATUS_MAX_STEPS
             break
         tau = cs[_CS_TAU]
         if cs[_CS_TAIL] == 0.0 and tau >= cfg.tau_end:  # a still floor from here, the vertical acceleration g_tail
-            cs[_CS_TAIL] = 1.0
-            fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, cfg.g_tail, 0.0, 0.0
-            cs[_CS_SEG_END] = math.inf
+            _enter_tail(cfg, fc, cs)
         tail = cs[_CS_TAIL] > 0.0
         mode = int(cs[_CS_MODE])
         if mode == REST:  # it leaves rest; after the excitation the case ends
@@ -916,12 +970,67 @@ def _solve(params, kvals, gvals, out, hist):
             cs[_CS_SEG], cs[_CS_SEG_END] = _set_segment(fc, tau, int(cs[_CS_SEG]), cfg.exc, cfg.gvals, cfg.g_const)
         h = min(cfg.h_tail if tail else cfg.h_nom, cs[_CS_SEG_END] - tau)
         last = h == cs[_CS_SEG_END] - tau
-        if mode == FLIGHT:
-            status = _fly_step(cfg, bd, fc, cs, h, last, out, hist)
-        else:
-            status = _rk_step(cfg, bd, fc, cs, _trial_step(bd, fc, cs, h, last, out), out, hist)
-    _finish(bd, cs, status, out)
+        status = _rk_step(cfg, bd, fc, cs, _trial_step(bd, fc, cs, h, last, out), out, hist)
+    return _hand_over(bd, cs, fc, status, out, state)
 
 
-__all__ = ["H_OMEGA", "H_SIZE", "H_TAU", "H_THETA", "H_U", "OUT_SIZE", "P_SIZE", "STATUS_OK", "history",
-           "solve_case"]
+@register_jitable
+def _enter_tail(cfg, fc, cs):
+    """The excitation's end: a still floor from here (its segment never ends), the vertical acceleration
+    ``g_tail``."""
+    cs[_CS_TAIL] = 1.0
+    fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, cfg.g_tail, 0.0, 0.0
+    cs[_CS_SEG_END] = math.inf
+
+
+@numba.njit(cache=True)
+def fly_case(params, kvals, gvals, out, hist, state):
+    """:func:`solve_case`'s case on from the ``state`` it handed over when the block left the floor: a take-off, then
+    free flight until the block is back on the floor (:data:`LANDED`: :func:`solve_case` goes on from ``state``) or
+    the case ends (its status). The same arguments as :func:`solve_case`'s; compiled only when a block first leaves
+    the floor."""
+    return _fly_solve(params, kvals, gvals, out, hist, state)
+
+
+@register_jitable
+def _fly_solve(params, kvals, gvals, out, hist, state):
+    """:func:`fly_case`'s work (its one helper, as :func:`_solve` is :func:`solve_case`'s): the turns of
+    :func:`_solve`'s loop while the block is in flight, in the same order (a take-off if one is due, the step
+    limit, the excitation's end, the tail's limit, then a flight step on the forcing segment)."""
+    cfg, bd = _setup(params, kvals, gvals)
+    fc = np.zeros(_FC_SIZE)
+    cs = np.zeros(_CS_SIZE)
+    _resume(state, cs, fc)
+    status = _GO
+    while status == _GO:
+        if cs[_CS_TAKEOFF] > 0.0:
+            _take_off(bd, cs, out, hist)
+        status = _flight_turn(cfg, fc, cs, out)
+        if status == _GO:
+            span = cs[_CS_SEG_END] - cs[_CS_TAU]
+            h = min(cfg.h_tail if cs[_CS_TAIL] > 0.0 else cfg.h_nom, span)
+            status = _fly_step(cfg, bd, fc, cs, h, h == span, out, hist)
+    return _hand_over(bd, cs, fc, status, out, state)
+
+
+@register_jitable
+def _flight_turn(cfg, fc, cs, out):
+    """The start of a turn of :func:`_fly_solve`'s loop: :data:`LANDED` if the block is back on the floor, the
+    status of a limit reached (steps; the time after the excitation), else :data:`_GO` with the excitation's end
+    entered (:func:`_enter_tail`) or the forcing segment of the time loaded."""
+    if int(cs[_CS_MODE]) != FLIGHT:
+        return LANDED
+    if out[OUT_STEPS] >= cfg.max_steps:
+        return STATUS_MAX_STEPS
+    tau = cs[_CS_TAU]
+    if cs[_CS_TAIL] == 0.0 and tau >= cfg.tau_end:
+        _enter_tail(cfg, fc, cs)
+    if cs[_CS_TAIL] > 0.0:
+        return STATUS_TAIL if tau - cfg.tau_end > cfg.max_tail else _GO
+    if tau >= cs[_CS_SEG_END]:
+        cs[_CS_SEG], cs[_CS_SEG_END] = _set_segment(fc, tau, int(cs[_CS_SEG]), cfg.exc, cfg.gvals, cfg.g_const)
+    return _GO
+
+
+__all__ = ["AIRBORNE", "H_OMEGA", "H_SIZE", "H_TAU", "H_THETA", "H_U", "LANDED", "OUT_SIZE", "P_SIZE", "STATUS_OK",
+           "fly_case", "history", "solve_case", "state"]

@@ -125,6 +125,37 @@ def test_free_flight_of_a_block_thrown_by_a_falling_floor(a_over_g, n_drop):
     assert r.theta_max == 0.0 and r.contact.slide_max == 0.0 and r.response == "at_rest"
 
 
+def test_flight_is_a_kernel_of_its_own_that_only_a_case_leaving_the_floor_enters():
+    """Free flight is compiled only when a block first leaves the floor (issue 43): ``solve_case`` solves a case that
+    stays on the floor alone, and hands a take-off over to ``fly_case``, which hands the landing back, through the
+    state vector; the solver's result is what that sequence computes."""
+    from opsrock.solvers.friction import kernel as K
+    from opsrock.solvers.friction.settings import FrictionSettings
+    from opsrock.solvers.friction.solver import case_parameters
+
+    block = Block(0.4, 2.2, friction=0.5)
+
+    def calls(excitation):
+        params, kvals, gvals = case_parameters(block, excitation, FrictionSettings())
+        args = (params, kvals, gvals, np.zeros(K.OUT_SIZE), K.history(10_000), K.state())
+        seq = [int(K.solve_case(*args))]
+        while seq[-1] == K.AIRBORNE:
+            seq.append(int(K.fly_case(*args)))
+            if seq[-1] == K.LANDED:
+                seq.append(int(K.solve_case(*args)))
+        return seq, args[3], args[4]
+
+    seq, out, _ = calls(OneSinePulse.from_ratios(block, 4.0, 6.0))
+    assert seq == [K.STATUS_OK] and out[K.OUT_IMPACTS] > 0 and out[K.OUT_TIME_FLIGHT] == 0.0
+    rec = _drop(3.0, 10)
+    seq, out, hist = calls(rec)
+    assert seq == [K.AIRBORNE, K.LANDED, K.STATUS_OK]
+    r = friction.solve(block, rec)
+    n = int(out[K.OUT_N_HIST])
+    assert np.array_equal(r.theta, hist[:n, K.H_THETA]) and np.array_equal(r.slide, hist[:n, K.H_U] * block.R)
+    assert r.contact.time_flight == out[K.OUT_TIME_FLIGHT] / block.p > 0.0
+
+
 def test_a_floor_falling_faster_than_g_for_long_is_refused():
     """-3 g for 9.99 s (the floor would fall 1.5 km) is no floor motion: refused naming vertical, before any
     work; a stretch just under MAX_FREE_FALL is followed when the block lands inside the record (-3 g for 0.98 s

@@ -27,7 +27,7 @@ copied whole, so the two kernels compute exactly what one loop would. A first so
 of CPU with it against 9.6-10.1 s with flight in the one loop (alternated; issue 43), at the same cost per case. An
 earlier attempt (branch ``planar-lazy-flight``) cost 5-6 % per case on cases that never fly: not the hand-over, but
 two ``inline='always'`` helpers it put on the step path (the excitation's end and the step size; written back in
-the loop, its kernel was as fast as before).
+the loop, its kernel was as fast as before): the loop here keeps its body as it was.
 """
 
 from __future__ import annotations
@@ -133,12 +133,6 @@ def _floor(tau, fc):
     if fc[_FC_TAIL] > 0.0:
         return 0.0, gv
     return forcing(tau, int(fc[_FC_FORM]), fc[_FC_C0], fc[_FC_C1], fc[_FC_C2]), gv
-
-
-@register_jitable
-def _body(params):
-    """The :class:`~.modes.Body` of the parameter vector (slots ``P_*``)."""
-    return body(params[P_ALPHA], params[P_MU_S], params[P_MU_K], params[P_F_REST], params[P_KAPPA])
 
 
 def history(cap):
@@ -500,7 +494,7 @@ def _setup(params, kvals, gvals):
     """The case's :class:`Setup` and :class:`~.modes.Body` from the parameter vector (slots ``P_*``)."""
     exc = Excitation(int(params[P_FORM]), params[P_K], params[P_NU], params[P_PHASE], params[P_TAU_END], kvals,
                      params[P_DTAU])
-    bd = _body(params)
+    bd = body(params[P_ALPHA], params[P_MU_S], params[P_MU_K], params[P_F_REST], params[P_KAPPA])
     cfg = Setup(exc, gvals, params[P_G_CONST], params[P_G_TAIL], params[P_TAU_END], params[P_H_NOM],
                 params[P_H_TAIL], params[P_REST_VELOCITY], int(params[P_MAX_IMPACTS]), int(params[P_MAX_STEPS]),
                 params[P_MAX_TAIL], min(params[P_MU_S], bd.beta))
@@ -952,7 +946,9 @@ def _solve(params, kvals, gvals, out, hist, state):
             break
         tau = cs[_CS_TAU]
         if cs[_CS_TAIL] == 0.0 and tau >= cfg.tau_end:  # a still floor from here, the vertical acceleration g_tail
-            _enter_tail(cfg, fc, cs)
+            cs[_CS_TAIL] = 1.0
+            fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, cfg.g_tail, 0.0, 0.0
+            cs[_CS_SEG_END] = math.inf
         tail = cs[_CS_TAIL] > 0.0
         mode = int(cs[_CS_MODE])
         if mode == REST:  # it leaves rest; after the excitation the case ends
@@ -972,15 +968,6 @@ def _solve(params, kvals, gvals, out, hist, state):
         last = h == cs[_CS_SEG_END] - tau
         status = _rk_step(cfg, bd, fc, cs, _trial_step(bd, fc, cs, h, last, out), out, hist)
     return _hand_over(bd, cs, fc, status, out, state)
-
-
-@register_jitable
-def _enter_tail(cfg, fc, cs):
-    """The excitation's end: a still floor from here (its segment never ends), the vertical acceleration
-    ``g_tail``."""
-    cs[_CS_TAIL] = 1.0
-    fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, cfg.g_tail, 0.0, 0.0
-    cs[_CS_SEG_END] = math.inf
 
 
 @numba.njit(cache=True)
@@ -1017,14 +1004,16 @@ def _fly_solve(params, kvals, gvals, out, hist, state):
 def _flight_turn(cfg, fc, cs, out):
     """The start of a turn of :func:`_fly_solve`'s loop: :data:`LANDED` if the block is back on the floor, the
     status of a limit reached (steps; the time after the excitation), else :data:`_GO` with the excitation's end
-    entered (:func:`_enter_tail`) or the forcing segment of the time loaded."""
+    entered or the forcing segment of the time loaded."""
     if int(cs[_CS_MODE]) != FLIGHT:
         return LANDED
     if out[OUT_STEPS] >= cfg.max_steps:
         return STATUS_MAX_STEPS
     tau = cs[_CS_TAU]
-    if cs[_CS_TAIL] == 0.0 and tau >= cfg.tau_end:
-        _enter_tail(cfg, fc, cs)
+    if cs[_CS_TAIL] == 0.0 and tau >= cfg.tau_end:  # as in _solve: a still floor from here, g_tail
+        cs[_CS_TAIL] = 1.0
+        fc[_FC_TAIL], fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = 1.0, cfg.g_tail, 0.0, 0.0
+        cs[_CS_SEG_END] = math.inf
     if cs[_CS_TAIL] > 0.0:
         return STATUS_TAIL if tau - cfg.tau_end > cfg.max_tail else _GO
     if tau >= cs[_CS_SEG_END]:

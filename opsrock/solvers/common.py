@@ -52,10 +52,12 @@ else among the solvers (as scipy's ``_ivp`` solvers share ``common.py``).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import time as _time
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from types import MappingProxyType
+from typing import Any, ClassVar, Mapping
 
 import numpy as np
 
@@ -116,6 +118,13 @@ def setting_names(cls: type) -> dict[str, str | None]:
     return names
 
 
+@functools.cache
+def _names_of(cls: type) -> Mapping[str, str | None]:
+    """:func:`setting_names` worked out once per class, read-only: it builds the class's defaults, 0.07 ms of every
+    3-D case of the directionality study, whose settings name ``tail`` (issue 43)."""
+    return MappingProxyType(setting_names(cls))
+
+
 def make_settings(cls: type, settings: Any = None, overrides: dict[str, Any] | None = None) -> Any:
     """``settings`` (an instance of ``cls``, or its defaults) with ``overrides`` applied: the one
     place where solver settings are merged.
@@ -144,7 +153,7 @@ def make_settings(cls: type, settings: Any = None, overrides: dict[str, Any] | N
         raise InputTypeError(f"settings must be a {cls.__name__}, got {settings!r}")
     if not overrides:
         return base
-    names = setting_names(cls)
+    names = _names_of(cls)
     unknown = sorted(set(overrides) - set(names))
     if unknown:
         raise UnknownSettingError(unknown[0], f"unknown setting(s) {', '.join(map(repr, unknown))} of "

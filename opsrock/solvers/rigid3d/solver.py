@@ -132,17 +132,26 @@ def _pulse_forcing(plan: PlanMotion, dt_nom: float, theta_mj: float) -> _Forcing
                     float(np.max(np.hypot(ax, ay))) + abs(vertical))
 
 
+def _padded(values: np.ndarray | None, n: int, *, copy: bool = True) -> np.ndarray:
+    """``values`` (None: none) followed by zeros up to ``n`` samples, a new array; with ``copy=False``, the array
+    itself when it has ``n`` already (read-only, as a record's are: only for what the kernel does not take; a record
+    pair's components have one length, and the copies cost about 10 µs a component, issue 43)."""
+    if not copy and values is not None and values.size == n:
+        return values
+    out = np.zeros(n)
+    if values is not None:
+        out[:values.size] = values
+    return out
+
+
 def _record_forcing(plan: PlanMotion, dt_nom: float) -> _Forcing:
     """The records' samples rotated into the block frame, ``sub`` steps per sample interval."""
     rec = plan.first
     sub = max(1, math.ceil(rec.dt / dt_nom))
     n_samples = max(rec.values.size, 0 if plan.second is None else plan.second.values.size)
-    a1, a2, av = np.zeros(n_samples), np.zeros(n_samples), np.zeros(n_samples)
-    a1[:rec.values.size] = rec.values
-    if plan.second is not None:
-        a2[:plan.second.values.size] = plan.second.values
-    if rec.vertical is not None:
-        av[:rec.values.size] = rec.vertical
+    a1 = _padded(rec.values, n_samples, copy=False)
+    a2 = _padded(None if plan.second is None else plan.second.values, n_samples, copy=False)
+    av = _padded(rec.vertical, n_samples)
     c, s = math.cos(math.radians(plan.azimuth)), math.sin(math.radians(plan.azimuth))
     ax, ay = c * a1 + s * a2, -s * a1 + c * a2
     n = (n_samples - 1) * sub
@@ -170,10 +179,9 @@ def tilted_state(block: Block, theta: float, theta_dot: float = 0.0) -> np.ndarr
                      theta_dot * rz, 0.0, -theta_dot * rx, 0.0, theta_dot, 0.0])
 
 
-def _run(run: SolverRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> RockingResult:
+def _run(run: _Rigid3DRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> RockingResult:
     """Run the kernel on one case and build the result."""
-    block, settings = run.block, run.settings
-    box = box_properties(block)
+    block, settings, box = run.block, run.settings, run.box
     model = make_model(block, box, settings, forcing.dt, forcing.peak, tail)
     floor = make_floor(forcing.form, forcing.ax, forcing.ay, forcing.av, forcing.sub, forcing.n_exc, forcing.tail_av)
     every, max_tail = model.numerics.hist_every, model.limits.max_tail
@@ -340,22 +348,28 @@ def solve(block: Block, excitation: PlanMotion | Pulse | Record | None, settings
     """
     settings = make_settings(Rigid3DSettings, settings, overrides)
     block = check_inputs(SOLVER_NAME, block, excitation, settings)
-    box_properties(block)
+    box = box_properties(block)
     if (excitation is None) != (settings.end_time is not None):
         raise ModelNotSupported(f"solver {SOLVER_NAME!r} takes end_time (the span of free motion) with "
                                 f"excitation None and only then, got end_time = {settings.end_time!r}")
     plan = None if excitation is None else as_plan(excitation)
-    return _Rigid3DRun(block, plan, settings).run()
+    return _Rigid3DRun(block, plan, settings, box).run()
 
 
 class _Rigid3DRun(SolverRun):
-    """One case through the kernel: from rest under the floor motion, or free from a tilted state."""
+    """One case through the kernel: from rest under the floor motion, or free from a tilted state; ``box`` the
+    block's :func:`box_properties`, worked out once."""
 
     name = SOLVER_NAME
 
+    def __init__(self, block: Block, excitation: PlanMotion | None, settings: Rigid3DSettings,
+                 box: BoxProperties) -> None:
+        super().__init__(block, excitation, settings)
+        self.box = box
+
     def _run_impl(self) -> RockingResult:
         s, plan = self.settings, self.excitation
-        dt_nom = s.dtau / box_properties(self.block).p
+        dt_nom = s.dtau / self.box.p
         if plan is None:
             return _run(self, _free_forcing(s.end_time, dt_nom), tilted_state(self.block, s.theta0, s.theta_dot0),
                         tail=False)

@@ -188,13 +188,6 @@ def _event(ev, m, fc, bd):
 
 
 @register_jitable
-def _event_after(ev, sgn, m, d, fc, bd):
-    """Value of event ``ev`` on the RK4 map after a step of length ``d`` from the :class:`Motion` ``m``."""
-    th1, om1, u1, w1, _, _ = _rk4(m, d, fc, bd)
-    return _event(ev, Motion(m.mode, sgn if ev == 3 else m.s, m.sig, th1, om1, u1, w1, m.tau + d), fc, bd)
-
-
-@register_jitable
 def _illinois(d, f, lo, hi, f_lo, f_hi, side):
     """The bracket after a trial at ``d`` with value ``f``: ``(lo, hi, f_lo, f_hi, side)``, the end kept twice
     in a row has its value halved (Illinois regula falsi)."""
@@ -222,7 +215,8 @@ def _locate(ev, sgn, f_lo, f_hi, m, h, fc, bd):
         d = hi - f_hi * (hi - lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
         if it % 4 == 3 or not (lo < d < hi):
             d = 0.5 * (lo + hi)
-        f = _event_after(ev, sgn, m, d, fc, bd)
+        th1, om1, u1, w1, _, _ = _rk4(m, d, fc, bd)  # the event's value on the RK4 map after d
+        f = _event(ev, Motion(m.mode, sgn if ev == 3 else m.s, m.sig, th1, om1, u1, w1, m.tau + d), fc, bd)
         if abs(f) <= flat:  # zero to round-off: the event is at d
             return d, True
         lo, hi, f_lo, f_hi, side = _illinois(d, f, lo, hi, f_lo, f_hi, side)
@@ -243,14 +237,6 @@ def _set_segment(fc, tau, seg, exc, gvals, g_const):
     else:
         fc[_FC_G0], fc[_FC_G1], fc[_FC_GT0] = g_const, 0.0, 0.0
     return seg, seg_end
-
-
-@register_jitable
-def _next_departure(tau, level, exc, gvals, g_const):
-    """First time >= tau at which a block at rest is overcome (``|a_h| > level (g + a_v)``)."""
-    if gvals.shape[0] > 0:
-        return next_exceedance_scaled(tau, level, exc.kvals, gvals, exc.dtau)
-    return next_exceedance(tau, level * g_const, exc)
 
 
 @register_jitable
@@ -562,7 +548,11 @@ def _leave_rest(cfg, bd, fc, cs, out, hist):
     """A block at rest jumps to the next time the floor overcomes it and takes the mode it starts in
     (:func:`~.modes.start_mode`; flight: a take-off next). Returns :data:`_GO`, or ``STATUS_OK`` if it stays at
     rest to the excitation's end."""
-    t_up, _ = _next_departure(cs[_CS_TAU], cfg.level, cfg.exc, cfg.gvals, cfg.g_const)
+    exc, gvals = cfg.exc, cfg.gvals  # the first time the floor overcomes it: |a_h| > level (g + a_v)
+    if gvals.shape[0] > 0:
+        t_up, _ = next_exceedance_scaled(cs[_CS_TAU], cfg.level, exc.kvals, gvals, exc.dtau)
+    else:
+        t_up, _ = next_exceedance(cs[_CS_TAU], cfg.level * cfg.g_const, exc)
     out[OUT_STEPS] += 1
     if t_up < 0.0:
         return STATUS_OK
@@ -750,13 +740,12 @@ def _rk_step(cfg, bd, fc, cs, trial, out, hist):
     cs[_CS_FRESH_TH], cs[_CS_FRESH_W] = False, False
     out[OUT_THETA_MAX] = max(out[OUT_THETA_MAX], abs(y1[0]))
     out[OUT_SLIDE_MAX] = max(out[OUT_SLIDE_MAX], abs(y1[2]))
-    if abs(y1[0]) >= OVERTURNING_ANGLE:
-        out[OUT_OVERTURNED] = 1.0
+    over = abs(y1[0]) >= OVERTURNING_ANGLE
+    if over or ev < 0:  # the common step, no event (or the last): its history row, inlined once
+        if over:
+            out[OUT_OVERTURNED] = 1.0
         _record_step(hist, out, _motion(cs))
-        return STATUS_OK
-    if ev < 0:  # the common step, no event: its history row (no call with the arrays on every step)
-        _record_step(hist, out, _motion(cs))
-        return _GO
+        return STATUS_OK if over else _GO
     return _at_event(cfg, bd, fc, cs, ev, out, hist)
 
 

@@ -8,7 +8,7 @@ native call that never returns cannot be interrupted this way: the local executo
 worker process after the budget and a grace period (:class:`opsrock.campaign.executors.LocalPool`), and
 the compiled rigid-body solver bounds its own work by ``max_steps``.
 
-One watchdog thread per process serves every budget (:class:`_Watchdog`), started with the first and
+One watchdog thread per process serves every budget (``_Watchdog``), started with the first and
 sleeping until the earliest deadline; a budget is armed and disarmed without waking it. A thread started per
 case (a :class:`threading.Timer`) cost every case a thread start and that thread's turns at the interpreter lock
 (issue 43): on the directionality study's cases, in one process, a planar case's median wall time was 0.70 ms with

@@ -24,7 +24,9 @@ Free flight (:func:`_fly_step` and what it calls, about a sixth of the compile) 
 faster than ``g``, or a contact force turning negative). :func:`solve_case` hands the case over when the block takes
 off and takes it back when it lands, through a state vector (:func:`state`): the case state and the forcing context,
 copied whole, so the two kernels compute exactly what one loop would. A first solve from an empty cache took 7.9-8.6 s
-of CPU with it against 9.6-10.1 s with flight in the one loop (alternated; issue 43), at the same cost per case. An
+of CPU with it against 9.6-10.1 s with flight in the one loop (alternated; issue 43), at the same cost per case; a
+first solve that flies compiles both kernels, in about the time the one kernel took (11.2 and 10.9 s against 11.2
+and 10.8 s, alternated), and so does :func:`opsrock.solvers.warm_up` (11.9 s both). An
 earlier attempt (branch ``planar-lazy-flight``) cost 5-6 % per case on cases that never fly: not the hand-over, but
 two ``inline='always'`` helpers it put on the step path (the excitation's end and the step size; written back in
 the loop, its kernel was as fast as before): the loop here keeps its body as it was.

@@ -549,7 +549,10 @@ def _take_off(bd, cs, out, hist):
 def _leave_rest(cfg, bd, fc, cs, out, hist):
     """A block at rest jumps to the next time the floor overcomes it and takes the mode it starts in
     (:func:`~.modes.start_mode`; flight: a take-off next). Returns :data:`_GO`, or ``STATUS_OK`` if it stays at
-    rest to the excitation's end."""
+    rest to the excitation's end. Where round-off still gives rest there, the level exceeded decides: ``1 + a_v/g``'s
+    (it reaches 0 within the event tolerance of the time: the floor falls faster than ``g``, no ``a_h`` overcame the
+    block) is a take-off; else it slides or rocks by ``a_h``'s. Before, such a block rocked with no contact force
+    under it (a seated block on a floor dropping at -3 g with no horizontal motion overturned)."""
     exc, gvals = cfg.exc, cfg.gvals  # the first time the floor overcomes it: |a_h| > level (g + a_v)
     if gvals.shape[0] > 0:
         t_up, _ = next_exceedance_scaled(cs[_CS_TAU], cfg.level, exc.kvals, gvals, exc.dtau)
@@ -564,8 +567,11 @@ def _leave_rest(cfg, bd, fc, cs, out, hist):
     ah, gv = _floor(tau, fc)
     mode, s, sig = start_mode(ah, gv, bd.beta, bd.mu_s, bd.mu_k, bd.kap)
     if mode == REST:  # at the threshold to round-off: leave by the level that was exceeded
-        d = -1.0 if ah > 0.0 else 1.0
-        mode, s, sig = (SLIDE, 0.0, d) if bd.mu_s < bd.beta else (ROCK, d, 0.0)
+        if gv + fc[_FC_G1] * _EVENT_TOL * max(1.0, tau) <= 0.0:  # g_v's: it vanishes within the time's round-off
+            mode = FLIGHT
+        else:
+            d = -1.0 if ah > 0.0 else 1.0
+            mode, s, sig = (SLIDE, 0.0, d) if bd.mu_s < bd.beta else (ROCK, d, 0.0)
     if mode != FLIGHT:
         _first_mode(out, mode)
     cs[_CS_TH] = 0.0

@@ -15,6 +15,7 @@ from opsrock.excitations import OneSinePulse, RectangularPulse, Record
 from opsrock.excitations.vertical import MAX_FREE_FALL, check_free_fall, longest_free_fall
 from opsrock.published import newmark_1965
 from opsrock.solvers import friction
+from opsrock.solvers.friction.modes import FLIGHT, REST
 
 
 def _one_sine_floor(t: np.ndarray, a: float, omega: float) -> np.ndarray:
@@ -173,3 +174,63 @@ def test_a_floor_falling_faster_than_g_for_long_is_refused():
     assert friction.solve(Block(0.4, 2.2, friction=0.5), _drop(1.2, n_ok, n=400)).ok
     with pytest.raises(InputError, match="vertical"):
         check_free_fall(_drop(3.0, n_ok + 2, n=400))
+
+
+def _relative_flight(t_off: float, rec: Record) -> float:
+    """Closed form of a flight on a still floor horizontally: the block leaves at ``t_off`` (where ``g + a_v`` is 0,
+    at rest relative to the floor) and falls at ``-(g + a_v)`` relative to it, ``a_v`` linear between samples; the
+    gap's velocity and height are integrated exactly sample interval by sample interval (a linear acceleration: a
+    quadratic velocity, a cubic height) until the record's ``a_v`` is 0 again, then it closes under ``g``."""
+    dt, gv = rec.dt, G + rec.vertical
+    v = h = 0.0
+    t, i = t_off, int(t_off / dt)
+    while gv[i] != G or gv[i + 1] != G:
+        a0 = gv[i] + (gv[i + 1] - gv[i]) * (t - i * dt) / dt  # the relative acceleration is -(g + a_v)
+        a1, span = gv[i + 1], (i + 1) * dt - t
+        v, h = v - span * (a0 + a1) / 2.0, h + v * span - span**2 * (2.0 * a0 + a1) / 6.0
+        t, i = (i + 1) * dt, i + 1
+    return t - t_off + (v + math.sqrt(v * v + 2.0 * G * h)) / G
+
+
+def test_a_seated_block_takes_off_whenever_its_floor_falls_faster_than_g():
+    """A block seated after a first flight leaves the floor again when ``g + a_v`` crosses 0 partway through the
+    record (-3 g on samples 0-9 and 200-209, no horizontal motion), in flight, not rocking: with no horizontal
+    force and the support gone nothing can tilt it, and the symmetric floor brings it back down flat. Before the fix
+    the block left rest at 1.99 s by the rest threshold's rule for round-off (rock, as if ``a_h`` had overcome it;
+    ``g + a_v`` was 5e-14 there, 1 ulp of the time before its 0), slide-rocked with a negative contact force and
+    overturned at 2.56 s.
+
+    References: the second take-off is at the 0 of ``g + a_v`` on its linear ramp from 1 g (sample 199) to -2 g
+    (sample 200), t = 1.99 + 0.01/3 s; the kernel jumps there in closed form (``next_exceedance_scaled``), so only
+    the round-off of ``tau = p t`` (about 1e-15 s) separates them: 1e-12 s. Each flight's length is
+    :func:`_relative_flight`'s closed form; the kernel's RK4 is exact for an acceleration linear in time and
+    locates the landing to a few ulps (and the gap's 1e-12 R), so the two agree to round-off: rel 1e-8 as in
+    :func:`test_free_flight_of_a_block_thrown_by_a_falling_floor`. No rotation: ``theta`` is 0 exactly (no torque
+    acts, the landings are flat), asserted exact."""
+    from opsrock.solvers.friction import kernel as K
+    from opsrock.solvers.friction.settings import FrictionSettings
+    from opsrock.solvers.friction.solver import case_parameters
+
+    v = np.zeros(400)
+    v[:10] = v[200:210] = -3.0 * G
+    rec = Record(dt=0.01, values=np.zeros(400), vertical=v, name="two drops")
+    block = Block(0.4, 2.2, friction=0.5)
+    r = friction.solve(block, rec)
+    assert r.ok and not r.overturned and not r.rocked and r.contact.first_mode == "flight"
+    assert r.n_impacts == 2 and r.response == "at_rest"
+    assert r.theta_max == 0.0 and np.all(r.theta == 0.0) and r.contact.slide_max == 0.0
+    assert r.contact.time_rocking == 0.0 and r.contact.time_sliding == 0.0
+    t_cross = 1.99 + 0.01 / 3.0
+    assert r.contact.time_flight == pytest.approx(_relative_flight(0.0, rec) + _relative_flight(t_cross, rec), rel=1e-8)
+    # the modes and their start times, from the kernel's history rows (the result keeps no mode)
+    params, kvals, gvals = case_parameters(block, rec, FrictionSettings())
+    out, hist, state = np.zeros(K.OUT_SIZE), K.history(10_000), K.state()
+    status = K.solve_case(params, kvals, gvals, out, hist, state)
+    while status == K.AIRBORNE and K.fly_case(params, kvals, gvals, out, hist, state) == K.LANDED:
+        status = K.solve_case(params, kvals, gvals, out, hist, state)
+    rows = hist[:int(out[K.OUT_N_HIST])]
+    modes = rows[:, K.H_MODE]
+    assert set(modes) == {REST, FLIGHT}
+    take_offs = rows[1:, K.H_TAU][(modes[1:] == FLIGHT) & (modes[:-1] == REST)] / block.p
+    assert take_offs.shape == (2,) and take_offs[0] == 0.0
+    assert take_offs[1] == pytest.approx(t_cross, abs=1e-12)

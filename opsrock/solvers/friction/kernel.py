@@ -787,14 +787,18 @@ def _impact(cfg, bd, fc, cs, out, hist):
 
 @register_jitable
 def _stick_slip(bd, fc, cs, out, hist):
-    """The stick-slip event: a rocking block's pivot starts slipping, a slide-rocking one's slip stops (it sticks,
-    or slips back), a sliding one stops and takes the mode it starts in (a take-off next if flight). Returns
-    :data:`_GO`."""
+    """The stick-slip event: a rocking block's pivot starts slipping (a take-off next if its contact force is gone
+    with the friction's hold: slide-rocking from there, the contact event, which needs the force positive at a step's
+    start, would not see it), a slide-rocking one's slip stops (it sticks, or slips back), a sliding one stops and
+    takes the mode it starts in (a take-off next if flight). Returns :data:`_GO`."""
     m = _motion(cs)
     mode, s, sig, th, om = m.mode, m.s, m.sig, m.th, m.om
     ah, gv = _floor(m.tau, fc)
     if mode == ROCK:
-        f, _ = rock_forces(s, th, om, ah, gv, bd.alpha, bd.kap)
+        f, n = rock_forces(s, th, om, ah, gv, bd.alpha, bd.kap)
+        if n <= 0.0:  # the contact force is gone with the friction's hold (both at once): it leaves the floor
+            cs[_CS_TAKEOFF] = True
+            return _GO
         _set_mode(cs, SLIDE_ROCK, s, -1.0 if f > 0.0 else 1.0, om, 0.0)
         cs[_CS_FRESH_W] = True
     elif mode == SLIDE_ROCK:

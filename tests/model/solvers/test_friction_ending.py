@@ -207,10 +207,6 @@ def test_a_seated_block_takes_off_whenever_its_floor_falls_faster_than_g():
     locates the landing to a few ulps (and the gap's 1e-12 R), so the two agree to round-off: rel 1e-8 as in
     :func:`test_free_flight_of_a_block_thrown_by_a_falling_floor`. No rotation: ``theta`` is 0 exactly (no torque
     acts, the landings are flat), asserted exact."""
-    from opsrock.solvers.friction import kernel as K
-    from opsrock.solvers.friction.settings import FrictionSettings
-    from opsrock.solvers.friction.solver import case_parameters
-
     v = np.zeros(400)
     v[:10] = v[200:210] = -3.0 * G
     rec = Record(dt=0.01, values=np.zeros(400), vertical=v, name="two drops")
@@ -222,7 +218,41 @@ def test_a_seated_block_takes_off_whenever_its_floor_falls_faster_than_g():
     assert r.contact.time_rocking == 0.0 and r.contact.time_sliding == 0.0
     t_cross = 1.99 + 0.01 / 3.0
     assert r.contact.time_flight == pytest.approx(_relative_flight(0.0, rec) + _relative_flight(t_cross, rec), rel=1e-8)
-    # the modes and their start times, from the kernel's history rows (the result keeps no mode)
+    take_offs, modes = _take_offs(block, rec)
+    assert set(modes) == {REST, FLIGHT}
+    assert take_offs.shape == (2,) and take_offs[0] == 0.0
+    assert take_offs[1] == pytest.approx(t_cross, abs=1e-12)
+
+
+def test_a_block_whose_support_vanishes_as_its_pivot_would_slip_takes_off():
+    """The same floor with a constant horizontal 1e-14 g: at the 0 of ``g + a_v`` that ``a_h`` overcomes the block
+    (``g + a_v`` is 5e-14 there), it starts rocking, and its pivot's friction hold and contact force vanish in the
+    same step; the stick-slip event came first and the block slide-rocked with a negative contact force (the
+    slide-rock contact event needs it positive at a step's start) and overturned at 2.56 s. Now a rocking block whose
+    contact force is gone at its stick-slip event takes off. References as in the test above: the take-off at the
+    crossing to 1e-12 s (``a_h`` moves it by about 1 ulp of the time), the flights' total to rel 1e-8 (1e-14 g
+    horizontal changes no vertical motion). What follows the second landing is not asserted: the block comes down
+    tilted by about 1e-28 rad, a corner landing whose rotation does not vanish with the tilt."""
+    v = np.zeros(400)
+    v[:10] = v[200:210] = -3.0 * G
+    rec = Record(dt=0.01, values=np.full(400, 1e-14 * G), vertical=v, name="two drops", units="m/s2")
+    block = Block(0.4, 2.2, friction=0.5)
+    r = friction.solve(block, rec)
+    t_cross = 1.99 + 0.01 / 3.0
+    assert r.ok and not r.overturned and r.contact.first_mode == "flight"
+    assert r.contact.time_flight == pytest.approx(_relative_flight(0.0, rec) + _relative_flight(t_cross, rec), rel=1e-8)
+    take_offs, _ = _take_offs(block, rec)
+    assert take_offs.shape == (2,) and take_offs[0] == 0.0
+    assert take_offs[1] == pytest.approx(t_cross, abs=1e-12)
+
+
+def _take_offs(block: Block, rec: Record) -> tuple[np.ndarray, np.ndarray]:
+    """The times (s) at which ``block`` leaves the floor under ``rec``, and the modes of its history rows, from the
+    kernel's history (the result keeps no mode)."""
+    from opsrock.solvers.friction import kernel as K
+    from opsrock.solvers.friction.settings import FrictionSettings
+    from opsrock.solvers.friction.solver import case_parameters
+
     params, kvals, gvals = case_parameters(block, rec, FrictionSettings())
     out, hist, state = np.zeros(K.OUT_SIZE), K.history(10_000), K.state()
     status = K.solve_case(params, kvals, gvals, out, hist, state)
@@ -230,7 +260,4 @@ def test_a_seated_block_takes_off_whenever_its_floor_falls_faster_than_g():
         status = K.solve_case(params, kvals, gvals, out, hist, state)
     rows = hist[:int(out[K.OUT_N_HIST])]
     modes = rows[:, K.H_MODE]
-    assert set(modes) == {REST, FLIGHT}
-    take_offs = rows[1:, K.H_TAU][(modes[1:] == FLIGHT) & (modes[:-1] == REST)] / block.p
-    assert take_offs.shape == (2,) and take_offs[0] == 0.0
-    assert take_offs[1] == pytest.approx(t_cross, abs=1e-12)
+    return rows[1:, K.H_TAU][(modes[1:] == FLIGHT) & (modes[:-1] != FLIGHT)] / block.p, modes

@@ -228,29 +228,38 @@ def test_opensees_is_loaded_only_when_first_used():
     assert done.returncode == 0, done.stderr[-2000:]
 
 
-def test_wall_time_counts_the_solve_not_the_compilation(monkeypatch):
-    """``SolverRun.compiled_call`` compiles a kernel this process has not compiled yet outside the wall clock
-    (issue 46: a first 3-D solve reported 345.5 s for 0.1 s of solving). An injected clock: the compilation
-    takes 100 s of it, the call 1 s."""
+class _FakeKernel:
+    """A compiled kernel on an injected clock (``clock["t"]``, s): its compile takes ``compile_s``, a call 1 s."""
+
+    def __init__(self, clock: dict, compile_s: float) -> None:
+        self.signatures, self.clock, self.compile_s = [], clock, compile_s
+
+    def compile(self, sig):
+        self.clock["t"] += self.compile_s
+        self.signatures = [sig]
+
+    def __call__(self, *args):
+        self.clock["t"] += 1.0
+        return sum(args)
+
+
+def _clocked_run(monkeypatch) -> tuple:
+    """A bare :class:`SolverRun` whose wall clock is the injected ``clock`` (starting at 0 s)."""
     import opsrock.solvers.common as common
 
     clock = {"t": 0.0}
     monkeypatch.setattr(common, "_time", types.SimpleNamespace(perf_counter=lambda: clock["t"]))
-
-    class Kernel:
-        signatures: list = []
-
-        def compile(self, sig):
-            clock["t"] += 100.0
-            self.signatures = [sig]
-
-        def __call__(self, *args):
-            clock["t"] += 1.0
-            return sum(args)
-
     run = common.SolverRun.__new__(common.SolverRun)
-    run.t_wall = common._time.perf_counter()
-    kernel = Kernel()
+    run.t_wall = 0.0
+    return run, clock
+
+
+def test_wall_time_counts_the_solve_not_the_compilation(monkeypatch):
+    """``SolverRun.compiled_call`` compiles a kernel this process has not compiled yet outside the wall clock
+    (issue 46: a first 3-D solve reported 345.5 s for 0.1 s of solving). An injected clock: the compilation
+    takes 100 s of it, the call 1 s."""
+    run, clock = _clocked_run(monkeypatch)
+    kernel = _FakeKernel(clock, 100.0)
     assert run.compiled_call(kernel, 1.0, 2.0) == 3.0 and run.elapsed() == 1.0
     assert run.compiled_call(kernel, 1.0, 2.0) == 3.0 and run.elapsed() == 2.0  # compiled once
 
@@ -260,25 +269,7 @@ def test_wall_time_leaves_out_a_first_solves_set_up_and_a_kernel_compiled_mid_so
     set-up (housner_fast's case parameters and forcing, 1.4 s of a first solve, were counted after 2e72f45) are
     left out; a second kernel compiled mid-solve (friction's flight) moves the clock on by its compile alone, so
     the solve's time before it is kept. An injected clock: set-up 7 s, compiles 100 s and 50 s, calls 1 s each."""
-    import opsrock.solvers.common as common
-
-    clock = {"t": 0.0}
-    monkeypatch.setattr(common, "_time", types.SimpleNamespace(perf_counter=lambda: clock["t"]))
-
-    class Kernel:
-        def __init__(self, compile_s):
-            self.signatures, self.compile_s = [], compile_s
-
-        def compile(self, sig):
-            clock["t"] += self.compile_s
-            self.signatures = [sig]
-
-        def __call__(self, *args):
-            clock["t"] += 1.0
-            return sum(args)
-
-    run = common.SolverRun.__new__(common.SolverRun)
-    run.t_wall = common._time.perf_counter()
+    run, clock = _clocked_run(monkeypatch)
     clock["t"] += 7.0  # the set-up, compiling its helpers on their first call
-    assert run.compiled_call(Kernel(100.0), 1.0) == 1.0 and run.elapsed() == 1.0
-    assert run.compiled_call(Kernel(50.0), 2.0) == 2.0 and run.elapsed() == 2.0
+    assert run.compiled_call(_FakeKernel(clock, 100.0), 1.0) == 1.0 and run.elapsed() == 1.0
+    assert run.compiled_call(_FakeKernel(clock, 50.0), 2.0) == 2.0 and run.elapsed() == 2.0

@@ -45,7 +45,7 @@ Outputs
   floor (normal velocity above ``velocity_tol``) or rises above ``contact_gap (g + max|a_v| + max|a_h|)
   dt²``; a down corner with an impulse *slips* if its tangential velocity exceeds ``velocity_tol``. Both
   down: rest or slide; one: rock or slide_rock; none: flight. ``first_mode``, ``time_sliding`` (slide,
-  slide_rock), ``time_rocking`` (rock, slide_rock) follow.
+  slide_rock), ``time_rocking`` (rock, slide_rock) and ``time_flight`` (flight) follow.
 * ``rocked``: ``|theta|`` ever above ``rocked_theta`` (1e-9 rad). ``n_impacts``: steps in which a corner
   that was up receives a normal impulse (a landing; a rocking impact is one). Moreau-Jean resolves the
   accumulation of impacts of a block coming to rest (Zeno) down to the step size, so this count grows

@@ -73,7 +73,8 @@ OUT_FLICKER_STEPS = ST.OUT_COMMON + 17
 #: Slip velocity (m/s) of a block whose run ended while it slid flat on a still floor with too little friction to
 #: stop it within the tail (0: it did not): the friction solver's ending of a slide that cannot stop.
 OUT_SLIP_END = ST.OUT_COMMON + 18
-OUT_SIZE = ST.OUT_COMMON + 19
+OUT_TIME_FLIGHT = ST.OUT_COMMON + 19  # time with no corner down (s)
+OUT_SIZE = ST.OUT_COMMON + 20
 
 # --- the named tuples the kernel passes (QuantEcon's layout: one builder each) ------------------------------
 #: The block, per unit mass: half-width ``b``, height of the centre of mass above the base ``h``, ``R = hypot(b,
@@ -587,13 +588,15 @@ def _book(state, a_h, a_v, bd, lim, wk, out):
 
 @register_jitable
 def _tally(mode, dt, out):
-    """First mode left rest into, time sliding and time rocking."""
+    """First mode left rest into, time sliding, time rocking and time in flight."""
     if mode != MODE_REST and out[OUT_FIRST_MODE] < 0.0:
         out[OUT_FIRST_MODE] = mode
     if mode == MODE_SLIDE or mode == MODE_SLIDE_ROCK:
         out[OUT_TIME_SLIDING] += dt
     if mode == MODE_ROCK or mode == MODE_SLIDE_ROCK:
         out[OUT_TIME_ROCKING] += dt
+    if mode == MODE_FLIGHT:
+        out[OUT_TIME_FLIGHT] += dt
 
 
 @numba.njit(cache=True, inline="always")

@@ -139,7 +139,8 @@ def _result(block: Block, out: np.ndarray, hist: kn.History, record: dict[str, A
         first_mode=MODES[first] if first >= 0 else "rest", time_sliding=float(out[kn.OUT_TIME_SLIDING]),
         time_rocking=float(out[kn.OUT_TIME_ROCKING]), slide_max=float(out[kn.OUT_SLIDE_MAX]),
         slide_residual=float(kn._slide_of(block.b, block.h_cm, out[kn.OUT_X], out[kn.OUT_X + 2])),
-        energy=_energy(block, out, state0), slip_velocity_end=float(out[kn.OUT_SLIP_END]))
+        time_flight=float(out[kn.OUT_TIME_FLIGHT]), energy=_energy(block, out, state0),
+        slip_velocity_end=float(out[kn.OUT_SLIP_END]))
     theta_max = float(out[kn.OUT_THETA_MAX])
     return RockingResult(
         solver=SOLVER_NAME, settings=record, alpha=block.alpha, time=time_s, theta=theta, theta_dot=theta_dot,

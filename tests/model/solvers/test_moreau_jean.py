@@ -447,3 +447,20 @@ def test_result_histories_and_determinism():
     for name in ("time", "theta", "theta_dot", "slide"):
         assert np.array_equal(getattr(a, name), getattr(b, name))
     assert a.contact == b.contact
+
+
+def test_time_in_flight_is_counted():
+    """A seated block under a floor falling at -3 g (samples 0-9 and 200-209, no horizontal motion) flies twice and
+    lands flat: ``time_flight`` is the steps with no corner down (it was left at 0 before). Reference: the event-driven
+    ``friction`` solver on the same record, whose flights match their closed form to rel 1e-8
+    (test_friction_ending.py). Tolerance 4 steps: a step is in flight or not as a whole, and each take-off and landing
+    is located to within the step the contact rule needs to see it (measured: 1.05 steps short in all)."""
+    v = np.zeros(400)
+    v[:10] = v[200:210] = -3.0 * G
+    rec = Record(dt=0.01, values=np.zeros(400), vertical=v, name="two drops")
+    block = Block(0.4, 2.2, friction=0.5, restitution_factor=1.0)
+    r = mj.solve(block, rec)
+    ref = friction.solve(Block(0.4, 2.2, friction=0.5), rec).contact.time_flight
+    assert r.ok and r.contact.first_mode == "flight" and r.n_impacts == 2 and r.theta_max == 0.0
+    assert r.contact.time_rocking == 0.0 and r.contact.time_sliding == 0.0
+    assert r.contact.time_flight == pytest.approx(ref, abs=4.0 * r.settings["dtau"] / block.p)

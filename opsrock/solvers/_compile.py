@@ -77,7 +77,7 @@ def fewer_collections() -> Iterator[None]:
 
 #: The kernels whose compile start is to be announced: ``id(kernel) -> (kernel, solver, part)``
 #: (:func:`announce_compile`).
-_WATCHED: dict[int, tuple[Any, str]] = {}
+_WATCHED: dict[int, tuple[Any, str, str | None]] = {}
 #: The kernels found compiled or loaded in this process (never announced again).
 _READY: set[Any] = set()
 #: The one listener of numba's ``"numba:compile"`` event, registered on the first announcement.

@@ -5,8 +5,8 @@
 
 What is kept (one gzipped CSV per table in DIR, every float at full precision):
 
-* ``cases.csv`` of three campaigns, every column but ``wall_time_s`` (the one measured column), values only (its
-  ``Units`` row left out):
+* ``cases.csv`` of three campaigns, every column but ``wall_time_s`` and ``cpu_time_s`` (the measured ones), values
+  only (its ``Units`` row left out):
   the paper scene with ``housner`` and with ``opensees``, the FEMA P695 IDA scene with ``housner_fast``;
 * the quick outputs of every validation case (``opsrock validate --quick --out DIR``): each CSV
   without its timing columns and rows (wall and CPU seconds, rates per second, and the

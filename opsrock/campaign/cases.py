@@ -24,10 +24,12 @@ from opsrock.result import RockingResult
 #: Name of the assembled table in a campaign's folder.
 CASES_FILE: str = "cases.csv"
 
-#: The solver's columns of ``cases.csv``, after the scene's (units: rad; ``wall_time_s`` in s).
+#: The solver's columns of ``cases.csv``, after the scene's (units: rad; ``wall_time_s`` and ``cpu_time_s`` in s:
+#: the case's solve, measured in the process that solved it, its wall-clock time and its thread's CPU time; the
+#: CPU time is what a machine's load does not stretch, so cost ratios are taken on it).
 RESULT_COLUMNS: tuple[str, ...] = (
     "theta_max", "theta_max_over_alpha", "overturned", "rocked", "status", "reason", "verdict", "solver",
-    "wall_time_s",
+    "wall_time_s", "cpu_time_s",
 )  # fmt: skip
 
 #: Columns a scene solved with friction adds (solvers of the ``friction`` model): the block's friction
@@ -100,7 +102,7 @@ UNITS: dict[str, str] = {
     **dict.fromkeys(IM_COLUMNS, "-"),
     # the solver's (RESULT_COLUMNS)
     "theta_max": "rad", "theta_max_over_alpha": "-", "overturned": "", "rocked": "", "status": "", "reason": "",
-    "verdict": "", "solver": "", "wall_time_s": "s",
+    "verdict": "", "solver": "", "wall_time_s": "s", "cpu_time_s": "s",
     # with friction (CONTACT_COLUMNS)
     "friction": "-", "friction_kinetic": "-", "pfa_vertical": "m/s2", "response": "", "first_mode": "",
     "time_sliding": "s", "time_rocking": "s", "time_flight": "s", "slide_max": "m", "slide_residual": "m",
@@ -129,7 +131,7 @@ def units_of(columns: Sequence[str], measure: str = "", extra: Mapping[str, str]
 #: Columns that differ between two runs of the same campaign: measured, not computed. Two
 #: ``cases.csv`` of the same scene and settings agree in every other column, whatever the
 #: executor, the worker count and the interruptions.
-IDENTITY_EXCLUDED: tuple[str, ...] = ("wall_time_s",)
+IDENTITY_EXCLUDED: tuple[str, ...] = ("wall_time_s", "cpu_time_s")
 
 #: Longest failure reason kept (characters); a reason is also folded onto one line.
 MAX_REASON: int = 500
@@ -298,12 +300,15 @@ def reason_code(reason: str | None) -> str:
     return OTHER_REASON
 
 
-def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math.nan) -> dict[str, Any]:
-    """A store row for a case that produced no result (status ``"failed"``, verdict ``"failed"``)."""
+def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math.nan,
+               cpu_time_s: float = math.nan) -> dict[str, Any]:
+    """A store row for a case that produced no result (status ``"failed"``, verdict ``"failed"``); its wall and CPU
+    times (s) until it failed, NaN if not measured (its worker died)."""
     return {
         "case_id": case_id, "status": "failed", "reason": _one_line(reason) or "failed without a reason",
         "verdict": "failed", "theta_max": math.nan, "theta_max_over_alpha": math.nan, "overturned": False,
-        "rocked": False, "solver": solver, "wall_time_s": wall_time_s, "n_steps": None, "n_impacts": None,
+        "rocked": False, "solver": solver, "wall_time_s": wall_time_s, "cpu_time_s": cpu_time_s, "n_steps": None,
+        "n_impacts": None,
         "response": "failed", "first_mode": None, "time_sliding": math.nan, "time_rocking": math.nan,
         "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan,
         "tilt_max": math.nan, "twist_max": math.nan, "overturned_over": None, "time_rim": math.nan,
@@ -311,8 +316,8 @@ def failed_row(case_id: str, solver: str, reason: str, wall_time_s: float = math
     }
 
 
-def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[str, Any]:
-    """A store row from a solver's result."""
+def result_row(case_id: str, result: RockingResult, wall_time_s: float, cpu_time_s: float = math.nan) -> dict[str, Any]:
+    """A store row from a solver's result, with the wall and CPU times (s) its solve took (:data:`RESULT_COLUMNS`)."""
     s = result.summary()
     contact = {"response": None, "first_mode": None, "time_sliding": math.nan, "time_rocking": math.nan,
                "time_flight": math.nan, "slide_max": math.nan, "slide_residual": math.nan}
@@ -329,7 +334,7 @@ def result_row(case_id: str, result: RockingResult, wall_time_s: float) -> dict[
         "case_id": case_id, "status": s["status"], "reason": _one_line(s["reason"]), "verdict": s["verdict"],
         "theta_max": s["theta_max"], "theta_max_over_alpha": s["theta_max_over_alpha"],
         "overturned": s["overturned"], "rocked": s["rocked"], "solver": s["solver"], "wall_time_s": wall_time_s,
-        "n_steps": s["n_steps"], "n_impacts": s["n_impacts"], **contact, **in_plan,
+        "cpu_time_s": cpu_time_s, "n_steps": s["n_steps"], "n_impacts": s["n_impacts"], **contact, **in_plan,
     }
 
 

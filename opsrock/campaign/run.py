@@ -19,7 +19,7 @@ solver as another on the selected case ids). A stage:
 So an interrupted run (Ctrl-C, ``kill -9``, a dead worker, a power cut) loses at most the
 batches being computed, and re-running the same command computes only the missing cases and
 ends with the same ``cases.csv`` as an uninterrupted run, column for column, except
-``wall_time_s``, which is measured (:data:`~opsrock.campaign.cases.IDENTITY_EXCLUDED`).
+``wall_time_s`` and ``cpu_time_s``, which are measured (:data:`~opsrock.campaign.cases.IDENTITY_EXCLUDED`).
 
 A case whose solver raises, runs past its budget, or returns ``status="failed"``, is stored as failed with
 its reason: a result, never given a verdict other than ``"failed"``, and reused by a resume (use
@@ -173,20 +173,29 @@ def solve_batch(
 
 
 def _solve_one(case, fn: Callable, solver: str, settings: Mapping[str, Any], case_timeout: float | None) -> dict:
-    t0 = time.perf_counter()
+    """The stored row of ``case`` solved by ``fn`` in this process, with the wall and CPU times (s) of the call
+    (the CPU time of this thread: the case's own, whatever else the machine runs)."""
+    t0, c0 = time.perf_counter(), time.thread_time()
     if case.problem:
-        return failed_row(case.case_id, solver, case.problem, 0.0)
+        return failed_row(case.case_id, solver, case.problem, 0.0, 0.0)
     try:
         with time_limit(case_timeout):
             result = fn(case.block, case.excitation, solver=solver, **settings)
         if not isinstance(result, RockingResult):
             raise InputTypeError(f"solver returned {type(result).__name__}, not a RockingResult")
-        return result_row(case.case_id, result, time.perf_counter() - t0)
+        return result_row(case.case_id, result, *_spent(t0, c0))
     except CaseTimeout as exc:
         reason = str(exc) or f"timeout: no answer within the case budget of {case_timeout:g} s"
-        return failed_row(case.case_id, solver, reason, time.perf_counter() - t0)
+        return failed_row(case.case_id, solver, reason, *_spent(t0, c0))
     except Exception as exc:  # noqa: BLE001  (a bad case must not stop the campaign)
-        return failed_row(case.case_id, solver, f"{type(exc).__name__}: {exc}", time.perf_counter() - t0)
+        return failed_row(case.case_id, solver, f"{type(exc).__name__}: {exc}", *_spent(t0, c0))
+
+
+def _spent(t0: float, c0: float) -> tuple[float, float]:
+    """Wall and thread CPU time (s) since ``time.perf_counter() == t0`` and ``time.thread_time() == c0`` (the CPU
+    time read first: it can then never exceed the wall time)."""
+    c1 = time.thread_time()
+    return time.perf_counter() - t0, c1 - c0
 
 
 def lost_row(case, reason: str, *, solver: str) -> dict[str, Any]:

@@ -62,11 +62,11 @@ MANIFEST_FILE: str = "manifest.json"
 LOCK_FILE: str = ".lock"
 
 #: Version of the table layout below. A version-1 store (before the contact columns), version-2 store (before
-#: the plan columns) or version-3 store (before a cylinder's ``time_rim`` and ``time_rolling``) is migrated in
-#: place when opened (the columns are added, empty: its cases were solved without friction, or in a plane, or
-#: their times on the rim were not recorded: NaN, and ``--force`` computes them again to record them); a store of
-#: a newer version is refused.
-SCHEMA_VERSION: int = 4
+#: the plan columns), version-3 store (before a cylinder's ``time_rim`` and ``time_rolling``) or version-4 store
+#: (before ``cpu_time_s``) is migrated in place when opened (the columns are added, empty: its cases were solved
+#: without friction, or in a plane, or their times on the rim or their CPU times were not recorded: NaN, and
+#: ``--force`` computes them again to record them); a store of a newer version is refused.
+SCHEMA_VERSION: int = 5
 
 #: Columns stored per case (besides ``case_id``), with their SQLite types. Inputs (block,
 #: pulse, intensity measures) are not stored: they follow from the scene, whose digest the
@@ -81,6 +81,7 @@ RESULT_COLUMNS: dict[str, str] = {
     "rocked": "INTEGER NOT NULL",
     "solver": "TEXT NOT NULL",
     "wall_time_s": "REAL",  # NULL = NaN: not measured (the worker died)
+    "cpu_time_s": "REAL",  # NULL = NaN: not measured (the worker died, or a store of schema version 4 or older)
     "n_steps": "INTEGER",
     "n_impacts": "INTEGER",
     # what a block with friction did (solvers of the friction model; NULL for the others)
@@ -110,8 +111,11 @@ _ADDED_IN_3: tuple[str, ...] = ("tilt_max", "twist_max", "overturned_over")
 #: The columns schema version 4 added to version 3.
 _ADDED_IN_4: tuple[str, ...] = ("time_rim", "time_rolling")
 
+#: The columns schema version 5 added to version 4.
+_ADDED_IN_5: tuple[str, ...] = ("cpu_time_s",)
+
 #: The columns each schema version added, by version.
-_ADDED: dict[int, tuple[str, ...]] = {2: _ADDED_IN_2, 3: _ADDED_IN_3, 4: _ADDED_IN_4}
+_ADDED: dict[int, tuple[str, ...]] = {2: _ADDED_IN_2, 3: _ADDED_IN_3, 4: _ADDED_IN_4, 5: _ADDED_IN_5}
 
 
 def _columns_of(version: int) -> dict[str, str]:
@@ -147,8 +151,8 @@ def _lost_sql(table: str = "") -> str:
 
 
 _BOOL_COLUMNS = ("overturned", "rocked")
-_FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s", "time_sliding", "time_rocking", "time_flight",
-                  "slide_max", "slide_residual", "tilt_max", "twist_max", "time_rim", "time_rolling")
+_FLOAT_COLUMNS = ("theta_max", "theta_max_over_alpha", "wall_time_s", "cpu_time_s", "time_sliding", "time_rocking",
+                  "time_flight", "slide_max", "slide_residual", "tilt_max", "twist_max", "time_rim", "time_rolling")
 
 
 class ResultStore:

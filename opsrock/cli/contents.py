@@ -209,7 +209,8 @@ def _both(args: argparse.Namespace) -> int:
     h = res.summary
     print(f"{command}: {h['n_cases']} cases ({h['n_failed']} failed) in {h['wall_time_s']:.1f} s; "
           f"factor on max(PFV_1, PFV_2) implied by 3-D: median {h['factor_implied_median']:.3g} (pelicun: 1.2); "
-          f"3-D case cost {h['cost_ratio_3d']:.3g} x planar; see {res.report}")
+          f"3-D case cost {h['cost_ratio_3d_cpu']:.3g} x planar (CPU; {h['cost_ratio_3d']:.3g} x in wall time); "
+          f"see {res.report}")
     return 0
 
 

@@ -69,6 +69,12 @@ COLUMNS: dict[str, Column] = {
     "median_s": Column("s", "the median wall time of the solver's cases in this run"),
     "total_s": Column("s", "the total wall time of the solver's cases in this run"),
     "ratio_to_planar": Column("-", "median_s / the fastest planar solver's median_s"),
+    "cpu_mean_s": Column("s", "the mean CPU time of the solver's cases in this run (the solving thread's; empty for "
+                              "cases read from a store written before opsrock measured it)"),
+    "cpu_median_s": Column("s", "the median CPU time of the solver's cases in this run"),
+    "cpu_total_s": Column("s", "the total CPU time of the solver's cases in this run"),
+    "cpu_ratio_to_planar": Column("-", "cpu_median_s / the fastest planar solver's cpu_median_s: the cost ratio a "
+                                       "machine's load does not stretch"),
 }  # fmt: skip
 
 _SHARED = sorted((set(COLUMNS) & set(STUDY_COLUMNS)) | (set(COLUMNS) & set(FEMA_COLUMNS)))

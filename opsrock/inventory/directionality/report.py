@@ -158,7 +158,8 @@ def write_report(path: Path, inputs: Any) -> Path:
         f"{d.tolerance:.0%} beside the median half-width of the planar medians' 95 % intervals, "
         f"{_fmt(h['planar_ci_halfwidth_median'])}",
         f"* share of 3-D overturnings over a corner: {_fmt(h['share_corner'])}",
-        f"* cost: a 3-D case took {_fmt(h['cost_ratio_3d'])} times a planar case's wall time (this run)"))
+        f"* cost: a 3-D case took {_fmt(h['cost_ratio_3d_cpu'])} times a planar case's CPU time and "
+        f"{_fmt(h['cost_ratio_3d'])} times its wall time (medians, this run)"))
     return write_sections(path, "Directionality: contents under two horizontal components, in three dimensions", [
         head, headline,
         Section("Medians, orientations pooled (m/s)", (markdown_table(pooled),)),

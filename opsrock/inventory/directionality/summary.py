@@ -143,19 +143,27 @@ def mechanisms(cases: pd.DataFrame) -> pd.DataFrame:
 
 
 def cost_table(cases: pd.DataFrame) -> pd.DataFrame:
-    """Wall time per case (s) of each campaign's solver (its finished and failed cases), measured in this run, and
-    the ratio of its median to the fastest planar solver's (the median: the first case a worker solves also
-    compiles the solver's kernel, when the compiled cache is cold, which the mean would count)."""
+    """Time per case (s) of each campaign's solver (its finished and failed cases), measured in this run: wall time
+    (``*_s``) and the solving thread's CPU time (``cpu_*_s``: what a loaded machine does not stretch; NaN for cases
+    read from a store written before opsrock measured it), and the ratio of each median to the fastest planar
+    solver's (the median: the first case a worker solves also compiles the solver's kernel, when the compiled
+    cache is cold, which the mean would count)."""
     rows = []
     for (model, solver), g in cases.groupby(["model", "solver_name"], sort=True):
-        t = g["wall_time_s"].astype(float)
         failed = count_failed(g)  # n_cases: the finished ones, as in every table (opsrock.inventory.columns)
-        rows.append({"model": model, "solver": solver, "n_cases": len(g) - failed, "n_failed": failed,
-                     "mean_s": float(t.mean()), "median_s": float(t.median()), "total_s": float(t.sum())})
+        row = {"model": model, "solver": solver, "n_cases": len(g) - failed, "n_failed": failed}
+        for prefix, column in (("", "wall_time_s"), ("cpu_", "cpu_time_s")):
+            t = g[column].astype(float) if column in g else pd.Series(math.nan, index=g.index)
+            row.update({f"{prefix}mean_s": float(t.mean()), f"{prefix}median_s": float(t.median()),
+                        f"{prefix}total_s": float(t.sum(min_count=1))})
+        rows.append(row)
     table = pd.DataFrame(rows)
-    planar = table.loc[table["model"] == "planar", "median_s"]
-    table["ratio_to_planar"] = table["median_s"] / (float(planar.min()) if len(planar) else math.nan)
-    return table
+    for prefix in ("", "cpu_"):
+        planar = table.loc[table["model"] == "planar", f"{prefix}median_s"]
+        table[f"{prefix}ratio_to_planar"] = table[f"{prefix}median_s"] / (float(planar.min()) if len(planar)
+                                                                          else math.nan)
+    return table[["model", "solver", "n_cases", "n_failed", "mean_s", "median_s", "total_s", "ratio_to_planar",
+                  "cpu_mean_s", "cpu_median_s", "cpu_total_s", "cpu_ratio_to_planar"]]
 
 
 def demand_table(demands: pd.DataFrame) -> pd.DataFrame:
@@ -191,6 +199,7 @@ def headline(tables: dict[str, pd.DataFrame], cases: pd.DataFrame, timings: dict
         "n_computed": int(timings.get("n_computed", 0)), "wall_time_s": float(timings.get("total_s", math.nan)),
         "timings": {k: float(v) for k, v in timings.items() if k.endswith("_s")},
         "cost_ratio_3d": float(three["ratio_to_planar"].max()) if len(three) else math.nan,
+        "cost_ratio_3d_cpu": float(three["cpu_ratio_to_planar"].max()) if len(three) else math.nan,
         "factor_implied_median": _median(pooled["factor_implied"]),
         "factor_implied_range": _range(pooled["factor_implied"]),
         "ratio_weak_range": _range(pooled["ratio_weak"]),

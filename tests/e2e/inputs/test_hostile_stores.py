@@ -20,6 +20,8 @@ from collections import Counter
 from pathlib import Path
 
 import pytest
+
+from opsrock.campaign.store import SCHEMA_VERSION
 from _hostile import Case, sweep
 from _support import BLOCKS, opsrock_command, run_opsrock
 
@@ -98,8 +100,8 @@ DAMAGE: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
                      ("schema_version = '2.5'",)),
     "schema_zero": (("UPDATE manifest SET value = '0' WHERE key = 'schema_version'",), ("schema_version = '0'",)),
     "schema_missing": (("DELETE FROM manifest WHERE key = 'schema_version'",), ("no schema_version",)),
-    "schema_newer": (("UPDATE manifest SET value = '5' WHERE key = 'schema_version'",),
-                     ("schema version 5", "newer opsrock")),
+    "schema_newer": ((f"UPDATE manifest SET value = '{SCHEMA_VERSION + 1}' WHERE key = 'schema_version'",),
+                     (f"schema version {SCHEMA_VERSION + 1}", "newer opsrock")),
     "digest_not_json": (("UPDATE manifest SET value = 'abc' WHERE key = 'digest'",),
                         ("manifest digest = 'abc'", "not JSON")),
     "digest_number": (("UPDATE manifest SET value = '42' WHERE key = 'digest'",), ("manifest digest = 42",)),

@@ -12,7 +12,7 @@ import pytest
 
 from opsrock.campaign import run_campaign
 from opsrock.campaign.advice import sliding_warnings
-from opsrock.campaign.cases import CONTACT_COLUMNS
+from opsrock.campaign.cases import CONTACT_COLUMNS, IDENTITY_EXCLUDED
 from opsrock.campaign.scene import load_scene
 from opsrock.campaign.store import STORE_FILE, ResultStore
 from opsrock.errors import SceneError
@@ -85,8 +85,8 @@ def test_friction_scene_resumes_to_the_same_table(tmp_path):
     db.close()
     again = run_campaign(scene, tmp_path / "a", workers=1, progress=False)
     assert again.n_reused == 6 and again.n_computed == 6
-    a = [{k: v for k, v in r.items() if k != "wall_time_s"} for r in _rows(first.cases_csv)]
-    b = [{k: v for k, v in r.items() if k != "wall_time_s"} for r in _rows(again.cases_csv)]
+    a = [{k: v for k, v in r.items() if k not in IDENTITY_EXCLUDED} for r in _rows(first.cases_csv)]
+    b = [{k: v for k, v in r.items() if k not in IDENTITY_EXCLUDED} for r in _rows(again.cases_csv)]
     assert a == b
 
 

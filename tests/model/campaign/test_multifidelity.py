@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 from opsrock.campaign import CampaignOptions, run_campaign
+from opsrock.campaign.cases import IDENTITY_EXCLUDED
 from opsrock.campaign.multifidelity import (
     EVIDENCE,
     EscalationRule,
@@ -130,7 +131,7 @@ def read_csv(path: Path) -> list[dict[str, str]]:
 
 
 def without_time(rows: list[dict[str, str]]) -> list[dict[str, str]]:
-    return [{k: v for k, v in r.items() if k != "wall_time_s"} for r in rows]
+    return [{k: v for k, v in r.items() if k not in IDENTITY_EXCLUDED} for r in rows]
 
 
 # --- the rule ------------------------------------------------------------------------------------
@@ -241,8 +242,8 @@ def test_every_case_has_one_row_from_the_right_solver(mf, full, scene_path):
         reason = escalation_reason(summary.rule, screen[r["case_id"]])
         assert r["source"] == ("escalated" if reason else "audit" if r["case_id"] in audit else "screen")
         ref = full[r["case_id"]] if r["source"] != "screen" else screen[r["case_id"]]
-        assert {k: v for k, v in r.items() if k not in ("wall_time_s", "source")} == \
-               {k: v for k, v in ref.items() if k != "wall_time_s"}
+        assert {k: v for k, v in r.items() if k not in (*IDENTITY_EXCLUDED, "source")} == \
+               {k: v for k, v in ref.items() if k not in IDENTITY_EXCLUDED}
         assert r["solver"] == ("housner_fast" if r["source"] == "screen" else "housner")
     by_source = {s: sum(r["source"] == s for r in rows) for s in ("screen", "escalated", "audit")}
     assert by_source == {"screen": summary.n_screened, "escalated": summary.n_escalated, "audit": summary.n_audited}

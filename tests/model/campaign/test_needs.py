@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from opsrock.campaign import run_campaign
+from opsrock.campaign.cases import IDENTITY_EXCLUDED
 from opsrock.campaign.needs import Needs, check, choose, evidence
 from opsrock.campaign.scene import load_scene
 from opsrock.errors import InputError, SceneError
@@ -157,14 +158,14 @@ def test_run_campaign_and_opsrock_run_take_the_same_multifidelity_workflow(tmp_p
     assert "screened with housner_fast" in capsys.readouterr().out
 
     def stored(folder: Path) -> dict:
-        return {k: {c: v for c, v in row.items() if c != "wall_time_s"} for k, row in read_rows(folder).items()}
+        return {k: {c: v for c, v in row.items() if c not in IDENTITY_EXCLUDED} for k, row in read_rows(folder).items()}
 
     for stage in ("screen", "escalated"):
         assert stored(tmp_path / "lib" / stage) == stored(tmp_path / "cli" / stage), stage
     assert len(stored(tmp_path / "lib" / "screen")) == lib.n_cases == 2
 
     def table(folder: Path) -> list[dict]:
-        return [{c: v for c, v in row.items() if c != "wall_time_s"} for row in case_rows(folder / "cases.csv")]
+        return [{c: v for c, v in row.items() if c not in IDENTITY_EXCLUDED} for row in case_rows(folder / "cases.csv")]
 
     assert table(tmp_path / "lib") == table(tmp_path / "cli")
     # the expensive solver's store holds the selected cases only, the ones the table takes from it

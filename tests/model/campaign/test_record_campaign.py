@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from opsrock.campaign import run_campaign
+from opsrock.campaign.cases import IDENTITY_EXCLUDED
 from opsrock.campaign.cases import RECORD_COLUMNS as RECORD_CASES_COLUMNS
 from opsrock.campaign.scene import SceneError, load_scene
 from _support import ROOT, BLOCKS, OPSROCK, case_rows
@@ -87,7 +88,7 @@ def test_resume_computes_only_missing_record_cases_and_gives_the_same_table(tmp_
     (out / "cases.csv").unlink()
     s = run_campaign(scene, out, workers=1, progress=False)
     assert (s.n_computed, s.n_reused) == (8, 8)
-    drop = lambda rows: [{k: v for k, v in r.items() if k != "wall_time_s"} for r in rows]  # noqa: E731
+    drop = lambda rows: [{k: v for k, v in r.items() if k not in IDENTITY_EXCLUDED} for r in rows]  # noqa: E731
     assert drop(read_csv(out / "cases.csv")) == drop(first)
 
 

@@ -86,6 +86,19 @@ def test_cost_ratio_is_of_the_medians():
     failed = cost_table(cases.assign(status=["ok", "failed", "ok", "ok", "ok", "ok"])).set_index("solver")
     assert failed.loc["rigid3d", ["n_cases", "n_failed"]].tolist() == [2, 1]
     assert failed.loc["rigid3d", "median_s"] == 0.5
+    # a store written before the CPU time was measured: its columns are empty, the wall times' as before
+    assert table["cpu_median_s"].isna().all() and table["cpu_ratio_to_planar"].isna().all()
+
+
+def test_cost_ratio_on_cpu_time_is_of_its_own_medians():
+    # wall and CPU times are ranked apart: the CPU ratio is of the CPU medians, whatever the wall times say
+    cases = pd.DataFrame({"model": ["3d"] * 3 + ["planar"] * 3, "solver_name": ["rigid3d"] * 3 + ["housner_fast"] * 3,
+                          "wall_time_s": [60.0, 0.5, 0.4, 1.0, 0.002, 0.001],
+                          "cpu_time_s": [55.0, 0.3, 0.2, 0.9, 0.001, 0.0015], "status": ["ok"] * 6})
+    table = cost_table(cases).set_index("solver")
+    assert table.loc["rigid3d", "cpu_ratio_to_planar"] == pytest.approx(0.3 / 0.0015, rel=1e-12)
+    assert table.loc["rigid3d", "ratio_to_planar"] == pytest.approx(0.5 / 0.002, rel=1e-12)
+    assert table.loc["rigid3d", "cpu_total_s"] == pytest.approx(55.5, rel=1e-12)
 
 
 @pytest.mark.parametrize("weak", ["x", "y"])

@@ -25,6 +25,7 @@ def row(case_id: str, theta_max: float = 0.1, **over) -> dict:
         "rocked": True,
         "solver": "fake",
         "wall_time_s": 0.01,
+        "cpu_time_s": 0.008,
         "n_steps": 10,
         "n_impacts": 2,
         # the contact columns, empty: a solver without friction
@@ -177,7 +178,7 @@ def _version_1_store(path):
     db = sqlite3.connect(path)
     for name in ("response", "first_mode", "time_sliding", "time_rocking", "time_flight", "slide_max",
                  "slide_residual", "tilt_max", "twist_max", "overturned_over", "time_rim",
-                 "time_rolling"):  # version 2's, 3's and 4's columns
+                 "time_rolling", "cpu_time_s"):  # version 2's, 3's, 4's and 5's columns
         db.execute(f"ALTER TABLE results DROP COLUMN {name}")
     db.execute("UPDATE manifest SET value = '1' WHERE key = 'schema_version'")
     db.commit()
@@ -203,7 +204,7 @@ def test_a_version_3_store_reads_its_cases_with_the_times_on_the_rim_unrecorded(
     with ResultStore(path) as store:
         store.append([{**row("old", 0.5), "tilt_max": 0.1, "overturned_over": "rim"}])
     db = sqlite3.connect(path)
-    for name in ("time_rim", "time_rolling"):
+    for name in ("time_rim", "time_rolling", "cpu_time_s"):  # version 4's and 5's columns
         db.execute(f"ALTER TABLE results DROP COLUMN {name}")
     db.execute("UPDATE manifest SET value = '3' WHERE key = 'schema_version'")
     db.commit()
@@ -214,6 +215,24 @@ def test_a_version_3_store_reads_its_cases_with_the_times_on_the_rim_unrecorded(
         assert math.isnan(old["time_rim"]) and math.isnan(old["time_rolling"])
         store.append([{**row("new", 0.25), "time_rim": 1.5, "time_rolling": 0.75}])
         assert (store.rows()["new"]["time_rim"], store.rows()["new"]["time_rolling"]) == (1.5, 0.75)
+
+
+def test_a_version_4_store_reads_its_cases_with_their_cpu_times_unrecorded(tmp_path):
+    """Schema version 5 stores each case's CPU time; a version-4 store (written before it was measured) is migrated:
+    its cases read as they were, their CPU time NaN (not recorded), and new rows keep theirs."""
+    path = tmp_path / STORE_FILE
+    with ResultStore(path) as store:
+        store.append([row("old", 0.5)])
+    db = sqlite3.connect(path)
+    db.execute("ALTER TABLE results DROP COLUMN cpu_time_s")
+    db.execute("UPDATE manifest SET value = '4' WHERE key = 'schema_version'")
+    db.commit()
+    db.close()
+    with ResultStore(path) as store:
+        old = store.rows()["old"]
+        assert (old["theta_max"], old["wall_time_s"]) == (0.5, 0.01) and math.isnan(old["cpu_time_s"])
+        store.append([row("new", 0.25, cpu_time_s=0.125)])
+        assert store.rows()["new"]["cpu_time_s"] == 0.125
 
 
 @pytest.mark.parametrize(("statement", "words"), [

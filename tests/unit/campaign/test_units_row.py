@@ -40,10 +40,10 @@ def test_a_written_cases_csv_has_the_units_row_and_is_read_as_an_old_one_is(tmp_
     assert header == list(COLUMNS) and lines[1].startswith("Units,")
     unit = dict(zip(header, units))
     assert {c: unit[c] for c in ("pfa", "pfa_vertical", "pfv", "pfd", "width", "alpha", "p", "T_m", "wall_time_s",
-                                 "slide_max", "tilt_max", "azimuth", "distance_km", "level_value", "IM3", "e_R",
+                                 "cpu_time_s", "slide_max", "tilt_max", "azimuth", "distance_km", "level_value", "IM3", "e_R",
                                  "floor", "status", "overturned")} == {
         "pfa": "m/s2", "pfa_vertical": "m/s2", "pfv": "m/s", "pfd": "m", "width": "m", "alpha": "rad", "p": "rad/s",
-        "T_m": "s", "wall_time_s": "s", "slide_max": "m", "tilt_max": "rad", "azimuth": "deg", "distance_km": "km",
+        "T_m": "s", "wall_time_s": "s", "cpu_time_s": "s", "slide_max": "m", "tilt_max": "rad", "azimuth": "deg", "distance_km": "km",
         "level_value": "g", "IM3": "-", "e_R": "-", "floor": "", "status": "", "overturned": ""}
     write_cases_csv(tmp_path / "ratio.csv", [_row(0)], COLUMNS, units_of(COLUMNS, "pfa_ratio"))
     assert dict(zip(*read_units(tmp_path / "ratio.csv")))["level_value"] == "-"

@@ -246,15 +246,16 @@ def _smooth_step(model, floor, state, k, phase, work, corners, trial):
 
 
 @numba.njit(cache=True, inline='always')
-def _mj_step(model, state, acc, ws, end, trial, corners, phase):
-    """One Moreau-Jean step (:func:`.step._step`, the corners down tried first) under the floor accelerations
-    ``acc``, its bookkeeping (:func:`.step._book`) and the phase counts after it (:func:`_next_phase`). Returns
-    False once NSGS has failed ``nsgs.fail_steps`` steps in a row (the run fails)."""
-    converged = _count_sweeps(_step(model, state, acc, model.numerics.dt, ws, trial, corners.touch), model.nsgs,
-                              trial.out)
-    a = end.a
-    a[0], a[1], a[2] = acc
-    impact = _book(state, trial, ws, end, corners, model)
+def _mj_step(model, state, sweeps, cw, end, trial, corners, phase):
+    """After a Moreau-Jean step (:func:`.step._step`, the corners down tried first; ``sweeps`` its contact solver's
+    count) under the floor accelerations ``end.a``: its bookkeeping (:func:`.step._book`) and the phase counts after
+    it (:func:`_next_phase`). Returns False once NSGS has failed ``nsgs.fail_steps`` steps in a row (the run fails).
+    ``run`` calls the step itself and passes the contact arrays ``cw`` (:class:`.workspace.Contact`) only: numba
+    counts a reference to every array of an inline function's parameters too (an atomic increment and decrement
+    each), and the whole step workspace (19 arrays) passed here counted 11 more of each a step
+    (issue 43)."""
+    converged = _count_sweeps(sweeps, model.nsgs, trial.out)
+    impact = _book(state, trial, cw, end, corners, model)
     if not converged:
         phase[PH_UNCONVERGED] += 1
         if phase[PH_UNCONVERGED] > model.nsgs.fail_steps:
@@ -308,7 +309,8 @@ def _start(model, state, ws, corners, hist, out):
 def _track(body, state, n_down, tilt_sub, r1, phase, out):
     """After a step to ``state`` (``r1`` its arms, ``n_down`` corners down, ``tilt_sub`` the largest tilt inside a
     smooth step): the peaks of tilt, slide and twist into ``out``, the corners down last and how the block would
-    overturn into ``phase``. Returns ``(signed tilt, lean direction (rad))``."""
+    overturn into ``phase``. Returns ``(signed tilt, lean x, lean y)``: the plan components of the body's vertical
+    axis (their direction, an arctangent, is only wanted if the block overturns)."""
     if n_down > 0:
         phase[PH_LAST_DOWN] = n_down
     tilt, theta, lx, ly = _tilt(state, body.weak_y)
@@ -320,7 +322,7 @@ def _track(body, state, n_down, tilt_sub, r1, phase, out):
     if now_out and not phase[PH_OUTSIDE]:
         phase[PH_OVER_KIND] = 1 if phase[PH_LAST_DOWN] >= 2 else 2
     phase[PH_OUTSIDE] = now_out
-    return theta, math.atan2(ly, lx)
+    return theta, lx, ly
 
 
 @register_jitable
@@ -364,10 +366,9 @@ def _finish(model, state, k, status, corners, hist, out):
 
 @numba.njit(cache=True)
 def run(model, floor, state, hist, out):
-    """Integrate one case; fills ``out`` (layout ``OUT_*``) and the history ``hist`` (rows ``H_*``);
-    returns the status. Each step: the rest skip if the block is seated and the floor's load carried; else a
-    smooth step of the phase the block is in (``phase``, slots ``PH_*``), or a Moreau-Jean step; then the
-    bookkeeping of the new state (peaks, history, overturning, the ending rules, seating).
+    """Integrate one case into ``out`` (layout ``OUT_*``) and ``hist`` (rows ``H_*``); returns the status. Each step:
+    the rest skip if the block is seated and the floor's load carried; else a smooth step of the phase the block is
+    in (``phase``, slots ``PH_*``) or a Moreau-Jean step; then the new state's bookkeeping (peaks, history, the end).
 
     Parameters
     ----------
@@ -414,8 +415,9 @@ def run(model, floor, state, hist, out):
         n, tilt_sub = _smooth_step(model, floor, state, k, phase, work, corners, trial) if _smooth_due(model, phase) \
             else (0, 0.0)
         if n <= 0:
-            n = 1
-            if not _mj_step(model, state, acc, ws, end, trial, corners, phase):
+            n, end.a[0], end.a[1], end.a[2] = 1, acc[0], acc[1], acc[2]
+            if not _mj_step(model, state, _step(model, state, acc, dt, ws, trial, corners.touch), ws.contact, end, trial,
+                            corners, phase):
                 status, going = STATUS_CONTACT, False
                 continue
         _copy(state, trial.state)
@@ -425,11 +427,11 @@ def run(model, floor, state, hist, out):
             continue
         mode, n_down = _mode(corners.touch, corners.slip)
         _tally(mode, n_down, n * dt, out)
-        theta, lean = _track(body, state, n_down, tilt_sub, end.r1, phase, out)
+        theta, lx, ly = _track(body, state, n_down, tilt_sub, end.r1, phase, out)
         if k // model.numerics.hist_every != (k - n) // model.numerics.hist_every:
             _record(hist, k * dt, state, theta, -state[10] if body.weak_y else state[11], n_down, body.h, out)
         if out[OUT_THETA_MAX] >= OVERTURNING_ANGLE:
-            out[OUT_OVERTURNED], out[OUT_OVER_KIND], out[OUT_OVER_DIR] = 1.0, phase[PH_OVER_KIND], lean
+            out[OUT_OVERTURNED], out[OUT_OVER_KIND], out[OUT_OVER_DIR] = 1.0, phase[PH_OVER_KIND], math.atan2(ly, lx)
             going = False
             continue
         speed = max(abs(state[7]), abs(state[8]), abs(state[9]),

@@ -479,7 +479,7 @@ def _coarse_slide(model, floor, state, k, work, corners, trial):
         ri = ws.contact.r[i]
         if not actp[i] or abs(new[9] + new[10] * ri[1] - new[11] * ri[0]) > vel_tol:
             return 0
-    _book(state, Probe(actp, Pp, new, out), ws, end, corners, model)
+    _book(state, Probe(actp, Pp, new, out), ws.contact, end, corners, model)
     for i in range(4):
         for c in range(3):
             P[i, c] = Pp[i, c] / n

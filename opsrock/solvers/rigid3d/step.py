@@ -152,16 +152,16 @@ def _step(model, s, acc, dt, ws, trial, guess):
 
 
 @numba.njit(cache=True, inline='always')
-def _contacts(new, ws, end, act, P, corners, limits, out):
+def _contacts(new, cw, end, act, P, corners, limits, out):
     """After a step: friction work of the impulses, and each corner's contact and slip flags (``corners``:
-    :class:`.workspace.Corners`; the arms ``ws.contact.r`` of the step's start: the velocity rows the solver enforced;
+    :class:`.workspace.Corners`; the arms ``cw.r`` of the step's start: the velocity rows the solver enforced;
     ``end.r1`` those of its end, for the gaps); returns True if a corner landed (an impact).
 
     A corner with a normal impulse is down (an impact if it was up), slipping if its tangential speed exceeds
     ``limits.velocity_tol``. A corner without impulse is up once it moves away from the floor faster than that or
     rises above ``limits.lift_gap``; otherwise it stays down (a pivot constrained at velocity level drifts up and
     takes an occasional free step; a level block may rest on three corners), slipping if it moves."""
-    r, r1, touch, slip = ws.contact.r, end.r1, corners.touch, corners.slip
+    r, r1, touch, slip = cw.r, end.r1, corners.touch, corners.slip
     vel_tol, lift_gap = limits.velocity_tol, limits.lift_gap
     impact = False
     V0, V1, V2, w0, w1, w2 = new[7], new[8], new[9], new[10], new[11], new[12]
@@ -214,19 +214,20 @@ def _count_sweeps(sweeps, nsgs, out):
 
 
 @numba.njit(cache=True, inline='always')
-def _book(state, trial, ws, end, corners, model):
+def _book(state, trial, cw, end, corners, model):
     """The bookkeeping of a Moreau-Jean step from ``state`` to ``trial.state`` under the accelerations ``end.a`` with
     the active corners ``trial.act`` and impulses ``trial.P``, into ``trial.out``: input work, the corners' flags
-    (``corners``) and friction work (:func:`_contacts`), an impact's loss. ``ws`` holds the step's arms ``r``,
-    inertia ``Iw`` and free velocity (row ``VEC_VF``); the arms of the end state into ``end.r1`` (``end.Q1``
-    workspace). Returns True at an impact."""
+    (``corners``) and friction work (:func:`_contacts`), an impact's loss. ``cw`` (the step's
+    :class:`.workspace.Contact`) holds its arms ``r``, inertia ``Iw`` and free velocity (row ``VEC_VF``); the arms
+    of the end state into ``end.r1`` (``end.Q1`` workspace). Returns True at an impact. Takes the contact arrays,
+    not the whole :class:`.workspace.StepWork`: an inline function's parameters are counted too (issue 43)."""
     act, P, new, out = trial.act, trial.P, trial.state, trial.out
-    a, Iw, vf = end.a, ws.contact.Iw, ws.contact.vec[VEC_VF]
+    a, Iw, vf = end.a, cw.Iw, cw.vec[VEC_VF]
     # energy bookkeeping (per unit mass): input work over the step's displacement, friction work in
     # _contacts, and at an impact the kinetic energy of the impulses' velocity change
     out[OUT_INPUT_WORK] -= a[0] * (new[0] - state[0]) + a[1] * (new[1] - state[1]) + a[2] * (new[2] - state[2])
     _arms(new, model.body, end.Q1, end.r1)
-    impact = _contacts(new, ws, end, act, P, corners, model.limits, out)
+    impact = _contacts(new, cw, end, act, P, corners, model.limits, out)
     if impact:
         e = 0.0
         for c in range(3):

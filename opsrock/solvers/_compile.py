@@ -32,12 +32,14 @@ from typing import Any, Iterator
 #: smooth steps took the workspace apart once (numba drops every array of a named tuple at each place a variable
 #: holding it dies), 37.8-39.9 s cold less 1.0 s warm (load average 2). friction, once its free flight was a kernel
 #: of its own compiled only when a block first leaves the floor: 7.9-9.3 s cold (against 9.6-10.5 s before, alternated,
-#: load average 1.4-3) less 0.8 s warm.
+#: load average 1.4-3) less 0.8 s warm. rigid3d, once its kernel was compiled per friction, this command (infinite
+#: friction) compiling the specialisation without the flat slide: 36.5/36.6 s cold against 40.5/38.5 s before
+#: (alternated, load average 2-3) less 1.0 s warm; a finite-friction first solve is :data:`COMPILE_PART_CPU_S`'s.
 COMPILE_CPU_S: dict[str, float] = {
     "friction": 7.5,
     "housner_fast": 4.0,
     "moreau_jean": 6.0,
-    "rigid3d": 38.0,
+    "rigid3d": 35.5,
     "cylinder3d": 30.0,
 }
 
@@ -46,8 +48,14 @@ COMPILE_CPU_S: dict[str, float] = {
 #: ``friction``'s free flight, a kernel of its own compiled when a block first leaves the floor: a block thrown by a
 #: floor falling at 3 g took 12.1 and 11.6 s of CPU, one rocking under a one-sine pulse 9.7 and 9.3 s (alternated,
 #: load average 2.5); the thrown block took as long before flight was split off (11.2/10.8 s against 11.2/10.9 s).
+#: ``rigid3d``'s specialisation for finite friction, compiled when a case with friction first needs it: on its own it
+#: replaces the infinite-friction one rather than adding to it (the part is the whole kernel with the flat slide), so
+#: this is a first solve's with ``--friction 0.5``: 39.8/38.9 s cold against 38.3/39.7 s before the split
+#: (alternated, load average 1.5-2.6) less 1.0 s warm. After the infinite-friction one in the same process it takes
+#: about 20 s: ``warm_up("rigid3d")``, which compiles both, took 60.6 s against 40.0 s for the one kernel before.
 COMPILE_PART_CPU_S: dict[tuple[str, str], float] = {
     ("friction", "flight"): 2.3,
+    ("rigid3d", "finite-friction"): 38.0,
 }
 
 
@@ -78,13 +86,14 @@ def fewer_collections() -> Iterator[None]:
 #: The kernels whose compile start is to be announced: ``id(kernel) -> (kernel, solver, part)``
 #: (:func:`announce_compile`).
 _WATCHED: dict[int, tuple[Any, str, str | None]] = {}
-#: The kernels found compiled or loaded in this process (never announced again).
+#: The kernels, or ``(kernel, part)`` specialisations, found compiled or loaded in this process (never announced
+#: again).
 _READY: set[Any] = set()
 #: The one listener of numba's ``"numba:compile"`` event, registered on the first announcement.
 _LISTENER: list[Any] = []
 
 
-def announce_compile(kernel: Any, solver: str, part: str | None = None) -> None:
+def announce_compile(kernel: Any, solver: str, part: str | None = None, args: tuple | None = None) -> None:
     """One line on standard error when ``kernel`` (a numba dispatcher) starts compiling in this process, naming
     ``solver`` and its expected compile time (:data:`COMPILE_CPU_S`, s of CPU), or, for a ``part`` of the kernel
     compiled only when a case first needs it, that part (:data:`COMPILE_PART_CPU_S`); nothing when it is loaded from
@@ -92,11 +101,20 @@ def announce_compile(kernel: Any, solver: str, part: str | None = None) -> None:
 
     numba broadcasts ``"numba:compile"`` (its documented event API, :mod:`numba.core.event`) when a dispatcher
     compiles, and only then: a kernel found in the cache is loaded without it. A kernel already in this process
-    (it has ``signatures``) is not watched, and is remembered: a later solve costs one set look-up."""
-    if kernel in _READY:
+    (it has ``signatures``) is not watched, and is remembered: a later solve costs one set look-up. A kernel that
+    numba compiles once per kind of argument (rigid3d's, for finite and infinite friction) is given the call's
+    ``args``: ready once a signature of theirs is compiled, each specialisation announced (``part``) on its own."""
+    key = kernel if args is None else (kernel, part)
+    if key in _READY:
         return
-    if kernel.signatures:  # builds a list (about 5 us): asked once per kernel and process
-        _READY.add(kernel)
+    if args is None:
+        ready = bool(kernel.signatures)  # builds a list (about 5 us): asked once per kernel and process
+    else:
+        import numba
+
+        ready = tuple(numba.typeof(a) for a in args) in kernel.signatures
+    if ready:
+        _READY.add(key)
         return
     _WATCHED[id(kernel)] = (kernel, solver, part)
     if not _LISTENER:

@@ -407,6 +407,11 @@ def first_nonfinite_sample(excitation: Any) -> float | None:
     return None if first is None else float(first) * float(dt)
 
 
+#: The ``(kernel, variant)`` specialisations :meth:`SolverRun.compiled_call` has found compiled or compiled in this
+#: process (a set look-up a call, once each is known).
+_SPECIALISED: set[tuple[Any, str]] = set()
+
+
 class SolverRun:
     """The run skeleton of every solver, written once (as scipy's ``OdeSolver.step`` around ``_step_impl``).
 
@@ -437,7 +442,7 @@ class SolverRun:
         """Wall-clock time since the solve started (s)."""
         return _time.perf_counter() - self.t_wall
 
-    def compiled_call(self, kernel: Any, *args: Any) -> Any:
+    def compiled_call(self, kernel: Any, *args: Any, variant: str | None = None) -> Any:
         """``kernel(*args)`` for a compiled (numba) kernel, compiled first, outside the wall clock, when this
         process has not compiled it yet: ``wall_time_s`` is the solve's, never the compilation's (a first 3-D solve
         reported 345.5 s, of which 0.1 s was the solve) nor the loading of numba's cache.
@@ -445,8 +450,20 @@ class SolverRun:
         Before the solve's first kernel call the clock restarts after the compile: the solver's set-up before it
         may itself have compiled small helpers on their first call (housner_fast's case parameters and forcing:
         1.4 s of a first solve). A kernel compiled later, mid-solve (friction's flight), moves the clock on by its
-        compile's duration, so the solve's time so far is kept."""
-        if not getattr(kernel, "signatures", True):
+        compile's duration, so the solve's time so far is kept.
+
+        ``variant`` names the specialisation ``args`` need of a kernel numba compiles for more than one kind of
+        argument (rigid3d's: finite and infinite friction); each is compiled the first time it is needed, as above.
+        Without it, a kernel with any compiled signature is taken as ready."""
+        if variant is None:
+            fresh = not getattr(kernel, "signatures", True)
+        elif (kernel, variant) in _SPECIALISED:
+            fresh = False
+        else:
+            import numba
+
+            fresh = tuple(numba.typeof(a) for a in args) not in kernel.signatures
+        if fresh:
             import numba
 
             from opsrock.solvers._compile import fewer_collections
@@ -456,6 +473,8 @@ class SolverRun:
                 kernel.compile(tuple(numba.typeof(a) for a in args))
             now = _time.perf_counter()
             self.t_wall = self.t_wall + (now - start) if self.kernel_called else now
+        if variant is not None:
+            _SPECIALISED.add((kernel, variant))
         self.kernel_called = True
         return kernel(*args)
 

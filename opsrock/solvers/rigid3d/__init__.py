@@ -148,11 +148,14 @@ corners (closed forms with Newton on the slip directions), 5-20 µs an NSGS step
 step spans up to a sample interval (hundreds of Moreau-Jean steps); 867 record-seconds per CPU-second on the
 rocking record above, 191 on the sliding two-component one (2-core project machine; one run, the speeds scatter by
 20 % or more between runs: the rocking record gave 951 and 830 in two runs of an earlier kernel with the same
-steps there). The kernel is compiled once and cached (``cache=True``): about 110 s cold (a solve of a quick Siconos
-case took 109 s cold), 0.3 s to load the cache.
+steps there). The kernel is compiled once and cached (``cache=True``), in two specialisations, each the first time a case needs
+it: one for infinite friction, without the closed-form flat slide that only finite friction takes, and one for finite
+friction (``workspace.FlatScratch``; about 36 and 39 s of CPU cold, issue 43), 0.3 s to load the cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings
-from opsrock.solvers.rigid3d.solver import SOLVER_NAME, BoxProperties, as_plan, box_properties, solve, tilted_state
+from opsrock.solvers.rigid3d.solver import (SOLVER_NAME, BoxProperties, as_plan, box_properties, solve, tilted_state,
+                                             warm_up_paths)
 
-__all__ = ["SOLVER_NAME", "BoxProperties", "Rigid3DSettings", "as_plan", "box_properties", "solve", "tilted_state"]
+__all__ = ["SOLVER_NAME", "BoxProperties", "Rigid3DSettings", "as_plan", "box_properties", "solve", "tilted_state",
+           "warm_up_paths"]

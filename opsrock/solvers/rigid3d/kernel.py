@@ -365,7 +365,7 @@ def _finish(model, state, k, status, corners, hist, out):
 
 
 @numba.njit(cache=True)
-def run(model, floor, state, hist, out):
+def run(model, floor, state, hist, out, flat):
     """Integrate one case into ``out`` (layout ``OUT_*``) and ``hist`` (rows ``H_*``); returns the status. Each step:
     the rest skip if the block is seated and the floor's load carried; else a smooth step of the phase the block is
     in (``phase``, slots ``PH_*``) or a Moreau-Jean step; then the new state's bookkeeping (peaks, history, the end).
@@ -373,21 +373,21 @@ def run(model, floor, state, hist, out):
     Parameters
     ----------
     model : Model
-        The block, its friction and the numerical settings and limits (:class:`.model.Model`, built by
-        :func:`.model.make_model`).
+        The block, its friction, the numerical settings and limits (:class:`.model.Model`, :func:`.model.make_model`).
     floor : Floor
-        The floor motion in the block frame (:class:`.model.Floor`): :data:`FORCING_STEPWISE` or
-        :data:`FORCING_LINEAR` (samples, ``sub`` steps per interval), for ``n_exc`` steps; after them no
-        horizontal motion and ``a_v = tail_av`` (m/s²).
+        The floor motion in the block frame (:class:`.model.Floor`): :data:`FORCING_STEPWISE` or :data:`FORCING_LINEAR`
+        (samples, ``sub`` steps per interval) for ``n_exc`` steps; then no horizontal motion, ``a_v = tail_av`` (m/s²).
     state : float64[13]
         Initial state; holds the final one on return.
     hist : float64[H_SIZE, n]
         History: rows ``H_*``, a column every ``model.numerics.hist_every`` steps (and the last state).
     out : float64[OUT_SIZE]
         The run's results and bookkeeping.
+    flat : FlatScratch or None
+        The flat slide's scratch (:func:`.workspace.flat_scratch`); None, infinite friction's: no flat slide compiled.
     """
     body, lim, dt, n_exc = model.body, model.limits, model.numerics.dt, floor.n_exc
-    work = make_workspace(OUT_SIZE)
+    work = make_workspace(OUT_SIZE, flat)
     ws, end = work.step, work.end
     corners = make_corners()
     trial = make_trial(out)

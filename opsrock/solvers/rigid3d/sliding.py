@@ -8,7 +8,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba.extending import register_jitable
+from numba import types
+from numba.extending import overload, register_jitable
 
 from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, EDGE_STATUSES, FD_STEP, FLAT_ROUNDOFF, LIMIT_MU,
                                                NEWTON_TOL, OUT_LIMIT_STEPS, PIVOT_TOL, SIX, ZERO)
@@ -262,6 +263,26 @@ def _slide_flat(cw, act, P, mu_k, sdir, Am):
             return False
         P[i, 0], P[i, 1] = -mu_k * N * sdir[i, 0], -mu_k * N * sdir[i, 1]
     return True
+
+
+def _try_slide_flat(cw, act, P, fric, flat):
+    """:func:`_slide_flat` with the kinetic coefficient of ``fric`` (:class:`.model.Friction`) and the scratch
+    ``flat`` (:class:`.workspace.FlatScratch`) if friction is finite. Compiled for the type of ``flat``
+    (:func:`_try_slide_flat_typed`): the kernel's specialisation for infinite friction (``flat`` None) has no flat
+    slide at all (issue 43)."""
+    return not fric.infinite and _slide_flat(cw, act, P, fric.mu_k, flat.sdir, flat.Am)
+
+
+def _never_slide_flat(cw, act, P, fric, flat):
+    """:func:`_try_slide_flat` without the flat slide's scratch (``flat`` None: infinite friction): not tried."""
+    return False
+
+
+@overload(_try_slide_flat)
+def _try_slide_flat_typed(cw, act, P, fric, flat):
+    """The implementation of :func:`_try_slide_flat` numba compiles for these argument types: none for the flat
+    slide if ``flat`` is None."""
+    return _never_slide_flat if isinstance(flat, types.NoneType) else _try_slide_flat
 
 
 @register_jitable

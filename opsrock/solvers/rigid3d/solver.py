@@ -20,10 +20,15 @@ from opsrock.solvers.common import SolverRun, check_inputs, make_settings, setti
 from opsrock.solvers.rigid3d import kernel as kn
 from opsrock.solvers.rigid3d.model import make_floor, make_model
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings
+from opsrock.solvers.rigid3d.workspace import flat_scratch
 from opsrock.solvers.status import REASONS, failure_of
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "rigid3d"
+#: The kernel's specialisation for finite friction, compiled when a case first needs it (the one for infinite
+#: friction, without the flat slide, is the kernel's first; :class:`.workspace.FlatScratch`): its name in the compile
+#: notice (:data:`opsrock.solvers._compile.COMPILE_PART_CPU_S`).
+FINITE_FRICTION = "finite-friction"
 
 
 @dataclass(frozen=True)
@@ -191,9 +196,12 @@ def _run(run: _Rigid3DRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> 
     hist = np.empty((kn.H_SIZE, cap))
     out = np.zeros(kn.OUT_SIZE)
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": forcing.dt}
-    announce_compile(kn.run, SOLVER_NAME)
+    # numba compiles the kernel once for infinite friction (the flat slide's scratch None: no flat slide) and once for
+    # finite friction, each when a case first needs it (issue 43)
+    args = (model, floor, state.copy(), hist, out, flat_scratch(model.friction))
+    announce_compile(kn.run, SOLVER_NAME, None if args[-1] is None else FINITE_FRICTION, args)
     try:
-        run.compiled_call(kn.run, model, floor, state.copy(), hist, out)
+        run.compiled_call(kn.run, *args, variant="infinite friction" if args[-1] is None else FINITE_FRICTION)
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, box.alpha, f"{type(exc).__name__}: {exc}",
                              wall_time_s=run.elapsed())
@@ -378,4 +386,16 @@ class _Rigid3DRun(SolverRun):
         return _run(self, forcing, tilted_state(self.block, s.theta0, s.theta_dot0), tail=True)
 
 
-__all__ = ["SOLVER_NAME", "BoxProperties", "as_plan", "box_properties", "solve", "tilted_state"]
+def warm_up_paths() -> None:
+    """Make the kernel's specialisation for infinite friction ready too, by one short solve of a block with infinite
+    friction (that of :func:`opsrock.solvers.warm_up`, a block on a slipping base, compiles the one for finite
+    friction): :func:`opsrock.solvers.warm_up` calls it after its own solve, so that no case of a campaign pays for
+    either."""
+    from opsrock.excitations.pulses import OneSinePulse
+
+    block = Block(0.3, 1.2, restitution_factor=1.0, depth=0.6)
+    solve(block, PlanMotion.along(OneSinePulse.from_ratios(Block(0.3, 1.2, restitution_factor=1.0), 1.35, 3.0), 30.0))
+
+
+__all__ = ["FINITE_FRICTION", "SOLVER_NAME", "BoxProperties", "as_plan", "box_properties", "solve", "tilted_state",
+           "warm_up_paths"]

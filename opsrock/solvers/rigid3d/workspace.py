@@ -69,15 +69,24 @@ class Contact(NamedTuple):
     mask: np.ndarray
 
 
+class FlatScratch(NamedTuple):
+    """Scratch of the closed-form flat slide (``sliding._slide_flat``), which only finite friction takes: the slip
+    directions ``sdir`` (4 x 2) and the system ``Am`` (6 x 7). The kernel takes it as an argument
+    (:func:`flat_scratch`), None with infinite friction, and numba compiles one specialisation of the kernel for each:
+    the one for infinite friction leaves the flat slide out (about a tenth of the kernel's compile, issue 43)."""
+
+    sdir: np.ndarray
+    Am: np.ndarray
+
+
 class StepWork(NamedTuple):
     """Scratch of a Moreau-Jean step (``step._step``), what it takes and nothing more (its arrays are counted at
-    every call, several a step): its :class:`Contact`, the rotation ``Q`` (3 x 3), the flat slide's slip directions
-    ``sdir`` (4 x 2) and ``Am`` (6 x 7), and :class:`EdgeWork`."""
+    every call, several a step): its :class:`Contact`, the rotation ``Q`` (3 x 3), the flat slide's
+    :class:`FlatScratch` (None with infinite friction) and :class:`EdgeWork`."""
 
     contact: Contact
     Q: np.ndarray
-    sdir: np.ndarray
-    Am: np.ndarray
+    flat: FlatScratch | None
     edge: EdgeWork
 
 
@@ -183,14 +192,20 @@ def make_edge_work():
                     np.zeros(1, dtype=np.int64), np.zeros((5, 2)), np.zeros(4, dtype=np.int64))
 
 
+def flat_scratch(friction):
+    """The kernel's ``flat`` argument for ``friction`` (:class:`.model.Friction`): the flat slide's scratch, zeroed
+    (:class:`FlatScratch`), or None with infinite friction, which never slides flat."""
+    return None if friction.infinite else FlatScratch(np.zeros((4, 2)), np.zeros((6, 7)))
+
+
 @register_jitable
-def make_workspace(out_size):
+def make_workspace(out_size, flat):
     """The kernel's scratch, zeroed: a :class:`Workspace` (``out_size``: the length of the kernel's output vector,
-    for the probe's)."""
+    for the probe's; ``flat``: the flat slide's :class:`FlatScratch`, or None, :func:`flat_scratch`)."""
     edge = make_edge_work()
     contact = Contact(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)), np.zeros((4, 3, 3)),
                       np.zeros((5, 6)), np.zeros((6, 6)), np.zeros(4, dtype=np.bool_))
-    ws = StepWork(contact, np.zeros((3, 3)), np.zeros((4, 2)), np.zeros((6, 7)), edge)
+    ws = StepWork(contact, np.zeros((3, 3)), flat, edge)
     end = EndWork(np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3))
     wk = PivotWork(np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
                    np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
@@ -223,5 +238,5 @@ def make_corners():
 
 
 __all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Contact", "Corners",
-           "EdgeWork", "EndWork", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace", "make_corners",
-           "make_edge_work", "make_phase", "make_trial", "make_workspace"]
+           "EdgeWork", "EndWork", "FlatScratch", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace",
+           "flat_scratch", "make_corners", "make_edge_work", "make_phase", "make_trial", "make_workspace"]

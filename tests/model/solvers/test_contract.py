@@ -229,16 +229,22 @@ def test_opensees_is_loaded_only_when_first_used():
 
 
 class _FakeKernel:
-    """A compiled kernel on an injected clock (``clock["t"]``, s): its compile takes ``compile_s``, a call 1 s."""
+    """A compiled kernel on an injected clock (``clock["t"]``, s): its compile takes ``compile_s``, a call 1 s; as a
+    numba dispatcher, a call compiles the arguments' types first if they are not among its ``signatures``."""
 
     def __init__(self, clock: dict, compile_s: float) -> None:
         self.signatures, self.clock, self.compile_s = [], clock, compile_s
 
     def compile(self, sig):
         self.clock["t"] += self.compile_s
-        self.signatures = [sig]
+        self.signatures = [*self.signatures, sig]
 
     def __call__(self, *args):
+        import numba
+
+        sig = tuple(numba.typeof(a) for a in args)
+        if sig not in self.signatures:
+            self.compile(sig)
         self.clock["t"] += 1.0
         return sum(args)
 
@@ -273,3 +279,15 @@ def test_wall_time_leaves_out_a_first_solves_set_up_and_a_kernel_compiled_mid_so
     clock["t"] += 7.0  # the set-up, compiling its helpers on their first call
     assert run.compiled_call(_FakeKernel(clock, 100.0), 1.0) == 1.0 and run.elapsed() == 1.0
     assert run.compiled_call(_FakeKernel(clock, 50.0), 2.0) == 2.0 and run.elapsed() == 2.0
+
+
+def test_wall_time_leaves_out_a_second_specialisation_compiled_mid_solve(monkeypatch):
+    """A kernel numba compiles once per kind of argument (rigid3d's, for infinite and for finite friction): the
+    specialisation a call names (``variant``) is compiled outside the clock the first time it is needed, even with
+    another already compiled, and then only called. An injected clock: compiles 100 s each, calls 1 s."""
+    run, clock = _clocked_run(monkeypatch)
+    kernel = _FakeKernel(clock, 100.0)
+    assert run.compiled_call(kernel, 1.0, variant="float") == 1.0 and run.elapsed() == 1.0
+    assert run.compiled_call(kernel, 2, variant="int") == 2 and run.elapsed() == 2.0
+    assert run.compiled_call(kernel, 3, variant="int") == 3 and run.elapsed() == 3.0
+    assert len(kernel.signatures) == 2

@@ -56,7 +56,7 @@ def _problem(rng):
 def _workspace(r, vf, Iinv=None, Iw=None):
     """The kernel's contact-problem workspace holding the arms ``r``, the free velocity ``vf`` and the inertias
     given."""
-    ws = make_workspace(kn.OUT_SIZE).step.contact
+    ws = make_workspace(kn.OUT_SIZE, None).step.contact
     ws.r[:] = r
     ws.vec[VEC_VF] = vf
     if Iinv is not None:

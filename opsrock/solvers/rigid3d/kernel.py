@@ -416,8 +416,8 @@ def run(model, floor, state, hist, out, flat):
             else (0, 0.0)
         if n <= 0:
             n, end.a[0], end.a[1], end.a[2] = 1, acc[0], acc[1], acc[2]
-            if not _mj_step(model, state, _step(model, state, acc, dt, ws, trial, corners.touch), ws.contact, end, trial,
-                            corners, phase):
+            if not _mj_step(model, state, _step(model, state, acc, dt, ws, trial, corners.touch), ws.contact, end,
+                            trial, corners, phase):
                 status, going = STATUS_CONTACT, False
                 continue
         _copy(state, trial.state)

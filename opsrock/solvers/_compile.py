@@ -34,12 +34,13 @@ from typing import Any, Iterator
 #: of its own compiled only when a block first leaves the floor: 7.9-9.3 s cold (against 9.6-10.5 s before, alternated,
 #: load average 1.4-3) less 0.8 s warm. rigid3d, once its kernel was compiled per friction, this command (infinite
 #: friction) compiling the specialisation without the flat slide: 36.5/36.6 s cold against 40.5/38.5 s before
-#: (alternated, load average 2-3) less 1.0 s warm; a finite-friction first solve is :data:`COMPILE_PART_CPU_S`'s.
+#: (alternated, load average 2-3), and 35.2/34.7 s against 39.0/39.4 s (load average 1.6-2.4), less 1.0 s warm; a
+#: finite-friction first solve is :data:`COMPILE_PART_CPU_S`'s.
 COMPILE_CPU_S: dict[str, float] = {
     "friction": 7.5,
     "housner_fast": 4.0,
     "moreau_jean": 6.0,
-    "rigid3d": 35.5,
+    "rigid3d": 35.0,
     "cylinder3d": 30.0,
 }
 
@@ -51,8 +52,10 @@ COMPILE_CPU_S: dict[str, float] = {
 #: ``rigid3d``'s specialisation for finite friction, compiled when a case with friction first needs it: on its own it
 #: replaces the infinite-friction one rather than adding to it (the part is the whole kernel with the flat slide), so
 #: this is a first solve's with ``--friction 0.5``: 39.8/38.9 s cold against 38.3/39.7 s before the split
-#: (alternated, load average 1.5-2.6) less 1.0 s warm. After the infinite-friction one in the same process it takes
-#: about 20 s: ``warm_up("rigid3d")``, which compiles both, took 60.6 s against 40.0 s for the one kernel before.
+#: (alternated, load average 1.5-2.6), and 38.7/38.5 s against 38.3/38.2 s (load average 1.4-2.4), less 1.0 s warm.
+#: After the infinite-friction one in the same process it takes 13-20 s: ``warm_up("rigid3d")``, which compiles
+#: both, took 60.6 s against 40.0 s for the one kernel before (load average 3), and 52.0 s against 38.4 s (load
+#: average 1).
 COMPILE_PART_CPU_S: dict[tuple[str, str], float] = {
     ("friction", "flight"): 2.3,
     ("rigid3d", "finite-friction"): 38.0,

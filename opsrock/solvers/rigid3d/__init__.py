@@ -150,7 +150,7 @@ rocking record above, 191 on the sliding two-component one (2-core project machi
 20 % or more between runs: the rocking record gave 951 and 830 in two runs of an earlier kernel with the same
 steps there). The kernel is compiled once and cached (``cache=True``), in two specialisations, each the first time a case needs
 it: one for infinite friction, without the closed-form flat slide that only finite friction takes, and one for finite
-friction (``workspace.FlatScratch``; about 36 and 39 s of CPU cold, issue 43), 0.3 s to load the cache.
+friction (``workspace.StepWork``; about 35 and 39 s of CPU cold, issue 43), 0.3 s to load the cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings

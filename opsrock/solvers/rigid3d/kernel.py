@@ -383,8 +383,8 @@ def run(model, floor, state, hist, out, flat):
         History: rows ``H_*``, a column every ``model.numerics.hist_every`` steps (and the last state).
     out : float64[OUT_SIZE]
         The run's results and bookkeeping.
-    flat : FlatScratch or None
-        The flat slide's scratch (:func:`.workspace.flat_scratch`); None, infinite friction's: no flat slide compiled.
+    flat : bool or None
+        True: finite friction, the flat slide's scratch built; None: infinite friction, no flat slide compiled.
     """
     body, lim, dt, n_exc = model.body, model.limits, model.numerics.dt, floor.n_exc
     work = make_workspace(OUT_SIZE, flat)

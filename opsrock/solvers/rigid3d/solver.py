@@ -20,13 +20,13 @@ from opsrock.solvers.common import SolverRun, check_inputs, make_settings, setti
 from opsrock.solvers.rigid3d import kernel as kn
 from opsrock.solvers.rigid3d.model import make_floor, make_model
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings
-from opsrock.solvers.rigid3d.workspace import flat_scratch
+from opsrock.solvers.rigid3d.workspace import flat_slides
 from opsrock.solvers.status import REASONS, failure_of
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "rigid3d"
 #: The kernel's specialisation for finite friction, compiled when a case first needs it (the one for infinite
-#: friction, without the flat slide, is the kernel's first; :class:`.workspace.FlatScratch`): its name in the compile
+#: friction, without the flat slide, is the kernel's first; :func:`.workspace.make_flat_scratch`): its name in the compile
 #: notice (:data:`opsrock.solvers._compile.COMPILE_PART_CPU_S`).
 FINITE_FRICTION = "finite-friction"
 
@@ -198,7 +198,7 @@ def _run(run: _Rigid3DRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> 
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": forcing.dt}
     # numba compiles the kernel once for infinite friction (the flat slide's scratch None: no flat slide) and once for
     # finite friction, each when a case first needs it (issue 43)
-    args = (model, floor, state.copy(), hist, out, flat_scratch(model.friction))
+    args = (model, floor, state.copy(), hist, out, flat_slides(model.friction))
     announce_compile(kn.run, SOLVER_NAME, None if args[-1] is None else FINITE_FRICTION, args)
     try:
         run.compiled_call(kn.run, *args, variant="infinite friction" if args[-1] is None else FINITE_FRICTION)

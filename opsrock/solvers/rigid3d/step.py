@@ -18,7 +18,7 @@ from opsrock.solvers.rigid3d.constants import (FORCING_LINEAR, FORCING_STEPWISE,
 from opsrock.solvers.rigid3d.geometry import (_arms, _cross_add, _delassus, _geometry, _inv3, _quat_step)
 from opsrock.solvers.rigid3d.contact import _solve_contacts
 from opsrock.solvers.rigid3d.sticking import (_stick_all, _stick_single, _stick_subset)
-from opsrock.solvers.rigid3d.sliding import (_edge_slip, _try_slide_flat)
+from opsrock.solvers.rigid3d.sliding import (_edge_slip, _slide_flat)
 from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_V, VEC_VF)
 
 
@@ -81,7 +81,7 @@ def _closed_form(ws, act, n_act, guess, P, fric, tol, out):
         out[OUT_STICK_STEPS] += 1.0
     elif n_act == 2 and _edge_slip(cw, ws.edge, act, P, fric, out):
         out[OUT_EDGE_SLIP] += 1.0
-    elif n_act >= 3 and _try_slide_flat(cw, act, P, fric, ws.flat):
+    elif n_act >= 3 and not fric.infinite and _slide_flat(cw, act, P, fric.mu_k, ws.sdir, ws.Am):
         out[OUT_SLIDE_STEPS] += 1.0
     else:
         return False

@@ -23,7 +23,8 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from numba.extending import register_jitable
+from numba import types
+from numba.extending import overload, register_jitable
 
 #: Rows of :attr:`StepWork.vec`: the velocities ``V`` and ``omega`` after the impulses, the free velocity
 #: ``(V_f, omega_f)`` (6), a 6-vector of scratch for the closed forms (``y6``) and NSGS's local velocity ``q``, and
@@ -71,22 +72,24 @@ class Contact(NamedTuple):
 
 class FlatScratch(NamedTuple):
     """Scratch of the closed-form flat slide (``sliding._slide_flat``), which only finite friction takes: the slip
-    directions ``sdir`` (4 x 2) and the system ``Am`` (6 x 7). The kernel takes it as an argument
-    (:func:`flat_scratch`), None with infinite friction, and numba compiles one specialisation of the kernel for each:
-    the one for infinite friction leaves the flat slide out (about a tenth of the kernel's compile, issue 43)."""
+    directions ``sdir`` (4 x 2) and the system ``Am`` (6 x 7), both None in the kernel's specialisation for infinite
+    friction (:func:`make_flat_scratch`)."""
 
-    sdir: np.ndarray
-    Am: np.ndarray
+    sdir: np.ndarray | None
+    Am: np.ndarray | None
 
 
 class StepWork(NamedTuple):
     """Scratch of a Moreau-Jean step (``step._step``), what it takes and nothing more (its arrays are counted at
-    every call, several a step): its :class:`Contact`, the rotation ``Q`` (3 x 3), the flat slide's
-    :class:`FlatScratch` (None with infinite friction) and :class:`EdgeWork`."""
+    every call, several a step): its :class:`Contact`, the rotation ``Q`` (3 x 3), the flat slide's slip directions
+    ``sdir`` (4 x 2) and ``Am`` (6 x 7), and :class:`EdgeWork`. The flat slide's two are None in the kernel's
+    specialisation for infinite friction, which never slides flat: numba then compiles no flat slide
+    (``sliding._slide_flat``; about a tenth of the kernel's compile, issue 43; :func:`make_flat_scratch`)."""
 
     contact: Contact
     Q: np.ndarray
-    flat: FlatScratch | None
+    sdir: np.ndarray | None
+    Am: np.ndarray | None
     edge: EdgeWork
 
 
@@ -192,20 +195,38 @@ def make_edge_work():
                     np.zeros(1, dtype=np.int64), np.zeros((5, 2)), np.zeros(4, dtype=np.int64))
 
 
-def flat_scratch(friction):
-    """The kernel's ``flat`` argument for ``friction`` (:class:`.model.Friction`): the flat slide's scratch, zeroed
-    (:class:`FlatScratch`), or None with infinite friction, which never slides flat."""
-    return None if friction.infinite else FlatScratch(np.zeros((4, 2)), np.zeros((6, 7)))
+def flat_slides(friction):
+    """The kernel's ``flat`` argument for ``friction`` (:class:`.model.Friction`): True if the block may slide flat
+    (finite friction), None if it never does (infinite friction)."""
+    return None if friction.infinite else True
+
+
+def make_flat_scratch(flat):
+    """The flat slide's scratch, zeroed (:class:`FlatScratch`), for ``flat`` True; compiled by its type
+    (:func:`_make_flat_scratch_typed`): both None for ``flat`` None."""
+    return FlatScratch(np.zeros((4, 2)), np.zeros((6, 7)))
+
+
+def _no_flat_scratch(flat):
+    """:func:`make_flat_scratch` for ``flat`` None (infinite friction): none."""
+    return FlatScratch(None, None)
+
+
+@overload(make_flat_scratch)
+def _make_flat_scratch_typed(flat):
+    """The implementation of :func:`make_flat_scratch` numba compiles for the type of ``flat``."""
+    return _no_flat_scratch if isinstance(flat, types.NoneType) else make_flat_scratch
 
 
 @register_jitable
 def make_workspace(out_size, flat):
     """The kernel's scratch, zeroed: a :class:`Workspace` (``out_size``: the length of the kernel's output vector,
-    for the probe's; ``flat``: the flat slide's :class:`FlatScratch`, or None, :func:`flat_scratch`)."""
+    for the probe's; ``flat``: True to build the flat slide's scratch, None for none, :func:`flat_slides`)."""
     edge = make_edge_work()
     contact = Contact(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)), np.zeros((4, 3, 3)),
                       np.zeros((5, 6)), np.zeros((6, 6)), np.zeros(4, dtype=np.bool_))
-    ws = StepWork(contact, np.zeros((3, 3)), flat, edge)
+    fs = make_flat_scratch(flat)
+    ws = StepWork(contact, np.zeros((3, 3)), fs.sdir, fs.Am, edge)
     end = EndWork(np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3))
     wk = PivotWork(np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
                    np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
@@ -239,4 +260,5 @@ def make_corners():
 
 __all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Contact", "Corners",
            "EdgeWork", "EndWork", "FlatScratch", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace",
-           "flat_scratch", "make_corners", "make_edge_work", "make_phase", "make_trial", "make_workspace"]
+           "flat_slides", "make_corners", "make_edge_work", "make_flat_scratch", "make_phase", "make_trial",
+           "make_workspace"]

@@ -1,6 +1,6 @@
 """rigid3d's kernel in two specialisations, one for infinite friction (without the closed-form flat slide, which only
 finite friction takes) and one for finite friction, each compiled the first time a case needs it (issue 43:
-``workspace.FlatScratch``, ``sliding._try_slide_flat``). The warm-up makes both ready, and which one a process
+``workspace.make_flat_scratch``, ``sliding._slide_flat_typed``). The warm-up makes both ready, and which one a process
 compiled first changes no result."""
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ def test_a_finite_friction_solve_after_an_infinite_one_is_that_of_a_fresh_proces
 
 def test_warm_up_makes_both_specialisations_ready():
     """``warm_up("rigid3d")`` leaves the kernel compiled (or loaded) for both: its own solve on a slipping base for
-    finite friction, ``warm_up_paths`` for infinite friction (the flat slide's scratch None)."""
+    finite friction, ``warm_up_paths`` for infinite friction (the kernel's ``flat`` None)."""
     from opsrock.solvers import warm_up
     from opsrock.solvers.rigid3d import kernel as kn
 

@@ -7,6 +7,7 @@ module-level tables (parametrised cases) can use them too.
 
 from __future__ import annotations
 
+import glob
 import importlib.util
 import os
 import shutil
@@ -187,3 +188,28 @@ def case_rows(path: str | os.PathLike) -> list[dict[str, str]]:
         rows = list(csv.DictReader(fh))
     assert rows and next(iter(rows[0].values())) == "Units", f"{path}: no units row"
     return rows[1:]
+
+
+#: Sources outside a kernel's own package that its compiled code reads (module-level constants numba freezes into
+#: the machine code).
+SHARED_KERNEL_SOURCES = ("constants.py", "limits.py", "solvers/forcing.py", "solvers/status.py")
+
+
+def drop_stale_kernels(package: Path) -> list[Path]:
+    """Delete the numba cache entries of ``package`` (each folder's, ``solvers/rigid3d/__pycache__``) older than one
+    of their folder's sources or of :data:`SHARED_KERNEL_SOURCES`; returns the index files deleted. numba checks a cached dispatcher against its own module's stamp only, so after
+    an edit of a module its entry point calls (``rigid3d/step.py`` beside ``rigid3d/kernel.py``'s ``run``) a
+    developer's tree would test the old machine code; a fresh clone has no cache and an installed release new files
+    (docs/guide/layout.md). An index whose dispatcher has moved (its name holds the line) goes too: numba no longer
+    reads it."""
+    shared = max((package / name).stat().st_mtime for name in SHARED_KERNEL_SOURCES)
+    dropped = []
+    for cache in sorted({index.parent for index in package.rglob("__pycache__/*.nbi")}):
+        newest = max([shared, *(p.stat().st_mtime for p in cache.parent.glob("*.py"))])
+        for index in cache.glob("*.nbi"):
+            if index.stat().st_mtime < newest:
+                stem = index.name[:-len(".nbi")]
+                for entry in (index, *cache.glob(f"{glob.escape(stem)}.*.nbc")):
+                    entry.unlink(missing_ok=True)
+                dropped.append(index)
+    return dropped

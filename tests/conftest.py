@@ -15,11 +15,12 @@ import os
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, settings
 
-from _support import run_opsrock
+from _support import drop_stale_kernels, run_opsrock
 
 settings.register_profile("ci", derandomize=True, database=None, deadline=None, print_blob=True)
 settings.register_profile(
@@ -48,6 +49,12 @@ WARMUP_SECOND = ("from opsrock.solvers import warm_up\n"
 def pytest_sessionstart(session):
     if os.environ.get("OPSROCK_TEST_WARMUP", "1") == "0" or hasattr(session.config, "workerinput"):
         return
+    import opsrock
+
+    stale = drop_stale_kernels(Path(opsrock.__file__).parent)
+    if stale:
+        print(f"\nnumba cache: {len(stale)} compiled function(s) older than their sources dropped (they compile "
+              "again in the warm-up)", file=sys.stderr)
     started = time.monotonic()
     procs = [subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                               stderr=subprocess.PIPE, text=True) for code in (WARMUP_FIRST, WARMUP_SECOND)]

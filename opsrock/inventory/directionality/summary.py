@@ -153,9 +153,10 @@ def cost_table(cases: pd.DataFrame) -> pd.DataFrame:
         failed = count_failed(g)  # n_cases: the finished ones, as in every table (opsrock.inventory.columns)
         row = {"model": model, "solver": solver, "n_cases": len(g) - failed, "n_failed": failed}
         for prefix, column in (("", "wall_time_s"), ("cpu_", "cpu_time_s")):
-            t = g[column].astype(float) if column in g else pd.Series(math.nan, index=g.index)
-            row.update({f"{prefix}mean_s": float(t.mean()), f"{prefix}median_s": float(t.median()),
-                        f"{prefix}total_s": float(t.sum(min_count=1))})
+            t = (g[column].astype(float) if column in g else pd.Series(math.nan, index=g.index)).dropna()
+            row.update({f"{prefix}mean_s": float(t.mean()) if len(t) else math.nan,  # (an empty median warns)
+                        f"{prefix}median_s": float(t.median()) if len(t) else math.nan,
+                        f"{prefix}total_s": float(t.sum()) if len(t) else math.nan})
         rows.append(row)
     table = pd.DataFrame(rows)
     for prefix in ("", "cpu_"):

@@ -148,9 +148,11 @@ corners (closed forms with Newton on the slip directions), 5-20 µs an NSGS step
 step spans up to a sample interval (hundreds of Moreau-Jean steps); 867 record-seconds per CPU-second on the
 rocking record above, 191 on the sliding two-component one (2-core project machine; one run, the speeds scatter by
 20 % or more between runs: the rocking record gave 951 and 830 in two runs of an earlier kernel with the same
-steps there). The kernel is compiled once and cached (``cache=True``), in two specialisations, each the first time a case needs
-it: one for infinite friction, without the closed-form flat slide that only finite friction takes, and one for finite
-friction (``workspace.StepWork``; about 35 and 39 s of CPU cold, issue 43), 0.3 s to load the cache.
+steps there). The kernel is compiled once and cached (``cache=True``), in two specialisations, each the first time a
+case needs it: one for infinite friction, without the closed-form flat slide and the coarse slide of a block sliding
+flat (a case that slides flat in the friction's limit is solved again by the other), and one for finite friction
+(``workspace.StepWork``; about 35 and 39 s of CPU cold before the coarse slide was left out, issue 43), 0.3 s to
+load the cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings

@@ -79,7 +79,9 @@ OUT_SLIP_SPAN = ST.OUT_COMMON + 46  # Moreau-Jean steps those spanned
 OUT_SLIP_TRIED = ST.OUT_COMMON + 47  # Runge-Kutta steps on slipping corners tried (kept or halved)
 OUT_SETTLED = ST.OUT_COMMON + 48  # times a block at rest on three corners was set down on four (_settle)
 OUT_SETTLE_GAP = ST.OUT_COMMON + 49  # the largest gap (m) of a fourth corner so set down
-OUT_SIZE = ST.OUT_COMMON + 50
+OUT_NEEDS_FLAT = ST.OUT_COMMON + 50  # 1.0: the block slid flat where ``run``'s ``flat`` was None (no coarse slide
+#                                      compiled): the solver runs the case again with ``flat`` True
+OUT_SIZE = ST.OUT_COMMON + 51
 
 # --- the run's phase state (``kernel.run``): an int64 vector, slots ``PH_*`` -------------------------------------
 #: Moreau-Jean steps without an impact the block has spent in each phase that has smooth steps of its own: turning
@@ -94,6 +96,9 @@ PH_LAST_DOWN = 6  # corners down the last time one was
 PH_OUTSIDE = 7  # 1: the centre of mass's plan projection is outside the base's
 PH_OVER_KIND = 8  # how it would overturn, set as the centre of mass leaves the base: 1 over an edge, 2 over a corner
 PH_SIZE = 9
+#: ``kernel._smooth_step``'s step count when the calm phase is sliding flat: ``run`` takes that phase's coarse slide
+#: itself (``kernel._slide_step``, compiled only where its ``flat`` is True). Below the coarse slide's -1 (none tried).
+SLIDE_DUE = -2
 
 #: Speed of the base (m/s) below which the tail rule "peak" may end a run: a block on its base sliding at
 #: 1 mm/s under friction ``mu`` stops within ``(1e-3)² / (2 mu g)``, 5e-8/mu m.

@@ -69,7 +69,7 @@ def _delassus_pair(rk, rl, Iinv, W):
 
 @register_jitable
 def _inv3(A, B):
-    """``B = A^-1`` of a 3 x 3 matrix; False if singular."""
+    """``B = A^-1`` of a 3 x 3 matrix (the leading 3 x 3 blocks of ``A`` and ``B``); False if singular."""
     c00 = A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1]
     c01 = A[1, 2] * A[2, 0] - A[1, 0] * A[2, 2]
     c02 = A[1, 0] * A[2, 1] - A[1, 1] * A[2, 0]

@@ -40,8 +40,8 @@ from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, CORNER_SX,
                                                OUT_COARSE_SPAN, OUT_COARSE_STEPS, OUT_CONTACT_STEPS, OUT_EDGE_SLIP,
                                                OUT_EVENT_TIME, OUT_FIRST_MODE, OUT_FRICTION_WORK, OUT_IMPACTS,
                                                OUT_IMPACT_LOSS, OUT_INPUT_WORK, OUT_LIMIT_STEPS, OUT_MAX_PENETRATION,
-                                               OUT_NSGS_EXTRA, OUT_NSGS_FAILED, OUT_NSGS_LOOSE, OUT_NSGS_MAX,
-                                               OUT_NSGS_SWEEPS, OUT_N_HIST, OUT_OVERTURNED, OUT_OVER_DIR,
+                                               OUT_NEEDS_FLAT, OUT_NSGS_EXTRA, OUT_NSGS_FAILED, OUT_NSGS_LOOSE,
+                                               OUT_NSGS_MAX, OUT_NSGS_SWEEPS, OUT_N_HIST, OUT_OVERTURNED, OUT_OVER_DIR,
                                                OUT_OVER_KIND, OUT_PEAK_STOP, OUT_REST_STEPS, OUT_ROCKED, OUT_SETTLED,
                                                OUT_SETTLE_GAP, OUT_SIZE, OUT_SLIDE_MAX, OUT_SLIDE_STEPS,
                                                OUT_SLIP_SPAN, OUT_SLIP_STEPS, OUT_SLIP_TRIED, OUT_SMOOTH_SPAN,
@@ -56,7 +56,7 @@ from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, CORNER_SX,
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers.rigid3d import pivot as PV
 from opsrock.solvers.rigid3d.constants import (PH_LAST_DOWN, PH_OUTSIDE, PH_OVER_KIND, PH_PIVOT, PH_RESTING, PH_SEATED,
-                                               PH_SIZE, PH_SLIDE, PH_SLIP, PH_UNCONVERGED)
+                                               PH_SIZE, PH_SLIDE, PH_SLIP, PH_UNCONVERGED, SLIDE_DUE)
 from opsrock.solvers.rigid3d.geometry import (_arms, _cm_outside, _geometry, _tilt, _twist)
 from opsrock.solvers.rigid3d.step import (_book, _count_sweeps, _floor, _rest_holds, _rest_span, _step)
 from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _copy, _flat_slip, _slip_pivot, _smooth,
@@ -217,10 +217,11 @@ def _smooth_due(model, phase):
 @numba.njit(cache=True, inline='always')
 def _smooth_step(model, floor, state, k, phase, work, corners, trial):
     """A smooth step of the phase the block has been in for ``pivot.CALM_STEPS`` Moreau-Jean steps (``phase``):
-    about stuck corners (:func:`.smooth._smooth`), on slipping corners (:func:`.smooth._smooth_slip`), sliding flat
-    (:func:`.smooth._coarse_slide`), into ``trial``, with its input work; a phase whose smooth step failed cools
-    down. Returns ``(steps, largest tilt)``, steps <= 0 if none was taken (the Moreau-Jean step then goes on). Called
-    once :func:`_smooth_due` (smooth steps on, a phase calm): each branch drops ``work`` (52 arrays) once."""
+    about stuck corners (:func:`.smooth._smooth`), on slipping corners (:func:`.smooth._smooth_slip`), into
+    ``trial``, with its input work; a phase whose smooth step failed cools down. Returns ``(steps, largest tilt)``,
+    steps <= 0 if none was taken (the Moreau-Jean step then goes on), ``SLIDE_DUE`` if the phase is sliding flat
+    (``run`` takes its coarse slide, :func:`_slide_step`). Called once :func:`_smooth_due` (smooth steps on, a phase
+    calm): each branch drops ``work`` (52 arrays) once."""
     n, tilt_sub, smoothed = 0, 0.0, False
     F = work.pivot.F
     if phase[PH_PIVOT] >= PV.CALM_STEPS:
@@ -234,15 +235,34 @@ def _smooth_step(model, floor, state, k, phase, work, corners, trial):
         if n == 0:
             phase[PH_SLIP] = -4 * PV.MIN_STEPS
     else:  # phase[PH_SLIDE] >= PV.CALM_STEPS
-        n = _coarse_slide(model, floor, state, k, work, corners, trial)
-        if n == 0:
-            phase[PH_SLIDE] = -_coarse_steps(model)
+        n = SLIDE_DUE
     if smoothed:  # a smooth step's input work (the floor's force at its middle)
         g, new = model.body.g, trial.state
         PV.floor_at(floor, k + 0.5 * n, k, model.numerics.theta_mj, F, g)
         trial.out[OUT_INPUT_WORK] += F[0] * (new[0] - state[0]) + F[1] * (new[1] - state[1]) + \
             (F[2] + g) * (new[2] - state[2])
     return n, tilt_sub
+
+
+@numba.njit(cache=True, inline='always')
+def _slide_step(model, floor, state, k, phase, work, corners, trial):
+    """The coarse Moreau-Jean step of a block sliding flat (:func:`.smooth._coarse_slide`; arguments as
+    :func:`_smooth_step`'s); the phase cools down if none was kept. Returns the steps taken (0: none kept, -1: none
+    tried). ``run`` calls it only where its ``flat`` is True: with None numba prunes the call on the argument's
+    type (issue 43: about a twelfth of the kernel's first compile), and :func:`_needs_flat` stands in."""
+    n = _coarse_slide(model, floor, state, k, work, corners, trial)
+    if n == 0:
+        phase[PH_SLIDE] = -_coarse_steps(model)
+    return n
+
+
+@register_jitable
+def _needs_flat(out):
+    """In place of :func:`_slide_step` where ``run``'s ``flat`` is None (infinite friction: a block slides flat only in
+    the friction's limit): marks the case for the specialisation with the coarse slide (``out[OUT_NEEDS_FLAT]``; the
+    solver runs it again from its start with ``flat`` True) and takes no step. Returns 0."""
+    out[OUT_NEEDS_FLAT] = 1.0
+    return 0
 
 
 @numba.njit(cache=True, inline='always')
@@ -286,9 +306,9 @@ def _rest_skip(model, floor, k, state, theta, phase, hist, out):
 
 
 @register_jitable
-def _start(model, state, ws, corners, hist, out):
-    """The run's start from ``state``: ``out`` cleared, the corners within ``lift_gap`` of the floor down, the first
-    history row, the peaks of the start. Returns ``(corners down, signed tilt)``."""
+def _start(model, state, ws, corners, phase, hist, out):
+    """The run's start from ``state``: ``out`` cleared, the corners within ``lift_gap`` of the floor down (their
+    number into ``phase[PH_LAST_DOWN]``), the first history row, the peaks of the start. Returns the signed tilt."""
     body = model.body
     out[:] = 0.0
     out[OUT_FIRST_MODE] = -1.0
@@ -302,7 +322,8 @@ def _start(model, state, ws, corners, hist, out):
             n_down, body.h, out)
     out[OUT_THETA_MAX] = tilt
     out[OUT_TWIST_MAX] = abs(_twist(state))
-    return n_down, theta
+    phase[PH_LAST_DOWN] = n_down
+    return theta
 
 
 @numba.njit(cache=True, inline='always')
@@ -366,9 +387,8 @@ def _finish(model, state, k, status, corners, hist, out):
 
 @numba.njit(cache=True)
 def run(model, floor, state, hist, out, flat):
-    """Integrate one case into ``out`` (layout ``OUT_*``) and ``hist`` (rows ``H_*``); returns the status. Each step:
-    the rest skip if the block is seated and the floor's load carried; else a smooth step of the phase the block is
-    in (``phase``, slots ``PH_*``) or a Moreau-Jean step; then the new state's bookkeeping (peaks, history, the end).
+    """Integrate one case into ``out`` (``OUT_*``) and ``hist`` (rows ``H_*``); returns the status. Each step: the rest
+    skip (seated, the load carried), else a smooth step of a calm phase (``phase``, ``PH_*``) or a Moreau-Jean step.
 
     Parameters
     ----------
@@ -384,16 +404,14 @@ def run(model, floor, state, hist, out, flat):
     out : float64[OUT_SIZE]
         The run's results and bookkeeping.
     flat : bool or None
-        True: finite friction, the flat slide's scratch built; None: infinite friction, no flat slide compiled.
+        True: the flat slide and the coarse slide compiled (finite friction); None: neither (infinite friction), a
+        block sliding flat marked in ``out[OUT_NEEDS_FLAT]`` for a run with True.
     """
     body, lim, dt, n_exc = model.body, model.limits, model.numerics.dt, floor.n_exc
     work = make_workspace(OUT_SIZE, flat)
-    ws, end = work.step, work.end
-    corners = make_corners()
-    trial = make_trial(out)
-    phase = make_phase(PH_SIZE)
-    last_down, theta = _start(model, state, ws, corners, hist, out)
-    phase[PH_LAST_DOWN] = last_down
+    ws, end, corners = work.step, work.end, make_corners()
+    trial, phase = make_trial(out), make_phase(PH_SIZE)
+    theta = _start(model, state, ws, corners, phase, hist, out)
     status, k, going = STATUS_OK, ZERO, True
     while going:  # (one exit, its test: numba drops every array the loop holds at each exit; issue 43)
         if k >= n_exc and (lim.max_tail < 0 or phase[PH_RESTING] >= lim.rest_steps):
@@ -414,6 +432,9 @@ def run(model, floor, state, hist, out, flat):
             _warm_start(trial.P, acc, body.g, dt)
         n, tilt_sub = _smooth_step(model, floor, state, k, phase, work, corners, trial) if _smooth_due(model, phase) \
             else (0, 0.0)
+        if n == SLIDE_DUE:  # sliding flat: the coarse slide, compiled only with flat True (numba prunes it on the type)
+            n = _slide_step(model, floor, state, k, phase, work, corners, trial) if flat is not None else \
+                _needs_flat(out)
         if n <= 0:
             n, end.a[0], end.a[1], end.a[2] = 1, acc[0], acc[1], acc[2]
             if not _mj_step(model, state, _step(model, state, acc, dt, ws, trial, corners.touch), ws.contact, end,

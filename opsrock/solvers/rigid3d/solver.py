@@ -25,9 +25,10 @@ from opsrock.solvers.status import REASONS, failure_of
 
 #: Name this solver writes into :attr:`RockingResult.solver`.
 SOLVER_NAME = "rigid3d"
-#: The kernel's specialisation for finite friction, compiled when a case first needs it (the one for infinite
-#: friction, without the flat slide, is the kernel's first; :func:`.workspace.make_flat_scratch`): its name in the compile
-#: notice (:data:`opsrock.solvers._compile.COMPILE_PART_CPU_S`).
+#: The kernel's specialisation for finite friction (and for the rare infinite-friction case that slides flat in the
+#: friction's limit, solved again), compiled when a case first needs it (the one for infinite friction, without the
+#: flat slide and the coarse slide, is the kernel's first; :func:`_call_kernel`): its name in the compile notice
+#: (:data:`opsrock.solvers._compile.COMPILE_PART_CPU_S`).
 FINITE_FRICTION = "finite-friction"
 
 
@@ -196,16 +197,25 @@ def _run(run: _Rigid3DRun, forcing: _Forcing, state: np.ndarray, tail: bool) -> 
     hist = np.empty((kn.H_SIZE, cap))
     out = np.zeros(kn.OUT_SIZE)
     record = {"solver": SOLVER_NAME, **settings_record(settings), "dt": forcing.dt}
-    # numba compiles the kernel once for infinite friction (the flat slide's scratch None: no flat slide) and once for
-    # finite friction, each when a case first needs it (issue 43)
-    args = (model, floor, state.copy(), hist, out, flat_slides(model.friction))
-    announce_compile(kn.run, SOLVER_NAME, None if args[-1] is None else FINITE_FRICTION, args)
     try:
-        run.compiled_call(kn.run, *args, variant="infinite friction" if args[-1] is None else FINITE_FRICTION)
+        flat = flat_slides(model.friction)
+        _call_kernel(run, (model, floor, state.copy(), hist, out, flat))
+        if flat is None and out[kn.OUT_NEEDS_FLAT]:  # slid flat (friction's limit): the case again, with the paths
+            _call_kernel(run, (model, floor, state.copy(), hist, out, True))
     except Exception as exc:  # noqa: BLE001  a solver failure must become a failed result
         return failed_result(SOLVER_NAME, record, box.alpha, f"{type(exc).__name__}: {exc}",
                              wall_time_s=run.elapsed())
     return _result(run, box, out, hist[:, :int(out[kn.OUT_N_HIST])], record, state)
+
+
+def _call_kernel(run: _Rigid3DRun, args: tuple) -> None:
+    """``kernel.run(*args)`` in the specialisation ``args`` call for (their last, ``flat``). numba compiles the kernel
+    once for ``flat`` None (infinite friction: neither the closed-form flat slide nor the coarse slide of a block
+    sliding flat) and once for ``flat`` True (finite friction, and the rare infinite-friction case the first marks
+    as sliding flat, ``OUT_NEEDS_FLAT``, solved again from its start), each when a case first needs it (issue 43)."""
+    part = None if args[-1] is None else FINITE_FRICTION
+    announce_compile(kn.run, SOLVER_NAME, part, args)
+    run.compiled_call(kn.run, *args, variant="infinite friction" if part is None else FINITE_FRICTION)
 
 
 def _samples(hist: np.ndarray, first: int, count: int) -> np.ndarray:

@@ -57,7 +57,7 @@ def _flat_normals(act, r, F, T, P, B):
             for a in range(3):
                 for c in range(3):
                     B[a, c] += row[a] * row[c]
-    if not _inv3(B[0:3, 0:3], B[3:6, 0:3]):
+    if not _inv3(B[0:3], B[3:6]):  # (whole rows: C-contiguous views, the layout of _inv3's other calls, one compile)
         return 0.0, 0.0, 0.0
     g0, g1, g2 = F[2], T[0] + rz * F[1], rz * F[0] - T[1]
     y0 = B[3, 0] * g0 + B[3, 1] * g1 + B[3, 2] * g2

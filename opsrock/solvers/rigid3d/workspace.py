@@ -197,7 +197,8 @@ def make_edge_work():
 
 def flat_slides(friction):
     """The kernel's ``flat`` argument for ``friction`` (:class:`.model.Friction`): True if the block may slide flat
-    (finite friction), None if it never does (infinite friction)."""
+    (finite friction), None if it slides flat only in the friction's limit (infinite friction: the kernel then marks
+    the case, ``OUT_NEEDS_FLAT``, and the solver runs it again with True)."""
     return None if friction.infinite else True
 
 

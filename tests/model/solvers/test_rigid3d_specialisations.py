@@ -5,6 +5,7 @@ compiled first changes no result."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import subprocess
 import sys
@@ -57,3 +58,54 @@ def test_warm_up_makes_both_specialisations_ready():
     warm_up("rigid3d")
     flats = {type(sig[-1]) for sig in kn.run.signatures}
     assert types.NoneType in flats and len(flats) == 2
+
+
+def test_a_case_that_slides_flat_without_the_coarse_slide_is_solved_again_with_it(monkeypatch):
+    """The specialisation for infinite friction has no coarse slide (``run``'s ``flat`` None): a block that slides
+    flat there is marked (``OUT_NEEDS_FLAT``) and the solver solves the case again from its start with ``flat`` True.
+    With infinite friction a block slides flat only in the friction's limit (none of the directionality study's 370
+    sampled infinite-friction cases did), so the hand-over is driven here by giving a sliding block on ``mu`` 0.5
+    the specialisation for infinite friction first (``flat_slides`` patched): both runs are asked for, in that
+    order, and every field of the result is that of the ordinary solve to the bit (the second run is that solve)."""
+    import math
+
+    from opsrock.block import Block
+    from opsrock.constants import G
+    from opsrock.excitations.plan import PlanMotion
+    from opsrock.excitations.pulses import RectangularPulse
+    from opsrock.solvers.rigid3d import solver as S
+
+    box = Block(0.6, 1.2, restitution_factor=1.0, friction=0.5, depth=0.9)
+    motion = PlanMotion.along(RectangularPulse(pfa=0.8 * G, omega_p=math.pi / 0.3), 0.0)
+    ordinary = S.solve(box, motion)
+    assert ordinary.diagnostics["coarse_slide_steps"] > 0
+    flats = []
+    call = S._call_kernel
+
+    def spy(run, args):
+        call(run, args)
+        flats.append((args[-1], bool(args[4][S.kn.OUT_NEEDS_FLAT])))
+
+    monkeypatch.setattr(S, "flat_slides", lambda friction: None)
+    monkeypatch.setattr(S, "_call_kernel", spy)
+    again = S.solve(box, motion)
+    assert flats == [(None, True), (True, False)]
+    for field in dataclasses.fields(ordinary):
+        if field.name != "wall_time_s":
+            assert _same(getattr(again, field.name), getattr(ordinary, field.name)), field.name
+
+
+def _same(a, b) -> bool:
+    """``a`` and ``b`` equal to the bit: arrays element by element (NaN where NaN), dataclasses, dicts and sequences
+    item by item."""
+    import numpy as np
+
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return np.array_equal(a, b, equal_nan=True)
+    if dataclasses.is_dataclass(a) and not isinstance(a, type):
+        return type(a) is type(b) and all(_same(getattr(a, f.name), getattr(b, f.name)) for f in dataclasses.fields(a))
+    if isinstance(a, dict):
+        return isinstance(b, dict) and a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)):
+        return type(a) is type(b) and len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    return a == b or (a != a and b != b)

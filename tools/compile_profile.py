@@ -7,7 +7,7 @@ Usage (any ``opsrock simulate`` arguments)::
 
 It runs the command in this process with a new, empty ``NUMBA_CACHE_DIR`` and ``NUMBA_LLVM_PASS_TIMINGS=1`` (set
 here, for this measurement only) and listens to numba's public event API (``numba.core.event``, the
-``numba:compile`` event) for every compile: the entry point's and each ``register_jitable`` helper's. It prints,
+``numba:compile`` event) for every compile: the entry point's and each ``jitable`` helper's. It prints,
 on standard error, the process's CPU time, then one line per compiled function, slowest first: its exclusive
 wall time (its own compile, less the compiles it triggered), inclusive time, how many times it was compiled and
 with how many distinct signatures (a function compiled more often than it has signatures was compiled again

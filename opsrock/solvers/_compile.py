@@ -35,12 +35,16 @@ from typing import Any, Iterator
 #: load average 1.4-3) less 0.8 s warm. rigid3d, once its kernel was compiled per friction, this command (infinite
 #: friction) compiling the specialisation without the flat slide: 36.5/36.6 s cold against 40.5/38.5 s before
 #: (alternated, load average 2-3), and 35.2/34.7 s against 39.0/39.4 s (load average 1.6-2.4), less 1.0 s warm; a
-#: finite-friction first solve is :data:`COMPILE_PART_CPU_S`'s.
+#: finite-friction first solve is :data:`COMPILE_PART_CPU_S`'s. Once rigid3d's infinite-friction specialisation left
+#: out the coarse slide and every kernel helper its C-callable wrapper (:mod:`opsrock.solvers.jitable`), alternated
+#: with the code before, two rounds, load average 0.8-1.1: rigid3d 29.2/28.2 s against 33.1/33.6 s, friction
+#: 7.5/7.5 s against 8.7/8.3 s, housner_fast 4.6/4.2 s against 4.9/4.5 s, moreau_jean 6.0/7.0 s against 6.5/6.9 s
+#: cold, less about 0.8-1.0 s warm.
 COMPILE_CPU_S: dict[str, float] = {
-    "friction": 7.5,
-    "housner_fast": 4.0,
-    "moreau_jean": 6.0,
-    "rigid3d": 35.0,
+    "friction": 6.5,
+    "housner_fast": 3.5,
+    "moreau_jean": 5.5,
+    "rigid3d": 28.0,
     "cylinder3d": 30.0,
 }
 
@@ -55,10 +59,11 @@ COMPILE_CPU_S: dict[str, float] = {
 #: (alternated, load average 1.5-2.6), and 38.7/38.5 s against 38.3/38.2 s (load average 1.4-2.4), less 1.0 s warm.
 #: After the infinite-friction one in the same process it takes 13-20 s: ``warm_up("rigid3d")``, which compiles
 #: both, took 60.6 s against 40.0 s for the one kernel before (load average 3), and 52.0 s against 38.4 s (load
-#: average 1).
+#: average 1). With the helpers' C-callable wrappers left out (:mod:`opsrock.solvers.jitable`): 35.9/35.3 s against
+#: 38.3/36.8 s (alternated, load average 0.9-1.0), less 1.0 s warm.
 COMPILE_PART_CPU_S: dict[tuple[str, str], float] = {
     ("friction", "flight"): 2.3,
-    ("rigid3d", "finite-friction"): 38.0,
+    ("rigid3d", "finite-friction"): 35.0,
 }
 
 

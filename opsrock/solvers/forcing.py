@@ -19,9 +19,9 @@ from collections import namedtuple
 
 import numba
 import numpy as np
-from numba.extending import register_jitable
 
 from opsrock.excitations.pulses import RICKER_HALF_WIDTH
+from opsrock.solvers.jitable import jitable
 
 #: Relative margin on a level: an acceleration within 1e-12 of ``g tan(alpha)`` counts as *at* the
 #: threshold, which does not uplift (Eq. 4 needs strict exceedance). Without it, round-off
@@ -67,7 +67,7 @@ def record_forcing(kvals: np.ndarray, dtau: float, tau_end: float) -> Excitation
     return Excitation(FORM_LINEAR, 0.0, 0.0, 0.0, float(tau_end), kvals, float(dtau))
 
 
-@register_jitable
+@jitable
 def forcing(tau, form, c0, c1, c2):
     """Floor acceleration over g at ``tau`` inside a segment of the given form."""
     if form == FORM_LINEAR:
@@ -78,7 +78,7 @@ def forcing(tau, form, c0, c1, c2):
     return c0 * (1.0 - 2.0 * x * x) * math.exp(-x * x)
 
 
-@register_jitable
+@jitable
 def next_exceedance_sine(tau, level, k, nu, phase, tau_end):
     """First time >= tau at which ``|k sin(nu tau + phase)| > level`` before ``tau_end``, and the
     sign of a there; (-1.0, 0.0) if none. Closed form: the exceedance windows in the phase
@@ -104,7 +104,7 @@ def next_exceedance_sine(tau, level, k, nu, phase, tau_end):
         return (lo - phase) / nu, sgn
 
 
-@register_jitable
+@jitable
 def next_exceedance_ricker(tau, level, k, c, t0, tau_end):
     """First time >= tau at which the Ricker wavelet ``|a|/g`` exceeds ``level`` before ``tau_end``,
     and the sign of a there; (-1.0, 0.0) if none. ``a`` is monotone between its extremes
@@ -147,7 +147,7 @@ def next_exceedance_ricker(tau, level, k, c, t0, tau_end):
     return -1.0, 0.0
 
 
-@register_jitable
+@jitable
 def next_exceedance_record(tau, level, kvals, dtau):
     """First time >= tau at which |a|/g > level for the piecewise-linear record ``kvals``
     (a/g at ``tau = i dtau``), exact on the linear segments, and the sign of a there;
@@ -173,7 +173,7 @@ def next_exceedance_record(tau, level, kvals, dtau):
     return -1.0, 0.0
 
 
-@register_jitable
+@jitable
 def next_exceedance_scaled(tau, level, kvals, gvals, dtau):
     """First time >= tau at which ``|a|/g > level (1 + a_v/g)`` for the piecewise-linear records
     ``kvals`` (``a/g``) and ``gvals`` (``1 + a_v/g``) on the same grid ``tau = i dtau``, exact on the
@@ -205,7 +205,7 @@ def next_exceedance_scaled(tau, level, kvals, gvals, dtau):
     return -1.0, 0.0
 
 
-@register_jitable
+@jitable
 def next_exceedance(tau, level, exc):
     """First uplift time >= tau (``|a|/g > level``) and the sign of a there, for any form of the
     :class:`Excitation` ``exc``."""
@@ -216,7 +216,7 @@ def next_exceedance(tau, level, exc):
     return next_exceedance_ricker(tau, level, exc.c0, exc.c1, exc.c2, exc.tau_end)
 
 
-@register_jitable
+@jitable
 def segment(exc, tau, i):
     """Forcing of the :class:`Excitation` ``exc`` on the segment that holds ``tau`` (the search starts at segment
     ``i``): (segment index, c0, c1, c2, segment end) with ``(c0, c1, c2)`` the coefficients of :func:`forcing`. An

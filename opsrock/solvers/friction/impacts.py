@@ -26,16 +26,16 @@ from __future__ import annotations
 
 import math
 
-from numba.extending import register_jitable
 
 from opsrock.solvers.friction.modes import REST, ROCK, SLIDE, SLIDE_ROCK
+from opsrock.solvers.jitable import jitable
 
 #: Relative round-off margin on the impact law's inequalities.
 _TOL = 1e-12
 
 
 
-@register_jitable
+@jitable
 def single_contact(gn, gt, u_n, u_t, mu_s, mu_k, kap):
     """Impulse ``(P_N, P_T, ok)`` at one corner whose velocity is ``(u_n < 0, u_t)`` (units of ``m R p``),
     stick if friction allows it, else slip. ``gn`` and ``gt`` are the rotation's entries of the corner's
@@ -67,7 +67,7 @@ def single_contact(gn, gt, u_n, u_t, mu_s, mu_k, kap):
     return 0.0, 0.0, False
 
 
-@register_jitable
+@jitable
 def _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k, kap):
     """Both corners land (``theta'+ = 0``, ``y'+ = 0``): ``(mode, sig, w+, ok)`` with the base at rest
     or sliding on at ``w+``; ``ok`` is False if no compressive pair of corner impulses does it."""
@@ -89,7 +89,7 @@ def _flat_landing(vx, vy, om, sa, ca, mu_s, mu_k, kap):
     return SLIDE, (1.0 if w > 0.0 else -1.0), w, True
 
 
-@register_jitable
+@jitable
 def contact_at_zero(vx, vy, om, bd):
     """The impact of a block (:class:`~.modes.Body` ``bd``) at ``theta = 0`` whose centre of mass moves at ``(vx,
     vy)`` and turns at ``om`` (units of ``R p``, ``p``): ``(mode, s, sig, om, w, ok)``.
@@ -123,7 +123,7 @@ def contact_at_zero(vx, vy, om, bd):
     return mode, 0.0, sig, 0.0, w_after, ok
 
 
-@register_jitable
+@jitable
 def impact(s, om, w, bd):
     """The state after corner ``-s`` strikes: ``(mode, s, sig, om, w, ok)`` (:func:`contact_at_zero`).
 
@@ -134,7 +134,7 @@ def impact(s, om, w, bd):
     return contact_at_zero(w + bd.ca * om, s * bd.sa * om, om, bd)
 
 
-@register_jitable
+@jitable
 def landing(th, om, vx, vy, bd):
     """A block in free flight lands: ``(mode, s, sig, om, w, ok)`` after the impact of its lower corner
     ``c = sgn(theta)`` (``theta``, ``om``: rotation and rate; ``vx``, ``vy``: the centre of mass's

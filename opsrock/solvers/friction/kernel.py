@@ -11,26 +11,25 @@ the pulse kept) until it is at rest or has overturned, or, in a pure slide its f
 within ``max_tail`` (:func:`_unstoppable`), until that is known: the case then ends with its slip
 velocity in ``OUT_SLIP_END`` (docs/guide/friction.md, the ending rule).
 
-Compilation (issue 43: a first solve's compile time): the helpers are ``register_jitable`` functions, each
-compiled once into its callers. Only a step's path (:func:`_rk_step`, :func:`_trial_step`, :func:`_fly_step`,
-:func:`_record`) is inlined into the loop by numba (``inline='always'``): a call that is not inlined takes and drops
-a reference to each array it is passed, a dozen atomic counts on every step (measured: the kernel 10-15 % slower per
-case without it). Everything inlined, as before, made the compile about a third longer. The loop's turn is written in
+Compilation (issue 43: a first solve's compile time): the helpers are :data:`opsrock.solvers.jitable.jitable` functions,
+each compiled once into its callers. Only a step's path (:func:`_rk_step`, :func:`_trial_step`, :func:`_fly_step`,
+:func:`_record`) is inlined into the loop by numba (``inline='always'``): a call that is not inlined takes and drops a
+reference to each array it is passed, a dozen atomic counts on every step (measured: the kernel 10-15 % slower per case
+without it). Everything inlined, as before, made the compile about a third longer. The loop's turn is written in
 :func:`_solve` itself, not in an inlined helper: numba copies an inlined function's IR block by block, each block with
 the function's whole variable scope, so the cost grows as blocks times variables; inlining the turn (105 blocks, 1,181
-variables with the step path in it) cost a first solve about 1 s of CPU (issue 43).
-Free flight (:func:`_fly_step` and what it calls, about a sixth of the compile) is an entry point of its own,
-:func:`fly_case`, compiled only when a block first leaves the floor: most cases never do (it takes the floor falling
-faster than ``g``, or a contact force turning negative). :func:`solve_case` hands the case over when the block takes
-off and takes it back when it lands, through a state vector (:func:`state`): the case state and the forcing context,
-copied whole, so the two kernels compute exactly what one loop would. A first solve from an empty cache took 7.9-8.6 s
-of CPU with it against 9.6-10.1 s with flight in the one loop (alternated; issue 43), at the same cost per case; a
-first solve that flies compiles both kernels, in about the time the one kernel took (11.2 and 10.9 s against 11.2
-and 10.8 s, alternated), and so does :func:`opsrock.solvers.warm_up` (11.9 s both). An
-earlier attempt (branch ``planar-lazy-flight``) cost 5-6 % per case on cases that never fly: not the hand-over, but
-two ``inline='always'`` helpers it put on the step path (the excitation's end and the step size; written back in
-the loop, its kernel was as fast as before): the loop here keeps its body as it was.
-"""
+variables with the step path in it) cost a first solve about 1 s of CPU (issue 43). Free flight (:func:`_fly_step` and
+what it calls, about a sixth of the compile) is an entry point of its own, :func:`fly_case`, compiled only when a block
+first leaves the floor: most cases never do (it takes the floor falling faster than ``g``, or a contact force turning
+negative). :func:`solve_case` hands the case over when the block takes off and takes it back when it lands, through a
+state vector (:func:`state`): the case state and the forcing context, copied whole, so the two kernels compute exactly
+what one loop would. A first solve from an empty cache took 7.9-8.6 s of CPU with it against 9.6-10.1 s with flight in
+the one loop (alternated; issue 43), at the same cost per case; a first solve that flies compiles both kernels, in about
+the time the one kernel took (11.2 and 10.9 s against 11.2 and 10.8 s, alternated), and so does
+:func:`opsrock.solvers.warm_up` (11.9 s both). An earlier attempt (branch ``planar-lazy-flight``) cost 5-6 % per case on
+cases that never fly: not the hand-over, but two ``inline='always'`` helpers it put on the step path (the excitation's
+end and the step size; written back in the loop, its kernel was as fast as before): the loop here keeps its body as it
+was. """
 
 from __future__ import annotations
 
@@ -39,7 +38,6 @@ from collections import namedtuple
 
 import numba
 import numpy as np
-from numba.extending import register_jitable
 
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers import status as ST
@@ -60,6 +58,7 @@ from opsrock.solvers.friction.modes import (
     slide_rock_normal,
     start_mode,
 )
+from opsrock.solvers.jitable import jitable
 
 # --- status codes: the shared ones (:mod:`opsrock.solvers.status`) --------------------------------
 STATUS_OK = ST.OK
@@ -128,7 +127,7 @@ _EVENT_MAX_ITER = 100
 _MIN_STEP = 1e-14
 
 
-@register_jitable
+@jitable
 def _floor(tau, fc):
     """``(a_h/g, 1 + a_v/g)`` at ``tau`` on the current segment (``a_h = 0`` after the excitation)."""
     gv = fc[_FC_G0] + fc[_FC_G1] * (tau - fc[_FC_GT0])
@@ -142,14 +141,14 @@ def history(cap):
     return np.zeros((cap, H_SIZE))
 
 
-@register_jitable
+@jitable
 def _deriv(m, fc, bd):
     """:func:`opsrock.solvers.friction.modes.accelerations` at the :class:`Motion` ``m``."""
     ah, gv = _floor(m.tau, fc)
     return accelerations(m, ah, gv, bd)
 
 
-@register_jitable
+@jitable
 def _rk4(m, h, fc, bd):
     """One RK4 step of the :class:`Motion` ``m``: ``(th, om, u, w, input work, friction work)`` after ``h``."""
     mode, s, sig, th, om, u, w, tau = m.mode, m.s, m.sig, m.th, m.om, m.u, m.w, m.tau
@@ -166,7 +165,7 @@ def _rk4(m, h, fc, bd):
             k * (p1 + 2.0 * p2 + 2.0 * p3 + p4), k * (q1 + 2.0 * q2 + 2.0 * q3 + q4))
 
 
-@register_jitable
+@jitable
 def _event(ev, m, fc, bd):
     """Value of event ``ev`` (it happens when the value falls to zero from above): 0 impact (``s theta``),
     1 stick-slip (rock: ``mu_s N - |F|``; slide, slide-rock: ``sig w``), 2 contact (``N``; slide:
@@ -189,7 +188,7 @@ def _event(ev, m, fc, bd):
     return 1.0 if mu_s == math.inf else mu_s * n - abs(f)
 
 
-@register_jitable
+@jitable
 def _illinois(d, f, lo, hi, f_lo, f_hi, side):
     """The bracket after a trial at ``d`` with value ``f``: ``(lo, hi, f_lo, f_hi, side)``, the end kept twice
     in a row has its value halved (Illinois regula falsi)."""
@@ -202,7 +201,7 @@ def _illinois(d, f, lo, hi, f_lo, f_hi, side):
     return d, hi, f, f_hi, 1
 
 
-@register_jitable
+@jitable
 def _locate(ev, sgn, f_lo, f_hi, m, h, fc, bd):
     """Smallest step ``d`` in (0, h] after which event ``ev`` has happened (its value <= 0), to
     round-off, given ``f_lo > 0`` at 0 and ``f_hi <= 0`` at ``h``: Illinois regula falsi with a
@@ -225,7 +224,7 @@ def _locate(ev, sgn, f_lo, f_hi, m, h, fc, bd):
     return hi, hi - lo <= _EVENT_SLACK * tol
 
 
-@register_jitable
+@jitable
 def _set_segment(fc, tau, seg, exc, gvals, g_const):
     """Load the forcing segment holding ``tau`` into ``fc``; returns ``(segment index, segment end)``."""
     seg, c0, c1, c2, seg_end = segment(exc, tau, seg)
@@ -241,7 +240,7 @@ def _set_segment(fc, tau, seg, exc, gvals, g_const):
     return seg, seg_end
 
 
-@register_jitable
+@jitable
 def _settle(m, ah, gv, bd, rest_velocity):
     """The mode a block takes after an impact or a landing: seated if, at ``theta = 0``, the rotation
     left is below ``rest_velocity`` and pulled back; slide-rock if a stuck pivot cannot hold; a
@@ -272,7 +271,7 @@ def _settle(m, ah, gv, bd, rest_velocity):
 
 
 # --- free flight ------------------------------------------------------------------------------------
-@register_jitable
+@jitable
 def _flight_rhs(vx, vy, tau, fc):
     """Accelerations of the centre of mass in flight (units of ``R p²``: ``g / (R p²) = (kap + 1) / kap``, 4/3
     homogeneous) and the input power."""
@@ -281,7 +280,7 @@ def _flight_rhs(vx, vy, tau, fc):
     return -c * ah, -c * gv, -(ah * vx + (gv - 1.0) * vy)
 
 
-@register_jitable
+@jitable
 def _rk4_flight(x, vx, y, vy, tau, h, fc):
     """One RK4 step of the flight of the centre of mass: ``(x, vx, y, vy, input work)`` after ``h``
     (the rotation rate is constant in flight)."""
@@ -303,13 +302,13 @@ def _rk4_flight(x, vx, y, vy, tau, h, fc):
 _GAP_TOL = 1e-12
 
 
-@register_jitable
+@jitable
 def _gap(c, th, y, sa, ca):
     """Height of corner ``c`` above the floor (units of ``R``), plus :data:`_GAP_TOL`."""
     return y - c * sa * math.sin(th) - ca * math.cos(th) + _GAP_TOL
 
 
-@register_jitable
+@jitable
 def _takeoff(m, bd):
     """The centre of mass's ``(x, vx, y, vy)`` (units of ``R``, ``R p``) of a block leaving the floor in
     the :class:`Motion` ``m``; ``x`` is measured from the centre's position at rest, as the base displacement
@@ -322,7 +321,7 @@ def _takeoff(m, bd):
     return u, w, ca, 0.0
 
 
-@register_jitable
+@jitable
 def _locate_landing(c, f_lo, f_hi, fl, h, fc, bd):
     """Smallest flight time ``d`` in (0, h] after which corner ``c`` touches the floor: Illinois regula
     falsi with a bisection every fourth iteration, on the RK4 flight map from the :class:`Flight` ``fl``.
@@ -343,7 +342,7 @@ def _locate_landing(c, f_lo, f_hi, fl, h, fc, bd):
     return hi, hi - lo <= _EVENT_SLACK * tol
 
 
-@register_jitable
+@jitable
 def _fly(fl, h, fc, fresh, bd):
     """One step of free flight of at most ``h`` from the :class:`Flight` ``fl``: ``(th, om, x, vx, y, vy, d, input
     work, landed, ok)``; ``landed``: a corner reached the floor after ``d`` (``d = 0``: a lift-off that does not
@@ -371,7 +370,7 @@ def _fly(fl, h, fc, fresh, bd):
     return th + d * om, om, f1[0], f1[1], f1[2], f1[3], d, f1[4], best != 0.0, True
 
 
-@register_jitable
+@jitable
 def _record(hist, out, m):
     """Append the :class:`Motion` ``m`` to the history rows ``hist`` (columns ``H_*``) if it has room
     (``out[OUT_N_HIST]``: the rows stored, counted on)."""
@@ -391,7 +390,7 @@ def _record(hist, out, m):
 _record_step = numba.njit(inline='always')(_record)
 
 
-@register_jitable
+@jitable
 def _first_event(m, h, y1, fc, bd):
     """The earliest event inside a step of length ``h`` from the :class:`Motion` ``m`` ending in the state
     ``y1``: ``(event, d, ok)``, ``event = -1`` if none (then ``d = h``)."""
@@ -411,7 +410,7 @@ def _first_event(m, h, y1, fc, bd):
     return best, d_best, True
 
 
-@register_jitable
+@jitable
 def _peak(m, d, om_end, fc, bd):
     """``|theta|`` at a turning point inside a step of length ``d`` from the :class:`Motion` ``m`` (0 if
     ``omega`` keeps its sign)."""
@@ -424,7 +423,7 @@ def _peak(m, d, om_end, fc, bd):
     return abs(th_p), ok
 
 
-@register_jitable
+@jitable
 def _energy(mode, s, th, om, w, fy, fvy, bd):
     """Kinetic plus potential energy of any mode's state (units of ``m g R``)."""
     alpha, ca, kap = bd.alpha, bd.ca, bd.kap
@@ -433,7 +432,7 @@ def _energy(mode, s, th, om, w, fy, fvy, bd):
     return kinetic_energy(mode, s, th, om, w, alpha, kap) + potential_energy(s if mode != SLIDE else 0.0, th, alpha)
 
 
-@register_jitable
+@jitable
 def _unstoppable(w, mu_k, g_tail, time_left, kap):
     """Whether a pure slide at slip velocity ``w`` on the still floor after the excitation (closed form:
     uniform deceleration ``(kap + 1) / kap mu_k g_tail``, 4/3 homogeneous, units of ``R p²``) cannot stop within
@@ -441,7 +440,7 @@ def _unstoppable(w, mu_k, g_tail, time_left, kap):
     return (kap + 1.0) / kap * mu_k * g_tail * time_left < abs(w)
 
 
-@register_jitable
+@jitable
 def _start_slip(mode, s, th, om, tau, fc, alpha, mu_s):
     """The slip direction ``sig`` of a block started rocking on a stuck pivot (``theta0``, ``omega0``): 0 if
     the pivot holds (``|F| <= mu_s N``), else ``-sgn(F)`` (it starts slide-rocking)."""
@@ -477,7 +476,7 @@ Setup = namedtuple("Setup", ["exc", "gvals", "g_const", "g_tail", "tau_end", "h_
                              "max_impacts", "max_steps", "max_tail", "level"])
 
 
-@register_jitable
+@jitable
 def _setup(params, kvals, gvals):
     """The case's :class:`Setup` and :class:`~.modes.Body` from the parameter vector (slots ``P_*``)."""
     exc = Excitation(int(params[P_FORM]), params[P_K], params[P_NU], params[P_PHASE], params[P_TAU_END], kvals,
@@ -489,27 +488,27 @@ def _setup(params, kvals, gvals):
     return cfg, bd
 
 
-@register_jitable
+@jitable
 def _motion(cs):
     """The :class:`Motion` of the case state ``cs``."""
     return Motion(int(cs[_CS_MODE]), cs[_CS_S], cs[_CS_SIG], cs[_CS_TH], cs[_CS_OM], cs[_CS_U], cs[_CS_W],
                   cs[_CS_TAU])
 
 
-@register_jitable
+@jitable
 def _set_mode(cs, mode, s, sig, om, w):
     """A new mode ``(mode, s, sig)`` with rate ``om`` and slip velocity ``w`` into the case state ``cs``."""
     cs[_CS_MODE], cs[_CS_S], cs[_CS_SIG], cs[_CS_OM], cs[_CS_W] = mode, s, sig, om, w
 
 
-@register_jitable
+@jitable
 def _first_mode(out, mode):
     """Count ``mode`` as the first the block left rest into, if it is."""
     if out[OUT_FIRST_MODE] < 0.0:
         out[OUT_FIRST_MODE] = mode
 
 
-@register_jitable
+@jitable
 def _start(params, cfg, bd, fc, cs, out, hist):
     """The case's start: from rest, or rocking on a stuck pivot from ``theta0``, ``omega0`` (slide-rocking if the
     pivot cannot hold, :func:`_start_slip`); ``out`` cleared but for the start's energy, the first history row."""
@@ -534,7 +533,7 @@ def _start(params, cfg, bd, fc, cs, out, hist):
     _record(hist, out, _motion(cs))
 
 
-@register_jitable
+@jitable
 def _take_off(bd, cs, out, hist):
     """The block leaves the floor (its contact force would turn negative): the flight's start from its mode."""
     fx, fvx, fy, fvy = _takeoff(_motion(cs), bd)
@@ -545,7 +544,7 @@ def _take_off(bd, cs, out, hist):
     _record(hist, out, _motion(cs))
 
 
-@register_jitable
+@jitable
 def _leave_rest(cfg, bd, fc, cs, out, hist):
     """A block at rest jumps to the next time the floor overcomes it and takes the mode it starts in
     (:func:`~.modes.start_mode`; flight: a take-off next). Returns :data:`_GO`, or ``STATUS_OK`` if it stays at
@@ -587,7 +586,7 @@ def _leave_rest(cfg, bd, fc, cs, out, hist):
     return _GO
 
 
-@register_jitable
+@jitable
 def _seat_slide(cfg, bd, cs, out):
     """The ending rule (docs/guide/friction.md): a pure slide on the still floor after the excitation that friction
     stops only after ``max_tail``, or never, ends the case; its slip velocity into ``OUT_SLIP_END``, one slower than
@@ -633,7 +632,7 @@ def _fly_step(cfg, bd, fc, cs, h, last, out, hist):
     return _land(cfg, bd, fc, cs, out, hist)
 
 
-@register_jitable
+@jitable
 def _land(cfg, bd, fc, cs, out, hist):
     """A corner lands from flight (:func:`_fly_step`): the impact law, then the mode the block settles in."""
     th, om, fy, fvy, tau = cs[_CS_TH], cs[_CS_OM], cs[_CS_FY], cs[_CS_FVY], cs[_CS_TAU]
@@ -686,7 +685,7 @@ def _trial_step(bd, fc, cs, h, last, out):
     return y1, h, last, True
 
 
-@register_jitable
+@jitable
 def _drop_undeveloped(bd, cs, y1, out):
     """A new mode that does not develop within 1e-14/p (:func:`_trial_step`, ending in ``y1``): the part that does
     not (the rotation or the slip), or both, is dropped; the energy that takes away counted as lost."""
@@ -757,7 +756,7 @@ def _rk_step(cfg, bd, fc, cs, trial, out, hist):
     return _at_event(cfg, bd, fc, cs, ev, out, hist)
 
 
-@register_jitable
+@jitable
 def _impact(cfg, bd, fc, cs, out, hist):
     """An impact at ``theta = 0`` (:func:`~.impacts.impact`), then the mode the block settles in (:func:`_settle`;
     a take-off next if it cannot). Returns :data:`_GO` or the case's status."""
@@ -785,7 +784,7 @@ def _impact(cfg, bd, fc, cs, out, hist):
     return _GO
 
 
-@register_jitable
+@jitable
 def _stick_slip(bd, fc, cs, out, hist):
     """The stick-slip event: a rocking block's pivot starts slipping (a take-off next if its contact force is gone
     with the friction's hold: slide-rocking from there, the contact event, which needs the force positive at a step's
@@ -824,7 +823,7 @@ def _stick_slip(bd, fc, cs, out, hist):
     return _GO
 
 
-@register_jitable
+@jitable
 def _at_event(cfg, bd, fc, cs, ev, out, hist):
     """The mode change at the end of a step cut by event ``ev`` (0 impact, 1 stick-slip, 2 contact lost: a take-off
     next, or overturning if the block leaves the floor beyond its hump turning outwards). Returns :data:`_GO` or the
@@ -842,7 +841,7 @@ def _at_event(cfg, bd, fc, cs, ev, out, hist):
     return _GO
 
 
-@register_jitable
+@jitable
 def _finish(bd, cs, status, out):
     """The case's outputs at its end with ``status``: its time, peak tilt, first mode, base displacement and the
     energies of its last state."""
@@ -874,7 +873,7 @@ def state():
     return np.zeros(ST_SIZE)
 
 
-@register_jitable
+@jitable
 def _resume(state, cs, fc):
     """The case state and forcing context handed over in ``state`` copied into ``cs`` and ``fc``."""
     for i in range(_CS_SIZE):
@@ -883,7 +882,7 @@ def _resume(state, cs, fc):
         fc[i] = state[ST_FC + i]
 
 
-@register_jitable
+@jitable
 def _hand_over(bd, cs, fc, status, out, state):
     """The end of an entry point's call with ``status``: the state handed over to the other entry point
     (:data:`AIRBORNE`, :data:`LANDED`), or the case's outputs (:func:`_finish`). Returns ``status``."""
@@ -920,7 +919,7 @@ def solve_case(params, kvals, gvals, out, hist, state):
     return _solve(params, kvals, gvals, out, hist, state)
 
 
-@register_jitable
+@jitable
 def _solve(params, kvals, gvals, out, hist, state):
     """:func:`solve_case`'s work. The entry point calls this one helper only: numba compiles a helper once for each
     set of compile flags it is called under, and an entry point's differ from a helper's (it has a CPython wrapper),
@@ -980,7 +979,7 @@ def fly_case(params, kvals, gvals, out, hist, state):
     return _fly_solve(params, kvals, gvals, out, hist, state)
 
 
-@register_jitable
+@jitable
 def _fly_solve(params, kvals, gvals, out, hist, state):
     """:func:`fly_case`'s work (its one helper, as :func:`_solve` is :func:`solve_case`'s): the turns of
     :func:`_solve`'s loop while the block is in flight, in the same order (a take-off if one is due, the step
@@ -1001,7 +1000,7 @@ def _fly_solve(params, kvals, gvals, out, hist, state):
     return _hand_over(bd, cs, fc, status, out, state)
 
 
-@register_jitable
+@jitable
 def _flight_turn(cfg, fc, cs, out):
     """The start of a turn of :func:`_fly_solve`'s loop: :data:`LANDED` if the block is back on the floor, the
     status of a limit reached (steps; the time after the excitation), else :data:`_GO` with the excitation's end

@@ -20,7 +20,8 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from numba.extending import register_jitable
+
+from opsrock.solvers.jitable import jitable
 
 #: Mode ids; their order is :data:`opsrock.result.MODES`. numpy integers, so that numba types them as ``int64``, not
 #: as literals: a literal mode passed to a compiled function (``_energy(FLIGHT, ...)``) made numba compile it, and
@@ -41,7 +42,7 @@ Body = namedtuple("Body", ["alpha", "sa", "ca", "beta", "mu_s", "mu_k", "f_rest"
 Motion = namedtuple("Motion", ["mode", "s", "sig", "th", "om", "u", "w", "tau"])
 
 
-@register_jitable
+@jitable
 def body(alpha, mu_s, mu_k, f_rest, kap):
     """The :class:`Body` of a block of slenderness ``alpha`` (rad), friction ``mu_s``, ``mu_k``, restitution factor
     ``f_rest`` and ``kap`` (dimensionless)."""
@@ -49,7 +50,7 @@ def body(alpha, mu_s, mu_k, f_rest, kap):
                 float(f_rest), float(kap))
 
 
-@register_jitable
+@jitable
 def accelerations(m, ah, gv, bd):
     """``(theta'', u'', input power, friction power)`` of the :class:`Motion` ``m`` of a moving mode (``SLIDE``,
     ``ROCK``, ``SLIDE_ROCK``) of the :class:`Body` ``bd`` under ``ah``, ``gv``; pivot ``s`` and slip direction
@@ -74,7 +75,7 @@ def accelerations(m, ah, gv, bd):
     return thdd, udd, -ah * (w + cp * om) - av * sp * om, mu_k * normal * abs(w)
 
 
-@register_jitable
+@jitable
 def rock_forces(s, th, om, ah, gv, alpha, kap):
     """``(F, N)``: the horizontal and vertical force of the floor on a stuck pivot ``s`` while the
     block rocks (units of ``m g``; ``F`` positive along +x). Rocking needs ``N > 0`` and ``|F| <= mu N``."""
@@ -86,7 +87,7 @@ def rock_forces(s, th, om, ah, gv, alpha, kap):
     return ah + k * (cp * thdd + sp * om * om), gv + k * (sp * thdd - cp * om * om)
 
 
-@register_jitable
+@jitable
 def slide_rock_normal(s, sig, th, om, gv, alpha, mu_k, kap):
     """``N``: the normal force on a slipping pivot ``s`` (slip direction ``sig``), units of ``m g``."""
     phi = s * alpha - th
@@ -98,7 +99,7 @@ def slide_rock_normal(s, sig, th, om, gv, alpha, mu_k, kap):
     return gv + k * (sp * thdd - cp * om * om)
 
 
-@register_jitable
+@jitable
 def critical_friction(lam, beta, kap):
     """The static friction a block at rest needs to start rocking without slip when
     ``|a_h| / (g + a_v) = lam`` (``> beta = b/h``): ``[lam (1 + (kap + 1) beta²) + kap beta] / [kap + 1 + beta² +
@@ -107,7 +108,7 @@ def critical_friction(lam, beta, kap):
     return (lam * (1.0 + (kap + 1.0) * beta * beta) + kap * beta) / ((kap + 1.0) + beta * beta + kap * lam * beta)
 
 
-@register_jitable
+@jitable
 def start_mode(ah, gv, beta, mu_s, mu_k, kap):
     """The mode a block at rest (or whose base has just stopped slipping) takes under ``ah``, ``gv``:
     ``(mode, s, sig)`` with the pivot ``s`` and slip direction ``sig`` (0 where they do not apply).
@@ -130,7 +131,7 @@ def start_mode(ah, gv, beta, mu_s, mu_k, kap):
     return SLIDE_ROCK, d, d
 
 
-@register_jitable
+@jitable
 def kinetic_energy(mode, s, th, om, w, alpha, kap):
     """Kinetic energy of a mode's state (units of ``m g R``)."""
     if mode == REST:
@@ -144,7 +145,7 @@ def kinetic_energy(mode, s, th, om, w, alpha, kap):
     return half_k * (vx * vx + vy * vy + om * om / kap)
 
 
-@register_jitable
+@jitable
 def potential_energy(s, th, alpha):
     """Height of the centre of mass above its seated height (units of ``R``; energy in ``m g R``,
     with ``g``, not ``g + a_v``: the vertical floor motion's share is input work)."""

@@ -14,11 +14,11 @@ from collections import namedtuple
 
 import numba
 import numpy as np
-from numba.extending import register_jitable
 
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers import status as ST
 from opsrock.solvers.forcing import forcing, next_exceedance, pulse_forcing, segment
+from opsrock.solvers.jitable import jitable
 
 # --- status codes: the shared ones (:mod:`opsrock.solvers.status`), one per case in :class:`GridResult` --
 #: Finished: verdict (no uplift, safe or overturned) is valid.
@@ -94,7 +94,7 @@ def case_params(alpha, e, lineq, h_nom, rest_velocity, max_impacts, max_steps):
                   int(max_impacts), int(max_steps))
 
 
-@register_jitable
+@jitable
 def _accel(theta, tau, side, par, pc):
     """d²theta/dtau² on pivot ``side`` (+1/-1) under the forcing :class:`Piece` ``pc``; the exact
     equation, or its small-angle form when ``par.lineq``."""
@@ -105,7 +105,7 @@ def _accel(theta, tau, side, par, pc):
     return -(math.sin(phi) + ag * math.cos(phi))
 
 
-@register_jitable
+@jitable
 def _rk4(theta, omega, tau, h, side, par, pc):
     """One classical RK4 step of size ``h`` (the right side does not depend on omega)."""
     a1 = _accel(theta, tau, side, par, pc)
@@ -123,7 +123,7 @@ def _rk4(theta, omega, tau, h, side, par, pc):
     return theta_new, omega_new
 
 
-@register_jitable
+@jitable
 def _locate(which, st, h, par, pc):
     """Step length ``d`` in (0, h] from the state ``st`` at which the RK4 map's ``theta`` (which=0) or
     ``omega`` (which=1) vanishes, given a sign change over ``[0, h]``. Safeguarded Newton (bisection
@@ -160,7 +160,7 @@ def _locate(which, st, h, par, pc):
     return d, False
 
 
-@register_jitable
+@jitable
 def _free_verdict(par, st):
     """Exact verdict after the excitation (a = 0) from the rocking energy of the state ``st`` (per m g R in the
     exact form, per m g R alpha-scaled in the linearised one): returns (overturned, peak |theta| of the next
@@ -200,7 +200,7 @@ def _free_verdict(par, st):
     return False, 0.0, n_imp, False
 
 
-@register_jitable
+@jitable
 def _record(hist, n, tau, theta, omega):
     """Append one row to the history if it has room; returns the rows written."""
     if n < hist.tau.shape[0]:
@@ -211,13 +211,13 @@ def _record(hist, n, tau, theta, omega):
     return n
 
 
-@register_jitable
+@jitable
 def _outcome(tl, overturned, status):
     """The :class:`Outcome` of a case ended with ``status``."""
     return Outcome(tl.theta_max, overturned, tl.rocked, status, tl.n_imp, tl.n_steps, tl.n_hist)
 
 
-@register_jitable
+@jitable
 def _start(theta0, omega0, hist):
     """The :class:`State` and :class:`Tally` of a case starting from ``theta0`` (rad), ``omega0`` (units of p)."""
     n_hist = _record(hist, _ZERO, 0.0, theta0, omega0)
@@ -234,7 +234,7 @@ def _start(theta0, omega0, hist):
     return State(0.0, theta0, omega0, side, fresh, 0), Tally(abs(theta0), rocked, 0, 0, n_hist)
 
 
-@register_jitable
+@jitable
 def _trial(par, exc, st, tl):
     """The step from the rocking state ``st`` on its forcing segment: ``(piece, trial, steps so far, seated,
     segment)``;
@@ -269,7 +269,7 @@ def _trial(par, exc, st, tl):
     return pc, Trial(h, last, seg_end, th1, w1), n_steps, seated, seg
 
 
-@register_jitable
+@jitable
 def _impact(par, pc, st, tl, tr, hist):
     """The step ``tr`` crosses ``theta = 0``: to the impact (and a peak before it), Housner's impact, and the
     block seated if it leaves too slowly towards a restoring acceleration. ``(state, tally, end)``: ``end`` -1
@@ -307,7 +307,7 @@ def _impact(par, pc, st, tl, tr, hist):
     return State(tau, 0.0, omega, side, fresh, st.seg), Tally(theta_max, tl.rocked, n_imp, n_steps, n_hist), -1
 
 
-@register_jitable
+@jitable
 def _ordinary(par, pc, st, tl, tr, hist):
     """The step ``tr`` stays on its side: a peak inside it, then the new state, overturned or not. ``(state,
     tally, end)`` as :func:`_impact`."""
@@ -327,7 +327,7 @@ def _ordinary(par, pc, st, tl, tr, hist):
     return new, tally, (STATUS_OK if abs(theta) >= OVERTURNING_ANGLE else -1)
 
 
-@register_jitable
+@jitable
 def _step(par, exc, st, tl, hist):
     """One step of a rocking block: ``(state, tally, end)`` as :func:`_impact` (``end`` :data:`STATUS_OK`: it
     overturned)."""

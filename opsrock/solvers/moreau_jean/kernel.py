@@ -23,10 +23,10 @@ from collections import namedtuple
 
 import numba
 import numpy as np
-from numba.extending import register_jitable
 
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers import status as ST
+from opsrock.solvers.jitable import jitable
 
 # --- status codes: the shared ones (:mod:`opsrock.solvers.status`) ------------------------------------
 #: Finished: the block came to rest after the excitation, overturned, or (free rocking) the span ended.
@@ -145,14 +145,14 @@ def history(every, cap):
     return History(int(every), np.zeros(cap), np.zeros(cap), np.zeros(cap), np.zeros(cap))
 
 
-@register_jitable
+@jitable
 def scratch(previous_pair):
     """A :class:`Scratch`, ``previous_pair`` the status pair taken last (-1: none)."""
     return Scratch(np.zeros((4, 3, 3)), np.zeros((2, 3), dtype=np.int64), np.zeros((2, 4)),
                    np.full(1, previous_pair, dtype=np.int64))
 
 
-@register_jitable
+@jitable
 def workspace(bd):
     """A fresh :class:`Workspace` for the :class:`Body` ``bd``."""
     new = np.zeros(6)
@@ -175,7 +175,7 @@ def _floor(k, theta_mj, fm):
     return ah[j] + f * (ah[j + 1] - ah[j]), av[j] + f * (av[j + 1] - av[j])
 
 
-@register_jitable
+@jitable
 def _rows(c, b, h, th):
     """``(gn_c, gt_c)``: the rotation entries of the normal and tangential Jacobian rows of corner ``c``."""
     s = math.sin(th)
@@ -183,13 +183,13 @@ def _rows(c, b, h, th):
     return h * s - c * b * co, -(c * b * s + h * co)
 
 
-@register_jitable
+@jitable
 def _gap(c, b, h, y, th):
     """Height of corner ``c`` above the floor (m)."""
     return y - c * b * math.sin(th) - h * math.cos(th)
 
 
-@register_jitable
+@jitable
 def _local(wnn, wnt, wtt, un, ut, mu_s, mu_k, stick_only):
     """One contact, exactly (docs/guide/friction.md, the impact at ``theta = 0``, with ``e_n = 0``): the impulse
     ``(P_N, P_T)`` making ``U+ = U + W P`` satisfy ``0 <= U_N+ _|_ P_N >= 0`` and Coulomb's law, and a
@@ -251,7 +251,7 @@ _ORDER_FINITE = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [2, 0], [3, 0], [0, 2]
 _ORDER_INFINITE = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [4, 0], [0, 4], [1, 4], [4, 1], [4, 4]])
 
 
-@register_jitable
+@jitable
 def _solve_small(a, r, n):
     """Solve ``a[:n, :n] z = r[:n]`` in place by Gaussian elimination with partial pivoting; returns False
     if a pivot is below 1e-12 of the matrix's largest entry (singular status pair: skip it)."""
@@ -282,7 +282,7 @@ def _solve_small(a, r, n):
     return True
 
 
-@register_jitable
+@jitable
 def _check(st, pn, pt, un, ut, mu_s, eps):
     """Does a contact with status ``st``, impulse ``(pn, pt)`` and end-of-step velocity ``(un, ut)`` obey
     its law (within ``eps``, m/s)?"""
@@ -299,7 +299,7 @@ def _check(st, pn, pt, un, ut, mu_s, eps):
     return pt * ut <= eps * (abs(pt) + eps)  # _LIMIT: friction opposes the slip
 
 
-@register_jitable
+@jitable
 def _try_pair(sr, sl, prob, fr, eps, sol, sc):
     """Impulses of both contacts for the status pair ``(sr, sl)`` (not both stick), by one small linear
     system: each status adds its unknowns (stick: ``P_N``, ``P_T``; slip ``sigma``: ``P_N`` with ``P_T = -sigma
@@ -357,7 +357,7 @@ def _try_pair(sr, sl, prob, fr, eps, sol, sc):
     return True
 
 
-@register_jitable
+@jitable
 def _stick_both(prob, fr, strict, eps, sol, wb):
     """Both corners stick: then ``v = 0`` (their four velocity rows span the three freedoms) and the
     impulses solve ``G^T P = -M v_free``, a one-parameter family ``P(s)``, ``s = P_T`` of the left corner
@@ -407,7 +407,7 @@ def _stick_both(prob, fr, strict, eps, sol, wb):
     return True
 
 
-@register_jitable
+@jitable
 def _try(k, order, prob, fr, strict, eps, sol, sc):
     """Try status pair ``order[k]`` (:func:`_stick_both`, with ``strict``, or :func:`_try_pair`)."""
     sr, sl = order[k, 0], order[k, 1]
@@ -483,7 +483,7 @@ def _slide_of(b, h, x, th):
     return x + c * b * (math.cos(th) - 1.0) - h * math.sin(th)
 
 
-@register_jitable
+@jitable
 def _mode(touch, slip):
     """Contact mode (a ``MODE_*`` index) from the two corners' contact and slip flags."""
     n = int(touch[0]) + int(touch[1])
@@ -586,7 +586,7 @@ def _book(state, a_h, a_v, bd, lim, wk, out):
         out[OUT_IMPACTS] += 1.0
 
 
-@register_jitable
+@jitable
 def _tally(mode, dt, out):
     """First mode left rest into, time sliding, time rocking and time in flight."""
     if mode != MODE_REST and out[OUT_FIRST_MODE] < 0.0:

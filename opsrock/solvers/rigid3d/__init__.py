@@ -151,8 +151,7 @@ rocking record above, 191 on the sliding two-component one (2-core project machi
 steps there). The kernel is compiled once and cached (``cache=True``), in two specialisations, each the first time a
 case needs it: one for infinite friction, without the closed-form flat slide and the coarse slide of a block sliding
 flat (a case that slides flat in the friction's limit is solved again by the other), and one for finite friction
-(``workspace.StepWork``; about 35 and 39 s of CPU cold before the coarse slide was left out, issue 43), 0.3 s to
-load the cache.
+(``workspace.StepWork``; about 29 and 36 s of CPU cold, issue 43), 0.3 s to load the cache.
 """
 
 from opsrock.solvers.rigid3d.settings import Rigid3DSettings

@@ -7,15 +7,15 @@ from __future__ import annotations
 
 import math
 
-from numba.extending import register_jitable
 
+from opsrock.solvers.jitable import jitable
 from opsrock.solvers.rigid3d.constants import (CONE_SLACK, DIRECTION_TOL, LIMIT_MU, OUT_LIMIT_STEPS, OUT_NSGS_EXTRA,
                                                OUT_NSGS_LOOSE, SECULAR_TOL, SLIP_ANGLE_TOL, SLIP_STEP_TOL)
 from opsrock.solvers.rigid3d.geometry import _cross_add
 from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_PN, VEC_V, VEC_Y6)
 
 
-@register_jitable
+@jitable
 def _slip_direction(a, c, e, r0, r1):
     """Unit ``s`` and ``lam >= 0`` with ``(lam 1 + A) s = r``, ``A = [[a, c], [c, e]]`` symmetric positive
     definite: the slip direction of a contact whose tangential velocity is ``r - A s`` (the trust-region
@@ -65,7 +65,7 @@ def _slip_direction(a, c, e, r0, r1):
     return cth * s1 - sth * s2, sth * s1 + cth * s2
 
 
-@register_jitable
+@jitable
 def _slip_newton(W, q, mu_k, s0, s1):
     """The slip direction ``s`` of one corner slipping with ``mu_k`` (:func:`_local`) by Newton's method on its angle
     ``phi`` from the warm start ``s``: for a given ``s`` the normal impulse ``N = -q_z / (W_zz - mu_k W_zt . s)``
@@ -110,7 +110,7 @@ def _slip_newton(W, q, mu_k, s0, s1):
     return False, s0, s1
 
 
-@register_jitable
+@jitable
 def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
     """One corner's impulse ``P`` (tangential x, y, normal z) making ``u = q + W P`` obey ``0 <= u_z _|_ P_z >= 0``
     (Newton, ``e_n = 0``) and Coulomb's law: open if the corner does not approach; else stick (``u = 0``) if that
@@ -173,7 +173,7 @@ def _local(W, Winv, q, mu_s, mu_k, stick_only, Pw, P):
     return 1 if limit else 0
 
 
-@register_jitable
+@jitable
 def _nsgs(cw, act, P, fric, tol, max_iter, out, single):
     """Nonsmooth Gauss-Seidel (Jean & Moreau) over the active corners ``act``: each corner's local problem solved
     exactly (:func:`_local`, friction ``fric``: :class:`.model.Friction`) with the others' impulses fixed, the body's
@@ -216,7 +216,7 @@ def _nsgs(cw, act, P, fric, tol, max_iter, out, single):
     return max_iter + 1
 
 
-@register_jitable
+@jitable
 def _solve_contacts(cw, act, P, fric, tol, nsgs, out, single):
     """NSGS (:func:`_nsgs`) to ``tol`` in ``nsgs.max_sweeps`` sweeps; failing that, on for up to ``nsgs.extra_sweeps``
     sweeps more (at least one) to the looser ``tol * nsgs.loose_tol / nsgs.tol`` (a block at the stick-slip limit on

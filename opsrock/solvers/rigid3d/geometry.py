@@ -7,19 +7,19 @@ from __future__ import annotations
 
 import math
 
-from numba.extending import register_jitable
 
+from opsrock.solvers.jitable import jitable
 from opsrock.solvers.rigid3d import pivot as PV
 from opsrock.solvers.rigid3d.constants import (CORNER_SX, CORNER_SY)
 
 
-@register_jitable
+@jitable
 def _rotmat(s, Q):
     """Rotation matrix ``Q`` (body to floor) of the unit quaternion ``s[3:7]``."""
     PV.quat_matrix(s, 3, Q)
 
 
-@register_jitable
+@jitable
 def _inv_inertia(Q, ib, Iinv, Iw):
     """Inverse inertia ``Q I_b^-1 Q^T`` and inertia ``Q I_b Q^T`` in the floor frame (per unit mass; both
     symmetric)."""
@@ -31,7 +31,7 @@ def _inv_inertia(Q, ib, Iinv, Iw):
             Iw[i, j] = Iw[j, i] = q0 * ib[0] + q1 * ib[1] + q2 * ib[2]
 
 
-@register_jitable
+@jitable
 def _delassus(r, Iinv, W):
     """``W = 1 - S I^-1 S`` of one corner at ``r`` from the centre of mass (its own 3 x 3 block): ``-S I^-1 S
     e_j = r x (I^-1 (r x e_j))``."""
@@ -50,7 +50,7 @@ def _delassus(r, Iinv, W):
         W[2, j] = (1.0 if j == 2 else 0.0) + r0 * t1 - r1 * t0
 
 
-@register_jitable
+@jitable
 def _delassus_pair(rk, rl, Iinv, W):
     """``W`` (3 x 3): the change of corner ``k``'s velocity (arm ``rk``) per unit impulse at corner ``l`` (arm
     ``rl``), ``W e = e + (I^-1 (rl x e)) x rk`` (:func:`_delassus` is ``rk = rl``, its sums in another order, kept
@@ -67,7 +67,7 @@ def _delassus_pair(rk, rl, Iinv, W):
         W[2, j] = (1.0 if j == 2 else 0.0) + t0 * rk[1] - t1 * rk[0]
 
 
-@register_jitable
+@jitable
 def _inv3(A, B):
     """``B = A^-1`` of a 3 x 3 matrix (the leading 3 x 3 blocks of ``A`` and ``B``); False if singular."""
     c00 = A[1, 1] * A[2, 2] - A[1, 2] * A[2, 1]
@@ -88,7 +88,7 @@ def _inv3(A, B):
     return True
 
 
-@register_jitable
+@jitable
 def _cross_add(a, b, Iinv, w, scale):
     """``w += scale I^-1 (a x b)``."""
     c0 = a[1] * b[2] - a[2] * b[1]
@@ -98,7 +98,7 @@ def _cross_add(a, b, Iinv, w, scale):
         w[i] += scale * (Iinv[i, 0] * c0 + Iinv[i, 1] * c1 + Iinv[i, 2] * c2)
 
 
-@register_jitable
+@jitable
 def _quat_step(s, w0, w1, w2, dt, new):
     """``new[3:7] = exp(dt omega / 2) * s[3:7]``, renormalised (``omega`` in the floor frame)."""
     ang = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2) * dt
@@ -116,7 +116,7 @@ def _quat_step(s, w0, w1, w2, dt, new):
     new[3], new[4], new[5], new[6] = nw / n, nx / n, ny / n, nz / n
 
 
-@register_jitable
+@jitable
 def _kinetic(s, Iw):
     """Kinetic energy per unit mass (J/kg) of state ``s`` with floor-frame inertia ``Iw``."""
     e = 0.5 * (s[7] * s[7] + s[8] * s[8] + s[9] * s[9])
@@ -126,7 +126,7 @@ def _kinetic(s, Iw):
     return e
 
 
-@register_jitable
+@jitable
 def _cm_outside(X, r):
     """True if the centre of mass's plan projection lies outside the convex hull of the four corners'
     projections (the plan projection of the base)."""
@@ -144,7 +144,7 @@ def _cm_outside(X, r):
     return not (inside_pos or inside_neg)
 
 
-@register_jitable
+@jitable
 def _twist(s):
     """Rotation about the vertical (rad) of the swing-twist decomposition of the quaternion, in (-pi, pi]."""
     tw = 2.0 * math.atan2(s[6], s[3])
@@ -155,7 +155,7 @@ def _twist(s):
     return tw
 
 
-@register_jitable
+@jitable
 def _tilt(s, weak_y):
     """``(tilt, signed tilt, lean x, lean y)``: the tilt (rad) from the quaternion, ``2 asin(sqrt(q_x² + q_y²))``,
     signed by the lean of the body's vertical axis along the weaker axis (``x``, or ``y`` if ``weak_y``), and the
@@ -167,7 +167,7 @@ def _tilt(s, weak_y):
     return tilt, (tilt if lean >= 0.0 else -tilt), lx, ly
 
 
-@register_jitable
+@jitable
 def _geometry(s, body, Q, Iinv, Iw, r):
     """Rotation, floor-frame inertia and the corners' arms ``r`` (4 x 3) of state ``s`` (``body``:
     :class:`.model.Body`)."""
@@ -175,7 +175,7 @@ def _geometry(s, body, Q, Iinv, Iw, r):
     _inv_inertia(Q, body.inertia, Iinv, Iw)
 
 
-@register_jitable
+@jitable
 def _arms(s, body, Q, r):
     """The corners' arms ``r`` (4 x 3, from the centre of mass, floor frame) of state ``s``; ``Q`` is workspace."""
     b, d, h = body.b, body.d, body.h

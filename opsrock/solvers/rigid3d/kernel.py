@@ -18,11 +18,11 @@ the height ``X_z + r_i,z``. The contact frame is the floor's: tangents ``x``, ``
 ``P_j`` at corner ``j`` changes ``u_i`` by ``W_ij P_j``, ``W_ij = 1 - S_i I^-1 S_j`` (``S`` the cross-product
 matrix of ``r``).
 
-Only :func:`run` is a numba dispatcher (``cache=True``); every function it calls, here and in the modules it
-imports, is registered with :func:`numba.extending.register_jitable` and compiled into it, without the CPython
-wrapper a dispatcher gets (the conversion of each argument from a Python object, every array of a named tuple)
-whether or not Python calls it: those wrappers were about a fifth of the cold compile (issue 43). Called from
-Python (as the closed-form tests do), a helper runs as plain Python.
+Only :func:`run` is a numba dispatcher (``cache=True``); every function it calls, here and in the modules it imports, is
+a :data:`opsrock.solvers.jitable.jitable` helper (numba's ``register_jitable``, without a C-callable wrapper) compiled
+into it, without the CPython wrapper a dispatcher gets (the conversion of each argument from a Python object, every
+array of a named tuple) whether or not Python calls it: those wrappers were about a fifth of the cold compile (issue
+43). Called from Python (as the closed-form tests do), a helper runs as plain Python.
 """
 
 from __future__ import annotations
@@ -30,8 +30,8 @@ from __future__ import annotations
 import math
 
 import numba
-from numba.extending import register_jitable
 
+from opsrock.solvers.jitable import jitable
 from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, CORNER_SX, CORNER_SY, DIRECTION_TOL,
                                                EDGE_STATUSES, FD_STEP, FLAT_ROUNDOFF, FORCING_LINEAR,
                                                FORCING_STEPWISE, FOUR, H_DOWN, H_POS, H_ROT, H_SIZE, H_SLIDE, H_T,
@@ -64,7 +64,7 @@ from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _copy,
 from opsrock.solvers.rigid3d.workspace import (make_corners, make_phase, make_trial, make_workspace)
 
 
-@register_jitable
+@jitable
 def _record(hist, t, s, theta, theta_dot, down, h, out):
     """Store one history sample, column ``j`` of ``hist`` (a row per quantity, ``H_*``), if there is room
     (``out[OUT_N_HIST]``: the samples stored, counted on)."""
@@ -87,7 +87,7 @@ def _record(hist, t, s, theta, theta_dot, down, h, out):
     out[OUT_N_HIST] = j + 1
 
 
-@register_jitable
+@jitable
 def _mode(touch, slip):
     """Contact mode (a ``MODE_*`` index) and corners down from the corners' contact and slip flags."""
     n = 0
@@ -103,7 +103,7 @@ def _mode(touch, slip):
     return MODE_FLIGHT, n
 
 
-@register_jitable
+@jitable
 def _tally(mode, n_down, dt, out):
     """First mode left rest into, and the times in each state."""
     if mode != MODE_REST and out[OUT_FIRST_MODE] < 0.0:
@@ -120,7 +120,7 @@ def _tally(mode, n_down, dt, out):
         out[OUT_TIME_FLIGHT] += dt
 
 
-@register_jitable
+@jitable
 def _settle(state, touch, body, Q, r, gap_max, out):
     """A block at rest on three corners (``touch``) whose fourth hangs above the floor by at most ``gap_max`` (m):
     the gap is the Moreau-Jean steps' drift (a corner that rose above the contact gap while the block came to rest
@@ -149,7 +149,7 @@ def _settle(state, touch, body, Q, r, gap_max, out):
     return True
 
 
-@register_jitable
+@jitable
 def _peak_reached(s, body, tilt_max, tail_av):
     """The tail rule "peak": after the excitation (a still floor, ``g' = g + tail_av``), the block's energy per
     unit mass above rest, bounded above by ``|V|²/2 + I_max |omega|²/2 + g' (z - h)``, can only fall; at a tilt
@@ -256,7 +256,7 @@ def _slide_step(model, floor, state, k, phase, work, corners, trial):
     return n
 
 
-@register_jitable
+@jitable
 def _needs_flat(out):
     """In place of :func:`_slide_step` where ``run``'s ``flat`` is None (infinite friction: a block slides flat only in
     the friction's limit): marks the case for the specialisation with the coarse slide (``out[OUT_NEEDS_FLAT]``; the
@@ -305,7 +305,7 @@ def _rest_skip(model, floor, k, state, theta, phase, hist, out):
     return k
 
 
-@register_jitable
+@jitable
 def _start(model, state, ws, corners, phase, hist, out):
     """The run's start from ``state``: ``out`` cleared, the corners within ``lift_gap`` of the floor down (their
     number into ``phase[PH_LAST_DOWN]``), the first history row, the peaks of the start. Returns the signed tilt."""
@@ -346,7 +346,7 @@ def _track(body, state, n_down, tilt_sub, r1, phase, out):
     return theta, lx, ly
 
 
-@register_jitable
+@jitable
 def _warm_start(P, acc, g, dt):
     """The impulses ``P`` (4 x 3, m/s) of a block leaving rest: the static impulses of the step's load (the floor
     accelerations ``acc``, m/s²; ``g``, m/s²; ``dt``, s), shared by the four corners, the contact solver's warm
@@ -356,7 +356,7 @@ def _warm_start(P, acc, g, dt):
         P[i, 0], P[i, 1], P[i, 2] = 0.25 * acc[0] * dt, 0.25 * acc[1] * dt, 0.25 * gz * dt
 
 
-@register_jitable
+@jitable
 def _seat(model, state, n_down, end, corners, phase, out):
     """A block at rest and still enough (``limits.velocity_tol``) on four corners, or on three with the fourth within
     the settling gap (:func:`_settle`, set down), is seated: its velocities zeroed, the rest skip on."""
@@ -367,7 +367,7 @@ def _seat(model, state, n_down, end, corners, phase, out):
             state[a] = 0.0
 
 
-@register_jitable
+@jitable
 def _finish(model, state, k, status, corners, hist, out):
     """The run's end at step ``k`` with ``status``: the last state's history row (if not stored) and the outputs."""
     dt, body = model.numerics.dt, model.body

@@ -33,7 +33,8 @@ from __future__ import annotations
 import math
 
 import numba
-from numba.extending import register_jitable
+
+from opsrock.solvers.jitable import jitable
 
 #: Longest Runge-Kutta sub-step, in units of ``1/p`` of the weaker axis: the peak tilt is read at the sub-steps'
 #: ends, so it is missed by at most ``p² sin(alpha) (RK_DTAU / p)² / 8``, about 3e-6 rad at 5e-3; the method's
@@ -58,7 +59,7 @@ SLIDE_DTAU = 2e-3
 FORCING_LINEAR = 1
 
 
-@register_jitable
+@jitable
 def mean_floor(floor, k0, n, theta_mj, a):
     """Mean floor accelerations ``a`` (m/s²) of the floor motion ``floor`` (:class:`.model.Floor`) over steps ``k0
     .. k0 + n - 1`` (within one sample interval of a record, where they are linear: the value at ``k0 + theta_mj
@@ -82,7 +83,7 @@ def mean_floor(floor, k0, n, theta_mj, a):
     a[0], a[1], a[2] = a[0] / n, a[1] / n, a[2] / n
 
 
-@register_jitable
+@jitable
 def floor_at(floor, kf, k0, theta_mj, F, g):
     """Body force ``F = (-a_x, -a_y, -(g + a_v))`` (m/s²) of the floor motion ``floor`` at time ``kf`` (units of
     the Moreau-Jean step) of a smooth step that starts at step ``k0``: records linear within the sample interval
@@ -112,7 +113,7 @@ def floor_at(floor, kf, k0, theta_mj, F, g):
     F[2] = -(g + av[i] + f * (av[i1] - av[i]))
 
 
-@register_jitable
+@jitable
 def quat_matrix(v, o, Q):
     """Rotation matrix ``Q`` of the unit quaternion ``v[o:o + 4] = (w, x, y, z)``."""
     w, x, y, z = v[o], v[o + 1], v[o + 2], v[o + 3]
@@ -127,7 +128,7 @@ def quat_matrix(v, o, Q):
     Q[2, 2] = 1.0 - 2.0 * (x * x + y * y)
 
 
-@register_jitable
+@jitable
 def _arm(y, cb, Q, r):
     """``r = X - O = -Q c_b``: from the pivot corner (body coordinates ``cb`` from the centre of mass) to the
     centre of mass, floor frame."""
@@ -136,7 +137,7 @@ def _arm(y, cb, Q, r):
         r[a] = -(Q[a, 0] * cb[0] + Q[a, 1] * cb[1] + Q[a, 2] * cb[2])
 
 
-@register_jitable
+@jitable
 def _rhs(y, wk, ib, edge):
     """Time derivative ``wk.dy`` of ``y = (q, omega)`` about the fixed pivot ``wk.cb`` under the body force ``wk.F``
     (see the module docstring; ``ib`` the body-frame inertia, ``edge``: turning about the edge ``wk.e``); ``wk``
@@ -185,7 +186,7 @@ def _rhs(y, wk, ib, edge):
     dy[3] = 0.5 * (qw * w2 + w0 * qy - w1 * qx)
 
 
-@register_jitable
+@jitable
 def _tilt_of(y):
     """Tilt (rad) of the quaternion ``y[0:4]``: ``2 asin(sqrt(q_x² + q_y²))``."""
     return 2.0 * math.asin(min(1.0, math.sqrt(y[1] * y[1] + y[2] * y[2])))
@@ -222,7 +223,7 @@ def _loads_hold(wk, edge, length, friction):
     return rb > 0.0 and R2 - rb > 0.0
 
 
-@register_jitable
+@jitable
 def integrate(model, floor, s, pivots, k0, n_steps, new, wk):
     """Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps about the stuck corners
     ``pivots`` (one or two indices) into ``new``; returns the largest tilt (rad) at the sub-steps' ends, or -1 as
@@ -290,7 +291,7 @@ def integrate(model, floor, s, pivots, k0, n_steps, new, wk):
     return tilt_max
 
 
-@register_jitable
+@jitable
 def step_end(floor, k, n_steps_max):
     """Where a smooth step from step ``k`` may end: at most ``n_steps_max`` steps on, never past the end of the
     excitation or (records) the next sample."""

@@ -9,8 +9,9 @@ import math
 
 import numpy as np
 from numba import types
-from numba.extending import overload, register_jitable
+from numba.extending import overload
 
+from opsrock.solvers.jitable import HELPER_OPTIONS, jitable
 from opsrock.solvers.rigid3d.constants import (ALIGN_TOL, CONE_SLACK, EDGE_STATUSES, FD_STEP, FLAT_ROUNDOFF, LIMIT_MU,
                                                NEWTON_TOL, OUT_LIMIT_STEPS, PIVOT_TOL, SIX, ZERO)
 from opsrock.solvers.rigid3d.geometry import (_cross_add, _delassus_pair, _inv3)
@@ -19,13 +20,13 @@ from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y, 
                                                FlatWork)
 
 
-@register_jitable
+@jitable
 def _solve6(A, y):
     """Solve ``A y_new = y`` in place (6 x 6, :func:`_solve_n`)."""
     return _solve_n(A, y, SIX)
 
 
-@register_jitable
+@jitable
 def _solve_n(A, y, n):
     """Solve ``A[:n, :n] y_new = y[:n]`` in place (Gaussian elimination with partial pivoting; ``A`` is
     overwritten); False if a pivot is below 1e-13 of the largest entry."""
@@ -57,7 +58,7 @@ def _solve_n(A, y, n):
     return True
 
 
-@register_jitable
+@jitable
 def _flat_system(cw, fw, n, mu_k):
     """The linear momentum equations of :func:`_slide_flat` for the slip directions ``fw.sdir``: ``fw.xs`` gets the
     normal impulses of the ``n`` corners ``fw.idx`` and ``(V_x, V_y, omega_z)``; False if singular. ``cw`` is the
@@ -120,7 +121,7 @@ def _flat_system(cw, fw, n, mu_k):
     return True
 
 
-@register_jitable
+@jitable
 def _flat_directions(v0, v1, wz, idx, n, r, sdir):
     """Each of the ``n`` corners ``idx``'s slip direction ``sdir`` for the level block's velocities ``(V_x, V_y,
     omega_z) = (v0, v1, wz)``; returns the largest change of a direction's component, or -1 if a corner does not
@@ -138,7 +139,7 @@ def _flat_directions(v0, v1, wz, idx, n, r, sdir):
     return moved
 
 
-@register_jitable
+@jitable
 def _flat_eval(cw, fw, n, mu_k, x, g):
     """``g = G(x) - x`` for the velocities ``x = (V_x, V_y, omega_z)``: the slip directions of ``x``, then the
     velocities :func:`_flat_system` gives for them. False if a corner does not slip or the system is singular."""
@@ -152,7 +153,7 @@ def _flat_eval(cw, fw, n, mu_k, x, g):
     return True
 
 
-@register_jitable
+@jitable
 def _flat_newton(cw, fw, n, mu_k, x):
     """Newton on ``G(x) = x`` (:func:`_flat_eval`) from ``x``, with a forward-difference Jacobian and step
     halving, to ``1e-12`` of the velocities' scale. Returns True with ``fw.xs`` and ``fw.sdir`` of the solution."""
@@ -270,14 +271,14 @@ def _never_slide_flat(cw, act, P, mu_k, sdir, Am):
     return False
 
 
-@overload(_slide_flat)
+@overload(_slide_flat, jit_options=HELPER_OPTIONS)
 def _slide_flat_typed(cw, act, P, mu_k, sdir, Am):
     """The implementation of :func:`_slide_flat` numba compiles for these argument types: none of the flat slide's
     if its scratch is None (infinite friction; issue 43: about a tenth of the kernel's compile)."""
     return _never_slide_flat if isinstance(sdir, types.NoneType) else _slide_flat
 
 
-@register_jitable
+@jitable
 def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
     """The linear system of :func:`_edge_slip` for the statuses ``st`` (0 stick, 1 slip, 2 open) and the slip
     directions ``sdir``: the unknowns are a stuck corner's impulse (3) and a slipping corner's normal impulse ``N``
@@ -312,7 +313,7 @@ def _edge_system(st, sdir, mu_k, D, q, A, y, cols):
     return m
 
 
-@register_jitable
+@jitable
 def _edge_eval(ew, st, mu_k, f):
     """The impulses ``P6`` and corner velocities ``u`` (``ew.vec`` rows ``EVEC_P6``, ``EVEC_U``) of
     :func:`_edge_system` for the slip directions ``ew.sdir``, and per slipping corner ``k`` the angle from its
@@ -342,7 +343,7 @@ def _edge_eval(ew, st, mu_k, f):
     return True
 
 
-@register_jitable
+@jitable
 def _edge_try(ew, st, mu_s, mu_k):
     """One status pair of :func:`_edge_slip`: the slip directions brought to consistency (each along that corner's
     tangential velocity; a few fixed-point steps ``s <- u_t / |u_t|``, then Newton on the directions' angles with a
@@ -424,7 +425,7 @@ def _edge_try(ew, st, mu_s, mu_k):
     return True
 
 
-@register_jitable
+@jitable
 def _edge_slip(cw, ew, act, P, fric, out):
     """Two active corners, one stuck and one slipping, both slipping, or one slipping and the other leaving the
     floor, in closed form for consistent slip directions (a block rocking on an edge while the edge slips or twists

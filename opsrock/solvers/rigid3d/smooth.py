@@ -10,9 +10,9 @@ import math
 
 import numba
 import numpy as np
-from numba.extending import register_jitable
 
 from opsrock.constants import OVERTURNING_ANGLE
+from opsrock.solvers.jitable import jitable
 from opsrock.solvers.rigid3d import pivot as PV
 from opsrock.solvers.rigid3d.constants import (LIMIT_MU, NO, OUT_COARSE_SPAN, OUT_COARSE_STEPS, OUT_FRICTION_WORK,
                                                OUT_SLIDE_STEPS, OUT_SLIP_SPAN, OUT_SLIP_STEPS, OUT_SLIP_TRIED,
@@ -24,7 +24,7 @@ from opsrock.solvers.rigid3d.step import (_book, _floor, _step)
 from opsrock.solvers.rigid3d.workspace import (EVEC_P6, EVEC_Q, EVEC_U, EVEC_Y, Probe)
 
 
-@register_jitable
+@jitable
 def _flat_slip(act, touch, slip):
     """After a Moreau-Jean step: all four corners active and down, some slipping (a block sliding flat)."""
     sl = False
@@ -35,7 +35,7 @@ def _flat_slip(act, touch, slip):
     return sl
 
 
-@register_jitable
+@jitable
 def _stuck_pivot(act, touch, slip, P):
     """After a Moreau-Jean step: one corner or two down, exactly those solved in contact, loaded, none slipping
     (the phase :mod:`.pivot` integrates)."""
@@ -47,7 +47,7 @@ def _stuck_pivot(act, touch, slip, P):
     return n == 1 or n == 2
 
 
-@register_jitable
+@jitable
 def _copy(dst, src):
     """``dst[:] = src`` (1-D, or 2-D row by row) element by element: numba compiles a slice assignment with its
     shape-mismatch error message, string formatting included (seconds of a cold compile)."""
@@ -60,7 +60,7 @@ def _copy(dst, src):
                 dst[i, j] = src[i, j]
 
 
-@register_jitable
+@jitable
 def _span(floor, k, n_max):
     """The Moreau-Jean steps a smooth step from step ``k`` spans at first: to the next sample of the floor motion or
     the end of the excitation, at most ``n_max``; -1 if that is fewer than two (none is tried)."""
@@ -68,7 +68,7 @@ def _span(floor, k, n_max):
     return -1 if n < 2 else n
 
 
-@register_jitable
+@jitable
 def _halved(n):
     """The steps of the next smooth step tried after one of ``n`` steps left its phase: half of them, at least
     ``pivot.MIN_STEPS``; 0 if ``n`` was already that short (the Moreau-Jean steps then locate the event)."""
@@ -245,7 +245,7 @@ def _slip_derivative(y, F, al, sw, dy):
     dy[6] = 0.5 * (qw * w2 + w0 * qy - w1 * qx)
 
 
-@register_jitable
+@jitable
 def _slip_rhs(model, y, F, sw, dy):
     """Time derivative ``dy`` of the state ``y`` (13) of a block on the corners ``sw.idx`` with the statuses
     ``sw.st`` (0 stuck, 1 slipping, 2 not in contact) under the body force ``F`` (m/s², per unit mass): the contact
@@ -277,7 +277,7 @@ def _slip_rhs(model, y, F, sw, dy):
     return holds, power, t_stop
 
 
-@register_jitable
+@jitable
 def _slip_integrate(model, floor, s, k0, n_steps, new, sw):
     """Classical Runge-Kutta from state ``s`` at Moreau-Jean step ``k0`` over ``n_steps`` steps on the slipping
     (and stuck) corners ``sw.idx`` / ``sw.st`` (:func:`_slip_rhs`) into ``new``, in sub-steps of at most
@@ -341,7 +341,7 @@ def _slip_integrate(model, floor, s, k0, n_steps, new, sw):
     return tilt_max, work
 
 
-@register_jitable
+@jitable
 def _slip_pivot(act, touch, slip, P):
     """After a Moreau-Jean step: one corner or two down, exactly those solved in contact, loaded, at least one
     slipping (the phase :func:`_smooth_slip` integrates)."""
@@ -442,7 +442,7 @@ def _smooth_slip(model, floor, state, k, work, corners, trial):
             return 0, 0.0
 
 
-@register_jitable
+@jitable
 def _coarse_steps(model):
     """The longest coarse Moreau-Jean step of a block sliding flat (:func:`_coarse_slide`), in Moreau-Jean steps:
     ``pivot.SLIDE_DTAU``, at least two."""

@@ -9,8 +9,8 @@ from __future__ import annotations
 import math
 
 import numba
-from numba.extending import register_jitable
 
+from opsrock.solvers.jitable import jitable
 from opsrock.solvers.rigid3d.constants import (FORCING_LINEAR, FORCING_STEPWISE, NO, OUT_CONTACT_STEPS, OUT_EDGE_SLIP,
                                                OUT_FRICTION_WORK, OUT_IMPACTS, OUT_IMPACT_LOSS, OUT_INPUT_WORK,
                                                OUT_MAX_PENETRATION, OUT_NSGS_FAILED, OUT_NSGS_MAX, OUT_NSGS_SWEEPS,
@@ -22,7 +22,7 @@ from opsrock.solvers.rigid3d.sliding import (_edge_slip, _slide_flat)
 from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_V, VEC_VF)
 
 
-@register_jitable
+@jitable
 def _floor(floor, k, theta_mj):
     """Floor accelerations ``(a_x, a_y, a_v)`` (m/s²) of ``floor`` (:class:`.model.Floor`) at the evaluation time
     ``(k + theta_mj) dt`` of step ``k``."""
@@ -108,7 +108,7 @@ def _gauss_seidel(cw, act, n_act, P, fric, tol, nsgs, out):
     return _solve_contacts(cw, act, P, fric, tol, nsgs, out, n_act == 1)
 
 
-@register_jitable
+@jitable
 def _step(model, s, acc, dt, ws, trial, guess):
     """One Moreau-Jean step of length ``dt`` (s) from ``s`` under the floor accelerations ``acc = (a_x, a_y, a_v)``
     (m/s²) into ``trial`` (:class:`.workspace.Probe`: the active corners, the impulses ``P``, warm start on entry,
@@ -186,7 +186,7 @@ def _contacts(new, cw, end, act, P, corners, limits, out):
     return impact
 
 
-@register_jitable
+@jitable
 def _rest_holds(a_x, a_y, a_v, body, fric):
     """Does a block at rest on its four corners, stuck, stay at rest under the floor accelerations? Iff
     ``g + a_v > 0``, the centre of pressure ``(a_x, a_y) h / (g + a_v)`` lies in the base ``[-b, b] x [-d, d]``
@@ -200,7 +200,7 @@ def _rest_holds(a_x, a_y, a_v, body, fric):
     return fric.infinite or math.hypot(a_x, a_y) <= fric.mu_s * gz
 
 
-@register_jitable
+@jitable
 def _count_sweeps(sweeps, nsgs, out):
     """A Moreau-Jean step's contact-solver counts (:func:`_step`'s ``sweeps``); returns True if it converged."""
     if sweeps > 0:
@@ -240,7 +240,7 @@ def _book(state, trial, cw, end, corners, model):
     return impact
 
 
-@register_jitable
+@jitable
 def _rest_span(model, floor, k, tail_left):
     """Steps a seated block whose load the base carries at step ``k`` stays at rest (>= 1): a record's whole
     sample interval from its start if the base carries the load at both samples, the tail's remaining rest

@@ -8,14 +8,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba.extending import register_jitable
 
+from opsrock.solvers.jitable import jitable
 from opsrock.solvers.rigid3d.constants import (CONE_SLACK, ONE, TWO, ZERO)
 from opsrock.solvers.rigid3d.geometry import (_cross_add, _delassus, _inv3)
 from opsrock.solvers.rigid3d.workspace import (VEC_OM, VEC_V, VEC_VF)
 
 
-@register_jitable
+@jitable
 def _shift_range(x, z, n):
     """The ``t`` nearest to 0 with ``x[:n] + t z[:n] >= 0`` (a statically indeterminate normal distribution made
     compressive along its free direction ``z``), and whether one exists."""
@@ -32,7 +32,7 @@ def _shift_range(x, z, n):
     return min(max(0.0, lo), hi), True
 
 
-@register_jitable
+@jitable
 def _flat_normals(act, r, F, T, P, B):
     """The normal impulses ``P[:, 2]`` of :func:`_stick_flat`: the least-norm solution of ``sum N = F_z``, ``sum N
     r_y = T_x + rz F_y``, ``sum N r_x = rz F_x - T_y`` (``F`` the total impulse, ``T`` the torque's horizontal part,
@@ -95,7 +95,7 @@ def _flat_normals(act, r, F, T, P, B):
     return total, cx, cy
 
 
-@register_jitable
+@jitable
 def _stick_flat(act, r, Iw, vf, P, B):
     """Impulses that stop a block standing on three or four corners of its level base: the total impulse
     ``-vf`` (per unit mass) and torque ``-I omega_f`` are fixed; with the corners in one plane (``r_z`` the
@@ -131,7 +131,7 @@ def _stick_flat(act, r, Iw, vf, P, B):
     return True
 
 
-@register_jitable
+@jitable
 def _first_two(act):
     """The first two active corners' indices (-1 where fewer)."""
     i1 = -1
@@ -145,7 +145,7 @@ def _first_two(act):
     return i1, i2
 
 
-@register_jitable
+@jitable
 def _cone_interval(P, e0, e1, e2, x0, mu):
     """The values ``x`` of the component along the unit ``e`` for which the impulse ``P + (x - x0) e`` (``x0`` its
     present component along ``e``) lies in the static cone ``hypot(P_x, P_y) <= mu P_z``: ``(lo, hi)``, empty
@@ -161,7 +161,7 @@ def _cone_interval(P, e0, e1, e2, x0, mu):
     return (-bc - w) / a, (-bc + w) / a
 
 
-@register_jitable
+@jitable
 def _edge_split(Pa, Pb, e, ca, cb, xa, mu):
     """Corner ``a``'s share of the impulse along an edge of unit direction ``e`` (a 3-tuple) shared by two stuck
     corners (which may carry any split of it): the share nearest ``xa`` that keeps both impulses in the static cone,
@@ -175,7 +175,7 @@ def _edge_split(Pa, Pb, e, ca, cb, xa, mu):
     return min(max(xa, lo), hi)
 
 
-@register_jitable
+@jitable
 def _stick_all(cw, act, n_act, P, fric):
     """Try every active corner stuck, in closed form: with two corners the block may only turn about the line
     through them (the velocity closest to the free one in the kinetic metric, one freedom), with three or four
@@ -245,7 +245,7 @@ def _stick_all(cw, act, n_act, P, fric):
     return True
 
 
-@register_jitable
+@jitable
 def _stick_subset(cw, act, guess, landing, n_act, P, fric, tol):
     """The active corners that were down (``act`` and ``guess``; with ``landing`` those that were not: a rocking
     impact, where the landing edge takes the load and the pivot lifts), one or two of them and fewer than
@@ -263,7 +263,7 @@ def _stick_subset(cw, act, guess, landing, n_act, P, fric, tol):
     return _stick_mask(cw, act, sub, n_sub, P, fric, tol)
 
 
-@register_jitable
+@jitable
 def _stick_mask(cw, act, sub, n_sub, P, fric, tol):
     """The corners of ``sub`` (one or two of the active ones) stuck and loaded, the other active corners
     separating (:func:`_stick_subset`)."""
@@ -305,7 +305,7 @@ def _stick_mask(cw, act, sub, n_sub, P, fric, tol):
     return True
 
 
-@register_jitable
+@jitable
 def _stick_single(cw, act, P, fric, tol):
     """Two active corners whose edge cannot carry the step stuck (a corner pulls): each alone stuck, the other
     separating (:func:`_stick_mask`), the lower one first (a block turning about a corner with the edge's other

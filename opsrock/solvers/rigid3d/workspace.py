@@ -24,7 +24,9 @@ from typing import NamedTuple
 
 import numpy as np
 from numba import types
-from numba.extending import overload, register_jitable
+from numba.extending import overload
+
+from opsrock.solvers.jitable import HELPER_OPTIONS, jitable
 
 #: Rows of :attr:`StepWork.vec`: the velocities ``V`` and ``omega`` after the impulses, the free velocity
 #: ``(V_f, omega_f)`` (6), a 6-vector of scratch for the closed forms (``y6``) and NSGS's local velocity ``q``, and
@@ -188,7 +190,7 @@ class Workspace(NamedTuple):
     slip: SlipWork
 
 
-@register_jitable
+@jitable
 def make_edge_work():
     """The scratch of the closed-form slip on two corners (:class:`EdgeWork`), zeroed."""
     return EdgeWork(np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
@@ -213,13 +215,13 @@ def _no_flat_scratch(flat):
     return FlatScratch(None, None)
 
 
-@overload(make_flat_scratch)
+@overload(make_flat_scratch, jit_options=HELPER_OPTIONS)
 def _make_flat_scratch_typed(flat):
     """The implementation of :func:`make_flat_scratch` numba compiles for the type of ``flat``."""
     return _no_flat_scratch if isinstance(flat, types.NoneType) else make_flat_scratch
 
 
-@register_jitable
+@jitable
 def make_workspace(out_size, flat):
     """The kernel's scratch, zeroed: a :class:`Workspace` (``out_size``: the length of the kernel's output vector,
     for the probe's; ``flat``: True to build the flat slide's scratch, None for none, :func:`flat_slides`)."""
@@ -238,7 +240,7 @@ def make_workspace(out_size, flat):
     return Workspace(ws, end, wk, probe, sw)
 
 
-@register_jitable
+@jitable
 def make_trial(out):
     """The run's own step's :class:`Probe`: its active corners, impulses and end state, zeroed, and the run's
     ``out``. Built here rather than in ``kernel.run``: numba compiles ``np.zeros`` once for each set of compile flags
@@ -246,14 +248,14 @@ def make_trial(out):
     return Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), out)
 
 
-@register_jitable
+@jitable
 def make_phase(size):
     """The run loop's phase counts (``size`` int64 slots, ``kernel``'s ``PH_*``), zeroed; built here for the reason
     :func:`make_trial` gives."""
     return np.zeros(size, dtype=np.int64)
 
 
-@register_jitable
+@jitable
 def make_corners():
     """The corners' flags (:class:`Corners`), all False."""
     return Corners(np.zeros(4, dtype=np.bool_), np.zeros(4, dtype=np.bool_))

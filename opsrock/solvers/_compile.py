@@ -39,13 +39,15 @@ from typing import Any, Iterator
 #: out the coarse slide and every kernel helper its C-callable wrapper (:mod:`opsrock.solvers.jitable`), alternated
 #: with the code before, two rounds, load average 0.8-1.1: rigid3d 29.2/28.2 s against 33.1/33.6 s, friction
 #: 7.5/7.5 s against 8.7/8.3 s, housner_fast 4.6/4.2 s against 4.9/4.5 s, moreau_jean 6.0/7.0 s against 6.5/6.9 s
-#: cold, less about 0.8-1.0 s warm.
+#: cold, less about 0.8-1.0 s warm. cylinder3d, once only its ``run`` was a numba dispatcher and the rest ``@jitable``
+#: helpers: 17.4/17.5 s against 24.3/25.1 s (the warm-up command above, alternated, load average 1.8-2.5), less 1 s
+#: warm.
 COMPILE_CPU_S: dict[str, float] = {
     "friction": 6.5,
     "housner_fast": 3.5,
     "moreau_jean": 5.5,
     "rigid3d": 28.0,
-    "cylinder3d": 30.0,
+    "cylinder3d": 16.0,
 }
 
 #: CPU time (s) of the parts of a kernel compiled only when a case first needs them, by ``(solver, part)``: the

@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import math
 
-import numba
 
 from opsrock.solvers.cylinder3d.constants import (CONE_SLACK, DIRECTION_TOL, LIMIT_MU, OPEN, OUT_SLIP_UNCONVERGED,
                                                   SLIP, SLIP_ITERATIONS, STICK)
+from opsrock.solvers.jitable import jitable
 
 
-@numba.njit(cache=True)
+@jitable
 def delassus(arm, Iinv, W):
     """``W = E + [r]^T Iinv [r]``: how an impulse at the point with arm ``arm`` changes that point's velocity
     (``Delta u = P + (Iinv (r x P)) x r``), into ``W`` (3 x 3)."""
@@ -33,7 +33,7 @@ def delassus(arm, Iinv, W):
         W[2, j] = (1.0 if j == 2 else 0.0) + dx * ry - dy * rx
 
 
-@numba.njit(cache=True)
+@jitable
 def stick(W, q, P):
     """``P = -W^-1 q`` by Cramer's rule (``W`` symmetric positive definite)."""
     a, b, c = W[0, 0], W[0, 1], W[0, 2]
@@ -46,7 +46,7 @@ def stick(W, q, P):
     P[2] = -(C * q[0] + (b * g - a * h) * q[1] + (a * e - b * d) * q[2]) / det
 
 
-@numba.njit(cache=True)
+@jitable
 def _slip(W, q, mu, P):
     """Slip with ``mu`` in the direction of the fixed point ``t = u_T / |u_T|``, started from the stuck impulse's
     friction (in ``P``, reversed) or the free slip velocity. Returns True if the direction settled."""
@@ -74,7 +74,7 @@ def _slip(W, q, mu, P):
     return False
 
 
-@numba.njit(cache=True)
+@jitable
 def local(W, q, friction, P, out, ring):
     """One rim point's exact Coulomb problem ``u = W P + q`` into ``P``; returns ``OPEN``, ``STICK`` or ``SLIP``.
     With infinite friction a point that would need a pulling impulse to stick slides in the limit ``LIMIT_MU`` when
@@ -96,7 +96,7 @@ def local(W, q, friction, P, out, ring):
     return SLIP
 
 
-@numba.njit(cache=True)
+@jitable
 def nsgs(ws, n, friction, solver, scale, out):
     """Nonsmooth Gauss-Seidel over the ``n`` rim points of ``ws.arms`` (their blocks ``ws.W``), from the impulses
     ``ws.P`` already applied to ``ws.vel``: each point's exact local problem in turn, the velocity updated after
@@ -124,7 +124,7 @@ def nsgs(ws, n, friction, solver, scale, out):
     return solver.max_sweeps + 1, slipping
 
 
-@numba.njit(cache=True)
+@jitable
 def apply_impulse(vel, Iinv, a, p0, p1, p2):
     """Add the impulse ``(p0, p1, p2)`` at the arm ``a`` to the velocity ``vel`` (``V``, ``omega``)."""
     c0, c1, c2 = a[1] * p2 - a[2] * p1, a[2] * p0 - a[0] * p2, a[0] * p1 - a[1] * p0

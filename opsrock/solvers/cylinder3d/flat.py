@@ -27,11 +27,11 @@ from __future__ import annotations
 
 import math
 
-import numba
 
 from opsrock.solvers.cylinder3d.constants import CONE_SLACK, OPEN, SLIP, STICK
 from opsrock.solvers.cylinder3d.contact import apply_impulse, delassus, local
 from opsrock.solvers.cylinder3d.geometry import rim_arm
+from opsrock.solvers.jitable import jitable
 
 #: Relative tolerance of the flow rule's scalar equation (:func:`_slip_scale`) and most of its Newton iterations.
 SCALE_TOL = 1e-14
@@ -45,7 +45,7 @@ ROOT_TURN = 1e-6
 NO_PRESS, OUTSIDE = -1, -2
 
 
-@numba.njit(cache=True)
+@jitable
 def _slip_scale(a, b, d3, target):
     """The ``lam > 0`` with ``lam² (a / (1 + lam)² + b / (d3 + lam)²) = target²`` (``a = |V_free|²``, ``b = (d3 r
     omega_free)²``, ``target = mu_k N < sqrt(a + b)``): the sliding base's velocities are ``V_free / (1 + lam)`` and
@@ -71,7 +71,7 @@ def _slip_scale(a, b, d3, target):
     return lam
 
 
-@numba.njit(cache=True)
+@jitable
 def _inside(ws, n, n_rim, r, c0, c1):
     """The centre of pressure ``(c0, c1)`` (m, floor frame, from the base centre) lies in the base: in its circle with
     the whole rim in contact, else in the polygon of the ``n`` rim points in contact (``ws.arms``, in order round the
@@ -90,7 +90,7 @@ def _inside(ws, n, n_rim, r, c0, c1):
     return True
 
 
-@numba.njit(cache=True)
+@jitable
 def _plan_motion(model, ws, normal):
     """The base's motion in plan after the step, ``(V_x, V_y, omega_z)`` and the status (``STICK``, ``SLIP``), for
     the normal impulse ``normal`` (m/s) and the free velocity ``ws.vel``: stuck if the impulse that stops it lies in the
@@ -107,7 +107,7 @@ def _plan_motion(model, ws, normal):
     return vel[0] / (1.0 + lam), vel[1] / (1.0 + lam), wz * d3 / (d3 + lam), SLIP
 
 
-@numba.njit(cache=True)
+@jitable
 def flat_base(model, ws, n, out):
     """The whole base on the floor this step (the ``n`` rim points in contact in ``ws.arms``, the free velocity in
     ``ws.vel``): returns ``STICK`` or ``SLIP`` with ``ws.vel`` the velocity after the step, else ``NO_PRESS`` (the
@@ -131,7 +131,7 @@ def flat_base(model, ws, n, out):
     return status
 
 
-@numba.njit(cache=True)
+@jitable
 def lowest_moving(Q, r, vel, phi):
     """Body angle (rad) of the rim point moving down fastest (smallest normal velocity) at the velocity ``vel`` of the
     cylinder with a level base: ``u_N(psi) = V_z + r (alpha cos psi + beta sin psi)`` (``alpha``, ``beta`` the
@@ -144,7 +144,7 @@ def lowest_moving(Q, r, vel, phi):
     return math.atan2(-a1, -a0)
 
 
-@numba.njit(cache=True)
+@jitable
 def _lift_at(model, ws, phi, out):
     """The rim point at body angle ``phi`` alone from the free velocity ``ws.free``: its exact local solve into
     ``ws.vel``; returns its status (``OPEN``: it does not press)."""
@@ -161,7 +161,7 @@ def _lift_at(model, ws, phi, out):
     return st
 
 
-@numba.njit(cache=True)
+@jitable
 def _turn(model, ws, phi, out):
     """How far round the rim (rad, in ``(-pi, pi]``) from the body angle ``phi`` lies the rim point moving down
     fastest after ``phi``'s lone impulse (:func:`_lift_at`); NaN if ``phi`` does not press."""
@@ -170,7 +170,7 @@ def _turn(model, ws, phi, out):
     return (lowest_moving(ws.Q, model.design.r, ws.vel, phi) - phi + math.pi) % (2.0 * math.pi) - math.pi
 
 
-@numba.njit(cache=True)
+@jitable
 def _settle_lift(model, ws, phi, out):
     """The body angle near ``phi`` where the lift's point is itself the rim point moving down fastest after its
     impulse (:func:`_turn` zero, falling through it as the angle grows): the fixed point of moving to that rim point
@@ -209,7 +209,7 @@ def _settle_lift(model, ws, phi, out):
     return hi if abs(_turn(model, ws, hi, out)) <= ROOT_TURN else math.nan
 
 
-@numba.njit(cache=True)
+@jitable
 def lift_about(model, ws, n, phi, out):
     """The cylinder rocking up about one rim point of its flat base, sought from the body angle ``phi`` (rad): the
     point whose lone impulse (:func:`_lift_at`, stuck or slipping) leaves it the rim point moving down fastest

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import math
 
-import numba
+from opsrock.solvers.jitable import jitable
 
 
-@numba.njit(cache=True)
+@jitable
 def rotation(s, Q):
     """The rotation matrix (body to floor) of the state's quaternion ``s[3:7]`` into ``Q`` (3 x 3)."""
     w, x, y, z = s[3], s[4], s[5], s[6]
@@ -18,7 +18,7 @@ def rotation(s, Q):
     Q[2, 0], Q[2, 1], Q[2, 2] = 2.0 * (x * z - w * y), 2.0 * (y * z + w * x), 1.0 - 2.0 * (x * x + y * y)
 
 
-@numba.njit(cache=True)
+@jitable
 def inertia(Q, design, Iw, Iinv):
     """The floor-frame inertia ``Iw = Q diag(i_h, i_h, i_z) Q^T`` and its inverse ``Iinv`` (m², per unit mass):
     axisymmetric, ``i_h E + (i_z - i_h) a a^T`` with ``a`` the axis."""
@@ -31,7 +31,7 @@ def inertia(Q, design, Iw, Iinv):
             Iinv[i, j] = e / ih + (1.0 / iz - 1.0 / ih) * aa
 
 
-@numba.njit(cache=True)
+@jitable
 def rim_arm(Q, design, phi, arm):
     """The arm (floor frame, m) from the centre of mass to the rim point at body angle ``phi`` (rad), into the
     3-vector ``arm``."""
@@ -40,13 +40,13 @@ def rim_arm(Q, design, phi, arm):
         arm[i] = Q[i, 0] * cx + Q[i, 1] * cy + Q[i, 2] * cz
 
 
-@numba.njit(cache=True)
+@jitable
 def lean(Q):
     """``sin`` of the tilt: the horizontal length of the axis (dimensionless)."""
     return math.hypot(Q[0, 2], Q[1, 2])
 
 
-@numba.njit(cache=True)
+@jitable
 def lowest_angle(Q, fx, fy):
     """Body angle (rad) of the lowest rim point; for a level base (the axis vertical to round-off) the rim point
     towards the floor-frame direction ``(fx, fy)`` (the way the floor's load pushes the centre of mass), or body
@@ -59,7 +59,7 @@ def lowest_angle(Q, fx, fy):
     return math.atan2(by, bx) if (bx != 0.0 or by != 0.0) else 0.0
 
 
-@numba.njit(cache=True)
+@jitable
 def tilt(s):
     """The tilt (rad, angle of the axis from the vertical) and the axis's horizontal components ``(l_x, l_y)``."""
     w, x, y, z = s[3], s[4], s[5], s[6]
@@ -68,7 +68,7 @@ def tilt(s):
     return math.atan2(math.hypot(lx, ly), lz), lx, ly
 
 
-@numba.njit(cache=True)
+@jitable
 def twist(s):
     """Rotation about the vertical (rad): the swing-twist decomposition's twist, ``2 atan2(q_z, q_w)`` in
     ``(-pi, pi]``."""
@@ -80,7 +80,7 @@ def twist(s):
     return t
 
 
-@numba.njit(cache=True)
+@jitable
 def base_centre(s, h):
     """Horizontal position ``(x, y)`` of the base's centre (m, floor frame)."""
     w, x, y, z = s[3], s[4], s[5], s[6]

@@ -7,6 +7,10 @@ inertias in m². The floor frame ``(x, y, z)`` is the cylinder's frame at rest (
 direction at azimuth 0, ``z`` up, origin at the base centre at rest); the floor's accelerations enter as the body
 force ``(-a_x, -a_y, -(g + a_v))``. State (13 floats): centre of mass ``X``, unit quaternion ``(w, x, y, z)`` (body
 to floor), velocity ``V`` and angular velocity ``omega`` (floor frame).
+
+Only :func:`run` is a numba dispatcher (``cache=True``); every function it calls, here and in the modules it imports, is
+a :data:`opsrock.solvers.jitable.jitable` helper compiled into it, without the CPython and C wrappers a dispatcher gets
+(issue 43: a third of the first compile). Called from Python, a helper runs as plain Python.
 """
 
 from __future__ import annotations
@@ -37,9 +41,10 @@ from opsrock.solvers.cylinder3d.geometry import base_centre, tilt, twist
 from opsrock.solvers.cylinder3d.model import Model, Numerics
 from opsrock.solvers.cylinder3d.rolling import RV_Y, roll, span_end
 from opsrock.solvers.cylinder3d.step import floor_at, step
+from opsrock.solvers.jitable import jitable
 
 
-@numba.njit(cache=True)
+@jitable
 def _signed(s):
     """The tilt signed by the lean along ``x`` (rad) and the angular velocity about ``y`` (rad/s): the planar
     solvers' ``theta`` and ``theta'`` in motion along ``x``."""
@@ -47,7 +52,7 @@ def _signed(s):
     return (t if (lx > 0.0 or (lx == 0.0 and ly >= 0.0)) else -t), s[11]
 
 
-@numba.njit(cache=True)
+@jitable
 def _record(j, t, s, down, h, hist):
     """Store one history row at time ``t`` (s) if there is room; returns the next free row."""
     if j >= hist.shape[0]:
@@ -65,7 +70,7 @@ def _record(j, t, s, down, h, hist):
     return j + 1
 
 
-@numba.njit(cache=True)
+@jitable
 def _rest_holds(model, acc):
     """A seated cylinder stays at rest this step: the floor's load pushes down (``g + a_v > 0``), its centre of
     pressure ``|a_h| h / (g + a_v)`` lies inside the base's circle of radius ``r`` and friction carries ``|a_h|``.
@@ -76,7 +81,7 @@ def _rest_holds(model, acc):
     return gz > 0.0 and ah * d.h <= d.r * gz and (f.infinite or ah <= f.mu_s * gz)
 
 
-@numba.njit(cache=True)
+@jitable
 def _seat(s, h):
     """Set a cylinder at rest on its stuck base down level: its base centre and twist kept, its velocities zero."""
     bx, by = base_centre(s, h)
@@ -86,7 +91,7 @@ def _seat(s, h):
     s[7:] = 0.0
 
 
-@numba.njit(cache=True)
+@jitable
 def _book(model, state, n, slipping, phi0, flat):
     """The step's bookkeeping: the contact mode and the time in it, a landing (an impact: a rim point touching down
     after a flight, the contact jumping across the base, or the base landing flat), the contact point's run round
@@ -121,7 +126,7 @@ def _book(model, state, n, slipping, phi0, flat):
     return landing
 
 
-@numba.njit(cache=True)
+@jitable
 def _peaks(model, state):
     """The peaks of tilt, slide and twist after a step into the tracker; returns the tilt (rad) and the axis's
     horizontal components."""
@@ -134,7 +139,7 @@ def _peaks(model, state):
     return t, lx, ly
 
 
-@numba.njit(cache=True)
+@jitable
 def _roll_step(model, floor, state, rw, k):
     """A Runge-Kutta sub-step rolling on the rim point (:func:`.rolling.roll`) from step ``k`` to the next sample
     (at most ``roll_steps`` steps) and its bookkeeping: the time on the rim (rolling, if the contact point turned
@@ -172,13 +177,13 @@ def _roll_step(model, floor, state, rw, k):
     return n
 
 
-@numba.njit(cache=True)
+@jitable
 def _wobble_broken(tr):
     """The unbroken rolling after the excitation ends (a Moreau-Jean step, or the excitation still on)."""
     tr[T_W_LAST], tr[T_W_RISING], tr[T_W_MAXES] = math.nan, 0.0, 0.0
 
 
-@numba.njit(cache=True)
+@jitable
 def _wobble(tr, t, rate):
     """The tilt ``t`` (rad) and ``|omega_h|`` ``rate`` (rad/s) at the end of a sub-step of unbroken rolling after the
     excitation: counts the tilt's local maxima and keeps, from the first, its largest value and the largest rate."""
@@ -195,7 +200,7 @@ def _wobble(tr, t, rate):
     tr[T_W_LAST] = t
 
 
-@numba.njit(cache=True)
+@jitable
 def _steady_wobble(model, state):
     """At the end of the tail's span, still rolling: True if the cylinder can never overturn because it has rolled
     without slip, unbroken, through a full period of its tilt (two of its maxima) after the excitation. A body of
@@ -212,7 +217,7 @@ def _steady_wobble(model, state):
     return True
 
 
-@numba.njit(cache=True)
+@jitable
 def _track(model, state, ws):
     """The peaks after a step (tilt, slide, twist) and the input work; returns True if the cylinder overturned
     (tilt ``>= pi/2``), its mechanism and direction then written."""
@@ -228,7 +233,7 @@ def _track(model, state, ws):
     return True
 
 
-@numba.njit(cache=True)
+@jitable
 def _tail_energy(model, s, tail_av):
     """Energy per unit mass above rest on the still floor after the excitation (J/kg): ``|V|²/2``, the rotation's
     ``(i_h |omega|² + (i_z - i_h) (omega . a)²) / 2`` (``a`` the axis) and ``(g + tail_av) (z - h)``. Nothing feeds
@@ -240,7 +245,7 @@ def _tail_energy(model, s, tail_av):
     return 0.5 * (s[7] * s[7] + s[8] * s[8] + s[9] * s[9] + rot) + (d.g + tail_av) * (s[2] - d.h)
 
 
-@numba.njit(cache=True)
+@jitable
 def _lift(model, tilt_, tail_av):
     """The energy per unit mass (J/kg) that raises the centre of mass to the tilt ``tilt_`` (rad) on a rim point:
     ``(g + tail_av) (h cos tilt + r sin tilt - h)``."""
@@ -248,7 +253,7 @@ def _lift(model, tilt_, tail_av):
     return (d.g + tail_av) * (d.h * math.cos(tilt_) + d.r * math.sin(tilt_) - d.h)
 
 
-@numba.njit(cache=True)
+@jitable
 def _below_overturning(model, state, tail_av):
     """At the end of the tail's span: True if the cylinder can never overturn, its energy (:func:`_tail_energy`, its
     centre of mass raised to put its lowest rim point on the floor if it lies below it) with ``ENERGY_ROUNDOFF`` of
@@ -276,7 +281,7 @@ def _below_overturning(model, state, tail_av):
     return True
 
 
-@numba.njit(cache=True)
+@jitable
 def _tail_settled(model, state, tail_av):
     """The tail may end before rest (1: settled; 2: bounded): its energy (:func:`_tail_energy`), which nothing feeds
     any more, cannot raise the centre of mass to the overturning tilt (below ``TAIL_CUT_MARGIN`` of the lift to it),
@@ -300,7 +305,7 @@ def _tail_settled(model, state, tail_av):
     return 1 if math.hypot(s[7] + s[11] * c2 - s[12] * c1, s[8] + s[12] * c0 - s[10] * c2) < PEAK_BASE_SPEED else 0
 
 
-@numba.njit(cache=True)
+@jitable
 def _impulse_energy(ws):
     """The energy per unit mass (J/kg) the step's contact impulses took: ``-dv . M v_end`` (their work at the step's
     end velocities, ``dv = v_end - v_free``, ``M = diag(1, Iw)``: friction's alone where the normal impulses do none,
@@ -319,7 +324,7 @@ def _impulse_energy(ws):
     return work, work + quad
 
 
-@numba.njit(cache=True)
+@jitable
 def _sub_step(model, state, ws, k):
     """One Moreau-Jean step of ``model``'s step and its bookkeeping; returns False if the run must stop failed
     (non-finite state, NSGS unconverged too long: ``out[OUT_STATUS]`` set)."""
@@ -359,7 +364,7 @@ def _sub_step(model, state, ws, k):
     return True
 
 
-@numba.njit(cache=True)
+@jitable
 def _contact_step(model, state, ws, k):
     """One step ``dt`` of Moreau-Jean, cut into sub-steps while the contact point runs fast round the rim (at most
     ``PHI_STEP`` rad a sub-step at its last rate, at most ``MAX_SUBSTEPS`` of them): a cylinder rolling through a
@@ -436,7 +441,7 @@ def run(model, floor, state, ws, rw, hist):
     return _finish(model, state, hist, j, k)
 
 
-@numba.njit(cache=True)
+@jitable
 def _finish(model, state, hist, j, k):
     """The last history row and the output vector's totals; returns the status."""
     s, out, tr, dt = state.s, state.out, state.track, model.numerics.dt

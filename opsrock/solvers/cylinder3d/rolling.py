@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import math
 
-import numba
 
 from opsrock.constants import OVERTURNING_ANGLE
 from opsrock.solvers.cylinder3d.constants import FORCING_LINEAR, ROLL_FLAT, ROLL_PHI
@@ -38,9 +37,10 @@ RM_Q, RM_IW, RM_IINV, RM_W = 0, 1, 2, 3
 RV_ARM, RV_TAN, RV_B, RV_AL, RV_P, RV_F, RV_Y, RV_DY, RV_SUM, RV_TMP = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9
 from opsrock.solvers.cylinder3d.contact import delassus, stick
 from opsrock.solvers.cylinder3d.geometry import inertia, lowest_angle, rim_arm, rotation, tilt
+from opsrock.solvers.jitable import jitable
 
 
-@numba.njit(cache=True)
+@jitable
 def floor_force(floor, kf, k0, theta_mj, acc):
     """The floor's accelerations ``(a_x, a_y, a_v)`` (m/s²) into ``acc`` at the time ``kf`` (in Moreau-Jean steps) of
     a smooth step that starts at step ``k0``: a record linear within the sample interval of ``k0``; a pulse (its
@@ -62,7 +62,7 @@ def floor_force(floor, kf, k0, theta_mj, acc):
     acc[2] = floor.av[i] + f * (floor.av[i1] - floor.av[i])
 
 
-@numba.njit(cache=True)
+@jitable
 def span_end(model, floor, k):
     """Where a smooth sub-step from step ``k`` may end: ``roll_steps`` steps on, never past a record's next sample, the
     end of the excitation, the end of the tail's span or ``max_steps``."""
@@ -76,7 +76,7 @@ def span_end(model, floor, k):
     return min(end, model.limits.max_steps)
 
 
-@numba.njit(cache=True)
+@jitable
 def _contact_force(model, y, rw):
     """The contact force (row ``RV_P``, m/s², per unit mass) that keeps the lowest rim point of ``y`` rolling without
     slip under the body force (row ``RV_F``), with the arm, ``alpha_f`` (rows ``RV_ARM``, ``RV_AL``) and the rotation
@@ -107,7 +107,7 @@ def _contact_force(model, y, rw):
     return rate, phi
 
 
-@numba.njit(cache=True)
+@jitable
 def _rhs(model, y, rw, dy):
     """The time derivative ``dy`` of the state ``y`` (13) rolling on its lowest rim point (:func:`_contact_force`).
     Returns ``(holds, phi', phi)``: ``holds`` False unless the contact presses within the static cone and the base
@@ -134,7 +134,7 @@ def _rhs(model, y, rw, dy):
     return holds, rate, phi
 
 
-@numba.njit(cache=True)
+@jitable
 def _set_on_floor(model, y, rw):
     """The constraint's drift removed from the end state ``y``: the lowest rim point set on the floor (the centre of
     mass shifted vertically) and its velocity zero (``V = -omega x a``)."""
@@ -147,7 +147,7 @@ def _set_on_floor(model, y, rw):
     y[9] = -(y[10] * a[1] - y[11] * a[0])
 
 
-@numba.njit(cache=True)
+@jitable
 def roll(model, floor, s, k, n, rw):
     """One Runge-Kutta sub-step of ``n`` Moreau-Jean steps from the state ``s`` at step ``k`` rolling on its lowest rim
     point, into row ``RV_Y`` of ``rw.v``. Returns ``(kept, the floor's work (J/kg), the contact point's body angle at the end (rad),

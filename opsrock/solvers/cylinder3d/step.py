@@ -15,16 +15,16 @@ from __future__ import annotations
 
 import math
 
-import numba
 
 from opsrock.solvers.cylinder3d.constants import (FLAT_GAP, FORCING_STEPWISE, OPEN, OUT_FLAT_STEPS, OUT_LIFT_STEPS,
                                                   OUT_MAX_PENETRATION, SET_DOWN_GAPS, SLIP)
 from opsrock.solvers.cylinder3d.contact import apply_impulse, delassus, local, nsgs
 from opsrock.solvers.cylinder3d.flat import OUTSIDE, flat_base, lift_about, lowest_moving
 from opsrock.solvers.cylinder3d.geometry import inertia, lean, lowest_angle, rim_arm, rotation
+from opsrock.solvers.jitable import jitable
 
 
-@numba.njit(cache=True)
+@jitable
 def floor_at(floor, k, theta_mj, acc):
     """The floor's accelerations ``(a_x, a_y, a_v)`` (m/s²) at the evaluation time ``(k + theta_mj) dt`` of step
     ``k``, into ``acc``; after the excitation no horizontal motion and ``a_v = tail_av``."""
@@ -40,7 +40,7 @@ def floor_at(floor, k, theta_mj, acc):
         acc[2] = floor.av[j] + f * (floor.av[j + 1] - floor.av[j])
 
 
-@numba.njit(cache=True)
+@jitable
 def free_velocity(model, s, ws):
     """The rotation and inertias at ``q_k`` (``ws.Q``, ``ws.Iw``, ``ws.Iinv``) and the free velocity under the
     step's forces into ``ws.free`` and ``ws.vel``."""
@@ -59,7 +59,7 @@ def free_velocity(model, s, ws):
     ws.vel[:] = f
 
 
-@numba.njit(cache=True)
+@jitable
 def contact_points(model, s, ws, out):
     """The rim points in contact this step into ``ws.arms``, ``ws.phi``, ``ws.W``: the lowest rim point while the
     cylinder is tilted, or ``n_rim`` points evenly round the rim from the one the floor's load pushes towards while
@@ -90,7 +90,7 @@ def contact_points(model, s, ws, out):
     return n, phi0, flat
 
 
-@numba.njit(cache=True)
+@jitable
 def _pivot_alone(model, ws, n, phi0, out):
     """The flat base's first rim point (towards the floor's load) alone: its exact local solve, accepted if every
     other point then separates (``u_N >= 0``): the uplift about the rim point the load pushes towards. Returns its
@@ -117,7 +117,7 @@ def _pivot_alone(model, ws, n, phi0, out):
     return st
 
 
-@numba.njit(cache=True)
+@jitable
 def _advance(model, s, ws):
     """The end state into ``ws.new``: position by the theta-blend of the velocities, the quaternion turned by
     ``dt`` times the same blend of the angular velocities (floor frame: ``q <- exp(dt omega / 2) q``)."""
@@ -141,7 +141,7 @@ def _advance(model, s, ws):
     new[3], new[4], new[5], new[6] = nw / norm, nx / norm, ny / norm, nz / norm
 
 
-@numba.njit(cache=True)
+@jitable
 def _set_down(model, ws):
     """Set the lowest rim point of the end state ``ws.new`` back onto the floor (shift the centre of mass
     vertically): velocity-level contact lets a loaded point drift off the floor by ``O(dt²)`` a step (the arm turns
@@ -154,7 +154,7 @@ def _set_down(model, ws):
         ws.new[2] -= gap
 
 
-@numba.njit(cache=True)
+@jitable
 def _flat_closed(model, ws, n, out):
     """The flat base's closed forms (:mod:`.flat`) where the lift about the load's rim point did not hold: the base
     stays down (stuck, or sliding and twisting), or the cylinder lifts about one rim point, sought from the
@@ -176,7 +176,7 @@ def _flat_closed(model, ws, n, out):
     return -1
 
 
-@numba.njit(cache=True)
+@jitable
 def step(model, s, ws, out):
     """One Moreau-Jean step from ``s`` into ``ws.new`` (the floor's accelerations in ``ws.acc``). Returns the rim
     points in contact, the sweeps NSGS took (0: no contact), the points slipping, the first point's body angle

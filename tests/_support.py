@@ -192,7 +192,8 @@ def case_rows(path: str | os.PathLike) -> list[dict[str, str]]:
 
 #: Sources outside a kernel's own package that its compiled code reads (module-level constants numba freezes into
 #: the machine code).
-SHARED_KERNEL_SOURCES = ("constants.py", "limits.py", "solvers/forcing.py", "solvers/jitable.py", "solvers/status.py")
+SHARED_KERNEL_SOURCES = ("constants.py", "limits.py", "solvers/forcing.py", "solvers/jitable.py", "solvers/scratch.py",
+                         "solvers/status.py")
 
 
 def drop_stale_kernels(package: Path) -> list[Path]:

@@ -142,8 +142,8 @@ models flight): 400/400, median 6.2e-5, 95th percentile 2.3e-4. Twelve FEMA P695
 ``x`` and, width and depth swapped, along ``y``: 24/24 verdicts of ``housner_fast``, median 3.8e-4, 95th percentile
 1.2e-3 (``pytest -s -m slow tests/model/solvers/test_rigid3d_slow.py`` prints them).
 
-Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms; much of it
-numba's reference counting of the arrays passed between the kernel's functions), a few µs one slipping on one or two
+Cost at the default step: about 1 µs a contact step rocking on an edge or sliding flat (closed forms; the
+kernel's scratch arrays are views without numba's reference counts, :mod:`opsrock.solvers.scratch`), a few µs one slipping on one or two
 corners (closed forms with Newton on the slip directions), 5-20 µs an NSGS step, 20 ns a rest-skipped step; a smooth
 step spans up to a sample interval (hundreds of Moreau-Jean steps); 867 record-seconds per CPU-second on the
 rocking record above, 191 on the sliding two-component one (2-core project machine; one run, the speeds scatter by

@@ -61,7 +61,9 @@ from opsrock.solvers.rigid3d.geometry import (_arms, _cm_outside, _geometry, _ti
 from opsrock.solvers.rigid3d.step import (_book, _count_sweeps, _floor, _rest_holds, _rest_span, _step)
 from opsrock.solvers.rigid3d.smooth import (_coarse_slide, _coarse_steps, _copy, _flat_slip, _slip_pivot, _smooth,
                                             _smooth_slip, _stuck_pivot)
-from opsrock.solvers.rigid3d.workspace import (make_corners, make_phase, make_trial, make_workspace)
+from opsrock.solvers.rigid3d.model import Floor
+from opsrock.solvers.rigid3d.workspace import (ARENA_BYTES, make_corners, make_phase, make_trial, make_workspace)
+from opsrock.solvers.scratch import keep_alive, make_arena, unmanaged
 
 
 @jitable
@@ -385,6 +387,25 @@ def _finish(model, state, k, status, corners, hist, out):
     return status
 
 
+@jitable
+def _unmanaged_inputs(floor, state, hist, out):
+    """The run's input arrays as views without reference counts (:func:`opsrock.solvers.scratch.unmanaged`; the
+    caller holds the arrays for the call): the floor motion's, the state, the history and the outputs."""
+    floor = Floor(floor.form, unmanaged(floor.ax), unmanaged(floor.ay), unmanaged(floor.av), floor.sub, floor.n_exc,
+                  floor.tail_av)
+    return floor, unmanaged(state), unmanaged(hist), unmanaged(out)
+
+
+@jitable
+def _scratch(out, flat):
+    """The run's scratch, all from one arena (:mod:`opsrock.solvers.scratch`): returns the arena (which must stay bound
+    while the rest is used), the :class:`.workspace.Workspace`, the corners' flags, the trial step (writing into
+    ``out``) and the phase counts."""
+    arena = make_arena(ARENA_BYTES)
+    return (arena, make_workspace(arena, OUT_SIZE, flat), make_corners(arena), make_trial(arena, out),
+            make_phase(arena, PH_SIZE))
+
+
 @numba.njit(cache=True)
 def run(model, floor, state, hist, out, flat):
     """Integrate one case into ``out`` (``OUT_*``) and ``hist`` (rows ``H_*``); returns the status. Each step: the rest
@@ -408,9 +429,9 @@ def run(model, floor, state, hist, out, flat):
         block sliding flat marked in ``out[OUT_NEEDS_FLAT]`` for a run with True.
     """
     body, lim, dt, n_exc = model.body, model.limits, model.numerics.dt, floor.n_exc
-    work = make_workspace(OUT_SIZE, flat)
-    ws, end, corners = work.step, work.end, make_corners()
-    trial, phase = make_trial(out), make_phase(PH_SIZE)
+    floor, state, hist, out = _unmanaged_inputs(floor, state, hist, out)
+    arena, work, corners, trial, phase = _scratch(out, flat)  # (the arena kept to the end: keep_alive)
+    ws, end = work.step, work.end
     theta = _start(model, state, ws, corners, phase, hist, out)
     status, k, going = STATUS_OK, ZERO, True
     while going:  # (one exit, its test: numba drops every array the loop holds at each exit; issue 43)
@@ -465,4 +486,4 @@ def run(model, floor, state, hist, out, flat):
             continue
         if mode == MODE_REST and speed < lim.velocity_tol:
             _seat(model, state, n_down, end, corners, phase, out)
-    return _finish(model, state, k, status, corners, hist, out)
+    return _finish(model, state, k, status, corners, hist, out) + keep_alive(arena)

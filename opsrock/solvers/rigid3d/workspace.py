@@ -4,18 +4,15 @@ problem's :class:`Contact` and the closed-form slip on two corners' :class:`Edge
 stuck corners (:class:`PivotWork`), those on slipping corners (:class:`SlipWork`), and a probe step's
 (:class:`Probe`).
 
-A named tuple is the same structure to numba as a plain tuple of the same arrays (its fields are read by a constant
-offset), and a compiled function counts a reference to every array of its arguments as it starts and ends (an
-atomic increment and decrement each): commit 671beba measured about a third of a microsecond a step for each
-function the whole workspace passes through, and with every function of the contact problem taking the whole
-:class:`StepWork` (23 arrays) those counts took 22 % of a quick Siconos run's CPU (``perf``, against 11.5 % with
-the arrays passed one by one). So the functions called several times a step take the few arrays they read
-(:class:`Contact`, 8), the small ones called once a step are inlined into theirs, and the 6-vectors of one role
-share a 2-D array (rows named ``VEC_*``, ``EVEC_*``): fewer arrays to count.
-
-Numba's own option to switch the counting off per function (``_nrt=False``) cut a 3-D case's CPU by a factor
-of about 1.3 with results bit for bit the same (issue 43), but it is not part of numba's public interface, which is
-all opsrock uses: the counting stays, and fewer arrays passed per call remain the public way to cut it.
+Every array here is a view into one :class:`~opsrock.solvers.scratch.Arena` the kernel allocates once a run (of
+:data:`ARENA_BYTES`), a view without a reference count (:mod:`opsrock.solvers.scratch`): numba counts a reference to
+every array a compiled function binds, an atomic increment and decrement each, and a named tuple passed to a
+function binds all its arrays. Before the arena those counts shaped this layout (the functions called several times
+a step take the few arrays they read, :class:`Contact`; the 6-vectors of one role share a 2-D array, rows ``VEC_*``
+and ``EVEC_*``; commit 671beba measured a third of a microsecond a step for each function the whole workspace passed
+through); with it a count is a test of a NULL pointer, and a 3-D case of the directionality study took about a sixth
+less CPU, its results bit for bit the same (issue 43; numba's own switch, ``_nrt=False``, is not part of its public
+interface). Called from Python (the closed-form tests), the builders below make new arrays instead.
 """
 
 from __future__ import annotations
@@ -27,6 +24,7 @@ from numba import types
 from numba.extending import overload
 
 from opsrock.solvers.jitable import HELPER_OPTIONS, jitable
+from opsrock.solvers.scratch import take
 
 #: Rows of :attr:`StepWork.vec`: the velocities ``V`` and ``omega`` after the impulses, the free velocity
 #: ``(V_f, omega_f)`` (6), a 6-vector of scratch for the closed forms (``y6``) and NSGS's local velocity ``q``, and
@@ -191,10 +189,11 @@ class Workspace(NamedTuple):
 
 
 @jitable
-def make_edge_work():
-    """The scratch of the closed-form slip on two corners (:class:`EdgeWork`), zeroed."""
-    return EdgeWork(np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)),
-                    np.zeros(1, dtype=np.int64), np.zeros((5, 2)), np.zeros(4, dtype=np.int64))
+def make_edge_work(arena):
+    """The scratch of the closed-form slip on two corners (:class:`EdgeWork`), zeroed, from ``arena``."""
+    f8, i8 = np.float64, np.int64
+    return EdgeWork(take(arena, (6, 6), f8), take(arena, (6, 6), f8), take(arena, (6, 6), f8), take(arena, (4, 6), f8),
+                    take(arena, (2, 2), f8), take(arena, (1,), i8), take(arena, (5, 2), f8), take(arena, (4,), i8))
 
 
 def flat_slides(friction):
@@ -204,64 +203,73 @@ def flat_slides(friction):
     return None if friction.infinite else True
 
 
-def make_flat_scratch(flat):
-    """The flat slide's scratch, zeroed (:class:`FlatScratch`), for ``flat`` True; compiled by its type
+def make_flat_scratch(arena, flat):
+    """The flat slide's scratch, zeroed (:class:`FlatScratch`), from ``arena`` for ``flat`` True; compiled by its type
     (:func:`_make_flat_scratch_typed`): both None for ``flat`` None."""
-    return FlatScratch(np.zeros((4, 2)), np.zeros((6, 7)))
+    return FlatScratch(take(arena, (4, 2), np.float64), take(arena, (6, 7), np.float64))
 
 
-def _no_flat_scratch(flat):
+def _no_flat_scratch(arena, flat):
     """:func:`make_flat_scratch` for ``flat`` None (infinite friction): none."""
     return FlatScratch(None, None)
 
 
 @overload(make_flat_scratch, jit_options=HELPER_OPTIONS)
-def _make_flat_scratch_typed(flat):
+def _make_flat_scratch_typed(arena, flat):
     """The implementation of :func:`make_flat_scratch` numba compiles for the type of ``flat``."""
     return _no_flat_scratch if isinstance(flat, types.NoneType) else make_flat_scratch
 
 
+#: Bytes of a run's :class:`~opsrock.solvers.scratch.Arena`: the workspace (with the flat slide's scratch), the trial
+#: step, the phase counts and the corners' flags take 6,448 (``tests/unit/test_scratch.py`` checks they fit; a kernel
+#: that took more would stop with MemoryError).
+ARENA_BYTES = 8192
+
+
 @jitable
-def make_workspace(out_size, flat):
-    """The kernel's scratch, zeroed: a :class:`Workspace` (``out_size``: the length of the kernel's output vector,
-    for the probe's; ``flat``: True to build the flat slide's scratch, None for none, :func:`flat_slides`)."""
-    edge = make_edge_work()
-    contact = Contact(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((4, 3, 3)), np.zeros((4, 3, 3)),
-                      np.zeros((5, 6)), np.zeros((6, 6)), np.zeros(4, dtype=np.bool_))
-    fs = make_flat_scratch(flat)
-    ws = StepWork(contact, np.zeros((3, 3)), fs.sdir, fs.Am, edge)
-    end = EndWork(np.zeros((3, 3)), np.zeros((4, 3)), np.zeros(2, dtype=np.int64), np.zeros(3))
-    wk = PivotWork(np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(7), np.zeros(3), np.zeros(3), np.zeros(3),
-                   np.zeros(3), np.zeros((3, 3)), np.zeros((3, 3)))
-    probe = Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), np.zeros(out_size))
-    sw = SlipWork(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((4, 3)), np.zeros((6, 6)),
-                  np.zeros((6, 6)), np.zeros((6, 6)), np.zeros((4, 6)), np.zeros((2, 2)), np.zeros(13), np.zeros(13),
-                  np.zeros(13), np.zeros(3), np.zeros(2, dtype=np.int64), np.zeros(2, dtype=np.int64))
+def make_workspace(arena, out_size, flat):
+    """The kernel's scratch, zeroed, from ``arena`` (:mod:`opsrock.solvers.scratch`): a :class:`Workspace`
+    (``out_size``: the length of the kernel's output vector, for the probe's; ``flat``: True to build the flat
+    slide's scratch, None for none, :func:`flat_slides`)."""
+    f8, i8, b1 = np.float64, np.int64, np.bool_
+    edge = make_edge_work(arena)
+    contact = Contact(take(arena, (3, 3), f8), take(arena, (3, 3), f8), take(arena, (4, 3), f8),
+                      take(arena, (4, 3, 3), f8), take(arena, (4, 3, 3), f8), take(arena, (5, 6), f8),
+                      take(arena, (6, 6), f8), take(arena, (4,), b1))
+    fs = make_flat_scratch(arena, flat)
+    ws = StepWork(contact, take(arena, (3, 3), f8), fs.sdir, fs.Am, edge)
+    end = EndWork(take(arena, (3, 3), f8), take(arena, (4, 3), f8), take(arena, (2,), i8), take(arena, (3,), f8))
+    wk = PivotWork(take(arena, (7,), f8), take(arena, (7,), f8), take(arena, (7,), f8), take(arena, (7,), f8),
+                   take(arena, (3,), f8), take(arena, (3,), f8), take(arena, (3,), f8), take(arena, (3,), f8),
+                   take(arena, (3, 3), f8), take(arena, (3, 3), f8))
+    probe = Probe(take(arena, (4,), b1), take(arena, (4, 3), f8), take(arena, (13,), f8), take(arena, (out_size,), f8))
+    sw = SlipWork(take(arena, (3, 3), f8), take(arena, (3, 3), f8), take(arena, (3, 3), f8), take(arena, (4, 3), f8),
+                  take(arena, (6, 6), f8), take(arena, (6, 6), f8), take(arena, (6, 6), f8), take(arena, (4, 6), f8),
+                  take(arena, (2, 2), f8), take(arena, (13,), f8), take(arena, (13,), f8), take(arena, (13,), f8),
+                  take(arena, (3,), f8), take(arena, (2,), i8), take(arena, (2,), i8))
     return Workspace(ws, end, wk, probe, sw)
 
 
 @jitable
-def make_trial(out):
-    """The run's own step's :class:`Probe`: its active corners, impulses and end state, zeroed, and the run's
-    ``out``. Built here rather than in ``kernel.run``: numba compiles ``np.zeros`` once for each set of compile flags
-    it is met under, and an entry point's differ from a helper's (issue 43)."""
-    return Probe(np.zeros(4, dtype=np.bool_), np.zeros((4, 3)), np.zeros(13), out)
+def make_trial(arena, out):
+    """The run's own step's :class:`Probe`: its active corners, impulses and end state, zeroed, from ``arena``, and
+    the run's ``out``."""
+    return Probe(take(arena, (4,), np.bool_), take(arena, (4, 3), np.float64), take(arena, (13,), np.float64), out)
 
 
 @jitable
-def make_phase(size):
-    """The run loop's phase counts (``size`` int64 slots, ``kernel``'s ``PH_*``), zeroed; built here for the reason
-    :func:`make_trial` gives."""
-    return np.zeros(size, dtype=np.int64)
+def make_phase(arena, size):
+    """The run loop's phase counts (``size`` int64 slots, ``kernel``'s ``PH_*``), zeroed, from ``arena``."""
+    return take(arena, (size,), np.int64)
 
 
 @jitable
-def make_corners():
-    """The corners' flags (:class:`Corners`), all False."""
-    return Corners(np.zeros(4, dtype=np.bool_), np.zeros(4, dtype=np.bool_))
+def make_corners(arena):
+    """The corners' flags (:class:`Corners`), all False, from ``arena``."""
+    return Corners(take(arena, (4,), np.bool_), take(arena, (4,), np.bool_))
 
 
-__all__ = ["EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Contact", "Corners",
+__all__ = ["ARENA_BYTES", "EVEC_P6", "EVEC_Q", "EVEC_U", "EVEC_Y", "VEC_OM", "VEC_PN", "VEC_V", "VEC_VF", "VEC_Y6", "Contact", "Corners",
            "EdgeWork", "EndWork", "FlatScratch", "FlatWork", "PivotWork", "Probe", "SlipWork", "StepWork", "Workspace",
            "flat_slides", "make_corners", "make_edge_work", "make_flat_scratch", "make_phase", "make_trial",
            "make_workspace"]

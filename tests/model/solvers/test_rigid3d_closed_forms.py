@@ -20,7 +20,9 @@ import pytest
 from opsrock.solvers.rigid3d import contact, geometry, sliding, sticking
 from opsrock.solvers.rigid3d import kernel as kn
 from opsrock.solvers.rigid3d.model import Body, ContactSolver, Friction
-from opsrock.solvers.rigid3d.workspace import VEC_OM, VEC_V, VEC_VF, FlatWork, make_edge_work, make_workspace
+from opsrock.solvers.rigid3d.workspace import (ARENA_BYTES, VEC_OM, VEC_V, VEC_VF, FlatWork, make_edge_work,
+                                               make_workspace)
+from opsrock.solvers.scratch import make_arena
 
 B, D, H = 0.2, 0.3, 0.8
 IB = ((0.6**2 + 1.6**2) / 12, (0.4**2 + 1.6**2) / 12, (0.4**2 + 0.6**2) / 12)
@@ -56,7 +58,7 @@ def _problem(rng):
 def _workspace(r, vf, Iinv=None, Iw=None):
     """The kernel's contact-problem workspace holding the arms ``r``, the free velocity ``vf`` and the inertias
     given."""
-    ws = make_workspace(kn.OUT_SIZE, None).step.contact
+    ws = make_workspace(make_arena(ARENA_BYTES), kn.OUT_SIZE, None).step.contact
     ws.r[:] = r
     ws.vec[VEC_VF] = vf
     if Iinv is not None:
@@ -125,7 +127,7 @@ def test_edge_slip_obeys_coulomb_and_agrees_with_gauss_seidel():
         scale = np.abs(vf).max()
         slips = any(Pn[i, 2] > 0.0 and math.hypot(*(Vn + np.cross(Omn, r[i]))[:2]) > 1e-9 * scale for i in EDGE)
         ws, P = _workspace(r, vf, Iinv=Iinv), np.zeros((4, 3))
-        if not sliding._edge_slip(ws, make_edge_work(), act, P, Friction(mu, mu, False), np.zeros(kn.OUT_SIZE)):
+        if not sliding._edge_slip(ws, make_edge_work(make_arena(ARENA_BYTES)), act, P, Friction(mu, mu, False), np.zeros(kn.OUT_SIZE)):
             assert not slips
             continue
         V, Om = ws.vec[VEC_V, :3], ws.vec[VEC_OM, :3]

@@ -5,8 +5,11 @@ takes), an atomic increment as the function starts and an atomic decrement as it
 ``meminfo``. An array built by ``numba.carray`` over a pointer has no ``meminfo`` (it is NULL), and numba's count
 then tests the pointer and does nothing. A kernel's scratch is therefore taken from one :class:`Arena`, a zeroed
 byte buffer the kernel allocates (and counts) once, as such views (:func:`take`), and its input arrays are used
-through such views of themselves (:func:`unmanaged`): the counting that was 40-45 % of a 3-D case's CPU
-(``perf``, issue 43) becomes a test of a NULL pointer.
+through such views of themselves (:func:`unmanaged`): each count becomes a test of a NULL pointer. What that saves
+depends on the processor's cost of an atomic operation: numba's own switch for the same counts (``_nrt=False``, not
+public) cut a 3-D case's CPU by about 1.3 on one project machine, and the arena's saving on an AMD EPYC one was within
+the runs' noise (-2 % to +7 %, issue 43). (``perf`` under a hypervisor puts up to 46 % of its samples just after the
+atomic instructions, a sampling artefact, not their cost.)
 
 The rule that keeps this safe: a view is valid only while the memory it points into is alive. The arena must stay
 bound in the kernel until the kernel's last use of its views (:func:`keep_alive` at the end marks that use), and

@@ -10,9 +10,8 @@ every array a compiled function binds, an atomic increment and decrement each, a
 function binds all its arrays. Before the arena those counts shaped this layout (the functions called several times
 a step take the few arrays they read, :class:`Contact`; the 6-vectors of one role share a 2-D array, rows ``VEC_*``
 and ``EVEC_*``; commit 671beba measured a third of a microsecond a step for each function the whole workspace passed
-through); with it a count is a test of a NULL pointer, and a 3-D case of the directionality study took about a sixth
-less CPU, its results bit for bit the same (issue 43; numba's own switch, ``_nrt=False``, is not part of its public
-interface). Called from Python (the closed-form tests), the builders below make new arrays instead.
+through); with it a count is a test of a NULL pointer, results bit for bit the same (what that saves depends on the
+processor: :mod:`opsrock.solvers.scratch`). Called from Python (the closed-form tests), the builders below make new arrays instead.
 """
 
 from __future__ import annotations
